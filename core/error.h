@@ -1,0 +1,28 @@
+#pragma once
+/// Errors reported to users. Every message names the file, the place in it (a JSON path such as
+/// `/shapes/3/albedo`) and what was expected, so a user can fix the input without reading code.
+
+#include <stdexcept>
+#include <string>
+
+namespace rrf {
+
+class InputError : public std::runtime_error {
+public:
+    InputError(const std::string& file, const std::string& where, const std::string& what)
+        : std::runtime_error(format(file, where, what)), file_(file), where_(where), what_(what) {}
+
+    const std::string& file() const { return file_; }
+    const std::string& where() const { return where_; }
+    const std::string& detail() const { return what_; }
+
+private:
+    static std::string format(const std::string& file, const std::string& where, const std::string& what) {
+        std::string s = file.empty() ? std::string("<input>") : file;
+        if (!where.empty()) s += ": " + where;
+        return s + ": " + what;
+    }
+    std::string file_, where_, what_;
+};
+
+}  // namespace rrf
