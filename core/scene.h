@@ -94,6 +94,8 @@ struct Scene {
     /// Box in which the movable light's centre may be placed (training data, GUI slider range).
     /// Empty box = the light does not move.
     Bounds3 lightRegion;
+    /// Non-fatal findings of the loader (e.g. degenerate triangles dropped from an OBJ file).
+    std::vector<std::string> warnings;
 
     /// Bounds of all objects and rect lights.
     Bounds3 bounds() const;
