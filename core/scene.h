@@ -70,6 +70,9 @@ struct Light {
     bool oneSided = true;                               ///< rect
     Vec3 position{0.f};                                 ///< point
     Vec3 intensity{1.f};                                ///< point
+    /// Material of the emitting surface (rect only): -1 = black (the usual case, as in Mitsuba's
+    /// Cornell box). A reflective emitter makes furnace scenes possible (walls that emit and reflect).
+    int material = -1;
 
     Vec3 normal() const { return normalize(cross(edge1, edge2)); }
     float area() const { return length(cross(edge1, edge2)); }
