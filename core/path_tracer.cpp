@@ -25,6 +25,7 @@ int PathTracer::materialOf(const Hit& hit) const {
 Radiance PathTracer::trace(const Ray& ray, Rng& rng, TraceCounters& counters) const {
     Hit hit;
     ++counters.rays;
+    if (counters.rayLog) counters.rayLog->push_back(ray);
     if (!accel_.intersect(ray, hit)) return {};
     return shade(hit, -ray.dir, rng, counters);
 }
@@ -84,6 +85,7 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, Rng& rng, TraceCounters& counte
         r.dir = wi;
         Hit next;
         ++counters.rays;
+        if (counters.rayLog) counters.rayLog->push_back(r);
         if (!accel_.intersect(r, next)) break;
         if (next.light >= 0 && !nee) {
             Vec3& t = depth == 0 ? L.direct : L.indirect;
@@ -113,6 +115,7 @@ Vec3 PathTracer::sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, cons
         if (!(s.tmax > 0.f)) return true;  // nothing fits between the point and the light
         s.dir = d / dist;
         ++counters.shadowRays;
+        if (counters.shadowRayLog) counters.shadowRayLog->push_back(s);
         return !accel_.occluded(s);
     };
     for (int li : rectLights_) {

@@ -33,6 +33,10 @@ struct Radiance {
 struct TraceCounters {
     uint64_t rays = 0;        ///< closest-hit queries (primary and bounce rays)
     uint64_t shadowRays = 0;  ///< occlusion queries
+    /// Optional logs of every query, so a benchmark can replay the tracer's own ray distribution
+    /// through plain Embree calls. Null (the default) costs one predictable branch per ray.
+    std::vector<Ray>* rayLog = nullptr;
+    std::vector<Ray>* shadowRayLog = nullptr;
 };
 
 class PathTracer {

@@ -1,13 +1,24 @@
-// rrf: command-line front end of RRF Workbench. Subcommands are registered in cli_*.cpp.
+// rrf: the command-line front end of RRF Workbench. It runs the same core engine as the GUI, with no
+// display. Errors in inputs print one clear message (file, JSON path, what was expected) and exit 1.
 #include <cstdio>
-#include <cstring>
-#include <string>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "app/cli/commands.h"
 
 int main(int argc, char** argv) {
-    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
-        std::printf("usage: rrf <command> [options]\n");
-        return argc < 2 ? 2 : 0;
+    CLI::App app{"rrf - RRF Workbench: learn global illumination with radiance regression functions"};
+    app.require_subcommand(1);
+    int exitCode = 0;
+    rrf::cli::addRenderCommand(app, exitCode);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "rrf: error: %s\n", e.what());
+        return 1;
     }
-    std::fprintf(stderr, "rrf: unknown command '%s'\n", argv[1]);
-    return 2;
+    return exitCode;
 }

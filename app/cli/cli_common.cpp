@@ -1,0 +1,118 @@
+#include "app/cli/cli_common.h"
+
+#include <csignal>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <sstream>
+#include <thread>
+
+#include <unistd.h>
+
+#include "core/error.h"
+
+namespace rrf::cli {
+
+namespace {
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void onSignal(int sig) {
+    if (g_interrupted.exchange(true)) {
+        std::signal(sig, SIG_DFL);
+        std::raise(sig);
+    }
+}
+
+std::string formatSeconds(double s) {
+    char buf[32];
+    if (s < 60) std::snprintf(buf, sizeof buf, "%.0fs", s);
+    else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s) / 60, int(s) % 60);
+    else std::snprintf(buf, sizeof buf, "%dh%02dm", int(s) / 3600, (int(s) / 60) % 60);
+    return buf;
+}
+}  // namespace
+
+std::atomic<bool>& installInterruptHandler() {
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+    return g_interrupted;
+}
+
+std::unique_ptr<tbb::global_control> limitThreads(int threads) {
+    if (threads <= 0) return nullptr;
+    return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(threads));
+}
+
+Vec3 parseVec3(const std::string& text, const std::string& option) {
+    Vec3 v;
+    std::istringstream in(text);
+    for (int i = 0; i < 3; ++i) {
+        std::string part;
+        if (!std::getline(in, part, ',')) throw InputError("command line", option, "expected x,y,z, got '" + text + "'");
+        try {
+            size_t used = 0;
+            v[i] = std::stof(part, &used);
+            if (used != part.size()) throw std::invalid_argument(part);
+        } catch (const std::exception&) {
+            throw InputError("command line", option, "expected x,y,z numbers, got '" + text + "'");
+        }
+        if (!std::isfinite(v[i])) throw InputError("command line", option, "coordinates must be finite, got '" + text + "'");
+    }
+    std::string rest;
+    if (std::getline(in, rest)) throw InputError("command line", option, "expected exactly 3 numbers, got '" + text + "'");
+    return v;
+}
+
+void runWithProgress(const std::string& label, const std::function<void()>& work,
+                     const std::function<std::pair<double, std::string>()>& progress,
+                     const std::function<void()>& cancel) {
+    std::atomic<bool>& interrupted = installInterruptHandler();
+    std::exception_ptr error;
+    std::atomic<bool> done{false};
+    std::thread worker([&] {
+        try {
+            work();
+        } catch (...) {
+            error = std::current_exception();
+        }
+        done = true;
+    });
+    const bool tty = ::isatty(STDERR_FILENO);
+    const auto start = std::chrono::steady_clock::now();
+    int lastDecile = -1;
+    bool cancelled = false;
+    while (!done) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        if (interrupted && !cancelled) {
+            cancelled = true;
+            cancel();
+            std::fprintf(stderr, "\n%s: interrupted, stopping cleanly...\n", label.c_str());
+        }
+        const auto [fraction, text] = progress();
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const std::string eta = fraction > 0.01 ? formatSeconds(elapsed * (1.0 - fraction) / fraction) : "?";
+        if (tty) {
+            const int width = 30, filled = int(fraction * width);
+            std::fprintf(stderr, "\r%s [%s%s] %5.1f%% ETA %s %s   ", label.c_str(), std::string(size_t(filled), '#').c_str(),
+                         std::string(size_t(width - filled), ' ').c_str(), 100.0 * fraction, eta.c_str(), text.c_str());
+            std::fflush(stderr);
+        } else if (int(fraction * 10) > lastDecile) {
+            lastDecile = int(fraction * 10);
+            std::fprintf(stderr, "%s: %3.0f%% (ETA %s) %s\n", label.c_str(), 100.0 * fraction, eta.c_str(), text.c_str());
+        }
+    }
+    worker.join();
+    if (tty) std::fprintf(stderr, "\n");
+    if (error) std::rethrow_exception(error);
+}
+
+std::string humanCount(double value) {
+    char buf[32];
+    if (value >= 1e9) std::snprintf(buf, sizeof buf, "%.2f G", value / 1e9);
+    else if (value >= 1e6) std::snprintf(buf, sizeof buf, "%.2f M", value / 1e6);
+    else if (value >= 1e3) std::snprintf(buf, sizeof buf, "%.1f k", value / 1e3);
+    else std::snprintf(buf, sizeof buf, "%.0f ", value);
+    return buf;
+}
+
+}  // namespace rrf::cli
