@@ -1,0 +1,278 @@
+#pragma once
+/// Scenes built in code for the rendering tests (no JSON loader involved), plus small statistics
+/// helpers shared by the Monte Carlo tests.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace rrf::test {
+
+inline int addLambert(Scene& s, const Vec3& albedo, const std::string& name = "lambert") {
+    Material m;
+    m.type = Material::Type::Lambert;
+    m.name = name;
+    m.kd = albedo;
+    s.materials.push_back(m);
+    return int(s.materials.size()) - 1;
+}
+
+inline int addPhong(Scene& s, const Vec3& kd, const Vec3& ks, float exponent, const std::string& name = "phong") {
+    Material m;
+    m.type = Material::Type::Phong;
+    m.name = name;
+    m.kd = kd;
+    m.ks = ks;
+    m.exponent = exponent;
+    s.materials.push_back(m);
+    return int(s.materials.size()) - 1;
+}
+
+/// Adds an object made of parallelograms corner + s·e1 + t·e2; the geometric normal is e1 × e2.
+struct QuadSpec {
+    Vec3 corner, e1, e2;
+};
+inline int addQuads(Scene& s, const std::vector<QuadSpec>& quads, int material, const std::string& name = "quads") {
+    Object o;
+    o.kind = Object::Kind::Quads;
+    o.name = name;
+    o.id = int(s.objects.size());
+    o.material = material;
+    for (const QuadSpec& q : quads) {
+        const uint32_t base = uint32_t(o.positions.size());
+        o.positions.push_back(q.corner);
+        o.positions.push_back(q.corner + q.e1);
+        o.positions.push_back(q.corner + q.e1 + q.e2);
+        o.positions.push_back(q.corner + q.e2);
+        for (uint32_t k = 0; k < 4; ++k) o.indices.push_back(base + k);
+    }
+    s.objects.push_back(std::move(o));
+    return int(s.objects.size()) - 1;
+}
+
+inline int addRectLight(Scene& s, const Vec3& corner, const Vec3& e1, const Vec3& e2, const Vec3& radiance,
+                        bool oneSided = true, int material = -1) {
+    Light l;
+    l.type = Light::Type::Rect;
+    l.name = "rect" + std::to_string(s.lights.size());
+    l.corner = corner;
+    l.edge1 = e1;
+    l.edge2 = e2;
+    l.radiance = radiance;
+    l.oneSided = oneSided;
+    l.material = material;
+    s.lights.push_back(l);
+    return int(s.lights.size()) - 1;
+}
+
+inline int addPointLight(Scene& s, const Vec3& position, const Vec3& intensity) {
+    Light l;
+    l.type = Light::Type::Point;
+    l.name = "point" + std::to_string(s.lights.size());
+    l.position = position;
+    l.intensity = intensity;
+    s.lights.push_back(l);
+    return int(s.lights.size()) - 1;
+}
+
+/// The six faces of the cube [-h, h]³ as parallelograms whose normal e1 × e2 points inwards.
+inline std::vector<QuadSpec> inwardCubeFaces(float h) {
+    const float w = 2.f * h;
+    return {
+        {{-h, -h, -h}, {0, w, 0}, {0, 0, w}},  // x = -h, normal +x
+        {{h, -h, -h}, {0, 0, w}, {0, w, 0}},   // x = +h, normal -x
+        {{-h, -h, -h}, {0, 0, w}, {w, 0, 0}},  // y = -h, normal +y
+        {{-h, h, -h}, {w, 0, 0}, {0, 0, w}},   // y = +h, normal -y
+        {{-h, -h, -h}, {w, 0, 0}, {0, w, 0}},  // z = -h, normal +z
+        {{-h, -h, h}, {0, w, 0}, {w, 0, 0}},   // z = +h, normal -z
+    };
+}
+
+/// White furnace: six one-sided emitters (radiance `le`) forming a closed cube, each reflecting with
+/// material `material`; the camera sits at the centre. Every camera ray sees Le / (1 − albedo) when
+/// the material is Lambert.
+inline Scene furnaceScene(float le, const Material& wall, int size = 16) {
+    Scene s;
+    s.materials.push_back(wall);
+    for (const QuadSpec& q : inwardCubeFaces(1.f)) addRectLight(s, q.corner, q.e1, q.e2, Vec3(le), true, 0);
+    s.camera.eye = Vec3(0.f, 0.f, 0.f);
+    s.camera.target = Vec3(0.3f, 0.2f, -1.f);
+    s.camera.up = Vec3(0, 1, 0);
+    s.camera.fovYDegrees = 100.f;
+    s.camera.width = size;
+    s.camera.height = size;
+    return s;
+}
+
+/// Cornell-like open box [-1,1]³ (front z = +1 open) with a one-sided ceiling light facing down and a
+/// closed block standing on the floor, everything multiplied by `scale` (radiance unchanged, so the
+/// image is the same at every scale).
+inline Scene cornellLike(float scale = 1.f, int size = 32) {
+    Scene s;
+    const int white = addLambert(s, Vec3(0.75f, 0.72f, 0.70f), "white");
+    const int red = addLambert(s, Vec3(0.60f, 0.06f, 0.05f), "red");
+    const int green = addLambert(s, Vec3(0.10f, 0.45f, 0.08f), "green");
+    const float k = scale;
+    auto q = [k](Vec3 c, Vec3 a, Vec3 b) { return QuadSpec{c * k, a * k, b * k}; };
+    // Walls face inwards (e1 × e2 points into the box).
+    addQuads(s, {q({-1, -1, -1}, {0, 0, 2}, {2, 0, 0}),   // floor, +y
+                 q({-1, 1, -1}, {2, 0, 0}, {0, 0, 2}),    // ceiling, -y
+                 q({-1, -1, -1}, {2, 0, 0}, {0, 2, 0})},  // back, +z
+             white, "white walls");
+    addQuads(s, {q({-1, -1, -1}, {0, 2, 0}, {0, 0, 2})}, red, "left wall");    // x = -1, +x
+    addQuads(s, {q({1, -1, -1}, {0, 0, 2}, {0, 2, 0})}, green, "right wall");  // x = +1, -x
+    // Closed block [-0.6,-0.1] × [-1,-0.2] × [-0.5,0] standing on the floor (faces point outwards):
+    // its contact line with the floor is where too-large ray offsets would leak light.
+    const Vec3 lo(-0.6f, -1.f, -0.5f), hi(-0.1f, -0.2f, 0.f);
+    const Vec3 d = hi - lo;
+    addQuads(s, {q(lo, {0, 0, d.z}, {0, d.y, 0}),                    // x = lo, -x
+                 q({hi.x, lo.y, lo.z}, {0, d.y, 0}, {0, 0, d.z}),    // x = hi, +x
+                 q(lo, {d.x, 0, 0}, {0, 0, d.z}),                    // y = lo, -y
+                 q({lo.x, hi.y, lo.z}, {0, 0, d.z}, {d.x, 0, 0}),    // y = hi, +y
+                 q(lo, {0, d.y, 0}, {d.x, 0, 0}),                    // z = lo, -z
+                 q({lo.x, lo.y, hi.z}, {d.x, 0, 0}, {0, d.y, 0})},   // z = hi, +z
+             white, "block");
+    // Light just below the ceiling, normal e1 × e2 = -y (facing down).
+    addRectLight(s, Vec3(-0.25f, 0.99f, -0.2f) * k, Vec3(0.5f, 0, 0) * k, Vec3(0, 0, 0.4f) * k, Vec3(15.f, 12.f, 8.f));
+    s.camera.eye = Vec3(0, 0, 3.9f) * k;
+    s.camera.target = Vec3(0, 0, 0);
+    s.camera.up = Vec3(0, 1, 0);
+    s.camera.fovYDegrees = 39.3077f;
+    s.camera.width = size;
+    s.camera.height = size;
+    return s;
+}
+
+/// Running mean and variance (Welford), in double.
+struct RunningStat {
+    uint64_t n = 0;
+    double mean = 0, m2 = 0;
+    void add(double x) {
+        ++n;
+        const double d = x - mean;
+        mean += d / double(n);
+        m2 += d * (x - mean);
+    }
+    double variance() const { return n > 1 ? m2 / double(n - 1) : 0.0; }
+    /// Standard error of the mean.
+    double sigma() const { return n > 1 ? std::sqrt(variance() / double(n)) : 0.0; }
+};
+
+
+/// Gauss–Legendre nodes and weights on [-1, 1] (Newton iteration on P_n; exact for degree 2n−1).
+struct GaussLegendre {
+    std::vector<double> x, w;
+    explicit GaussLegendre(int n) : x(size_t(n)), w(size_t(n)) {
+        const double pi = 3.14159265358979323846;
+        for (int i = 0; i < n; ++i) {
+            double z = std::cos(pi * (i + 0.75) / (n + 0.5)), dp = 1;
+            for (int it = 0; it < 100; ++it) {
+                double p0 = 1, p1 = z;
+                for (int k = 2; k <= n; ++k) {
+                    const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                dp = n * (z * p1 - p0) / (z * z - 1);
+                const double dz = p1 / dp;
+                z -= dz;
+                if (std::fabs(dz) < 1e-16) break;
+            }
+            x[size_t(i)] = z;
+            w[size_t(i)] = 2 / ((1 - z * z) * dp * dp);
+        }
+    }
+    /// ∫_a^b f, split into `panels` equal panels.
+    double integrate(const std::function<double(double)>& f, double a, double b, int panels = 1) const {
+        double sum = 0;
+        const double h = (b - a) / panels;
+        for (int p = 0; p < panels; ++p) {
+            const double lo = a + p * h, mid = lo + 0.5 * h;
+            for (size_t i = 0; i < x.size(); ++i) sum += w[i] * f(mid + 0.5 * h * x[i]);
+        }
+        return sum * 0.5 * h;
+    }
+};
+
+/// Regularised upper incomplete gamma function Q(a, x) (series below a+1, Lentz continued fraction
+/// above; Numerical Recipes §6.2). The chi-square survival function is Q(dof/2, χ²/2).
+inline double gammaQ(double a, double x) {
+    if (x <= 0) return 1.0;
+    const double lg = std::lgamma(a);
+    if (x < a + 1) {
+        double ap = a, sum = 1 / a, del = sum;
+        for (int n = 0; n < 10000; ++n) {
+            ap += 1;
+            del *= x / ap;
+            sum += del;
+            if (std::fabs(del) < std::fabs(sum) * 1e-15) break;
+        }
+        return 1 - sum * std::exp(-x + a * std::log(x) - lg);
+    }
+    const double tiny = 1e-300;
+    double b = x + 1 - a, c = 1 / tiny, d = 1 / b, h = d;
+    for (int i = 1; i < 10000; ++i) {
+        const double an = -i * (i - a);
+        b += 2;
+        d = an * d + b;
+        if (std::fabs(d) < tiny) d = tiny;
+        c = b + an / c;
+        if (std::fabs(c) < tiny) c = tiny;
+        d = 1 / d;
+        const double del = d * c;
+        h *= del;
+        if (std::fabs(del - 1) < 1e-15) break;
+    }
+    return std::exp(-x + a * std::log(x) - lg) * h;
+}
+
+/// Pearson's chi-square test of observed against expected counts. Bins with an expected count below
+/// 5 are pooled (smallest first) so the χ² approximation holds. Returns the p-value; `dof` receives
+/// the degrees of freedom used.
+inline double chiSquarePValue(const std::vector<double>& observed, const std::vector<double>& expected,
+                              int* dofOut = nullptr) {
+    std::vector<std::pair<double, double>> bins;  // (expected, observed)
+    for (size_t i = 0; i < observed.size(); ++i) bins.emplace_back(expected[i], observed[i]);
+    std::sort(bins.begin(), bins.end());
+    double chi2 = 0, poolE = 0, poolO = 0;
+    int used = 0;
+    for (const auto& [e, o] : bins) {
+        if (poolE + e < 5.0 && e < 5.0) {
+            poolE += e;
+            poolO += o;
+            continue;
+        }
+        if (poolE > 0) {  // fold the pool into this bin
+            const double ee = e + poolE, oo = o + poolO;
+            poolE = poolO = 0;
+            chi2 += (oo - ee) * (oo - ee) / ee;
+        } else {
+            chi2 += (o - e) * (o - e) / e;
+        }
+        ++used;
+    }
+    if (poolE > 0) {  // leftover pool (every bin tiny): one more bin
+        chi2 += (poolO - poolE) * (poolO - poolE) / poolE;
+        ++used;
+    } else if (poolO > 0) {
+        return 0.0;  // samples where the pdf says none can be
+    }
+    const int dof = std::max(1, used - 1);
+    if (dofOut) *dofOut = dof;
+    return gammaQ(0.5 * dof, 0.5 * chi2);
+}
+
+/// Šidák-corrected per-test significance for a family of `tests` chi-square tests with overall
+/// significance 0.01: the chance that any correct sampler fails one of them is 1%.
+inline double sidakAlpha(int tests, double overall = 0.01) { return 1.0 - std::pow(1.0 - overall, 1.0 / tests); }
+/// Number of chi-square tests in the sampling family (test_sampling.cpp: cosine + 4 Phong
+/// exponents; test_brdf.cpp: mixture at 3 view angles).
+constexpr int kChiSquareTests = 8;
+
+}  // namespace rrf::test
