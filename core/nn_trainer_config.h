@@ -1,0 +1,88 @@
+#pragma once
+/// Trainer settings, read from and written to JSON (the project file's "trainer" section and every
+/// model file). The JSON is an object with a "type" key, as in tiny-cuda-nn:
+///
+///     {"type": "levenberg_marquardt", "max_epochs": 1000, "mu": 1e-3, ...}
+///     {"type": "adam", "learning_rate": 5e-3, "loss": "relative_l2", ...}
+///
+/// Every key is optional (defaults below, chosen to match Matlab's trainlm for LM). Parsing is strict:
+/// an unknown key, a wrong type or an out-of-range value is an InputError naming the file and the
+/// JSON path of the key, so a typo such as "mu_decrease" is reported instead of silently ignored.
+
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace rrf {
+
+/// Matlab trainlm semantics (see trainLevenbergMarquardt).
+struct LevenbergMarquardtConfig {
+    int maxEpochs = 1000;        ///< "max_epochs"
+    double mu = 1e-3;            ///< "mu": initial damping μ0
+    double muDec = 0.1;          ///< "mu_dec": μ factor after a successful step
+    double muInc = 10.0;         ///< "mu_inc": μ factor after a rejected step
+    double muMax = 1e10;         ///< "mu_max": stop when μ exceeds it
+    double minGrad = 1e-7;       ///< "min_grad": stop when ‖Jᵀe‖ falls below it
+    int maxFail = 6;             ///< "max_fail": stop after this many validation failures in a row
+    double goal = 0.0;           ///< "goal": stop when the training MSE reaches it
+    /// "max_samples": LM costs ≈ 3·N·P² flops per epoch, so it trains on at most this many training
+    /// samples (a random subset, the split being a random permutation) and says so. 20000 keeps an epoch
+    /// of the 20-10 network (P ≈ 600) around a second on the 2-core reference machine. 0 = no bound.
+    int64_t maxSamples = 20000;
+    uint64_t seed = 1;           ///< "seed": split, initial weights
+};
+
+/// Loss minimised by Adam (both on the network's outputs).
+enum class AdamLoss {
+    Mse,        ///< mean (pred − y)² in normalised [-1, 1] units
+    RelativeL2  ///< mean (pred − y)² / (pred² + 0.01) in raw units, pred treated as constant in the
+                ///< denominator (Noise2Noise / Neural Radiance Caching): high and low radiance count alike
+};
+
+enum class LrSchedule {
+    Constant,  ///< learning_rate throughout
+    Step,      ///< × step_gamma every step_epochs epochs
+    Cosine     ///< cosine decay from learning_rate to min_learning_rate over max_epochs
+};
+
+struct AdamConfig {
+    int maxEpochs = 300;              ///< "max_epochs"
+    int batchSize = 256;              ///< "batch_size"
+    double learningRate = 1e-2;       ///< "learning_rate"
+    double minLearningRate = 1e-4;    ///< "min_learning_rate" (cosine schedule's end value)
+    LrSchedule schedule = LrSchedule::Cosine;  ///< "schedule": "constant" | "step" | "cosine"
+    int stepEpochs = 100;             ///< "step_epochs"
+    double stepGamma = 0.3;           ///< "step_gamma"
+    double beta1 = 0.9;               ///< "beta1"
+    double beta2 = 0.999;             ///< "beta2"
+    double epsilon = 1e-8;            ///< "epsilon"
+    double weightDecay = 0.0;         ///< "weight_decay": decoupled (AdamW), weights only, not biases
+    AdamLoss loss = AdamLoss::Mse;    ///< "loss": "mse" | "relative_l2"
+    int patience = 30;                ///< "patience": stop after this many epochs without a better
+                                      ///< validation loss (0 = never stop early)
+    int64_t maxSamples = 0;           ///< "max_samples": bound on training samples, 0 = all
+    uint64_t seed = 1;                ///< "seed": split, initial weights, mini-batch order
+};
+
+enum class TrainerType { LevenbergMarquardt, Adam };
+
+struct TrainerConfig {
+    TrainerType type = TrainerType::LevenbergMarquardt;
+    LevenbergMarquardtConfig lm;
+    AdamConfig adam;
+
+    /// "levenberg_marquardt" / "adam".
+    const char* typeName() const;
+    uint64_t seed() const { return type == TrainerType::Adam ? adam.seed : lm.seed; }
+    int maxEpochs() const { return type == TrainerType::Adam ? adam.maxEpochs : lm.maxEpochs; }
+
+    /// Parses a trainer object. `file` and `where` (the JSON path of `j`) only label errors.
+    /// A missing "type" means levenberg_marquardt; "lm" is accepted as a short name.
+    static TrainerConfig fromJson(const nlohmann::json& j, const std::string& file = "",
+                                  const std::string& where = "/trainer");
+    /// Full settings, every key written, so a model file records exactly what trained it.
+    nlohmann::json toJson() const;
+};
+
+}  // namespace rrf
