@@ -265,6 +265,16 @@ struct SceneBuilder {
         if (auto t = r.find("transform")) applyTransform(parseTransform(*t), o);
         for (const Vec3& p : o.positions)
             if (!p.isFinite()) r.fail("shape '" + o.name + "' has non-finite coordinates after its transform");
+        if (type == "box") {
+            // A near-zero scale factor flattens faces just like a degenerate declared quad.
+            for (size_t q = 0; q < 6; ++q) {
+                const DVec v0(o.positions[o.indices[4 * q]]), v1(o.positions[o.indices[4 * q + 1]]),
+                    v3(o.positions[o.indices[4 * q + 3]]);
+                const DVec e1 = v1 - v0, e2 = v3 - v0;
+                if (!(e1.cross(e2).norm() > kDegenerateArea * std::max(e1.dot(e1), e2.dot(e2))))
+                    r.at("transform").fail("the transform flattens the box (a face has zero area)");
+            }
+        }
         if (o.kind == Object::Kind::Triangles) {
             o.closed = r.booleanOr("closed", false);
             dropDegenerateTriangles(r, o, scene.warnings);
@@ -281,7 +291,7 @@ struct SceneBuilder {
         Light l;
         l.name = r.stringOr("name", "light-" + std::to_string(index));
         if (type == "rect") {
-            r.checkKeys({"type", "name", "corner", "edge1", "edge2", "radiance", "one_sided", "movable"});
+            r.checkKeys({"type", "name", "corner", "edge1", "edge2", "radiance", "one_sided", "movable", "material"});
             l.type = Light::Type::Rect;
             l.corner = r.at("corner").vec3();
             l.edge1 = r.at("edge1").vec3();
@@ -292,6 +302,8 @@ struct SceneBuilder {
                 r.fail("rect light has zero area (edge1 and edge2 are zero or parallel)");
             l.radiance = nonNegativeColor(r.at("radiance"), "radiance");
             l.oneSided = r.booleanOr("one_sided", true);
+            // Emitters are black unless they name a material (reflective emitters, e.g. furnace tests).
+            if (auto m = r.find("material")) l.material = lookupMaterial(*m);
         } else if (type == "point") {
             r.checkKeys({"type", "name", "position", "intensity", "movable"});
             l.type = Light::Type::Point;

@@ -152,6 +152,7 @@ TEST(SceneJson, CornellBoxLightAndCamera) {
     EXPECT_FLOAT_EQ(l.corner.z, -0.18f);
     EXPECT_FLOAT_EQ((l.corner + l.edge1 + l.edge2).x, 0.23f);
     EXPECT_FLOAT_EQ((l.corner + l.edge1 + l.edge2).z, 0.20f);
+    EXPECT_EQ(l.material, -1);  // black emitter
     EXPECT_EQ(s.movableLight, 0);
     EXPECT_EQ(s.camera.eye, Vec3(0, 0, 3.9f));
     EXPECT_EQ(s.camera.target, Vec3(0, 0, 0));
@@ -255,6 +256,7 @@ TEST(SceneJson, InlineShapesPhongAndDefaults) {
                              {"positions", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}}},
                              {"indices", {{0, 1, 2}, {0, 1, 3}}},
                              {"transform", {{"translate", {0, 0, -0.5}}}}});
+    doc["lights"][0]["material"] = "white";
     doc["shapes"].push_back({{"type", "quad"}, {"material", "green"},
                              {"points", {{-1, 1, -1}, {1, 1, -1}, {0.8, 1, 1}, {-0.8, 1, 1}}}});
     const Scene s = parseScene(doc, "inline.json", "");
@@ -271,6 +273,7 @@ TEST(SceneJson, InlineShapesPhongAndDefaults) {
     EXPECT_EQ(s.objects[3].name, "quad-3");
     EXPECT_EQ(s.objects[3].primitiveCount(), 1u);
     EXPECT_EQ(quadNormal(s.objects[3], 0), Vec3(0, -1, 0));
+    EXPECT_EQ(s.materials[size_t(s.lights[0].material)].name, "white");
 }
 
 TEST(SceneJson, MirroringTransformKeepsBoxNormalsOutward) {
@@ -283,6 +286,20 @@ TEST(SceneJson, MirroringTransformKeepsBoxNormalsOutward) {
         for (size_t k = 0; k < 4; ++k) fc += box.positions[box.indices[4 * q + k]] * 0.25f;
         EXPECT_GT(dot(quadNormal(box, q), fc), 0.f) << "face " << q;
     }
+}
+
+TEST(SceneJson, TinyLightsAndLargeScalesAreAccepted) {
+    json doc = validScene();
+    doc["lights"][0]["edge1"] = {1e-4, 0, 0};  // area 1e-8
+    doc["lights"][0]["edge2"] = {0, 0, 1e-4};
+    doc["shapes"].push_back({{"type", "box"}, {"material", "white"},
+                             {"transform", {{"scale", 1e4}, {"translate", {0, -6000, 0}}}}});
+    doc["shapes"].push_back({{"type", "quad"}, {"material", "white"},
+                             {"corner", {5000, 0, 0}}, {"edge1", {1e-3, 0, 0}}, {"edge2", {0, 1e-3, 0}}});
+    const Scene s = parseScene(doc, "scales.json", "");
+    EXPECT_NEAR(s.lights[0].area(), 1e-8, 1e-12);
+    EXPECT_EQ(s.objects.size(), 3u);
+    EXPECT_TRUE(s.warnings.empty());
 }
 
 // ---- bad input: each case names the file, the JSON path and what is wrong -----------------------
@@ -349,6 +366,12 @@ TEST(SceneJsonError, NonPlanarQuad) {
     doc["shapes"][0] = {{"type", "quad"}, {"material", "white"},
                         {"points", {{-1, -1, -1}, {1, -1, -1}, {1, -0.5, 1}, {-1, -1, 1}}}};
     expectMessage(loadError("bent_quad.json", doc), "bent_quad.json", "/shapes/0/points", {"not planar", "point"});
+}
+
+TEST(SceneJsonError, FlattenedBox) {
+    json doc = validScene();
+    doc["shapes"].push_back({{"type", "box"}, {"material", "white"}, {"transform", {{"scale", {1, 1e-30, 1}}}}});
+    expectMessage(loadError("flat_box.json", doc), "flat_box.json", "/shapes/1/transform", {"flattens the box"});
 }
 
 TEST(SceneJsonError, MissingObjFile) {
