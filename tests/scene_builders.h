@@ -10,6 +10,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/camera_rays.h"
+#include "core/path_tracer.h"
+#include "core/rng.h"
 #include "core/scene.h"
 
 namespace rrf::test {
@@ -164,6 +167,36 @@ struct RunningStat {
     double sigma() const { return n > 1 ? std::sqrt(variance() / double(n)) : 0.0; }
 };
 
+
+/// Monte Carlo estimate of the image mean (first channel) of direct, indirect and global radiance:
+/// each sample picks a uniformly random pixel and jitter, so the samples are i.i.d. and the standard
+/// errors are exact (unlike pixel-wise variances, no assumption about correlation is needed).
+struct ImageMeanStats {
+    RunningStat direct, indirect, global;
+    uint64_t nonFinite = 0;
+};
+inline ImageMeanStats traceImageMean(const Scene& scene, const Accel& accel, Estimator estimator, int samples,
+                                     uint64_t seed, int maxDepth = 64) {
+    const PathTracer tracer(scene, accel, estimator, maxDepth);
+    const CameraRays cam(scene.camera, scene.camera.width, scene.camera.height);
+    TraceCounters counters;
+    ImageMeanStats st;
+    for (int i = 0; i < samples; ++i) {
+        Rng rng(seed, uint64_t(i));
+        const int px = int(rng.uniformInt(uint32_t(scene.camera.width)));
+        const int py = int(rng.uniformInt(uint32_t(scene.camera.height)));
+        const float jx = rng.uniform(), jy = rng.uniform();
+        const Radiance L = tracer.trace(cam.generate(px, py, jx, jy), rng, counters);
+        if (!L.direct.isFinite() || !L.indirect.isFinite()) {
+            ++st.nonFinite;
+            continue;
+        }
+        st.direct.add(L.direct.x);
+        st.indirect.add(L.indirect.x);
+        st.global.add(double(L.direct.x) + double(L.indirect.x));
+    }
+    return st;
+}
 
 /// Gauss–Legendre nodes and weights on [-1, 1] (Newton iteration on P_n; exact for degree 2n−1).
 struct GaussLegendre {

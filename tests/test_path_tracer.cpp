@@ -1,0 +1,145 @@
+// White-furnace tests of the path tracer and basic properties of trace()/shade().
+//
+// Furnace: six one-sided emitters (Le = 0.5) close a cube; each also reflects with a Lambert albedo
+// a = 0.5. Every camera ray then sees L = Le / (1 − a) = 1 exactly. Split by bounces:
+// direct = Le + a·Le = 0.75 (emission seen + one reflection), indirect = a²Le/(1 − a) = 0.25.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/accel.h"
+#include "core/path_tracer.h"
+#include "core/renderer.h"
+#include "scene_builders.h"
+
+using namespace rrf;
+using namespace rrf::test;
+
+namespace {
+
+Material lambertWall(float albedo) {
+    Material m;
+    m.type = Material::Type::Lambert;
+    m.kd = Vec3(albedo);
+    return m;
+}
+
+Material phongWall(float kd, float ks, float n) {
+    Material m;
+    m.type = Material::Type::Phong;
+    m.kd = Vec3(kd);
+    m.ks = Vec3(ks);
+    m.exponent = n;
+    return m;
+}
+
+RenderSnapshot render(const Scene& scene, const Accel& accel, Estimator estimator, int spp, uint64_t seed = 1) {
+    RenderOptions o;
+    o.width = scene.camera.width;
+    o.height = scene.camera.height;
+    o.spp = spp;
+    o.samplesPerPass = spp;
+    o.estimator = estimator;
+    o.seed = seed;
+    Renderer r(scene, accel, o);
+    r.run();
+    return r.snapshot();
+}
+
+/// Standard error of the image mean (first channel) from the snapshot's per-pixel variances of the
+/// mean: pixels are independent, so Var(mean) = Σ var / (w h)².
+double imageMeanSigma(const RenderSnapshot& s) {
+    double sum = 0;
+    for (size_t i = 0; i < s.variance.pixelCount(); ++i) sum += s.variance.data[3 * i];
+    return std::sqrt(sum) / double(s.variance.pixelCount());
+}
+
+/// direct + indirect == global per pixel up to the float rounding of the three stored values
+/// (the renderer sums in double and rounds each image separately): 2 ulps of global.
+void expectSumIsGlobal(const RenderSnapshot& s) {
+    for (size_t i = 0; i < s.global.data.size(); ++i) {
+        const float g = s.global.data[i], sum = s.direct.data[i] + s.indirect.data[i];
+        ASSERT_NEAR(sum, g, 2.5e-7f * std::fabs(g)) << "pixel value " << i;
+    }
+}
+
+void lambertFurnace(Estimator estimator, int spp, int traceSamples) {
+    const Scene scene = furnaceScene(0.5f, lambertWall(0.5f));
+    const Accel accel(scene);
+    // Renderer: image mean and every pixel.
+    const RenderSnapshot snap = render(scene, accel, estimator, spp);
+    EXPECT_EQ(snap.nonFinite, 0u);
+    EXPECT_EQ(snap.global.nonFiniteCount(), 0u);
+    const double sigma = imageMeanSigma(snap);
+    EXPECT_LE(5 * sigma, 0.01) << "too few samples for a 1% check";
+    EXPECT_NEAR(snap.global.mean().x, 1.0, 0.01);
+    for (int y = 0; y < snap.global.height; ++y)
+        for (int x = 0; x < snap.global.width; ++x) {
+            // Each pixel within 6 of its own standard errors (256 pixels: a correct renderer fails
+            // this with probability < 1e-6).
+            const double sd = std::sqrt(double(snap.variance.at(x, y).x));
+            EXPECT_NEAR(snap.global.at(x, y).x, 1.0, 6 * sd + 1e-6) << "pixel " << x << "," << y;
+        }
+    expectSumIsGlobal(snap);
+    // The split: i.i.d. samples of the image mean give exact standard errors for direct and indirect.
+    const ImageMeanStats st = traceImageMean(scene, accel, estimator, traceSamples, 7);
+    EXPECT_EQ(st.nonFinite, 0u);
+    EXPECT_LE(5 * st.direct.sigma(), 0.01 * 0.75);
+    EXPECT_NEAR(st.direct.mean, 0.75, 0.01 * 0.75) << "σ = " << st.direct.sigma();
+    EXPECT_NEAR(st.indirect.mean, 0.25, 5 * st.indirect.sigma()) << "σ = " << st.indirect.sigma();
+    EXPECT_NEAR(st.global.mean, 1.0, 0.01);
+}
+
+}  // namespace
+
+// Sample counts: the naive estimator's per-sample standard deviation here is ≈ 0.6, NEE's ≈ 2 for
+// the global value (uniform area sampling of the emitter on the adjacent face has a variance that
+// grows like 1/ε² for points ε from a cube edge, so its tail is heavy), ≈ 0.6 for direct.
+// 1% ≥ 5σ needs σ ≤ 0.002: 16×16 pixels × 1024 spp (naive), × 4096 spp (NEE); 4e5 traced samples
+// for the direct/indirect split (naive direct is exact: its first bounce always hits an emitter).
+TEST(PathTracer, WhiteFurnaceNEE) { lambertFurnace(Estimator::NEE, 4096, 400000); }
+
+TEST(PathTracer, WhiteFurnaceNaive) { lambertFurnace(Estimator::Naive, 1024, 100000); }
+
+TEST(PathTracer, PhongFurnaceNeverExceedsOne) {
+    // Walls with kd + ks = 0.5: at normal incidence the albedo is exactly 0.5, elsewhere less
+    // (modified Phong loses energy towards grazing), so Le ≤ ... ≤ L ≤ Le/(1 − 0.5) = 1; the diffuse
+    // part alone guarantees L ≥ Le/(1 − kd). Bounds checked with 5 standard errors of slack.
+    for (const float n : {1.f, 10.f, 1000.f}) {
+        const Scene scene = furnaceScene(0.5f, phongWall(0.2f, 0.3f, n));
+        const Accel accel(scene);
+        for (const Estimator e : {Estimator::NEE, Estimator::Naive}) {
+            const RenderSnapshot snap = render(scene, accel, e, 64, 3);
+            EXPECT_EQ(snap.nonFinite, 0u);
+            EXPECT_EQ(snap.global.nonFiniteCount(), 0u);
+            const double mean = snap.global.mean().x, sigma = imageMeanSigma(snap);
+            EXPECT_LE(mean, 1.0 + 5 * sigma) << "n = " << n;
+            EXPECT_GE(mean, 0.5 / (1 - 0.2) - 5 * sigma) << "n = " << n;
+            EXPECT_GE(snap.direct.mean().x, 0.5) << "emission alone is 0.5";
+            expectSumIsGlobal(snap);
+        }
+    }
+}
+
+TEST(PathTracer, MissAndBlackEmitterBack) {
+    // A ray that hits nothing carries no radiance; a one-sided black emitter seen from behind is black.
+    Scene s;
+    addRectLight(s, Vec3(-1, -1, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), Vec3(3.f));  // normal +z
+    const Accel accel(s);
+    const PathTracer tracer(s, accel, Estimator::NEE);
+    TraceCounters counters;
+    Rng rng(1, 0);
+    Ray miss;
+    miss.origin = Vec3(0, 0, 5);
+    miss.dir = Vec3(0, 0, 1);
+    EXPECT_TRUE(tracer.trace(miss, rng, counters).global().isZero());
+    Ray front = miss;
+    front.dir = Vec3(0, 0, -1);  // from the +z side: sees the emitting face
+    EXPECT_EQ(tracer.trace(front, rng, counters).direct, Vec3(3.f));
+    Ray back;
+    back.origin = Vec3(0, 0, -5);
+    back.dir = Vec3(0, 0, 1);
+    EXPECT_TRUE(tracer.trace(back, rng, counters).global().isZero());
+    EXPECT_EQ(counters.rays, 3u);
+}
