@@ -50,7 +50,8 @@ public:
     void seed(uint64_t& v) {
         const json* x = take("seed");
         if (!x) return;
-        if (!x->is_number_unsigned()) fail("seed", "expected a non-negative integer, got " + x->dump());
+        if (!x->is_number_unsigned() && !(x->is_number_integer() && x->get<int64_t>() >= 0))
+            fail("seed", "expected a non-negative integer, got " + x->dump());
         v = x->get<uint64_t>();
     }
 
