@@ -147,7 +147,8 @@ void applyTransform(const Transform& t, Object& o) {
     if (!t.flipsOrientation()) return;
     // A mirror turns counter-clockwise into clockwise; reverse each primitive to keep normals outward.
     const size_t k = size_t(o.verticesPerPrimitive());
-    for (size_t i = 0; i + k <= o.indices.size(); i += k) std::reverse(o.indices.begin() + long(i + 1), o.indices.begin() + long(i + k));
+    for (size_t i = 0; i + k <= o.indices.size(); i += k)
+        std::reverse(o.indices.begin() + long(i + 1), o.indices.begin() + long(i + k));
 }
 
 /// Removes zero-area triangles (counted in scene.warnings); an object left empty is an error.
