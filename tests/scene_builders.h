@@ -115,8 +115,9 @@ inline Scene furnaceScene(float le, const Material& wall, int size = 16) {
 
 /// Cornell-like open box [-1,1]³ (front z = +1 open) with a one-sided ceiling light facing down and a
 /// closed block standing on the floor, everything multiplied by `scale` (radiance unchanged, so the
-/// image is the same at every scale).
-inline Scene cornellLike(float scale = 1.f, int size = 32) {
+/// image is the same at every scale). `lightScale` enlarges the light about its centre and divides
+/// its radiance by lightScale², keeping its power (a larger light makes the naive estimator quieter).
+inline Scene cornellLike(float scale = 1.f, int size = 32, float lightScale = 1.f) {
     Scene s;
     const int white = addLambert(s, Vec3(0.75f, 0.72f, 0.70f), "white");
     const int red = addLambert(s, Vec3(0.60f, 0.06f, 0.05f), "red");
@@ -142,7 +143,9 @@ inline Scene cornellLike(float scale = 1.f, int size = 32) {
                  q({lo.x, lo.y, hi.z}, {d.x, 0, 0}, {0, d.y, 0})},   // z = hi, +z
              white, "block");
     // Light just below the ceiling, normal e1 × e2 = -y (facing down).
-    addRectLight(s, Vec3(-0.25f, 0.99f, -0.2f) * k, Vec3(0.5f, 0, 0) * k, Vec3(0, 0, 0.4f) * k, Vec3(15.f, 12.f, 8.f));
+    const Vec3 e1(0.5f * lightScale, 0, 0), e2(0, 0, 0.4f * lightScale);
+    addRectLight(s, (Vec3(0.f, 0.99f, 0.f) - 0.5f * (e1 + e2)) * k, e1 * k, e2 * k,
+                 Vec3(15.f, 12.f, 8.f) / (lightScale * lightScale));
     s.camera.eye = Vec3(0, 0, 3.9f) * k;
     s.camera.target = Vec3(0, 0, 0);
     s.camera.up = Vec3(0, 1, 0);

@@ -1,0 +1,202 @@
+// Renderer tests on a small Cornell-like scene: NEE and naive estimators converge to the same
+// image, the stored split direct + indirect = global, NEE's direct light is far less noisy, and
+// images are bit-identical for any thread count and any split into passes.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include <tbb/global_control.h>
+
+#include "core/accel.h"
+#include "core/renderer.h"
+#include "scene_builders.h"
+
+using namespace rrf;
+using namespace rrf::test;
+
+namespace {
+
+RenderOptions options(const Scene& scene, Estimator estimator, int spp, int samplesPerPass, uint64_t seed = 1) {
+    RenderOptions o;
+    o.width = scene.camera.width;
+    o.height = scene.camera.height;
+    o.spp = spp;
+    o.samplesPerPass = samplesPerPass;
+    o.estimator = estimator;
+    o.seed = seed;
+    o.tileSize = 8;
+    return o;
+}
+
+RenderSnapshot render(const Scene& scene, const Accel& accel, const RenderOptions& o) {
+    Renderer r(scene, accel, o);
+    r.run();
+    return r.snapshot();
+}
+
+/// Standard error of the image mean of channel c from the per-pixel variances of the mean.
+double imageMeanSigma(const RenderSnapshot& s, int c) {
+    double sum = 0;
+    for (size_t i = 0; i < s.variance.pixelCount(); ++i) sum += s.variance.data[3 * i + size_t(c)];
+    return std::sqrt(sum) / double(s.variance.pixelCount());
+}
+
+bool sameBits(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height && a.data.size() == b.data.size() &&
+           std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0;
+}
+
+bool sameBits(const RenderSnapshot& a, const RenderSnapshot& b) {
+    return sameBits(a.direct, b.direct) && sameBits(a.indirect, b.indirect) && sameBits(a.global, b.global) &&
+           sameBits(a.variance, b.variance);
+}
+
+}  // namespace
+
+TEST(Renderer, NeeAndNaiveConvergeToTheSameImageMean) {
+    // Light 2× the default size (4× the area, same power): the naive estimator hits it 4× as often.
+    const Scene scene = cornellLike(1.f, 32, 2.f);
+    const Accel accel(scene);
+    // 256 (NEE) and 1024 (naive) spp at 32×32 make the standard error of the difference of the
+    // image means ≈ 0.4% of the mean; asserted below 1%, so a 5% bias cannot pass.
+    const RenderSnapshot nee = render(scene, accel, options(scene, Estimator::NEE, 256, 64));
+    const RenderSnapshot naive = render(scene, accel, options(scene, Estimator::Naive, 1024, 256));
+    EXPECT_EQ(nee.nonFinite, 0u);
+    EXPECT_EQ(naive.nonFinite, 0u);
+    EXPECT_EQ(nee.samples, 32u * 32u * 256u);
+    EXPECT_EQ(naive.samples, 32u * 32u * 1024u);
+    for (int c = 0; c < 3; ++c) {
+        const double a = nee.global.mean()[c], b = naive.global.mean()[c];
+        const double sigma = std::hypot(imageMeanSigma(nee, c), imageMeanSigma(naive, c));
+        EXPECT_LT(sigma, 0.01 * a) << "the comparison must be able to see a 5% bias";
+        EXPECT_NEAR(a, b, 5 * sigma) << "channel " << c;
+    }
+    // The split agrees too. Paired samples: both estimators trace the same camera ray (pixel and
+    // jitter from one key) with independent path randomness, so the emission seen directly cancels
+    // in the difference; the pairs are i.i.d., so the standard error of the mean difference is exact.
+    const PathTracer tNee(scene, accel, Estimator::NEE), tNaive(scene, accel, Estimator::Naive);
+    const CameraRays cam(scene.camera, 32, 32);
+    TraceCounters counters;
+    RunningStat dDirect, dIndirect, direct, indirect;
+    for (int i = 0; i < 400000; ++i) {
+        Rng pick(20, uint64_t(i));
+        const int px = int(pick.uniformInt(32)), py = int(pick.uniformInt(32));
+        const Ray ray = cam.generate(px, py, pick.uniform(), pick.uniform());
+        Rng ra(21, uint64_t(i)), rb(22, uint64_t(i));
+        const Radiance a = tNee.trace(ray, ra, counters), b = tNaive.trace(ray, rb, counters);
+        dDirect.add(double(a.direct.x) - double(b.direct.x));
+        dIndirect.add(double(a.indirect.x) - double(b.indirect.x));
+        direct.add(a.direct.x);
+        indirect.add(a.indirect.x);
+    }
+    EXPECT_NEAR(dDirect.mean, 0.0, 5 * dDirect.sigma());
+    EXPECT_NEAR(dIndirect.mean, 0.0, 5 * dIndirect.sigma());
+    // Power: a 3% bias of direct or 8% of indirect would be seen.
+    EXPECT_LT(5 * dDirect.sigma(), 0.03 * direct.mean);
+    EXPECT_LT(5 * dIndirect.sigma(), 0.08 * indirect.mean);
+    EXPECT_GT(indirect.mean, 0.1 * direct.mean) << "the scene must have real indirect light";
+}
+
+TEST(Renderer, DirectPlusIndirectIsGlobal) {
+    // The renderer sums direct and indirect in double and rounds the three images separately, so
+    // the float sum of the stored direct and indirect equals global up to 2 ulps.
+    const Scene scene = cornellLike(1.f, 32);
+    const Accel accel(scene);
+    for (const Estimator e : {Estimator::NEE, Estimator::Naive}) {
+        const RenderSnapshot s = render(scene, accel, options(scene, e, 16, 4));
+        for (size_t i = 0; i < s.global.data.size(); ++i) {
+            const float g = s.global.data[i];
+            ASSERT_NEAR(s.direct.data[i] + s.indirect.data[i], g, 2.5e-7f * g) << "value " << i;
+            ASSERT_GE(s.direct.data[i], 0.f);
+            ASSERT_GE(s.indirect.data[i], 0.f);
+        }
+    }
+}
+
+TEST(Renderer, NeeDirectLightIsLessNoisyThanNaive) {
+    // Seed figure 2: at equal sample counts the naive estimator's direct light is far noisier (it
+    // only sees the light when a BRDF ray happens to hit it). Mean per-pixel sample variance of
+    // direct over 64 pixels × 256 samples; NEE must be at least 4× quieter (typically ≫ 10×).
+    const Scene scene = cornellLike(1.f, 32);
+    const Accel accel(scene);
+    const CameraRays cam(scene.camera, 32, 32);
+    double var[2] = {0, 0};
+    for (const Estimator e : {Estimator::NEE, Estimator::Naive}) {
+        const PathTracer tracer(scene, accel, e);
+        TraceCounters counters;
+        for (int py = 2; py < 32; py += 4)
+            for (int px = 2; px < 32; px += 4) {
+                RunningStat st;
+                for (int s = 0; s < 256; ++s) {
+                    Rng rng(5, uint64_t(py * 32 + px), uint64_t(s));
+                    const float jx = rng.uniform(), jy = rng.uniform();
+                    st.add(tracer.trace(cam.generate(px, py, jx, jy), rng, counters).direct.x);
+                }
+                var[e == Estimator::NEE ? 0 : 1] += st.variance();
+            }
+    }
+    EXPECT_LT(var[0] * 4, var[1]) << "NEE " << var[0] / 64 << " vs naive " << var[1] / 64;
+}
+
+TEST(Renderer, BitIdenticalForAnyThreadCount) {
+    const Scene scene = cornellLike(1.f, 32);
+    const Accel accel(scene);
+    for (const Estimator e : {Estimator::NEE, Estimator::Naive}) {
+        const RenderOptions o = options(scene, e, 4, 2);
+        RenderSnapshot one, two, four;
+        {
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+            one = render(scene, accel, o);
+        }
+        {
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+            two = render(scene, accel, o);
+        }
+        {
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 4);
+            four = render(scene, accel, o);
+        }
+        EXPECT_TRUE(sameBits(one, two));
+        EXPECT_TRUE(sameBits(one, four));
+        EXPECT_GT(one.global.mean().x, 0.f);
+    }
+}
+
+TEST(Renderer, BitIdenticalForAnyPassSplit) {
+    // 4 spp in one pass, in four passes of 1, and in passes of 3 + 1: sample k of pixel i always
+    // uses Rng(seed, i, k) and sums run in sample order.
+    const Scene scene = cornellLike(1.f, 32);
+    const Accel accel(scene);
+    const RenderSnapshot once = render(scene, accel, options(scene, Estimator::NEE, 4, 4));
+    const RenderSnapshot fourPasses = render(scene, accel, options(scene, Estimator::NEE, 4, 1));
+    const RenderSnapshot uneven = render(scene, accel, options(scene, Estimator::NEE, 4, 3));
+    EXPECT_TRUE(sameBits(once, fourPasses));
+    EXPECT_TRUE(sameBits(once, uneven));
+    EXPECT_EQ(once.passes, 1);
+    EXPECT_EQ(fourPasses.passes, 4);
+    EXPECT_EQ(uneven.passes, 2);
+    EXPECT_EQ(fourPasses.sppCompleted, 4);
+    // A different seed gives a different image.
+    const RenderSnapshot other = render(scene, accel, options(scene, Estimator::NEE, 4, 4, 2));
+    EXPECT_FALSE(sameBits(once.global, other.global));
+}
+
+TEST(Renderer, CancelStopsBeforeTheNextPass) {
+    const Scene scene = cornellLike(1.f, 16);
+    const Accel accel(scene);
+    Renderer r(scene, accel, options(scene, Estimator::NEE, 8, 1));
+    int passes = 0;
+    r.run([&](int sppDone) {
+        ++passes;
+        EXPECT_EQ(sppDone, passes);
+        if (sppDone == 3) r.cancel();
+    });
+    const RenderSnapshot s = r.snapshot();
+    EXPECT_EQ(s.sppCompleted, 3);
+    EXPECT_EQ(s.samples, 16u * 16u * 3u);
+    EXPECT_NEAR(r.progress(), 3.0 / 8.0, 1e-12);
+    EXPECT_EQ(r.stats().nonFinite, 0u);
+    EXPECT_GT(r.stats().rays, 0u);
+}
