@@ -36,7 +36,9 @@ Accel::Accel(const Scene& scene) {
     }
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         const Light& l = scene.lights[i];
-        if (l.type != Light::Type::Rect) continue;
+        // The movable light is intersected analytically by the path tracer, so that it can sit at a
+        // different place for every path (training records) without rebuilding the BVH.
+        if (l.type != Light::Type::Rect || int(i) == scene.movableLight) continue;
         GeomInfo info;
         info.light = int(i);
         addMesh({l.corner, l.corner + l.edge1, l.corner + l.edge1 + l.edge2, l.corner + l.edge2}, {0, 1, 2, 3},

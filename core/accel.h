@@ -1,6 +1,7 @@
 #pragma once
-/// Embree 3 acceleration structure over a Scene: every object and every rect light becomes one
-/// Embree geometry (quads, triangles or a sphere point). Built with RTC_SCENE_FLAG_ROBUST so that rays
+/// Embree 3 acceleration structure over a Scene: every object and every rect light except the
+/// movable one becomes one Embree geometry (quads, triangles or a sphere point); the movable light
+/// is intersected analytically by PathTracer so it can move per path without a rebuild. Built with RTC_SCENE_FLAG_ROBUST so that rays
 /// exactly along edges and through vertices do not slip between primitives.
 ///
 /// Hit normals are our own per-primitive geometric normals (not Embree's Ng), so the orientation

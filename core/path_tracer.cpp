@@ -10,34 +10,85 @@ PathTracer::PathTracer(const Scene& scene, const Accel& accel, Estimator estimat
     for (const Material& m : scene.materials) brdfs_.emplace_back(m);
     for (size_t i = 0; i < scene.lights.size(); ++i)
         (scene.lights[i].type == Light::Type::Rect ? rectLights_ : pointLights_).push_back(int(i));
+    if (scene.movableLight >= 0 && scene.movableLight < int(scene.lights.size())) {
+        movable_ = scene.movableLight;
+        movableDefault_ = scene.lights[size_t(movable_)];
+    }
 }
 
-Vec3 PathTracer::emitted(int light, const Vec3& w) const {
-    const Light& l = scene_.lights[size_t(light)];
+Light PathTracer::movableLightAt(const Vec3& p) const {
+    Light l = movableDefault_;
+    l.moveTo(p);
+    return l;
+}
+
+namespace {
+/// Ray–parallelogram intersection (corner + s·e1 + t·e2, s,t ∈ [0,1]) in (tmin, tmax).
+bool intersectParallelogram(const Ray& ray, const Light& l, float tmax, float& t) {
+    const Vec3 n = cross(l.edge1, l.edge2);
+    const float denom = dot(ray.dir, n);
+    if (denom == 0.f) return false;
+    t = dot(l.corner - ray.origin, n) / denom;
+    if (!(t > ray.tmin && t < tmax)) return false;
+    const Vec3 q = ray.origin + ray.dir * t - l.corner;
+    const float nn = dot(n, n);
+    const float a = dot(cross(q, l.edge2), n) / nn;
+    const float b = dot(cross(l.edge1, q), n) / nn;
+    return a >= 0.f && a <= 1.f && b >= 0.f && b <= 1.f;
+}
+}  // namespace
+
+bool PathTracer::intersect(const Ray& ray, const Light& movable, Hit& hit) const {
+    bool found = accel_.intersect(ray, hit);
+    float t;
+    if (movable_ >= 0 && movable.type == Light::Type::Rect &&
+        intersectParallelogram(ray, movable, found ? hit.t : ray.tmax, t)) {
+        hit = Hit{};
+        hit.t = t;
+        hit.p = ray.origin + ray.dir * t;
+        hit.ng = movable.normal();
+        hit.light = movable_;
+        found = true;
+    }
+    return found;
+}
+
+bool PathTracer::occluded(const Ray& ray, const Light& movable) const {
+    float t;
+    if (movable_ >= 0 && movable.type == Light::Type::Rect && intersectParallelogram(ray, movable, ray.tmax, t))
+        return true;
+    return accel_.occluded(ray);
+}
+
+Vec3 PathTracer::emitted(const Light& l, const Vec3& w) const {
     if (l.oneSided && dot(w, cross(l.edge1, l.edge2)) <= 0.f) return Vec3(0.f);
     return l.radiance;
 }
 
 int PathTracer::materialOf(const Hit& hit) const {
+    // Moving a light never changes its material, so the scene's copy answers for the movable one too.
     return hit.object >= 0 ? scene_.objects[size_t(hit.object)].material : scene_.lights[size_t(hit.light)].material;
 }
 
-Radiance PathTracer::trace(const Ray& ray, Rng& rng, TraceCounters& counters) const {
+Radiance PathTracer::trace(const Ray& ray, const Light& movable, Rng& rng, TraceCounters& counters) const {
     Hit hit;
     ++counters.rays;
     if (counters.rayLog) counters.rayLog->push_back(ray);
-    if (!accel_.intersect(ray, hit)) return {};
-    return shade(hit, -ray.dir, rng, counters);
+    if (!intersect(ray, movable, hit)) return {};
+    return shade(hit, -ray.dir, movable, rng, counters);
 }
 
-Radiance PathTracer::shade(const Hit& hit, const Vec3& wo, Rng& rng, TraceCounters& counters) const {
-    return effects_.glossy ? shadeImpl<true>(hit, wo, rng, counters) : shadeImpl<false>(hit, wo, rng, counters);
+Radiance PathTracer::shade(const Hit& hit, const Vec3& wo, const Light& movable, Rng& rng,
+                           TraceCounters& counters) const {
+    return effects_.glossy ? shadeImpl<true>(hit, wo, movable, rng, counters)
+                           : shadeImpl<false>(hit, wo, movable, rng, counters);
 }
 
 template <bool kGlossy>
-Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, Rng& rng, TraceCounters& counters) const {
+Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng, TraceCounters& counters) const {
     Radiance L;
-    if (hit.light >= 0) L.direct += emitted(hit.light, wo);  // emission seen directly is always counted
+    // Emission seen directly is always counted.
+    if (hit.light >= 0) L.direct += emitted(light(hit.light, movable), wo);
     const bool nee = estimator_ == Estimator::NEE;
     Vec3 beta(1.f);
     for (int depth = 0;; ++depth) {
@@ -50,7 +101,7 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, Rng& rng, TraceCounters& counte
         const Frame frame(n);
         const Vec3 woLocal = frame.toLocal(wo);
         Vec3& target = depth == 0 ? L.direct : L.indirect;
-        if (nee) target += beta * sampleDirect<kGlossy>(hit.p, hit.ng, n, frame, woLocal, brdf, rng, counters);
+        if (nee) target += beta * sampleDirect<kGlossy>(hit.p, hit.ng, n, frame, woLocal, brdf, movable, rng, counters);
 
         // Bounce: always for the naive estimator's first reflection (that is its direct light), and
         // beyond that only if the scene lets light travel between surfaces.
@@ -86,10 +137,10 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, Rng& rng, TraceCounters& counte
         Hit next;
         ++counters.rays;
         if (counters.rayLog) counters.rayLog->push_back(r);
-        if (!accel_.intersect(r, next)) break;
+        if (!intersect(r, movable, next)) break;
         if (next.light >= 0 && !nee) {
             Vec3& t = depth == 0 ? L.direct : L.indirect;
-            t += beta * emitted(next.light, -wi);
+            t += beta * emitted(light(next.light, movable), -wi);
         }
         hit = next;
         wo = -wi;
@@ -99,7 +150,7 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, Rng& rng, TraceCounters& counte
 
 template <bool kGlossy>
 Vec3 PathTracer::sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, const Frame& frame, const Vec3& woLocal,
-                              const Brdf& brdf, Rng& rng, TraceCounters& counters) const {
+                              const Brdf& brdf, const Light& movable, Rng& rng, TraceCounters& counters) const {
     Vec3 sum(0.f);
     auto evalBrdf = [&](const Vec3& wi) -> Vec3 {
         if constexpr (kGlossy) return brdf.eval(woLocal, frame.toLocal(wi));
@@ -116,10 +167,10 @@ Vec3 PathTracer::sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, cons
         s.dir = d / dist;
         ++counters.shadowRays;
         if (counters.shadowRayLog) counters.shadowRayLog->push_back(s);
-        return !accel_.occluded(s);
+        return !occluded(s, movable);
     };
     for (int li : rectLights_) {
-        const Light& l = scene_.lights[size_t(li)];
+        const Light& l = light(li, movable);
         const float u1 = rng.uniform(), u2 = rng.uniform();
         const Vec3 x = l.corner + l.edge1 * u1 + l.edge2 * u2;
         const Vec3 d = x - p;
@@ -139,7 +190,7 @@ Vec3 PathTracer::sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, cons
         sum += l.radiance * f * (cosTheta * cosLArea / dist2);
     }
     for (int li : pointLights_) {
-        const Light& l = scene_.lights[size_t(li)];
+        const Light& l = light(li, movable);
         const Vec3 d = l.position - p;
         const float dist2 = lengthSquared(d);
         if (!(dist2 > 0.f)) continue;

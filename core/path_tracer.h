@@ -44,11 +44,25 @@ public:
     /// `scene` and `accel` must outlive the tracer.
     PathTracer(const Scene& scene, const Accel& accel, Estimator estimator, int maxDepth = 64);
 
-    /// Radiance arriving at ray.origin from direction −ray.dir.
-    Radiance trace(const Ray& ray, Rng& rng, TraceCounters& counters) const;
+    /// Radiance arriving at ray.origin from direction −ray.dir, with the movable light where the
+    /// scene puts it.
+    Radiance trace(const Ray& ray, Rng& rng, TraceCounters& counters) const {
+        return trace(ray, movableDefault_, rng, counters);
+    }
+    /// Same, with the movable light replaced by `movable` (from movableLightAt()).
+    Radiance trace(const Ray& ray, const Light& movable, Rng& rng, TraceCounters& counters) const;
     /// Radiance leaving the surface point `hit` towards `wo` (unit, pointing away from the surface).
     /// Used by the data generator, which shoots each record's first ray once and estimates many paths.
-    Radiance shade(const Hit& hit, const Vec3& wo, Rng& rng, TraceCounters& counters) const;
+    Radiance shade(const Hit& hit, const Vec3& wo, Rng& rng, TraceCounters& counters) const {
+        return shade(hit, wo, movableDefault_, rng, counters);
+    }
+    Radiance shade(const Hit& hit, const Vec3& wo, const Light& movable, Rng& rng, TraceCounters& counters) const;
+
+    /// Closest hit against the static BVH and the movable light (if it is a rect light).
+    bool intersect(const Ray& ray, const Light& movable, Hit& hit) const;
+    bool intersect(const Ray& ray, Hit& hit) const { return intersect(ray, movableDefault_, hit); }
+    /// Copy of the movable light with its centre at `p` (shape and emission unchanged).
+    Light movableLightAt(const Vec3& p) const;
 
     const Effects& effects() const { return effects_; }
     Estimator estimator() const { return estimator_; }
@@ -57,11 +71,15 @@ public:
 
 private:
     template <bool kGlossy>
-    Radiance shadeImpl(Hit hit, Vec3 wo, Rng& rng, TraceCounters& counters) const;
+    Radiance shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng, TraceCounters& counters) const;
     template <bool kGlossy>
     Vec3 sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, const Frame& frame, const Vec3& woLocal,
-                      const Brdf& brdf, Rng& rng, TraceCounters& counters) const;
-    Vec3 emitted(int light, const Vec3& w) const;
+                      const Brdf& brdf, const Light& movable, Rng& rng, TraceCounters& counters) const;
+    bool occluded(const Ray& ray, const Light& movable) const;
+    const Light& light(int index, const Light& movable) const {
+        return index == movable_ ? movable : scene_.lights[size_t(index)];
+    }
+    Vec3 emitted(const Light& l, const Vec3& w) const;
     int materialOf(const Hit& hit) const;
 
     const Scene& scene_;
@@ -71,6 +89,8 @@ private:
     Effects effects_;
     std::vector<Brdf> brdfs_;
     std::vector<int> rectLights_, pointLights_;
+    int movable_ = -1;       ///< index of the movable light, -1 if the scene has none
+    Light movableDefault_;   ///< the movable light where the scene puts it
 };
 
 }  // namespace rrf

@@ -6,5 +6,6 @@
 namespace rrf::cli {
 
 void addRenderCommand(CLI::App& app, int& exitCode);
+void addDataCommands(CLI::App& app, int& exitCode);
 
 }  // namespace rrf::cli

@@ -1,0 +1,80 @@
+#pragma once
+/// Binary training-data file (.rrfd).
+///
+///   bytes 0–63   fixed header: magic "RRFD\r\n\x1a\n", u32 version, u32 0, u64 JSON header size,
+///                u64 payload offset, u64 payload size, u64 payload checksum, u64 scene hash,
+///                u64 JSON header checksum (all little-endian)
+///   then         the JSON header (generator settings, record layout, shard, per-object counts and
+///                byte offsets into the payload, generation statistics)
+///   then         zero padding to a 64-byte boundary, then the payload: per object, its records
+///                back to back, each `floats_per_record` little-endian float32 (inputs, then targets).
+///
+/// The magic's CR-LF and ^Z bytes catch text-mode transfers (as PNG's do). The file contains no
+/// timestamps, host names or thread counts, so the same settings give the same bytes, and merging
+/// shards gives the bytes of the unsharded run. Files are written to a temporary name and renamed:
+/// an interrupted run leaves no file that looks complete. Reading maps the file into memory.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace rrf {
+
+constexpr uint32_t kDatasetVersion = 1;
+
+/// 64-bit checksum of a byte range (word-wise SplitMix-style mixing; detects corruption, not attacks).
+uint64_t checksum64(const void* data, size_t bytes);
+
+/// One object's records inside a dataset.
+struct DatasetObject {
+    int id = 0;
+    std::string name;
+    uint64_t count = 0;   ///< records
+    uint64_t offset = 0;  ///< byte offset in the payload
+};
+
+/// Writes a dataset atomically. `perObject[i]` holds the records of header "objects"[i] (floats,
+/// floats_per_record each); the writer fills in counts and offsets.
+void writeDataset(const std::string& path, nlohmann::json header, uint64_t sceneHash,
+                  const std::vector<std::vector<float>>& perObject);
+
+/// A dataset file mapped read-only into memory. Every structural problem (short file, wrong magic or
+/// version, checksum mismatch, inconsistent counts) throws std::runtime_error naming the file.
+class Dataset {
+public:
+    /// Opens and validates `path`. `verifyPayload` recomputes the payload checksum (reads the whole
+    /// file). `expectedSceneHash` ≠ 0 rejects a dataset made for a different scene.
+    explicit Dataset(const std::string& path, bool verifyPayload = true, uint64_t expectedSceneHash = 0);
+    ~Dataset();
+    Dataset(const Dataset&) = delete;
+    Dataset& operator=(const Dataset&) = delete;
+
+    const std::string& path() const { return path_; }
+    const nlohmann::json& header() const { return header_; }
+    uint64_t sceneHash() const { return sceneHash_; }
+    int floatsPerRecord() const { return floatsPerRecord_; }
+    int inputCount() const { return inputCount_; }
+    const std::vector<DatasetObject>& objects() const { return objects_; }
+    uint64_t totalRecords() const;
+    /// Records of objects()[i]: count × floatsPerRecord floats.
+    const float* records(size_t i) const;
+
+private:
+    std::string path_;
+    nlohmann::json header_;
+    uint64_t sceneHash_ = 0;
+    int floatsPerRecord_ = 0, inputCount_ = 0;
+    std::vector<DatasetObject> objects_;
+    void* map_ = nullptr;
+    size_t mapSize_ = 0;
+    const unsigned char* payload_ = nullptr;
+};
+
+/// Merges shards produced with the same scene and settings into one file identical to the unsharded
+/// run. Shards may be given in any order; they must cover the grid exactly once. Throws
+/// std::runtime_error naming the offending file.
+void mergeDatasets(const std::vector<std::string>& inputs, const std::string& output);
+
+}  // namespace rrf

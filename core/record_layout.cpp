@@ -1,0 +1,32 @@
+#include "core/record_layout.h"
+
+#include <cmath>
+
+namespace rrf {
+
+RecordLayout RecordLayout::forScene(const Scene& scene) {
+    RecordLayout l;
+    for (const Material& m : scene.materials)
+        if (m.type == Material::Type::Phong && !m.ks.isZero()) l.phong = true;
+    l.inputs = {"hit_x",   "hit_y",   "hit_z",   "view_x",   "view_y",   "view_z",   "light_x",  "light_y",
+                "light_z", "normal_x", "normal_y", "normal_z", "kd_r", "kd_g", "kd_b"};
+    if (l.phong) {
+        for (const char* n : {"ks_r", "ks_g", "ks_b", "log10_exponent_plus_1"}) l.inputs.push_back(n);
+    }
+    l.targets = {"direct_r", "direct_g", "direct_b", "indirect_r", "indirect_g", "indirect_b"};
+    return l;
+}
+
+void RecordLayout::brdfParameters(const Material& m, float* out) const {
+    out[0] = m.kd.x;
+    out[1] = m.kd.y;
+    out[2] = m.kd.z;
+    if (!phong) return;
+    const bool glossy = m.type == Material::Type::Phong;
+    out[3] = glossy ? m.ks.x : 0.f;
+    out[4] = glossy ? m.ks.y : 0.f;
+    out[5] = glossy ? m.ks.z : 0.f;
+    out[6] = glossy ? float(std::log10(1.0 + double(m.exponent))) : 0.f;
+}
+
+}  // namespace rrf
