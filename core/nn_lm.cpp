@@ -13,7 +13,7 @@ namespace {
 
 // Samples per rank update: 128 samples × 3 outputs = 384 rows of J, enough for an efficient SYRK
 // while the chunk of J stays in cache-sized memory (P × 384 doubles ≈ 1.8 MB for P = 600).
-constexpr Eigen::Index kChunk = 128;
+constexpr Eigen::Index kChunk = 256;
 // Fixed number of partial sums, independent of the thread count, so the reduction order (and every
 // bit of the result) is the same on 1 or 64 threads.
 constexpr int kMaxBlocks = 8;

@@ -207,7 +207,8 @@ void mlpBackward(const MlpArch& arch, const S* params, const Eigen::Ref<const Ma
             gW.noalias() = d * x.transpose();
         else
             gW.noalias() = d * acts[size_t(l - 1)].transpose();
-        gb.noalias() = d.rowwise().sum();
+        // A GEMV with a ones vector: rowwise().sum() on a column-major matrix walks it with a stride.
+        gb.noalias() = d * VecX<S>::Ones(d.cols());
         if (l > 0) {
             ConstMap<S> W(params + arch.weightOffset(l), out, in);
             MatX<S>& prev = deltas[size_t(l - 1)];
