@@ -3,6 +3,7 @@
 /// helpers shared by the Monte Carlo tests.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -155,6 +156,41 @@ inline Scene cornellLike(float scale = 1.f, int size = 32, float lightScale = 1.
     return s;
 }
 
+struct D3 {
+    double x, y, z;
+};
+inline D3 sub(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline D3 crossD(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+inline double dotD(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline double lenD(D3 a) { return std::sqrt(dotD(a, a)); }
+inline D3 toD(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+/// Irradiance at p (normal n) from a uniform Lambertian parallelogram of radiance L lying entirely
+/// above p's tangent plane (Lambert 1760):
+///   E = (L/2) Σ_i Θ_i n·(v_i × v_{i+1}) / |v_i × v_{i+1}|,
+/// v_i the unit vectors from p to the vertices, Θ_i the angle between consecutive ones. The sign of
+/// the sum depends on the winding as seen from p, hence the absolute value. Double precision.
+inline double polygonIrradiance(const Light& l, const Vec3& pf, const Vec3& nf) {
+    const D3 p = toD(pf), n = toD(nf);
+    const D3 c = toD(l.corner), e1 = toD(l.edge1), e2 = toD(l.edge2);
+    const std::array<D3, 4> vs = {c, D3{c.x + e1.x, c.y + e1.y, c.z + e1.z},
+                                  D3{c.x + e1.x + e2.x, c.y + e1.y + e2.y, c.z + e1.z + e2.z},
+                                  D3{c.x + e2.x, c.y + e2.y, c.z + e2.z}};
+    double sum = 0;
+    for (size_t i = 0; i < 4; ++i) {
+        D3 a = sub(vs[i], p), b = sub(vs[(i + 1) % 4], p);
+        const double la = lenD(a), lb = lenD(b);
+        a = {a.x / la, a.y / la, a.z / la};
+        b = {b.x / lb, b.y / lb, b.z / lb};
+        const D3 axb = crossD(a, b);
+        const double s = lenD(axb);
+        if (s == 0) continue;
+        const double theta = std::atan2(s, dotD(a, b));
+        sum += theta * dotD(n, axb) / s;
+    }
+    return 0.5 * double(l.radiance.x) * std::fabs(sum);
+}
+
 /// Running mean and variance (Welford), in double.
 struct RunningStat {
     uint64_t n = 0;
@@ -170,6 +206,55 @@ struct RunningStat {
     double sigma() const { return n > 1 ? std::sqrt(variance() / double(n)) : 0.0; }
 };
 
+
+/// A Lambert floor y = 0 of half-size `half` (albedo rho, normal +y), object 0.
+inline Scene floorScene(float rho, float half) {
+    Scene s;
+    const int m = addLambert(s, Vec3(rho));
+    addQuads(s, {{{-half, 0, -half}, {0, 0, 2 * half}, {2 * half, 0, 0}}}, m, "floor");
+    return s;
+}
+
+/// A square light of side `side` centred above (cx, cz) at height h, facing down (e1 × e2 = −y).
+inline void addCeilingLight(Scene& s, float cx, float cz, float h, float side, float radiance = 4.f,
+                            bool oneSided = true) {
+    addRectLight(s, Vec3(cx - 0.5f * side, h, cz - 0.5f * side), Vec3(side, 0, 0), Vec3(0, 0, side), Vec3(radiance),
+                 oneSided);
+}
+
+/// A hit on object 0 at p with geometric normal ng.
+inline Hit surfaceHit(const Vec3& p, const Vec3& ng = Vec3(0, 1, 0)) {
+    Hit h;
+    h.t = 1.f;
+    h.p = p;
+    h.ng = ng;
+    h.object = 0;
+    return h;
+}
+
+/// Statistics of PathTracer::shade (NEE) at floor point p towards wo, first channel.
+struct FloorShading {
+    RunningStat direct;
+    uint64_t nonFinite = 0, indirectNonZero = 0;
+};
+inline FloorShading shadeFloor(const Scene& scene, const Vec3& p, int samples, uint64_t seed,
+                               const Vec3& wo = Vec3(0, 1, 0), const Vec3& ng = Vec3(0, 1, 0)) {
+    const Accel accel(scene);
+    const PathTracer tracer(scene, accel, Estimator::NEE, 8);
+    TraceCounters counters;
+    FloorShading st;
+    for (int i = 0; i < samples; ++i) {
+        Rng rng(seed, uint64_t(i));
+        const Radiance L = tracer.shade(surfaceHit(p, ng), wo, rng, counters);
+        if (!L.direct.isFinite() || !L.indirect.isFinite()) {
+            ++st.nonFinite;
+            continue;
+        }
+        if (!L.indirect.isZero()) ++st.indirectNonZero;
+        st.direct.add(L.direct.x);
+    }
+    return st;
+}
 
 /// Monte Carlo estimate of the image mean (first channel) of direct, indirect and global radiance:
 /// each sample picks a uniformly random pixel and jitter, so the samples are i.i.d. and the standard
