@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     int exitCode = 0;
     rrf::cli::addRenderCommand(app, exitCode);
     rrf::cli::addDataCommands(app, exitCode);
+    rrf::cli::addTrainCommand(app, exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

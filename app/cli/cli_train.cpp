@@ -1,0 +1,148 @@
+// `rrf train`: one network per object (and target) from a dataset, saved as a model directory.
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <chrono>
+#include <sstream>
+#include <string>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/commands.h"
+#include "core/dataset_file.h"
+#include "core/error.h"
+#include "core/model_set.h"
+#include "core/network_settings.h"
+#include "core/project.h"
+#include "core/training_samples.h"
+
+namespace rrf::cli {
+
+namespace {
+struct TrainArgs {
+    std::string input, data, out, hidden, trainer, objects, targets;
+    int epochs = -1, threads = 0, logEvery = 10;
+};
+
+/// "--objects 0,3,tall-box": ids or names of scene objects.
+std::vector<int> parseObjects(const std::string& text, const Scene& scene) {
+    std::vector<int> ids;
+    std::istringstream in(text);
+    std::string part;
+    while (std::getline(in, part, ',')) {
+        int found = -1;
+        for (const Object& o : scene.objects)
+            if (o.name == part || std::to_string(o.id) == part) found = o.id;
+        if (found < 0) {
+            std::string known;
+            for (const Object& o : scene.objects) known += (known.empty() ? "" : ", ") + std::to_string(o.id) + "=" + o.name;
+            throw InputError("command line", "--objects", "no object '" + part + "' (known: " + known + ")");
+        }
+        ids.push_back(found);
+    }
+    return ids;
+}
+
+std::string fmt(double v) {
+    if (std::isnan(v)) return "-";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
+}
+
+int runTrain(const TrainArgs& a) {
+    const Project project = loadProjectOrScene(a.input);
+    NetworkSettings settings = NetworkSettings::fromProject(project);
+    ObjectTrainingOptions& o = settings.options;
+    if (!a.hidden.empty()) o.hidden = parseHiddenSizes(a.hidden, "--hidden");
+    if (!a.trainer.empty()) {
+        const TrainerType t = a.trainer == "adam" ? TrainerType::Adam : TrainerType::LevenbergMarquardt;
+        if (t != o.trainer.type) o.trainer = TrainerConfig::fromJson({{"type", a.trainer == "adam" ? "adam" : "levenberg_marquardt"}});
+    }
+    if (a.epochs > 0) {
+        o.trainer.lm.maxEpochs = a.epochs;
+        o.trainer.adam.maxEpochs = a.epochs;
+    }
+    if (!a.targets.empty()) o.targets = parseTargetMode(a.targets);
+    if (!a.objects.empty()) o.objects = parseObjects(a.objects, project.scene);
+    auto threads = limitThreads(a.threads);
+
+    const Dataset data(a.data, true, project.scene.contentHash());
+    uint64_t dropped = 0;
+    const std::vector<ObjectSamples> samples = samplesFromDataset(data, &dropped);
+    if (dropped) std::printf("warning: %llu records with NaN/Inf dropped from %s\n", (unsigned long long)dropped, a.data.c_str());
+    std::printf("rrf train: %s on %s (%llu records), hidden %s, %s, targets %s, trainer %s\n", a.input.c_str(),
+                a.data.c_str(), (unsigned long long)data.totalRecords(), nlohmann::json(o.hidden).dump().c_str(),
+                activationName(o.activation), targetModeName(o.targets), o.trainer.typeName());
+    std::fflush(stdout);
+
+    std::mutex printMutex;
+    std::atomic<int> epochsDone{0};
+    const int networksPerObject = o.targets == TargetMode::Separate ? 2 : 1;
+    const size_t objectCount = o.objects.empty() ? samples.size() : o.objects.size();
+    const double totalEpochs = double(objectCount) * networksPerObject * o.trainer.maxEpochs();
+    std::atomic<bool> cancel{false};
+    ObjectTrainingObserver observer;
+    observer.cancel = &cancel;
+    observer.onEpoch = [&](int id, const std::string& target, const EpochRecord& r) {
+        ++epochsDone;
+        if (a.logEvery <= 0 || r.epoch % a.logEvery != 0) return;
+        std::lock_guard<std::mutex> lock(printMutex);
+        std::printf("object %d %-10s %-8s epoch %4d  train %-10s validation %-10s step %-9s %7.2f s\n", id,
+                    project.scene.objects[size_t(id)].name.c_str(), target.c_str(), r.epoch, fmt(r.trainLoss).c_str(),
+                    fmt(r.validationLoss).c_str(), fmt(r.step).c_str(), r.seconds);
+        std::fflush(stdout);
+    };
+    observer.onMessage = [&](const std::string& m) {
+        std::lock_guard<std::mutex> lock(printMutex);
+        std::printf("note: %s\n", m.c_str());
+    };
+    std::vector<ObjectModel> trained;
+    const auto start = std::chrono::steady_clock::now();
+    runWithProgress(
+        "train", [&] { trained = trainObjects(samples, o, observer); },
+        [&] { return std::make_pair(std::min(1.0, epochsDone / std::max(1.0, totalEpochs)), std::string()); },
+        [&] { cancel = true; });
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    nlohmann::json extra = {{"dataset", a.data}, {"project", a.input}, {"network", settings.networkJson()},
+                            {"trainer", settings.trainerJson()}, {"seconds", seconds}, {"cancelled", bool(cancel)}};
+    saveModelSet(a.out, trained, project.scene.contentHash(), data.header().at("input_layout").get<std::vector<std::string>>(),
+                 extra);
+
+    std::printf("\n%-4s %-12s %-9s %9s %7s %7s %-11s %-11s %-11s %8s\n", "id", "object", "target", "samples", "params",
+                "epochs", "train RMSE", "valid RMSE", "test RMSE", "time s");
+    for (const ObjectModel& m : trained) {
+        if (m.skipped) {
+            std::printf("%-4d %-12s %-9s skipped: %s\n", m.objectId, m.objectName.c_str(), m.target.c_str(), m.message.c_str());
+            continue;
+        }
+        const TrainResult& t = m.model.training;
+        std::printf("%-4d %-12s %-9s %9lld %7lld %7d %-11s %-11s %-11s %8.2f\n", m.objectId, m.objectName.c_str(),
+                    m.target.c_str(), (long long)(t.trainSamples + t.validationSamples + t.testSamples),
+                    (long long)m.model.arch.numParams(), t.epochs, fmt(m.model.errors.train).c_str(),
+                    fmt(m.model.errors.validation).c_str(), fmt(m.model.errors.test).c_str(), t.seconds);
+    }
+    std::printf("trained in %.2f s%s; wrote %s/models.json\n", seconds, cancel ? " (stopped early by Ctrl-C)" : "",
+                a.out.c_str());
+    return cancel ? 130 : 0;
+}
+}  // namespace
+
+void addTrainCommand(CLI::App& app, int& exitCode) {
+    auto a = std::make_shared<TrainArgs>();
+    CLI::App* cmd = app.add_subcommand("train", "Train one network per object (and target) on a dataset");
+    cmd->add_option("input", a->input, "project or scene JSON file")->required();
+    cmd->add_option("--data", a->data, "dataset file (.rrfd) made for this scene")->required();
+    cmd->add_option("--out", a->out, "output model directory")->required();
+    cmd->add_option("--hidden", a->hidden, "hidden layer sizes, e.g. 20,10");
+    cmd->add_option("--trainer", a->trainer, "trainer")->check(CLI::IsMember({"lm", "adam"}));
+    cmd->add_option("--epochs", a->epochs, "maximum epochs")->check(CLI::PositiveNumber);
+    cmd->add_option("--objects", a->objects, "objects to train (ids or names, comma-separated)");
+    cmd->add_option("--targets", a->targets, "what the networks predict")
+        ->check(CLI::IsMember({"separate", "joint", "global", "direct", "indirect"}));
+    cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--log-every", a->logEvery, "print every N-th epoch (0 = none)")->check(CLI::NonNegativeNumber);
+    cmd->callback([a, &exitCode] { exitCode = runTrain(*a); });
+}
+
+}  // namespace rrf::cli

@@ -1,0 +1,81 @@
+#include "core/network_settings.h"
+
+#include <sstream>
+
+#include "core/error.h"
+
+namespace rrf {
+
+std::vector<int> parseHiddenSizes(const std::string& text, const std::string& option) {
+    std::vector<int> sizes;
+    std::istringstream in(text);
+    std::string part;
+    while (std::getline(in, part, ',')) {
+        try {
+            size_t used = 0;
+            const int v = std::stoi(part, &used);
+            if (used != part.size() || v < 1 || v > 4096) throw std::invalid_argument(part);
+            sizes.push_back(v);
+        } catch (const std::exception&) {
+            throw InputError("command line", option, "expected comma-separated layer sizes in 1..4096 (e.g. 20,10), got '" + text + "'");
+        }
+    }
+    if (sizes.empty()) throw InputError("command line", option, "expected at least one hidden layer size");
+    return sizes;
+}
+
+NetworkSettings NetworkSettings::fromJson(const nlohmann::json& n, const nlohmann::json* trainer, const std::string& file) {
+    NetworkSettings s;
+    if (!n.is_object()) throw InputError(file, "/network", "expected an object");
+    for (auto it = n.begin(); it != n.end(); ++it)
+        if (it.key() != "hidden" && it.key() != "activation" && it.key() != "targets")
+            throw InputError(file, "/network/" + it.key(), "unknown key (known: hidden, activation, targets)");
+    if (n.contains("hidden")) {
+        const nlohmann::json& h = n.at("hidden");
+        if (!h.is_array() || h.empty()) throw InputError(file, "/network/hidden", "expected a non-empty array of layer sizes");
+        s.options.hidden.clear();
+        for (size_t i = 0; i < h.size(); ++i) {
+            if (!h[i].is_number_integer() || h[i].get<int>() < 1 || h[i].get<int>() > 4096)
+                throw InputError(file, "/network/hidden/" + std::to_string(i), "expected a layer size in 1..4096");
+            s.options.hidden.push_back(h[i].get<int>());
+        }
+    }
+    try {
+        if (n.contains("activation")) s.options.activation = parseActivation(n.at("activation").get<std::string>());
+    } catch (const std::exception& e) {
+        throw InputError(file, "/network/activation", std::string("expected \"tanh\" or \"relu\": ") + e.what());
+    }
+    try {
+        if (n.contains("targets")) s.options.targets = parseTargetMode(n.at("targets").get<std::string>());
+    } catch (const std::exception& e) {
+        throw InputError(file, "/network/targets",
+                         std::string("expected \"separate\", \"joint\", \"global\", \"direct\" or \"indirect\": ") + e.what());
+    }
+    if (trainer) s.options.trainer = TrainerConfig::fromJson(*trainer, file, "/trainer");
+    return s;
+}
+
+NetworkSettings NetworkSettings::fromProject(const Project& project) {
+    NetworkSettings s;
+    s.options.targets = TargetMode::Separate;
+    const nlohmann::json& d = project.doc;
+    if (!d.is_object()) return s;
+    const nlohmann::json empty = nlohmann::json::object();
+    const nlohmann::json& net = d.contains("network") ? d.at("network") : empty;
+    NetworkSettings parsed = fromJson(net, d.contains("trainer") ? &d.at("trainer") : nullptr, project.path);
+    if (!net.contains("targets")) parsed.options.targets = TargetMode::Separate;
+    return parsed;
+}
+
+nlohmann::json NetworkSettings::networkJson() const {
+    return {{"hidden", options.hidden},
+            {"activation", activationName(options.activation)},
+            {"targets", targetModeName(options.targets)}};
+}
+
+void NetworkSettings::store(Project& project) const {
+    project.doc["network"] = networkJson();
+    project.doc["trainer"] = trainerJson();
+}
+
+}  // namespace rrf

@@ -1,0 +1,39 @@
+#include "core/training_samples.h"
+
+#include <cmath>
+
+namespace rrf {
+
+std::vector<ObjectSamples> samplesFromDataset(const Dataset& data, uint64_t* dropped) {
+    const int in = data.inputCount();
+    const int fpr = data.floatsPerRecord();
+    uint64_t bad = 0;
+    std::vector<ObjectSamples> out;
+    for (size_t i = 0; i < data.objects().size(); ++i) {
+        const DatasetObject& o = data.objects()[i];
+        ObjectSamples s;
+        s.objectId = o.id;
+        s.name = o.name;
+        s.numInputs = in;
+        s.inputs.reserve(o.count * size_t(in));
+        s.direct.reserve(o.count * 3);
+        s.indirect.reserve(o.count * 3);
+        const float* r = data.records(i);
+        for (uint64_t k = 0; k < o.count; ++k, r += fpr) {
+            bool finite = true;
+            for (int c = 0; c < fpr; ++c) finite = finite && std::isfinite(r[c]);
+            if (!finite) {
+                ++bad;
+                continue;
+            }
+            s.inputs.insert(s.inputs.end(), r, r + in);
+            s.direct.insert(s.direct.end(), r + in, r + in + 3);
+            s.indirect.insert(s.indirect.end(), r + in + 3, r + in + 6);
+        }
+        out.push_back(std::move(s));
+    }
+    if (dropped) *dropped = bad;
+    return out;
+}
+
+}  // namespace rrf
