@@ -15,3 +15,13 @@ add_custom_command(
 add_library(rrf_glad STATIC ${RRF_GLAD_DIR}/src/gl.c)
 target_include_directories(rrf_glad PUBLIC ${RRF_GLAD_DIR}/include)
 set(RRF_HAVE_GUI_DEPS TRUE)
+
+# ---- panels: ImGui views over core state (no GLFW, no GL) ----------------------------------------
+file(GLOB RRF_PANELS_SOURCES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/panels/*.cpp)
+add_library(rrf_panels STATIC ${RRF_PANELS_SOURCES})
+target_link_libraries(rrf_panels PUBLIC rrf_core PkgConfig::IMGUI)
+
+# ---- rrf-workbench: window, GL, job runner, main ------------------------------------------------
+file(GLOB RRF_GUI_SOURCES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/app/gui/*.cpp)
+add_executable(rrf-workbench ${RRF_GUI_SOURCES})
+target_link_libraries(rrf-workbench PRIVATE rrf_panels rrf_glad glfw OpenGL::GL ${CMAKE_DL_LIBS})

@@ -1,0 +1,98 @@
+#pragma once
+/// Background jobs of the workbench (render, generate, train, evaluate), each on its own worker
+/// thread. A job reports progress, ETA and a status line through its JobContext; the UI thread
+/// polls JobRunner::jobs() every frame and reacts to finished jobs via takeFinished(). Workers never
+/// touch ImGui or GL: what they produce they publish as snapshots that the UI thread copies.
+///
+/// Starting a job whose kind conflicts with a running one is refused (with the reason), never
+/// queued silently: the user decides what to stop.
+
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace rrf {
+
+enum class JobKind { Render, Generate, Train, Evaluate };
+const char* jobKindName(JobKind kind);
+/// True when jobs of kinds a and b must not run at the same time (one needs what the other makes,
+/// or both write the same outputs).
+bool jobsConflict(JobKind a, JobKind b);
+
+/// Handed to the job's function on its worker thread. All members are thread-safe.
+class JobContext {
+public:
+    /// Fraction done in [0, 1]; the ETA is extrapolated from it.
+    void setProgress(double fraction);
+    void setStatus(const std::string& status);
+    bool cancelled() const { return cancel_.load(std::memory_order_relaxed); }
+    const std::atomic<bool>& cancelFlag() const { return cancel_; }
+    /// Called (on the UI thread) when the job is cancelled, e.g. to forward to Renderer::cancel().
+    void onCancel(std::function<void()> hook);
+
+private:
+    friend class JobRunner;
+    mutable std::mutex mutex_;
+    std::atomic<bool> cancel_{false};
+    double progress_ = 0.0;
+    std::string status_;
+    std::string error_;  ///< set by the runner when the job's function threw
+    std::function<void()> cancelHook_;
+};
+
+/// A copy of one job's state for display.
+struct JobInfo {
+    int id = 0;
+    JobKind kind = JobKind::Render;
+    std::string name, status;
+    double progress = 0.0;
+    double seconds = 0.0;
+    double etaSeconds = -1.0;  ///< -1 while unknown
+    bool running = true, cancelled = false, failed = false;
+    std::string error;         ///< what the job threw, if it failed
+};
+
+class JobRunner {
+public:
+    JobRunner() = default;
+    /// Cancels every job and joins the workers.
+    ~JobRunner();
+    JobRunner(const JobRunner&) = delete;
+    JobRunner& operator=(const JobRunner&) = delete;
+
+    /// Starts `work` on a new thread. Returns the job id, or 0 when refused because a conflicting
+    /// job is running (`why` then says which). Exceptions thrown by `work` mark the job failed.
+    int start(JobKind kind, const std::string& name, std::function<void(JobContext&)> work, std::string* why = nullptr);
+    /// Asks a job to stop (its function sees cancelled() and returns at its next check).
+    void cancel(int id);
+    void cancelAll();
+    /// Running jobs, oldest first.
+    std::vector<JobInfo> jobs() const;
+    bool running(JobKind kind) const;
+    bool idle() const;
+    /// Jobs that finished since the last call (each reported once), joined.
+    std::vector<JobInfo> takeFinished();
+    /// Blocks until every job has finished (used on exit after cancelAll()).
+    void waitAll();
+
+private:
+    struct Entry {
+        JobInfo info;
+        std::shared_ptr<JobContext> context;
+        std::chrono::steady_clock::time_point start;
+        std::atomic<bool> done{false};
+        std::thread thread;
+    };
+    JobInfo snapshot(const Entry& e) const;
+
+    mutable std::mutex mutex_;
+    std::vector<std::unique_ptr<Entry>> entries_;
+    int nextId_ = 1;
+};
+
+}  // namespace rrf

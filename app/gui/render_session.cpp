@@ -1,0 +1,75 @@
+#include "app/gui/render_session.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+namespace rrf {
+
+RenderSession::RenderSession(const Scene& scene, const RenderOptions& options) : scene_(scene), options_(options) {}
+
+void RenderSession::run(JobContext& ctx) {
+    ctx.setStatus("building BVH");
+    auto accel = std::make_unique<Accel>(scene_);
+    Renderer* renderer = nullptr;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        accel_ = std::move(accel);
+        renderer_ = std::make_unique<Renderer>(scene_, *accel_, options_);
+        renderer = renderer_.get();
+    }
+    // Installed after the renderer exists; onCancel() fires at once if cancel came during the build.
+    ctx.onCancel([renderer] { renderer->cancel(); });
+    if (ctx.cancelled()) return;
+    ctx.setStatus("rendering");
+    renderer->run([&](int sppDone) {
+        publish();
+        ctx.setProgress(renderer->progress());
+        char status[96];
+        std::snprintf(status, sizeof status, "%d/%d spp", sppDone, options_.spp);
+        ctx.setStatus(status);
+    });
+    ctx.setStatus(renderer->cancelled() ? "cancelled" : "done");
+}
+
+void RenderSession::publish() {
+    // Called on the worker between passes, when the renderer's own lock is free: the snapshot is a
+    // consistent copy, and the UI thread never waits for a pass to finish.
+    auto snap = std::make_shared<const RenderSnapshot>(renderer_->snapshot());
+    std::lock_guard<std::mutex> lock(mutex_);
+    latest_ = std::move(snap);
+    ++revision_;
+}
+
+std::shared_ptr<const RenderSnapshot> RenderSession::latest(uint64_t* revision) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (revision) *revision = revision_.load();
+    return latest_;
+}
+
+RenderStats RenderSession::stats() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return renderer_ ? renderer_->stats() : RenderStats{};
+}
+
+RenderOutputs RenderSession::write(const std::string& dir, ImageFormat format, float exposure) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!renderer_ || !latest_) throw std::runtime_error(dir + ": nothing rendered yet");
+    return writeRenderOutputs(dir, scene_, *renderer_, *latest_, format, exposure);
+}
+
+RenderOptions renderOptionsFor(const Scene& scene, const RenderSettings& s) {
+    RenderOptions o;
+    o.width = s.width > 0 ? s.width : scene.camera.width;
+    o.height = s.height > 0 ? s.height : scene.camera.height;
+    o.spp = std::max(1, s.spp);
+    o.seed = s.seed;
+    o.maxDepth = s.maxDepth;
+    o.estimator = s.estimator;
+    // One sample per pass up to 64 spp gives a visible refresh every pass; beyond that, passes of
+    // spp/64 keep the snapshot copies a small fraction of the work.
+    o.samplesPerPass = std::max(1, o.spp / 64);
+    return o;
+}
+
+}  // namespace rrf

@@ -1,0 +1,52 @@
+#pragma once
+/// One progressive ground-truth render running as a background job. The session owns a private copy
+/// of the scene, its Embree BVH and the Renderer (built on the worker, so a large scene's BVH build
+/// never stalls the UI); after every pass the worker publishes a RenderSnapshot, which the UI thread
+/// picks up with latest(). A scene edit makes a new session: the old one is cancelled, never mutated.
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "app/gui/job_runner.h"
+#include "core/accel.h"
+#include "core/render_outputs.h"
+#include "core/renderer.h"
+#include "core/scene.h"
+
+namespace rrf {
+
+class RenderSession {
+public:
+    RenderSession(const Scene& scene, const RenderOptions& options);
+
+    /// The job body: builds the BVH and renders until done or cancelled.
+    void run(JobContext& context);
+
+    /// The most recent snapshot (null before the first pass) and its sequence number.
+    std::shared_ptr<const RenderSnapshot> latest(uint64_t* revision = nullptr) const;
+    RenderStats stats() const;
+    const RenderOptions& options() const { return options_; }
+    const Scene& scene() const { return scene_; }
+
+    /// Writes the images and render.json of the latest snapshot into `dir`. Only after the job has
+    /// finished (the renderer must be idle). Throws std::runtime_error naming the file on failure.
+    RenderOutputs write(const std::string& dir, ImageFormat format, float exposure) const;
+
+private:
+    void publish();
+
+    const Scene scene_;
+    const RenderOptions options_;
+    mutable std::mutex mutex_;  ///< guards renderer_ creation and latest_
+    std::unique_ptr<Accel> accel_;
+    std::unique_ptr<Renderer> renderer_;
+    std::shared_ptr<const RenderSnapshot> latest_;
+    std::atomic<uint64_t> revision_{0};
+};
+
+/// RenderOptions from the project's render settings and the scene's camera.
+RenderOptions renderOptionsFor(const Scene& scene, const RenderSettings& settings);
+
+}  // namespace rrf

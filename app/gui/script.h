@@ -1,0 +1,49 @@
+#pragma once
+/// Scripted sessions (`rrf-workbench --script steps.json`): a JSON array of steps that drive the
+/// workbench as a user would, one step per frame, for CI and for reproducible screenshots.
+///
+///     [ {"do": "render", "spp": 8}, {"do": "wait", "for": "render"}, {"do": "save_run"},
+///       {"do": "set_light", "position": [0.2, 0.9, 0]}, {"do": "wait", "for": "render"},
+///       {"do": "compare_run", "index": 0}, {"do": "check", "runs": 1}, {"do": "frames", "count": 5} ]
+///
+/// Steps: render {spp}, wait {for: render|jobs, timeout_s}, save_run, compare_run {index},
+/// reopen_run {index}, set_light {position}, select_object {id}, view {term, metric, exposure,
+/// error_max, zoom}, open {path}, save {path?}, export_images {dir}, screenshot {path},
+/// frames {count}, check {runs, ground_truth_spp_min, errors}. An unknown step fails the script
+/// (it never skips silently).
+
+#include <chrono>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace rrf {
+
+class Workbench;
+
+class Script {
+public:
+    enum class Status { Running, Done, Failed };
+
+    /// Reads and checks the step list; false with `error` set if the file is unusable.
+    bool load(const std::string& path, std::string& error);
+    /// Carries out (or keeps waiting on) the current step; call once per frame.
+    Status step(Workbench& workbench);
+    const std::string& error() const { return error_; }
+    bool empty() const { return steps_.empty(); }
+
+private:
+    Status fail(const std::string& message);
+    /// Runs one step; returns true when it is complete (false: keep waiting).
+    bool execute(Workbench& wb, const nlohmann::json& s);
+
+    nlohmann::json steps_ = nlohmann::json::array();
+    size_t next_ = 0;
+    bool waiting_ = false;
+    int framesLeft_ = 0;
+    std::chrono::steady_clock::time_point waitStart_;
+    std::string error_;
+    bool failed_ = false;
+};
+
+}  // namespace rrf

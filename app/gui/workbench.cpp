@@ -1,0 +1,322 @@
+// Workbench: frame loop pieces, host window, menus, status bar, modals and request dispatch.
+#include "app/gui/workbench.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include "panels/panels.h"
+
+namespace rrf {
+
+namespace fs = std::filesystem;
+using panels::Command;
+
+Workbench::Workbench(const std::string& configDir)
+    : recent_((fs::path(configDir) / "recent.json").string()), lastAutosave_(std::chrono::steady_clock::now()) {
+    recent_.load();
+    state_.recent = recent_.paths();
+}
+
+Workbench::~Workbench() {
+    jobs_.cancelAll();
+    jobs_.waitAll();
+}
+
+std::string Workbench::title() const {
+    std::string t = "RRF Workbench - " + state_.projectName();
+    if (state_.dirty) t += " *";
+    return t;
+}
+
+std::string Workbench::takeScreenshotRequest() {
+    std::string p;
+    p.swap(screenshotRequest_);
+    return p;
+}
+
+bool Workbench::requestQuit() {
+    if (!state_.dirty || quitConfirmed_) {
+        quitConfirmed_ = true;
+        return true;
+    }
+    quitModal_ = true;
+    return false;
+}
+
+void Workbench::showError(const std::string& title, const std::string& message) {
+    state_.log.error(message);
+    errorTitle_ = title;
+    errorMessage_ = message;
+    errorModal_ = true;
+}
+
+void Workbench::frame() {
+    pollRender();
+    drawHost();
+    drawModals();
+    if (dialog_.draw()) dialogConfirmed(dialog_.result());
+    handleRequests();
+    autosave();
+
+    viewModel_.update(state_);
+    for (int i = 0; i < 3; ++i) {
+        textures_[i].upload(viewModel_.image(i));
+        state_.viewTextures[i] = textures_[i].id();
+    }
+}
+
+void Workbench::drawHost() {
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(vp->WorkPos);
+    ImGui::SetNextWindowSize(vp->WorkSize);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoSavedSettings |
+                                   ImGuiWindowFlags_MenuBar;
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0.f);
+    ImGui::Begin("##host", nullptr, flags);
+    ImGui::PopStyleVar();
+    drawMenuBar();
+
+    const float statusH = ImGui::GetFrameHeightWithSpacing();
+    ImGui::BeginChild("##workspace", ImVec2(0, -statusH), false, ImGuiWindowFlags_NoScrollbar);
+    panels::drawWorkspace(
+        state_.layout,
+        [&] {
+            if (ImGui::BeginTabBar("##left-tabs")) {
+                if (ImGui::BeginTabItem("Project")) {
+                    panels::drawProjectPanel(state_);
+                    ImGui::EndTabItem();
+                }
+                if (ImGui::BeginTabItem("Scene")) {
+                    panels::drawScenePanel(state_);
+                    ImGui::EndTabItem();
+                }
+                ImGui::EndTabBar();
+            }
+        },
+        [&] {
+            if (ImGui::BeginTabBar("##centre-tabs")) {
+                if (ImGui::BeginTabItem("Views")) {
+                    panels::drawViewsPanel(state_);
+                    ImGui::EndTabItem();
+                }
+                ImGui::EndTabBar();
+            }
+        },
+        [&] {
+            if (ImGui::BeginTabBar("##bottom-tabs")) {
+                if (ImGui::BeginTabItem("Log")) {
+                    panels::drawLogPanel(state_);
+                    ImGui::EndTabItem();
+                }
+                ImGui::EndTabBar();
+            }
+        });
+    ImGui::EndChild();
+    drawStatusBar();
+    ImGui::End();
+}
+
+void Workbench::drawMenuBar() {
+    if (!ImGui::BeginMenuBar()) return;
+    if (ImGui::BeginMenu("File")) {
+        if (ImGui::MenuItem("New from scene...")) state_.request(Command::NewProject);
+        if (ImGui::MenuItem("Open...", "Ctrl+O")) state_.request(Command::OpenProject);
+        if (ImGui::MenuItem("Save", "Ctrl+S", false, state_.hasProject)) state_.request(Command::SaveProject);
+        if (ImGui::MenuItem("Save As...", nullptr, false, state_.hasProject)) state_.request(Command::SaveProjectAs);
+        if (ImGui::BeginMenu("Recent", !state_.recent.empty())) {
+            for (const std::string& p : state_.recent)
+                if (ImGui::MenuItem(p.c_str())) state_.request(Command::OpenProject, p);
+            ImGui::EndMenu();
+        }
+        ImGui::Separator();
+        if (ImGui::MenuItem("Export images...", nullptr, false, render_ != nullptr)) openDialog(DialogPurpose::ExportImages);
+        if (ImGui::MenuItem("Export screenshot...")) openDialog(DialogPurpose::ExportScreenshot);
+        ImGui::Separator();
+        if (ImGui::MenuItem("Quit", "Ctrl+Q")) state_.request(Command::Quit);
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("View")) {
+        if (ImGui::MenuItem("Reset layout")) state_.request(Command::ResetLayout);
+        if (ImGui::MenuItem("Reset zoom and pan")) {
+            state_.view.zoom = 1.f;
+            state_.view.panX = state_.view.panY = 0.f;
+        }
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Help")) {
+        if (ImGui::MenuItem("About")) aboutModal_ = true;
+        ImGui::EndMenu();
+    }
+    // Keyboard shortcuts advertised in the menu (1.86 indexes keys by the GLFW backend's key codes).
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.KeyCtrl && !io.WantTextInput) {
+        if (ImGui::IsKeyPressed(GLFW_KEY_O)) state_.request(Command::OpenProject);
+        if (ImGui::IsKeyPressed(GLFW_KEY_S) && state_.hasProject) state_.request(Command::SaveProject);
+        if (ImGui::IsKeyPressed(GLFW_KEY_Q)) state_.request(Command::Quit);
+    }
+    ImGui::EndMenuBar();
+}
+
+void Workbench::drawStatusBar() {
+    const std::vector<JobInfo> running = jobs_.jobs();
+    if (running.empty()) {
+        ImGui::TextDisabled("%s%s", state_.hasProject ? state_.project.path.c_str() : "no project",
+                            state_.dirty ? "  (unsaved changes)" : "");
+        return;
+    }
+    for (const JobInfo& j : running) {
+        ImGui::PushID(j.id);
+        char overlay[64];
+        if (j.etaSeconds >= 0) std::snprintf(overlay, sizeof overlay, "%.0f%%, ETA %.0f s", 100 * j.progress, j.etaSeconds);
+        else std::snprintf(overlay, sizeof overlay, "%.0f%%", 100 * j.progress);
+        ImGui::TextUnformatted(j.name.c_str());
+        ImGui::SameLine();
+        ImGui::ProgressBar(float(j.progress), ImVec2(ImGui::GetFontSize() * 10, 0), overlay);
+        ImGui::SameLine();
+        ImGui::TextUnformatted(j.status.c_str());
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Cancel")) jobs_.cancel(j.id);
+        ImGui::SameLine();
+        ImGui::PopID();
+    }
+    ImGui::NewLine();
+}
+
+void Workbench::drawModals() {
+    if (aboutModal_) {
+        ImGui::OpenPopup("About RRF Workbench");
+        aboutModal_ = false;
+    }
+    if (ImGui::BeginPopupModal("About RRF Workbench", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::TextUnformatted("RRF Workbench: learning global illumination with radiance regression functions");
+        ImGui::TextUnformatted("after Ren et al., \"Global Illumination with Radiance Regression Functions\", SIGGRAPH 2013.");
+        ImGui::Text("Dear ImGui %s", ImGui::GetVersion());
+        if (ImGui::Button("Close")) ImGui::CloseCurrentPopup();
+        ImGui::EndPopup();
+    }
+    if (quitModal_) {
+        ImGui::OpenPopup("Unsaved changes");
+        quitModal_ = false;
+    }
+    if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::Text("'%s' has unsaved changes.", state_.projectName().c_str());
+        if (ImGui::Button("Save and quit")) {
+            if (saveProject()) quitConfirmed_ = true;
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Quit without saving")) {
+            quitConfirmed_ = true;
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+        ImGui::EndPopup();
+    }
+    if (errorModal_) {
+        ImGui::OpenPopup("Error##modal");
+        errorModal_ = false;
+    }
+    if (ImGui::BeginPopupModal("Error##modal", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::TextUnformatted(errorTitle_.c_str());
+        ImGui::Separator();
+        ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40);
+        ImGui::TextUnformatted(errorMessage_.c_str());
+        ImGui::PopTextWrapPos();
+        if (ImGui::Button("Copy")) ImGui::SetClipboardText(errorMessage_.c_str());
+        ImGui::SameLine();
+        if (ImGui::Button("OK")) ImGui::CloseCurrentPopup();
+        ImGui::EndPopup();
+    }
+}
+
+void Workbench::openDialog(DialogPurpose purpose) {
+    dialogPurpose_ = purpose;
+    const std::string here = state_.hasProject && !state_.project.path.empty() ? state_.project.path : projectDir();
+    using M = panels::FileDialog::Mode;
+    switch (purpose) {
+        case DialogPurpose::Open: dialog_.open(M::Open, "Open project", here, ".json"); break;
+        case DialogPurpose::New: dialog_.open(M::Open, "New project from a scene file", here, ".json"); break;
+        case DialogPurpose::SaveAs: dialog_.open(M::Save, "Save project as", here, ".json"); break;
+        case DialogPurpose::ExportImages:
+            dialog_.open(M::Directory, "Export images to directory", (fs::path(projectDir()) / "export").string(), "");
+            break;
+        case DialogPurpose::ExportScreenshot:
+            dialog_.open(M::Save, "Export screenshot", (fs::path(projectDir()) / "screenshot.png").string(), ".png");
+            break;
+        case DialogPurpose::None: break;
+    }
+}
+
+void Workbench::dialogConfirmed(const std::string& path) {
+    switch (dialogPurpose_) {
+        case DialogPurpose::Open: openProject(path); break;
+        case DialogPurpose::New: newProjectFromScene(path); break;
+        case DialogPurpose::SaveAs: saveProject(path); break;
+        case DialogPurpose::ExportImages: exportImages(path); break;
+        case DialogPurpose::ExportScreenshot: screenshotRequest_ = path; break;
+        case DialogPurpose::None: break;
+    }
+    dialogPurpose_ = DialogPurpose::None;
+}
+
+void Workbench::handleRequests() {
+    std::vector<panels::Request> requests;
+    requests.swap(state_.requests);
+    bool sceneEdited = false;
+    for (const panels::Request& r : requests) {
+        switch (r.command) {
+            case Command::NewProject: openDialog(DialogPurpose::New); break;
+            case Command::OpenProject:
+                if (r.path.empty()) openDialog(DialogPurpose::Open);
+                else openProject(r.path);
+                break;
+            case Command::SaveProject: saveProject(); break;
+            case Command::SaveProjectAs:
+                if (r.path.empty()) openDialog(DialogPurpose::SaveAs);
+                else saveProject(r.path);
+                break;
+            case Command::StartRender: startRender(); break;
+            case Command::CancelRender:
+                if (renderJob_) jobs_.cancel(renderJob_);
+                restartRender_ = false;
+                break;
+            case Command::SceneChanged: sceneEdited = true; break;  // many edits in a frame: one restart
+            case Command::SaveRun: saveRun(); break;
+            case Command::ReopenRun: reopenRun(r.index); break;
+            case Command::CompareRun: compareRun(r.index); break;
+            case Command::DeleteRun:
+                if (r.index >= 0 && r.index < int(state_.runs.size())) {
+                    state_.log.info("removed run '" + state_.runs[size_t(r.index)].name +
+                                    "' from the project (its files stay on disk)");
+                    state_.runs.erase(state_.runs.begin() + r.index);
+                    if (state_.compareRun == r.index) {
+                        state_.compareRun = -1;
+                        state_.compare = panels::ImageSet{};
+                        ++state_.compare.revision;
+                    } else if (state_.compareRun > r.index) {
+                        --state_.compareRun;
+                    }
+                    state_.markDirty();
+                }
+                break;
+            case Command::ExportImages:
+                if (r.path.empty()) openDialog(DialogPurpose::ExportImages);
+                else exportImages(r.path);
+                break;
+            case Command::ExportScreenshot:
+                if (r.path.empty()) openDialog(DialogPurpose::ExportScreenshot);
+                else screenshotRequest_ = r.path;
+                break;
+            case Command::ResetLayout: state_.layout.reset(); break;
+            case Command::Quit: requestQuit(); break;
+        }
+    }
+    if (sceneEdited) sceneChanged(true);
+}
+
+}  // namespace rrf

@@ -1,0 +1,97 @@
+#pragma once
+/// The workbench application: the host window with menu bar, split panes and tabs, the modals, the
+/// background jobs and the GL textures of the views. Panels (panels/) draw and edit the state and
+/// queue Requests; this class carries them out between frames. UI thread only.
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "app/gui/gl_texture.h"
+#include "app/gui/job_runner.h"
+#include "app/gui/render_session.h"
+#include "app/gui/user_config.h"
+#include "panels/file_dialog.h"
+#include "panels/view_model.h"
+#include "panels/workbench_state.h"
+
+namespace rrf {
+
+class Workbench {
+public:
+    /// `configDir`: per-user directory for recent.json.
+    explicit Workbench(const std::string& configDir);
+    ~Workbench();
+
+    /// Opens a project or bare scene. A file that cannot be read is reported in the log and in a
+    /// modal, and the open project stays; returns false then.
+    bool openProject(const std::string& path);
+    /// Saves to `path` (empty: the project's own path, or Save As when it has none).
+    bool saveProject(const std::string& path = {});
+
+    /// One frame: pick up job results, draw the workspace, carry out requests, upload textures.
+    void frame();
+
+    /// The user (or the window manager) asked to quit. Returns true when it may happen now;
+    /// with unsaved changes it opens the "Unsaved changes" modal and returns false.
+    bool requestQuit();
+    /// True once the user confirmed quitting (from the modal or the File menu).
+    bool quitConfirmed() const { return quitConfirmed_; }
+    /// Window title: "RRF Workbench - <project>" with "*" for unsaved changes.
+    std::string title() const;
+    /// A screenshot path requested from the menu (empty if none); cleared by the call.
+    std::string takeScreenshotRequest();
+
+    /// Starts the ground-truth render of the current scene (refused while one runs).
+    bool startRender();
+    bool renderRunning() const;
+    /// Records the current ground truth as a run (files under <project dir>/runs/<id>/).
+    bool saveRun();
+    bool compareRun(int index);
+    bool reopenRun(int index);
+    bool exportImages(const std::string& dir);
+
+    panels::WorkbenchState& state() { return state_; }
+    JobRunner& jobs() { return jobs_; }
+
+private:
+    enum class DialogPurpose { None, Open, SaveAs, New, ExportImages, ExportScreenshot };
+
+    void drawHost();
+    void drawMenuBar();
+    void drawStatusBar();
+    void drawModals();
+    void handleRequests();
+    void openDialog(DialogPurpose purpose);
+    void dialogConfirmed(const std::string& path);
+    void newProjectFromScene(const std::string& scenePath);
+
+    void pollRender();
+    void sceneChanged(bool restartRender);
+    void rebuildPicking();
+    void autosave();
+    void showError(const std::string& title, const std::string& message);
+    std::string projectDir() const;
+
+    panels::WorkbenchState state_;
+    JobRunner jobs_;
+    panels::ViewModel viewModel_;
+    GlTexture textures_[3];
+    panels::FileDialog dialog_;
+    DialogPurpose dialogPurpose_ = DialogPurpose::None;
+    RecentProjects recent_;
+
+    std::shared_ptr<RenderSession> render_;
+    int renderJob_ = 0;
+    uint64_t renderRevision_ = 0;
+    bool restartRender_ = false;   ///< a scene edit arrived while the old render was stopping
+    bool untitled_ = false;        ///< the project has no file of its own yet (New)
+
+    bool quitModal_ = false, quitConfirmed_ = false, aboutModal_ = false;
+    std::string errorTitle_, errorMessage_;
+    bool errorModal_ = false;
+    std::string screenshotRequest_;
+    std::chrono::steady_clock::time_point lastAutosave_;
+};
+
+}  // namespace rrf

@@ -1,0 +1,249 @@
+// Workbench: project files (open, new, save, autosave, recent), runs and image export.
+#include "app/gui/workbench.h"
+
+#include <filesystem>
+
+#include "core/image_io.h"
+#include "panels/project_io.h"
+#include "panels/scene_overrides.h"
+
+namespace rrf {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+constexpr auto kAutosaveInterval = std::chrono::minutes(2);
+
+std::string autosavePath(const std::string& projectPath) { return projectPath + ".autosave.json"; }
+
+json vec3Json(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
+}  // namespace
+
+std::string Workbench::projectDir() const {
+    if (!state_.hasProject || state_.project.path.empty()) return fs::current_path().string();
+    return fs::absolute(fs::path(state_.project.path)).parent_path().string();
+}
+
+bool Workbench::openProject(const std::string& path) {
+    std::string error;
+    if (!panels::loadProjectIntoState(state_, path, error)) {
+        showError("Cannot open project", error + (state_.hasProject ? "\n\nThe open project was kept." : ""));
+        return false;
+    }
+    untitled_ = false;
+    if (!recent_.add(path)) state_.log.warning("could not update the recent projects list");
+    state_.recent = recent_.paths();
+    std::error_code ec;
+    const std::string autosave = autosavePath(path);
+    if (fs::exists(autosave, ec) && fs::last_write_time(autosave, ec) > fs::last_write_time(path, ec))
+        state_.log.warning("an autosave copy newer than the project exists: " + autosave +
+                           " (open it to recover unsaved work)");
+    // Stop the previous project's render; the new ground truth starts converging right away.
+    if (renderJob_) jobs_.cancel(renderJob_);
+    render_.reset();
+    sceneChanged(true);
+    lastAutosave_ = std::chrono::steady_clock::now();
+    return true;
+}
+
+void Workbench::newProjectFromScene(const std::string& scenePath) {
+    if (!openProject(scenePath)) return;
+    // A new project references the scene and has no file yet: the first Save asks where.
+    untitled_ = true;
+    state_.project.doc["name"] = "untitled";
+    state_.dirty = true;
+}
+
+bool Workbench::saveProject(const std::string& requested) {
+    if (!state_.hasProject) return false;
+    if (requested.empty() && (untitled_ || state_.project.path.empty())) {
+        state_.request(panels::Command::SaveProjectAs);
+        return false;
+    }
+    const std::string path = requested.empty() ? state_.project.path : requested;
+    std::string error;
+    if (!panels::saveStateToProject(state_, path, error)) {
+        showError("Cannot save project", error);
+        return false;
+    }
+    untitled_ = false;
+    std::error_code ec;
+    fs::remove(autosavePath(path), ec);  // the real file is now at least as new
+    recent_.add(path);
+    state_.recent = recent_.paths();
+    return true;
+}
+
+void Workbench::autosave() {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - lastAutosave_ < kAutosaveInterval) return;
+    lastAutosave_ = now;
+    if (!state_.dirty || untitled_ || !state_.hasProject || state_.project.path.empty()) return;
+    // Save a copy so the project itself (and its path) stay as the user left them.
+    panels::storeWorkbenchSections(state_);
+    Project copy = state_.project;
+    try {
+        rrf::saveProject(copy, autosavePath(state_.project.path));
+        state_.log.info("autosaved to " + autosavePath(state_.project.path));
+    } catch (const std::exception& e) {
+        state_.log.warning(std::string("autosave failed: ") + e.what());
+    }
+}
+
+bool Workbench::saveRun() {
+    if (!render_ || !render_->latest()) {
+        state_.log.error("save run: no ground truth rendered yet");
+        return false;
+    }
+    if (renderRunning()) {
+        state_.log.error("save run: the render is still running; wait for it or stop it first");
+        return false;
+    }
+    if (untitled_ || state_.project.path.empty()) {
+        state_.log.error("save run: save the project first (runs are stored next to it)");
+        return false;
+    }
+    panels::Run run;
+    run.kind = "render";
+    run.id = panels::newRunId(state_.runs, run.kind);
+    run.name = run.id;
+    run.created = panels::localTimestamp();
+    const std::string relDir = "runs/" + run.id;
+    try {
+        const RenderOutputs out = render_->write((fs::path(projectDir()) / relDir).string(), ImageFormat::EXR, 0.f);
+        for (const std::string& p : out.images)
+            run.artifacts.push_back(fs::path(p).lexically_relative(projectDir()).generic_string());
+        run.artifacts.push_back(fs::path(out.metadata).lexically_relative(projectDir()).generic_string());
+    } catch (const std::exception& e) {
+        state_.log.error(std::string("save run: ") + e.what());
+        return false;
+    }
+    const auto snap = render_->latest();
+    const RenderStats stats = render_->stats();
+    RenderSettings settings = state_.project.render;
+    settings.spp = render_->options().spp;
+    run.settings = json{{"render", panels::renderSettingsJson(settings)},
+                        {"light_position", vec3Json(render_->scene().lightPosition())},
+                        {"scene_hash", std::to_string(render_->scene().contentHash())}};
+    if (state_.project.doc.contains("scene_overrides"))
+        run.settings["scene_overrides"] = state_.project.doc["scene_overrides"];
+    run.metrics = json{{"spp", snap->sppCompleted},
+                       {"relative_error", snap->relativeError},
+                       {"non_finite_samples", snap->nonFinite},
+                       {"samples_per_second", stats.samplesPerSecond()}};
+    run.timings = json{{"render", snap->seconds}};
+    state_.runs.push_back(run);
+    state_.markDirty();
+    state_.log.info("saved run '" + run.name + "' (" + std::to_string(snap->sppCompleted) + " spp) to " + relDir);
+    return true;
+}
+
+namespace {
+/// Loads a render run's global/direct/indirect EXR images.
+bool loadRunImages(const panels::Run& run, const std::string& dir, panels::ImageSet& out, std::string& error) {
+    Image* slots[3] = {&out.global, &out.direct, &out.indirect};
+    const char* names[3] = {"global.exr", "direct.exr", "indirect.exr"};
+    for (int i = 0; i < 3; ++i) {
+        std::string file;
+        for (const std::string& a : run.artifacts)
+            if (fs::path(a).filename() == names[i]) file = (fs::path(dir) / a).string();
+        if (file.empty()) {
+            error = "run '" + run.name + "' has no " + names[i];
+            return false;
+        }
+        try {
+            *slots[i] = readImage(file);
+        } catch (const std::exception& e) {
+            error = e.what();
+            return false;
+        }
+    }
+    return true;
+}
+
+int runSpp(const panels::Run& run) {
+    return run.metrics.contains("spp") && run.metrics["spp"].is_number_integer() ? run.metrics["spp"].get<int>() : 0;
+}
+}  // namespace
+
+bool Workbench::compareRun(int index) {
+    if (index < 0 || index >= int(state_.runs.size())) return false;
+    const panels::Run& run = state_.runs[size_t(index)];
+    panels::ImageSet set;
+    std::string error;
+    if (!loadRunImages(run, projectDir(), set, error)) {
+        state_.log.error("compare run: " + error);
+        return false;
+    }
+    set.label = "Run '" + run.name + "' (" + std::to_string(runSpp(run)) + " spp)";
+    set.revision = state_.compare.revision + 1;
+    state_.compare = std::move(set);
+    state_.compareRun = index;
+    state_.log.info("comparing the ground truth with run '" + run.name + "'");
+    return true;
+}
+
+bool Workbench::reopenRun(int index) {
+    if (index < 0 || index >= int(state_.runs.size())) return false;
+    const panels::Run run = state_.runs[size_t(index)];
+    panels::ImageSet set;
+    std::string error;
+    if (!loadRunImages(run, projectDir(), set, error)) {
+        state_.log.error("re-open run: " + error);
+        return false;
+    }
+    if (renderJob_) jobs_.cancel(renderJob_);
+    restartRender_ = false;
+    if (run.settings.contains("render") && !panels::applyRenderSettingsJson(run.settings["render"], state_.project.render))
+        state_.log.warning("re-open run: some render settings of '" + run.name + "' were malformed and kept as they are");
+    if (run.settings.contains("scene_overrides")) {
+        state_.project.doc["scene_overrides"] = run.settings["scene_overrides"];
+        std::vector<std::string> problems;
+        panels::applySceneOverrides(state_.project, problems);
+        for (const std::string& p : problems) state_.log.warning("re-open run: " + p);
+    }
+    if (run.settings.contains("light_position") && run.settings["light_position"].is_array() &&
+        run.settings["light_position"].size() == 3 && !state_.project.scene.lights.empty()) {
+        const json& p = run.settings["light_position"];
+        state_.project.scene.setLightPosition(panels::clampToLightRegion(
+            state_.project.scene, Vec3(p[0].get<float>(), p[1].get<float>(), p[2].get<float>())));
+        panels::recordLightOverride(state_.project);
+    }
+    sceneChanged(false);
+    set.label = "Run '" + run.name + "'";
+    set.revision = state_.groundTruth.revision + 1;
+    state_.groundTruth = std::move(set);
+    state_.render = panels::RenderProgress{};
+    state_.render.spp = state_.render.targetSpp = runSpp(run);
+    state_.markDirty();
+    state_.log.info("re-opened run '" + run.name + "': settings restored, its images shown as the ground truth");
+    return true;
+}
+
+bool Workbench::exportImages(const std::string& dir) {
+    if (!render_ || !render_->latest()) {
+        state_.log.error("export images: nothing rendered yet");
+        return false;
+    }
+    if (renderRunning()) {
+        state_.log.error("export images: the render is still running; wait for it or stop it first");
+        return false;
+    }
+    try {
+        render_->write(dir, ImageFormat::EXR, 0.f);
+        render_->write(dir, ImageFormat::PNG, state_.view.exposure);
+        const Image& err = viewModel_.error();
+        if (!err.empty()) {
+            writeImage((fs::path(dir) / "error.exr").string(), err, ImageFormat::EXR);
+            writeImage((fs::path(dir) / "error.png").string(), falseColor(err, 0.f, state_.view.errorMax), ImageFormat::PNG);
+        }
+    } catch (const std::exception& e) {
+        state_.log.error(std::string("export images: ") + e.what());
+        return false;
+    }
+    state_.log.info("exported images (EXR and PNG) to " + dir);
+    return true;
+}
+
+}  // namespace rrf

@@ -1,0 +1,110 @@
+// Workbench: the progressive ground-truth render job, its snapshots, and scene edits that restart it.
+#include "app/gui/workbench.h"
+
+#include <cstdio>
+
+#include "core/camera_rays.h"
+
+namespace rrf {
+
+bool Workbench::renderRunning() const { return renderJob_ != 0 && jobs_.running(JobKind::Render); }
+
+bool Workbench::startRender() {
+    if (!state_.hasProject) {
+        state_.log.error("render: no project is open");
+        return false;
+    }
+    const RenderOptions options = renderOptionsFor(state_.project.scene, state_.project.render);
+    auto session = std::make_shared<RenderSession>(state_.project.scene, options);
+    std::string why;
+    char name[64];
+    std::snprintf(name, sizeof name, "ground truth %dx%d, %d spp", options.width, options.height, options.spp);
+    const int id = jobs_.start(JobKind::Render, name, [session](JobContext& ctx) { session->run(ctx); }, &why);
+    if (!id) {
+        state_.log.error("render refused: " + why);
+        return false;
+    }
+    render_ = session;
+    renderJob_ = id;
+    renderRevision_ = 0;
+    state_.render = panels::RenderProgress{};
+    state_.render.running = true;
+    state_.render.targetSpp = options.spp;
+    state_.log.info(std::string("render started: ") + name);
+    return true;
+}
+
+void Workbench::pollRender() {
+    // Finished jobs first, so a restart waiting for the old render can go ahead this frame.
+    for (const JobInfo& j : jobs_.takeFinished()) {
+        if (j.failed) state_.log.error(std::string(jobKindName(j.kind)) + " '" + j.name + "' failed: " + j.error);
+        else state_.log.info(std::string(jobKindName(j.kind)) + " '" + j.name + "' " +
+                             (j.cancelled ? "stopped" : "finished") + " after " + std::to_string(int(j.seconds + 0.5)) + " s");
+        if (j.id == renderJob_) renderJob_ = 0;
+    }
+    if (render_) {
+        uint64_t revision = 0;
+        const auto snap = render_->latest(&revision);
+        if (snap && revision != renderRevision_) {
+            renderRevision_ = revision;
+            panels::ImageSet& gt = state_.groundTruth;
+            gt.direct = snap->direct;
+            gt.indirect = snap->indirect;
+            gt.global = snap->global;
+            gt.label = "ground truth";
+            ++gt.revision;
+            state_.render.spp = snap->sppCompleted;
+            state_.render.relativeError = snap->relativeError;
+            state_.render.seconds = snap->seconds;
+            state_.render.samplesPerSecond = snap->seconds > 0 ? double(snap->samples) / snap->seconds : 0.0;
+            const double left = double(render_->options().spp - snap->sppCompleted);
+            state_.render.etaSeconds = snap->sppCompleted > 0 ? snap->seconds * left / snap->sppCompleted : -1.0;
+        }
+    }
+    state_.render.running = renderRunning();
+    if (restartRender_ && !renderRunning()) {
+        restartRender_ = false;
+        startRender();
+    }
+}
+
+void Workbench::sceneChanged(bool restartRender) {
+    rebuildPicking();
+    if (!restartRender) return;
+    // The old render no longer matches the scene: stop it and start again once it has stopped.
+    // This is a replacement the user asked for by editing, not a queued conflicting job.
+    if (renderRunning()) {
+        jobs_.cancel(renderJob_);
+        restartRender_ = true;
+    } else {
+        startRender();
+    }
+}
+
+void Workbench::rebuildPicking() {
+    state_.pickAccel.reset();
+    state_.objectIds.clear();
+    state_.idWidth = state_.idHeight = 0;
+    if (!state_.hasProject) return;
+    try {
+        auto accel = std::make_shared<Accel>(state_.project.scene);
+        // The object-id buffer for highlighting: one primary ray per pixel centre. For the
+        // scenes this tool targets (≤ 1024² pixels) this takes milliseconds.
+        const RenderOptions o = renderOptionsFor(state_.project.scene, state_.project.render);
+        CameraRays camera(state_.project.scene.camera, o.width, o.height);
+        state_.objectIds.assign(size_t(o.width) * size_t(o.height), -1);
+        for (int y = 0; y < o.height; ++y)
+            for (int x = 0; x < o.width; ++x) {
+                Hit hit;
+                if (accel->intersect(camera.generate(x, y, 0.5f, 0.5f), hit))
+                    state_.objectIds[size_t(y) * size_t(o.width) + size_t(x)] = hit.object;
+            }
+        state_.idWidth = o.width;
+        state_.idHeight = o.height;
+        state_.pickAccel = std::move(accel);
+    } catch (const std::exception& e) {
+        state_.log.error(std::string("building the picking BVH failed: ") + e.what());
+    }
+}
+
+}  // namespace rrf

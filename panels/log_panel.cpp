@@ -1,0 +1,78 @@
+// Log panel: every message the workbench and its jobs reported, filterable, copyable.
+#include <string>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "panels/panels.h"
+
+namespace rrf::panels {
+
+namespace {
+struct LogView {
+    bool showInfo = true, showWarnings = true, showErrors = true;
+    bool autoScroll = true;
+    std::string filter;
+    uint64_t seenRevision = 0;
+};
+
+ImVec4 levelColour(LogLevel level) {
+    switch (level) {
+        case LogLevel::Warning: return ImVec4(1.f, 0.8f, 0.3f, 1.f);
+        case LogLevel::Error: return ImVec4(1.f, 0.4f, 0.4f, 1.f);
+        default: return ImGui::GetStyleColorVec4(ImGuiCol_Text);
+    }
+}
+
+bool shown(const LogView& v, const LogEntry& e) {
+    if (e.level == LogLevel::Info && !v.showInfo) return false;
+    if (e.level == LogLevel::Warning && !v.showWarnings) return false;
+    if (e.level == LogLevel::Error && !v.showErrors) return false;
+    return v.filter.empty() || e.text.find(v.filter) != std::string::npos;
+}
+}  // namespace
+
+void drawLogPanel(WorkbenchState& state) {
+    // One log view per ImGui context; the view settings are UI state, not project state.
+    static LogView view;
+    if (ImGui::Button("Copy all")) ImGui::SetClipboardText(state.log.text().c_str());
+    ImGui::SameLine();
+    if (ImGui::Button("Clear")) state.log.clear();
+    ImGui::SameLine();
+    ImGui::Checkbox("info", &view.showInfo);
+    ImGui::SameLine();
+    ImGui::Checkbox("warnings", &view.showWarnings);
+    ImGui::SameLine();
+    ImGui::Checkbox("errors", &view.showErrors);
+    ImGui::SameLine();
+    ImGui::Checkbox("follow", &view.autoScroll);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
+    ImGui::InputTextWithHint("##filter", "filter", &view.filter);
+
+    if (ImGui::BeginChild("##log-lines", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar)) {
+        const std::vector<LogEntry> entries = state.log.entries();
+        int n = 0;
+        for (const LogEntry& e : entries) {
+            if (!shown(view, e)) continue;
+            ImGui::PushID(n++);
+            ImGui::TextDisabled("%8.2f", e.time);
+            ImGui::SameLine();
+            ImGui::PushStyleColor(ImGuiCol_Text, levelColour(e.level));
+            ImGui::TextUnformatted(e.text.c_str());
+            ImGui::PopStyleColor();
+            // Right-click a line to copy just that message.
+            if (ImGui::BeginPopupContextItem("##line")) {
+                if (ImGui::MenuItem("Copy line")) ImGui::SetClipboardText(e.text.c_str());
+                ImGui::EndPopup();
+            }
+            ImGui::PopID();
+        }
+        const uint64_t rev = state.log.revision();
+        if (view.autoScroll && rev != view.seenRevision) ImGui::SetScrollHereY(1.f);
+        view.seenRevision = rev;
+    }
+    ImGui::EndChild();
+}
+
+}  // namespace rrf::panels

@@ -1,0 +1,134 @@
+// Project panel: the project's name and files, the ground-truth render settings, recent projects and
+// the runs table (re-open, compare, delete).
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "panels/panels.h"
+
+namespace rrf::panels {
+
+namespace {
+std::string metricText(const nlohmann::json& metrics, const char* key, const char* fmt) {
+    if (!metrics.is_object() || !metrics.contains(key) || !metrics[key].is_number()) return "-";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, fmt, metrics[key].get<double>());
+    return buf;
+}
+
+void drawRenderSettings(WorkbenchState& state) {
+    RenderSettings& r = state.project.render;
+    bool changed = false;
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    changed |= ImGui::InputInt("samples per pixel", &r.spp, 16, 256);
+    if (r.spp < 1) r.spp = 1;
+    int est = r.estimator == Estimator::NEE ? 0 : 1;
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    if (ImGui::Combo("estimator", &est, "next-event estimation\0naive (BRDF sampling only)\0")) {
+        r.estimator = est == 0 ? Estimator::NEE : Estimator::Naive;
+        changed = true;
+    }
+    int seed = int(r.seed & 0x7fffffff);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    if (ImGui::InputInt("seed", &seed)) {
+        r.seed = uint64_t(seed < 0 ? 0 : seed);
+        changed = true;
+    }
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    changed |= ImGui::InputInt("max path depth", &r.maxDepth);
+    if (r.maxDepth < 1) r.maxDepth = 1;
+    int size[2] = {r.width, r.height};
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    if (ImGui::InputInt2("size (0 = camera)", size)) {
+        r.width = std::max(0, std::min(size[0], 16384));
+        r.height = std::max(0, std::min(size[1], 16384));
+        changed = true;
+    }
+    if (changed) state.markDirty();
+}
+
+void drawRuns(WorkbenchState& state) {
+    if (state.runs.empty()) {
+        ImGui::TextDisabled("No runs yet. \"Save run\" in the Views panel records the current ground truth.");
+        return;
+    }
+    const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_Resizable |
+                                  ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit;
+    if (!ImGui::BeginTable("##runs", 6, flags, ImVec2(0, ImGui::GetFontSize() * 14))) return;
+    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn("kind");
+    ImGui::TableSetupColumn("spp");
+    ImGui::TableSetupColumn("rel. err");
+    ImGui::TableSetupColumn("time (s)");
+    ImGui::TableSetupColumn("");
+    ImGui::TableHeadersRow();
+    for (size_t i = 0; i < state.runs.size(); ++i) {
+        Run& run = state.runs[i];
+        ImGui::PushID(run.id.c_str());
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::SetNextItemWidth(-1);
+        if (ImGui::InputText("##name", &run.name)) state.markDirty();
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\ncreated %s", run.id.c_str(), run.created.c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(run.kind.c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(metricText(run.metrics, "spp", "%.0f").c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(metricText(run.metrics, "relative_error", "%.2e").c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(metricText(run.timings, "render", "%.2f").c_str());
+        ImGui::TableNextColumn();
+        if (ImGui::SmallButton("Re-open")) state.request(Command::ReopenRun, {}, int(i));
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Restore this run's settings and show its images");
+        ImGui::SameLine();
+        const bool comparing = state.compareRun == int(i);
+        if (ImGui::SmallButton(comparing ? "Comparing" : "Compare")) state.request(Command::CompareRun, {}, int(i));
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show this run next to the ground truth, with the error map");
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Delete")) state.request(Command::DeleteRun, {}, int(i));
+        ImGui::PopID();
+    }
+    ImGui::EndTable();
+}
+}  // namespace
+
+void drawProjectPanel(WorkbenchState& state) {
+    if (ImGui::Button("New")) state.request(Command::NewProject);
+    ImGui::SameLine();
+    if (ImGui::Button("Open...")) state.request(Command::OpenProject);
+    ImGui::SameLine();
+    if (ImGui::Button("Save")) state.request(Command::SaveProject);
+    ImGui::SameLine();
+    if (ImGui::Button("Save as...")) state.request(Command::SaveProjectAs);
+
+    if (!state.hasProject) {
+        ImGui::TextDisabled("No project is open.");
+        return;
+    }
+    ImGui::Separator();
+    std::string name = state.projectName();
+    if (ImGui::InputText("name", &name)) {
+        state.project.doc["name"] = name;
+        state.markDirty();
+    }
+    ImGui::TextDisabled("file   %s", state.project.path.empty() ? "(not saved yet)" : state.project.path.c_str());
+    ImGui::TextDisabled("scene  %s", state.project.sceneRef.empty() ? "(embedded)" : state.project.sceneRef.c_str());
+    ImGui::TextDisabled("%s", state.dirty ? "unsaved changes" : "saved");
+
+    if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen)) drawRenderSettings(state);
+    if (ImGui::CollapsingHeader("Runs", ImGuiTreeNodeFlags_DefaultOpen)) drawRuns(state);
+    if (ImGui::CollapsingHeader("Recent projects")) {
+        if (state.recent.empty()) ImGui::TextDisabled("(none)");
+        for (size_t i = 0; i < state.recent.size(); ++i) {
+            ImGui::PushID(int(i));
+            if (ImGui::Selectable(state.recent[i].c_str())) state.request(Command::OpenProject, state.recent[i]);
+            ImGui::PopID();
+        }
+    }
+}
+
+}  // namespace rrf::panels

@@ -1,0 +1,141 @@
+#include "panels/runs.h"
+
+#include <cmath>
+#include <ctime>
+#include <limits>
+#include <stdexcept>
+
+namespace rrf::panels {
+
+using nlohmann::json;
+
+namespace {
+const char* const kKnownKeys[] = {"id", "name", "kind", "created", "settings", "loss", "metrics", "timings",
+                                  "artifacts"};
+
+bool known(const std::string& key) {
+    for (const char* k : kKnownKeys)
+        if (key == k) return true;
+    return false;
+}
+
+std::string stringOr(const json& j, const char* key, const std::string& fallback) {
+    if (!j.contains(key)) return fallback;
+    if (!j[key].is_string()) throw std::invalid_argument(std::string("'") + key + "' must be a string");
+    return j[key].get<std::string>();
+}
+
+json objectOr(const json& j, const char* key) {
+    if (!j.contains(key)) return json::object();
+    if (!j[key].is_object()) throw std::invalid_argument(std::string("'") + key + "' must be an object");
+    return j[key];
+}
+
+// JSON has no NaN: a missing validation loss is written as null and read back as NaN.
+json numberOrNull(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+double numberFrom(const json& v) {
+    return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string formatTime(const char* fmt) {
+    const std::time_t now = std::time(nullptr);
+    std::tm tm{};
+    localtime_r(&now, &tm);
+    char buf[64];
+    std::strftime(buf, sizeof buf, fmt, &tm);
+    return buf;
+}
+}  // namespace
+
+json Run::toJson() const {
+    json j = extra.is_object() ? extra : json::object();
+    j["id"] = id;
+    j["name"] = name;
+    j["kind"] = kind;
+    j["created"] = created;
+    j["settings"] = settings;
+    json l = json::array();
+    for (const LossPoint& p : loss)
+        l.push_back(json::array({p.epoch, numberOrNull(p.train), numberOrNull(p.validation), p.seconds}));
+    j["loss"] = l;
+    j["metrics"] = metrics;
+    j["timings"] = timings;
+    j["artifacts"] = artifacts;
+    return j;
+}
+
+Run Run::fromJson(const json& j) {
+    if (!j.is_object()) throw std::invalid_argument("a run must be an object");
+    Run r;
+    r.id = stringOr(j, "id", "");
+    if (r.id.empty()) throw std::invalid_argument("a run needs a non-empty 'id'");
+    r.name = stringOr(j, "name", r.id);
+    r.kind = stringOr(j, "kind", "render");
+    r.created = stringOr(j, "created", "");
+    r.settings = objectOr(j, "settings");
+    r.metrics = objectOr(j, "metrics");
+    r.timings = objectOr(j, "timings");
+    if (j.contains("loss")) {
+        if (!j["loss"].is_array()) throw std::invalid_argument("'loss' must be an array");
+        for (const json& p : j["loss"]) {
+            if (!p.is_array() || p.size() != 4 || !p[0].is_number_integer())
+                throw std::invalid_argument("'loss' entries must be [epoch, train, validation, seconds]");
+            r.loss.push_back({p[0].get<int>(), numberFrom(p[1]), numberFrom(p[2]), numberFrom(p[3])});
+        }
+    }
+    if (j.contains("artifacts")) {
+        if (!j["artifacts"].is_array()) throw std::invalid_argument("'artifacts' must be an array");
+        for (const json& a : j["artifacts"]) {
+            if (!a.is_string()) throw std::invalid_argument("'artifacts' entries must be strings");
+            r.artifacts.push_back(a.get<std::string>());
+        }
+    }
+    for (auto it = j.begin(); it != j.end(); ++it)
+        if (!known(it.key())) r.extra[it.key()] = it.value();
+    return r;
+}
+
+std::vector<Run> runsFromDoc(const json& doc, std::vector<std::string>* problems) {
+    std::vector<Run> runs;
+    if (!doc.is_object() || !doc.contains("runs")) return runs;
+    const json& list = doc["runs"];
+    if (!list.is_array()) {
+        if (problems) problems->push_back("/runs: expected an array; the runs were not loaded");
+        return runs;
+    }
+    for (size_t i = 0; i < list.size(); ++i) {
+        try {
+            runs.push_back(Run::fromJson(list[i]));
+        } catch (const std::exception& e) {
+            if (problems) problems->push_back("/runs/" + std::to_string(i) + ": " + e.what() + " (run skipped)");
+        }
+    }
+    return runs;
+}
+
+void runsToDoc(const std::vector<Run>& runs, json& doc) {
+    if (!doc.is_object()) doc = json::object();
+    if (runs.empty()) {
+        doc.erase("runs");
+        return;
+    }
+    json list = json::array();
+    for (const Run& r : runs) list.push_back(r.toJson());
+    doc["runs"] = std::move(list);
+}
+
+std::string newRunId(const std::vector<Run>& runs, const std::string& kind) {
+    const std::string base = kind + "-" + formatTime("%Y%m%d-%H%M%S");
+    auto used = [&](const std::string& id) {
+        for (const Run& r : runs)
+            if (r.id == id) return true;
+        return false;
+    };
+    std::string id = base;
+    for (int n = 2; used(id); ++n) id = base + "-" + std::to_string(n);
+    return id;
+}
+
+std::string localTimestamp() { return formatTime("%Y-%m-%dT%H:%M:%S"); }
+
+}  // namespace rrf::panels

@@ -1,0 +1,93 @@
+#include "panels/view_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rrf::panels {
+
+namespace {
+uint8_t encode(float linear) {
+    if (!(linear > 0.f)) return 0;  // also maps NaN to black; the renderer never publishes NaN
+    return uint8_t(std::lround(linearToSrgb(std::min(linear, 1.f)) * 255.f));
+}
+
+bool dimmed(const std::vector<int>* ids, int selected, size_t i) {
+    return ids && selected >= 0 && i < ids->size() && (*ids)[i] != selected;
+}
+
+void falseColourRgba(const Image& error, float hi, const std::vector<int>* ids, int selected,
+                     std::vector<uint8_t>& rgba) {
+    const Image fc = falseColor(error, 0.f, std::max(hi, 1e-12f));
+    toneMapRgba(fc, 0.f, ids, selected, rgba);
+}
+}  // namespace
+
+float pixelError(const Vec3& reference, const Vec3& compared, ErrorMetric metric) {
+    const float r = luminance(reference), c = luminance(compared);
+    const float d = c - r;
+    switch (metric) {
+        case ErrorMetric::Absolute: return std::fabs(d);
+        case ErrorMetric::Relative: return std::fabs(d) / (std::fabs(r) + 0.01f);
+        case ErrorMetric::Squared: return d * d;
+    }
+    return std::fabs(d);
+}
+
+Image errorImage(const Image& reference, const Image& compared, ErrorMetric metric) {
+    if (reference.empty() || reference.width != compared.width || reference.height != compared.height) return {};
+    Image out(reference.width, reference.height);
+    for (int y = 0; y < reference.height; ++y)
+        for (int x = 0; x < reference.width; ++x)
+            out.set(x, y, Vec3(pixelError(reference.at(x, y), compared.at(x, y), metric)));
+    return out;
+}
+
+void toneMapRgba(const Image& image, float exposure, const std::vector<int>* ids, int selected,
+                 std::vector<uint8_t>& rgba) {
+    const size_t n = image.pixelCount();
+    rgba.resize(4 * n);
+    const float scale = std::exp2(exposure);
+    for (size_t i = 0; i < n; ++i) {
+        // Dimming to a quarter keeps the context visible while the selected object stands out.
+        const float k = dimmed(ids, selected, i) ? 0.25f * scale : scale;
+        for (int c = 0; c < 3; ++c) rgba[4 * i + size_t(c)] = encode(image.data[3 * i + size_t(c)] * k);
+        rgba[4 * i + 3] = 255;
+    }
+}
+
+void ViewModel::update(const WorkbenchState& s) {
+    Key k;
+    k.gt = s.groundTruth.revision;
+    k.cmp = s.compare.revision;
+    k.term = s.view.term;
+    k.metric = s.view.metric;
+    k.exposure = s.view.exposure;
+    k.errorMax = s.view.errorMax;
+    k.selected = s.view.highlight ? s.view.selectedObject : -1;
+    k.ids = s.objectIds.size();
+    if (k == key_) return;
+    const bool sourcesChanged = k.gt != key_.gt || k.cmp != key_.cmp || k.term != key_.term;
+    const bool errorChanged = sourcesChanged || k.metric != key_.metric;
+    key_ = k;
+
+    const Image& ref = s.groundTruth.term(s.view.term);
+    const Image& cmp = s.compare.term(s.view.term);
+    // Highlighting needs the id buffer to match the image; a render at another size is shown undimmed.
+    auto idsFor = [&](const Image& img) -> const std::vector<int>* {
+        return (img.width == s.idWidth && img.height == s.idHeight && !s.objectIds.empty()) ? &s.objectIds : nullptr;
+    };
+    auto fill = [&](DisplayImage& d, const Image& img, bool error) {
+        d.width = img.width;
+        d.height = img.height;
+        d.revision = ++counter_;
+        if (img.empty()) d.rgba.clear();
+        else if (error) falseColourRgba(img, s.view.errorMax, idsFor(img), k.selected, d.rgba);
+        else toneMapRgba(img, s.view.exposure, idsFor(img), k.selected, d.rgba);
+    };
+    if (errorChanged) error_ = errorImage(ref, cmp, s.view.metric);
+    fill(views_[kReference], ref, false);
+    fill(views_[kCompared], cmp, false);
+    fill(views_[kError], error_, true);
+}
+
+}  // namespace rrf::panels

@@ -1,0 +1,63 @@
+#pragma once
+/// What the three views display, computed from the workbench state without any GL: the selected
+/// term of the ground truth and of the compared image, tone-mapped with the exposure, and the
+/// false-colour error map between them; all as 8-bit RGBA ready for texture upload. Results are
+/// cached and recomputed only when an input changed, so calling update() every frame is cheap.
+
+#include <cstdint>
+#include <vector>
+
+#include "core/image.h"
+#include "panels/workbench_state.h"
+
+namespace rrf::panels {
+
+/// Error of one pixel on luminance: |c − r|, |c − r| / (r + 0.01) or (c − r)².
+float pixelError(const Vec3& reference, const Vec3& compared, ErrorMetric metric);
+
+/// Per-pixel error (in every channel) of two images of equal size; empty if the sizes differ.
+Image errorImage(const Image& reference, const Image& compared, ErrorMetric metric);
+
+/// One displayable image.
+struct DisplayImage {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgba;  ///< 4 bytes per pixel, top row first, sRGB-encoded
+    uint64_t revision = 0;      ///< changes whenever the pixels change
+    bool empty() const { return width == 0 || height == 0; }
+};
+
+/// Tone-maps linear radiance to sRGB RGBA8 (value · 2^exposure, clamped). When `ids` is given and
+/// `selected` ≥ 0, pixels of other objects are dimmed so the selected object stands out.
+void toneMapRgba(const Image& image, float exposure, const std::vector<int>* ids, int selected,
+                 std::vector<uint8_t>& rgba);
+
+class ViewModel {
+public:
+    static constexpr int kReference = 0, kCompared = 1, kError = 2;
+
+    /// Recomputes whatever the state's inputs invalidated.
+    void update(const WorkbenchState& state);
+    const DisplayImage& image(int view) const { return views_[view]; }
+    /// The error image of the last update (empty without a compared image of the same size).
+    const Image& error() const { return error_; }
+
+private:
+    struct Key {
+        uint64_t gt = ~0ull, cmp = ~0ull;
+        Term term = Term::Global;
+        ErrorMetric metric = ErrorMetric::Absolute;
+        float exposure = 0.f, errorMax = 0.f;
+        int selected = -2;
+        size_t ids = 0;
+        bool operator==(const Key& o) const {
+            return gt == o.gt && cmp == o.cmp && term == o.term && metric == o.metric && exposure == o.exposure &&
+                   errorMax == o.errorMax && selected == o.selected && ids == o.ids;
+        }
+    };
+    Key key_;
+    DisplayImage views_[3];
+    Image error_;
+    uint64_t counter_ = 0;
+};
+
+}  // namespace rrf::panels

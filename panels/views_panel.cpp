@@ -1,0 +1,224 @@
+// Views panel: ground truth | compared image | error map side by side. The three views share one
+// zoom/pan (wheel zooms about the cursor, drag pans), one exposure and one hover read-out.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+
+#include "core/camera_rays.h"
+#include "panels/panels.h"
+#include "panels/view_model.h"
+
+namespace rrf::panels {
+
+namespace {
+constexpr float kMinZoom = 0.25f, kMaxZoom = 64.f;
+
+/// Screen mapping of one view: image pixel q ↦ centre + (q − imageCentre − pan) · scale.
+struct ViewRect {
+    ImVec2 min, max, centre;
+    float scale = 1.f;
+    ImVec2 imageCentre;
+    ImVec2 toScreen(float qx, float qy, const ViewState& v) const {
+        return ImVec2(centre.x + (qx - imageCentre.x - v.panX) * scale, centre.y + (qy - imageCentre.y - v.panY) * scale);
+    }
+    ImVec2 toImage(const ImVec2& p, const ViewState& v) const {
+        return ImVec2((p.x - centre.x) / scale + imageCentre.x + v.panX, (p.y - centre.y) / scale + imageCentre.y + v.panY);
+    }
+};
+
+void drawToolbar(WorkbenchState& state) {
+    ViewState& v = state.view;
+    const RenderProgress& r = state.render;
+    if (!r.running) {
+        if (ImGui::Button("Render")) state.request(Command::StartRender);
+    } else if (ImGui::Button("Stop render")) {
+        state.request(Command::CancelRender);
+    }
+    ImGui::SameLine();
+    if (r.running || r.spp > 0) {
+        char overlay[96];
+        std::snprintf(overlay, sizeof overlay, "%d/%d spp  rel.err %.2f%%%s", r.spp, r.targetSpp, 100 * r.relativeError,
+                      r.running ? "" : "  done");
+        ImGui::ProgressBar(r.targetSpp > 0 ? float(r.spp) / float(r.targetSpp) : 0.f, ImVec2(ImGui::GetFontSize() * 16, 0),
+                           overlay);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("%.2f s, %.3g samples/s%s\nrel.err: relative standard error of the image mean",
+                              r.seconds, r.samplesPerSecond,
+                              r.etaSeconds >= 0 ? (", ETA " + std::to_string(int(r.etaSeconds + 0.5)) + " s").c_str() : "");
+        ImGui::SameLine();
+    }
+    if (ImGui::Button("Save run")) state.request(Command::SaveRun);
+    ImGui::SameLine();
+    if (ImGui::Button("Reset view")) {
+        v.zoom = 1.f;
+        v.panX = v.panY = 0.f;
+    }
+
+    const float w = ImGui::GetFontSize() * 7;
+    int term = int(v.term);
+    ImGui::SetNextItemWidth(w);
+    if (ImGui::Combo("term", &term, "global\0direct\0indirect\0")) v.term = Term(term);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(w);
+    ImGui::SliderFloat("exposure", &v.exposure, -8.f, 8.f, "%+.1f EV");
+    ImGui::SameLine();
+    int metric = int(v.metric);
+    ImGui::SetNextItemWidth(w * 1.6f);
+    if (ImGui::Combo("error", &metric, "absolute |d|\0relative |d|/(ref+0.01)\0squared d^2\0")) v.metric = ErrorMetric(metric);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(w);
+    ImGui::DragFloat("scale max", &v.errorMax, v.errorMax * 0.01f + 1e-6f, 1e-6f, 1e6f, "%.3g",
+                     ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    ImGui::SameLine();
+    ImGui::Checkbox("highlight", &v.highlight);
+}
+
+/// Draws one view and handles zoom/pan on it; returns true while the mouse is over it.
+bool drawView(WorkbenchState& state, int index, const char* title, const Image& image, ImVec2 size, ImVec2& hoverPixel) {
+    ViewState& v = state.view;
+    ImGui::PushID(index);
+    ImGui::BeginGroup();
+    ImGui::TextUnformatted(title);
+    const ImVec2 pos = ImGui::GetCursorScreenPos();
+    ImGui::InvisibleButton("##canvas", size);
+    const bool hovered = ImGui::IsItemHovered();
+    const bool active = ImGui::IsItemActive();
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->AddRectFilled(pos, ImVec2(pos.x + size.x, pos.y + size.y), IM_COL32(24, 24, 28, 255));
+
+    bool over = false;
+    if (!image.empty()) {
+        ViewRect r;
+        r.min = pos;
+        r.max = ImVec2(pos.x + size.x, pos.y + size.y);
+        r.centre = ImVec2(pos.x + 0.5f * size.x, pos.y + 0.5f * size.y);
+        r.scale = std::min(size.x / float(image.width), size.y / float(image.height)) * v.zoom;
+        r.imageCentre = ImVec2(0.5f * float(image.width), 0.5f * float(image.height));
+        const ImGuiIO& io = ImGui::GetIO();
+        if (hovered && io.MouseWheel != 0.f) {
+            // Zoom about the cursor: the image point under the mouse stays under the mouse.
+            const ImVec2 q = r.toImage(io.MousePos, v);
+            v.zoom = std::clamp(v.zoom * std::pow(1.2f, io.MouseWheel), kMinZoom, kMaxZoom);
+            r.scale = std::min(size.x / float(image.width), size.y / float(image.height)) * v.zoom;
+            v.panX = q.x - r.imageCentre.x - (io.MousePos.x - r.centre.x) / r.scale;
+            v.panY = q.y - r.imageCentre.y - (io.MousePos.y - r.centre.y) / r.scale;
+        }
+        if (active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.f)) {
+            v.panX -= io.MouseDelta.x / r.scale;
+            v.panY -= io.MouseDelta.y / r.scale;
+        }
+        const ImVec2 a = r.toScreen(0.f, 0.f, v);
+        const ImVec2 b = r.toScreen(float(image.width), float(image.height), v);
+        dl->PushClipRect(r.min, r.max, true);
+        if (state.viewTextures[index]) dl->AddImage(state.viewTextures[index], a, b);
+        else dl->AddRect(a, b, IM_COL32(200, 200, 200, 255));  // no GL (tests): outline only
+        dl->PopClipRect();
+        if (hovered) {
+            const ImVec2 q = r.toImage(io.MousePos, v);
+            if (q.x >= 0.f && q.y >= 0.f && q.x < float(image.width) && q.y < float(image.height)) {
+                hoverPixel = ImVec2(std::floor(q.x), std::floor(q.y));
+                over = true;
+            }
+        }
+    } else {
+        const char* msg = index == ViewModel::kCompared
+                              ? "Nothing to compare yet:\nprediction needs trained models;\n\"Compare\" a run in the Project panel."
+                              : index == ViewModel::kError ? "Error map: needs a compared image\nof the same size."
+                                                           : "No ground truth yet: press Render.";
+        dl->AddText(ImVec2(pos.x + 8, pos.y + 8), IM_COL32(160, 160, 160, 255), msg);
+    }
+    ImGui::EndGroup();
+    ImGui::PopID();
+    return over;
+}
+
+void drawLegend(const ViewState& v, float width) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float h = ImGui::GetFontSize() * 0.8f;
+    const int steps = 32;
+    for (int i = 0; i < steps; ++i) {
+        const Vec3 c0 = viridis(float(i) / steps), c1 = viridis(float(i + 1) / steps);
+        auto col = [](const Vec3& c) {
+            return ImGui::ColorConvertFloat4ToU32(ImVec4(linearToSrgb(c.x), linearToSrgb(c.y), linearToSrgb(c.z), 1.f));
+        };
+        const float x0 = p.x + width * float(i) / steps, x1 = p.x + width * float(i + 1) / steps;
+        dl->AddRectFilledMultiColor(ImVec2(x0, p.y), ImVec2(x1, p.y + h), col(c0), col(c1), col(c1), col(c0));
+    }
+    ImGui::Dummy(ImVec2(width, h));
+    ImGui::Text("0");
+    char hi[32];
+    std::snprintf(hi, sizeof hi, "%.3g", v.errorMax);
+    ImGui::SameLine(std::max(0.f, width - ImGui::CalcTextSize(hi).x));
+    ImGui::TextUnformatted(hi);
+}
+
+std::string objectUnder(const WorkbenchState& state, int px, int py, int width, int height) {
+    if (!state.pickAccel) return "?";
+    const Scene& scene = state.project.scene;
+    CameraRays camera(scene.camera, width, height);
+    Hit hit;
+    if (!state.pickAccel->intersect(camera.generate(px, py, 0.5f, 0.5f), hit)) return "(background)";
+    if (hit.light >= 0 && hit.light < int(scene.lights.size())) return "light '" + scene.lights[size_t(hit.light)].name + "'";
+    if (hit.object >= 0 && hit.object < int(scene.objects.size()))
+        return "#" + std::to_string(hit.object) + " " + scene.objects[size_t(hit.object)].name;
+    return "?";
+}
+
+void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp) {
+    const ViewState& v = state.view;
+    if (v.hoverX < 0 || ref.empty() || v.hoverX >= ref.width || v.hoverY >= ref.height) {
+        ImGui::TextDisabled("Hover a view for pixel values; wheel zooms, drag pans.");
+        return;
+    }
+    const Vec3 r = ref.at(v.hoverX, v.hoverY);
+    ImGui::Text("pixel (%d, %d)  %s", v.hoverX, v.hoverY, objectUnder(state, v.hoverX, v.hoverY, ref.width, ref.height).c_str());
+    ImGui::Text("ground truth (%.4g, %.4g, %.4g)", r.x, r.y, r.z);
+    if (!cmp.empty() && v.hoverX < cmp.width && v.hoverY < cmp.height) {
+        const Vec3 c = cmp.at(v.hoverX, v.hoverY);
+        ImGui::SameLine();
+        ImGui::Text("  compared (%.4g, %.4g, %.4g)", c.x, c.y, c.z);
+        if (cmp.width == ref.width && cmp.height == ref.height) {
+            ImGui::SameLine();
+            ImGui::Text("  error %.4g", pixelError(r, c, v.metric));
+        }
+    }
+}
+}  // namespace
+
+void drawViewsPanel(WorkbenchState& state) {
+    drawToolbar(state);
+    const Image& ref = state.groundTruth.term(state.view.term);
+    const Image& cmp = state.compare.term(state.view.term);
+    const float spacing = ImGui::GetStyle().ItemSpacing.x;
+    const float footer = ImGui::GetTextLineHeightWithSpacing() * 4.5f;
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const float w = std::max(16.f, (avail.x - 2 * spacing) / 3.f);
+    const float h = std::max(16.f, avail.y - footer - ImGui::GetTextLineHeightWithSpacing());
+    const float side = std::min(w, h);
+    const ImVec2 size(w, side);
+
+    char gtTitle[96];
+    std::snprintf(gtTitle, sizeof gtTitle, "Ground truth (%s, %d spp)", termName(state.view.term), state.render.spp);
+    const std::string cmpTitle = state.compare.empty() ? std::string("Compared") : state.compare.label;
+    const std::string errTitle = std::string("Error: ") + errorMetricName(state.view.metric);
+
+    ImVec2 hover(-1, -1);
+    bool over = drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
+    ImGui::SameLine();
+    over |= drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
+    ImGui::SameLine();
+    static const Image kNoImage;
+    const bool comparable = !cmp.empty() && cmp.width == ref.width && cmp.height == ref.height;
+    over |= drawView(state, ViewModel::kError, errTitle.c_str(), comparable ? ref : kNoImage, size, hover);
+    state.view.hoverX = over ? int(hover.x) : -1;
+    state.view.hoverY = over ? int(hover.y) : -1;
+
+    drawReadout(state, ref, cmp);
+    drawLegend(state.view, std::min(w, ImGui::GetFontSize() * 18));
+}
+
+}  // namespace rrf::panels

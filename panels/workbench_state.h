@@ -1,0 +1,122 @@
+#pragma once
+/// State shared by the workbench's panels. The panels read and edit it on the UI thread; anything
+/// that needs the window, GL or a background job is not done by a panel but asked for with a
+/// Request, which the application (app/gui) carries out after the frame. That keeps every panel
+/// testable in a bare ImGui context.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <imgui.h>
+
+#include "core/accel.h"
+#include "core/image.h"
+#include "core/project.h"
+#include "panels/layout.h"
+#include "panels/log.h"
+#include "panels/runs.h"
+
+namespace rrf::panels {
+
+/// Which radiance term the views show.
+enum class Term { Global, Direct, Indirect };
+/// Per-pixel error between the reference (ground truth) and the compared image, on luminance.
+enum class ErrorMetric { Absolute, Relative, Squared };
+
+const char* termName(Term t);
+const char* errorMetricName(ErrorMetric m);
+
+/// Things panels ask the application to do.
+enum class Command {
+    NewProject,
+    OpenProject,      ///< path
+    SaveProject,
+    SaveProjectAs,    ///< path
+    StartRender,
+    CancelRender,
+    SceneChanged,     ///< materials or the light changed: rebuild and restart the ground truth
+    SaveRun,          ///< record the current ground truth as a run
+    ReopenRun,        ///< index: restore the run's settings and show its images as the ground truth
+    CompareRun,       ///< index: show the run's images in the compare view, the error against it
+    DeleteRun,        ///< index
+    ExportImages,     ///< path: a directory
+    ExportScreenshot, ///< path: a PNG file
+    ResetLayout,
+    Quit,
+};
+
+struct Request {
+    Command command;
+    std::string path;
+    int index = -1;
+};
+
+/// Direct, indirect and global images of one source (a render, a run, a prediction).
+struct ImageSet {
+    Image direct, indirect, global;
+    std::string label;      ///< shown above the view, e.g. "ground truth, 64 spp"
+    uint64_t revision = 0;  ///< bumped whenever the images change (drives texture uploads)
+
+    bool empty() const { return global.empty(); }
+    const Image& term(Term t) const { return t == Term::Direct ? direct : t == Term::Indirect ? indirect : global; }
+};
+
+/// Display settings of the three side-by-side views.
+struct ViewState {
+    Term term = Term::Global;
+    ErrorMetric metric = ErrorMetric::Relative;
+    float exposure = 0.f;       ///< stops
+    float errorMax = 0.25f;     ///< top of the false-colour scale
+    float zoom = 1.f;           ///< view pixels per image pixel, relative to fitting the pane
+    float panX = 0.f, panY = 0.f;  ///< image-space centre offset in image pixels
+    bool highlight = true;      ///< dim everything but the selected object
+    int selectedObject = -1;
+    int hoverX = -1, hoverY = -1;  ///< image pixel under the mouse, -1 when none
+};
+
+/// Progress of the ground-truth render, as last published by its job.
+struct RenderProgress {
+    bool running = false;
+    int spp = 0, targetSpp = 0;
+    double relativeError = 0.0;
+    double seconds = 0.0;
+    double etaSeconds = -1.0;
+    double samplesPerSecond = 0.0;
+};
+
+struct WorkbenchState {
+    Project project;
+    bool hasProject = false;
+    bool dirty = false;  ///< unsaved changes
+
+    /// Primary-ray picking on the UI thread (one ray per hover); rebuilt when the scene changes.
+    std::shared_ptr<const Accel> pickAccel;
+    /// Object id per camera pixel (pixel centres, -1 = background or light), for highlighting.
+    std::vector<int> objectIds;
+    int idWidth = 0, idHeight = 0;
+
+    ImageSet groundTruth;
+    ImageSet compare;  ///< a run's images (the prediction will go here when prediction lands)
+    RenderProgress render;
+    ViewState view;
+    /// GL textures of the three views, set by the application (null in tests: nothing is drawn).
+    ImTextureID viewTextures[3] = {nullptr, nullptr, nullptr};
+
+    LayoutState layout;
+    std::vector<Run> runs;
+    int compareRun = -1;  ///< index into runs shown in the compare view, -1 = none
+    std::vector<std::string> recent;
+    Log log;
+    std::vector<Request> requests;
+
+    void request(Command c, std::string path = {}, int index = -1) {
+        requests.push_back({c, std::move(path), index});
+    }
+    void markDirty() { dirty = true; }
+    /// Name for titles: the project's "name", else its file name, else "untitled".
+    std::string projectName() const;
+};
+
+}  // namespace rrf::panels
