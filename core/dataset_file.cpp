@@ -134,8 +134,12 @@ Dataset::Dataset(const std::string& path, bool verifyPayload, uint64_t expectedS
             d.name = o.at("name").get<std::string>();
             d.count = o.at("count").get<uint64_t>();
             d.offset = o.at("offset").get<uint64_t>();
-            const uint64_t bytes = d.count * uint64_t(floatsPerRecord_) * 4;
-            if (d.offset != expected || bytes > fh.payloadBytes - d.offset)
+            // Compare counts before multiplying: a crafted count must not wrap the byte size around.
+            const uint64_t recordBytes = uint64_t(floatsPerRecord_) * 4;
+            if (d.offset != expected || d.offset > fh.payloadBytes || d.count > (fh.payloadBytes - d.offset) / recordBytes)
+                fail(path, "object '" + d.name + "' lies outside the payload (corrupt header)");
+            const uint64_t bytes = d.count * recordBytes;
+            if (bytes > fh.payloadBytes - d.offset)
                 fail(path, "object '" + d.name + "' lies outside the payload (corrupt header)");
             expected += bytes;
             objects_.push_back(d);
