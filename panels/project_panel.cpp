@@ -54,11 +54,12 @@ void drawRuns(WorkbenchState& state) {
         ImGui::TextDisabled("No runs yet. \"Save run\" in the Views panel records the current ground truth.");
         return;
     }
+    // Horizontal scrolling keeps the name column readable in a narrow left pane.
     const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_Resizable |
-                                  ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit;
+                                  ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit;
     if (!ImGui::BeginTable("##runs", 6, flags, ImVec2(0, ImGui::GetFontSize() * 14))) return;
     ImGui::TableSetupScrollFreeze(0, 1);
-    ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFontSize() * 12);
     ImGui::TableSetupColumn("kind");
     ImGui::TableSetupColumn("spp");
     ImGui::TableSetupColumn("rel. err");

@@ -77,6 +77,11 @@ bool Script::execute(Workbench& wb, const json& s) {
     };
 
     if (what == "render") {
+        // Replaces the running render (e.g. the one started on open): stop it, wait, then start.
+        if (wb.renderRunning()) {
+            wb.cancelRender();
+            return false;
+        }
         if (s.contains("spp")) st.project.render.spp = int(number(s, "spp", 1));
         require(wb.startRender(), "the render could not start (see the log)");
     } else if (what == "wait") {
@@ -127,7 +132,9 @@ bool Script::execute(Workbench& wb, const json& s) {
         st.view.errorMax = float(number(s, "error_max", st.view.errorMax));
         st.view.zoom = float(number(s, "zoom", st.view.zoom));
     } else if (what == "open") {
-        require(wb.openProject(text(s, "path")), "could not open the project (see the log)");
+        // Without a path: re-open the current project from disk (checks what a save kept).
+        const std::string path = s.contains("path") ? text(s, "path") : st.project.path;
+        require(wb.openProject(path), "could not open the project (see the log)");
     } else if (what == "save") {
         require(wb.saveProject(s.contains("path") ? text(s, "path") : std::string()), "could not save (see the log)");
     } else if (what == "export_images") {

@@ -8,7 +8,7 @@
 ///
 /// Steps: render {spp}, wait {for: render|jobs, timeout_s}, save_run, compare_run {index},
 /// reopen_run {index}, set_light {position}, select_object {id}, view {term, metric, exposure,
-/// error_max, zoom}, open {path}, save {path?}, export_images {dir}, screenshot {path},
+/// error_max, zoom}, open {path?: default re-opens the current file}, save {path?}, export_images {dir}, screenshot {path},
 /// frames {count}, check {runs, ground_truth_spp_min, errors}. An unknown step fails the script
 /// (it never skips silently).
 

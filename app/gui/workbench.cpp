@@ -281,10 +281,7 @@ void Workbench::handleRequests() {
                 else saveProject(r.path);
                 break;
             case Command::StartRender: startRender(); break;
-            case Command::CancelRender:
-                if (renderJob_) jobs_.cancel(renderJob_);
-                restartRender_ = false;
-                break;
+            case Command::CancelRender: cancelRender(); break;
             case Command::SceneChanged: sceneEdited = true; break;  // many edits in a frame: one restart
             case Command::SaveRun: saveRun(); break;
             case Command::ReopenRun: reopenRun(r.index); break;

@@ -45,6 +45,8 @@ public:
     /// Starts the ground-truth render of the current scene (refused while one runs).
     bool startRender();
     bool renderRunning() const;
+    /// Asks the running render (if any) to stop; it stops at its next pass boundary.
+    void cancelRender();
     /// Records the current ground truth as a run (files under <project dir>/runs/<id>/).
     bool saveRun();
     bool compareRun(int index);

@@ -9,6 +9,11 @@ namespace rrf {
 
 bool Workbench::renderRunning() const { return renderJob_ != 0 && jobs_.running(JobKind::Render); }
 
+void Workbench::cancelRender() {
+    if (renderJob_) jobs_.cancel(renderJob_);
+    restartRender_ = false;
+}
+
 bool Workbench::startRender() {
     if (!state_.hasProject) {
         state_.log.error("render: no project is open");
