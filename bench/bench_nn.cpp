@@ -97,9 +97,9 @@ double g_minT = 1.0;
 void sampleYardstick() { g_gemmF = std::max(g_gemmF, gemmGflops<float>(1024, 0.25 * g_minT)); }
 
 void printTable() {
-    std::printf("\n| %-24s | %-30s | %22s | %8s | %8s | %-26s |\n", "measurement", "configuration", "result",
+    std::printf("\n| %-24s | %-34s | %22s | %8s | %8s | %-26s |\n", "measurement", "configuration", "result",
                 "GFLOP/s", "of GEMM", "target");
-    std::printf("|%s|%s|%s|%s|%s|%s|\n", std::string(26, '-').c_str(), std::string(32, '-').c_str(),
+    std::printf("|%s|%s|%s|%s|%s|%s|\n", std::string(26, '-').c_str(), std::string(36, '-').c_str(),
                 std::string(24, '-').c_str(), std::string(10, '-').c_str(), std::string(10, '-').c_str(),
                 std::string(28, '-').c_str());
     for (const Row& r : g_rows) {
@@ -108,10 +108,11 @@ void printTable() {
             std::snprintf(verdict, sizeof verdict, ">= 30%% of GEMM: %s", r.gflops >= 0.3 * g_gemmF ? "ok" : "MISS");
         } else if (r.kind == 2) {
             const double est = r.estimateFlops / (g_gemmF * 1e9);
-            std::snprintf(verdict, sizeof verdict, "%.2fx of est. %.3f s: %s", r.value / est, est,
-                          r.value <= 2 * est ? "ok" : "MISS");
+            // LM accumulates in double; the double-rate figure says how close the SYRK gets to its own peak.
+            std::snprintf(verdict, sizeof verdict, "%.2fx est. %.3f s: %s (%.2fx at f64 rate)", r.value / est, est,
+                          r.value <= 2 * est ? "ok" : "MISS", r.value / (r.estimateFlops / (g_gemmD * 1e9)));
         }
-        std::printf("| %-24s | %-30s | %12.4g %-9s | %8.2f | %6.0f %% | %-26s |\n", r.what.c_str(), r.config.c_str(),
+        std::printf("| %-24s | %-34s | %12.4g %-9s | %8.2f | %6.0f %% | %-26s |\n", r.what.c_str(), r.config.c_str(),
                     r.value, r.unit.c_str(), r.gflops, 100.0 * r.gflops / g_gemmF, verdict);
     }
 }
@@ -127,6 +128,7 @@ int main(int argc, char** argv) {
                 EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION, Eigen::SimdInstructionSetsInUse());
     sampleYardstick();
     g_gemmD = gemmGflops<double>(1024, g_minT);
+    sampleYardstick();
 
     // ---- Levenberg–Marquardt: one epoch at the default max_samples ------------------------------
     {

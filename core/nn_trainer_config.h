@@ -28,7 +28,8 @@ struct LevenbergMarquardtConfig {
     double goal = 0.0;           ///< "goal": stop when the training MSE reaches it
     /// "max_samples": LM costs ≈ 3·N·P² flops per epoch, so it trains on at most this many training
     /// samples (a random subset, the split being a random permutation) and says so. 20000 keeps an epoch
-    /// of the 20-10 network (P ≈ 600) around a second on the 2-core reference machine. 0 = no bound.
+    /// of the 20-10 network (P ≈ 600) at one to two seconds on the 2-core reference machine (bench_nn).
+    /// 0 = no bound.
     int64_t maxSamples = 20000;
     uint64_t seed = 1;           ///< "seed": split, initial weights
 };
