@@ -1,0 +1,166 @@
+// Data-generator benchmark, in one run (ratios are only meaningful within a run on a shared machine):
+//
+//  1. throughput: records/s, path samples/s and rays/s of DataGenerator::run on a small grid versus
+//     the plain Renderer's samples/s and rays/s. A generator path sample is one PathTracer::shade()
+//     call (the record's first ray is shot once and shared by its spp paths), a renderer sample is
+//     a camera ray plus shade(), so rays/s is the like-for-like measure of bookkeeping overhead;
+//  2. memory: the default Cornell-box run (15³ grid, 1200 directions, about 4 million records) with
+//     1 path per record (memory does not depend on spp): time, peak resident memory (getrusage
+//     max RSS) after generation and after writing, and the dataset file size.
+//
+//   bench_generate [project-or-scene.json] [--grid nx,ny,nz] [--dirs N] [--spp N]
+//                  [--render-spp N] [--width W --height H]
+//                  [--mem-grid nx,ny,nz] [--mem-dirs N] [--no-memory] [--out file.rrfd]
+//
+// Defaults: the bundled Cornell box; throughput grid 6,6,6 × 200 directions × 16 spp; render 256×256
+// at 4 spp; memory run 15,15,15 × 1200 × 1 spp written to a temporary file (removed afterwards).
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "core/accel.h"
+#include "core/data_generator.h"
+#include "core/dataset_file.h"
+#include "core/project.h"
+#include "core/renderer.h"
+
+using namespace rrf;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double seconds(Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); }
+
+/// Peak resident set size of this process so far, in MiB (Linux reports ru_maxrss in KiB).
+double maxRssMiB() {
+    rusage u{};
+    ::getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_maxrss) / 1024.0;
+}
+
+bool parseGrid(const char* text, SamplingSettings& s) {
+    return std::sscanf(text, "%d,%d,%d", &s.nx, &s.ny, &s.nz) == 3 && s.nx > 0 && s.ny > 0 && s.nz > 0;
+}
+
+std::string human(double v) {
+    char buf[32];
+    if (v >= 1e9) std::snprintf(buf, sizeof buf, "%.2f G", v / 1e9);
+    else if (v >= 1e6) std::snprintf(buf, sizeof buf, "%.2f M", v / 1e6);
+    else if (v >= 1e3) std::snprintf(buf, sizeof buf, "%.1f k", v / 1e3);
+    else std::snprintf(buf, sizeof buf, "%.0f", v);
+    return buf;
+}
+
+int usage() {
+    std::fprintf(stderr,
+                 "usage: bench_generate [project.json] [--grid nx,ny,nz] [--dirs N] [--spp N] [--render-spp N]\n"
+                 "                      [--width W --height H] [--mem-grid nx,ny,nz] [--mem-dirs N] [--no-memory]\n"
+                 "                      [--out file.rrfd]\n");
+    return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string input = std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json";
+    std::string out;
+    SamplingSettings gen;
+    gen.nx = gen.ny = gen.nz = 6;
+    gen.directions = 200;
+    gen.spp = 16;
+    SamplingSettings mem;  // the default run: 15³ grid, 1200 directions
+    mem.spp = 1;
+    int renderSpp = 4, width = 256, height = 256;
+    bool memory = true;
+    for (int i = 1; i < argc; ++i) {
+        const bool hasValue = i + 1 < argc;
+        if (!std::strcmp(argv[i], "--grid") && hasValue) {
+            if (!parseGrid(argv[++i], gen)) return usage();
+        } else if (!std::strcmp(argv[i], "--mem-grid") && hasValue) {
+            if (!parseGrid(argv[++i], mem)) return usage();
+        } else if (!std::strcmp(argv[i], "--dirs") && hasValue) gen.directions = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--mem-dirs") && hasValue) mem.directions = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--spp") && hasValue) gen.spp = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--render-spp") && hasValue) renderSpp = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--width") && hasValue) width = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--height") && hasValue) height = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--out") && hasValue) out = argv[++i];
+        else if (!std::strcmp(argv[i], "--no-memory")) memory = false;
+        else if (argv[i][0] == '-') return usage();
+        else input = argv[i];
+    }
+    if (gen.directions < 1 || gen.spp < 1 || mem.directions < 1 || renderSpp < 1 || width < 1 || height < 1) return usage();
+
+    const Project project = loadProjectOrScene(input);
+    const Scene& scene = project.scene;
+    std::printf("bench_generate: %s, %ld hardware threads\n\n", input.c_str(), ::sysconf(_SC_NPROCESSORS_ONLN));
+
+    // 1. Renderer: samples/s and rays/s at width × height.
+    const Accel accel(scene);
+    RenderOptions ro;
+    ro.width = width;
+    ro.height = height;
+    ro.spp = renderSpp;
+    Renderer renderer(scene, accel, ro);
+    renderer.run();
+    const RenderStats rs = renderer.stats();
+
+    // 2. Generator throughput.
+    const DataGenerator generator(scene, gen);
+    const GeneratedData g = generator.run();
+    const uint64_t records = g.header.at("stats").at("records").get<uint64_t>();
+    const double genRaysPerS = double(g.rays + g.shadowRays) / g.seconds;
+
+    std::printf("| measurement | work | time (s) | records/s | path samples/s | rays/s (incl. shadow) |\n");
+    std::printf("|---|---|---:|---:|---:|---:|\n");
+    std::printf("| renderer %dx%d, %d spp | %s samples | %.2f | - | %s | %s |\n", width, height, renderSpp,
+                human(double(rs.samples)).c_str(), rs.seconds, human(rs.samplesPerSecond()).c_str(),
+                human(rs.raysPerSecond()).c_str());
+    std::printf("| generator grid %dx%dx%d, %d dirs, %d spp | %s records, %s paths | %.2f | %s | %s | %s |\n", gen.nx,
+                gen.ny, gen.nz, gen.directions, gen.spp, human(double(records)).c_str(), human(double(g.paths)).c_str(),
+                g.seconds, human(double(records) / g.seconds).c_str(), human(double(g.paths) / g.seconds).c_str(),
+                human(genRaysPerS).c_str());
+    std::printf("| generator / renderer | | | | %.2fx | %.2fx |\n",
+                (double(g.paths) / g.seconds) / rs.samplesPerSecond(), genRaysPerS / rs.raysPerSecond());
+
+    if (!memory) return 0;
+    // 3. Memory of the default run (spp 1), then the written file.
+    const bool tempOut = out.empty();
+    if (tempOut) out = (std::filesystem::temp_directory_path() / ("bench_generate_" + std::to_string(::getpid()) + ".rrfd")).string();
+    const double rssBefore = maxRssMiB();
+    const DataGenerator big(scene, mem);
+    const auto start = Clock::now();
+    GeneratedData d = big.run();
+    const double genSeconds = seconds(start);
+    const double rssGenerated = maxRssMiB();
+    const auto writeStart = Clock::now();
+    writeDataset(out, d.header, d.sceneHash, d.perObject);
+    const double writeSeconds = seconds(writeStart);
+    const double rssWritten = maxRssMiB();
+    const uint64_t bigRecords = d.header.at("stats").at("records").get<uint64_t>();
+    const double fileMiB = double(std::filesystem::file_size(out)) / (1024.0 * 1024.0);
+    const double payloadMiB = double(bigRecords) * big.layout().floatsPerRecord() * 4.0 / (1024.0 * 1024.0);
+    std::printf("\n| default run (grid %dx%dx%d, %d dirs, spp %d) | value |\n|---|---:|\n", mem.nx, mem.ny, mem.nz,
+                mem.directions, mem.spp);
+    std::printf("| records | %llu (%s) |\n", (unsigned long long)bigRecords, human(double(bigRecords)).c_str());
+    std::printf("| cells kept / dropped inside / dropped outside | %llu / %llu / %llu |\n",
+                (unsigned long long)(mem.cellCount() - d.header.at("stats").at("cells_dropped_inside_object").get<uint64_t>() -
+                                     d.header.at("stats").at("cells_dropped_outside_scene").get<uint64_t>()),
+                (unsigned long long)d.header.at("stats").at("cells_dropped_inside_object").get<uint64_t>(),
+                (unsigned long long)d.header.at("stats").at("cells_dropped_outside_scene").get<uint64_t>());
+    std::printf("| generation time | %.2f s (%s records/s) |\n", genSeconds, human(double(bigRecords) / genSeconds).c_str());
+    std::printf("| write time | %.2f s |\n", writeSeconds);
+    std::printf("| payload (records x %d floats x 4 B) | %.1f MiB |\n", big.layout().floatsPerRecord(), payloadMiB);
+    std::printf("| dataset file size | %.1f MiB |\n", fileMiB);
+    std::printf("| max RSS before the run | %.1f MiB |\n", rssBefore);
+    std::printf("| max RSS after generation | %.1f MiB (%.2fx payload) |\n", rssGenerated, rssGenerated / payloadMiB);
+    std::printf("| max RSS after writing | %.1f MiB (%.2fx payload) |\n", rssWritten, rssWritten / payloadMiB);
+    if (tempOut) std::filesystem::remove(out);
+    return 0;
+}
