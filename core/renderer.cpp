@@ -110,7 +110,8 @@ RenderSnapshot Renderer::snapshot() const {
                 const double d = p.direct[c] * inv, ind = p.indirect[c] * inv, g = d + ind;
                 s.direct.data[3 * i + size_t(c)] = float(d);
                 s.indirect.data[3 * i + size_t(c)] = float(ind);
-                s.global.data[3 * i + size_t(c)] = float(g);
+                // Sum the stored floats so that global == direct + indirect holds exactly in the images.
+                s.global.data[3 * i + size_t(c)] = float(d) + float(ind);
                 // Variance of the mean: (E[x²] − E[x]²) / (n − 1), clamped against rounding.
                 const double var = p.accepted > 1 ? std::max(0.0, p.sq[c] * inv - g * g) / (p.accepted - 1) : 0.0;
                 s.variance.data[3 * i + size_t(c)] = float(var);
