@@ -273,19 +273,27 @@ TEST(DataGenerator, MergeRejectsMissingOverlappingAndForeignShards) {
     fs::remove_all(dir);
 }
 
-TEST(DataGenerator, RecordMatchesTheRenderedPixelInExpectation) {
-    // A 1×1-pixel camera with a 0.1° field of view at the scene camera's eye, aimed at a point of
-    // the back wall: the pixel's footprint is ~0.009 units wide, so its mean equals the radiance of
-    // the ray through the pixel centre up to a second-order term far below the noise. A record with
-    // viewpoint = eye and direction = that ray, with the light where the render has it, estimates
-    // the same direct and indirect radiance: records with different recordIndex are independent,
-    // so their mean has standard error σ_rec/√N; the render's error comes from 16 independent
-    // renders (seeds 1…16). Agreement within 5 combined standard errors, per channel.
+namespace {
+
+/// Compares records with a rendered pixel, the light centre at `lightPos` in both: the render moves
+/// the scene's light there (Scene::setLightPosition, a static light in the BVH), the generator is
+/// built on the unmoved scene and gets `lightPos` per record (its analytic movable light).
+///
+/// A 1×1-pixel camera with a 0.1° field of view at the scene camera's eye, aimed at a point of the
+/// back wall: the pixel's footprint is ~0.009 units wide, so its mean equals the radiance of the
+/// ray through the pixel centre up to a second-order term far below the noise. A record with
+/// viewpoint = eye and direction = that ray estimates the same direct and indirect radiance:
+/// records with different recordIndex are independent, so their mean has standard error σ_rec/√N;
+/// the render's error comes from 16 independent renders (seeds 1…16). Agreement within 5 combined
+/// standard errors, per channel.
+void compareRecordsWithPixel(const Vec3& lightPos) {
     Project project = cornellBox();
     Scene& scene = project.scene;
     scene.camera.target = Vec3(0.6f, 0.5f, -1.f);
     scene.camera.fovYDegrees = 0.1f;
     scene.camera.width = scene.camera.height = 1;
+    const Scene original = scene;
+    scene.setLightPosition(lightPos);
     const Accel accel(scene);
 
     RunningStat pixel[2][3];
@@ -307,7 +315,7 @@ TEST(DataGenerator, RecordMatchesTheRenderedPixelInExpectation) {
     SamplingSettings s;
     s.spp = 4;
     s.seed = 3;
-    const DataGenerator gen(scene, s);
+    const DataGenerator gen(original, s);
     const Ray centre = CameraRays(scene.camera, 1, 1).generate(0, 0, 0.5f, 0.5f);
     const int fpr = gen.layout().floatsPerRecord(), nin = gen.layout().inputCount();
     std::vector<float> rec(size_t(fpr), 0.f);
@@ -316,9 +324,8 @@ TEST(DataGenerator, RecordMatchesTheRenderedPixelInExpectation) {
     uint64_t nonFinite = 0;
     for (uint64_t i = 0; i < 8000; ++i) {
         int object = -1;
-        ASSERT_TRUE(gen.estimateRecord(centre.origin, centre.dir, scene.lightPosition(), i, rec.data(), object, counters,
-                                       nonFinite));
-        ASSERT_EQ(scene.objects[size_t(object)].name, "back-wall");
+        ASSERT_TRUE(gen.estimateRecord(centre.origin, centre.dir, lightPos, i, rec.data(), object, counters, nonFinite));
+        ASSERT_EQ(original.objects[size_t(object)].name, "back-wall");
         for (int c = 0; c < 3; ++c) {
             record[0][c].add(rec[size_t(nin + c)]);
             record[1][c].add(rec[size_t(nin + 3 + c)]);
@@ -331,7 +338,7 @@ TEST(DataGenerator, RecordMatchesTheRenderedPixelInExpectation) {
     EXPECT_NEAR(rec[1], 0.5f, 1e-3f);
     for (int c = 0; c < 3; ++c) {
         EXPECT_FLOAT_EQ(rec[size_t(3 + c)], -centre.dir[c]) << "view direction points back to the eye";
-        EXPECT_FLOAT_EQ(rec[size_t(6 + c)], scene.lightPosition()[c]);
+        EXPECT_EQ(rec[size_t(6 + c)], lightPos[c]);
     }
     EXPECT_EQ(rec[9], 0.f);
     EXPECT_EQ(rec[11], 1.f);
@@ -345,6 +352,19 @@ TEST(DataGenerator, RecordMatchesTheRenderedPixelInExpectation) {
                 << part[k] << " channel " << c << ": record " << record[k][c].mean << " ± " << record[k][c].sigma()
                 << ", pixel " << pixel[k][c].mean << " ± " << pixel[k][c].sigma();
         }
+}
+
+}  // namespace
+
+TEST(DataGenerator, RecordMatchesTheRenderedPixelInExpectation) {
+    compareRecordsWithPixel(cornellBox().scene.lightPosition());
+}
+
+TEST(DataGenerator, RecordWithAMovedLightMatchesAPixelRenderedWithTheLightMoved) {
+    // A light position from the light region, off centre and lower than the ceiling: the
+    // generator's per-record light must shade exactly like the scene's light moved there.
+    const Bounds3 region = cornellBox().scene.lightRegion;
+    compareRecordsWithPixel(region.lo + region.extent() * Vec3(0.8f, 0.25f, 0.3f));
 }
 
 TEST(DataGenerator, LightPositionsStayInsideTheRegion) {
@@ -457,6 +477,16 @@ TEST(DataGenerator, PhongMaterialAddsSpecularParameters) {
     });
 }
 
+TEST(DataGenerator, UnusedPhongMaterialAddsNoInputs) {
+    // "n comes from the materials present": records are only made on objects, so a glossy material
+    // that no object uses (a library entry of the scene file, which the loader keeps) must not add
+    // ks and exponent columns that are zero in every record.
+    Project project = cornellBox();
+    Scene& scene = project.scene;
+    addPhong(scene, Vec3(0.3f), Vec3(0.5f), 50.f, "unused glossy");
+    EXPECT_EQ(DataGenerator(scene, tinySettings()).layout().inputCount(), 15);
+}
+
 TEST(DataGenerator, RecordsAreFiniteWithUnitNormalsFacingTheViewer) {
     const Project project = cornellBox();
     const Scene& scene = project.scene;
@@ -484,7 +514,21 @@ TEST(DataGenerator, RecordsAreFiniteWithUnitNormalsFacingTheViewer) {
         ++n;
     });
     EXPECT_GT(n, 500u);
-    EXPECT_EQ(d.header.at("stats").at("non_finite_samples_dropped").get<uint64_t>(), 0u);
+    const nlohmann::json& st = d.header.at("stats");
+    EXPECT_EQ(st.at("non_finite_samples_dropped").get<uint64_t>(), 0u);
+    // Every ray of every kept cell is accounted for: a record, an escape, an emitter hit, or a hit
+    // without a finite sample.
+    const uint64_t kept = uint64_t(s.cellCount()) - st.at("cells_dropped_inside_object").get<uint64_t>() -
+                          st.at("cells_dropped_outside_scene").get<uint64_t>();
+    EXPECT_EQ(st.at("records").get<uint64_t>() + st.at("rays_escaped").get<uint64_t>() +
+                  st.at("rays_hit_emitter").get<uint64_t>() + st.at("records_without_finite_sample").get<uint64_t>(),
+              kept * uint64_t(s.directions));
+    EXPECT_EQ(st.at("records").get<uint64_t>(), n);
+    uint64_t perCell = 0;
+    for (const auto& v : st.at("records_per_cell")) perCell += v.get<uint64_t>();
+    EXPECT_EQ(perCell, n);
+    EXPECT_GT(st.at("rays_hit_emitter").get<uint64_t>() + st.at("rays_escaped").get<uint64_t>(), 0u)
+        << "the open front and the light are seen from some viewpoints";
 }
 
 TEST(DataGenerator, CancelledRunProducesNoData) {
