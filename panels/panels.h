@@ -11,6 +11,8 @@ namespace rrf::panels {
 void drawProjectPanel(WorkbenchState& state);
 /// Scene: objects, materials (editable), lights, the movable light's position, derived effects.
 void drawScenePanel(WorkbenchState& state);
+/// Sampling: jitter grid, N_dir, spp per record, seed, light; estimates before and coverage after.
+void drawSamplingPanel(WorkbenchState& state);
 /// Views: ground truth | compared image | error map, synchronised zoom/pan and read-out.
 void drawViewsPanel(WorkbenchState& state);
 /// Log: messages and errors, copy to clipboard.

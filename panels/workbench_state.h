@@ -37,6 +37,8 @@ enum class Command {
     StartRender,
     CancelRender,
     SceneChanged,     ///< materials or the light changed: rebuild and restart the ground truth
+    Generate,         ///< generate the training dataset with the project's sampling settings
+    CancelGenerate,
     SaveRun,          ///< record the current ground truth as a run
     ReopenRun,        ///< index: restore the run's settings and show its images as the ground truth
     CompareRun,       ///< index: show the run's images in the compare view, the error against it
@@ -86,6 +88,15 @@ struct RenderProgress {
     double samplesPerSecond = 0.0;
 };
 
+/// The last generated dataset: where it is and how many records each object got.
+struct DatasetInfo {
+    bool running = false;
+    double progress = 0.0;
+    std::string path;  ///< empty until a dataset was written
+    std::vector<std::pair<std::string, uint64_t>> recordsPerObject;
+    double seconds = 0.0;
+};
+
 struct WorkbenchState {
     Project project;
     bool hasProject = false;
@@ -100,6 +111,7 @@ struct WorkbenchState {
     ImageSet groundTruth;
     ImageSet compare;  ///< a run's images (the prediction will go here when prediction lands)
     RenderProgress render;
+    DatasetInfo dataset;
     ViewState view;
     /// GL textures of the three views, set by the application (null in tests: nothing is drawn).
     ImTextureID viewTextures[3] = {nullptr, nullptr, nullptr};

@@ -98,6 +98,14 @@ bool Script::execute(Workbench& wb, const json& s) {
             require(waited < limit, "timed out after " + std::to_string(int(limit)) + " s");
             return false;
         }
+    } else if (what == "generate") {
+        // Optional overrides of the project's sampling settings, for small scripted datasets.
+        nlohmann::json sampling = st.project.doc.contains("sampling") ? st.project.doc["sampling"] : json::object();
+        if (s.contains("grid")) sampling["grid"] = s["grid"];
+        if (s.contains("dirs")) sampling["directions"] = s["dirs"];
+        if (s.contains("spp")) sampling["spp"] = s["spp"];
+        st.project.doc["sampling"] = sampling;
+        require(wb.startGenerate(), "the generator could not start (see the log)");
     } else if (what == "save_run") {
         require(wb.saveRun(), "could not save the run (see the log)");
     } else if (what == "compare_run") {
@@ -157,10 +165,12 @@ bool Script::execute(Workbench& wb, const json& s) {
         if (s.contains("errors"))
             require(int(st.log.errorCount()) == int(number(s, "errors", 0)),
                     "the log has " + std::to_string(st.log.errorCount()) + " errors");
+        if (s.contains("dataset"))
+            require(!st.dataset.path.empty() == s["dataset"].get<bool>(), "dataset state differs");
         if (s.contains("compare")) require(!st.compare.empty() == s["compare"].get<bool>(), "compare view state differs");
     } else {
         throw std::runtime_error("unknown step '" + what + "'" +
-                                 (what == "generate" || what == "train" || what == "evaluate"
+                                 (what == "train" || what == "evaluate"
                                       ? " (this stage is not wired into the workbench yet)"
                                       : ""));
     }

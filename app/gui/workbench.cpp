@@ -55,6 +55,7 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 
 void Workbench::frame() {
     pollRender();
+    pollGenerate();
     drawHost();
     drawModals();
     if (dialog_.draw()) dialogConfirmed(dialog_.result());
@@ -92,6 +93,10 @@ void Workbench::drawHost() {
                 }
                 if (ImGui::BeginTabItem("Scene")) {
                     panels::drawScenePanel(state_);
+                    ImGui::EndTabItem();
+                }
+                if (ImGui::BeginTabItem("Sampling")) {
+                    panels::drawSamplingPanel(state_);
                     ImGui::EndTabItem();
                 }
                 ImGui::EndTabBar();
@@ -282,6 +287,10 @@ void Workbench::handleRequests() {
                 break;
             case Command::StartRender: startRender(); break;
             case Command::CancelRender: cancelRender(); break;
+            case Command::Generate: startGenerate(); break;
+            case Command::CancelGenerate:
+                if (generateJob_) jobs_.cancel(generateJob_);
+                break;
             case Command::SceneChanged: sceneEdited = true; break;  // many edits in a frame: one restart
             case Command::SaveRun: saveRun(); break;
             case Command::ReopenRun: reopenRun(r.index); break;

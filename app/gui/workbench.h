@@ -17,6 +17,8 @@
 
 namespace rrf {
 
+struct GenerateSession;
+
 class Workbench {
 public:
     /// `configDir`: per-user directory for recent.json.
@@ -52,6 +54,10 @@ public:
     bool compareRun(int index);
     bool reopenRun(int index);
     bool exportImages(const std::string& dir);
+    /// Starts the data generator with the project's sampling settings, writing
+    /// <project dir>/data/dataset.rrfd (refused while a conflicting job runs).
+    bool startGenerate();
+    bool generateRunning() const;
 
     panels::WorkbenchState& state() { return state_; }
     JobRunner& jobs() { return jobs_; }
@@ -69,6 +75,7 @@ private:
     void newProjectFromScene(const std::string& scenePath);
 
     void pollRender();
+    void pollGenerate();
     void sceneChanged(bool restartRender);
     void rebuildPicking();
     void autosave();
@@ -86,6 +93,8 @@ private:
     std::shared_ptr<RenderSession> render_;
     int renderJob_ = 0;
     uint64_t renderRevision_ = 0;
+    std::shared_ptr<GenerateSession> generate_;
+    int generateJob_ = 0;
     bool restartRender_ = false;   ///< a scene edit arrived while the old render was stopping
     bool untitled_ = false;        ///< the project has no file of its own yet (New)
 

@@ -46,6 +46,7 @@ void Workbench::pollRender() {
         else state_.log.info(std::string(jobKindName(j.kind)) + " '" + j.name + "' " +
                              (j.cancelled ? "stopped" : "finished") + " after " + std::to_string(int(j.seconds + 0.5)) + " s");
         if (j.id == renderJob_) renderJob_ = 0;
+        if (j.id == generateJob_) generateJob_ = 0;
     }
     if (render_) {
         uint64_t revision = 0;

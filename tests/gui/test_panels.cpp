@@ -27,6 +27,10 @@ void drawAll(WorkbenchState& s) {
                     drawScenePanel(s);
                     ImGui::EndTabItem();
                 }
+                if (ImGui::BeginTabItem("Sampling")) {
+                    drawSamplingPanel(s);
+                    ImGui::EndTabItem();
+                }
                 ImGui::EndTabBar();
             }
         },
@@ -52,6 +56,11 @@ TEST_F(PanelTest, AllPanelsDrawWithoutProjectAndWithout) {
     fillGroundTruth(s);
     s.compare = s.groundTruth;
     for (int i = 0; i < 5; ++i) frame([&] { drawAll(s); });
+    // Tabs other than the first are not drawn by drawAll; draw each panel on its own too.
+    for (int i = 0; i < 2; ++i) {
+        frame([&] { drawScenePanel(s); });
+        frame([&] { drawSamplingPanel(s); });
+    }
     EXPECT_TRUE(s.requests.empty()) << "idle frames must not ask for anything";
     EXPECT_FALSE(s.dirty) << "idle frames must not edit the project";
 }

@@ -1,0 +1,109 @@
+// Sampling panel: the data generator's settings (the project's "sampling" section), what a run will
+// cost before it starts, and how many records each object got after it ran.
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "core/error.h"
+#include "core/record_layout.h"
+#include "core/sampling_settings.h"
+#include "panels/panels.h"
+
+namespace rrf::panels {
+
+namespace {
+void drawEstimate(const WorkbenchState& state, const SamplingSettings& s) {
+    // Upper bounds: cells inside closed objects are dropped and escaping rays store nothing.
+    const double records = double(s.cellCount()) * double(s.directions);
+    const int floats = RecordLayout::forScene(state.project.scene).floatsPerRecord();
+    const double bytes = records * floats * 4.0;
+    ImGui::Text("at most %.3g records, %.3g MB (%d floats per record)", records, bytes / 1e6, floats);
+    // Each record traces spp paths; the last render's speed is the best guide this machine has.
+    if (state.render.samplesPerSecond > 0) {
+        const double seconds = records * double(s.spp) / state.render.samplesPerSecond;
+        ImGui::Text("about %.0f s at the last render's %.3g samples/s", seconds, state.render.samplesPerSecond);
+    } else {
+        ImGui::TextDisabled("render the ground truth once for a time estimate");
+    }
+}
+
+void drawCoverage(const DatasetInfo& d) {
+    if (d.path.empty()) {
+        ImGui::TextDisabled("No dataset generated in this session.");
+        return;
+    }
+    ImGui::TextWrapped("%s (%.1f s)", d.path.c_str(), d.seconds);
+    if (!ImGui::BeginTable("##coverage", 2, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
+    ImGui::TableSetupColumn("object");
+    ImGui::TableSetupColumn("records");
+    ImGui::TableHeadersRow();
+    for (const auto& [name, count] : d.recordsPerObject) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(name.c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%llu%s", (unsigned long long)count, count == 0 ? "  (no data: cannot train)" : "");
+    }
+    ImGui::EndTable();
+}
+}  // namespace
+
+void drawSamplingPanel(WorkbenchState& state) {
+    if (!state.hasProject) {
+        ImGui::TextDisabled("No project is open.");
+        return;
+    }
+    SamplingSettings s;
+    try {
+        s = SamplingSettings::fromProject(state.project);
+    } catch (const InputError& e) {
+        ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "The project's sampling section is invalid:");
+        ImGui::TextWrapped("%s", e.what());
+        if (ImGui::Button("Reset to defaults")) {
+            state.project.doc["sampling"] = SamplingSettings().toJson();
+            state.markDirty();
+        }
+        return;
+    }
+    bool changed = false;
+    const float w = ImGui::GetFontSize() * 10;
+    int grid[3] = {s.nx, s.ny, s.nz};
+    ImGui::SetNextItemWidth(w);
+    if (ImGui::DragInt3("jitter grid", grid, 0.2f, 1, 64)) {
+        s.nx = grid[0];
+        s.ny = grid[1];
+        s.nz = grid[2];
+        changed = true;
+    }
+    ImGui::SetNextItemWidth(w);
+    changed |= ImGui::DragInt("directions (N_dir)", &s.directions, 10.f, 1, 100000);
+    ImGui::SetNextItemWidth(w);
+    changed |= ImGui::DragInt("paths per record", &s.spp, 1.f, 1, 65536);
+    int seed = int(s.seed & 0x7fffffff);
+    ImGui::SetNextItemWidth(w);
+    if (ImGui::InputInt("seed##sampling", &seed)) {
+        s.seed = uint64_t(seed < 0 ? 0 : seed);
+        changed = true;
+    }
+    changed |= ImGui::Checkbox("fixed light (ignore the light region)", &s.fixedLight);
+    if (changed) {
+        state.project.doc["sampling"] = s.toJson();
+        state.markDirty();
+    }
+    const Bounds3& r = state.project.scene.lightRegion;
+    if (!r.empty())
+        ImGui::TextDisabled("light region (%.2f, %.2f, %.2f) .. (%.2f, %.2f, %.2f)", r.lo.x, r.lo.y, r.lo.z, r.hi.x, r.hi.y,
+                            r.hi.z);
+    drawEstimate(state, s);
+
+    if (!state.dataset.running) {
+        if (ImGui::Button("Generate dataset")) state.request(Command::Generate);
+    } else {
+        if (ImGui::Button("Stop generating")) state.request(Command::CancelGenerate);
+        ImGui::SameLine();
+        ImGui::ProgressBar(float(state.dataset.progress), ImVec2(ImGui::GetFontSize() * 10, 0));
+    }
+    if (ImGui::CollapsingHeader("Coverage per object", ImGuiTreeNodeFlags_DefaultOpen)) drawCoverage(state.dataset);
+}
+
+}  // namespace rrf::panels
