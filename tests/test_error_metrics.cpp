@@ -1,0 +1,119 @@
+// Error metrics on hand-made images with known answers, object masks, NaN handling.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "core/error_metrics.h"
+
+using namespace rrf;
+
+namespace {
+Image make(int w, int h, std::initializer_list<Vec3> pixels) {
+    Image im(w, h);
+    int i = 0;
+    for (const Vec3& p : pixels) {
+        im.set(i % w, i / w, p);
+        ++i;
+    }
+    return im;
+}
+}  // namespace
+
+TEST(ErrorMetrics, KnownAnswersOverAllPixels) {
+    // d = +1 in every channel of pixel 0 (ref 0) and -2 in every channel of pixel 1 (ref 3).
+    const Image ref = make(2, 1, {Vec3(0.f), Vec3(3.f)});
+    const Image pred = make(2, 1, {Vec3(1.f), Vec3(1.f)});
+    const ErrorStats s = errorStats(pred, ref);
+    EXPECT_EQ(s.pixels, 2u);
+    EXPECT_EQ(s.nonFinite, 0u);
+    EXPECT_DOUBLE_EQ(s.rmse, std::sqrt((1.0 + 4.0) / 2.0));
+    EXPECT_DOUBLE_EQ(s.mae, 1.5);
+    EXPECT_DOUBLE_EQ(s.maxError, 2.0);
+    EXPECT_DOUBLE_EQ(s.meanReference, 1.5);
+    const double r0 = 1.0 / 0.01, r1 = 2.0 / 3.01;
+    EXPECT_NEAR(s.relativeRmse, std::sqrt((r0 * r0 + r1 * r1) / 2.0), 1e-9);
+}
+
+TEST(ErrorMetrics, ChannelsAreAveragedNotLuminance) {
+    // Only the blue channel is wrong: luminance weighs it 0.0722, the per-channel average 1/3.
+    const Image ref = make(1, 1, {Vec3(1.f, 1.f, 1.f)});
+    const Image pred = make(1, 1, {Vec3(1.f, 1.f, 4.f)});
+    const ErrorStats s = errorStats(pred, ref);
+    EXPECT_DOUBLE_EQ(s.mae, 1.0);
+    EXPECT_DOUBLE_EQ(s.rmse, std::sqrt(3.0));
+    EXPECT_DOUBLE_EQ(s.maxError, 3.0);
+}
+
+TEST(ErrorMetrics, MapsHoldPerPixelValues) {
+    const Image ref = make(2, 1, {Vec3(0.f), Vec3(0.99f)});
+    const Image pred = make(2, 1, {Vec3(0.5f), Vec3(0.99f + 0.5f)});
+    const Image a = errorMap(pred, ref, ErrorMapKind::Absolute);
+    const Image r = errorMap(pred, ref, ErrorMapKind::Relative);
+    const Image q = errorMap(pred, ref, ErrorMapKind::Squared);
+    EXPECT_FLOAT_EQ(a.at(0, 0).x, 0.5f);
+    EXPECT_FLOAT_EQ(a.at(0, 0).z, 0.5f);
+    EXPECT_NEAR(r.at(0, 0).x, 50.f, 1e-4);  // 0.5 / (0 + 0.01)
+    EXPECT_NEAR(r.at(1, 0).y, 0.5f, 1e-6);   // 0.5 / (0.99 + 0.01)
+    EXPECT_FLOAT_EQ(q.at(1, 0).x, 0.25f);
+}
+
+TEST(ErrorMetrics, ObjectMasksSelectPixelsById) {
+    // 3x2 object-id buffer: background, object 0, object 1 (ids ≥ count are ignored).
+    const std::vector<int32_t> ids = {-1, 0, 1, 0, 1, 7};
+    const auto masks = objectMasks(ids, 2);
+    ASSERT_EQ(masks.size(), 2u);
+    EXPECT_EQ(masks[0], (std::vector<uint32_t>{1, 3}));
+    EXPECT_EQ(masks[1], (std::vector<uint32_t>{2, 4}));
+    // Object 0 exact, object 1 off by 1 everywhere, background off by 100 (outside both masks).
+    const Image ref(3, 2, Vec3(1.f));
+    Image pred = ref;
+    pred.set(0, 0, Vec3(101.f));
+    pred.set(2, 0, Vec3(2.f));
+    pred.set(1, 1, Vec3(2.f));
+    const ErrorStats s0 = errorStats(pred, ref, masks[0]);
+    const ErrorStats s1 = errorStats(pred, ref, masks[1]);
+    EXPECT_EQ(s0.pixels, 2u);
+    EXPECT_DOUBLE_EQ(s0.rmse, 0.0);
+    EXPECT_EQ(s1.pixels, 2u);
+    EXPECT_DOUBLE_EQ(s1.rmse, 1.0);
+    EXPECT_NEAR(s1.relativeRmse, 1.0 / 1.01, 1e-7);
+    EXPECT_EQ(errorStats(pred, ref, {}).pixels, 0u);
+}
+
+TEST(ErrorMetrics, NonFinitePixelsAreCountedAndLeftOut) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const Image ref = make(3, 1, {Vec3(1.f), Vec3(1.f), Vec3(1.f, INFINITY, 1.f)});
+    const Image pred = make(3, 1, {Vec3(2.f), Vec3(nan, 1.f, 1.f), Vec3(1.f)});
+    const ErrorStats s = errorStats(pred, ref);
+    EXPECT_EQ(s.pixels, 1u);
+    EXPECT_EQ(s.nonFinite, 2u);
+    EXPECT_DOUBLE_EQ(s.rmse, 1.0);
+    const Image map = errorMap(pred, ref, ErrorMapKind::Absolute);
+    EXPECT_TRUE(std::isnan(map.at(1, 0).x));
+    EXPECT_TRUE(std::isnan(map.at(2, 0).x));
+    uint64_t replaced = 0;
+    const Image clean = finiteMap(map, replaced);
+    EXPECT_EQ(replaced, 2u);
+    EXPECT_EQ(clean.nonFiniteCount(), 0u);
+    // False colour shows the NaN as magenta instead of a plausible error value.
+    const Image fc = falseColor(map, 0.f, 1.f);
+    EXPECT_EQ(fc.at(1, 0), Vec3(1.f, 0.f, 1.f));
+}
+
+TEST(ErrorMetrics, PercentileIsNearestRankOverFiniteValues) {
+    Image im(101, 1);
+    for (int i = 0; i <= 100; ++i) im.set(i, 0, Vec3(float(i)));
+    EXPECT_FLOAT_EQ(percentile(im, 0.99), 99.f);
+    EXPECT_FLOAT_EQ(percentile(im, 1.0), 100.f);
+    EXPECT_FLOAT_EQ(percentile(im, 0.0), 0.f);
+    im.set(50, 0, Vec3(std::numeric_limits<float>::quiet_NaN()));
+    EXPECT_FLOAT_EQ(percentile(im, 1.0), 100.f);
+    EXPECT_FLOAT_EQ(percentile(Image(2, 2, Vec3(NAN)), 0.5), 0.f);
+}
+
+TEST(ErrorMetrics, RejectsMismatchedSizesAndBadMasks) {
+    EXPECT_THROW(errorStats(Image(2, 2), Image(2, 3)), std::invalid_argument);
+    EXPECT_THROW(errorMap(Image(2, 2), Image(3, 2), ErrorMapKind::Absolute), std::invalid_argument);
+    EXPECT_THROW(errorStats(Image(2, 2), Image(2, 2), std::vector<uint32_t>{4}), std::invalid_argument);
+}
