@@ -84,7 +84,7 @@ void storeWorkbenchSections(WorkbenchState& state) {
     json& doc = state.project.doc;
     if (!doc.is_object()) doc = json::object();
     doc["layout"] = state.layout.toJson();
-    runsToDoc(state.runs, doc);
+    storeRunsInDoc(state.runs, doc);
     state.project.render.exposure = state.view.exposure;
 }
 

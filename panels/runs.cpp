@@ -113,7 +113,7 @@ std::vector<Run> runsFromDoc(const json& doc, std::vector<std::string>* problems
     return runs;
 }
 
-void runsToDoc(const std::vector<Run>& runs, json& doc) {
+void storeRunsInDoc(const std::vector<Run>& runs, json& doc) {
     if (!doc.is_object()) doc = json::object();
     if (runs.empty()) {
         doc.erase("runs");

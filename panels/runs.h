@@ -40,7 +40,7 @@ struct Run {
 /// Reads doc["runs"]; malformed entries are skipped and described in `problems`.
 std::vector<Run> runsFromDoc(const nlohmann::json& doc, std::vector<std::string>* problems = nullptr);
 /// Writes `runs` to doc["runs"] (removes the key when there are none).
-void runsToDoc(const std::vector<Run>& runs, nlohmann::json& doc);
+void storeRunsInDoc(const std::vector<Run>& runs, nlohmann::json& doc);
 
 /// A new id "<kind>-<yyyymmdd-hhmmss>[-n]" not yet used in `runs`.
 std::string newRunId(const std::vector<Run>& runs, const std::string& kind);
