@@ -33,18 +33,39 @@ size_t align64(size_t n) { return (n + 63) & ~size_t(63); }
 }
 }  // namespace
 
-uint64_t checksum64(const void* data, size_t bytes) {
+void Checksum64::update(const void* data, size_t bytes) {
     const auto* p = static_cast<const unsigned char*>(data);
-    uint64_t h = 0x243F6A8885A308D3ULL ^ bytes;
-    size_t i = 0;
-    for (; i + 8 <= bytes; i += 8) {
-        uint64_t w;
-        std::memcpy(&w, p + i, 8);
-        h = mix64(h ^ w) + 0x9E3779B97F4A7C15ULL;
+    total_ += bytes;
+    auto word = [this](const unsigned char* w) {
+        uint64_t v;
+        std::memcpy(&v, w, 8);
+        h_ = mix64(h_ ^ v) + 0x9E3779B97F4A7C15ULL;
+    };
+    while (pendingBytes_ > 0 && pendingBytes_ < 8 && bytes > 0) {
+        pending_[pendingBytes_++] = *p++;
+        --bytes;
+        if (pendingBytes_ == 8) {
+            word(pending_);
+            pendingBytes_ = 0;
+        }
     }
+    for (; bytes >= 8; p += 8, bytes -= 8) word(p);
+    std::memcpy(pending_ + pendingBytes_, p, bytes);
+    pendingBytes_ += bytes;
+}
+
+uint64_t Checksum64::finish() const {
+    // The length enters at the start in checksum64(); here it is only known at the end, so both
+    // functions fold it in at the end instead.
     uint64_t tail = 0;
-    std::memcpy(&tail, p + i, bytes - i);
-    return mix64(h ^ tail ^ (uint64_t(bytes - i) << 56));
+    std::memcpy(&tail, pending_, pendingBytes_);
+    return mix64(h_ ^ total_ ^ tail ^ (uint64_t(pendingBytes_) << 56));
+}
+
+uint64_t checksum64(const void* data, size_t bytes) {
+    Checksum64 c;
+    c.update(data, bytes);
+    return c.finish();
 }
 
 void writeDataset(const std::string& path, nlohmann::json header, uint64_t sceneHash,
@@ -52,17 +73,16 @@ void writeDataset(const std::string& path, nlohmann::json header, uint64_t scene
     const int fpr = header.at("floats_per_record").get<int>();
     nlohmann::json& objs = header.at("objects");
     if (objs.size() != perObject.size()) throw std::logic_error("writeDataset: objects and data differ in count");
+    // Records are written straight from the callers' vectors (no payload copy: datasets reach
+    // hundreds of MiB); a first pass computes the checksum the fixed header needs.
     uint64_t offset = 0;
-    std::string payload;
-    size_t total = 0;
-    for (const auto& v : perObject) total += v.size() * sizeof(float);
-    payload.reserve(total);
+    Checksum64 sum;
     for (size_t i = 0; i < perObject.size(); ++i) {
         const auto& v = perObject[i];
         if (v.size() % size_t(fpr) != 0) throw std::logic_error("writeDataset: partial record");
         objs[i]["count"] = v.size() / size_t(fpr);
         objs[i]["offset"] = offset;
-        payload.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(float));
+        sum.update(v.data(), v.size() * sizeof(float));
         offset += v.size() * sizeof(float);
     }
     const std::string json = header.dump(1);
@@ -71,8 +91,8 @@ void writeDataset(const std::string& path, nlohmann::json header, uint64_t scene
     fh.version = kDatasetVersion;
     fh.jsonBytes = json.size();
     fh.payloadOffset = align64(kFixedHeader + json.size());
-    fh.payloadBytes = payload.size();
-    fh.payloadChecksum = checksum64(payload.data(), payload.size());
+    fh.payloadBytes = offset;
+    fh.payloadChecksum = sum.finish();
     fh.sceneHash = sceneHash;
     fh.jsonChecksum = checksum64(json.data(), json.size());
     AtomicFile f(path);
@@ -80,7 +100,7 @@ void writeDataset(const std::string& path, nlohmann::json header, uint64_t scene
     f.write(json);
     const std::string pad(fh.payloadOffset - kFixedHeader - json.size(), '\0');
     f.write(pad);
-    f.write(payload);
+    for (const auto& v : perObject) f.write(v.data(), v.size() * sizeof(float));
     f.commit();
 }
 
@@ -121,6 +141,10 @@ Dataset::Dataset(const std::string& path, bool verifyPayload, uint64_t expectedS
         if (checksum64(json, fh.jsonBytes) != fh.jsonChecksum) fail(path, "header checksum mismatch (file corrupted)");
         header_ = nlohmann::json::parse(json, json + fh.jsonBytes);
         sceneHash_ = fh.sceneHash;
+        // The fixed header's hash is not under a checksum; the JSON's copy is, so they must agree.
+        if (header_.contains("scene_hash") &&
+            std::stoull(header_.at("scene_hash").get<std::string>(), nullptr, 16) != sceneHash_)
+            fail(path, "scene hash in the fixed header disagrees with the JSON header (file corrupted)");
         payload_ = base + fh.payloadOffset;
         if (expectedSceneHash != 0 && expectedSceneHash != sceneHash_)
             fail(path, "dataset was generated for a different scene (scene hash mismatch): regenerate it for this project");
@@ -151,6 +175,10 @@ Dataset::Dataset(const std::string& path, bool verifyPayload, uint64_t expectedS
         ::munmap(map_, mapSize_);
         map_ = nullptr;
         fail(path, std::string("malformed dataset header: ") + e.what());
+    } catch (const std::invalid_argument&) {  // stoull on a malformed scene_hash
+        ::munmap(map_, mapSize_);
+        map_ = nullptr;
+        fail(path, "malformed dataset header: scene_hash is not a hexadecimal number");
     } catch (...) {
         ::munmap(map_, mapSize_);
         map_ = nullptr;

@@ -27,6 +27,20 @@ constexpr uint32_t kDatasetVersion = 1;
 /// 64-bit checksum of a byte range (word-wise SplitMix-style mixing; detects corruption, not attacks).
 uint64_t checksum64(const void* data, size_t bytes);
 
+/// The same checksum computed over a byte stream fed in pieces of any size:
+/// Checksum64 c; c.update(a, n); c.update(b, m); c.finish() == checksum64(a ‖ b, n + m).
+class Checksum64 {
+public:
+    void update(const void* data, size_t bytes);
+    uint64_t finish() const;
+
+private:
+    uint64_t h_ = 0x243F6A8885A308D3ULL;
+    uint64_t total_ = 0;
+    unsigned char pending_[8] = {};
+    size_t pendingBytes_ = 0;
+};
+
 /// One object's records inside a dataset.
 struct DatasetObject {
     int id = 0;

@@ -6,8 +6,13 @@ namespace rrf {
 
 RecordLayout RecordLayout::forScene(const Scene& scene) {
     RecordLayout l;
-    for (const Material& m : scene.materials)
+    // Only materials that some object uses decide the layout: a glossy material defined but unused
+    // must not add four all-zero columns.
+    for (const Object& o : scene.objects) {
+        if (o.material < 0 || o.material >= int(scene.materials.size())) continue;
+        const Material& m = scene.materials[size_t(o.material)];
         if (m.type == Material::Type::Phong && !m.ks.isZero()) l.phong = true;
+    }
     l.inputs = {"hit_x",   "hit_y",   "hit_z",   "view_x",   "view_y",   "view_z",   "light_x",  "light_y",
                 "light_z", "normal_x", "normal_y", "normal_z", "kd_r", "kd_g", "kd_b"};
     if (l.phong) {
@@ -22,7 +27,8 @@ void RecordLayout::brdfParameters(const Material& m, float* out) const {
     out[1] = m.kd.y;
     out[2] = m.kd.z;
     if (!phong) return;
-    const bool glossy = m.type == Material::Type::Phong;
+    // A Phong material without a specular lobe reflects exactly like Lambert, so it is encoded alike.
+    const bool glossy = m.type == Material::Type::Phong && !m.ks.isZero();
     out[3] = glossy ? m.ks.x : 0.f;
     out[4] = glossy ? m.ks.y : 0.f;
     out[5] = glossy ? m.ks.z : 0.f;
