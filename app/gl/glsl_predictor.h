@@ -1,0 +1,118 @@
+#pragma once
+/// GLSL prediction (seed 3.5): rasterises the scene into a G-buffer and evaluates every object's
+/// radiance regression networks in a fragment shader, producing direct, indirect and global images.
+///
+/// Two passes per frame, both into float framebuffer objects of the camera's size:
+///   1. shaders/gbuffer.{vert,frag}: per pixel the hit point of the pixel-centre camera ray (the same
+///      ray as rrf::CameraRays with jitter 0.5), the normal facing the viewer, the object id and the
+///      emission of lights seen directly.
+///   2. shaders/fullscreen.vert + predict.frag: the network inputs (RecordLayout order) are formed
+///      from the G-buffer, the light position and the object's BRDF parameters, and the object's
+///      networks are evaluated with weights and scalers from the RGBA32F texture of
+///      core/network_texture.h (how direct / indirect / global are formed is documented there).
+/// The prediction equals NetworkModel::predict on the same inputs to float rounding.
+///
+/// Usage for live relighting (all calls on the thread whose GL 3.3 core context is current):
+///
+///     GlslPredictor gp(scene, models);      // once per scene + model set: compiles, uploads
+///     gp.setLightPosition(p);               // when the user drags the light
+///     gp.render();                          // ~ a few ms on a GPU
+///     Image img = gp.read(PredictionTerm::Global);     // or draw gp.texture(term) directly
+///
+/// render() saves and restores the GL state it touches (framebuffer bindings, viewport, program,
+/// vertex array, texture bindings of units 0–3, depth/blend/cull/scissor state), so it can be called
+/// in the middle of a GUI frame.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "app/gl/gl_program.h"
+#include "core/image.h"
+#include "core/model_set.h"
+#include "core/network_texture.h"
+#include "core/scene.h"
+
+#ifndef RRF_SHADER_DIR
+#error "RRF_SHADER_DIR must name the shaders/ directory (set by cmake/Gl.cmake)"
+#endif
+
+namespace rrf {
+
+enum class PredictionTerm { Direct = 0, Indirect = 1, Global = 2 };
+
+/// "direct" / "indirect" / "global".
+const char* predictionTermName(PredictionTerm t);
+
+/// The G-buffer of the last render(), read back (top row first, like rrf::Image).
+struct GlGBuffer {
+    int width = 0, height = 0;
+    std::vector<float> position;  ///< 3 floats per pixel: hit point (0 where nothing was hit)
+    std::vector<float> normal;    ///< 3 floats per pixel: geometric normal facing the viewer
+    std::vector<int> objectId;    ///< object id ≥ 0; kLightPixel for a light; kBackgroundPixel
+    Image emission;               ///< radiance of lights seen directly, towards the eye
+
+    static constexpr int kBackgroundPixel = -1;
+    static constexpr int kLightPixel = -2;
+    size_t pixelCount() const { return size_t(width) * size_t(height); }
+};
+
+class GlslPredictor {
+public:
+    /// Uploads the scene's geometry and the packed networks and compiles the shaders from
+    /// `shaderDir`. Needs a current OpenGL 3.3 core context with glad loaded (see GlContext).
+    /// Throws std::invalid_argument for models that do not fit the scene (packNetworkTexture),
+    /// GlError for a shader that does not compile (message names the file) or any GL failure.
+    GlslPredictor(const Scene& scene, const ModelSet& models, const std::string& shaderDir = RRF_SHADER_DIR);
+    ~GlslPredictor();
+    GlslPredictor(const GlslPredictor&) = delete;
+    GlslPredictor& operator=(const GlslPredictor&) = delete;
+
+    /// Moves the scene's movable light (its centre, as Scene::setLightPosition): the network input
+    /// and the light's visible quad. Takes effect at the next render().
+    void setLightPosition(const Vec3& p);
+    Vec3 lightPosition() const { return scene_.lightPosition(); }
+    /// Replaces the camera; the output size is camera.width × camera.height (textures are
+    /// reallocated when it changes). Throws std::invalid_argument for a non-positive size or one
+    /// above GL_MAX_TEXTURE_SIZE / GL_MAX_VIEWPORT_DIMS.
+    void setCamera(const Camera& camera);
+    const Camera& camera() const { return scene_.camera; }
+
+    /// Renders the G-buffer and the three predictions. Asynchronous like any GL call: read() or
+    /// glFinish() waits for the result. Throws GlError on a GL error.
+    void render();
+
+    /// The prediction of the last render() as an image (top row first).
+    Image read(PredictionTerm term) const;
+    /// The G-buffer of the last render().
+    GlGBuffer readGBuffer() const;
+
+    /// RGBA32F texture holding a term of the last render(), GL convention (bottom row first); alpha
+    /// is 1 where an object or a light was hit, 0 on background. Owned by the predictor.
+    unsigned texture(PredictionTerm term) const { return outputTex_[size_t(term)]; }
+    int width() const { return scene_.camera.width; }
+    int height() const { return scene_.camera.height; }
+    /// The packed networks (which terms the models provide, network count, texture size).
+    const NetworkTexture& networks() const { return networks_; }
+
+private:
+    void buildStaticGeometry();
+    void uploadLights();
+    void allocateTargets();
+    void releaseTargets();
+    std::vector<float> readAttachment(unsigned fbo, int attachment) const;
+
+    Scene scene_;
+    NetworkTexture networks_;
+    GlProgram gbufferProgram_, predictProgram_;
+    unsigned vao_ = 0, objectVbo_ = 0, lightVbo_ = 0, emptyVao_ = 0;
+    int objectVertices_ = 0, lightVertices_ = 0;
+    bool lightsDirty_ = true;
+    unsigned networkTex_ = 0;
+    unsigned gbufferFbo_ = 0, depthRb_ = 0, outputFbo_ = 0;
+    std::array<unsigned, 3> gbufferTex_{}, outputTex_{};
+    int targetWidth_ = 0, targetHeight_ = 0;
+    int maxTextureSize_ = 0;
+};
+
+}  // namespace rrf

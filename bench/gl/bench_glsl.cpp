@@ -1,0 +1,200 @@
+// bench_glsl: milliseconds per frame of the GLSL predictor (G-buffer + network pass), the number the
+// GUI's live relighting costs, on whatever OpenGL driver the context gets (Mesa llvmpipe under Xvfb,
+// or a GPU).
+//
+//   xvfb-run -a -s "-screen 0 1280x1024x24" bench_glsl [--size 256] [--frames 50]
+//                                                       [--project P --models DIR]
+//
+// Without --models: the Cornell box with untrained networks of several sizes (weights from
+// initialParams; speed does not depend on their values), one row per (hidden sizes, targets).
+// With --models: the trained model directory of the project (`rrf train` output), plus the largest
+// relative difference between the GLSL prediction and NetworkModel::predict on the G-buffer's inputs.
+//
+// Every frame moves the light (as dragging it in the GUI does), renders, and waits with glFinish; the
+// time is the mean over the frames after two warm-up frames. "read back" adds glReadPixels of the
+// global term into an rrf::Image, which the GUI needs if it tone-maps on the CPU.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <glad/gl.h>
+
+#include "app/gl/gl_context.h"
+#include "app/gl/glsl_predictor.h"
+#include "core/project.h"
+#include "core/record_layout.h"
+
+using namespace rrf;
+
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+NetworkModel untrained(const Scene& scene, int object, const std::string& target, const std::vector<int>& hidden) {
+    NetworkModel m;
+    m.arch.inputs = RecordLayout::forScene(scene).inputCount();
+    m.arch.hidden = hidden;
+    m.arch.outputs = target == "joint" ? 6 : 3;
+    m.params = initialParams(m.arch, 1, uint64_t(object));
+    m.inputScaler = MinMaxScaler::identity(m.arch.inputs);
+    m.outputScaler = MinMaxScaler::identity(m.arch.outputs);
+    m.objectId = object;
+    m.target = target;
+    return m;
+}
+
+ModelSet untrainedSet(const Scene& scene, const std::vector<int>& hidden, const std::vector<std::string>& targets) {
+    ModelSet set;
+    for (const Object& o : scene.objects) {
+        ObjectNetworks on;
+        on.objectId = o.id;
+        on.name = o.name;
+        for (const std::string& t : targets) on.byTarget[t] = untrained(scene, o.id, t, hidden);
+        set.objects.push_back(std::move(on));
+    }
+    return set;
+}
+
+struct Timing {
+    double renderMs = 0, readMs = 0;
+};
+
+Timing timeFrames(GlslPredictor& gp, const Scene& scene, int frames) {
+    const Bounds3 r = scene.lightRegion.empty() ? Bounds3() : scene.lightRegion;
+    auto lightAt = [&](int f) {
+        if (scene.lightRegion.empty()) return scene.lightPosition();
+        const float s = 0.5f + 0.5f * std::sin(0.37f * float(f)), t = 0.5f + 0.5f * std::cos(0.23f * float(f));
+        return Vec3(r.lo.x + s * (r.hi.x - r.lo.x), r.lo.y + t * (r.hi.y - r.lo.y), r.lo.z + (1 - s) * (r.hi.z - r.lo.z));
+    };
+    for (int f = 0; f < 2; ++f) {  // warm-up: shader compilation in the driver happens at first draw
+        gp.setLightPosition(lightAt(f));
+        gp.render();
+        glFinish();
+    }
+    Timing t;
+    double t0 = now();
+    for (int f = 0; f < frames; ++f) {
+        gp.setLightPosition(lightAt(f));
+        gp.render();
+        glFinish();
+    }
+    t.renderMs = (now() - t0) * 1e3 / frames;
+    t0 = now();
+    for (int f = 0; f < frames; ++f) {
+        gp.setLightPosition(lightAt(f));
+        gp.render();
+        const Image img = gp.read(PredictionTerm::Global);
+        if (img.data.empty()) std::printf(" ");
+    }
+    t.readMs = (now() - t0) * 1e3 / frames;
+    return t;
+}
+
+/// Largest relative difference |gl − cpu| / max(|cpu|, 1e-2) of the global term over covered pixels.
+double maxRelativeVsCpu(const GlslPredictor& gp, const Scene& scene, const ModelSet& set) {
+    const GlGBuffer g = gp.readGBuffer();
+    const Image gl = gp.read(PredictionTerm::Global);
+    const RecordLayout layout = RecordLayout::forScene(scene);
+    double worst = 0;
+    for (const ObjectNetworks& on : set.objects) {
+        std::vector<size_t> px;
+        for (size_t i = 0; i < g.pixelCount(); ++i)
+            if (g.objectId[i] == on.objectId) px.push_back(i);
+        if (px.empty()) continue;
+        float brdf[8] = {};
+        layout.brdfParameters(scene.materials[size_t(scene.objects[size_t(on.objectId)].material)], brdf);
+        MatX<float> raw(layout.inputCount(), Eigen::Index(px.size()));
+        for (size_t k = 0; k < px.size(); ++k) {
+            const size_t i = px[k];
+            const Vec3 p(g.position[3 * i], g.position[3 * i + 1], g.position[3 * i + 2]);
+            const Vec3 n(g.normal[3 * i], g.normal[3 * i + 1], g.normal[3 * i + 2]);
+            const Vec3 f[4] = {p, normalize(scene.camera.eye - p), gp.lightPosition(), n};
+            for (int j = 0; j < 12; ++j) raw(j, Eigen::Index(k)) = f[j / 3][j % 3];
+            for (int j = 12; j < layout.inputCount(); ++j) raw(j, Eigen::Index(k)) = brdf[j - 12];
+        }
+        MatX<float> d = MatX<float>::Zero(3, raw.cols()), ind = d, glob;
+        if (on.has("joint")) {
+            const MatX<float> y = on.byTarget.at("joint").predict(raw);
+            d = y.topRows(3);
+            ind = y.bottomRows(3);
+        }
+        if (on.has("direct")) d = on.byTarget.at("direct").predict(raw);
+        if (on.has("indirect")) ind = on.byTarget.at("indirect").predict(raw);
+        glob = on.has("global") ? on.byTarget.at("global").predict(raw) : MatX<float>(d + ind);
+        for (size_t k = 0; k < px.size(); ++k) {
+            const int x = int(px[k] % size_t(g.width)), y = int(px[k] / size_t(g.width));
+            for (int c = 0; c < 3; ++c) {
+                const double cpu = glob(c, Eigen::Index(k));
+                worst = std::max(worst, std::fabs(double(gl.at(x, y)[c]) - cpu) / std::max(std::fabs(cpu), 1e-2));
+            }
+        }
+    }
+    return worst;
+}
+
+std::string join(const std::vector<int>& v) {
+    std::string s;
+    for (int x : v) s += (s.empty() ? "" : "-") + std::to_string(x);
+    return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int size = 256, frames = 50;
+    std::string project = std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json", models;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto next = [&]() -> std::string {
+            if (i + 1 >= argc) {
+                std::fprintf(stderr, "%s needs a value\n", a.c_str());
+                std::exit(2);
+            }
+            return argv[++i];
+        };
+        if (a == "--size") size = std::stoi(next());
+        else if (a == "--frames") frames = std::max(1, std::stoi(next()));
+        else if (a == "--project") project = next();
+        else if (a == "--models") models = next();
+        else {
+            std::fprintf(stderr, "usage: bench_glsl [--size N] [--frames N] [--project P --models DIR]\n");
+            return 2;
+        }
+    }
+    try {
+        GlContext ctx;
+        Scene scene = loadProjectOrScene(project).scene;
+        scene.camera.width = scene.camera.height = size;
+        std::printf("bench_glsl: %s | %s\n%s, %dx%d, mean of %d frames (light moved every frame)\n\n",
+                    ctx.renderer().c_str(), ctx.version().c_str(), project.c_str(), size, size, frames);
+        std::printf("%-26s %8s %12s %16s%s\n", "networks", "weights", "ms/frame", "+read back ms", models.empty() ? "" : "  max rel vs CPU");
+        auto row = [&](const std::string& name, const ModelSet& set) {
+            GlslPredictor gp(scene, set);
+            size_t weights = 0;
+            for (const ObjectNetworks& on : set.objects)
+                for (const auto& kv : on.byTarget) weights += size_t(kv.second.params.size());
+            const Timing t = timeFrames(gp, scene, frames);
+            std::printf("%-26s %8zu %12.2f %16.2f", name.c_str(), weights, t.renderMs, t.readMs);
+            if (!models.empty()) std::printf("  %.3g", maxRelativeVsCpu(gp, scene, set));
+            std::printf("\n");
+        };
+        if (!models.empty()) {
+            const ModelSet set = loadModelSet(models, scene.contentHash());
+            row("trained (" + models + ")", set);
+        } else {
+            row("none (G-buffer only)", ModelSet{});
+            for (const auto& hidden : std::vector<std::vector<int>>{{20, 10}, {32, 16}, {64, 32}}) {
+                row(join(hidden) + " tanh, global", untrainedSet(scene, hidden, {"global"}));
+                row(join(hidden) + " tanh, direct+indirect", untrainedSet(scene, hidden, {"direct", "indirect"}));
+            }
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_glsl: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

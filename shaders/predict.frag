@@ -1,0 +1,125 @@
+#version 330 core
+// Network pass: one full-screen triangle; each pixel reads its G-buffer entry and evaluates its
+// object's radiance regression networks, whose weights and mapminmax scalers come from the float
+// texture uNetworks (layout documented in core/network_texture.h). The host prepends
+//   #define RRF_MAX_VEC4 n        vec4s in the widest layer (inputs included)
+//   #define RRF_NET_WIDTH_LOG2 k  log2 of the network texture's width in texels
+// All arithmetic is float, in the order of NetworkModel::predict: (x - offset) * scale, affine
+// layers with tanh/ReLU, linear output layer, y / scale + offset. evaluateTerms() in
+// core/network_texture.cpp mirrors this shader step by step.
+//
+// Outputs (RGBA32F): 0 direct, 1 indirect, 2 global; alpha 1 where an object or a light was hit.
+
+uniform sampler2D uGPosition;
+uniform sampler2D uGNormal;
+uniform sampler2D uGEmission;
+uniform sampler2D uNetworks;
+uniform vec3 uEye;
+uniform vec3 uLight;  // movable light's centre: the network's light-position input
+
+layout(location = 0) out vec4 oDirect;
+layout(location = 1) out vec4 oIndirect;
+layout(location = 2) out vec4 oGlobal;
+
+const int kWidthMask = (1 << RRF_NET_WIDTH_LOG2) - 1;
+
+vec4 rawIn[5];                 // 20 raw inputs: p, view, light, normal, BRDF parameters, zero-padded
+vec4 act[RRF_MAX_VEC4];        // activations of the current layer
+vec4 nxt[RRF_MAX_VEC4];        // activations being computed
+
+vec4 texel(int i) { return texelFetch(uNetworks, ivec2(i & kWidthMask, i >> RRF_NET_WIDTH_LOG2), 0); }
+
+// tanh as Eigen 3.4 computes it for float (generic_fast_tanh_float, which NetworkModel::predict
+// uses): a 13/6 rational approximation on [-7.9053, 7.9053], x itself for |x| < 0.0004. Matching the
+// CPU's formula, rather than calling the built-in tanh, keeps the two predictions within a few float
+// ulps of each other for every x: built-in tanh differs between drivers (some evaluate
+// (e^x - e^-x) / (e^x + e^-x), NaN for |x| > ~44), and exp-based forms such as 1 - 2 / (e^2x + 1)
+// lose relative accuracy near 0, which trained networks with large weights amplify.
+float tanhEigen(float a) {
+    float x = clamp(a, -7.90531110763549805, 7.90531110763549805);
+    float x2 = x * x;
+    float p = x2 * -2.76076847742355e-16 + 2.00018790482477e-13;
+    p = x2 * p + -8.60467152213735e-11;
+    p = x2 * p + 5.12229709037114e-08;
+    p = x2 * p + 1.48572235717979e-05;
+    p = x2 * p + 6.37261928875436e-04;
+    p = x2 * p + 4.89352455891786e-03;
+    p = x * p;
+    float q = x2 * 1.19825839466702e-06 + 1.18534705686654e-04;
+    q = x2 * q + 2.26843463243900e-03;
+    q = x2 * q + 4.89352518554385e-03;
+    return abs(a) < 0.0004 ? a : p / q;
+}
+
+// Evaluates the network block at texel `base`; outputs 0-2 go to `first`, 3-5 (joint nets) to `second`.
+void predictNetwork(int base, out vec3 first, out vec3 second) {
+    vec4 h = texel(base);
+    int nIn = int(h.x), nOut = int(h.y), layers = int(h.z);
+    bool relu = h.w > 0.5;
+    int inV = (nIn + 3) >> 2, outV = (nOut + 3) >> 2;
+    int inOff = base + 1, inScale = inOff + inV, outOff = inScale + inV, outScale = outOff + outV;
+    int t = outScale + outV;
+
+    for (int k = 0; k < RRF_MAX_VEC4; ++k) act[k] = vec4(0.0);
+    for (int k = 0; k < inV; ++k) act[k] = (rawIn[k] - texel(inOff + k)) * texel(inScale + k);
+
+    for (int l = 0; l < layers; ++l) {
+        vec4 lh = texel(t);
+        int n = int(lh.y), rowTexels = int(lh.z);
+        int rows = t + 1, bias = rows + n * rowTexels;
+        for (int k = 0; k < RRF_MAX_VEC4; ++k) nxt[k] = vec4(0.0);
+        bool hidden = l + 1 < layers;
+        for (int j = 0; j < n; ++j) {
+            float s = texel(bias + (j >> 2))[j & 3];
+            int row = rows + j * rowTexels;
+            for (int k = 0; k < rowTexels; ++k) s += dot(texel(row + k), act[k]);
+            if (hidden) s = relu ? max(s, 0.0) : tanhEigen(s);
+            nxt[j >> 2][j & 3] = s;
+        }
+        for (int k = 0; k < RRF_MAX_VEC4; ++k) act[k] = nxt[k];
+        t = bias + ((n + 3) >> 2);
+    }
+
+    float y[8];
+    for (int k = 0; k < 8; ++k) y[k] = 0.0;
+    for (int k = 0; k < nOut && k < 8; ++k)
+        y[k] = act[k >> 2][k & 3] / texel(outScale + (k >> 2))[k & 3] + texel(outOff + (k >> 2))[k & 3];
+    first = vec3(y[0], y[1], y[2]);
+    second = vec3(y[3], y[4], y[5]);
+}
+
+void main() {
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    vec4 gp = texelFetch(uGPosition, px, 0);
+    vec3 emission = texelFetch(uGEmission, px, 0).rgb;
+    int id = int(gp.w);
+    float covered = id == -1 ? 0.0 : 1.0;
+    // Emission seen directly belongs to the direct term (as in rrf::PathTracer).
+    oDirect = vec4(emission, covered);
+    oIndirect = vec4(0.0, 0.0, 0.0, covered);
+    oGlobal = vec4(emission, covered);
+    if (id < 0) return;
+
+    vec3 p = gp.xyz;
+    vec3 n = texelFetch(uGNormal, px, 0).xyz;
+    vec3 v = normalize(uEye - p);
+    int entry = 1 + 3 * id;
+    rawIn[0] = vec4(p, v.x);
+    rawIn[1] = vec4(v.yz, uLight.xy);
+    rawIn[2] = vec4(uLight.z, n);
+    rawIn[3] = texel(entry + 1);
+    rawIn[4] = texel(entry + 2);
+
+    vec4 off = texel(entry);
+    vec3 direct = vec3(0.0), indirect = vec3(0.0), global = vec3(0.0), unused;
+    bool any = false;
+    if (off.w >= 0.0) { predictNetwork(int(off.w), direct, indirect); any = true; }
+    if (off.x >= 0.0) { predictNetwork(int(off.x), direct, unused); any = true; }
+    if (off.y >= 0.0) { predictNetwork(int(off.y), indirect, unused); any = true; }
+    if (off.z >= 0.0) predictNetwork(int(off.z), global, unused);
+    else if (any) global = direct + indirect;
+
+    oDirect = vec4(direct + emission, 1.0);
+    oIndirect = vec4(indirect, 1.0);
+    oGlobal = vec4(global + emission, 1.0);
+}

@@ -1,0 +1,136 @@
+#pragma once
+/// Test networks for the GLSL predictor: untrained networks with realistic weights (the trainer's own
+/// Nguyen–Widrow / Glorot initialisation) and mapminmax scalers fitted on plausible inputs and
+/// outputs, plus the CPU reference prediction computed with NetworkModel::predict. Equivalence does
+/// not depend on the weights being good, only on both sides evaluating the same network.
+
+#include <cmath>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/model_set.h"
+#include "core/record_layout.h"
+#include "core/scene.h"
+#include "core/scene_json.h"
+
+namespace rrf::test {
+
+inline Scene cornellBox() { return loadScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/scene.json"); }
+
+/// Uniform in [0, 1) from a small LCG (tests must not depend on core's Rng interface details).
+class TestRandom {
+public:
+    explicit TestRandom(uint64_t seed) : s_(seed * 0x9E3779B97F4A7C15ull + 1) {}
+    float uniform() {
+        s_ = s_ * 6364136223846793005ull + 1442695040888963407ull;
+        return float(s_ >> 40) / float(1ull << 24);
+    }
+    float range(float lo, float hi) { return lo + (hi - lo) * uniform(); }
+    Vec3 unitVector() {
+        for (;;) {
+            const Vec3 v(range(-1, 1), range(-1, 1), range(-1, 1));
+            const float l = length(v);
+            if (l > 0.1f && l <= 1.f) return v / l;
+        }
+    }
+
+private:
+    uint64_t s_;
+};
+
+/// A network for `target` of object `objectId` with inputs fitted on the scene's ranges.
+inline NetworkModel randomNetwork(const Scene& scene, int objectId, const std::string& target, std::vector<int> hidden,
+                                  Activation act, uint64_t seed) {
+    const RecordLayout layout = RecordLayout::forScene(scene);
+    NetworkModel m;
+    m.arch.inputs = layout.inputCount();
+    m.arch.hidden = std::move(hidden);
+    m.arch.outputs = target == "joint" ? 6 : 3;
+    m.arch.activation = act;
+    m.params = initialParams(m.arch, seed, uint64_t(objectId) * 4 + uint64_t(target.size()));
+    m.objectId = objectId;
+    m.target = target;
+
+    TestRandom rnd(seed * 131 + uint64_t(objectId));
+    const Bounds3 b = scene.bounds();
+    const Bounds3 region = scene.lightRegion.empty() ? b : scene.lightRegion;
+    const int n = 64;
+    MatX<float> in(m.arch.inputs, n), out(m.arch.outputs, n);
+    float brdf[8] = {};
+    layout.brdfParameters(scene.materials[size_t(scene.objects[size_t(objectId)].material)], brdf);
+    for (int c = 0; c < n; ++c) {
+        const Vec3 p(rnd.range(b.lo.x, b.hi.x), rnd.range(b.lo.y, b.hi.y), rnd.range(b.lo.z, b.hi.z));
+        const Vec3 v = rnd.unitVector(), nn = rnd.unitVector();
+        const Vec3 l(rnd.range(region.lo.x, region.hi.x), rnd.range(region.lo.y, region.hi.y),
+                     rnd.range(region.lo.z, region.hi.z));
+        const Vec3 f[4] = {p, v, l, nn};
+        for (int k = 0; k < 12; ++k) in(k, c) = f[k / 3][k % 3];
+        // BRDF inputs are constant per object: exercises mapminmax's constant-feature rule.
+        for (int k = 12; k < m.arch.inputs; ++k) in(k, c) = brdf[k - 12];
+        // Radiance-like targets: the Cornell box's direct and indirect radiance lie within [0, 1.5].
+        for (int k = 0; k < m.arch.outputs; ++k) out(k, c) = rnd.range(0.f, 1.f + 0.1f * float(k));
+    }
+    m.inputScaler = MinMaxScaler::fit(in);
+    m.outputScaler = MinMaxScaler::fit(out);
+    m.validate();
+    return m;
+}
+
+/// Per object a different mix of targets, so that every combination rule of the shader is exercised:
+/// joint; direct + indirect; global only; global + direct + indirect; indirect only; direct only.
+inline ModelSet mixedModelSet(const Scene& scene, Activation act = Activation::Tanh, std::vector<int> hidden = {20, 10},
+                              uint64_t seed = 7) {
+    static const std::vector<std::vector<std::string>> mixes = {
+        {"joint"}, {"direct", "indirect"}, {"global"}, {"global", "direct", "indirect"}, {"indirect"}, {"direct"}};
+    ModelSet set;
+    set.inputLayout = RecordLayout::forScene(scene).inputs;
+    for (const Object& o : scene.objects) {
+        ObjectNetworks on;
+        on.objectId = o.id;
+        on.name = o.name;
+        for (const std::string& t : mixes[size_t(o.id) % mixes.size()])
+            on.byTarget[t] = randomNetwork(scene, o.id, t, hidden, act, seed);
+        set.objects.push_back(std::move(on));
+    }
+    return set;
+}
+
+/// CPU reference: direct, indirect, global of one object for raw inputs (inputs × N), combined by the
+/// rules of core/network_texture.h but computed with NetworkModel::predict (S = float) or
+/// NetworkModel::predictDouble (S = double, to measure how far float itself is from exact).
+template <typename S> struct CpuTermsT {
+    MatX<S> direct, indirect, global;
+};
+using CpuTerms = CpuTermsT<float>;
+
+template <typename S> MatX<S> predictAs(const NetworkModel& m, const MatX<S>& raw) {
+    if constexpr (std::is_same_v<S, float>)
+        return m.predict(raw);
+    else
+        return m.predictDouble(raw);
+}
+
+template <typename S> CpuTermsT<S> cpuTerms(const ObjectNetworks& on, const MatX<S>& raw) {
+    const Eigen::Index n = raw.cols();
+    CpuTermsT<S> t{MatX<S>::Zero(3, n), MatX<S>::Zero(3, n), MatX<S>::Zero(3, n)};
+    if (on.has("joint")) {
+        const MatX<S> y = predictAs(on.byTarget.at("joint"), raw);
+        t.direct = y.topRows(3);
+        t.indirect = y.bottomRows(3);
+    }
+    if (on.has("direct")) t.direct = predictAs(on.byTarget.at("direct"), raw);
+    if (on.has("indirect")) t.indirect = predictAs(on.byTarget.at("indirect"), raw);
+    if (on.has("global"))
+        t.global = predictAs(on.byTarget.at("global"), raw);
+    else
+        t.global = t.direct + t.indirect;
+    return t;
+}
+
+/// The acceptance rule of issue 6: relative difference ≤ 1e-4 with an absolute floor for outputs near 0.
+inline bool closeEnough(float gl, float cpu, float rel = 1e-4f, float floor = 1e-2f) {
+    return std::fabs(gl - cpu) <= rel * std::max(std::fabs(cpu), floor);
+}
+
+}  // namespace rrf::test
