@@ -169,12 +169,19 @@ NetworkTexture packNetworkTexture(const Scene& scene, const ModelSet& models, in
             ++tex.networkCount;
         }
     }
-    for (const auto& off : tex.offsets) {
-        tex.hasDirect |= off[kSlotDirect] >= 0 || off[kSlotJoint] >= 0;
-        tex.hasIndirect |= off[kSlotIndirect] >= 0 || off[kSlotJoint] >= 0;
-        tex.hasGlobal |= off[kSlotGlobal] >= 0 || off[kSlotDirect] >= 0 || off[kSlotIndirect] >= 0 ||
-                         off[kSlotJoint] >= 0;
+    tex.provides.assign(tex.offsets.size(), {false, false, false});
+    bool anyNetworks = false;
+    for (int t = 0; t < 3; ++t) tex.termAvailable[t] = true;
+    for (size_t o = 0; o < tex.offsets.size(); ++o) {
+        const auto& off = tex.offsets[o];
+        if (off[0] < 0 && off[1] < 0 && off[2] < 0 && off[3] < 0) continue;
+        anyNetworks = true;
+        const bool d = off[kSlotDirect] >= 0 || off[kSlotJoint] >= 0, i = off[kSlotIndirect] >= 0 || off[kSlotJoint] >= 0;
+        tex.provides[o] = {d, i, (d && i) || off[kSlotGlobal] >= 0};
+        for (int t = 0; t < 3; ++t) tex.termAvailable[t] = tex.termAvailable[t] && tex.provides[o][size_t(t)];
     }
+    if (!anyNetworks)
+        for (int t = 0; t < 3; ++t) tex.termAvailable[t] = false;
 
     const size_t texels = w.texel();
     const size_t rows = (texels + size_t(tex.width) - 1) / size_t(tex.width);
@@ -198,27 +205,29 @@ std::array<Vec3, 3> evaluateTerms(const NetworkTexture& tex, int objectId, const
     for (int i = 12; i < tex.inputCount; ++i) raw[i] = brdf[i - 12];  // texels 2+3o and 3+3o are adjacent
     const float* off = r.texel(1 + 3 * objectId);
     float y[8];
+    // Non-finite outputs become 0 per 3-vector, as core/predictor.cpp does.
+    auto finite = [](const Vec3& v) { return v.isFinite() ? v : Vec3(0.f); };
     bool haveDirect = false, haveIndirect = false;
     if (off[kSlotJoint] >= 0.f) {
         evaluateNetwork(r, int(off[kSlotJoint]), raw, y);
-        terms[0] = Vec3(y[0], y[1], y[2]);
-        terms[1] = Vec3(y[3], y[4], y[5]);
+        terms[0] = finite(Vec3(y[0], y[1], y[2]));
+        terms[1] = finite(Vec3(y[3], y[4], y[5]));
         haveDirect = haveIndirect = true;
     }
     if (off[kSlotDirect] >= 0.f) {
         evaluateNetwork(r, int(off[kSlotDirect]), raw, y);
-        terms[0] = Vec3(y[0], y[1], y[2]);
+        terms[0] = finite(Vec3(y[0], y[1], y[2]));
         haveDirect = true;
     }
     if (off[kSlotIndirect] >= 0.f) {
         evaluateNetwork(r, int(off[kSlotIndirect]), raw, y);
-        terms[1] = Vec3(y[0], y[1], y[2]);
+        terms[1] = finite(Vec3(y[0], y[1], y[2]));
         haveIndirect = true;
     }
-    if (off[kSlotGlobal] >= 0.f) {
+    if (!(haveDirect && haveIndirect) && off[kSlotGlobal] >= 0.f) {
         evaluateNetwork(r, int(off[kSlotGlobal]), raw, y);
-        terms[2] = Vec3(y[0], y[1], y[2]);
-    } else if (haveDirect || haveIndirect) {
+        terms[2] = finite(Vec3(y[0], y[1], y[2]));
+    } else {
         terms[2] = terms[0] + terms[1];
     }
     return terms;

@@ -27,10 +27,12 @@
 /// that the shader computes each neuron as a sum of vec4 dot products. Zero padding multiplies
 /// zero activations, so padded lanes never change a sum.
 ///
-/// How the terms are formed (shader and evaluateTerms below agree):
-///   direct   = the "direct" network, else outputs 0–2 of the "joint" network, else 0
-///   indirect = the "indirect" network, else outputs 3–5 of the "joint" network, else 0
-///   global   = the "global" network, else direct + indirect
+/// How the terms are formed (shader, evaluateTerms below and core/predictor.cpp agree):
+///   direct   = the "direct" network, else outputs 0–2 of the "joint" network, else 0 (unavailable)
+///   indirect = the "indirect" network, else outputs 3–5 of the "joint" network, else 0 (unavailable)
+///   global   = direct + indirect when both are available, else the "global" network if there is
+///              one, else direct + indirect of what there is (unavailable)
+///   a non-finite network output (any channel) becomes 0, as in the CPU predictor.
 /// Emission of lights seen directly is added by the renderer, not by the networks.
 
 #include <array>
@@ -60,10 +62,12 @@ struct NetworkTexture {
     int networkCount = 0;
     /// Texel offset of each object's networks by slot (NetworkSlot), −1 where absent.
     std::vector<std::array<int, 4>> offsets;
-    /// Whether any object provides each term (direct, indirect, global), directly or by the rules
-    /// above; a term that no object provides is all zero in the prediction.
-    bool hasDirect = false, hasIndirect = false, hasGlobal = false;
-
+    /// Per object (index = object id): whether its networks provide direct, indirect, global by the
+    /// rules above; all false for an object without networks (shown black).
+    std::vector<std::array<bool, 3>> provides;
+    /// Per term: every object that has networks provides it (the CPU predictor calls a term
+    /// unavailable when a covered pixel's object does not).
+    bool termAvailable[3] = {false, false, false};
     size_t texelCount() const { return size_t(width) * size_t(height); }
 };
 

@@ -51,6 +51,9 @@ float tanhEigen(float a) {
     return abs(a) < 0.0004 ? a : p / q;
 }
 
+// A non-finite network output is replaced by 0, as the CPU predictor does.
+vec3 finiteOrZero(vec3 v) { return any(isnan(v)) || any(isinf(v)) ? vec3(0.0) : v; }
+
 // Evaluates the network block at texel `base`; outputs 0-2 go to `first`, 3-5 (joint nets) to `second`.
 void predictNetwork(int base, out vec3 first, out vec3 second) {
     vec4 h = texel(base);
@@ -110,14 +113,23 @@ void main() {
     rawIn[3] = texel(entry + 1);
     rawIn[4] = texel(entry + 2);
 
+    // Term rules of core/network_texture.h (the same as core/predictor.cpp).
     vec4 off = texel(entry);
-    vec3 direct = vec3(0.0), indirect = vec3(0.0), global = vec3(0.0), unused;
-    bool any = false;
-    if (off.w >= 0.0) { predictNetwork(int(off.w), direct, indirect); any = true; }
-    if (off.x >= 0.0) { predictNetwork(int(off.x), direct, unused); any = true; }
-    if (off.y >= 0.0) { predictNetwork(int(off.y), indirect, unused); any = true; }
-    if (off.z >= 0.0) predictNetwork(int(off.z), global, unused);
-    else if (any) global = direct + indirect;
+    vec3 direct = vec3(0.0), indirect = vec3(0.0), global, unused;
+    if (off.w >= 0.0) {
+        predictNetwork(int(off.w), direct, indirect);
+        direct = finiteOrZero(direct);
+        indirect = finiteOrZero(indirect);
+    }
+    if (off.x >= 0.0) { predictNetwork(int(off.x), direct, unused); direct = finiteOrZero(direct); }
+    if (off.y >= 0.0) { predictNetwork(int(off.y), indirect, unused); indirect = finiteOrZero(indirect); }
+    bool both = (off.x >= 0.0 || off.w >= 0.0) && (off.y >= 0.0 || off.w >= 0.0);
+    if (!both && off.z >= 0.0) {
+        predictNetwork(int(off.z), global, unused);
+        global = finiteOrZero(global);
+    } else {
+        global = direct + indirect;
+    }
 
     oDirect = vec4(direct + emission, 1.0);
     oIndirect = vec4(indirect, 1.0);

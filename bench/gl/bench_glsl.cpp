@@ -124,7 +124,8 @@ double maxRelativeVsCpu(const GlslPredictor& gp, const Scene& scene, const Model
         }
         if (on.has("direct")) d = on.byTarget.at("direct").predict(raw);
         if (on.has("indirect")) ind = on.byTarget.at("indirect").predict(raw);
-        glob = on.has("global") ? on.byTarget.at("global").predict(raw) : MatX<float>(d + ind);
+        const bool both = (on.has("direct") || on.has("joint")) && (on.has("indirect") || on.has("joint"));
+        glob = !both && on.has("global") ? on.byTarget.at("global").predict(raw) : MatX<float>(d + ind);
         for (size_t k = 0; k < px.size(); ++k) {
             const int x = int(px[k] % size_t(g.width)), y = int(px[k] / size_t(g.width));
             for (int c = 0; c < 3; ++c) {

@@ -78,11 +78,12 @@ inline NetworkModel randomNetwork(const Scene& scene, int objectId, const std::s
 }
 
 /// Per object a different mix of targets, so that every combination rule of the shader is exercised:
-/// joint; direct + indirect; global only; global + direct + indirect; indirect only; direct only.
+/// joint; direct + indirect; global only; global + direct + indirect (global net unused); global +
+/// indirect (global net used); direct only.
 inline ModelSet mixedModelSet(const Scene& scene, Activation act = Activation::Tanh, std::vector<int> hidden = {20, 10},
                               uint64_t seed = 7) {
     static const std::vector<std::vector<std::string>> mixes = {
-        {"joint"}, {"direct", "indirect"}, {"global"}, {"global", "direct", "indirect"}, {"indirect"}, {"direct"}};
+        {"joint"}, {"direct", "indirect"}, {"global"}, {"global", "direct", "indirect"}, {"global", "indirect"}, {"direct"}};
     ModelSet set;
     set.inputLayout = RecordLayout::forScene(scene).inputs;
     for (const Object& o : scene.objects) {
@@ -121,7 +122,8 @@ template <typename S> CpuTermsT<S> cpuTerms(const ObjectNetworks& on, const MatX
     }
     if (on.has("direct")) t.direct = predictAs(on.byTarget.at("direct"), raw);
     if (on.has("indirect")) t.indirect = predictAs(on.byTarget.at("indirect"), raw);
-    if (on.has("global"))
+    const bool both = (on.has("direct") || on.has("joint")) && (on.has("indirect") || on.has("joint"));
+    if (!both && on.has("global"))
         t.global = predictAs(on.byTarget.at("global"), raw);
     else
         t.global = t.direct + t.indirect;

@@ -55,7 +55,12 @@ TEST(NetworkTexture, HeaderObjectTableAndOffsets) {
     EXPECT_EQ(tex.texels[1], float(scene.objects.size()));
     EXPECT_EQ(tex.texels[2], 15.f);  // Lambert-only: 12 + kd
     EXPECT_EQ(tex.texels[3], 20.f);  // widest layer: the 20-neuron hidden layer
-    EXPECT_TRUE(tex.hasDirect && tex.hasIndirect && tex.hasGlobal);
+    // Object 2 has only a global net, object 4 no direct one, object 5 only a direct one.
+    EXPECT_FALSE(tex.termAvailable[0] || tex.termAvailable[1] || tex.termAvailable[2]);
+    const std::array<bool, 3> expected[7] = {{true, true, true},   {true, true, true},  {false, false, true},
+                                             {true, true, true},   {false, true, true}, {true, false, false},
+                                             {true, true, true}};
+    for (int o = 0; o < 7; ++o) EXPECT_EQ(tex.provides[size_t(o)], expected[o]) << "object " << o;
     int networks = 0;
     for (const ObjectNetworks& on : set.objects) {
         const float* entry = &tex.texels[4 * (1 + 3 * size_t(on.objectId))];
@@ -97,7 +102,7 @@ TEST(NetworkTexture, ObjectsWithoutNetworksAndEmptySet) {
     const Scene scene = test::cornellBox();
     const NetworkTexture tex = packNetworkTexture(scene, ModelSet{});
     EXPECT_EQ(tex.networkCount, 0);
-    EXPECT_FALSE(tex.hasDirect || tex.hasIndirect || tex.hasGlobal);
+    EXPECT_FALSE(tex.termAvailable[0] || tex.termAvailable[1] || tex.termAvailable[2]);
     const float in[12] = {0, 0, 0, 0, 0, 1, 0, 0.9f, 0, 0, 0, 1};
     for (const Vec3& t : evaluateTerms(tex, 0, in)) EXPECT_TRUE(t.isZero());
 }
