@@ -1,5 +1,7 @@
 #include "core/project.h"
 
+#include "core/scene_overrides.h"
+
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -120,6 +122,11 @@ Project loadProjectOrScene(const std::string& path) {
 
     if (auto render = root.find("render")) p.render = parseRender(*render);
     p.doc = std::move(doc);
+    // Edits made in the workbench live in "scene_overrides"; apply them here so that the CLI and the
+    // GUI see the same scene (and datasets and models record the same scene hash).
+    std::vector<std::string> problems;
+    applySceneOverrides(p, problems);
+    for (const std::string& m : problems) p.scene.warnings.push_back("scene_overrides: " + m);
     return p;
 }
 

@@ -33,17 +33,17 @@ bool Renderer::runPass() {
     };
     tbb::combinable<Local> locals;
     const int ts = std::max(1, options_.tileSize);
-    {
-        // Pixels are disjoint between tiles, so the lock only orders passes against snapshot().
-        std::lock_guard<std::mutex> lock(mutex_);
-        tbb::parallel_for(tbb::blocked_range2d<int>(0, options_.height, ts, 0, options_.width, ts),
-                          [&](const tbb::blocked_range2d<int>& r) {
-                              if (cancelled_) return;
-                              Local& l = locals.local();
-                              renderTile(r.cols().begin(), r.rows().begin(), r.cols().end(), r.rows().end(), samples,
-                                         l.counters, l.nonFinite);
-                          });
-    }
+    pass_.assign(pixels_.size(), Pixel{});
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, options_.height, ts, 0, options_.width, ts),
+                      [&](const tbb::blocked_range2d<int>& r) {
+                          if (cancelled_) return;
+                          Local& l = locals.local();
+                          renderTile(r.cols().begin(), r.rows().begin(), r.cols().end(), r.rows().end(), samples,
+                                     l.counters, l.nonFinite);
+                      });
+    // A cancelled pass is merged too: each pixel carries its own sample count, so the tiles that did
+    // finish stay unbiased.
+    mergePass();
     Local total;
     locals.combine_each([&](const Local& l) {
         total.counters.rays += l.counters.rays;
@@ -65,9 +65,11 @@ void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCoun
     for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
             const uint64_t index = uint64_t(y) * uint64_t(options_.width) + uint64_t(x);
-            Pixel& px = pixels_[index];
+            // pixels_[index].next only changes in mergePass(), on this thread after the pass.
+            const uint32_t first = pixels_[index].next;
+            Pixel& px = pass_[index];
             for (int s = 0; s < samples; ++s) {
-                Rng rng(options_.seed, index, px.next++);
+                Rng rng(options_.seed, index, first + px.next++);
                 const float jx = rng.uniform(), jy = rng.uniform();
                 const Radiance L = tracer_.trace(camera_.generate(x, y, jx, jy), rng, counters);
                 if (!L.direct.isFinite() || !L.indirect.isFinite()) {
@@ -86,6 +88,21 @@ void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCoun
         }
     }
     samples_ += accepted;
+}
+
+void Renderer::mergePass() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (size_t i = 0; i < pixels_.size(); ++i) {
+        Pixel& dst = pixels_[i];
+        const Pixel& src = pass_[i];
+        for (int c = 0; c < 3; ++c) {
+            dst.direct[c] += src.direct[c];
+            dst.indirect[c] += src.indirect[c];
+            dst.sq[c] += src.sq[c];
+        }
+        dst.accepted += src.accepted;
+        dst.next += src.next;
+    }
 }
 
 double Renderer::progress() const {

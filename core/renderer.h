@@ -8,7 +8,8 @@
 /// keeps its own sample count so the mean stays unbiased.
 ///
 /// Thread safety: run()/runPass() on one worker thread; snapshot(), cancel(), progress() and stats()
-/// may be called from any other thread at any time (the UI thread polls them).
+/// may be called from any other thread at any time (the UI thread polls them); snapshot() shows the
+/// passes completed so far and does not block for the duration of a pass.
 
 #include <atomic>
 #include <cstdint>
@@ -83,13 +84,18 @@ private:
         uint32_t next = 0;         ///< next sample index (counts dropped samples too)
     };
     void renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite);
+    void mergePass();
 
     const Scene& scene_;
     RenderOptions options_;
     PathTracer tracer_;
     CameraRays camera_;
-    std::vector<Pixel> pixels_;
-    mutable std::mutex mutex_;  ///< guards pixels_ between a pass and a snapshot
+    std::vector<Pixel> pixels_;  ///< committed sums: what snapshot() shows
+    /// Sums of the pass in progress. A pass writes only here (each pixel from one thread, without a
+    /// lock) and is merged into pixels_ under the mutex at its end, so snapshot() never waits for a
+    /// pass — only for the sub-millisecond merge.
+    std::vector<Pixel> pass_;
+    mutable std::mutex mutex_;  ///< guards pixels_ between mergePass() and snapshot()
     std::atomic<bool> cancelled_{false};
     std::atomic<int> passes_{0};
     std::atomic<int> sppDone_{0};

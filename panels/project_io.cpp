@@ -3,7 +3,6 @@
 #include <exception>
 #include <vector>
 
-#include "panels/scene_overrides.h"
 
 namespace rrf::panels {
 
@@ -57,8 +56,7 @@ bool loadProjectIntoState(WorkbenchState& state, const std::string& path, std::s
         error = e.what();
         return false;
     }
-    std::vector<std::string> problems;
-    applySceneOverrides(project, problems);
+    std::vector<std::string> problems;  // scene_overrides problems arrive as scene warnings
     std::vector<Run> runs = runsFromDoc(project.doc, &problems);
     const LayoutState layout =
         project.doc.contains("layout") ? LayoutState::fromJson(project.doc["layout"]) : LayoutState();

@@ -7,7 +7,7 @@
 
 #include "core/effects.h"
 #include "panels/panels.h"
-#include "panels/scene_overrides.h"
+#include "core/scene_overrides.h"
 
 namespace rrf::panels {
 

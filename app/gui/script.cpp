@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "app/gui/workbench.h"
-#include "panels/scene_overrides.h"
+#include "core/scene_overrides.h"
 
 namespace rrf {
 
@@ -117,9 +117,9 @@ bool Script::execute(Workbench& wb, const json& s) {
                 "needs \"position\": [x, y, z]");
         require(!st.project.scene.lights.empty(), "the scene has no light");
         const json& p = s["position"];
-        st.project.scene.setLightPosition(panels::clampToLightRegion(
+        st.project.scene.setLightPosition(clampToLightRegion(
             st.project.scene, Vec3(p[0].get<float>(), p[1].get<float>(), p[2].get<float>())));
-        panels::recordLightOverride(st.project);
+        recordLightOverride(st.project);
         st.markDirty();
         st.request(panels::Command::SceneChanged);
     } else if (what == "select_object") {

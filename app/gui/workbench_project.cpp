@@ -5,7 +5,7 @@
 
 #include "core/image_io.h"
 #include "panels/project_io.h"
-#include "panels/scene_overrides.h"
+#include "core/scene_overrides.h"
 
 namespace rrf {
 
@@ -200,15 +200,15 @@ bool Workbench::reopenRun(int index) {
     if (run.settings.contains("scene_overrides")) {
         state_.project.doc["scene_overrides"] = run.settings["scene_overrides"];
         std::vector<std::string> problems;
-        panels::applySceneOverrides(state_.project, problems);
+        applySceneOverrides(state_.project, problems);
         for (const std::string& p : problems) state_.log.warning("re-open run: " + p);
     }
     if (run.settings.contains("light_position") && run.settings["light_position"].is_array() &&
         run.settings["light_position"].size() == 3 && !state_.project.scene.lights.empty()) {
         const json& p = run.settings["light_position"];
-        state_.project.scene.setLightPosition(panels::clampToLightRegion(
+        state_.project.scene.setLightPosition(clampToLightRegion(
             state_.project.scene, Vec3(p[0].get<float>(), p[1].get<float>(), p[2].get<float>())));
-        panels::recordLightOverride(state_.project);
+        recordLightOverride(state_.project);
     }
     sceneChanged(false);
     set.label = "Run '" + run.name + "'";

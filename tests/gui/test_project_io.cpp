@@ -11,7 +11,7 @@
 
 #include "panels/file_dialog.h"
 #include "panels/project_io.h"
-#include "panels/scene_overrides.h"
+#include "core/scene_overrides.h"
 #include "panels/view_model.h"
 
 namespace rrf::test {

@@ -1,9 +1,9 @@
-#include "panels/scene_overrides.h"
+#include "core/scene_overrides.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace rrf::panels {
+namespace rrf {
 
 using nlohmann::json;
 
@@ -127,4 +127,4 @@ Vec3 clampToLightRegion(const Scene& scene, const Vec3& p) {
     return Vec3(std::clamp(p.x, b.lo.x, b.hi.x), std::clamp(p.y, b.lo.y, b.hi.y), std::clamp(p.z, b.lo.z, b.hi.z));
 }
 
-}  // namespace rrf::panels
+}  // namespace rrf

@@ -15,7 +15,7 @@
 
 #include "core/project.h"
 
-namespace rrf::panels {
+namespace rrf {
 
 /// Applies project.doc["scene_overrides"] to project.scene. Entries that do not fit the scene
 /// (unknown material, light position outside the light region, malformed values) are skipped and
@@ -35,4 +35,4 @@ bool enforceEnergyConservation(Material& m, bool kdEdited);
 /// Clamps `p` into the scene's light region (unchanged when the region is empty).
 Vec3 clampToLightRegion(const Scene& scene, const Vec3& p);
 
-}  // namespace rrf::panels
+}  // namespace rrf
