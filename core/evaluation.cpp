@@ -29,7 +29,7 @@ std::string num(double v) {
 }  // namespace
 
 Reference renderReference(const Scene& scene, const Vec3& lightPos, const RenderOptions& options,
-                          const std::atomic<bool>* cancel) {
+                          const std::atomic<bool>* cancel, std::atomic<double>* progress) {
     Scene moved = scene;
     if (!moved.lights.empty()) moved.setLightPosition(lightPos);
     const Accel accel(moved);
@@ -42,6 +42,7 @@ Reference renderReference(const Scene& scene, const Vec3& lightPos, const Render
             break;
         }
         if (!renderer.runPass()) break;
+        if (progress) *progress = renderer.progress();
     }
     const RenderSnapshot s = renderer.snapshot();
     r.images[int(Term::Direct)] = s.direct;

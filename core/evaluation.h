@@ -28,9 +28,10 @@ struct Reference {
 };
 
 /// Renders the reference of `scene` with the movable light centred at `lightPos` (the scene itself is
-/// not modified). `options.seed` keys the noise; stops early when `cancel` becomes true.
+/// not modified). `options.seed` keys the noise; stops early when `cancel` becomes true. `progress`
+/// (optional) receives the fraction done after every pass, for a progress line on another thread.
 Reference renderReference(const Scene& scene, const Vec3& lightPos, const RenderOptions& options,
-                          const std::atomic<bool>* cancel = nullptr);
+                          const std::atomic<bool>* cancel = nullptr, std::atomic<double>* progress = nullptr);
 
 /// Reads a directory written by `rrf render` (direct/indirect/global.exr or .pfm and render.json,
 /// whose light position and spp it takes). Throws InputError naming the file.

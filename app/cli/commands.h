@@ -8,5 +8,6 @@ namespace rrf::cli {
 void addRenderCommand(CLI::App& app, int& exitCode);
 void addDataCommands(CLI::App& app, int& exitCode);
 void addTrainCommand(CLI::App& app, int& exitCode);
+void addPredictCommands(CLI::App& app, int& exitCode);
 
 }  // namespace rrf::cli

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
     rrf::cli::addRenderCommand(app, exitCode);
     rrf::cli::addDataCommands(app, exitCode);
     rrf::cli::addTrainCommand(app, exitCode);
+    rrf::cli::addPredictCommands(app, exitCode);
     // CLI11 would only say "A subcommand is required" for a typo; name the word and the choices.
     if (argc > 1 && argv[1][0] != '-') {
         std::string known;
