@@ -324,12 +324,12 @@ std::string sweepTable(const SweepResult& r) {
             std::snprintf(line, sizeof line, "%s %.3f s  ", kv.first.c_str(), kv.second);
             stages += line;
         }
-        std::snprintf(line, sizeof line, "| %-10s | %-44s | %10.4g | %10.4g | %10.4g |\n", row.setting.c_str(),
+        std::snprintf(line, sizeof line, "| %-10s | %-58s | %10.4g | %10.4g | %10.4g |\n", row.setting.c_str(),
                       stages.c_str(), row.overall.rmse, row.overall.relativeRmse, row.overall.mae);
         out << line;
     }
-    std::snprintf(line, sizeof line, "| %-10s | %-44s | %10s | %10s | %10s |\n|%s|%s|%s|%s|%s|\n", r.what.c_str(),
-                  "wall time per stage", "RMSE", "rel. RMSE", "MAE", "------------", std::string(46, '-').c_str(),
+    std::snprintf(line, sizeof line, "| %-10s | %-58s | %10s | %10s | %10s |\n|%s|%s|%s|%s|%s|\n", r.what.c_str(),
+                  "wall time per stage", "RMSE", "rel. RMSE", "MAE", "------------", std::string(60, '-').c_str(),
                   "------------", "------------", "------------");
     std::string s = line + out.str();
     if (r.extra.contains("loglog_slope_rmse")) {
