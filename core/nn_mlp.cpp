@@ -113,7 +113,11 @@ MinMaxScaler MinMaxScaler::fit(const Eigen::Ref<const MatX<float>>& data) {
         if (!(lo <= hi)) continue;  // no finite value: identity
         const double range = hi - lo;
         const double scale = 2.0 / range;
-        if (range > 0 && std::isfinite(scale)) {
+        // A range within float rounding of the values is noise, not signal: the fixed coordinate of
+        // a flat wall varies by ~1e-7 through hit-point rounding, and stretching that to [-1, 1]
+        // made the networks learn speckle. 1e-5 relative is ~100 float ulps.
+        const double magnitude = std::max(std::fabs(lo), std::fabs(hi));
+        if (range > 1e-5 * magnitude && std::isfinite(scale)) {
             s.offset(r) = 0.5 * (lo + hi);
             s.scale(r) = scale;
         } else {

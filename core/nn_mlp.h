@@ -70,8 +70,9 @@ VecX<double> initialParams(const MlpArch& arch, uint64_t seed, uint64_t stream =
 
 /// Per-feature affine map onto [-1, 1] fitted on training data (mapminmax):
 /// `normalised = (raw − offset) · scale`, `raw = normalised / scale + offset`.
-/// A constant (or non-finite-range) feature gets scale 1 and offset = its value, so it maps to 0
-/// and maps back exactly; nothing is ever divided by zero.
+/// A constant feature — exactly, or within float rounding (range ≤ 1e-5 of its magnitude) — gets
+/// scale 1 and offset = its minimum, so it maps to (about) 0 and back exactly; nothing is ever
+/// divided by zero, and rounding noise is never amplified into a full-range input.
 struct MinMaxScaler {
     VecX<double> offset, scale;
 

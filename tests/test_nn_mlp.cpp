@@ -172,3 +172,18 @@ TEST(MinMaxScaler, SingleSampleAndEmptyAreFinite) {
     const MinMaxScaler e = MinMaxScaler::fit(MatX<float>(2, 0));
     EXPECT_EQ(e.scale, VecX<double>::Ones(2));
 }
+
+TEST(MinMaxScaler, RoundingNoiseIsNotStretched) {
+    // The fixed coordinate of hit points on the wall x = -1 scatters by a few float ulps; it must
+    // stay a (near-)constant input, not become a full-range one. A small but real range at small
+    // magnitude (direct light ~1e-4 ± 1e-6) must still be scaled.
+    MatX<float> d(2, 4);
+    d << -1.f, std::nextafter(-1.f, 0.f), std::nextafter(-1.f, -2.f), -1.f,  //
+        1.0e-4f, 1.02e-4f, 0.98e-4f, 1.01e-4f;
+    const MinMaxScaler s = MinMaxScaler::fit(d);
+    MatX<double> n = d.cast<double>();
+    s.apply(n);
+    EXPECT_LT(n.row(0).cwiseAbs().maxCoeff(), 1e-6);
+    EXPECT_DOUBLE_EQ(n.row(1).minCoeff(), -1.0);
+    EXPECT_DOUBLE_EQ(n.row(1).maxCoeff(), 1.0);
+}
