@@ -21,16 +21,13 @@ file(GLOB RRF_PANELS_SOURCES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/panels/*.cpp)
 add_library(rrf_panels STATIC ${RRF_PANELS_SOURCES})
 target_link_libraries(rrf_panels PUBLIC rrf_core PkgConfig::IMGUI)
 
+# ---- GLSL prediction (app/gl): the workbench's live prediction draws with it ----------------------
+include(cmake/Gl.cmake)
+
 # ---- rrf-workbench: window, GL, job runner, main ------------------------------------------------
 file(GLOB RRF_GUI_SOURCES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/app/gui/*.cpp)
 add_executable(rrf-workbench ${RRF_GUI_SOURCES})
-target_link_libraries(rrf-workbench PRIVATE rrf_panels rrf_glad glfw OpenGL::GL ${CMAKE_DL_LIBS})
-# GLSL prediction (cmake/Gl.cmake, app/gl/) is included once its sources exist, so a checkout where
-# that stage is still being written configures cleanly.
-file(GLOB RRF_GL_PRESENT ${CMAKE_SOURCE_DIR}/app/gl/*.cpp)
-if(EXISTS ${CMAKE_SOURCE_DIR}/cmake/Gl.cmake AND RRF_GL_PRESENT)
-  include(cmake/Gl.cmake)
-endif()
+target_link_libraries(rrf-workbench PRIVATE rrf_panels rrf_gl rrf_glad glfw OpenGL::GL ${CMAKE_DL_LIBS})
 
 # ---- GUI tests ----------------------------------------------------------------------------------
 if(RRF_BUILD_TESTS)
@@ -41,6 +38,7 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_panels.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_project_io.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_job_runner.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_learning_panels.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp)
   target_link_libraries(rrf_gui_tests PRIVATE rrf_panels GTest::gtest GTest::gtest_main)
   include(GoogleTest)
@@ -50,8 +48,9 @@ if(RRF_BUILD_TESTS)
   target_link_libraries(rrf_gui_shotcheck PRIVATE rrf_core)
 
   # The real window under Xvfb: N frames on the Cornell box, then a screenshot that must show the
-  # ground truth; and a scripted session (render, save a run, save/re-open, compare, export, move
-  # the light) whose screenshot must show all three views filled.
+  # ground truth; and a scripted session (render, save a run, save/re-open, compare, generate, train,
+  # evaluate, export, move the light, re-open) whose screenshot must show ground truth | prediction |
+  # error map filled.
   set(RRF_GUI_RUNNER ${CMAKE_SOURCE_DIR}/tests/gui/run_workbench.sh)
   add_test(NAME gui_screenshot
            COMMAND ${RRF_GUI_RUNNER} $<TARGET_FILE:rrf-workbench> $<TARGET_FILE:rrf_gui_shotcheck>

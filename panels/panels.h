@@ -3,6 +3,10 @@
 /// ImGui window (a pane's tab) and edits the WorkbenchState; actions that need the application
 /// (files, jobs, GL) are queued as Requests.
 
+#include <string>
+#include <vector>
+
+#include "core/network_settings.h"
 #include "panels/workbench_state.h"
 
 namespace rrf::panels {
@@ -17,5 +21,28 @@ void drawSamplingPanel(WorkbenchState& state);
 void drawViewsPanel(WorkbenchState& state);
 /// Log: messages and errors, copy to clipboard.
 void drawLogPanel(WorkbenchState& state);
+/// Network: hidden layers, activation, targets, trainer and its parameters, parameter counts.
+void drawNetworkPanel(WorkbenchState& state);
+/// Training: start/stop, live loss plot (log y, per network or aggregate), epoch, time, μ or rate.
+void drawTrainingPanel(WorkbenchState& state);
+/// Objects: per-object error table of the last evaluation, sortable, click to highlight, CSV.
+void drawObjectsPanel(WorkbenchState& state);
+/// Cost: accuracy versus time from sweeps and from the project's runs.
+void drawCostPanel(WorkbenchState& state);
+
+// Network panel edits (the panel's buttons call these; each stores the settings and marks the
+// project dirty, and returns false when nothing changed). They throw InputError like
+// NetworkSettings::fromProject when the project's sections are malformed.
+bool addHiddenLayer(WorkbenchState& state);
+bool removeHiddenLayer(WorkbenchState& state, int index);
+bool resizeHiddenLayer(WorkbenchState& state, int index, int size);
+bool setTrainerType(WorkbenchState& state, TrainerType type);
+
+/// The rows of one term sorted by `column` (stable; ties keep object order).
+std::vector<ObjectErrorRow> sortedObjectRows(const std::vector<ObjectErrorRow>& rows, ObjectColumn column, bool ascending);
+/// The table as CSV: a header line, then one line per row (object names quoted).
+std::string objectRowsCsv(const std::vector<ObjectErrorRow>& rows, const char* term);
+/// Accuracy-versus-time points of the project's training runs that were evaluated.
+CostSeries runsCostSeries(const std::vector<Run>& runs);
 
 }  // namespace rrf::panels

@@ -8,15 +8,7 @@ namespace rrf::panels {
 
 using nlohmann::json;
 
-json renderSettingsJson(const RenderSettings& s) {
-    return json{{"spp", s.spp},
-                {"width", s.width},
-                {"height", s.height},
-                {"mode", s.estimator == Estimator::NEE ? "nee" : "naive"},
-                {"seed", s.seed},
-                {"max_depth", s.maxDepth},
-                {"exposure", s.exposure}};
-}
+json renderSettingsJson(const RenderSettings& s) { return renderSettingsToJson(s); }
 
 bool applyRenderSettingsJson(const json& j, RenderSettings& s) {
     if (!j.is_object()) return false;
@@ -69,6 +61,11 @@ bool loadProjectIntoState(WorkbenchState& state, const std::string& path, std::s
     state.compareRun = -1;
     state.groundTruth = ImageSet{};
     state.compare = ImageSet{};
+    state.prediction = ImageSet{};
+    state.view.compareSource = CompareSource::Prediction;
+    state.training = TrainingInfo{};
+    state.evaluation = EvaluationInfo{};
+    state.cost = CostInfo{};
     state.render = RenderProgress{};
     state.view.selectedObject = -1;
     state.view.exposure = state.project.render.exposure;

@@ -11,7 +11,7 @@ using nlohmann::json;
 
 namespace {
 const char* const kKnownKeys[] = {"id", "name", "kind", "created", "settings", "loss", "metrics", "timings",
-                                  "artifacts"};
+                                  "artifacts", "curves"};
 
 bool known(const std::string& key) {
     for (const char* k : kKnownKeys)
@@ -45,6 +45,24 @@ std::string formatTime(const char* fmt) {
     std::strftime(buf, sizeof buf, fmt, &tm);
     return buf;
 }
+
+json lossJson(const std::vector<LossPoint>& loss) {
+    json l = json::array();
+    for (const LossPoint& p : loss)
+        l.push_back(json::array({p.epoch, numberOrNull(p.train), numberOrNull(p.validation), p.seconds}));
+    return l;
+}
+
+std::vector<LossPoint> lossFromJson(const json& j) {
+    if (!j.is_array()) throw std::invalid_argument("'loss' must be an array");
+    std::vector<LossPoint> loss;
+    for (const json& p : j) {
+        if (!p.is_array() || p.size() != 4 || !p[0].is_number_integer())
+            throw std::invalid_argument("'loss' entries must be [epoch, train, validation, seconds]");
+        loss.push_back({p[0].get<int>(), numberFrom(p[1]), numberFrom(p[2]), numberFrom(p[3])});
+    }
+    return loss;
+}
 }  // namespace
 
 json Run::toJson() const {
@@ -54,10 +72,14 @@ json Run::toJson() const {
     j["kind"] = kind;
     j["created"] = created;
     j["settings"] = settings;
-    json l = json::array();
-    for (const LossPoint& p : loss)
-        l.push_back(json::array({p.epoch, numberOrNull(p.train), numberOrNull(p.validation), p.seconds}));
-    j["loss"] = l;
+    j["loss"] = lossJson(loss);
+    if (!curves.empty()) {
+        json c = json::array();
+        for (const LossCurve& curve : curves)
+            c.push_back(json{{"object", curve.objectId}, {"name", curve.object}, {"target", curve.target},
+                             {"loss", lossJson(curve.points)}});
+        j["curves"] = c;
+    }
     j["metrics"] = metrics;
     j["timings"] = timings;
     j["artifacts"] = artifacts;
@@ -75,12 +97,18 @@ Run Run::fromJson(const json& j) {
     r.settings = objectOr(j, "settings");
     r.metrics = objectOr(j, "metrics");
     r.timings = objectOr(j, "timings");
-    if (j.contains("loss")) {
-        if (!j["loss"].is_array()) throw std::invalid_argument("'loss' must be an array");
-        for (const json& p : j["loss"]) {
-            if (!p.is_array() || p.size() != 4 || !p[0].is_number_integer())
-                throw std::invalid_argument("'loss' entries must be [epoch, train, validation, seconds]");
-            r.loss.push_back({p[0].get<int>(), numberFrom(p[1]), numberFrom(p[2]), numberFrom(p[3])});
+    if (j.contains("loss")) r.loss = lossFromJson(j["loss"]);
+    if (j.contains("curves")) {
+        if (!j["curves"].is_array()) throw std::invalid_argument("'curves' must be an array");
+        for (const json& c : j["curves"]) {
+            if (!c.is_object() || !c.contains("object") || !c["object"].is_number_integer())
+                throw std::invalid_argument("'curves' entries need an integer 'object'");
+            LossCurve curve;
+            curve.objectId = c["object"].get<int>();
+            curve.object = stringOr(c, "name", std::to_string(curve.objectId));
+            curve.target = stringOr(c, "target", "global");
+            if (c.contains("loss")) curve.points = lossFromJson(c["loss"]);
+            r.curves.push_back(std::move(curve));
         }
     }
     if (j.contains("artifacts")) {

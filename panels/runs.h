@@ -20,13 +20,24 @@ struct LossPoint {
     double seconds = 0.0;
 };
 
+/// The loss history of one network of a training run.
+struct LossCurve {
+    int objectId = -1;
+    std::string object;  ///< object name
+    std::string target;  ///< "direct", "indirect", "global" or "joint"
+    std::vector<LossPoint> points;
+    /// "<object> <target>", for legends and read-outs.
+    std::string label() const { return object + " " + target; }
+};
+
 struct Run {
     std::string id;        ///< unique within the project, also the artifact directory name
     std::string name;      ///< user-visible, editable
     std::string kind;      ///< "render", later "generate", "train", "evaluate"
     std::string created;   ///< local time, ISO 8601
     nlohmann::json settings = nlohmann::json::object();  ///< snapshot of every setting that made the run
-    std::vector<LossPoint> loss;                          ///< empty for non-training runs
+    std::vector<LossPoint> loss;                          ///< aggregate curve; empty for non-training runs
+    std::vector<LossCurve> curves;                        ///< one per network (training runs)
     nlohmann::json metrics = nlohmann::json::object();   ///< e.g. {"relative_error": 0.01, "spp": 64}
     nlohmann::json timings = nlohmann::json::object();   ///< seconds per stage
     std::vector<std::string> artifacts;                   ///< files, relative to the project directory

@@ -58,7 +58,8 @@ void toneMapRgba(const Image& image, float exposure, const std::vector<int>* ids
 void ViewModel::update(const WorkbenchState& s) {
     Key k;
     k.gt = s.groundTruth.revision;
-    k.cmp = s.compare.revision;
+    k.cmp = s.compared().revision;
+    k.source = s.view.compareSource;
     k.term = s.view.term;
     k.metric = s.view.metric;
     k.exposure = s.view.exposure;
@@ -66,12 +67,12 @@ void ViewModel::update(const WorkbenchState& s) {
     k.selected = s.view.highlight ? s.view.selectedObject : -1;
     k.ids = s.objectIds.size();
     if (k == key_) return;
-    const bool sourcesChanged = k.gt != key_.gt || k.cmp != key_.cmp || k.term != key_.term;
+    const bool sourcesChanged = k.gt != key_.gt || k.cmp != key_.cmp || k.source != key_.source || k.term != key_.term;
     const bool errorChanged = sourcesChanged || k.metric != key_.metric;
     key_ = k;
 
     const Image& ref = s.groundTruth.term(s.view.term);
-    const Image& cmp = s.compare.term(s.view.term);
+    const Image& cmp = s.compared().term(s.view.term);
     // Highlighting needs the id buffer to match the image; a render at another size is shown undimmed.
     auto idsFor = [&](const Image& img) -> const std::vector<int>* {
         return (img.width == s.idWidth && img.height == s.idHeight && !s.objectIds.empty()) ? &s.objectIds : nullptr;

@@ -45,12 +45,13 @@ private:
     struct Key {
         uint64_t gt = ~0ull, cmp = ~0ull;
         Term term = Term::Global;
+        CompareSource source = CompareSource::Prediction;
         ErrorMetric metric = ErrorMetric::Absolute;
         float exposure = 0.f, errorMax = 0.f;
         int selected = -2;
         size_t ids = 0;
         bool operator==(const Key& o) const {
-            return gt == o.gt && cmp == o.cmp && term == o.term && metric == o.metric && exposure == o.exposure &&
+            return gt == o.gt && cmp == o.cmp && source == o.source && term == o.term && metric == o.metric && exposure == o.exposure &&
                    errorMax == o.errorMax && selected == o.selected && ids == o.ids;
         }
     };

@@ -74,6 +74,10 @@ void drawToolbar(WorkbenchState& state) {
                      ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
     ImGui::SameLine();
     ImGui::Checkbox("highlight", &v.highlight);
+    ImGui::SameLine();
+    int source = int(v.compareSource);
+    ImGui::SetNextItemWidth(w * 1.3f);
+    if (ImGui::Combo("middle view", &source, "prediction\0compared run\0")) v.compareSource = CompareSource(source);
 }
 
 /// Draws one view and handles zoom/pan on it; returns true while the mouse is over it.
@@ -125,7 +129,9 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
         }
     } else {
         const char* msg = index == ViewModel::kCompared
-                              ? "Nothing to compare yet:\nprediction needs trained models;\n\"Compare\" a run in the Project panel."
+                              ? (state.view.compareSource == CompareSource::Prediction
+                                     ? "No prediction yet: generate a dataset\n(Sampling) and train (Training)."
+                                     : "No run compared: \"Compare\" a run\nin the Project panel.")
                               : index == ViewModel::kError ? "Error map: needs a compared image\nof the same size."
                                                            : "No ground truth yet: press Render.";
         dl->AddText(ImVec2(pos.x + 8, pos.y + 8), IM_COL32(160, 160, 160, 255), msg);
@@ -192,7 +198,7 @@ void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp
 void drawViewsPanel(WorkbenchState& state) {
     drawToolbar(state);
     const Image& ref = state.groundTruth.term(state.view.term);
-    const Image& cmp = state.compare.term(state.view.term);
+    const Image& cmp = state.compared().term(state.view.term);
     const float spacing = ImGui::GetStyle().ItemSpacing.x;
     const float footer = ImGui::GetTextLineHeightWithSpacing() * 4.5f;
     const ImVec2 avail = ImGui::GetContentRegionAvail();
@@ -203,7 +209,9 @@ void drawViewsPanel(WorkbenchState& state) {
 
     char gtTitle[96];
     std::snprintf(gtTitle, sizeof gtTitle, "Ground truth (%s, %d spp)", termName(state.view.term), state.render.spp);
-    const std::string cmpTitle = state.compare.empty() ? std::string("Compared") : state.compare.label;
+    const ImageSet& compared = state.compared();
+    const std::string cmpTitle = compared.empty() ? std::string(state.view.compareSource == CompareSource::Run ? "Compared run" : "Prediction")
+                                                  : compared.label;
     const std::string errTitle = std::string("Error: ") + errorMetricName(state.view.metric);
 
     ImVec2 hover(-1, -1);

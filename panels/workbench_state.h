@@ -14,6 +14,7 @@
 #include "core/accel.h"
 #include "core/image.h"
 #include "core/project.h"
+#include "panels/experiment_state.h"
 #include "panels/layout.h"
 #include "panels/log.h"
 #include "panels/runs.h"
@@ -24,6 +25,8 @@ namespace rrf::panels {
 enum class Term { Global, Direct, Indirect };
 /// Per-pixel error between the reference (ground truth) and the compared image, on luminance.
 enum class ErrorMetric { Absolute, Relative, Squared };
+/// What the middle view shows: the trained models' prediction or a saved run's images.
+enum class CompareSource { Prediction, Run };
 
 const char* termName(Term t);
 const char* errorMetricName(ErrorMetric m);
@@ -39,6 +42,12 @@ enum class Command {
     SceneChanged,     ///< materials or the light changed: rebuild and restart the ground truth
     Generate,         ///< generate the training dataset with the project's sampling settings
     CancelGenerate,
+    Train,            ///< train the project's networks on the dataset (a run is recorded)
+    CancelTrain,      ///< stop training; the networks keep their best epoch and are saved
+    Evaluate,         ///< compare the prediction with the ground truth per object and term
+    ExportObjectsCsv, ///< path: the Objects table as CSV (empty path: ask)
+    RunSweep,         ///< path: what to sweep ("spp", "grid", "hidden", "trainer")
+    CancelSweep,
     SaveRun,          ///< record the current ground truth as a run
     ReopenRun,        ///< index: restore the run's settings and show its images as the ground truth
     CompareRun,       ///< index: show the run's images in the compare view, the error against it
@@ -73,6 +82,7 @@ struct ViewState {
     float errorMax = 0.25f;     ///< top of the false-colour scale
     float zoom = 1.f;           ///< view pixels per image pixel, relative to fitting the pane
     float panX = 0.f, panY = 0.f;  ///< image-space centre offset in image pixels
+    CompareSource compareSource = CompareSource::Prediction;
     bool highlight = true;      ///< dim everything but the selected object
     int selectedObject = -1;
     int hoverX = -1, hoverY = -1;  ///< image pixel under the mouse, -1 when none
@@ -93,6 +103,7 @@ struct DatasetInfo {
     bool running = false;
     double progress = 0.0;
     std::string path;  ///< empty until a dataset was written
+    int inputCount = 0;  ///< network inputs per record of that dataset (0 = unknown)
     std::vector<std::pair<std::string, uint64_t>> recordsPerObject;
     double seconds = 0.0;
 };
@@ -109,9 +120,16 @@ struct WorkbenchState {
     int idWidth = 0, idHeight = 0;
 
     ImageSet groundTruth;
-    ImageSet compare;  ///< a run's images (the prediction will go here when prediction lands)
+    ImageSet compare;     ///< a run's images ("Compare" in the runs table)
+    ImageSet prediction;  ///< the trained models' prediction at the current light position
     RenderProgress render;
     DatasetInfo dataset;
+    TrainingInfo training;
+    TrainingView trainingView;
+    EvaluationInfo evaluation;
+    ObjectsView objectsView;
+    CostInfo cost;
+    CostView costView;
     ViewState view;
     /// GL textures of the three views, set by the application (null in tests: nothing is drawn).
     ImTextureID viewTextures[3] = {nullptr, nullptr, nullptr};
@@ -122,6 +140,8 @@ struct WorkbenchState {
     std::vector<std::string> recent;
     Log log;
     std::vector<Request> requests;
+    /// A tab the application wants in front ("Training", "Objects", ...); cleared once shown.
+    std::string focusTab;
 
     void request(Command c, std::string path = {}, int index = -1) {
         requests.push_back({c, std::move(path), index});
@@ -129,6 +149,11 @@ struct WorkbenchState {
     void markDirty() { dirty = true; }
     /// Name for titles: the project's "name", else its file name, else "untitled".
     std::string projectName() const;
+    /// The images of the middle view (the prediction or the compared run, per view.compareSource).
+    const ImageSet& compared() const { return view.compareSource == CompareSource::Run ? compare : prediction; }
 };
+
+/// Index of a panels::Term in core's direct/indirect/global order (core/predictor.h).
+inline int coreTermIndex(Term t) { return t == Term::Direct ? 0 : t == Term::Indirect ? 1 : 2; }
 
 }  // namespace rrf::panels

@@ -10,16 +10,23 @@ const char* jobKindName(JobKind kind) {
         case JobKind::Generate: return "generate";
         case JobKind::Train: return "train";
         case JobKind::Evaluate: return "evaluate";
+        case JobKind::Predict: return "predict";
+        case JobKind::Sweep: return "sweep";
     }
     return "job";
 }
 
 bool jobsConflict(JobKind a, JobKind b) {
     if (a == b) return true;  // two of a kind would write the same outputs
+    // A sweep renders, generates and trains in its own memory and writes no project files; it only
+    // competes for the cores, which the user decides about.
+    if (a == JobKind::Sweep || b == JobKind::Sweep) return false;
     auto pair = [&](JobKind x, JobKind y) { return (a == x && b == y) || (a == y && b == x); };
     // Training reads the dataset being generated; evaluation reads the models being trained and
     // compares against the ground truth being rendered.
+    // A CPU prediction reads the models a training job is about to replace.
     return pair(JobKind::Generate, JobKind::Train) || pair(JobKind::Train, JobKind::Evaluate) ||
+           pair(JobKind::Train, JobKind::Predict) ||
            pair(JobKind::Render, JobKind::Evaluate);
 }
 

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "app/gui/workbench.h"
+#include "core/network_settings.h"
 #include "core/scene_overrides.h"
 
 namespace rrf {
@@ -106,6 +107,21 @@ bool Script::execute(Workbench& wb, const json& s) {
         if (s.contains("spp")) sampling["spp"] = s["spp"];
         st.project.doc["sampling"] = sampling;
         require(wb.startGenerate(), "the generator could not start (see the log)");
+    } else if (what == "train") {
+        // Optional overrides of the project's network settings, for small scripted runs.
+        if (s.contains("hidden") || s.contains("trainer") || s.contains("targets")) {
+            NetworkSettings n = NetworkSettings::fromProject(st.project);
+            if (s.contains("hidden")) n.options.hidden = s["hidden"].get<std::vector<int>>();
+            if (s.contains("targets")) n.options.targets = parseTargetMode(text(s, "targets"));
+            if (s.contains("trainer")) n.options.trainer = TrainerConfig::fromJson(json{{"type", text(s, "trainer")}}, "script");
+            n.store(st.project);
+            st.markDirty();
+        }
+        require(wb.startTrain(int(number(s, "epochs", 0))), "training could not start (see the log)");
+    } else if (what == "evaluate") {
+        require(wb.startEvaluate(), "the evaluation could not start (see the log)");
+    } else if (what == "tab") {
+        st.focusTab = text(s, "name");
     } else if (what == "save_run") {
         require(wb.saveRun(), "could not save the run (see the log)");
     } else if (what == "compare_run") {
@@ -168,11 +184,17 @@ bool Script::execute(Workbench& wb, const json& s) {
         if (s.contains("dataset"))
             require(!st.dataset.path.empty() == s["dataset"].get<bool>(), "dataset state differs");
         if (s.contains("compare")) require(!st.compare.empty() == s["compare"].get<bool>(), "compare view state differs");
+        if (s.contains("prediction"))
+            require(!st.prediction.empty() == s["prediction"].get<bool>(), "prediction view state differs");
+        if (s.contains("evaluated")) require(st.evaluation.valid == s["evaluated"].get<bool>(), "evaluation state differs");
+        if (s.contains("train_runs")) {
+            int n = 0;
+            for (const panels::Run& r : st.runs) n += r.kind == "train" && !r.curves.empty();
+            require(n == int(number(s, "train_runs", 0)), "expected " + std::to_string(int(number(s, "train_runs", 0))) +
+                                                              " training runs with loss curves, found " + std::to_string(n));
+        }
     } else {
-        throw std::runtime_error("unknown step '" + what + "'" +
-                                 (what == "train" || what == "evaluate"
-                                      ? " (this stage is not wired into the workbench yet)"
-                                      : ""));
+        throw std::runtime_error("unknown step '" + what + "'");
     }
     return true;
 }

@@ -56,6 +56,10 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 void Workbench::frame() {
     pollRender();
     pollGenerate();
+    pollTrain();
+    pollEvaluate();
+    pollPredict();
+    pollSweep();
     drawHost();
     drawModals();
     if (dialog_.draw()) dialogConfirmed(dialog_.result());
@@ -83,46 +87,48 @@ void Workbench::drawHost() {
 
     const float statusH = ImGui::GetFrameHeightWithSpacing();
     ImGui::BeginChild("##workspace", ImVec2(0, -statusH), false, ImGuiWindowFlags_NoScrollbar);
+    auto tab = [&](const char* name, void (*draw)(panels::WorkbenchState&)) {
+        if (!beginTab(name)) return;
+        draw(state_);
+        ImGui::EndTabItem();
+    };
     panels::drawWorkspace(
         state_.layout,
         [&] {
             if (ImGui::BeginTabBar("##left-tabs")) {
-                if (ImGui::BeginTabItem("Project")) {
-                    panels::drawProjectPanel(state_);
-                    ImGui::EndTabItem();
-                }
-                if (ImGui::BeginTabItem("Scene")) {
-                    panels::drawScenePanel(state_);
-                    ImGui::EndTabItem();
-                }
-                if (ImGui::BeginTabItem("Sampling")) {
-                    panels::drawSamplingPanel(state_);
-                    ImGui::EndTabItem();
-                }
+                tab("Project", panels::drawProjectPanel);
+                tab("Scene", panels::drawScenePanel);
+                tab("Sampling", panels::drawSamplingPanel);
+                tab("Network", panels::drawNetworkPanel);
                 ImGui::EndTabBar();
             }
         },
         [&] {
             if (ImGui::BeginTabBar("##centre-tabs")) {
-                if (ImGui::BeginTabItem("Views")) {
-                    panels::drawViewsPanel(state_);
-                    ImGui::EndTabItem();
-                }
+                tab("Views", panels::drawViewsPanel);
                 ImGui::EndTabBar();
             }
         },
         [&] {
+            // Training first: the loss plot is what a user watches while the networks learn.
             if (ImGui::BeginTabBar("##bottom-tabs")) {
-                if (ImGui::BeginTabItem("Log")) {
-                    panels::drawLogPanel(state_);
-                    ImGui::EndTabItem();
-                }
+                tab("Training", panels::drawTrainingPanel);
+                tab("Objects", panels::drawObjectsPanel);
+                tab("Cost", panels::drawCostPanel);
+                tab("Log", panels::drawLogPanel);
                 ImGui::EndTabBar();
             }
         });
     ImGui::EndChild();
     drawStatusBar();
     ImGui::End();
+}
+
+bool Workbench::beginTab(const char* name) {
+    const bool focus = state_.focusTab == name;
+    const bool open = ImGui::BeginTabItem(name, nullptr, focus ? ImGuiTabItemFlags_SetSelected : 0);
+    if (focus) state_.focusTab.clear();
+    return open;
 }
 
 void Workbench::drawMenuBar() {
@@ -140,6 +146,8 @@ void Workbench::drawMenuBar() {
         ImGui::Separator();
         if (ImGui::MenuItem("Export images...", nullptr, false, render_ != nullptr)) openDialog(DialogPurpose::ExportImages);
         if (ImGui::MenuItem("Export screenshot...")) openDialog(DialogPurpose::ExportScreenshot);
+        if (ImGui::MenuItem("Export error table (CSV)...", nullptr, false, state_.evaluation.valid))
+            openDialog(DialogPurpose::ExportObjectsCsv);
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) state_.request(Command::Quit);
         ImGui::EndMenu();
@@ -253,6 +261,9 @@ void Workbench::openDialog(DialogPurpose purpose) {
         case DialogPurpose::ExportScreenshot:
             dialog_.open(M::Save, "Export screenshot", (fs::path(projectDir()) / "screenshot.png").string(), ".png");
             break;
+        case DialogPurpose::ExportObjectsCsv:
+            dialog_.open(M::Save, "Export the per-object error table", (fs::path(projectDir()) / "objects.csv").string(), ".csv");
+            break;
         case DialogPurpose::None: break;
     }
 }
@@ -264,6 +275,7 @@ void Workbench::dialogConfirmed(const std::string& path) {
         case DialogPurpose::SaveAs: saveProject(path); break;
         case DialogPurpose::ExportImages: exportImages(path); break;
         case DialogPurpose::ExportScreenshot: screenshotRequest_ = path; break;
+        case DialogPurpose::ExportObjectsCsv: exportObjectsCsv(path); break;
         case DialogPurpose::None: break;
     }
     dialogPurpose_ = DialogPurpose::None;
@@ -290,6 +302,19 @@ void Workbench::handleRequests() {
             case Command::Generate: startGenerate(); break;
             case Command::CancelGenerate:
                 if (generateJob_) jobs_.cancel(generateJob_);
+                break;
+            case Command::Train: startTrain(); break;
+            case Command::CancelTrain:
+                if (trainJob_) jobs_.cancel(trainJob_);
+                break;
+            case Command::Evaluate: startEvaluate(); break;
+            case Command::ExportObjectsCsv:
+                if (r.path.empty()) openDialog(DialogPurpose::ExportObjectsCsv);
+                else exportObjectsCsv(r.path);
+                break;
+            case Command::RunSweep: startSweep(r.path); break;
+            case Command::CancelSweep:
+                if (sweepJob_) jobs_.cancel(sweepJob_);
                 break;
             case Command::SceneChanged: sceneEdited = true; break;  // many edits in a frame: one restart
             case Command::SaveRun: saveRun(); break;

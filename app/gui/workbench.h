@@ -9,6 +9,7 @@
 
 #include "app/gui/gl_texture.h"
 #include "app/gui/job_runner.h"
+#include "app/gui/live_prediction.h"
 #include "app/gui/render_session.h"
 #include "app/gui/user_config.h"
 #include "panels/file_dialog.h"
@@ -18,6 +19,10 @@
 namespace rrf {
 
 struct GenerateSession;
+struct TrainSession;
+struct EvaluateSession;
+struct PredictSession;
+struct SweepSession;
 
 class Workbench {
 public:
@@ -58,12 +63,27 @@ public:
     /// <project dir>/data/dataset.rrfd (refused while a conflicting job runs).
     bool startGenerate();
     bool generateRunning() const;
+    /// Trains the project's networks on the generated dataset (or <project dir>/data/dataset.rrfd);
+    /// `maxEpochs` > 0 overrides the trainer's epoch limit. When done the models are saved under
+    /// runs/<run>/models, a "train" run is recorded and the models drive the live prediction.
+    bool startTrain(int maxEpochs = 0);
+    bool trainRunning() const;
+    /// Loads a model directory for the live prediction (GLSL, else CPU).
+    bool loadModels(const std::string& dir);
+    /// Compares the prediction with the ground truth per object and term (fills the Objects panel).
+    bool startEvaluate();
+    bool evaluateRunning() const;
+    /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
+    bool exportObjectsCsv(const std::string& path);
+    /// Runs a cost sweep ("spp", "grid", "hidden" or "trainer") with interactive sizes.
+    bool startSweep(const std::string& what);
+    bool sweepRunning() const;
 
     panels::WorkbenchState& state() { return state_; }
     JobRunner& jobs() { return jobs_; }
 
 private:
-    enum class DialogPurpose { None, Open, SaveAs, New, ExportImages, ExportScreenshot };
+    enum class DialogPurpose { None, Open, SaveAs, New, ExportImages, ExportScreenshot, ExportObjectsCsv };
 
     void drawHost();
     void drawMenuBar();
@@ -76,6 +96,21 @@ private:
 
     void pollRender();
     void pollGenerate();
+    void pollTrain();
+    void pollEvaluate();
+    void pollPredict();
+    void pollSweep();
+    /// Brings the middle view's prediction up to date with the scene's light (GLSL now, or a CPU job).
+    void refreshPrediction();
+    bool predictRunning() const;
+    /// Adds the CPU prediction's images to an export directory (no-op without models).
+    bool exportPrediction(const std::string& dir);
+    /// Re-opens / compares a training run: restores its network settings and loads its models.
+    bool loadTrainRun(const panels::Run& run);
+    /// The dataset training reads: this session's, else the project's data/dataset.rrfd if present.
+    std::string datasetPath() const;
+    /// Draws a tab item, bringing it to the front once when state_.focusTab names it.
+    bool beginTab(const char* name);
     void sceneChanged(bool restartRender);
     void rebuildPicking();
     void autosave();
@@ -95,6 +130,17 @@ private:
     uint64_t renderRevision_ = 0;
     std::shared_ptr<GenerateSession> generate_;
     int generateJob_ = 0;
+    std::shared_ptr<TrainSession> train_;
+    int trainJob_ = 0;
+    uint64_t trainRevision_ = 0;
+    std::shared_ptr<EvaluateSession> evaluate_;
+    int evaluateJob_ = 0;
+    std::shared_ptr<PredictSession> predict_;
+    int predictJob_ = 0;
+    bool predictPending_ = false;  ///< the light moved while a CPU prediction ran
+    std::shared_ptr<SweepSession> sweep_;
+    int sweepJob_ = 0;
+    LivePrediction live_;
     bool restartRender_ = false;   ///< a scene edit arrived while the old render was stopping
     bool untitled_ = false;        ///< the project has no file of its own yet (New)
 

@@ -7,6 +7,7 @@
 
 #include "core/data_generator.h"
 #include "core/dataset_file.h"
+#include "core/record_layout.h"
 #include "core/sampling_settings.h"
 
 namespace rrf {
@@ -95,6 +96,7 @@ void Workbench::pollGenerate() {
         state_.dataset.path = generate_->out;
         state_.dataset.recordsPerObject = generate_->counts;
         state_.dataset.seconds = generate_->seconds;
+        state_.dataset.inputCount = RecordLayout::forScene(generate_->scene).inputCount();
         uint64_t total = 0;
         for (const auto& c : generate_->counts) total += c.second;
         state_.log.info("dataset written: " + generate_->out + " (" + std::to_string(total) + " records)");

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/image_io.h"
+#include "core/network_settings.h"
 #include "panels/project_io.h"
 #include "core/scene_overrides.h"
 
@@ -42,6 +43,15 @@ bool Workbench::openProject(const std::string& path) {
     // Stop the previous project's render; the new ground truth starts converging right away.
     if (renderJob_) jobs_.cancel(renderJob_);
     render_.reset();
+    // Models belong to the previous project; the last training run's models (if still on disk)
+    // drive the prediction of this one.
+    live_.reset();
+    for (auto it = state_.runs.rbegin(); it != state_.runs.rend(); ++it) {
+        if (it->kind != "train" || it->artifacts.empty()) continue;
+        const fs::path models = fs::path(projectDir()) / fs::path(it->artifacts.front()).parent_path();
+        if (fs::exists(models / "models.json", ec)) loadModels(models.string());
+        break;
+    }
     sceneChanged(true);
     lastAutosave_ = std::chrono::steady_clock::now();
     return true;
@@ -170,6 +180,7 @@ int runSpp(const panels::Run& run) {
 bool Workbench::compareRun(int index) {
     if (index < 0 || index >= int(state_.runs.size())) return false;
     const panels::Run& run = state_.runs[size_t(index)];
+    if (run.kind == "train") return loadTrainRun(run);
     panels::ImageSet set;
     std::string error;
     if (!loadRunImages(run, projectDir(), set, error)) {
@@ -180,6 +191,7 @@ bool Workbench::compareRun(int index) {
     set.revision = state_.compare.revision + 1;
     state_.compare = std::move(set);
     state_.compareRun = index;
+    state_.view.compareSource = panels::CompareSource::Run;
     state_.log.info("comparing the ground truth with run '" + run.name + "'");
     return true;
 }
@@ -187,6 +199,7 @@ bool Workbench::compareRun(int index) {
 bool Workbench::reopenRun(int index) {
     if (index < 0 || index >= int(state_.runs.size())) return false;
     const panels::Run run = state_.runs[size_t(index)];
+    if (run.kind == "train") return loadTrainRun(run);
     panels::ImageSet set;
     std::string error;
     if (!loadRunImages(run, projectDir(), set, error)) {
@@ -221,6 +234,24 @@ bool Workbench::reopenRun(int index) {
     return true;
 }
 
+bool Workbench::loadTrainRun(const panels::Run& run) {
+    // A training run "opens" as its settings and its models: the Network panel shows what trained
+    // them, and the prediction view shows what they predict.
+    if (run.settings.contains("network") && run.settings.contains("trainer")) {
+        try {
+            NetworkSettings::fromJson(run.settings["network"], &run.settings["trainer"], state_.project.path).store(state_.project);
+            state_.markDirty();
+        } catch (const std::exception& e) {
+            state_.log.warning("run '" + run.name + "': its network settings were not restored: " + e.what());
+        }
+    }
+    if (run.artifacts.empty()) {
+        state_.log.error("run '" + run.name + "' lists no models");
+        return false;
+    }
+    return loadModels((fs::path(projectDir()) / fs::path(run.artifacts.front()).parent_path()).string());
+}
+
 bool Workbench::exportImages(const std::string& dir) {
     if (!render_ || !render_->latest()) {
         state_.log.error("export images: nothing rendered yet");
@@ -238,6 +269,7 @@ bool Workbench::exportImages(const std::string& dir) {
             writeImage((fs::path(dir) / "error.exr").string(), err, ImageFormat::EXR);
             writeImage((fs::path(dir) / "error.png").string(), falseColor(err, 0.f, state_.view.errorMax), ImageFormat::PNG);
         }
+        if (!exportPrediction(dir)) return false;
     } catch (const std::exception& e) {
         state_.log.error(std::string("export images: ") + e.what());
         return false;

@@ -47,6 +47,10 @@ void Workbench::pollRender() {
                              (j.cancelled ? "stopped" : "finished") + " after " + std::to_string(int(j.seconds + 0.5)) + " s");
         if (j.id == renderJob_) renderJob_ = 0;
         if (j.id == generateJob_) generateJob_ = 0;
+        if (j.id == trainJob_) trainJob_ = 0;
+        if (j.id == evaluateJob_) evaluateJob_ = 0;
+        if (j.id == predictJob_) predictJob_ = 0;
+        if (j.id == sweepJob_) sweepJob_ = 0;
     }
     if (render_) {
         uint64_t revision = 0;
@@ -76,6 +80,8 @@ void Workbench::pollRender() {
 
 void Workbench::sceneChanged(bool restartRender) {
     rebuildPicking();
+    // The prediction follows the light at once (GLSL: this frame); the ground truth restarts below.
+    refreshPrediction();
     if (!restartRender) return;
     // The old render no longer matches the scene: stop it and start again once it has stopped.
     // This is a replacement the user asked for by editing, not a queued conflicting job.

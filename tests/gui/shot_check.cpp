@@ -2,7 +2,8 @@
 //
 // The whole image must show many distinct colours, and the views band of the default layout
 // (right of the left column, below the toolbars) must hold N (default 1) non-uniform thirds:
-// 1 = the ground truth is shown, 3 = ground truth, compared image and error map are all filled.
+// 1 = the ground truth is shown, 3 = ground truth, prediction (or compared run) and error map are
+// all filled.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>

@@ -79,10 +79,13 @@ TEST(JobRunner, ExceptionsMarkTheJobFailed) {
 }
 
 TEST(JobRunner, ConflictMatrixIsSymmetric) {
-    const JobKind kinds[] = {JobKind::Render, JobKind::Generate, JobKind::Train, JobKind::Evaluate};
+    const JobKind kinds[] = {JobKind::Render, JobKind::Generate, JobKind::Train,
+                             JobKind::Evaluate, JobKind::Predict, JobKind::Sweep};
     for (JobKind a : kinds)
         for (JobKind b : kinds) EXPECT_EQ(jobsConflict(a, b), jobsConflict(b, a));
     EXPECT_FALSE(jobsConflict(JobKind::Render, JobKind::Generate));
+    EXPECT_TRUE(jobsConflict(JobKind::Train, JobKind::Predict)) << "prediction reads the models training replaces";
+    EXPECT_FALSE(jobsConflict(JobKind::Sweep, JobKind::Train)) << "a sweep writes no project files";
 }
 
 }  // namespace rrf::test

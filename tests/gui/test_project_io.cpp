@@ -227,6 +227,7 @@ TEST(ViewModel, ErrorMetricsAndHighlight) {
     s.groundTruth.revision = 1;
     s.compare.global = Image(2, 1, Vec3(0.75f));
     s.compare.revision = 1;
+    s.view.compareSource = CompareSource::Run;  // the compared run, not the (empty) prediction
     s.objectIds = {3, 4};
     s.idWidth = 2;
     s.idHeight = 1;

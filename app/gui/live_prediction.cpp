@@ -1,0 +1,46 @@
+#include "app/gui/live_prediction.h"
+
+#include "app/gl/glsl_predictor.h"
+
+namespace rrf {
+
+LivePrediction::LivePrediction() = default;
+LivePrediction::~LivePrediction() = default;
+
+void LivePrediction::load(const Scene& scene, const std::string& dir, bool tryGlsl, std::string& glslError) {
+    reset();
+    auto models = std::make_shared<ModelSet>(loadModelSet(dir, scene.contentHash()));
+    if (models->objects.empty()) throw std::runtime_error(dir + ": the model set holds no networks");
+    if (tryGlsl) {
+        try {
+            glsl_ = std::make_unique<GlslPredictor>(scene, *models);
+        } catch (const std::exception& e) {
+            glslError = e.what();
+            glsl_.reset();
+        }
+    }
+    models_ = std::move(models);
+    dir_ = dir;
+    sceneHash_ = scene.contentHash();
+}
+
+void LivePrediction::reset() {
+    glsl_.reset();  // before the models it was built from
+    models_.reset();
+    dir_.clear();
+    sceneHash_ = 0;
+}
+
+void LivePrediction::renderGlsl(const Camera& camera, const Vec3& lightPos, Image out[3]) {
+    const Camera& current = glsl_->camera();
+    if (current.width != camera.width || current.height != camera.height || !(current.eye == camera.eye) ||
+        !(current.target == camera.target) || !(current.up == camera.up) || current.fovYDegrees != camera.fovYDegrees)
+        glsl_->setCamera(camera);
+    glsl_->setLightPosition(lightPos);
+    glsl_->render();
+    out[0] = glsl_->read(PredictionTerm::Direct);
+    out[1] = glsl_->read(PredictionTerm::Indirect);
+    out[2] = glsl_->read(PredictionTerm::Global);
+}
+
+}  // namespace rrf

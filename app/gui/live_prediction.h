@@ -1,0 +1,55 @@
+#pragma once
+/// The trained models' prediction for the middle view, kept current as the light moves.
+///
+/// GLSL path (the normal one): a GlslPredictor (app/gl) built in the workbench window's own GL 3.3
+/// context renders the prediction within the frame on the UI thread, so a light drag shows the new
+/// prediction in the same frame. The three terms are read back into images because the error map,
+/// the hover read-out and the exposure control work on the values, not on a texture.
+/// CPU path (fallback, and for exported images): core/Predictor, which the workbench runs as a
+/// Predict job when the GLSL path could not be built (missing GL features, a shader error).
+/// UI thread only; the ModelSet is shared read-only with CPU jobs.
+
+#include <memory>
+#include <string>
+
+#include "core/image.h"
+#include "core/model_set.h"
+#include "core/scene.h"
+
+namespace rrf {
+
+class GlslPredictor;
+
+class LivePrediction {
+public:
+    LivePrediction();
+    ~LivePrediction();
+    LivePrediction(const LivePrediction&) = delete;
+    LivePrediction& operator=(const LivePrediction&) = delete;
+
+    /// Loads the model directory `dir` for `scene` (rejecting models of another scene: throws,
+    /// naming the file) and, when `tryGlsl`, builds the GLSL predictor. A GLSL failure is not an
+    /// error: the reason goes to `glslError` and the CPU path is used.
+    void load(const Scene& scene, const std::string& dir, bool tryGlsl, std::string& glslError);
+    /// Forgets the models (a new project, or a scene edit that makes them stale).
+    void reset();
+
+    bool loaded() const { return models_ != nullptr; }
+    bool usesGlsl() const { return glsl_ != nullptr; }
+    const std::string& dir() const { return dir_; }
+    /// Scene::contentHash() of the scene the models were loaded for.
+    uint64_t sceneHash() const { return sceneHash_; }
+    std::shared_ptr<const ModelSet> models() const { return models_; }
+
+    /// GLSL path only: renders with `camera` (its width × height) and the light at `lightPos`, and
+    /// returns the direct, indirect and global images (top row first). Throws GlError on GL failure.
+    void renderGlsl(const Camera& camera, const Vec3& lightPos, Image out[3]);
+
+private:
+    std::shared_ptr<const ModelSet> models_;
+    std::unique_ptr<GlslPredictor> glsl_;
+    std::string dir_;
+    uint64_t sceneHash_ = 0;
+};
+
+}  // namespace rrf

@@ -1,0 +1,152 @@
+// Workbench: the trained models' prediction in the middle view. The GLSL path renders on the UI
+// thread in the same frame as a light move; the CPU path (core/predictor) runs as a Predict job when
+// the GLSL predictor could not be built.
+#include "app/gui/workbench.h"
+
+#include <filesystem>
+#include <mutex>
+
+#include "core/evaluation.h"
+#include "core/predictor.h"
+
+namespace rrf {
+
+namespace fs = std::filesystem;
+
+/// Shared between a CPU predict job and the UI thread.
+struct PredictSession {
+    Scene scene;
+    std::shared_ptr<const ModelSet> models;
+    PredictionSettings settings;
+    Vec3 light{0.f};
+    int width = 0, height = 0;
+    std::mutex mutex;
+    bool done = false;
+    Prediction prediction;
+};
+
+namespace {
+/// The ground truth's camera: the scene camera at the render settings' size, so the prediction
+/// lines up pixel for pixel with the ground truth and the error map.
+Camera viewCamera(const Project& project) {
+    const RenderOptions o = renderOptionsFor(project.scene, project.render);
+    Camera c = project.scene.camera;
+    c.width = o.width;
+    c.height = o.height;
+    return c;
+}
+}  // namespace
+
+bool Workbench::loadModels(const std::string& dir) {
+    std::string glslError;
+    try {
+        live_.load(state_.project.scene, dir, true, glslError);
+    } catch (const std::exception& e) {
+        state_.log.error(std::string("loading the models failed: ") + e.what());
+        return false;
+    }
+    if (!glslError.empty())
+        state_.log.warning("GLSL prediction unavailable, using the CPU predictor (slower): " + glslError);
+    state_.training.modelsDir = dir;
+    state_.view.compareSource = panels::CompareSource::Prediction;
+    state_.log.info("models loaded from " + dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)"));
+    refreshPrediction();
+    return true;
+}
+
+void Workbench::refreshPrediction() {
+    if (!live_.loaded() || !state_.hasProject) return;
+    const Scene& scene = state_.project.scene;
+    if (scene.contentHash() != live_.sceneHash()) {
+        // Materials or geometry changed: the networks learnt another scene.
+        state_.log.warning("the scene changed since the models were trained; train again for a prediction");
+        live_.reset();
+        state_.training.modelsDir.clear();
+        state_.prediction = panels::ImageSet{};
+        ++state_.prediction.revision;
+        return;
+    }
+    const Camera camera = viewCamera(state_.project);
+    if (live_.usesGlsl()) {
+        Image images[3];
+        try {
+            live_.renderGlsl(camera, scene.lightPosition(), images);
+        } catch (const std::exception& e) {
+            state_.log.error(std::string("GLSL prediction failed: ") + e.what());
+            return;
+        }
+        panels::ImageSet& p = state_.prediction;
+        p.direct = std::move(images[0]);
+        p.indirect = std::move(images[1]);
+        p.global = std::move(images[2]);
+        p.label = "Prediction (GLSL)";
+        ++p.revision;
+        return;
+    }
+    if (predictRunning()) {
+        predictPending_ = true;  // the light moved again: predict once more when this one is done
+        return;
+    }
+    auto session = std::make_shared<PredictSession>();
+    session->scene = scene;
+    session->models = live_.models();
+    session->settings = PredictionSettings::fromProject(state_.project);
+    session->light = scene.lightPosition();
+    session->width = camera.width;
+    session->height = camera.height;
+    std::string why;
+    const int id = jobs_.start(JobKind::Predict, "CPU prediction", [session](JobContext& ctx) {
+        const Predictor predictor(session->scene, *session->models, session->settings);
+        const GBuffer gb = predictor.gbuffer(session->light, session->width, session->height);
+        Prediction p = predictor.predict(gb);
+        ctx.setProgress(1.0);
+        std::lock_guard<std::mutex> lock(session->mutex);
+        session->prediction = std::move(p);
+        session->done = true;
+    }, &why);
+    if (!id) {
+        state_.log.warning("prediction deferred: " + why);
+        predictPending_ = true;
+        return;
+    }
+    predict_ = session;
+    predictJob_ = id;
+    predictPending_ = false;
+}
+
+bool Workbench::predictRunning() const { return predictJob_ != 0 && jobs_.running(JobKind::Predict); }
+
+void Workbench::pollPredict() {
+    if (predict_ && !predictRunning()) {
+        std::lock_guard<std::mutex> lock(predict_->mutex);
+        if (predict_->done) {
+            panels::ImageSet& p = state_.prediction;
+            p.direct = std::move(predict_->prediction.images[0]);
+            p.indirect = std::move(predict_->prediction.images[1]);
+            p.global = std::move(predict_->prediction.images[2]);
+            p.label = "Prediction (CPU)";
+            ++p.revision;
+        }
+        predict_.reset();
+    }
+    if (predictPending_ && !predictRunning() && !trainRunning()) refreshPrediction();
+}
+
+bool Workbench::exportPrediction(const std::string& dir) {
+    if (!live_.loaded()) return true;  // nothing trained: nothing to add
+    // Exported images come from the CPU predictor: the reference implementation, independent of
+    // the GL driver that drew the view.
+    try {
+        const Predictor predictor(state_.project.scene, *live_.models(), PredictionSettings::fromProject(state_.project));
+        const Camera camera = viewCamera(state_.project);
+        const Prediction p = predictor.predict(
+            predictor.gbuffer(state_.project.scene.lightPosition(), camera.width, camera.height));
+        writePredictionImages(dir, p, state_.view.exposure);
+    } catch (const std::exception& e) {
+        state_.log.error(std::string("export prediction: ") + e.what());
+        return false;
+    }
+    return true;
+}
+
+}  // namespace rrf

@@ -1,0 +1,102 @@
+#pragma once
+/// State of the learning side of the workbench: the training job's live loss curves, the last
+/// evaluation's per-object errors and the accuracy-versus-time series of sweeps. The application
+/// (app/gui) fills these from the snapshots its worker jobs publish; the Training, Objects and Cost
+/// panels only read them (and their own view options), so they draw in a bare ImGui context.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/error_metrics.h"
+#include "core/vec3.h"
+#include "panels/runs.h"
+
+namespace rrf::panels {
+
+/// The training job as last published.
+struct TrainingInfo {
+    bool running = false;
+    double progress = 0.0;       ///< epochs done / epochs budgeted over all networks
+    double seconds = 0.0;        ///< wall time since the job started
+    int epoch = 0;               ///< latest epoch of any network
+    double step = 0.0;           ///< μ (LM) or learning rate (Adam) of the latest epoch
+    std::string trainer;         ///< "levenberg_marquardt" or "adam"
+    std::vector<LossCurve> curves;  ///< one per network, in the order they first reported
+    std::string runId;           ///< the run the job records (also its directory under runs/)
+    std::string modelsDir;       ///< models of the last finished training (absolute path)
+    uint64_t revision = 0;       ///< bumped whenever curves change
+};
+
+/// Display options of the loss plot.
+struct TrainingView {
+    bool aggregate = false;      ///< one mean curve instead of one per network
+    bool showTrain = true, showValidation = true;
+    // Filled by the panel each frame (read by tests and by the hover read-out):
+    float plotMinX = 0, plotMinY = 0, plotMaxX = 0, plotMaxY = 0;  ///< plot rectangle on screen
+    double yLo = 0, yHi = 0;     ///< log10 of the y range (decade aligned)
+    int hoverCurve = -1, hoverEpoch = -1;  ///< nearest point under the mouse, -1 when none
+};
+
+/// One row of the per-object error table.
+struct ObjectErrorRow {
+    int objectId = -1;
+    std::string name;
+    ErrorStats stats;
+    uint64_t samples = 0;        ///< training records of the object (all its networks)
+    double trainSeconds = 0.0;   ///< training time of the object's networks
+};
+
+/// Result of the last evaluation (prediction vs ground truth at one light position).
+struct EvaluationInfo {
+    bool running = false;
+    bool valid = false;
+    Vec3 lightPosition{0.f};
+    int referenceSpp = 0;
+    double seconds = 0.0;
+    /// Rows per term, indexed like panels::Term (global, direct, indirect).
+    std::vector<ObjectErrorRow> rows[3];
+    ErrorStats overall[3];
+    bool available[3] = {false, false, false};
+    uint64_t revision = 0;
+};
+
+/// Columns of the Objects table, also the sort keys.
+enum class ObjectColumn { Object, Rmse, RelativeRmse, Mae, Max, Pixels, Samples, TrainSeconds, Count };
+
+struct ObjectsView {
+    ObjectColumn sortColumn = ObjectColumn::Object;
+    bool ascending = true;
+};
+
+/// One point of an accuracy-versus-time curve.
+struct CostPoint {
+    double seconds = 0.0;        ///< wall time the setting cost
+    double error = 0.0;          ///< relative RMSE (global term, all object pixels)
+    std::string label;           ///< the setting, e.g. "16 spp", "20-10"
+};
+
+struct CostSeries {
+    std::string name;            ///< e.g. "sweep spp", "runs"
+    std::vector<CostPoint> points;
+};
+
+/// Sweeps run in this session and the sweep job's state.
+struct CostInfo {
+    bool running = false;
+    double progress = 0.0;
+    std::vector<CostSeries> sweeps;
+    uint64_t revision = 0;
+};
+
+struct CostView {
+    int what = 0;                ///< index into kSweepKinds
+    bool showRuns = true;
+    int hoverSeries = -1, hoverPoint = -1;
+};
+
+/// Sweep kinds offered by the Cost panel (core/sweep.h).
+constexpr const char* kSweepKinds[] = {"spp", "grid", "hidden", "trainer"};
+constexpr int kSweepKindCount = 4;
+
+}  // namespace rrf::panels

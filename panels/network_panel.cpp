@@ -1,0 +1,221 @@
+// Network panel: hidden layers, activation, what the networks predict, the trainer and its
+// parameters, and the parameter count of each network. The project's "network" and "trainer"
+// sections are the only copy of these settings: every edit goes through NetworkSettings::store.
+#include <algorithm>
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "core/error.h"
+#include "core/record_layout.h"
+#include "panels/panels.h"
+
+namespace rrf::panels {
+
+namespace {
+constexpr int kMaxLayerSize = 4096, kMaxLayers = 8;
+
+/// Parses the settings; on a malformed section shows why and returns false.
+bool readSettings(const WorkbenchState& state, NetworkSettings& out) {
+    try {
+        out = NetworkSettings::fromProject(state.project);
+        return true;
+    } catch (const std::exception& e) {
+        ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "The project's network/trainer sections are invalid:");
+        ImGui::TextWrapped("%s", e.what());
+        return false;
+    }
+}
+
+void store(WorkbenchState& state, const NetworkSettings& s) {
+    s.store(state.project);
+    state.markDirty();
+}
+
+/// Network inputs: the generated dataset's count when there is one, else the scene's record layout
+/// (the same number unless the scene changed since).
+int inputCount(const WorkbenchState& state) {
+    if (state.dataset.inputCount > 0) return state.dataset.inputCount;
+    return RecordLayout::forScene(state.project.scene).inputCount();
+}
+
+bool inputDouble(const char* label, double& v, double lo, double hi, const char* fmt = "%.4g") {
+    double x = v;
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    if (!ImGui::InputDouble(label, &x, 0.0, 0.0, fmt, ImGuiInputTextFlags_EnterReturnsTrue)) return false;
+    x = std::clamp(x, lo, hi);
+    if (x == v) return false;
+    v = x;
+    return true;
+}
+
+bool inputInt(const char* label, int& v, int lo, int hi) {
+    int x = v;
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    if (!ImGui::InputInt(label, &x, 0, 0, ImGuiInputTextFlags_EnterReturnsTrue)) return false;
+    x = std::clamp(x, lo, hi);
+    if (x == v) return false;
+    v = x;
+    return true;
+}
+
+bool inputInt64(const char* label, int64_t& v, int64_t lo, int64_t hi) {
+    int x = int(std::min<int64_t>(v, 1 << 30));
+    if (!inputInt(label, x, int(lo), int(std::min<int64_t>(hi, 1 << 30)))) return false;
+    v = x;
+    return true;
+}
+
+bool drawLevenbergMarquardt(LevenbergMarquardtConfig& c) {
+    bool changed = inputInt("max epochs", c.maxEpochs, 1, 1000000);
+    changed |= inputDouble("mu (initial damping)", c.mu, 1e-20, 1e20);
+    changed |= inputDouble("mu_dec", c.muDec, 1e-6, 1.0);
+    changed |= inputDouble("mu_inc", c.muInc, 1.0, 1e6);
+    changed |= inputDouble("mu_max", c.muMax, 1e-6, 1e30);
+    changed |= inputDouble("min gradient", c.minGrad, 0.0, 1e6);
+    changed |= inputInt("max validation fails", c.maxFail, 0, 1000000);
+    changed |= inputInt64("max samples (0 = all)", c.maxSamples, 0, int64_t(1) << 40);
+    ImGui::TextDisabled("LM costs ~3 N P^2 flops per epoch: it trains on at most max samples.");
+    return changed;
+}
+
+bool drawAdam(AdamConfig& c) {
+    bool changed = inputInt("max epochs", c.maxEpochs, 1, 1000000);
+    changed |= inputInt("batch size", c.batchSize, 1, 1 << 20);
+    changed |= inputDouble("learning rate", c.learningRate, 1e-12, 10.0);
+    int schedule = int(c.schedule);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    if (ImGui::Combo("schedule", &schedule, "constant\0step\0cosine\0")) {
+        c.schedule = LrSchedule(schedule);
+        changed = true;
+    }
+    if (c.schedule == LrSchedule::Cosine) changed |= inputDouble("min learning rate", c.minLearningRate, 0.0, 10.0);
+    if (c.schedule == LrSchedule::Step) {
+        changed |= inputInt("step epochs", c.stepEpochs, 1, 1000000);
+        changed |= inputDouble("step gamma", c.stepGamma, 1e-6, 1.0);
+    }
+    int loss = int(c.loss);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    if (ImGui::Combo("loss", &loss, "mse\0relative L2\0")) {
+        c.loss = AdamLoss(loss);
+        changed = true;
+    }
+    changed |= inputDouble("weight decay", c.weightDecay, 0.0, 10.0);
+    changed |= inputInt("patience (0 = none)", c.patience, 0, 1000000);
+    return changed;
+}
+
+void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
+    MlpArch arch;
+    arch.inputs = inputCount(state);
+    arch.hidden = s.options.hidden;
+    arch.activation = s.options.activation;
+    arch.outputs = s.options.targets == TargetMode::Joint ? 6 : 3;
+    const int perObject = s.options.targets == TargetMode::Separate ? 2 : 1;
+    const long long params = (long long)arch.numParams();
+    ImGui::Text("%d inputs -> %s -> %d outputs: %lld parameters per network", arch.inputs,
+                nlohmann::json(arch.hidden).dump().c_str(), arch.outputs, params);
+    ImGui::Text("%d network%s per object, %zu objects: %lld parameters in all", perObject, perObject > 1 ? "s" : "",
+                state.project.scene.objects.size(), params * perObject * (long long)state.project.scene.objects.size());
+    if (s.options.trainer.type == TrainerType::LevenbergMarquardt)
+        ImGui::TextDisabled("LM solves a %lld x %lld system per step", params, params);
+}
+}  // namespace
+
+bool addHiddenLayer(WorkbenchState& state) {
+    NetworkSettings s = NetworkSettings::fromProject(state.project);
+    if (int(s.options.hidden.size()) >= kMaxLayers) return false;
+    // A new layer repeats the last one's size: a sensible start that the user then resizes.
+    s.options.hidden.push_back(s.options.hidden.empty() ? 10 : s.options.hidden.back());
+    store(state, s);
+    return true;
+}
+
+bool removeHiddenLayer(WorkbenchState& state, int index) {
+    NetworkSettings s = NetworkSettings::fromProject(state.project);
+    // The file format needs at least one hidden layer.
+    if (s.options.hidden.size() <= 1 || index < 0 || index >= int(s.options.hidden.size())) return false;
+    s.options.hidden.erase(s.options.hidden.begin() + index);
+    store(state, s);
+    return true;
+}
+
+bool resizeHiddenLayer(WorkbenchState& state, int index, int size) {
+    NetworkSettings s = NetworkSettings::fromProject(state.project);
+    if (index < 0 || index >= int(s.options.hidden.size())) return false;
+    size = std::clamp(size, 1, kMaxLayerSize);
+    if (s.options.hidden[size_t(index)] == size) return false;
+    s.options.hidden[size_t(index)] = size;
+    store(state, s);
+    return true;
+}
+
+bool setTrainerType(WorkbenchState& state, TrainerType type) {
+    NetworkSettings s = NetworkSettings::fromProject(state.project);
+    if (s.options.trainer.type == type) return false;
+    s.options.trainer.type = type;  // the other trainer's parameters keep their defaults
+    store(state, s);
+    return true;
+}
+
+void drawNetworkPanel(WorkbenchState& state) {
+    if (!state.hasProject) {
+        ImGui::TextDisabled("No project is open.");
+        return;
+    }
+    NetworkSettings s;
+    if (!readSettings(state, s)) return;
+
+    ImGui::TextUnformatted("Hidden layers");
+    int remove = -1;
+    for (size_t i = 0; i < s.options.hidden.size(); ++i) {
+        ImGui::PushID(int(i));
+        int size = s.options.hidden[i];
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6);
+        char label[32];
+        std::snprintf(label, sizeof label, "layer %zu", i + 1);
+        if (ImGui::InputInt(label, &size, 1, 5)) resizeHiddenLayer(state, int(i), size);
+        ImGui::SameLine();
+        ImGui::BeginDisabled(s.options.hidden.size() <= 1);
+        if (ImGui::SmallButton("remove")) remove = int(i);
+        ImGui::EndDisabled();
+        ImGui::PopID();
+    }
+    if (remove >= 0) removeHiddenLayer(state, remove);
+    ImGui::BeginDisabled(int(s.options.hidden.size()) >= kMaxLayers);
+    if (ImGui::Button("Add layer")) addHiddenLayer(state);
+    ImGui::EndDisabled();
+    s = NetworkSettings::fromProject(state.project);  // the layer edits above are stored already
+
+    int activation = int(s.options.activation);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    if (ImGui::Combo("activation", &activation, "tanh\0relu\0")) {
+        s.options.activation = Activation(activation);
+        store(state, s);
+    }
+    // Combo order is TargetMode's order: global, direct, indirect, separate, joint.
+    int targets = int(s.options.targets);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    if (ImGui::Combo("targets", &targets, "global\0direct\0indirect\0separate (direct + indirect nets)\0joint (6 outputs)\0")) {
+        s.options.targets = TargetMode(targets);
+        store(state, s);
+    }
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("per object: one global net, one net per term (separate), or one 6-output net (joint)");
+
+    ImGui::Separator();
+    int trainer = int(s.options.trainer.type);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
+    if (ImGui::Combo("trainer", &trainer, "Levenberg-Marquardt\0Adam\0")) {
+        setTrainerType(state, TrainerType(trainer));
+        s = NetworkSettings::fromProject(state.project);
+    }
+    const bool changed = s.options.trainer.type == TrainerType::Adam ? drawAdam(s.options.trainer.adam)
+                                                                      : drawLevenbergMarquardt(s.options.trainer.lm);
+    if (changed) store(state, s);
+
+    ImGui::Separator();
+    drawParameterCount(state, s);
+}
+
+}  // namespace rrf::panels

@@ -1,0 +1,154 @@
+#include "panels/plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace rrf::panels {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}  // namespace
+
+float PlotAxis::toPixel(double value) const {
+    double v = value;
+    if (log) {
+        if (!(value > 0.0)) return std::numeric_limits<float>::quiet_NaN();
+        v = std::log10(value);
+    }
+    const double t = hi != lo ? (v - lo) / (hi - lo) : 0.0;
+    return float(double(p0) + t * double(p1 - p0));
+}
+
+double PlotAxis::toValue(float pixel) const {
+    const double t = p1 != p0 ? double(pixel - p0) / double(p1 - p0) : 0.0;
+    const double v = lo + t * (hi - lo);
+    return log ? std::pow(10.0, v) : v;
+}
+
+PlotAxis logAxis(double minValue, double maxValue, float p0, float p1) {
+    PlotAxis a;
+    a.log = true;
+    a.p0 = p0;
+    a.p1 = p1;
+    if (!(minValue > 0.0) || !std::isfinite(minValue) || !std::isfinite(maxValue) || maxValue < minValue) {
+        a.lo = -3.0;
+        a.hi = 0.0;
+        return a;
+    }
+    a.lo = std::floor(std::log10(minValue));
+    a.hi = std::ceil(std::log10(maxValue));
+    if (a.hi <= a.lo) a.hi = a.lo + 1.0;
+    return a;
+}
+
+PlotAxis linearAxis(double minValue, double maxValue, float p0, float p1) {
+    PlotAxis a;
+    a.p0 = p0;
+    a.p1 = p1;
+    if (!std::isfinite(minValue) || !std::isfinite(maxValue) || maxValue < minValue) minValue = 0.0, maxValue = 1.0;
+    if (maxValue == minValue) maxValue = minValue + 1.0;
+    a.lo = minValue;
+    a.hi = maxValue;
+    return a;
+}
+
+std::string tickLabel(double value) {
+    char buf[32];
+    const double l = value > 0 ? std::log10(value) : 0.0;
+    if (value > 0 && std::fabs(l - std::round(l)) < 1e-9 && (l < -2 || l > 3))
+        std::snprintf(buf, sizeof buf, "1e%d", int(std::lround(l)));
+    else std::snprintf(buf, sizeof buf, "%.3g", value);
+    return buf;
+}
+
+ImU32 seriesColour(int i, float alpha) {
+    // Tableau 10: distinguishable on a dark background and for common colour-vision deficiencies.
+    static const unsigned char rgb[10][3] = {{78, 121, 167}, {242, 142, 43}, {225, 87, 89}, {118, 183, 178},
+                                             {89, 161, 79},  {237, 201, 72}, {176, 122, 161}, {255, 157, 167},
+                                             {156, 117, 95}, {186, 176, 172}};
+    const unsigned char* c = rgb[((i % 10) + 10) % 10];
+    return IM_COL32(c[0], c[1], c[2], int(255 * std::clamp(alpha, 0.f, 1.f)));
+}
+
+void drawAxes(ImDrawList* dl, const ImVec2& min, const ImVec2& max, const PlotAxis& x, const PlotAxis& y,
+              const char* xLabel, const char* yLabel) {
+    const ImU32 major = IM_COL32(110, 110, 120, 160), minor = IM_COL32(80, 80, 90, 90), text = IM_COL32(190, 190, 190, 255);
+    dl->AddRectFilled(min, max, IM_COL32(20, 20, 24, 255));
+    auto ticks = [&](const PlotAxis& a, bool vertical) {
+        auto line = [&](double v, ImU32 col, bool label) {
+            const float p = a.toPixel(v);
+            if (!std::isfinite(p)) return;
+            if (vertical) {
+                if (p < min.y - 0.5f || p > max.y + 0.5f) return;
+                dl->AddLine(ImVec2(min.x, p), ImVec2(max.x, p), col);
+                if (label) {
+                    const std::string s = tickLabel(v);
+                    const ImVec2 ts = ImGui::CalcTextSize(s.c_str());
+                    dl->AddText(ImVec2(min.x - ts.x - 4, p - 0.5f * ts.y), text, s.c_str());
+                }
+            } else {
+                if (p < min.x - 0.5f || p > max.x + 0.5f) return;
+                dl->AddLine(ImVec2(p, min.y), ImVec2(p, max.y), col);
+                if (label) {
+                    const std::string s = tickLabel(v);
+                    const ImVec2 ts = ImGui::CalcTextSize(s.c_str());
+                    dl->AddText(ImVec2(p - 0.5f * ts.x, max.y + 2), text, s.c_str());
+                }
+            }
+        };
+        if (a.log) {
+            // Label every decade, or every second/third one when there are many.
+            const int decades = int(std::lround(a.hi - a.lo));
+            const int every = decades > 12 ? 3 : decades > 6 ? 2 : 1;
+            for (int d = int(std::lround(a.lo)); d <= int(std::lround(a.hi)); ++d) {
+                const double base = std::pow(10.0, d);
+                line(base, major, (d - int(std::lround(a.lo))) % every == 0);
+                if (d < int(std::lround(a.hi)) && decades <= 8)
+                    for (int m = 2; m <= 9; ++m) line(base * m, minor, false);
+            }
+        } else {
+            const double span = a.hi - a.lo;
+            const double raw = span / 5.0;
+            const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+            const double step = raw / mag >= 5 ? 5 * mag : raw / mag >= 2 ? 2 * mag : mag;
+            for (double v = std::ceil(a.lo / step) * step; v <= a.hi + 1e-9 * span; v += step) line(v, major, true);
+        }
+    };
+    ticks(y, true);
+    ticks(x, false);
+    dl->AddRect(min, max, IM_COL32(140, 140, 150, 255));
+    if (xLabel) {
+        const ImVec2 ts = ImGui::CalcTextSize(xLabel);
+        dl->AddText(ImVec2(max.x - ts.x, max.y + ts.y + 4), text, xLabel);
+    }
+    if (yLabel) dl->AddText(ImVec2(min.x, min.y - ImGui::GetFontSize() - 2), text, yLabel);
+}
+
+std::vector<LossPoint> aggregateLoss(const std::vector<LossCurve>& curves) {
+    int last = -1;
+    for (const LossCurve& c : curves)
+        if (!c.points.empty()) last = std::max(last, c.points.back().epoch);
+    std::vector<LossPoint> out;
+    if (last < 0) return out;
+    std::vector<size_t> at(curves.size(), 0);  // per curve: index of the point for the current epoch
+    for (int e = 0; e <= last; ++e) {
+        double train = 0, validation = 0, seconds = 0;
+        int nTrain = 0, nValidation = 0;
+        for (size_t i = 0; i < curves.size(); ++i) {
+            const std::vector<LossPoint>& p = curves[i].points;
+            if (p.empty() || p.front().epoch > e) continue;
+            while (at[i] + 1 < p.size() && p[at[i] + 1].epoch <= e) ++at[i];
+            const LossPoint& q = p[at[i]];
+            if (std::isfinite(q.train)) train += q.train, ++nTrain;
+            if (std::isfinite(q.validation)) validation += q.validation, ++nValidation;
+            seconds = std::max(seconds, q.seconds);
+        }
+        if (nTrain == 0 && nValidation == 0) continue;
+        out.push_back({e, nTrain ? train / nTrain : kNaN, nValidation ? validation / nValidation : kNaN, seconds});
+    }
+    return out;
+}
+
+}  // namespace rrf::panels

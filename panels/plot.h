@@ -1,0 +1,49 @@
+#pragma once
+/// Small plotting helpers over ImDrawList, shared by the Training (loss) and Cost (error vs time)
+/// panels: linear and log10 axes, decade grids with labels, series colours and the aggregate of
+/// several loss curves. The mapping functions need no ImGui context, so tests check them directly.
+
+#include <string>
+#include <vector>
+
+#include <imgui.h>
+
+#include "panels/runs.h"
+
+namespace rrf::panels {
+
+/// One plot axis mapping data [lo, hi] onto pixels [p0, p1]. On a log axis lo and hi are log10 of
+/// the data range; values ≤ 0 have no position there (toPixel returns NaN).
+struct PlotAxis {
+    bool log = false;
+    double lo = 0.0, hi = 1.0;
+    float p0 = 0.f, p1 = 1.f;
+
+    float toPixel(double value) const;
+    double toValue(float pixel) const;
+};
+
+/// A log axis spanning whole decades around the positive values in [minValue, maxValue] (at least
+/// one decade; a non-positive or non-finite range gives 1e-3 … 1).
+PlotAxis logAxis(double minValue, double maxValue, float p0, float p1);
+/// A linear axis over [minValue, maxValue] (widened to a non-zero span).
+PlotAxis linearAxis(double minValue, double maxValue, float p0, float p1);
+
+/// Draws the plot background, the grid (every decade on log axes with 2…9 minor lines, about five
+/// ticks on linear ones) and the tick labels into `dl`. `min`/`max` is the plot rectangle; tick labels
+/// go left of and below it, the y label one text line above it, the x label under the ticks.
+void drawAxes(ImDrawList* dl, const ImVec2& min, const ImVec2& max, const PlotAxis& x, const PlotAxis& y,
+              const char* xLabel, const char* yLabel);
+
+/// A distinct colour for series i (cycles after 10).
+ImU32 seriesColour(int i, float alpha = 1.f);
+
+/// "1e-3", "0.25", "40": a short tick label.
+std::string tickLabel(double value);
+
+/// Mean of several networks' curves per epoch. A network that stopped earlier contributes its last
+/// value (its kept weights do not change after it stops), so the mean does not jump when one
+/// finishes. NaN validation values are left out of the validation mean. Seconds: the maximum.
+std::vector<LossPoint> aggregateLoss(const std::vector<LossCurve>& curves);
+
+}  // namespace rrf::panels

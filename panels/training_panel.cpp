@@ -1,0 +1,177 @@
+// Training panel: start and stop the training job, its epoch / time / μ or learning rate, and the
+// live loss plot — train and validation loss on a log10 y axis with a decade grid, one curve per
+// network (colour per network, legend) or their mean, and a hover read-out of the nearest point.
+// Without a running or finished job in this session it shows the project's last training run.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "panels/panels.h"
+#include "panels/plot.h"
+
+namespace rrf::panels {
+
+namespace {
+struct Shown {
+    const std::vector<LossCurve>* curves = nullptr;
+    std::string source;  ///< where the curves come from, for the header line
+};
+
+Shown shownCurves(const WorkbenchState& state) {
+    if (!state.training.curves.empty() || state.training.running)
+        return {&state.training.curves, state.training.running ? "live" : "this session"};
+    for (auto it = state.runs.rbegin(); it != state.runs.rend(); ++it)
+        if (it->kind == "train" && !it->curves.empty()) return {&it->curves, "run '" + it->name + "'"};
+    return {&state.training.curves, ""};
+}
+
+void drawToolbar(WorkbenchState& state) {
+    const TrainingInfo& t = state.training;
+    if (!t.running) {
+        ImGui::BeginDisabled(!state.hasProject);
+        if (ImGui::Button("Train")) state.request(Command::Train);
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip("trains the Network panel's networks on the Sampling panel's dataset");
+    } else if (ImGui::Button("Stop")) {
+        state.request(Command::CancelTrain);
+    }
+    ImGui::SameLine();
+    ImGui::BeginDisabled(t.running || t.modelsDir.empty());
+    if (ImGui::Button("Evaluate")) state.request(Command::Evaluate);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (t.running || t.epoch > 0) {
+        char overlay[64];
+        std::snprintf(overlay, sizeof overlay, "%.0f%%%s", 100 * t.progress, t.running ? "" : "  done");
+        ImGui::ProgressBar(float(t.progress), ImVec2(ImGui::GetFontSize() * 8, 0), overlay);
+        ImGui::SameLine();
+        const bool lm = t.trainer != "adam";
+        ImGui::Text("epoch %d  %.1f s  %s %.3g", t.epoch, t.seconds, lm ? "mu" : "learning rate", t.step);
+        ImGui::SameLine();
+    }
+    ImGui::Checkbox("mean of all networks", &state.trainingView.aggregate);
+    ImGui::SameLine();
+    ImGui::Checkbox("train", &state.trainingView.showTrain);
+    ImGui::SameLine();
+    ImGui::Checkbox("validation", &state.trainingView.showValidation);
+}
+
+/// Finds the displayed point nearest to the mouse (within a few pixels) and shows its values.
+void hoverReadout(TrainingView& v, const std::vector<LossCurve>& curves, const PlotAxis& x, const PlotAxis& y) {
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    float best = ImGui::GetFontSize() * 0.75f;
+    best *= best;
+    for (size_t c = 0; c < curves.size(); ++c)
+        for (const LossPoint& p : curves[c].points)
+            for (double value : {v.showTrain ? p.train : NAN, v.showValidation ? p.validation : NAN}) {
+                const float py = y.toPixel(value);
+                if (!std::isfinite(py)) continue;
+                const float dx = x.toPixel(p.epoch) - m.x, dy = py - m.y;
+                if (dx * dx + dy * dy < best) {
+                    best = dx * dx + dy * dy;
+                    v.hoverCurve = int(c);
+                    v.hoverEpoch = p.epoch;
+                }
+            }
+    if (v.hoverCurve < 0) return;
+    for (const LossPoint& p : curves[size_t(v.hoverCurve)].points)
+        if (p.epoch == v.hoverEpoch)
+            ImGui::SetTooltip("%s\nepoch %d\ntrain %.4g\nvalidation %.4g\n%.2f s", curves[size_t(v.hoverCurve)].label().c_str(),
+                              p.epoch, p.train, p.validation, p.seconds);
+}
+
+void drawCurve(ImDrawList* dl, const std::vector<LossPoint>& pts, bool validation, const PlotAxis& x, const PlotAxis& y,
+               ImU32 colour, float thickness) {
+    std::vector<ImVec2> line;
+    auto flush = [&] {
+        if (line.size() >= 2) dl->AddPolyline(line.data(), int(line.size()), colour, 0, thickness);
+        else if (line.size() == 1) dl->AddCircleFilled(line[0], thickness + 1.f, colour);
+        line.clear();
+    };
+    for (const LossPoint& p : pts) {
+        const float py = y.toPixel(validation ? p.validation : p.train);
+        if (!std::isfinite(py)) {  // NaN (no validation set) or a zero loss: a gap in the line
+            flush();
+            continue;
+        }
+        line.emplace_back(x.toPixel(p.epoch), py);
+    }
+    flush();
+}
+}  // namespace
+
+void drawTrainingPanel(WorkbenchState& state) {
+    drawToolbar(state);
+    TrainingView& v = state.trainingView;
+    v.hoverCurve = v.hoverEpoch = -1;
+    const Shown shown = shownCurves(state);
+    std::vector<LossCurve> mean;
+    if (v.aggregate && !shown.curves->empty()) {
+        LossCurve c;
+        c.object = "mean of";
+        c.target = std::to_string(shown.curves->size()) + " networks";
+        c.points = aggregateLoss(*shown.curves);
+        mean.push_back(std::move(c));
+    }
+    const std::vector<LossCurve>& curves = v.aggregate ? mean : *shown.curves;
+
+    double lo = INFINITY, hi = 0;
+    int lastEpoch = 1;
+    for (const LossCurve& c : curves)
+        for (const LossPoint& p : c.points) {
+            lastEpoch = std::max(lastEpoch, p.epoch);
+            for (double value : {v.showTrain ? p.train : NAN, v.showValidation ? p.validation : NAN})
+                if (value > 0 && std::isfinite(value)) lo = std::min(lo, value), hi = std::max(hi, value);
+        }
+
+    const float font = ImGui::GetFontSize();
+    const float legendW = curves.empty() ? 0.f : font * 13;
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const ImVec2 size(std::max(avail.x - legendW, font * 10), std::max(avail.y, font * 6));
+    ImGui::InvisibleButton("##loss-plot", size);
+    const bool hovered = ImGui::IsItemHovered();
+    // Margins for the tick labels (left) and the epoch labels (below).
+    const ImVec2 pmin(origin.x + font * 3.5f, origin.y + font * 1.5f);
+    const ImVec2 pmax(origin.x + size.x - font * 0.5f, origin.y + size.y - font * 2.6f);
+    const PlotAxis x = linearAxis(0, lastEpoch, pmin.x, pmax.x);
+    const PlotAxis y = logAxis(lo, hi, pmax.y, pmin.y);
+    v.plotMinX = pmin.x, v.plotMinY = pmin.y, v.plotMaxX = pmax.x, v.plotMaxY = pmax.y;
+    v.yLo = y.lo, v.yHi = y.hi;
+
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    drawAxes(dl, pmin, pmax, x, y, "epoch", "loss (normalised units)");
+    if (curves.empty()) {
+        dl->AddText(ImVec2(pmin.x + font, pmin.y + font * 1.5f), IM_COL32(170, 170, 170, 255),
+                    state.hasProject ? "No training yet: generate a dataset, then press Train." : "No project is open.");
+        return;
+    }
+    dl->PushClipRect(pmin, pmax, true);
+    for (size_t c = 0; c < curves.size(); ++c) {
+        if (v.showTrain) drawCurve(dl, curves[c].points, false, x, y, seriesColour(int(c)), 2.f);
+        if (v.showValidation) drawCurve(dl, curves[c].points, true, x, y, seriesColour(int(c), 0.55f), 1.f);
+    }
+    dl->PopClipRect();
+    if (hovered) hoverReadout(v, curves, x, y);
+
+    // Legend: colour, network, last train / validation loss.
+    ImGui::SameLine();
+    ImGui::BeginGroup();
+    ImGui::TextDisabled("%s", shown.source.c_str());
+    ImGui::TextDisabled("thick: train, thin: validation");
+    for (size_t c = 0; c < curves.size(); ++c) {
+        const ImVec2 p = ImGui::GetCursorScreenPos();
+        dl->AddRectFilled(ImVec2(p.x, p.y + font * 0.3f), ImVec2(p.x + font * 0.7f, p.y + font), seriesColour(int(c)));
+        ImGui::Dummy(ImVec2(font * 0.8f, font));
+        ImGui::SameLine();
+        const LossPoint* last = curves[c].points.empty() ? nullptr : &curves[c].points.back();
+        if (last) ImGui::Text("%s  %.3g / %.3g", curves[c].label().c_str(), last->train, last->validation);
+        else ImGui::TextUnformatted(curves[c].label().c_str());
+    }
+    ImGui::EndGroup();
+}
+
+}  // namespace rrf::panels

@@ -1,0 +1,264 @@
+// The learning panels (Network, Training, Objects, Cost) in a bare ImGui context: edits change the
+// project's network settings as expected, the loss plot maps known losses onto the log axis where
+// they belong and its hover finds them, the Objects table sorts, nothing crashes without data, and
+// network settings and training runs survive save -> reopen.
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include <unistd.h>
+
+#include "panels/panels.h"
+#include "panels/plot.h"
+#include "panels/project_io.h"
+#include "tests/gui/imgui_fixture.h"
+
+namespace rrf::test {
+
+namespace fs = std::filesystem;
+using namespace rrf::panels;
+
+namespace {
+const std::string kCornell = RRF_SOURCE_DIR "/projects/cornell-box/project.json";
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+void loadCornell(WorkbenchState& s) {
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, kCornell, error)) << error;
+}
+
+void drawLearningPanels(WorkbenchState& s) {
+    ImGui::BeginChild("net", ImVec2(400, 500));
+    drawNetworkPanel(s);
+    ImGui::EndChild();
+    ImGui::BeginChild("train", ImVec2(900, 300));
+    drawTrainingPanel(s);
+    ImGui::EndChild();
+    ImGui::BeginChild("objects", ImVec2(900, 200));
+    drawObjectsPanel(s);
+    ImGui::EndChild();
+    ImGui::BeginChild("cost", ImVec2(900, 300));
+    drawCostPanel(s);
+    ImGui::EndChild();
+}
+
+LossCurve decadeCurve() {
+    LossCurve c;
+    c.objectId = 2;
+    c.object = "floor";
+    c.target = "global";
+    // Train loss falls one decade per epoch: 1, 0.1, 0.01, 0.001; no validation set.
+    for (int e = 0; e < 4; ++e) c.points.push_back({e, std::pow(10.0, -e), kNaN, 0.5 * e});
+    return c;
+}
+
+ObjectErrorRow row(int id, const std::string& name, double rmse, uint64_t pixels) {
+    ObjectErrorRow r;
+    r.objectId = id;
+    r.name = name;
+    r.stats.rmse = rmse;
+    r.stats.relativeRmse = rmse * 2;
+    r.stats.pixels = pixels;
+    r.samples = 100 * uint64_t(id + 1);
+    return r;
+}
+}  // namespace
+
+using LearningPanelTest = ImGuiFixture;
+
+TEST_F(LearningPanelTest, NoCrashWithoutProjectOrData) {
+    WorkbenchState s;
+    for (int i = 0; i < 3; ++i) frame([&] { drawLearningPanels(s); });
+    loadCornell(s);
+    for (int i = 0; i < 3; ++i) frame([&] { drawLearningPanels(s); });
+    EXPECT_TRUE(s.requests.empty()) << "idle frames must not ask for anything";
+    EXPECT_FALSE(s.dirty) << "idle frames must not edit the project";
+    EXPECT_FALSE(s.project.doc.contains("network")) << "drawing must not write default sections";
+}
+
+TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
+    WorkbenchState s;
+    loadCornell(s);
+    ASSERT_EQ(NetworkSettings::fromProject(s.project).options.hidden, (std::vector<int>{20, 10}));
+    ASSERT_TRUE(addHiddenLayer(s));
+    EXPECT_TRUE(s.dirty);
+    EXPECT_EQ(NetworkSettings::fromProject(s.project).options.hidden, (std::vector<int>{20, 10, 10}));
+    ASSERT_TRUE(resizeHiddenLayer(s, 0, 32));
+    ASSERT_TRUE(removeHiddenLayer(s, 1));
+    EXPECT_EQ(NetworkSettings::fromProject(s.project).options.hidden, (std::vector<int>{32, 10}));
+    EXPECT_FALSE(resizeHiddenLayer(s, 5, 8)) << "no such layer";
+    EXPECT_TRUE(resizeHiddenLayer(s, 1, 100000)) << "sizes are clamped, not refused";
+    EXPECT_EQ(NetworkSettings::fromProject(s.project).options.hidden[1], 4096);
+    ASSERT_TRUE(removeHiddenLayer(s, 1));
+    EXPECT_FALSE(removeHiddenLayer(s, 0)) << "a network keeps at least one hidden layer";
+
+    EXPECT_EQ(NetworkSettings::fromProject(s.project).options.trainer.type, TrainerType::LevenbergMarquardt);
+    ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
+    EXPECT_FALSE(setTrainerType(s, TrainerType::Adam)) << "no change, nothing stored";
+    const NetworkSettings n = NetworkSettings::fromProject(s.project);
+    EXPECT_EQ(n.options.trainer.type, TrainerType::Adam);
+    EXPECT_EQ(s.project.doc["trainer"]["type"], "adam");
+    EXPECT_EQ(n.options.trainer.adam.batchSize, AdamConfig().batchSize) << "Adam starts from its defaults";
+    EXPECT_EQ(n.options.targets, TargetMode::Separate) << "the project default is kept by the edits";
+
+    // The panel draws the edited settings (Adam parameters, one layer) without asking for anything.
+    for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(s); });
+    EXPECT_TRUE(s.requests.empty());
+    EXPECT_EQ(NetworkSettings::fromProject(s.project).options.hidden, (std::vector<int>{32}));
+}
+
+TEST_F(LearningPanelTest, LossPlotPutsKnownLossesOnTheirDecades) {
+    WorkbenchState s;
+    loadCornell(s);
+    s.training.curves.push_back(decadeCurve());
+    s.trainingView.showValidation = false;
+    frame([&] { drawTrainingPanel(s); });
+    const TrainingView& v = s.trainingView;
+    ASSERT_LT(v.plotMinY, v.plotMaxY);
+    EXPECT_DOUBLE_EQ(v.yLo, -3.0) << "0.001 starts the axis on its decade";
+    EXPECT_DOUBLE_EQ(v.yHi, 0.0);
+    // 1e-2 is one decade above the bottom of three: one third of the way up.
+    const PlotAxis y = logAxis(1e-3, 1.0, v.plotMaxY, v.plotMinY);
+    const float expected = v.plotMaxY - (v.plotMaxY - v.plotMinY) / 3.f;
+    EXPECT_NEAR(y.toPixel(1e-2), expected, 1e-3);
+    EXPECT_NEAR(y.toValue(expected), 1e-2, 1e-6) << "pixels are floats: a relative 1e-4 is their precision";
+    EXPECT_NEAR(y.toPixel(1.0), v.plotMinY, 1e-3);
+    EXPECT_TRUE(std::isnan(y.toPixel(0.0))) << "zero has no place on a log axis";
+
+    // Hovering the point of epoch 2 (loss 0.01) reports that network and epoch.
+    const PlotAxis x = linearAxis(0, 3, v.plotMinX, v.plotMaxX);
+    mouse(x.toPixel(2), expected + 1.f, false);
+    for (int i = 0; i < 3; ++i) frame([&] { drawTrainingPanel(s); });
+    EXPECT_EQ(s.trainingView.hoverCurve, 0);
+    EXPECT_EQ(s.trainingView.hoverEpoch, 2);
+    mouse(5, 5, false);
+    frame([&] { drawTrainingPanel(s); });
+    EXPECT_EQ(s.trainingView.hoverCurve, -1);
+
+    s.trainingView.aggregate = true;
+    for (int i = 0; i < 2; ++i) frame([&] { drawTrainingPanel(s); });
+    EXPECT_TRUE(s.requests.empty());
+}
+
+TEST(LossAggregate, StoppedNetworksKeepTheirLastValue) {
+    LossCurve a, b;
+    a.points = {{0, 1.0, 2.0, 0.1}, {1, 0.5, 1.0, 0.2}, {2, 0.25, 0.5, 0.3}};
+    b.points = {{0, 3.0, kNaN, 0.1}, {1, 1.5, kNaN, 0.4}};  // stopped after epoch 1, no validation set
+    const std::vector<LossPoint> m = aggregateLoss({a, b});
+    ASSERT_EQ(m.size(), 3u);
+    EXPECT_DOUBLE_EQ(m[1].train, 1.0);
+    EXPECT_DOUBLE_EQ(m[2].train, (0.25 + 1.5) / 2) << "b contributes its last value";
+    EXPECT_DOUBLE_EQ(m[2].validation, 0.5) << "NaN validation losses are left out";
+    EXPECT_DOUBLE_EQ(m[1].seconds, 0.4);
+    EXPECT_TRUE(aggregateLoss({}).empty());
+}
+
+TEST(PlotAxes, LogAxisSpansWholeDecades) {
+    const PlotAxis a = logAxis(0.003, 42.0, 0.f, 100.f);
+    EXPECT_DOUBLE_EQ(a.lo, -3.0);
+    EXPECT_DOUBLE_EQ(a.hi, 2.0);
+    EXPECT_NEAR(a.toPixel(1.0), 60.f, 1e-4);
+    const PlotAxis d = logAxis(0.0, -1.0, 0.f, 1.f);  // nothing positive: a usable default
+    EXPECT_LT(d.lo, d.hi);
+    EXPECT_EQ(tickLabel(1e-4), "1e-4");
+    EXPECT_EQ(tickLabel(10.0), "10");
+}
+
+TEST_F(LearningPanelTest, ObjectsTableSortsAndExports) {
+    const std::vector<ObjectErrorRow> rows = {row(0, "left wall", 0.2, 500), row(1, "floor", 0.05, 900),
+                                              row(2, "tall box", 0.4, 300)};
+    auto ids = [](const std::vector<ObjectErrorRow>& r) {
+        std::vector<int> out;
+        for (const ObjectErrorRow& x : r) out.push_back(x.objectId);
+        return out;
+    };
+    EXPECT_EQ(ids(sortedObjectRows(rows, ObjectColumn::Rmse, false)), (std::vector<int>{2, 0, 1}));
+    EXPECT_EQ(ids(sortedObjectRows(rows, ObjectColumn::Pixels, true)), (std::vector<int>{2, 0, 1}));
+    EXPECT_EQ(ids(sortedObjectRows(rows, ObjectColumn::Object, true)), (std::vector<int>{1, 0, 2}));
+    EXPECT_EQ(ids(sortedObjectRows(rows, ObjectColumn::Samples, false)), (std::vector<int>{2, 1, 0}));
+
+    const std::string csv = objectRowsCsv(sortedObjectRows(rows, ObjectColumn::Rmse, true), "global");
+    EXPECT_EQ(csv.substr(0, csv.find('\n')), "term,object_id,object,rmse,relative_rmse,mae,max,pixels,samples,train_seconds");
+    EXPECT_NE(csv.find("\nglobal,1,\"floor\",0.05,0.1,"), std::string::npos) << csv;
+    EXPECT_LT(csv.find("floor"), csv.find("tall box")) << "rows in the table's order";
+
+    WorkbenchState s;
+    loadCornell(s);
+    s.evaluation.valid = true;
+    s.evaluation.available[int(Term::Global)] = true;
+    s.evaluation.rows[int(Term::Global)] = rows;
+    for (int i = 0; i < 3; ++i) frame([&] { drawObjectsPanel(s); });
+    EXPECT_TRUE(s.requests.empty());
+    s.view.term = Term::Direct;  // not predicted: the panel says so instead of an empty table
+    frame([&] { drawObjectsPanel(s); });
+    EXPECT_EQ(s.view.selectedObject, -1);
+}
+
+TEST_F(LearningPanelTest, CostPanelPlotsEvaluatedTrainingRuns) {
+    std::vector<panels::Run> runs(3);
+    runs[0].kind = "render";
+    runs[1].kind = "train";
+    runs[1].name = "evaluated";
+    runs[1].metrics = {{"relative_rmse", 0.12}};
+    runs[1].timings = {{"train", 30.0}, {"generate", 10.0}};
+    runs[2].kind = "train";  // never evaluated: no point
+    runs[2].timings = {{"train", 5.0}};
+    const CostSeries series = runsCostSeries(runs);
+    ASSERT_EQ(series.points.size(), 1u);
+    EXPECT_DOUBLE_EQ(series.points[0].seconds, 40.0) << "the cost of a run includes its data generation";
+    EXPECT_DOUBLE_EQ(series.points[0].error, 0.12);
+
+    WorkbenchState s;
+    loadCornell(s);
+    s.runs = runs;
+    s.cost.sweeps.push_back({"sweep spp", {{0.1, 0.5, "1"}, {0.4, 0.25, "4"}, {1.6, 0.125, "16"}}});
+    for (int i = 0; i < 3; ++i) frame([&] { drawCostPanel(s); });
+    EXPECT_TRUE(s.requests.empty());
+}
+
+TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
+    const fs::path dir = fs::temp_directory_path() / ("rrf_gui_learning_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    fs::copy_file(RRF_SOURCE_DIR "/projects/cornell-box/project.json", dir / "project.json");
+    fs::copy_file(RRF_SOURCE_DIR "/projects/cornell-box/scene.json", dir / "scene.json");
+    WorkbenchState s;
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, (dir / "project.json").string(), error)) << error;
+    ASSERT_TRUE(addHiddenLayer(s));
+    ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
+    NetworkSettings edited = NetworkSettings::fromProject(s.project);
+    edited.options.trainer.adam.learningRate = 3e-3;
+    edited.options.trainer.adam.loss = AdamLoss::RelativeL2;
+    edited.options.targets = TargetMode::Joint;
+    edited.store(s.project);
+
+    panels::Run run;
+    run.id = run.name = "train-1";
+    run.kind = "train";
+    run.curves = {decadeCurve()};
+    run.loss = aggregateLoss(run.curves);
+    run.settings = {{"network", edited.networkJson()}, {"trainer", edited.trainerJson()}};
+    run.metrics = {{"relative_rmse", 0.2}};
+    run.artifacts = {"runs/train-1/models/models.json"};
+    s.runs.push_back(run);
+    ASSERT_TRUE(saveStateToProject(s, (dir / "project.json").string(), error)) << error;
+
+    WorkbenchState t;
+    ASSERT_TRUE(loadProjectIntoState(t, (dir / "project.json").string(), error)) << error;
+    const NetworkSettings back = NetworkSettings::fromProject(t.project);
+    EXPECT_EQ(back.networkJson(), edited.networkJson());
+    EXPECT_EQ(back.trainerJson(), edited.trainerJson());
+    ASSERT_EQ(t.runs.size(), 1u);
+    const panels::Run& r = t.runs[0];
+    ASSERT_EQ(r.curves.size(), 1u);
+    EXPECT_EQ(r.curves[0].label(), "floor global");
+    ASSERT_EQ(r.curves[0].points.size(), 4u);
+    EXPECT_DOUBLE_EQ(r.curves[0].points[3].train, 1e-3);
+    EXPECT_TRUE(std::isnan(r.curves[0].points[3].validation)) << "a missing validation loss stays missing";
+    ASSERT_EQ(r.loss.size(), 4u);
+    EXPECT_EQ(r.toJson(), run.toJson());
+    fs::remove_all(dir);
+}
+
+}  // namespace rrf::test
