@@ -40,15 +40,6 @@ RenderSettings parseRender(const JsonReader& r) {
     return s;
 }
 
-json renderToJson(const RenderSettings& s) {
-    return json{{"spp", s.spp},
-                {"width", s.width},
-                {"height", s.height},
-                {"mode", s.estimator == Estimator::NEE ? "nee" : "naive"},
-                {"seed", s.seed},
-                {"max_depth", s.maxDepth},
-                {"exposure", s.exposure}};
-}
 
 /// Absolute, lexically normalised form of `p` (no symlink resolution: the user's spelling of the
 /// directory layout is what relative references are written against).
@@ -93,7 +84,7 @@ Project loadProjectOrScene(const std::string& path) {
         p.doc = json{{"rrf_project", kProjectVersion},
                      {"name", fs::path(path).stem().string()},
                      {"scene", p.sceneRef},
-                     {"render", renderToJson(p.render)}};
+                     {"render", renderSettingsToJson(p.render)}};
         return p;
     }
 
@@ -130,12 +121,22 @@ Project loadProjectOrScene(const std::string& path) {
     return p;
 }
 
+nlohmann::json renderSettingsToJson(const RenderSettings& s) {
+    return json{{"spp", s.spp},
+                {"width", s.width},
+                {"height", s.height},
+                {"mode", s.estimator == Estimator::NEE ? "nee" : "naive"},
+                {"seed", s.seed},
+                {"max_depth", s.maxDepth},
+                {"exposure", s.exposure}};
+}
+
 void saveProject(Project& project, const std::string& path) {
     const std::string oldDir = directoryOf(project.path);
     const std::string newDir = directoryOf(path);
     json doc = project.doc.is_object() ? project.doc : json::object();
     if (!doc.contains("rrf_project")) doc["rrf_project"] = kProjectVersion;
-    doc["render"] = renderToJson(project.render);
+    doc["render"] = renderSettingsToJson(project.render);
 
     std::string newRef;
     json newSceneJson = project.sceneJson;

@@ -38,6 +38,9 @@ struct Project {
 /// which case default settings are used. Throws InputError naming the file and JSON path.
 Project loadProjectOrScene(const std::string& path);
 
+/// The "render" section for `s` (every key written).
+nlohmann::json renderSettingsToJson(const RenderSettings& s);
+
 /// Serialises `project` (typed settings written back into project.doc) and writes it atomically
 /// (temporary file + rename). Throws std::runtime_error on I/O failure.
 void saveProject(Project& project, const std::string& path);

@@ -11,7 +11,10 @@
 #include <utility>
 #include <vector>
 
+#include "core/accel.h"
+#include "core/brdf.h"
 #include "core/camera_rays.h"
+#include "core/renderer.h"
 #include "core/path_tracer.h"
 #include "core/rng.h"
 #include "core/scene.h"
@@ -395,5 +398,40 @@ inline double sidakAlpha(int tests, double overall = 0.01) { return 1.0 - std::p
 /// Number of chi-square tests in the sampling family (test_sampling.cpp: cosine + 4 Phong
 /// exponents; test_brdf.cpp: mixture at 3 view angles).
 constexpr int kChiSquareTests = 8;
+
+/// Phong BRDF with grey kd, ks and exponent n.
+inline Brdf phong(float kd, float ks, float n) {
+    Material m;
+    m.type = Material::Type::Phong;
+    m.kd = Vec3(kd);
+    m.ks = Vec3(ks);
+    m.exponent = n;
+    return Brdf(m);
+}
+
+/// Renders `scene` at its camera size in one pass and returns the snapshot.
+inline RenderSnapshot render(const Scene& scene, const Accel& accel, const RenderOptions& o) {
+    Renderer r(scene, accel, o);
+    r.run();
+    return r.snapshot();
+}
+inline RenderSnapshot render(const Scene& scene, const Accel& accel, Estimator estimator, int spp, uint64_t seed = 1) {
+    RenderOptions o;
+    o.width = scene.camera.width;
+    o.height = scene.camera.height;
+    o.spp = spp;
+    o.samplesPerPass = spp;
+    o.estimator = estimator;
+    o.seed = seed;
+    return render(scene, accel, o);
+}
+
+/// Standard error of the image mean of channel c from the per-pixel variances of the mean
+/// (pixels are independent, so the variances add).
+inline double imageMeanSigma(const RenderSnapshot& s, int c = 0) {
+    double sum = 0;
+    for (size_t i = 0; i < s.variance.pixelCount(); ++i) sum += s.variance.data[3 * i + size_t(c)];
+    return std::sqrt(sum) / double(s.variance.pixelCount());
+}
 
 }  // namespace rrf::test

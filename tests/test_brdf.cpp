@@ -18,15 +18,6 @@ namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
 
-Brdf phong(float kd, float ks, float n) {
-    Material m;
-    m.type = Material::Type::Phong;
-    m.kd = Vec3(kd);
-    m.ks = Vec3(ks);
-    m.exponent = n;
-    return Brdf(m);
-}
-
 Vec3 direction(double cosTheta, double phi) {
     const double s = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
     return {float(s * std::cos(phi)), float(s * std::sin(phi)), float(cosTheta)};

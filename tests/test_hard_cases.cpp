@@ -21,33 +21,9 @@ namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
 
-Brdf phong(float kd, float ks, float n) {
-    Material m;
-    m.type = Material::Type::Phong;
-    m.kd = Vec3(kd);
-    m.ks = Vec3(ks);
-    m.exponent = n;
-    return Brdf(m);
-}
-
 RenderSnapshot render(const Scene& scene, Estimator estimator, int spp, uint64_t seed = 1) {
     const Accel accel(scene);
-    RenderOptions o;
-    o.width = scene.camera.width;
-    o.height = scene.camera.height;
-    o.spp = spp;
-    o.samplesPerPass = spp;
-    o.estimator = estimator;
-    o.seed = seed;
-    Renderer r(scene, accel, o);
-    r.run();
-    return r.snapshot();
-}
-
-double imageMeanSigma(const RenderSnapshot& s, int c = 0) {
-    double sum = 0;
-    for (size_t i = 0; i < s.variance.pixelCount(); ++i) sum += s.variance.data[3 * i + size_t(c)];
-    return std::sqrt(sum) / double(s.variance.pixelCount());
+    return rrf::test::render(scene, accel, estimator, spp, seed);
 }
 
 void expectAllFinite(const RenderSnapshot& s, const char* what) {
