@@ -50,6 +50,9 @@ struct Evaluation {
     Prediction prediction;
     TermErrors terms[kTermCount];
     std::vector<int32_t> objectIds;  ///< G-buffer object id per pixel (the masks)
+    /// Object pixels left out of the statistics because a 4-neighbour shows another object, an
+    /// emitter or the background: the reference's box filter mixes surfaces there.
+    uint64_t silhouettePixels = 0;
     double gbufferSeconds = 0.0;
     double referenceSeconds = 0.0;
     int referenceSpp = 0;
