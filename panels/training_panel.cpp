@@ -127,6 +127,10 @@ void drawTrainingPanel(WorkbenchState& state) {
                 if (value > 0 && std::isfinite(value)) lo = std::min(lo, value), hi = std::max(hi, value);
         }
 
+    // A network with a constant target (a surface no direct light reaches) drives its loss to
+    // 1e-20 and below; eight decades under the largest loss is all a user can read, the rest is clipped.
+    lo = std::max(lo, hi * 1e-8);
+
     const float font = ImGui::GetFontSize();
     const float legendW = curves.empty() ? 0.f : font * 13;
     const ImVec2 origin = ImGui::GetCursorScreenPos();

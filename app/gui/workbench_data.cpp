@@ -91,7 +91,9 @@ void Workbench::pollGenerate() {
     if (!generate_) return;
     state_.dataset.progress = generate_->progress.fraction();
     if (state_.dataset.running) return;
-    std::lock_guard<std::mutex> lock(generate_->mutex);
+    // The local keeps the session (and its mutex) alive until the lock is released below.
+    const std::shared_ptr<GenerateSession> session = generate_;
+    std::lock_guard<std::mutex> lock(session->mutex);
     if (generate_->written) {
         state_.dataset.path = generate_->out;
         state_.dataset.recordsPerObject = generate_->counts;

@@ -82,7 +82,9 @@ bool Workbench::startEvaluate() {
 void Workbench::pollEvaluate() {
     state_.evaluation.running = evaluateRunning();
     if (!evaluate_ || state_.evaluation.running) return;
-    std::lock_guard<std::mutex> lock(evaluate_->mutex);
+    // The local keeps the session (and its mutex) alive until the lock is released below.
+    const std::shared_ptr<EvaluateSession> session = evaluate_;
+    std::lock_guard<std::mutex> lock(session->mutex);
     if (!evaluate_->done) {
         evaluate_.reset();
         return;

@@ -118,7 +118,9 @@ bool Workbench::predictRunning() const { return predictJob_ != 0 && jobs_.runnin
 
 void Workbench::pollPredict() {
     if (predict_ && !predictRunning()) {
-        std::lock_guard<std::mutex> lock(predict_->mutex);
+        // The local keeps the session (and its mutex) alive until the lock is released below.
+        const std::shared_ptr<PredictSession> session = predict_;
+        std::lock_guard<std::mutex> lock(session->mutex);
         if (predict_->done) {
             panels::ImageSet& p = state_.prediction;
             p.direct = std::move(predict_->prediction.images[0]);

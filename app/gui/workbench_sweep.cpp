@@ -105,7 +105,9 @@ void Workbench::pollSweep() {
     for (const JobInfo& j : jobs_.jobs())
         if (j.id == sweepJob_) state_.cost.progress = j.progress;
     if (state_.cost.running) return;
-    std::lock_guard<std::mutex> lock(sweep_->mutex);
+    // The local keeps the session (and its mutex) alive until the lock is released below.
+    const std::shared_ptr<SweepSession> session = sweep_;
+    std::lock_guard<std::mutex> lock(session->mutex);
     if (sweep_->done && !sweep_->result.cancelled) {
         panels::CostSeries s;
         s.name = "sweep " + sweep_->result.what;

@@ -149,7 +149,9 @@ bool Workbench::startTrain(int maxEpochs) {
 void Workbench::pollTrain() {
     state_.training.running = trainRunning();
     if (!train_) return;
-    TrainSession& s = *train_;
+    // The local keeps the session (and its mutex) alive while it is locked below and train_ is reset.
+    const std::shared_ptr<TrainSession> session = train_;
+    TrainSession& s = *session;
     std::vector<std::string> messages;
     {
         std::lock_guard<std::mutex> lock(s.mutex);

@@ -135,6 +135,13 @@ TEST_F(LearningPanelTest, LossPlotPutsKnownLossesOnTheirDecades) {
     frame([&] { drawTrainingPanel(s); });
     EXPECT_EQ(s.trainingView.hoverCurve, -1);
 
+    // A constant target's loss of 1e-30 must not squash the other curves into the top decades.
+    s.training.curves.push_back(decadeCurve());
+    s.training.curves.back().points.push_back({4, 1e-30, kNaN, 2.0});
+    frame([&] { drawTrainingPanel(s); });
+    EXPECT_DOUBLE_EQ(s.trainingView.yHi, 0.0);
+    EXPECT_DOUBLE_EQ(s.trainingView.yLo, -8.0) << "at most eight decades below the largest loss";
+
     s.trainingView.aggregate = true;
     for (int i = 0; i < 2; ++i) frame([&] { drawTrainingPanel(s); });
     EXPECT_TRUE(s.requests.empty());
