@@ -120,6 +120,8 @@ bool Script::execute(Workbench& wb, const json& s) {
         require(wb.startTrain(int(number(s, "epochs", 0))), "training could not start (see the log)");
     } else if (what == "evaluate") {
         require(wb.startEvaluate(), "the evaluation could not start (see the log)");
+    } else if (what == "sweep") {
+        require(wb.startSweep(text(s, "what")), "the sweep could not start (see the log)");
     } else if (what == "tab") {
         st.focusTab = text(s, "name");
     } else if (what == "save_run") {
@@ -186,6 +188,9 @@ bool Script::execute(Workbench& wb, const json& s) {
         if (s.contains("compare")) require(!st.compare.empty() == s["compare"].get<bool>(), "compare view state differs");
         if (s.contains("prediction"))
             require(!st.prediction.empty() == s["prediction"].get<bool>(), "prediction view state differs");
+        if (s.contains("sweeps"))
+            require(int(st.cost.sweeps.size()) == int(number(s, "sweeps", 0)), "expected " +
+                    std::to_string(int(number(s, "sweeps", 0))) + " sweeps, found " + std::to_string(st.cost.sweeps.size()));
         if (s.contains("evaluated")) require(st.evaluation.valid == s["evaluated"].get<bool>(), "evaluation state differs");
         if (s.contains("train_runs")) {
             int n = 0;

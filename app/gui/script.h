@@ -7,11 +7,12 @@
 ///       {"do": "compare_run", "index": 0}, {"do": "check", "runs": 1}, {"do": "frames", "count": 5} ]
 ///
 /// Steps: render {spp}, generate {grid, dirs, spp}, train {epochs, hidden, trainer, targets}, evaluate,
+/// sweep {what: spp|grid|hidden|trainer},
 /// wait {for: render|jobs, timeout_s}, save_run, compare_run {index},
 /// reopen_run {index}, set_light {position}, select_object {id}, view {term, metric, exposure,
 /// error_max, zoom}, open {path?: default re-opens the current file}, save {path?}, export_images {dir}, screenshot {path},
 /// frames {count}, tab {name: bring a panel tab to the front}, check {runs, ground_truth_spp_min, errors,
-/// compare, dataset, prediction, evaluated, train_runs}. An unknown step fails the script
+/// compare, dataset, prediction, evaluated, train_runs, sweeps}. An unknown step fails the script
 /// (it never skips silently).
 
 #include <chrono>
