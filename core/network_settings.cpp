@@ -26,6 +26,7 @@ std::vector<int> parseHiddenSizes(const std::string& text, const std::string& op
 
 NetworkSettings NetworkSettings::fromJson(const nlohmann::json& n, const nlohmann::json* trainer, const std::string& file) {
     NetworkSettings s;
+    s.options.targets = TargetMode::Separate;  // the project default (see the header), whatever nn_objects.h defaults to
     if (!n.is_object()) throw InputError(file, "/network", "expected an object");
     for (auto it = n.begin(); it != n.end(); ++it)
         if (it.key() != "hidden" && it.key() != "activation" && it.key() != "targets")
@@ -56,15 +57,11 @@ NetworkSettings NetworkSettings::fromJson(const nlohmann::json& n, const nlohman
 }
 
 NetworkSettings NetworkSettings::fromProject(const Project& project) {
-    NetworkSettings s;
-    s.options.targets = TargetMode::Separate;
     const nlohmann::json& d = project.doc;
-    if (!d.is_object()) return s;
     const nlohmann::json empty = nlohmann::json::object();
-    const nlohmann::json& net = d.contains("network") ? d.at("network") : empty;
-    NetworkSettings parsed = fromJson(net, d.contains("trainer") ? &d.at("trainer") : nullptr, project.path);
-    if (!net.contains("targets")) parsed.options.targets = TargetMode::Separate;
-    return parsed;
+    if (!d.is_object()) return fromJson(empty, nullptr, project.path);
+    return fromJson(d.contains("network") ? d.at("network") : empty, d.contains("trainer") ? &d.at("trainer") : nullptr,
+                    project.path);
 }
 
 nlohmann::json NetworkSettings::networkJson() const {
