@@ -73,13 +73,9 @@ void drawCostPanel(WorkbenchState& state) {
             }
     const float font = ImGui::GetFontSize();
     const float legendW = series.empty() ? 0.f : font * 12;
-    const ImVec2 origin = ImGui::GetCursorScreenPos();
-    const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const ImVec2 size(std::max(avail.x - legendW, font * 10), std::max(avail.y, font * 6));
-    ImGui::InvisibleButton("##cost-plot", size);
-    const bool hovered = ImGui::IsItemHovered();
-    const ImVec2 pmin(origin.x + font * 3.5f, origin.y + font * 1.5f);
-    const ImVec2 pmax(origin.x + size.x - font * 0.5f, origin.y + size.y - font * 2.6f);
+    const PlotArea area = plotArea("##cost-plot", legendW);
+    const bool hovered = area.hovered;
+    const ImVec2 pmin = area.min, pmax = area.max;
     const PlotAxis x = logAxis(xlo, xhi, pmin.x, pmax.x);
     const PlotAxis y = logAxis(ylo, yhi, pmax.y, pmin.y);
     ImDrawList* dl = ImGui::GetWindowDrawList();

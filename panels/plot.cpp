@@ -151,4 +151,18 @@ std::vector<LossPoint> aggregateLoss(const std::vector<LossCurve>& curves) {
     return out;
 }
 
+PlotArea plotArea(const char* id, float legendWidth) {
+    const float font = ImGui::GetFontSize();
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const ImVec2 size(std::max(avail.x - legendWidth, font * 10), std::max(avail.y, font * 6));
+    ImGui::InvisibleButton(id, size);
+    PlotArea a;
+    a.hovered = ImGui::IsItemHovered();
+    // Margins for the tick labels (left) and the x labels (below).
+    a.min = ImVec2(origin.x + font * 3.5f, origin.y + font * 1.5f);
+    a.max = ImVec2(origin.x + size.x - font * 0.5f, origin.y + size.y - font * 2.6f);
+    return a;
+}
+
 }  // namespace rrf::panels

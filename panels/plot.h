@@ -35,6 +35,15 @@ PlotAxis linearAxis(double minValue, double maxValue, float p0, float p1);
 void drawAxes(ImDrawList* dl, const ImVec2& min, const ImVec2& max, const PlotAxis& x, const PlotAxis& y,
               const char* xLabel, const char* yLabel);
 
+/// The screen area of a plot: an invisible button filling the available space except a legend
+/// column of `legendWidth` on the right, with margins for the tick labels (left) and the x labels
+/// (below). Call where the plot goes; it advances the cursor like any item.
+struct PlotArea {
+    ImVec2 min, max;       ///< the data rectangle (inside the margins)
+    bool hovered = false;  ///< the mouse is over the plot item
+};
+PlotArea plotArea(const char* id, float legendWidth);
+
 /// A distinct colour for series i (cycles after 10).
 ImU32 seriesColour(int i, float alpha = 1.f);
 

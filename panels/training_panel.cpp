@@ -133,14 +133,9 @@ void drawTrainingPanel(WorkbenchState& state) {
 
     const float font = ImGui::GetFontSize();
     const float legendW = curves.empty() ? 0.f : font * 13;
-    const ImVec2 origin = ImGui::GetCursorScreenPos();
-    const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const ImVec2 size(std::max(avail.x - legendW, font * 10), std::max(avail.y, font * 6));
-    ImGui::InvisibleButton("##loss-plot", size);
-    const bool hovered = ImGui::IsItemHovered();
-    // Margins for the tick labels (left) and the epoch labels (below).
-    const ImVec2 pmin(origin.x + font * 3.5f, origin.y + font * 1.5f);
-    const ImVec2 pmax(origin.x + size.x - font * 0.5f, origin.y + size.y - font * 2.6f);
+    const PlotArea area = plotArea("##loss-plot", legendW);
+    const bool hovered = area.hovered;
+    const ImVec2 pmin = area.min, pmax = area.max;
     const PlotAxis x = linearAxis(0, lastEpoch, pmin.x, pmax.x);
     const PlotAxis y = logAxis(lo, hi, pmax.y, pmin.y);
     v.plotMinX = pmin.x, v.plotMinY = pmin.y, v.plotMaxX = pmax.x, v.plotMaxY = pmax.y;

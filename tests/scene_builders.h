@@ -415,15 +415,20 @@ inline RenderSnapshot render(const Scene& scene, const Accel& accel, const Rende
     r.run();
     return r.snapshot();
 }
-inline RenderSnapshot render(const Scene& scene, const Accel& accel, Estimator estimator, int spp, uint64_t seed = 1) {
+/// Options for rendering `scene` at its camera size (`samplesPerPass` 0 = all spp in one pass).
+inline RenderOptions renderOptions(const Scene& scene, Estimator estimator, int spp, int samplesPerPass = 0,
+                                   uint64_t seed = 1) {
     RenderOptions o;
     o.width = scene.camera.width;
     o.height = scene.camera.height;
     o.spp = spp;
-    o.samplesPerPass = spp;
+    o.samplesPerPass = samplesPerPass > 0 ? samplesPerPass : spp;
     o.estimator = estimator;
     o.seed = seed;
-    return render(scene, accel, o);
+    return o;
+}
+inline RenderSnapshot render(const Scene& scene, const Accel& accel, Estimator estimator, int spp, uint64_t seed = 1) {
+    return render(scene, accel, renderOptions(scene, estimator, spp, spp, seed));
 }
 
 /// Standard error of the image mean of channel c from the per-pixel variances of the mean

@@ -19,14 +19,8 @@ using namespace rrf::test;
 namespace {
 
 RenderOptions options(const Scene& scene, Estimator estimator, int spp, int samplesPerPass, uint64_t seed = 1) {
-    RenderOptions o;
-    o.width = scene.camera.width;
-    o.height = scene.camera.height;
-    o.spp = spp;
-    o.samplesPerPass = samplesPerPass;
-    o.estimator = estimator;
-    o.seed = seed;
-    o.tileSize = 8;
+    RenderOptions o = renderOptions(scene, estimator, spp, samplesPerPass, seed);
+    o.tileSize = 8;  // several tiles even on the small test images, so threads really interleave
     return o;
 }
 
