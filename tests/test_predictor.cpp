@@ -197,3 +197,53 @@ TEST(Predictor, SettingsAreValidated) {
     });
     EXPECT_THROW(Predictor(p.scene, bad), std::invalid_argument);
 }
+
+TEST(Evaluation, SilhouettePixelsAreLeftOutAndCounted) {
+    // Reference = the copy networks' exact prediction, except that every silhouette pixel (a
+    // 4-neighbour shows another object, the light or the background) is off by 1000 — what the
+    // box-filtered ground truth does at the light's edge. The errors must be exactly 0 and the
+    // silhouette pixels counted; an interior pixel off by 1 must show up.
+    const Project p = loadProjectOrScene(kCornell);
+    const Scene& s = p.scene;
+    const ModelSet models = modelsFor(s, [](int) {
+        return std::map<std::string, NetworkModel>{{"direct", copyInputNet(15, {6, 7, 8})},
+                                                   {"indirect", copyInputNet(15, {12, 13, 14})}};
+    });
+    const Predictor pred(s, models);
+    const int w = 48, h = 48;
+    const GBuffer g = pred.gbuffer(kLight, w, h);
+    const Prediction exact = pred.predict(g);
+    Reference ref;
+    ref.lightPosition = kLight;
+    for (int t = 0; t < kTermCount; ++t) ref.images[t] = exact.images[t];
+    uint64_t silhouettes = 0;
+    int interiorX = -1, interiorY = -1;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const int32_t id = g.object[size_t(y) * size_t(w) + size_t(x)];
+            if (id < 0) continue;
+            bool edge = false;
+            const int dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
+            for (int k = 0; k < 4; ++k) {
+                const int nx = x + dx[k], ny = y + dy[k];
+                if (nx >= 0 && ny >= 0 && nx < w && ny < h && g.object[size_t(ny) * size_t(w) + size_t(nx)] != id) edge = true;
+            }
+            if (edge) {
+                ++silhouettes;
+                for (int t = 0; t < kTermCount; ++t) ref.images[t].set(x, y, ref.images[t].at(x, y) + Vec3(1000.f));
+            } else if (interiorX < 0) {
+                interiorX = x;
+                interiorY = y;
+            }
+        }
+    ASSERT_GT(silhouettes, 0u);
+    ASSERT_GE(interiorX, 0);
+    const Evaluation e = evaluate(pred, ref);
+    EXPECT_EQ(e.silhouettePixels, silhouettes);
+    EXPECT_EQ(e.term(Term::Global).overall.rmse, 0.0);
+    EXPECT_EQ(e.term(Term::Global).overall.maxError, 0.0);
+
+    ref.images[int(Term::Global)].set(interiorX, interiorY, ref.images[int(Term::Global)].at(interiorX, interiorY) + Vec3(1.f));
+    const Evaluation moved = evaluate(pred, ref);
+    EXPECT_GT(moved.term(Term::Global).overall.maxError, 0.99);
+}
