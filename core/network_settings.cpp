@@ -36,7 +36,8 @@ NetworkSettings NetworkSettings::fromJson(const nlohmann::json& n, const nlohman
         if (!h.is_array() || h.empty()) throw InputError(file, "/network/hidden", "expected a non-empty array of layer sizes");
         s.options.hidden.clear();
         for (size_t i = 0; i < h.size(); ++i) {
-            if (!h[i].is_number_integer() || h[i].get<int>() < 1 || h[i].get<int>() > 4096)
+            // Range-check the 64-bit value: get<int>() would wrap 4294967316 to 20.
+            if (!h[i].is_number_integer() || h[i].get<int64_t>() < 1 || h[i].get<int64_t>() > 4096)
                 throw InputError(file, "/network/hidden/" + std::to_string(i), "expected a layer size in 1..4096");
             s.options.hidden.push_back(h[i].get<int>());
         }

@@ -104,8 +104,10 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng,
         if (nee) target += beta * sampleDirect<kGlossy>(hit.p, hit.ng, n, frame, woLocal, brdf, movable, rng, counters);
 
         // Bounce: always for the naive estimator's first reflection (that is its direct light), and
-        // beyond that only if the scene lets light travel between surfaces.
-        if (depth + 1 >= maxDepth_) break;
+        // beyond that only if the scene lets light travel between surfaces. NEE at depth d already
+        // accounts for paths of d+1 reflections; the naive estimator needs the bounce at depth d to
+        // see them, so for it the depth limit applies after the emission test below.
+        if (nee && depth + 1 >= maxDepth_) break;
         if ((nee || depth >= 1) && !effects_.indirect) break;
         const float uLobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
         Vec3 wiLocal, weight;
@@ -142,6 +144,7 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng,
             Vec3& t = depth == 0 ? L.direct : L.indirect;
             t += beta * emitted(light(next.light, movable), -wi);
         }
+        if (!nee && depth + 1 >= maxDepth_) break;
         hit = next;
         wo = -wi;
     }

@@ -1,12 +1,19 @@
 #include "core/training_samples.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace rrf {
 
 std::vector<ObjectSamples> samplesFromDataset(const Dataset& data, uint64_t* dropped) {
     const int in = data.inputCount();
     const int fpr = data.floatsPerRecord();
+    // Training reads direct RGB and indirect RGB after the inputs; a file with another target
+    // layout (written by another tool) would make it read past each record.
+    if (fpr != in + 6)
+        throw std::runtime_error(data.path() + ": expected 6 targets (direct RGB, indirect RGB) after the " +
+                                 std::to_string(in) + " inputs, found " + std::to_string(fpr - in));
     uint64_t bad = 0;
     std::vector<ObjectSamples> out;
     for (size_t i = 0; i < data.objects().size(); ++i) {

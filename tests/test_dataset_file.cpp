@@ -23,6 +23,7 @@
 
 #include "core/dataset_file.h"
 #include "core/dataset_summary.h"
+#include "core/training_samples.h"
 
 using namespace rrf;
 namespace fs = std::filesystem;
@@ -458,5 +459,20 @@ TEST(DatasetSummary, ObjectWithoutRecordsHasNoStatistics) {
     }
     EXPECT_EQ(s[1].columns[3].max, 9.f);
     EXPECT_TRUE(contains(formatDatasetReport(d, s), "object 0 'A': 0 records"));
+    fs::remove_all(dir);
+}
+
+TEST(DatasetFile, TrainingRefusesALayoutWithoutSixTargets) {
+    // The reader is generic (any target count); the trainer's bridge needs direct and indirect RGB.
+    const fs::path dir = testDir();
+    const std::string path = writeSmall(dir);  // 2 inputs, 2 targets
+    const Dataset d(path);
+    try {
+        samplesFromDataset(d);
+        ADD_FAILURE() << "a 2-target dataset was accepted for training";
+    } catch (const std::runtime_error& e) {
+        EXPECT_TRUE(contains(e.what(), path)) << e.what();
+        EXPECT_TRUE(contains(e.what(), "6 targets")) << e.what();
+    }
     fs::remove_all(dir);
 }

@@ -181,3 +181,24 @@ TEST(Renderer, CancelStopsBeforeTheNextPass) {
     EXPECT_EQ(r.stats().nonFinite, 0u);
     EXPECT_GT(r.stats().rays, 0u);
 }
+
+TEST(Renderer, NeeAndNaiveAgreeAtEveryMaxDepth) {
+    // max_depth bounds the number of reflections for both estimators: NEE at depth d accounts for
+    // paths of d+1 reflections, so the naive estimator must bounce at depth d to see them too.
+    // Before the fix, naive at max_depth 1 had no direct light and at 2 no indirect light.
+    const Scene scene = cornellLike(1.f, 16);
+    const Accel accel(scene);
+    for (const int depth : {1, 2, 3}) {
+        RenderOptions nee = options(scene, Estimator::NEE, 256, 256);
+        RenderOptions naive = options(scene, Estimator::Naive, 2048, 2048);
+        nee.maxDepth = naive.maxDepth = depth;
+        const RenderSnapshot a = render(scene, accel, nee);
+        const RenderSnapshot b = render(scene, accel, naive);
+        const double sa = imageMeanSigma(a, 0), sb = imageMeanSigma(b, 0);
+        const double tol = 5.0 * std::sqrt(sa * sa + sb * sb);
+        EXPECT_NEAR(a.global.mean().x, b.global.mean().x, tol) << "max_depth " << depth;
+        EXPECT_GT(b.direct.mean().x, 0.5 * a.direct.mean().x) << "naive direct light missing at max_depth " << depth;
+        if (depth >= 2) EXPECT_GT(b.indirect.mean().x, 0.f) << "naive indirect light missing at max_depth " << depth;
+        else EXPECT_EQ(b.indirect.mean().x, 0.f);
+    }
+}
