@@ -131,7 +131,7 @@ bool FileDialog::draw() {
         ImGui::EndChild();
 
         if (!error_.empty()) ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "%s", error_.c_str());
-        else if (mode_ == Mode::Save && fs::is_regular_file(fs::path(input_)))
+        else if (std::error_code ec; mode_ == Mode::Save && fs::is_regular_file(fs::path(input_), ec))
             ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "the file exists and will be replaced");
         else ImGui::NewLine();
 

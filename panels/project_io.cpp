@@ -59,6 +59,7 @@ bool loadProjectIntoState(WorkbenchState& state, const std::string& path, std::s
     state.runs = std::move(runs);
     state.layout = layout;
     state.compareRun = -1;
+    state.dataset = DatasetInfo{};  // the previous project's dataset must not feed this one's training
     state.groundTruth = ImageSet{};
     state.compare = ImageSet{};
     state.prediction = ImageSet{};

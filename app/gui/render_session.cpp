@@ -15,11 +15,13 @@ void RenderSession::run(JobContext& ctx) {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         accel_ = std::move(accel);
-        renderer_ = std::make_unique<Renderer>(scene_, *accel_, options_);
+        renderer_ = std::make_shared<Renderer>(scene_, *accel_, options_);
         renderer = renderer_.get();
     }
     // Installed after the renderer exists; onCancel() fires at once if cancel came during the build.
-    ctx.onCancel([renderer] { renderer->cancel(); });
+    // The hook owns a reference: JobRunner may call it after this session is destroyed (a finished
+    // job not yet taken), and cancel() touches only the renderer's own flag.
+    ctx.onCancel([keep = std::shared_ptr<Renderer>(renderer_)] { keep->cancel(); });
     if (ctx.cancelled()) return;
     ctx.setStatus("rendering");
     renderer->run([&](int sppDone) {

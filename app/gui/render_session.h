@@ -41,7 +41,8 @@ private:
     const RenderOptions options_;
     mutable std::mutex mutex_;  ///< guards renderer_ creation and latest_
     std::unique_ptr<Accel> accel_;
-    std::unique_ptr<Renderer> renderer_;
+    /// Shared with the job's cancel hook, which may fire after the session is gone.
+    std::shared_ptr<Renderer> renderer_;
     std::shared_ptr<const RenderSnapshot> latest_;
     std::atomic<uint64_t> revision_{0};
 };

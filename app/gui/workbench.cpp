@@ -286,6 +286,20 @@ void Workbench::handleRequests() {
     requests.swap(state_.requests);
     bool sceneEdited = false;
     for (const panels::Request& r : requests) {
+        // Backstop: whatever a handler throws (a malformed section in a hand-edited project, a file
+        // system error) becomes a message, never std::terminate of the whole workbench.
+        try {
+            handleRequest(r, sceneEdited);
+        } catch (const std::exception& e) {
+            state_.log.error(e.what());
+            showError("Error", e.what());
+        }
+    }
+    if (sceneEdited) sceneChanged(true);
+}
+
+void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
+    {
         switch (r.command) {
             case Command::NewProject: openDialog(DialogPurpose::New); break;
             case Command::OpenProject:
@@ -347,7 +361,6 @@ void Workbench::handleRequests() {
             case Command::Quit: requestQuit(); break;
         }
     }
-    if (sceneEdited) sceneChanged(true);
 }
 
 }  // namespace rrf

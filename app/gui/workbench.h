@@ -115,6 +115,8 @@ private:
     void rebuildPicking();
     void autosave();
     void showError(const std::string& title, const std::string& message);
+    /// One panel request; `sceneEdited` collects scene edits so a frame restarts the render once.
+    void handleRequest(const panels::Request& r, bool& sceneEdited);
     std::string projectDir() const;
 
     panels::WorkbenchState state_;

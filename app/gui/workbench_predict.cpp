@@ -90,7 +90,12 @@ void Workbench::refreshPrediction() {
     auto session = std::make_shared<PredictSession>();
     session->scene = scene;
     session->models = live_.models();
-    session->settings = PredictionSettings::fromProject(state_.project);
+    try {
+        session->settings = PredictionSettings::fromProject(state_.project);
+    } catch (const std::exception& e) {
+        state_.log.error(std::string("prediction: ") + e.what());
+        return;
+    }
     session->light = scene.lightPosition();
     session->width = camera.width;
     session->height = camera.height;

@@ -40,9 +40,18 @@ bool Workbench::openProject(const std::string& path) {
     if (fs::exists(autosave, ec) && fs::last_write_time(autosave, ec) > fs::last_write_time(path, ec))
         state_.log.warning("an autosave copy newer than the project exists: " + autosave +
                            " (open it to recover unsaved work)");
-    // Stop the previous project's render; the new ground truth starts converging right away.
-    if (renderJob_) jobs_.cancel(renderJob_);
+    // Stop the previous project's jobs and forget their sessions, so that nothing they finish lands
+    // in this project (their workers still complete into the old project's directory). The new
+    // ground truth starts converging right away.
+    for (const int job : {renderJob_, generateJob_, trainJob_, evaluateJob_, predictJob_, sweepJob_})
+        if (job) jobs_.cancel(job);
     render_.reset();
+    generate_.reset();
+    train_.reset();
+    evaluate_.reset();
+    predict_.reset();
+    sweep_.reset();
+    predictPending_ = false;
     // Models belong to the previous project; the last training run's models (if still on disk)
     // drive the prediction of this one.
     live_.reset();
@@ -219,9 +228,13 @@ bool Workbench::reopenRun(int index) {
     if (run.settings.contains("light_position") && run.settings["light_position"].is_array() &&
         run.settings["light_position"].size() == 3 && !state_.project.scene.lights.empty()) {
         const json& p = run.settings["light_position"];
-        state_.project.scene.setLightPosition(clampToLightRegion(
-            state_.project.scene, Vec3(p[0].get<float>(), p[1].get<float>(), p[2].get<float>())));
-        recordLightOverride(state_.project);
+        if (!p[0].is_number() || !p[1].is_number() || !p[2].is_number()) {
+            state_.log.warning("re-open run: the light position of '" + run.name + "' is not three numbers; kept the current one");
+        } else {
+            state_.project.scene.setLightPosition(clampToLightRegion(
+                state_.project.scene, Vec3(p[0].get<float>(), p[1].get<float>(), p[2].get<float>())));
+            recordLightOverride(state_.project);
+        }
     }
     sceneChanged(false);
     set.label = "Run '" + run.name + "'";
