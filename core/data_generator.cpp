@@ -1,13 +1,13 @@
 #include "core/data_generator.h"
 
 #include <chrono>
-#include <sstream>
 
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
 #include "core/jitter_grid.h"
 #include "core/sampling.h"
+#include "core/text_format.h"
 
 namespace rrf {
 
@@ -45,14 +45,24 @@ Bounds3 DataGenerator::lightRegion() const {
 }
 
 bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const Vec3& lightPos, uint64_t recordIndex,
-                                   float* record, int& objectId, TraceCounters& counters, uint64_t& nonFinite) const {
+                                   float* record, int& objectId, TraceCounters& counters, uint64_t& nonFinite,
+                                   RecordOutcome* outcome) const {
+    RecordOutcome unused;
+    RecordOutcome& result = outcome ? *outcome : unused;
     const Light movable = tracer_.movableLightAt(lightPos);
     Ray ray;
     ray.origin = viewpoint;
     ray.dir = dir;
     Hit hit;
     ++counters.rays;
-    if (!tracer_.intersect(ray, movable, hit) || hit.object < 0) return false;
+    if (!tracer_.intersect(ray, movable, hit)) {
+        result = RecordOutcome::Escaped;
+        return false;
+    }
+    if (hit.object < 0) {
+        result = RecordOutcome::HitEmitter;
+        return false;
+    }
     const Vec3 wo = -dir;
     double direct[3] = {0, 0, 0}, indirect[3] = {0, 0, 0};
     int accepted = 0;
@@ -70,7 +80,11 @@ bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const
         }
         ++accepted;
     }
-    if (accepted == 0) return false;
+    if (accepted == 0) {
+        result = RecordOutcome::NoFiniteSample;
+        return false;
+    }
+    result = RecordOutcome::Stored;
     const Object& obj = scene_.objects[size_t(hit.object)];
     const Vec3 n = dot(wo, hit.ng) >= 0.f ? hit.ng : -hit.ng;  // the side the viewer sees
     const Vec3 in[4] = {hit.p, wo, lightPos, n};
@@ -121,18 +135,16 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
                 const Vec3 lp(region.lo.x + regionExtent.x * rng.uniform(), region.lo.y + regionExtent.y * rng.uniform(),
                               region.lo.z + regionExtent.z * rng.uniform());
                 int objectId = -1;
-                Ray probe;
-                if (estimateRecord(vp, dir, lp, r, rec.data(), objectId, counters, co.nonFinite)) {
+                RecordOutcome outcome;
+                if (estimateRecord(vp, dir, lp, r, rec.data(), objectId, counters, co.nonFinite, &outcome)) {
                     co.records.insert(co.records.end(), rec.begin(), rec.end());
                     co.objects.push_back(objectId);
+                } else if (outcome == RecordOutcome::Escaped) {
+                    ++co.escaped;
+                } else if (outcome == RecordOutcome::HitEmitter) {
+                    ++co.emitterHits;
                 } else {
-                    // Classify the miss for the report (one extra query only on misses).
-                    Hit h;
-                    probe.origin = vp;
-                    probe.dir = dir;
-                    if (!tracer_.intersect(probe, tracer_.movableLightAt(lp), h)) ++co.escaped;
-                    else if (h.light >= 0) ++co.emitterHits;
-                    else ++co.emptyRecords;
+                    ++co.emptyRecords;
                 }
             }
             rays += counters.rays;
@@ -180,11 +192,9 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
 
     nlohmann::json objects = nlohmann::json::array();
     for (const Object& o : scene_.objects) objects.push_back({{"id", o.id}, {"name", o.name}});
-    std::ostringstream hash;
-    hash << std::hex << data.sceneHash;
     data.header = {
         {"format", "rrf-dataset"},
-        {"scene_hash", hash.str()},
+        {"scene_hash", hexString(data.sceneHash)},
         {"settings", settings_.toJson()},
         {"light_region", {{"min", {region.lo.x, region.lo.y, region.lo.z}}, {"max", {region.hi.x, region.hi.y, region.hi.z}}}},
         {"grid_bounds", {{"min", {grid.bounds().lo.x, grid.bounds().lo.y, grid.bounds().lo.z}},

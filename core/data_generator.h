@@ -53,11 +53,16 @@ public:
     GeneratedData run(int shardIndex = 0, int shardCount = 1, const std::atomic<bool>* cancel = nullptr,
                       GeneratorProgress* progress = nullptr) const;
 
+    /// Why a ray did or did not make a record.
+    enum class RecordOutcome { Stored, Escaped, HitEmitter, NoFiniteSample };
+
     /// Estimates the record of one ray (viewpoint, dir) with the light centre at `lightPos`;
-    /// returns false if the ray escapes or hits an emitter. `recordIndex` keys the random numbers.
-    /// Exposed for tests that compare records with rendered pixels.
+    /// returns false if the ray escapes, hits an emitter or has no finite sample (`outcome`, if
+    /// given, says which). `recordIndex` keys the random numbers. Exposed for tests that compare
+    /// records with rendered pixels.
     bool estimateRecord(const Vec3& viewpoint, const Vec3& dir, const Vec3& lightPos, uint64_t recordIndex,
-                        float* record, int& objectId, TraceCounters& counters, uint64_t& nonFinite) const;
+                        float* record, int& objectId, TraceCounters& counters, uint64_t& nonFinite,
+                        RecordOutcome* outcome = nullptr) const;
 
     const RecordLayout& layout() const { return layout_; }
     const PathTracer& tracer() const { return tracer_; }
