@@ -26,6 +26,7 @@
 
 #include "core/accel.h"
 #include "core/data_generator.h"
+#include "core/text_format.h"
 #include "core/dataset_file.h"
 #include "core/project.h"
 #include "core/renderer.h"
@@ -46,15 +47,6 @@ double maxRssMiB() {
 
 bool parseGrid(const char* text, SamplingSettings& s) {
     return std::sscanf(text, "%d,%d,%d", &s.nx, &s.ny, &s.nz) == 3 && s.nx > 0 && s.ny > 0 && s.nz > 0;
-}
-
-std::string human(double v) {
-    char buf[32];
-    if (v >= 1e9) std::snprintf(buf, sizeof buf, "%.2f G", v / 1e9);
-    else if (v >= 1e6) std::snprintf(buf, sizeof buf, "%.2f M", v / 1e6);
-    else if (v >= 1e3) std::snprintf(buf, sizeof buf, "%.1f k", v / 1e3);
-    else std::snprintf(buf, sizeof buf, "%.0f", v);
-    return buf;
 }
 
 int usage() {
@@ -120,12 +112,12 @@ int main(int argc, char** argv) {
     std::printf("| measurement | work | time (s) | records/s | path samples/s | rays/s (incl. shadow) |\n");
     std::printf("|---|---|---:|---:|---:|---:|\n");
     std::printf("| renderer %dx%d, %d spp | %s samples | %.2f | - | %s | %s |\n", width, height, renderSpp,
-                human(double(rs.samples)).c_str(), rs.seconds, human(rs.samplesPerSecond()).c_str(),
-                human(rs.raysPerSecond()).c_str());
+                humanCount(double(rs.samples)).c_str(), rs.seconds, humanCount(rs.samplesPerSecond()).c_str(),
+                humanCount(rs.raysPerSecond()).c_str());
     std::printf("| generator grid %dx%dx%d, %d dirs, %d spp | %s records, %s paths | %.2f | %s | %s | %s |\n", gen.nx,
-                gen.ny, gen.nz, gen.directions, gen.spp, human(double(records)).c_str(), human(double(g.paths)).c_str(),
-                g.seconds, human(double(records) / g.seconds).c_str(), human(double(g.paths) / g.seconds).c_str(),
-                human(genRaysPerS).c_str());
+                gen.ny, gen.nz, gen.directions, gen.spp, humanCount(double(records)).c_str(), humanCount(double(g.paths)).c_str(),
+                g.seconds, humanCount(double(records) / g.seconds).c_str(), humanCount(double(g.paths) / g.seconds).c_str(),
+                humanCount(genRaysPerS).c_str());
     std::printf("| generator / renderer | | | | %.2fx | %.2fx |\n",
                 (double(g.paths) / g.seconds) / rs.samplesPerSecond(), genRaysPerS / rs.raysPerSecond());
 
@@ -148,13 +140,13 @@ int main(int argc, char** argv) {
     const double payloadMiB = double(bigRecords) * big.layout().floatsPerRecord() * 4.0 / (1024.0 * 1024.0);
     std::printf("\n| default run (grid %dx%dx%d, %d dirs, spp %d) | value |\n|---|---:|\n", mem.nx, mem.ny, mem.nz,
                 mem.directions, mem.spp);
-    std::printf("| records | %llu (%s) |\n", (unsigned long long)bigRecords, human(double(bigRecords)).c_str());
+    std::printf("| records | %llu (%s) |\n", (unsigned long long)bigRecords, humanCount(double(bigRecords)).c_str());
     std::printf("| cells kept / dropped inside / dropped outside | %llu / %llu / %llu |\n",
                 (unsigned long long)(mem.cellCount() - d.header.at("stats").at("cells_dropped_inside_object").get<uint64_t>() -
                                      d.header.at("stats").at("cells_dropped_outside_scene").get<uint64_t>()),
                 (unsigned long long)d.header.at("stats").at("cells_dropped_inside_object").get<uint64_t>(),
                 (unsigned long long)d.header.at("stats").at("cells_dropped_outside_scene").get<uint64_t>());
-    std::printf("| generation time | %.2f s (%s records/s) |\n", genSeconds, human(double(bigRecords) / genSeconds).c_str());
+    std::printf("| generation time | %.2f s (%s records/s) |\n", genSeconds, humanCount(double(bigRecords) / genSeconds).c_str());
     std::printf("| write time | %.2f s |\n", writeSeconds);
     std::printf("| payload (records x %d floats x 4 B) | %.1f MiB |\n", big.layout().floatsPerRecord(), payloadMiB);
     std::printf("| dataset file size | %.1f MiB |\n", fileMiB);

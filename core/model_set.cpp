@@ -1,23 +1,15 @@
 #include "core/model_set.h"
 
 #include <filesystem>
-#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/render_outputs.h"
+#include "core/text_format.h"
 
 namespace rrf {
 
 namespace fs = std::filesystem;
-
-namespace {
-std::string hex(uint64_t v) {
-    std::ostringstream s;
-    s << std::hex << v;
-    return s.str();
-}
-}  // namespace
 
 const ObjectNetworks* ModelSet::find(int objectId) const {
     for (const ObjectNetworks& o : objects)
@@ -31,7 +23,7 @@ nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectMode
     nlohmann::json index = extra.is_object() ? extra : nlohmann::json::object();
     index["format"] = "rrf-models";
     index["version"] = 1;
-    index["scene_hash"] = hex(sceneHash);
+    index["scene_hash"] = hexString(sceneHash);
     index["input_layout"] = inputLayout;
     nlohmann::json models = nlohmann::json::array();
     for (const ObjectModel& m : trained) {

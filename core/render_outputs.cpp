@@ -1,10 +1,10 @@
 #include "core/render_outputs.h"
 
 #include <filesystem>
-#include <sstream>
 #include <stdexcept>
 
 #include "core/atomic_file.h"
+#include "core/text_format.h"
 
 namespace rrf {
 
@@ -19,12 +19,10 @@ void makeDirectories(const std::string& dir) {
 nlohmann::json renderMetadata(const Scene& scene, const Renderer& renderer, const RenderSnapshot& snapshot) {
     const RenderOptions& o = renderer.options();
     const RenderStats st = renderer.stats();
-    std::ostringstream hash;
-    hash << std::hex << scene.contentHash();
     const Vec3 lp = scene.lightPosition();
     return {
         {"scene", scene.sourcePath},
-        {"scene_hash", hash.str()},
+        {"scene_hash", hexString(scene.contentHash())},
         {"width", o.width},
         {"height", o.height},
         {"spp_requested", o.spp},

@@ -106,13 +106,4 @@ void runWithProgress(const std::string& label, const std::function<void()>& work
     if (error) std::rethrow_exception(error);
 }
 
-std::string humanCount(double value) {
-    char buf[32];
-    if (value >= 1e9) std::snprintf(buf, sizeof buf, "%.2f G", value / 1e9);
-    else if (value >= 1e6) std::snprintf(buf, sizeof buf, "%.2f M", value / 1e6);
-    else if (value >= 1e3) std::snprintf(buf, sizeof buf, "%.1f k", value / 1e3);
-    else std::snprintf(buf, sizeof buf, "%.0f ", value);
-    return buf;
-}
-
 }  // namespace rrf::cli

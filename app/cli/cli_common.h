@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
+#include "core/text_format.h"
 #include "core/vec3.h"
 
 namespace rrf::cli {
@@ -30,8 +31,5 @@ Vec3 parseVec3(const std::string& text, const std::string& option);
 void runWithProgress(const std::string& label, const std::function<void()>& work,
                      const std::function<std::pair<double, std::string>()>& progress,
                      const std::function<void()>& cancel);
-
-/// "1.23 M", "456 k" style formatting for rates.
-std::string humanCount(double value);
 
 }  // namespace rrf::cli

@@ -1,0 +1,17 @@
+#pragma once
+/// Small text formats shared by reports, file headers, the CLI and the benchmarks.
+
+#include <cstdint>
+#include <string>
+
+namespace rrf {
+
+/// "1.23 M", "456.0 k", "12 " — a count or rate with an SI prefix and a trailing space, so that a
+/// unit can follow directly ("1.23 Msamples/s").
+std::string humanCount(double value);
+
+/// Lower-case hexadecimal without prefix, as scene hashes are written in dataset, model and render
+/// headers (read back with std::stoull(text, nullptr, 16)).
+std::string hexString(uint64_t value);
+
+}  // namespace rrf
