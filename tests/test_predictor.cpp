@@ -52,17 +52,21 @@ ModelSet modelsFor(const Scene& s, F make) {
     return set;
 }
 
+/// Every object: direct = light position (inputs 6..8), indirect = albedo (inputs 12..14).
+ModelSet lightAndAlbedoModels(const Scene& s) {
+    return modelsFor(s, [](int) {
+        return std::map<std::string, NetworkModel>{{"direct", copyInputNet(15, {6, 7, 8})},
+                                                   {"indirect", copyInputNet(15, {12, 13, 14})}};
+    });
+}
+
 const Vec3 kLight(0.2f, 0.9f, -0.1f);
 }  // namespace
 
 TEST(Predictor, CopyNetworksReproduceTheirInputsExactly) {
     const Project p = loadProjectOrScene(kCornell);
     const Scene& s = p.scene;
-    // direct = light position (inputs 6..8), indirect = albedo (inputs 12..14).
-    const ModelSet models = modelsFor(s, [](int) {
-        return std::map<std::string, NetworkModel>{{"direct", copyInputNet(15, {6, 7, 8})},
-                                                   {"indirect", copyInputNet(15, {12, 13, 14})}};
-    });
+    const ModelSet models = lightAndAlbedoModels(s);
     const Predictor pred(s, models);
     const GBuffer g = pred.gbuffer(kLight, 64, 64);
     const Prediction out = pred.predict(g);
@@ -205,10 +209,7 @@ TEST(Evaluation, SilhouettePixelsAreLeftOutAndCounted) {
     // silhouette pixels counted; an interior pixel off by 1 must show up.
     const Project p = loadProjectOrScene(kCornell);
     const Scene& s = p.scene;
-    const ModelSet models = modelsFor(s, [](int) {
-        return std::map<std::string, NetworkModel>{{"direct", copyInputNet(15, {6, 7, 8})},
-                                                   {"indirect", copyInputNet(15, {12, 13, 14})}};
-    });
+    const ModelSet models = lightAndAlbedoModels(s);
     const Predictor pred(s, models);
     const int w = 48, h = 48;
     const GBuffer g = pred.gbuffer(kLight, w, h);
