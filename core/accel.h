@@ -61,7 +61,6 @@ public:
         return dot(dir, ng) >= 0.f ? p + ng * e : p - ng * e;
     }
 
-    float sceneScale() const { return sceneScale_; }
     RTCScene handle() const { return scene_; }
     RTCDevice device() const { return device_; }
 

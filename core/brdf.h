@@ -24,9 +24,6 @@ struct Brdf {
         pDiffuse = (d + s) > 0.f ? d / (d + s) : 1.f;
     }
 
-    bool isBlack() const { return kd.isZero() && ks.isZero(); }
-    bool hasGlossy() const { return !ks.isZero(); }
-
     /// f(ωo, ωi) in the local frame (z = shading normal, both directions pointing away).
     Vec3 eval(const Vec3& wo, const Vec3& wi) const {
         if (wi.z <= 0.f || wo.z <= 0.f) return Vec3(0.f);

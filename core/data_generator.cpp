@@ -117,7 +117,7 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
     const uint64_t rs = recordSeed(settings_.seed);
 
     std::vector<CellOutput> out(size_t(end - begin));
-    std::atomic<uint64_t> rays{0}, shadowRays{0}, paths{0};
+    std::atomic<uint64_t> rays{0}, shadowRays{0};
     tbb::parallel_for(begin, end, [&](int cell) {
         if (cancel && *cancel) return;
         CellOutput& co = out[size_t(cell - begin)];
@@ -149,7 +149,6 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
             }
             rays += counters.rays;
             shadowRays += counters.shadowRays;
-            paths += uint64_t(co.objects.size()) * uint64_t(settings_.spp);
             if (progress) {
                 progress->records += co.objects.size();
                 progress->paths += uint64_t(co.objects.size()) * uint64_t(settings_.spp);
@@ -186,7 +185,7 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
         perCell.push_back(uint64_t(co.objects.size()));
     }
     data.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    data.paths = paths;
+    data.paths = records * uint64_t(settings_.spp);  // every stored record took spp paths
     data.rays = rays;
     data.shadowRays = shadowRays;
 

@@ -251,7 +251,8 @@ Prediction Predictor::predict(const GBuffer& gb) const {
                 const double w = accepted ? 1.0 / accepted : 0.0;
                 const Vec3 d(float(sum[0] * w), float(sum[1] * w), float(sum[2] * w));
                 pr.images[int(Term::Direct)].set(x, y, d);
-                if (!hasGlobalNet[size_t(id)] || models_.find(id) == nullptr)
+                // A global net already holds the direct light; add exact direct light only where none did.
+                if (!hasGlobalNet[size_t(id)])
                     pr.images[int(Term::Global)].set(x, y, pr.images[int(Term::Global)].at(x, y) + d);
             }
         });

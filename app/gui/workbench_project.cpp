@@ -7,6 +7,7 @@
 #include "core/network_settings.h"
 #include "panels/project_io.h"
 #include "core/scene_overrides.h"
+#include "core/text_format.h"
 
 namespace rrf {
 
@@ -142,9 +143,9 @@ bool Workbench::saveRun() {
     const RenderStats stats = render_->stats();
     RenderSettings settings = state_.project.render;
     settings.spp = render_->options().spp;
-    run.settings = json{{"render", panels::renderSettingsJson(settings)},
+    run.settings = json{{"render", renderSettingsToJson(settings)},
                         {"light_position", vec3Json(render_->scene().lightPosition())},
-                        {"scene_hash", std::to_string(render_->scene().contentHash())}};
+                        {"scene_hash", hexString(render_->scene().contentHash())}};
     if (state_.project.doc.contains("scene_overrides"))
         run.settings["scene_overrides"] = state_.project.doc["scene_overrides"];
     run.metrics = json{{"spp", snap->sppCompleted},
@@ -217,8 +218,14 @@ bool Workbench::reopenRun(int index) {
     }
     if (renderJob_) jobs_.cancel(renderJob_);
     restartRender_ = false;
-    if (run.settings.contains("render") && !panels::applyRenderSettingsJson(run.settings["render"], state_.project.render))
-        state_.log.warning("re-open run: some render settings of '" + run.name + "' were malformed and kept as they are");
+    if (run.settings.contains("render")) {
+        try {
+            state_.project.render = parseRenderSettings(run.settings["render"], state_.project.path,
+                                                        "/runs/" + run.name + "/settings/render");
+        } catch (const std::exception& e) {
+            state_.log.warning(std::string("re-open run: render settings kept as they are: ") + e.what());
+        }
+    }
     if (run.settings.contains("scene_overrides")) {
         state_.project.doc["scene_overrides"] = run.settings["scene_overrides"];
         std::vector<std::string> problems;

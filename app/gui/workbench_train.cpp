@@ -10,6 +10,7 @@
 #include "core/dataset_file.h"
 #include "core/model_set.h"
 #include "core/network_settings.h"
+#include "core/text_format.h"
 #include "core/training_samples.h"
 #include "panels/plot.h"
 
@@ -184,7 +185,7 @@ void Workbench::pollTrain() {
     run.created = panels::localTimestamp();
     auto rel = [&](const std::string& p) { return fs::path(p).lexically_relative(projectDir()).generic_string(); };
     run.settings = json{{"network", s.settings.networkJson()}, {"trainer", s.settings.trainerJson()},
-                        {"dataset", rel(s.dataset)}, {"scene_hash", std::to_string(s.scene.contentHash())}};
+                        {"dataset", rel(s.dataset)}, {"scene_hash", hexString(s.scene.contentHash())}};
     if (state_.project.doc.contains("sampling")) run.settings["sampling"] = state_.project.doc["sampling"];
     run.curves = s.curves;
     run.loss = panels::aggregateLoss(s.curves);
