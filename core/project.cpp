@@ -121,6 +121,10 @@ Project loadProjectOrScene(const std::string& path) {
     return p;
 }
 
+RenderSettings parseRenderSettings(const nlohmann::json& section, const std::string& file, const std::string& where) {
+    return parseRender(JsonReader(section, file, where));
+}
+
 nlohmann::json renderSettingsToJson(const RenderSettings& s) {
     return json{{"spp", s.spp},
                 {"width", s.width},

@@ -40,6 +40,10 @@ Project loadProjectOrScene(const std::string& path);
 
 /// The "render" section for `s` (every key written).
 nlohmann::json renderSettingsToJson(const RenderSettings& s);
+/// Parses a "render" section (missing keys keep their defaults). Throws InputError naming `file`
+/// and the JSON path (`where` is the section's own path) for unknown keys or bad values.
+RenderSettings parseRenderSettings(const nlohmann::json& section, const std::string& file,
+                                   const std::string& where = "/render");
 
 /// Serialises `project` (typed settings written back into project.doc) and writes it atomically
 /// (temporary file + rename). Throws std::runtime_error on I/O failure.

@@ -3,42 +3,9 @@
 #include <exception>
 #include <vector>
 
-
 namespace rrf::panels {
 
 using nlohmann::json;
-
-json renderSettingsJson(const RenderSettings& s) { return renderSettingsToJson(s); }
-
-bool applyRenderSettingsJson(const json& j, RenderSettings& s) {
-    if (!j.is_object()) return false;
-    bool ok = true;
-    auto integer = [&](const char* key, int& out, int lo, int hi) {
-        if (!j.contains(key)) return;
-        if (j[key].is_number_integer() && j[key].get<int64_t>() >= lo && j[key].get<int64_t>() <= hi)
-            out = j[key].get<int>();
-        else ok = false;
-    };
-    integer("spp", s.spp, 1, 1 << 30);
-    integer("width", s.width, 0, 16384);
-    integer("height", s.height, 0, 16384);
-    integer("max_depth", s.maxDepth, 1, 1 << 16);
-    if (j.contains("mode")) {
-        const json& m = j["mode"];
-        if (m == "nee") s.estimator = Estimator::NEE;
-        else if (m == "naive") s.estimator = Estimator::Naive;
-        else ok = false;
-    }
-    if (j.contains("seed")) {
-        if (j["seed"].is_number_unsigned()) s.seed = j["seed"].get<uint64_t>();
-        else ok = false;
-    }
-    if (j.contains("exposure")) {
-        if (j["exposure"].is_number()) s.exposure = j["exposure"].get<float>();
-        else ok = false;
-    }
-    return ok;
-}
 
 bool loadProjectIntoState(WorkbenchState& state, const std::string& path, std::string& error) {
     Project project;

@@ -21,10 +21,4 @@ bool saveStateToProject(WorkbenchState& state, const std::string& path, std::str
 /// The project document as it would be saved (for autosave copies and tests).
 void storeWorkbenchSections(WorkbenchState& state);
 
-/// The render settings as JSON (the same keys as the project's "render" section).
-nlohmann::json renderSettingsJson(const RenderSettings& s);
-/// Reads the keys of renderSettingsJson() that are present; returns false if any is malformed
-/// (the well-formed ones are still applied).
-bool applyRenderSettingsJson(const nlohmann::json& j, RenderSettings& s);
-
 }  // namespace rrf::panels
