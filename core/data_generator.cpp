@@ -86,11 +86,7 @@ bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const
     }
     result = RecordOutcome::Stored;
     const Object& obj = scene_.objects[size_t(hit.object)];
-    const Vec3 n = dot(wo, hit.ng) >= 0.f ? hit.ng : -hit.ng;  // the side the viewer sees
-    const Vec3 in[4] = {hit.p, wo, lightPos, n};
-    for (int k = 0; k < 4; ++k)
-        for (int c = 0; c < 3; ++c) record[3 * k + c] = in[k][c];
-    layout_.brdfParameters(scene_.materials[size_t(obj.material)], record + 12);
+    layout_.writeInputs(hit.p, wo, lightPos, hit.ng, scene_.materials[size_t(obj.material)], record);
     float* t = record + layout_.inputCount();
     for (int c = 0; c < 3; ++c) {
         t[c] = float(direct[c] / accepted);

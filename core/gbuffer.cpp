@@ -8,16 +8,6 @@
 
 namespace rrf {
 
-namespace {
-/// Radiance a rect light emits towards direction `w` (mirrors PathTracer's rule: one-sided lights
-/// are dark from behind).
-Vec3 emittedTowards(const Light& l, const Vec3& w) {
-    if (l.type != Light::Type::Rect) return Vec3(0.f);
-    if (l.oneSided && dot(w, cross(l.edge1, l.edge2)) <= 0.f) return Vec3(0.f);
-    return l.radiance;
-}
-}  // namespace
-
 GBuffer buildGBuffer(const PathTracer& tracer, const RecordLayout& layout, const Vec3& lightPos, int width, int height) {
     if (width <= 0 || height <= 0) throw std::invalid_argument("buildGBuffer: image size must be positive");
     const Scene& scene = tracer.scene();
@@ -44,16 +34,14 @@ GBuffer buildGBuffer(const PathTracer& tracer, const RecordLayout& layout, const
             const Vec3 wo = -ray.dir;
             if (hit.light >= 0) {
                 g.light[i] = hit.light;
-                g.emitted[i] = emittedTowards(hit.light == scene.movableLight ? movable : scene.lights[size_t(hit.light)], wo);
+                const Light& l = hit.light == scene.movableLight ? movable : scene.lights[size_t(hit.light)];
+                g.emitted[i] = l.emittedTowards(wo);
                 continue;
             }
             g.object[i] = hit.object;
-            const Vec3 nrm = dot(wo, hit.ng) >= 0.f ? hit.ng : -hit.ng;
-            float* r = g.inputs.data() + i * size_t(g.numInputs);
-            const Vec3 in[4] = {hit.p, wo, g.lightPosition, nrm};
-            for (int k = 0; k < 4; ++k)
-                for (int c = 0; c < 3; ++c) r[3 * k + c] = in[k][c];
-            layout.brdfParameters(scene.materials[size_t(scene.objects[size_t(hit.object)].material)], r + 12);
+            layout.writeInputs(hit.p, wo, g.lightPosition, hit.ng,
+                               scene.materials[size_t(scene.objects[size_t(hit.object)].material)],
+                               g.inputs.data() + i * size_t(g.numInputs));
         }
     });
 

@@ -60,10 +60,6 @@ bool PathTracer::occluded(const Ray& ray, const Light& movable) const {
     return accel_.occluded(ray);
 }
 
-Vec3 PathTracer::emitted(const Light& l, const Vec3& w) const {
-    if (l.oneSided && dot(w, cross(l.edge1, l.edge2)) <= 0.f) return Vec3(0.f);
-    return l.radiance;
-}
 
 int PathTracer::materialOf(const Hit& hit) const {
     // Moving a light never changes its material, so the scene's copy answers for the movable one too.
@@ -88,7 +84,7 @@ template <bool kGlossy>
 Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng, TraceCounters& counters) const {
     Radiance L;
     // Emission seen directly is always counted.
-    if (hit.light >= 0) L.direct += emitted(light(hit.light, movable), wo);
+    if (hit.light >= 0) L.direct += light(hit.light, movable).emittedTowards(wo);
     const bool nee = estimator_ == Estimator::NEE;
     Vec3 beta(1.f);
     for (int depth = 0;; ++depth) {
@@ -142,7 +138,7 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng,
         if (!intersect(r, movable, next)) break;
         if (next.light >= 0 && !nee) {
             Vec3& t = depth == 0 ? L.direct : L.indirect;
-            t += beta * emitted(light(next.light, movable), -wi);
+            t += beta * light(next.light, movable).emittedTowards(-wi);
         }
         if (!nee && depth + 1 >= maxDepth_) break;
         hit = next;

@@ -79,7 +79,6 @@ private:
     const Light& light(int index, const Light& movable) const {
         return index == movable_ ? movable : scene_.lights[size_t(index)];
     }
-    Vec3 emitted(const Light& l, const Vec3& w) const;
     int materialOf(const Hit& hit) const;
 
     const Scene& scene_;

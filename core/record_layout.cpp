@@ -22,6 +22,15 @@ RecordLayout RecordLayout::forScene(const Scene& scene) {
     return l;
 }
 
+void RecordLayout::writeInputs(const Vec3& p, const Vec3& wo, const Vec3& lightPos, const Vec3& ng,
+                               const Material& m, float* out) const {
+    const Vec3 n = dot(wo, ng) >= 0.f ? ng : -ng;
+    const Vec3 in[4] = {p, wo, lightPos, n};
+    for (int k = 0; k < 4; ++k)
+        for (int c = 0; c < 3; ++c) out[3 * k + c] = in[k][c];
+    brdfParameters(m, out + 12);
+}
+
 void RecordLayout::brdfParameters(const Material& m, float* out) const {
     out[0] = m.kd.x;
     out[1] = m.kd.y;

@@ -24,6 +24,12 @@ struct RecordLayout {
     int floatsPerRecord() const { return inputCount() + targetCount(); }
     /// Writes the BRDF parameters of `m` (inputCount() − 12 floats) to `out`.
     void brdfParameters(const Material& m, float* out) const;
+    /// Writes all inputCount() inputs of a surface point `p` with geometric normal `ng` and material
+    /// `m`, seen from direction `wo` (unit, towards the viewer), with the light centred at
+    /// `lightPos`. The normal is flipped to the viewer's side. The data generator and the G-buffer
+    /// both call this, so training and prediction inputs cannot drift apart.
+    void writeInputs(const Vec3& p, const Vec3& wo, const Vec3& lightPos, const Vec3& ng, const Material& m,
+                     float* out) const;
 };
 
 }  // namespace rrf

@@ -75,6 +75,13 @@ struct Light {
     int material = -1;
 
     Vec3 normal() const { return normalize(cross(edge1, edge2)); }
+    /// Radiance the surface of a rect light sends towards `w` (unit, pointing away from it): zero
+    /// from behind a one-sided light, and zero for point lights, which no ray can hit. The path
+    /// tracer and the G-buffer both use this, so prediction and ground truth agree on emitters.
+    Vec3 emittedTowards(const Vec3& w) const {
+        if (type != Type::Rect || (oneSided && dot(w, cross(edge1, edge2)) <= 0.f)) return Vec3(0.f);
+        return radiance;
+    }
     float area() const { return length(cross(edge1, edge2)); }
     /// Reference position of the light: the rect's centre or the point's position. This is the
     /// "light position" input of the networks.
