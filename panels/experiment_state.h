@@ -25,7 +25,6 @@ struct TrainingInfo {
     std::vector<LossCurve> curves;  ///< one per network, in the order they first reported
     std::string runId;           ///< the run the job records (also its directory under runs/)
     std::string modelsDir;       ///< models of the last finished training (absolute path)
-    uint64_t revision = 0;       ///< bumped whenever curves change
 };
 
 /// Display options of the loss plot.
@@ -58,7 +57,6 @@ struct EvaluationInfo {
     std::vector<ObjectErrorRow> rows[3];
     ErrorStats overall[3];
     bool available[3] = {false, false, false};
-    uint64_t revision = 0;
 };
 
 /// Columns of the Objects table, also the sort keys.
@@ -86,7 +84,6 @@ struct CostInfo {
     bool running = false;
     double progress = 0.0;
     std::vector<CostSeries> sweeps;
-    uint64_t revision = 0;
 };
 
 struct CostView {

@@ -1,5 +1,7 @@
 #include "panels/workbench_state.h"
 
+
+#include <atomic>
 #include <filesystem>
 
 namespace rrf::panels {
@@ -30,6 +32,11 @@ std::string WorkbenchState::projectName() const {
     }
     if (!project.path.empty()) return std::filesystem::path(project.path).stem().string();
     return "untitled";
+}
+
+void ImageSet::touch() {
+    static std::atomic<uint64_t> counter{0};
+    revision = ++counter;
 }
 
 }  // namespace rrf::panels

@@ -68,9 +68,13 @@ struct Request {
 struct ImageSet {
     Image direct, indirect, global;
     std::string label;      ///< shown above the view, e.g. "ground truth, 64 spp"
-    uint64_t revision = 0;  ///< bumped whenever the images change (drives texture uploads)
+    uint64_t revision = 0;  ///< new value whenever the images change (drives the view cache and uploads)
 
     bool empty() const { return global.empty(); }
+    /// Gives the set a revision no image set has had before. Revisions come from one process-wide
+    /// counter, so replacing a set (even by an empty one) can never reproduce a revision the view
+    /// cache already holds for different images.
+    void touch();
     const Image& term(Term t) const { return t == Term::Direct ? direct : t == Term::Indirect ? indirect : global; }
 };
 

@@ -342,7 +342,7 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
                     if (state_.compareRun == r.index) {
                         state_.compareRun = -1;
                         state_.compare = panels::ImageSet{};
-                        ++state_.compare.revision;
+                        state_.compare.touch();
                     } else if (state_.compareRun > r.index) {
                         --state_.compareRun;
                     }

@@ -119,7 +119,6 @@ void Workbench::pollEvaluate() {
             info.rows[int(t)].push_back(row);
         }
     }
-    info.revision = state_.evaluation.revision + 1;
     state_.evaluation = std::move(info);
     state_.focusTab = "Objects";
 

@@ -63,7 +63,7 @@ void Workbench::refreshPrediction() {
         live_.reset();
         state_.training.modelsDir.clear();
         state_.prediction = panels::ImageSet{};
-        ++state_.prediction.revision;
+        state_.prediction.touch();
         return;
     }
     const Camera camera = viewCamera(state_.project);
@@ -80,7 +80,7 @@ void Workbench::refreshPrediction() {
         p.indirect = std::move(images[1]);
         p.global = std::move(images[2]);
         p.label = "Prediction (GLSL)";
-        ++p.revision;
+        p.touch();
         return;
     }
     if (predictRunning()) {
@@ -132,7 +132,7 @@ void Workbench::pollPredict() {
             p.indirect = std::move(predict_->prediction.images[1]);
             p.global = std::move(predict_->prediction.images[2]);
             p.label = "Prediction (CPU)";
-            ++p.revision;
+            p.touch();
         }
         predict_.reset();
     }

@@ -198,7 +198,7 @@ bool Workbench::compareRun(int index) {
         return false;
     }
     set.label = "Run '" + run.name + "' (" + std::to_string(runSpp(run)) + " spp)";
-    set.revision = state_.compare.revision + 1;
+    set.touch();
     state_.compare = std::move(set);
     state_.compareRun = index;
     state_.view.compareSource = panels::CompareSource::Run;
@@ -245,7 +245,7 @@ bool Workbench::reopenRun(int index) {
     }
     sceneChanged(false);
     set.label = "Run '" + run.name + "'";
-    set.revision = state_.groundTruth.revision + 1;
+    set.touch();
     state_.groundTruth = std::move(set);
     state_.render = panels::RenderProgress{};
     state_.render.spp = state_.render.targetSpp = runSpp(run);

@@ -62,7 +62,7 @@ void Workbench::pollRender() {
             gt.indirect = snap->indirect;
             gt.global = snap->global;
             gt.label = "ground truth";
-            ++gt.revision;
+            gt.touch();
             state_.render.spp = snap->sppCompleted;
             state_.render.relativeError = snap->relativeError;
             state_.render.seconds = snap->seconds;

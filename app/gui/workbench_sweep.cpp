@@ -117,7 +117,6 @@ void Workbench::pollSweep() {
             s.points.push_back({seconds, row.overall.relativeRmse, row.setting});
         }
         state_.cost.sweeps.push_back(std::move(s));
-        ++state_.cost.revision;
         state_.focusTab = "Cost";
         state_.log.info("sweep written to " + sweep_->outBase + ".csv and .json");
     }

@@ -163,7 +163,6 @@ void Workbench::pollTrain() {
             state_.training.epoch = s.epoch;
             state_.training.step = s.step;
             state_.training.seconds = s.seconds;
-            ++state_.training.revision;
         }
     }
     for (const std::string& m : messages) state_.log.info("train: " + m);
