@@ -1,6 +1,5 @@
 #include "panels/workbench_state.h"
 
-
 #include <atomic>
 #include <filesystem>
 
