@@ -295,7 +295,7 @@ void Workbench::handleRequests() {
             showError("Error", e.what());
         }
     }
-    if (sceneEdited) sceneChanged(true);
+    if (sceneEdited) sceneChanged(true, false);  // the Scene panel edits materials and the light only
 }
 
 void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {

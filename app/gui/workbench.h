@@ -111,7 +111,9 @@ private:
     std::string datasetPath() const;
     /// Draws a tab item, bringing it to the front once when state_.focusTab names it.
     bool beginTab(const char* name);
-    void sceneChanged(bool restartRender);
+    /// The scene changed. `geometryChanged` false means materials or the movable light only: the
+    /// light is not in the BVH, so the picking BVH and the object-id buffer stay valid then.
+    void sceneChanged(bool restartRender, bool geometryChanged = true);
     void rebuildPicking();
     void autosave();
     void showError(const std::string& title, const std::string& message);

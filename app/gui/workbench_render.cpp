@@ -78,8 +78,11 @@ void Workbench::pollRender() {
     }
 }
 
-void Workbench::sceneChanged(bool restartRender) {
-    rebuildPicking();
+void Workbench::sceneChanged(bool restartRender, bool geometryChanged) {
+    // Rebuilding traces a BVH and one ray per pixel on the UI thread; a drag must not pay that per frame.
+    const RenderOptions o = renderOptionsFor(state_.project.scene, state_.project.render);
+    if (geometryChanged || !state_.pickAccel || o.width != state_.idWidth || o.height != state_.idHeight)
+        rebuildPicking();
     // The prediction follows the light at once (GLSL: this frame); the ground truth restarts below.
     refreshPrediction();
     if (!restartRender) return;
