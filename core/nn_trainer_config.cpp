@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 #include <set>
+#include <stdexcept>
 
 #include "core/error.h"
 
@@ -178,6 +179,17 @@ json TrainerConfig::toJson() const {
                 {"goal", l.goal},
                 {"max_samples", l.maxSamples},
                 {"seed", l.seed}};
+}
+
+TrainerConfig TrainerConfig::withType(const std::string& name) const {
+    if (name != "lm" && name != "levenberg_marquardt" && name != "adam")
+        throw std::invalid_argument("unknown trainer '" + name + "' (expected lm or adam)");
+    const TrainerType t = name == "adam" ? TrainerType::Adam : TrainerType::LevenbergMarquardt;
+    if (t == type) return *this;
+    TrainerConfig c;
+    c.type = t;
+    c.lm.maxEpochs = c.adam.maxEpochs = maxEpochs();
+    return c;
 }
 
 }  // namespace rrf

@@ -84,6 +84,10 @@ struct TrainerConfig {
                                   const std::string& where = "/trainer");
     /// Full settings, every key written, so a model file records exactly what trained it.
     nlohmann::json toJson() const;
+    /// This config switched to trainer `name` ("lm", "levenberg_marquardt" or "adam"): unchanged if
+    /// it already is that trainer, otherwise that trainer's defaults with this config's epoch limit.
+    /// Throws std::invalid_argument for another name.
+    TrainerConfig withType(const std::string& name) const;
 };
 
 }  // namespace rrf

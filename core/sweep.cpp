@@ -154,9 +154,7 @@ void sweepNetworks(Context& c, SweepResult& r, bool trainers) {
         nlohmann::json curve = nlohmann::json::array();
         if (trainers) {
             if (v != "lm" && v != "adam") throw InputError("command line", "--values", "'" + v + "': expected lm or adam");
-            const int epochs = t.trainer.maxEpochs();
-            t.trainer = TrainerConfig::fromJson({{"type", v == "adam" ? "adam" : "levenberg_marquardt"}});
-            t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = epochs;
+            t.trainer = t.trainer.withType(v);
             observer.onEpoch = [&](int id, const std::string& target, const EpochRecord& e) {
                 std::lock_guard<std::mutex> lock(m);
                 curve.push_back({{"object", id}, {"target", target}, {"epoch", e.epoch}, {"seconds", e.seconds},

@@ -176,11 +176,7 @@ void stageSettings(const Project& p, const Args& a, bool quick, SamplingSettings
     if (a.dirs > 0) s.directions = a.dirs;
     if (a.dataSpp > 0) s.spp = a.dataSpp;
     if (!a.hidden.empty()) t.hidden = parseHiddenSizes(a.hidden, "--hidden");
-    if (!a.trainer.empty()) {
-        const int e = t.trainer.maxEpochs();
-        t.trainer = TrainerConfig::fromJson({{"type", a.trainer == "adam" ? "adam" : "levenberg_marquardt"}});
-        t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = e;
-    }
+    if (!a.trainer.empty()) t.trainer = t.trainer.withType(a.trainer);
     if (a.epochs > 0) t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = a.epochs;
 }
 

@@ -54,10 +54,7 @@ int runTrain(const TrainArgs& a) {
     NetworkSettings settings = NetworkSettings::fromProject(project);
     ObjectTrainingOptions& o = settings.options;
     if (!a.hidden.empty()) o.hidden = parseHiddenSizes(a.hidden, "--hidden");
-    if (!a.trainer.empty()) {
-        const TrainerType t = a.trainer == "adam" ? TrainerType::Adam : TrainerType::LevenbergMarquardt;
-        if (t != o.trainer.type) o.trainer = TrainerConfig::fromJson({{"type", a.trainer == "adam" ? "adam" : "levenberg_marquardt"}});
-    }
+    if (!a.trainer.empty()) o.trainer = o.trainer.withType(a.trainer);
     if (a.epochs > 0) {
         o.trainer.lm.maxEpochs = a.epochs;
         o.trainer.adam.maxEpochs = a.epochs;
