@@ -9,6 +9,18 @@
 
 namespace rrf {
 
+RenderOptions renderOptionsFor(const Scene& scene, const RenderSettings& s, int passes) {
+    RenderOptions o;
+    o.width = s.width > 0 ? s.width : scene.camera.width;
+    o.height = s.height > 0 ? s.height : scene.camera.height;
+    o.spp = std::max(1, s.spp);
+    o.seed = s.seed;
+    o.maxDepth = s.maxDepth;
+    o.estimator = s.estimator;
+    o.samplesPerPass = std::max(1, o.spp / std::max(1, passes));
+    return o;
+}
+
 Renderer::Renderer(const Scene& scene, const Accel& accel, const RenderOptions& options)
     : scene_(scene),
       options_(options),

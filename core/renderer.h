@@ -34,6 +34,10 @@ struct RenderOptions {
     int tileSize = 16;
 };
 
+/// Options for rendering `scene` with a project's render settings: a size of 0 means the camera's,
+/// and the spp are split into about `passes` passes (each pass refreshes snapshots and progress).
+RenderOptions renderOptionsFor(const Scene& scene, const RenderSettings& settings, int passes);
+
 /// A consistent copy of the current estimate.
 struct RenderSnapshot {
     Image direct, indirect, global;

@@ -44,15 +44,11 @@ PredictionSettings predictionSettings(const Project& p, const Args& a) {
 }
 
 RenderOptions referenceOptions(const Project& p, int spp, int width, int height) {
-    RenderOptions o;
-    o.width = width > 0 ? width : (p.render.width > 0 ? p.render.width : p.scene.camera.width);
-    o.height = height > 0 ? height : (p.render.height > 0 ? p.render.height : p.scene.camera.height);
-    o.spp = spp > 0 ? spp : p.render.spp;
-    o.seed = p.render.seed;
-    o.maxDepth = p.render.maxDepth;
-    o.estimator = p.render.estimator;
-    o.samplesPerPass = std::max(1, o.spp / 16);
-    return o;
+    RenderSettings s = p.render;
+    if (spp > 0) s.spp = spp;
+    if (width > 0) s.width = width;
+    if (height > 0) s.height = height;
+    return renderOptionsFor(p.scene, s, 16);
 }
 
 Reference renderWithProgress(const Scene& scene, const Vec3& lp, const RenderOptions& o, const std::string& label) {

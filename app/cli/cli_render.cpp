@@ -24,22 +24,20 @@ struct RenderArgs {
 int runRender(const RenderArgs& a) {
     Project project = loadProjectOrScene(a.input);
     Scene& scene = project.scene;
-    RenderOptions o;
-    o.width = a.width > 0 ? a.width : (project.render.width > 0 ? project.render.width : scene.camera.width);
-    o.height = a.height > 0 ? a.height : (project.render.height > 0 ? project.render.height : scene.camera.height);
-    o.spp = a.spp > 0 ? a.spp : project.render.spp;
-    o.seed = a.seed >= 0 ? uint64_t(a.seed) : project.render.seed;
-    o.maxDepth = project.render.maxDepth;
-    o.estimator = project.render.estimator;
-    if (!a.mode.empty()) o.estimator = a.mode == "naive" ? Estimator::Naive : Estimator::NEE;
+    RenderSettings settings = project.render;
+    if (a.width > 0) settings.width = a.width;
+    if (a.height > 0) settings.height = a.height;
+    if (a.spp > 0) settings.spp = a.spp;
+    if (a.seed >= 0) settings.seed = uint64_t(a.seed);
+    if (!a.mode.empty()) settings.estimator = a.mode == "naive" ? Estimator::Naive : Estimator::NEE;
+    // Enough passes for a live progress line, few enough that pass overhead stays negligible.
+    const RenderOptions o = renderOptionsFor(scene, settings, 16);
     const ImageFormat format = imageFormatFromName(a.format);
     const float exposure = a.exposureSet ? a.exposure : project.render.exposure;
     if (!a.lightPos.empty()) {
         if (scene.lights.empty()) throw InputError(a.input, "/lights", "--light-pos given but the scene has no light");
         scene.setLightPosition(parseVec3(a.lightPos, "--light-pos"));
     }
-    // Enough passes for a live progress line, few enough that pass overhead stays negligible.
-    o.samplesPerPass = std::max(1, o.spp / 16);
     auto threads = limitThreads(a.threads);
 
     Accel accel(scene);

@@ -60,18 +60,4 @@ RenderOutputs RenderSession::write(const std::string& dir, ImageFormat format, f
     return writeRenderOutputs(dir, scene_, *renderer_, *latest_, format, exposure);
 }
 
-RenderOptions renderOptionsFor(const Scene& scene, const RenderSettings& s) {
-    RenderOptions o;
-    o.width = s.width > 0 ? s.width : scene.camera.width;
-    o.height = s.height > 0 ? s.height : scene.camera.height;
-    o.spp = std::max(1, s.spp);
-    o.seed = s.seed;
-    o.maxDepth = s.maxDepth;
-    o.estimator = s.estimator;
-    // One sample per pass up to 64 spp gives a visible refresh every pass; beyond that, passes of
-    // spp/64 keep the snapshot copies a small fraction of the work.
-    o.samplesPerPass = std::max(1, o.spp / 64);
-    return o;
-}
-
 }  // namespace rrf

@@ -47,7 +47,8 @@ private:
     std::atomic<uint64_t> revision_{0};
 };
 
-/// RenderOptions from the project's render settings and the scene's camera.
-RenderOptions renderOptionsFor(const Scene& scene, const RenderSettings& settings);
+/// Passes per progressive render in the workbench: one sample per pass up to 64 spp gives a visible
+/// refresh every pass; beyond that, passes of spp/64 keep snapshot copies a small part of the work.
+constexpr int kGuiRenderPasses = 64;
 
 }  // namespace rrf

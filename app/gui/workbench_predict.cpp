@@ -29,7 +29,7 @@ namespace {
 /// The ground truth's camera: the scene camera at the render settings' size, so the prediction
 /// lines up pixel for pixel with the ground truth and the error map.
 Camera viewCamera(const Project& project) {
-    const RenderOptions o = renderOptionsFor(project.scene, project.render);
+    const RenderOptions o = renderOptionsFor(project.scene, project.render, kGuiRenderPasses);
     Camera c = project.scene.camera;
     c.width = o.width;
     c.height = o.height;

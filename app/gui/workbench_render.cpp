@@ -19,7 +19,7 @@ bool Workbench::startRender() {
         state_.log.error("render: no project is open");
         return false;
     }
-    const RenderOptions options = renderOptionsFor(state_.project.scene, state_.project.render);
+    const RenderOptions options = renderOptionsFor(state_.project.scene, state_.project.render, kGuiRenderPasses);
     auto session = std::make_shared<RenderSession>(state_.project.scene, options);
     std::string why;
     char name[64];
@@ -80,7 +80,7 @@ void Workbench::pollRender() {
 
 void Workbench::sceneChanged(bool restartRender, bool geometryChanged) {
     // Rebuilding traces a BVH and one ray per pixel on the UI thread; a drag must not pay that per frame.
-    const RenderOptions o = renderOptionsFor(state_.project.scene, state_.project.render);
+    const RenderOptions o = renderOptionsFor(state_.project.scene, state_.project.render, kGuiRenderPasses);
     if (geometryChanged || !state_.pickAccel || o.width != state_.idWidth || o.height != state_.idHeight)
         rebuildPicking();
     // The prediction follows the light at once (GLSL: this frame); the ground truth restarts below.
@@ -105,7 +105,7 @@ void Workbench::rebuildPicking() {
         auto accel = std::make_shared<Accel>(state_.project.scene);
         // The object-id buffer for highlighting: one primary ray per pixel centre. For the
         // scenes this tool targets (≤ 1024² pixels) this takes milliseconds.
-        const RenderOptions o = renderOptionsFor(state_.project.scene, state_.project.render);
+        const RenderOptions o = renderOptionsFor(state_.project.scene, state_.project.render, kGuiRenderPasses);
         CameraRays camera(state_.project.scene.camera, o.width, o.height);
         state_.objectIds.assign(size_t(o.width) * size_t(o.height), -1);
         for (int y = 0; y < o.height; ++y)
