@@ -36,11 +36,9 @@ DataGenerator::DataGenerator(const Scene& scene, const SamplingSettings& setting
 }
 
 Bounds3 DataGenerator::lightRegion() const {
-    Bounds3 r = scene_.lightRegion;
-    if (settings_.fixedLight || r.empty()) {
-        r = Bounds3();
-        r.expand(scene_.lightPosition());
-    }
+    if (!settings_.fixedLight) return scene_.lightRange();
+    Bounds3 r;
+    r.expand(scene_.lightPosition());
     return r;
 }
 

@@ -1,25 +1,16 @@
 #include "core/experiment.h"
 
+#include "core/training_samples.h"
+
 namespace rrf {
 
 std::vector<ObjectSamples> samplesFromGenerated(const GeneratedData& data, const Scene& scene, const RecordLayout& layout) {
     const int in = layout.inputCount(), fpr = layout.floatsPerRecord();
     std::vector<ObjectSamples> out;
+    uint64_t dropped = 0;  // the generator writes finite records only, so this stays 0
     for (size_t id = 0; id < data.perObject.size() && id < scene.objects.size(); ++id) {
-        ObjectSamples s;
-        s.objectId = int(id);
-        s.name = scene.objects[id].name;
-        s.numInputs = in;
         const std::vector<float>& r = data.perObject[id];
-        const size_t n = r.size() / size_t(fpr);
-        s.inputs.reserve(n * size_t(in));
-        s.direct.reserve(n * 3);
-        s.indirect.reserve(n * 3);
-        for (size_t k = 0; k < n; ++k) {
-            const float* rec = r.data() + k * size_t(fpr);
-            s.add(rec, rec + in, rec + in + 3);
-        }
-        out.push_back(std::move(s));
+        out.push_back(objectSamples(int(id), scene.objects[id].name, r.data(), r.size() / size_t(fpr), in, dropped));
     }
     return out;
 }

@@ -22,15 +22,6 @@ std::vector<Vec3> heldOutLightPositions(const Bounds3& region, int k, uint64_t s
     return out;
 }
 
-Bounds3 evaluationLightRegion(const Scene& scene) {
-    Bounds3 r = scene.lightRegion;
-    if (r.empty()) {
-        r = Bounds3();
-        r.expand(scene.lightPosition());
-    }
-    return r;
-}
-
 void Spread::add(double v) {
     if (count == 0) {
         mean = min = max = v;

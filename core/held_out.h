@@ -18,9 +18,6 @@ namespace rrf {
 /// record stream, so for the same seed these are not the training positions.
 std::vector<Vec3> heldOutLightPositions(const Bounds3& region, int k, uint64_t seed);
 
-/// The light region evaluation draws from: the scene's, or the light's position if it has none.
-Bounds3 evaluationLightRegion(const Scene& scene);
-
 struct Spread {
     double mean = 0, min = 0, max = 0;
     int count = 0;  ///< evaluations in which the object was visible

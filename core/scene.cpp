@@ -47,6 +47,13 @@ void Scene::setLightPosition(const Vec3& p) {
     lights[size_t(movableLight)].moveTo(p);
 }
 
+Bounds3 Scene::lightRange() const {
+    if (!lightRegion.empty()) return lightRegion;
+    Bounds3 r;
+    r.expand(lightPosition());
+    return r;
+}
+
 namespace {
 /// Order-dependent 64-bit hash built from mix64 (FNV-like fold of 64-bit words).
 struct Hasher {

@@ -115,6 +115,9 @@ struct Scene {
     Vec3 lightPosition() const;
     /// Moves the movable light to `p` (its centre), keeping shape and emission.
     void setLightPosition(const Vec3& p);
+    /// Where the movable light's centre may be: the light region, or just the light's current
+    /// position when the region is empty (a fixed light).
+    Bounds3 lightRange() const;
     /// Hash of everything that changes the rendered radiance (geometry, materials, lights, the
     /// light region; not the camera or the source path). Datasets and models record it.
     uint64_t contentHash() const;

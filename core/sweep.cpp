@@ -222,7 +222,7 @@ SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
     SweepResult r;
     r.what = o.what;
     Context c{scene, o, RecordLayout::forScene(scene), {}};
-    r.lightPosition = heldOutLightPositions(evaluationLightRegion(scene), 1, o.seed).front();
+    r.lightPosition = heldOutLightPositions(scene.lightRange(), 1, o.seed).front();
     RenderOptions ro;
     ro.width = o.width;
     ro.height = o.height;

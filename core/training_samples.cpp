@@ -18,29 +18,34 @@ std::vector<ObjectSamples> samplesFromDataset(const Dataset& data, uint64_t* dro
     std::vector<ObjectSamples> out;
     for (size_t i = 0; i < data.objects().size(); ++i) {
         const DatasetObject& o = data.objects()[i];
-        ObjectSamples s;
-        s.objectId = o.id;
-        s.name = o.name;
-        s.numInputs = in;
-        s.inputs.reserve(o.count * size_t(in));
-        s.direct.reserve(o.count * 3);
-        s.indirect.reserve(o.count * 3);
-        const float* r = data.records(i);
-        for (uint64_t k = 0; k < o.count; ++k, r += fpr) {
-            bool finite = true;
-            for (int c = 0; c < fpr; ++c) finite = finite && std::isfinite(r[c]);
-            if (!finite) {
-                ++bad;
-                continue;
-            }
-            s.inputs.insert(s.inputs.end(), r, r + in);
-            s.direct.insert(s.direct.end(), r + in, r + in + 3);
-            s.indirect.insert(s.indirect.end(), r + in + 3, r + in + 6);
-        }
-        out.push_back(std::move(s));
+        out.push_back(objectSamples(o.id, o.name, data.records(i), size_t(o.count), in, bad));
     }
     if (dropped) *dropped = bad;
     return out;
+}
+
+ObjectSamples objectSamples(int objectId, const std::string& name, const float* r, size_t count, int in,
+                            uint64_t& dropped) {
+    const int fpr = in + 6;
+    ObjectSamples s;
+    s.objectId = objectId;
+    s.name = name;
+    s.numInputs = in;
+    s.inputs.reserve(count * size_t(in));
+    s.direct.reserve(count * 3);
+    s.indirect.reserve(count * 3);
+    for (size_t k = 0; k < count; ++k, r += fpr) {
+        bool finite = true;
+        for (int c = 0; c < fpr; ++c) finite = finite && std::isfinite(r[c]);
+        if (!finite) {
+            ++dropped;
+            continue;
+        }
+        s.inputs.insert(s.inputs.end(), r, r + in);
+        s.direct.insert(s.direct.end(), r + in, r + in + 3);
+        s.indirect.insert(s.indirect.end(), r + in + 3, r + in + 6);
+    }
+    return s;
 }
 
 }  // namespace rrf

@@ -114,7 +114,7 @@ int runEvaluate(const Args& a) {
     }
     std::vector<Vec3> lights;
     if (a.heldOut > 0) {
-        lights = heldOutLightPositions(evaluationLightRegion(p.scene), a.heldOut, uint64_t(a.seed));
+        lights = heldOutLightPositions(p.scene.lightRange(), a.heldOut, uint64_t(a.seed));
         std::printf("%d held-out light positions (seed %lld), references %dx%d at %d spp\n", a.heldOut, a.seed, ro.width,
                     ro.height, ro.spp);
     } else {
@@ -293,7 +293,7 @@ int runPipeline(const Args& a) {
     std::printf("[4/4] evaluate at the ground truth's light:");
     evaluateAll(p, predictor, {gt.lightPosition}, ro, &gt, path(a.out, "evaluation"), p.render.exposure);
     std::printf("\nevaluate at %d held-out light positions:", heldOut);
-    evaluateAll(p, predictor, heldOutLightPositions(evaluationLightRegion(scene), heldOut, uint64_t(a.seed)), ro, nullptr,
+    evaluateAll(p, predictor, heldOutLightPositions(scene.lightRange(), heldOut, uint64_t(a.seed)), ro, nullptr,
                 path(a.out, "held_out"), p.render.exposure);
     stages.push_back({"evaluate", evalClock.seconds()});
     std::printf("\n%-14s %10s\n", "stage", "seconds");
