@@ -24,12 +24,12 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "core/accel.h"
-#include "core/data_generator.h"
-#include "core/text_format.h"
-#include "core/dataset_file.h"
-#include "core/project.h"
-#include "core/renderer.h"
+#include "core/scene/accel.h"
+#include "core/data/data_generator.h"
+#include "core/util/text_format.h"
+#include "core/data/dataset_file.h"
+#include "core/project/project.h"
+#include "core/render/renderer.h"
 
 using namespace rrf;
 using Clock = std::chrono::steady_clock;

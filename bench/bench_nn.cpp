@@ -16,8 +16,8 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
-#include "core/nn_model.h"
-#include "core/rng.h"
+#include "core/nn/model.h"
+#include "core/util/rng.h"
 
 using namespace rrf;
 

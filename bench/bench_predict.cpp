@@ -16,11 +16,11 @@
 
 #include <tbb/global_control.h>
 
-#include "core/evaluation.h"
-#include "core/experiment.h"
-#include "core/network_settings.h"
-#include "core/predictor.h"
-#include "core/project.h"
+#include "core/eval/evaluation.h"
+#include "core/eval/experiment.h"
+#include "core/nn/network_settings.h"
+#include "core/predict/predictor.h"
+#include "core/project/project.h"
 
 using namespace rrf;
 

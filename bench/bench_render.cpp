@@ -15,10 +15,10 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
-#include "core/accel.h"
-#include "core/camera_rays.h"
-#include "core/project.h"
-#include "core/renderer.h"
+#include "core/scene/accel.h"
+#include "core/scene/camera_rays.h"
+#include "core/project/project.h"
+#include "core/render/renderer.h"
 
 using namespace rrf;
 using Clock = std::chrono::steady_clock;

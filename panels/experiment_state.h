@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "core/error_metrics.h"
-#include "core/vec3.h"
-#include "panels/runs.h"
+#include "core/eval/error_metrics.h"
+#include "core/util/vec3.h"
+#include "core/project/runs.h"
 
 namespace rrf::panels {
 

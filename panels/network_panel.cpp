@@ -6,8 +6,8 @@
 
 #include <imgui.h>
 
-#include "core/error.h"
-#include "core/record_layout.h"
+#include "core/util/error.h"
+#include "core/data/record_layout.h"
 #include "panels/panels.h"
 
 namespace rrf::panels {
@@ -18,7 +18,7 @@ constexpr int kMaxLayerSize = 4096, kMaxLayers = 8;
 /// Parses the settings; on a malformed section shows why and returns false.
 bool readSettings(const WorkbenchState& state, NetworkSettings& out) {
     try {
-        out = NetworkSettings::fromProject(state.project);
+        out = networkSettingsOf(state.project);
         return true;
     } catch (const std::exception& e) {
         ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "The project's network/trainer sections are invalid:");
@@ -28,7 +28,7 @@ bool readSettings(const WorkbenchState& state, NetworkSettings& out) {
 }
 
 void store(WorkbenchState& state, const NetworkSettings& s) {
-    s.store(state.project);
+    storeNetworkSettings(s, state.project);
     state.markDirty();
 }
 
@@ -123,7 +123,7 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
 }  // namespace
 
 bool addHiddenLayer(WorkbenchState& state) {
-    NetworkSettings s = NetworkSettings::fromProject(state.project);
+    NetworkSettings s = networkSettingsOf(state.project);
     if (int(s.options.hidden.size()) >= kMaxLayers) return false;
     // A new layer repeats the last one's size: a sensible start that the user then resizes.
     s.options.hidden.push_back(s.options.hidden.empty() ? 10 : s.options.hidden.back());
@@ -132,7 +132,7 @@ bool addHiddenLayer(WorkbenchState& state) {
 }
 
 bool removeHiddenLayer(WorkbenchState& state, int index) {
-    NetworkSettings s = NetworkSettings::fromProject(state.project);
+    NetworkSettings s = networkSettingsOf(state.project);
     // The file format needs at least one hidden layer.
     if (s.options.hidden.size() <= 1 || index < 0 || index >= int(s.options.hidden.size())) return false;
     s.options.hidden.erase(s.options.hidden.begin() + index);
@@ -141,7 +141,7 @@ bool removeHiddenLayer(WorkbenchState& state, int index) {
 }
 
 bool resizeHiddenLayer(WorkbenchState& state, int index, int size) {
-    NetworkSettings s = NetworkSettings::fromProject(state.project);
+    NetworkSettings s = networkSettingsOf(state.project);
     if (index < 0 || index >= int(s.options.hidden.size())) return false;
     size = std::clamp(size, 1, kMaxLayerSize);
     if (s.options.hidden[size_t(index)] == size) return false;
@@ -151,7 +151,7 @@ bool resizeHiddenLayer(WorkbenchState& state, int index, int size) {
 }
 
 bool setTrainerType(WorkbenchState& state, TrainerType type) {
-    NetworkSettings s = NetworkSettings::fromProject(state.project);
+    NetworkSettings s = networkSettingsOf(state.project);
     if (s.options.trainer.type == type) return false;
     s.options.trainer.type = type;  // the other trainer's parameters keep their defaults
     store(state, s);
@@ -185,7 +185,7 @@ void drawNetworkPanel(WorkbenchState& state) {
     ImGui::BeginDisabled(int(s.options.hidden.size()) >= kMaxLayers);
     if (ImGui::Button("Add layer")) addHiddenLayer(state);
     ImGui::EndDisabled();
-    s = NetworkSettings::fromProject(state.project);  // the layer edits above are stored already
+    s = networkSettingsOf(state.project);  // the layer edits above are stored already
 
     int activation = int(s.options.activation);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
@@ -208,7 +208,7 @@ void drawNetworkPanel(WorkbenchState& state) {
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
     if (ImGui::Combo("trainer", &trainer, "Levenberg-Marquardt\0Adam\0")) {
         setTrainerType(state, TrainerType(trainer));
-        s = NetworkSettings::fromProject(state.project);
+        s = networkSettingsOf(state.project);
     }
     const bool changed = s.options.trainer.type == TrainerType::Adam ? drawAdam(s.options.trainer.adam)
                                                                       : drawLevenbergMarquardt(s.options.trainer.lm);

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/network_settings.h"
+#include "core/nn/network_settings.h"
 #include "panels/workbench_state.h"
 
 namespace rrf::panels {

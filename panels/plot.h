@@ -8,7 +8,7 @@
 
 #include <imgui.h>
 
-#include "panels/runs.h"
+#include "core/project/runs.h"
 
 namespace rrf::panels {
 

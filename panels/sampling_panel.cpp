@@ -4,9 +4,9 @@
 
 #include <imgui.h>
 
-#include "core/error.h"
-#include "core/record_layout.h"
-#include "core/sampling_settings.h"
+#include "core/util/error.h"
+#include "core/data/record_layout.h"
+#include "core/data/sampling_settings.h"
 #include "panels/panels.h"
 
 namespace rrf::panels {
@@ -55,7 +55,7 @@ void drawSamplingPanel(WorkbenchState& state) {
     }
     SamplingSettings s;
     try {
-        s = SamplingSettings::fromProject(state.project);
+        s = samplingSettingsOf(state.project);
     } catch (const InputError& e) {
         ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "The project's sampling section is invalid:");
         ImGui::TextWrapped("%s", e.what());

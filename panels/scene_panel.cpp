@@ -5,9 +5,9 @@
 
 #include <imgui.h>
 
-#include "core/effects.h"
+#include "core/scene/effects.h"
 #include "panels/panels.h"
-#include "core/scene_overrides.h"
+#include "core/project/scene_overrides.h"
 
 namespace rrf::panels {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/image.h"
+#include "core/util/image.h"
 #include "panels/workbench_state.h"
 
 namespace rrf::panels {

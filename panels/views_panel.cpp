@@ -7,7 +7,7 @@
 
 #include <imgui.h>
 
-#include "core/camera_rays.h"
+#include "core/scene/camera_rays.h"
 #include "panels/panels.h"
 #include "panels/view_model.h"
 

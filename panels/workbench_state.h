@@ -11,13 +11,13 @@
 
 #include <imgui.h>
 
-#include "core/accel.h"
-#include "core/image.h"
-#include "core/project.h"
+#include "core/scene/accel.h"
+#include "core/util/image.h"
+#include "core/project/project.h"
 #include "panels/experiment_state.h"
 #include "panels/layout.h"
 #include "panels/log.h"
-#include "panels/runs.h"
+#include "core/project/runs.h"
 
 namespace rrf::panels {
 

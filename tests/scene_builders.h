@@ -11,13 +11,13 @@
 #include <utility>
 #include <vector>
 
-#include "core/accel.h"
-#include "core/brdf.h"
-#include "core/camera_rays.h"
-#include "core/renderer.h"
-#include "core/path_tracer.h"
-#include "core/rng.h"
-#include "core/scene.h"
+#include "core/scene/accel.h"
+#include "core/render/brdf.h"
+#include "core/scene/camera_rays.h"
+#include "core/render/renderer.h"
+#include "core/render/path_tracer.h"
+#include "core/util/rng.h"
+#include "core/scene/scene.h"
 
 namespace rrf::test {
 

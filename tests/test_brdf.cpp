@@ -7,8 +7,8 @@
 #include <functional>
 #include <vector>
 
-#include "core/brdf.h"
-#include "core/rng.h"
+#include "core/render/brdf.h"
+#include "core/util/rng.h"
 #include "scene_builders.h"
 
 using namespace rrf;

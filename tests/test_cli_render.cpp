@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
 
-#include "core/image_io.h"
+#include "core/util/image_io.h"
 
 namespace fs = std::filesystem;
 

@@ -23,11 +23,11 @@
 #include <tbb/global_control.h>
 #include <unistd.h>
 
-#include "core/camera_rays.h"
-#include "core/data_generator.h"
-#include "core/dataset_file.h"
-#include "core/project.h"
-#include "core/renderer.h"
+#include "core/scene/camera_rays.h"
+#include "core/data/data_generator.h"
+#include "core/data/dataset_file.h"
+#include "core/project/project.h"
+#include "core/render/renderer.h"
 #include "scene_builders.h"
 
 using namespace rrf;

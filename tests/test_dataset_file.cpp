@@ -21,9 +21,9 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "core/dataset_file.h"
-#include "core/dataset_summary.h"
-#include "core/training_samples.h"
+#include "core/data/dataset_file.h"
+#include "core/data/dataset_summary.h"
+#include "core/nn/training_samples.h"
 
 using namespace rrf;
 namespace fs = std::filesystem;

@@ -7,11 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/experiment.h"
-#include "core/held_out.h"
-#include "core/project.h"
-#include "core/rng.h"
-#include "core/sweep.h"
+#include "core/eval/experiment.h"
+#include "core/eval/held_out.h"
+#include "core/project/project.h"
+#include "core/util/rng.h"
+#include "core/eval/sweep.h"
 
 using namespace rrf;
 

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error_metrics.h"
+#include "core/eval/error_metrics.h"
 
 using namespace rrf;
 

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/gbuffer.h"
-#include "core/project.h"
+#include "core/predict/gbuffer.h"
+#include "core/project/project.h"
 
 using namespace rrf;
 

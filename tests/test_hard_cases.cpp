@@ -8,10 +8,10 @@
 #include <memory>
 #include <vector>
 
-#include "core/accel.h"
-#include "core/brdf.h"
-#include "core/path_tracer.h"
-#include "core/renderer.h"
+#include "core/scene/accel.h"
+#include "core/render/brdf.h"
+#include "core/render/path_tracer.h"
+#include "core/render/renderer.h"
 #include "scene_builders.h"
 
 using namespace rrf;

@@ -11,9 +11,9 @@
 #include <tinyexr.h>
 #include <unistd.h>
 
-#include "core/atomic_file.h"
-#include "core/image.h"
-#include "core/image_io.h"
+#include "core/util/atomic_file.h"
+#include "core/util/image.h"
+#include "core/util/image_io.h"
 
 namespace fs = std::filesystem;
 using namespace rrf;

@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "core/accel.h"
-#include "core/path_tracer.h"
+#include "core/scene/accel.h"
+#include "core/render/path_tracer.h"
 #include "scene_builders.h"
 
 using namespace rrf;

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "core/data_generator.h"
-#include "core/jitter_grid.h"
-#include "core/project.h"
+#include "core/data/data_generator.h"
+#include "core/data/jitter_grid.h"
+#include "core/project/project.h"
 #include "scene_builders.h"
 
 using namespace rrf;

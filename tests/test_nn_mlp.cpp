@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "core/nn_mlp.h"
-#include "core/rng.h"
+#include "core/nn/mlp.h"
+#include "core/util/rng.h"
 
 using namespace rrf;
 

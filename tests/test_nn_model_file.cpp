@@ -9,10 +9,10 @@
 
 #include <unistd.h>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/nn_model.h"
-#include "core/rng.h"
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
+#include "core/nn/model.h"
+#include "core/util/rng.h"
 
 using namespace rrf;
 namespace fs = std::filesystem;

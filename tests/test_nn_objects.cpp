@@ -6,8 +6,8 @@
 
 #include <tbb/global_control.h>
 
-#include "core/nn_objects.h"
-#include "core/rng.h"
+#include "core/nn/object_training.h"
+#include "core/util/rng.h"
 
 using namespace rrf;
 

@@ -5,9 +5,9 @@
 
 #include <tbb/global_control.h>
 
-#include "core/error.h"
-#include "core/nn_model.h"
-#include "core/rng.h"
+#include "core/util/error.h"
+#include "core/nn/model.h"
+#include "core/util/rng.h"
 
 using namespace rrf;
 

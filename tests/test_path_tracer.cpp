@@ -8,9 +8,9 @@
 
 #include <cmath>
 
-#include "core/accel.h"
-#include "core/path_tracer.h"
-#include "core/renderer.h"
+#include "core/scene/accel.h"
+#include "core/render/path_tracer.h"
+#include "core/render/renderer.h"
 #include "scene_builders.h"
 
 using namespace rrf;

@@ -6,9 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/project.h"
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
+#include "core/project/project.h"
 
 using namespace rrf;
 using nlohmann::json;

@@ -10,9 +10,9 @@
 
 #include <embree3/rtcore.h>
 
-#include "core/quad_reference.h"
-#include "core/rng.h"
-#include "core/vec3.h"
+#include "tests/quad_reference.h"
+#include "core/util/rng.h"
+#include "core/util/vec3.h"
 
 using namespace rrf;
 

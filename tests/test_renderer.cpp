@@ -9,8 +9,8 @@
 
 #include <tbb/global_control.h>
 
-#include "core/accel.h"
-#include "core/renderer.h"
+#include "core/scene/accel.h"
+#include "core/render/renderer.h"
 #include "scene_builders.h"
 
 using namespace rrf;

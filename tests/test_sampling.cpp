@@ -1,4 +1,4 @@
-// Chi-square and normalisation tests of the direction samplers in core/sampling.h.
+// Chi-square and normalisation tests of the direction samplers in core/util/warp.h.
 //
 // The chi-square tests bin sampled directions in (t, φ), where t = cos^m α is a monotone map of the
 // angle to the lobe axis chosen so that bins are roughly equiprobable (m = 2 for the cosine lobe,
@@ -11,8 +11,8 @@
 #include <functional>
 #include <vector>
 
-#include "core/rng.h"
-#include "core/sampling.h"
+#include "core/util/rng.h"
+#include "core/util/warp.h"
 #include "scene_builders.h"
 
 using namespace rrf;

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "core/scene_json.h"
+#include "core/util/error.h"
+#include "core/scene/scene_json.h"
 
 using namespace rrf;
 using nlohmann::json;

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <vector>
 
-#include "core/rng.h"
-#include "core/vec3.h"
+#include "core/util/rng.h"
+#include "core/util/vec3.h"
 
 using namespace rrf;
 

@@ -9,7 +9,7 @@
 
 #include <unistd.h>
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace rrf::cli {
 

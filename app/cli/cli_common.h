@@ -11,8 +11,8 @@
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
-#include "core/text_format.h"
-#include "core/vec3.h"
+#include "core/util/text_format.h"
+#include "core/util/vec3.h"
 
 namespace rrf::cli {
 

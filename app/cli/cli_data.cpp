@@ -6,11 +6,11 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
-#include "core/data_generator.h"
-#include "core/dataset_file.h"
-#include "core/dataset_summary.h"
-#include "core/error.h"
-#include "core/project.h"
+#include "core/data/data_generator.h"
+#include "core/data/dataset_file.h"
+#include "core/data/dataset_summary.h"
+#include "core/util/error.h"
+#include "core/project/project.h"
 
 namespace rrf::cli {
 
@@ -30,7 +30,7 @@ void parseShard(const std::string& text, int& k, int& n) {
 
 int runGenerate(const GenerateArgs& a) {
     const Project project = loadProjectOrScene(a.input);
-    SamplingSettings s = SamplingSettings::fromProject(project);
+    SamplingSettings s = samplingSettingsOf(project);
     if (!a.grid.empty()) {
         const Vec3 g = parseVec3(a.grid, "--grid");
         if (g.x < 1 || g.y < 1 || g.z < 1 || g.x != float(int(g.x)) || g.y != float(int(g.y)) || g.z != float(int(g.z)))

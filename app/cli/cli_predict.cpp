@@ -6,15 +6,16 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
-#include "core/atomic_file.h"
-#include "core/dataset_file.h"
-#include "core/error.h"
-#include "core/experiment.h"
-#include "core/held_out.h"
-#include "core/image_io.h"
-#include "core/network_settings.h"
-#include "core/render_outputs.h"
-#include "core/sweep.h"
+#include "core/util/atomic_file.h"
+#include "core/data/dataset_file.h"
+#include "core/util/error.h"
+#include "core/eval/experiment.h"
+#include "core/eval/held_out.h"
+#include "core/util/image_io.h"
+#include "core/nn/network_settings.h"
+#include "core/render/render_outputs.h"
+#include "core/eval/sweep.h"
+#include "core/project/project.h"
 
 namespace rrf::cli {
 
@@ -38,7 +39,7 @@ void write(const std::string& file, const std::string& text) {
 }
 
 PredictionSettings predictionSettings(const Project& p, const Args& a) {
-    PredictionSettings s = PredictionSettings::fromProject(p);
+    PredictionSettings s = predictionSettingsOf(p);
     if (!a.direct.empty()) s.direct = a.direct == "exact" ? PredictionSettings::Direct::Exact : PredictionSettings::Direct::Network;
     return s;
 }
@@ -158,14 +159,14 @@ int runPredict(const Args& a) {
 /// Settings of the pipeline and sweeps: the project's sections where present, small defaults where not.
 void stageSettings(const Project& p, const Args& a, bool quick, SamplingSettings& s, ObjectTrainingOptions& t) {
     const bool hasSampling = p.doc.is_object() && p.doc.contains("sampling");
-    s = SamplingSettings::fromProject(p);
+    s = samplingSettingsOf(p);
     if (quick || !hasSampling) {
         // 15³ × 1200 directions (the paper's) is hours on 2 cores; these finish in minutes.
         s.nx = s.ny = s.nz = quick ? 5 : 6;
         s.directions = quick ? 150 : 200;
         s.spp = quick ? 16 : 32;
     }
-    t = NetworkSettings::fromProject(p).options;
+    t = networkSettingsOf(p).options;
     const bool hasTrainer = p.doc.is_object() && p.doc.contains("trainer");
     if (quick || !hasTrainer) t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = quick ? 50 : 100;
     if (a.grid > 0) s.nx = s.ny = s.nz = a.grid;

@@ -4,11 +4,11 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
-#include "core/accel.h"
-#include "core/error.h"
-#include "core/render_outputs.h"
-#include "core/renderer.h"
-#include "core/project.h"
+#include "core/scene/accel.h"
+#include "core/util/error.h"
+#include "core/render/render_outputs.h"
+#include "core/render/renderer.h"
+#include "core/project/project.h"
 
 namespace rrf::cli {
 

@@ -8,12 +8,12 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
-#include "core/dataset_file.h"
-#include "core/error.h"
-#include "core/model_set.h"
-#include "core/network_settings.h"
-#include "core/project.h"
-#include "core/training_samples.h"
+#include "core/data/dataset_file.h"
+#include "core/util/error.h"
+#include "core/nn/model_set.h"
+#include "core/nn/network_settings.h"
+#include "core/project/project.h"
+#include "core/nn/training_samples.h"
 
 namespace rrf::cli {
 
@@ -51,7 +51,7 @@ std::string fmt(double v) {
 
 int runTrain(const TrainArgs& a) {
     const Project project = loadProjectOrScene(a.input);
-    NetworkSettings settings = NetworkSettings::fromProject(project);
+    NetworkSettings settings = networkSettingsOf(project);
     ObjectTrainingOptions& o = settings.options;
     if (!a.hidden.empty()) o.hidden = parseHiddenSizes(a.hidden, "--hidden");
     if (!a.trainer.empty()) o.trainer = o.trainer.withType(a.trainer);

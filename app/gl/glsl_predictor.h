@@ -28,10 +28,10 @@
 #include <vector>
 
 #include "app/gl/gl_program.h"
-#include "core/image.h"
-#include "core/model_set.h"
-#include "core/network_texture.h"
-#include "core/scene.h"
+#include "core/util/image.h"
+#include "core/nn/model_set.h"
+#include "core/predict/network_texture.h"
+#include "core/scene/scene.h"
 
 #ifndef RRF_SHADER_DIR
 #error "RRF_SHADER_DIR must name the shaders/ directory (set by cmake/Gl.cmake)"

@@ -12,9 +12,9 @@
 #include <memory>
 #include <string>
 
-#include "core/image.h"
-#include "core/model_set.h"
-#include "core/scene.h"
+#include "core/util/image.h"
+#include "core/nn/model_set.h"
+#include "core/scene/scene.h"
 
 namespace rrf {
 

@@ -13,7 +13,7 @@
 #include "app/gui/user_config.h"
 #include "app/gui/window.h"
 #include "app/gui/workbench.h"
-#include "core/image_io.h"
+#include "core/util/image_io.h"
 
 namespace {
 

@@ -10,10 +10,10 @@
 #include <string>
 
 #include "app/gui/job_runner.h"
-#include "core/accel.h"
-#include "core/render_outputs.h"
-#include "core/renderer.h"
-#include "core/scene.h"
+#include "core/scene/accel.h"
+#include "core/render/render_outputs.h"
+#include "core/render/renderer.h"
+#include "core/scene/scene.h"
 
 namespace rrf {
 

@@ -4,8 +4,8 @@
 #include <stdexcept>
 
 #include "app/gui/workbench.h"
-#include "core/network_settings.h"
-#include "core/scene_overrides.h"
+#include "core/nn/network_settings.h"
+#include "core/project/scene_overrides.h"
 
 namespace rrf {
 
@@ -110,11 +110,11 @@ bool Script::execute(Workbench& wb, const json& s) {
     } else if (what == "train") {
         // Optional overrides of the project's network settings, for small scripted runs.
         if (s.contains("hidden") || s.contains("trainer") || s.contains("targets")) {
-            NetworkSettings n = NetworkSettings::fromProject(st.project);
+            NetworkSettings n = networkSettingsOf(st.project);
             if (s.contains("hidden")) n.options.hidden = s["hidden"].get<std::vector<int>>();
             if (s.contains("targets")) n.options.targets = parseTargetMode(text(s, "targets"));
             if (s.contains("trainer")) n.options.trainer = TrainerConfig::fromJson(json{{"type", text(s, "trainer")}}, "script");
-            n.store(st.project);
+            storeNetworkSettings(n, st.project);
             st.markDirty();
         }
         require(wb.startTrain(int(number(s, "epochs", 0))), "training could not start (see the log)");
@@ -194,7 +194,7 @@ bool Script::execute(Workbench& wb, const json& s) {
         if (s.contains("evaluated")) require(st.evaluation.valid == s["evaluated"].get<bool>(), "evaluation state differs");
         if (s.contains("train_runs")) {
             int n = 0;
-            for (const panels::Run& r : st.runs) n += r.kind == "train" && !r.curves.empty();
+            for (const Run& r : st.runs) n += r.kind == "train" && !r.curves.empty();
             require(n == int(number(s, "train_runs", 0)), "expected " + std::to_string(int(number(s, "train_runs", 0))) +
                                                               " training runs with loss curves, found " + std::to_string(n));
         }

@@ -5,10 +5,10 @@
 #include <future>
 #include <mutex>
 
-#include "core/data_generator.h"
-#include "core/dataset_file.h"
-#include "core/record_layout.h"
-#include "core/sampling_settings.h"
+#include "core/data/data_generator.h"
+#include "core/data/dataset_file.h"
+#include "core/data/record_layout.h"
+#include "core/data/sampling_settings.h"
 
 namespace rrf {
 
@@ -35,7 +35,7 @@ bool Workbench::startGenerate() {
     }
     auto session = std::make_shared<GenerateSession>();
     try {
-        session->settings = SamplingSettings::fromProject(state_.project);
+        session->settings = samplingSettingsOf(state_.project);
     } catch (const std::exception& e) {
         state_.log.error(std::string("generate: ") + e.what());
         return false;

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <mutex>
 
-#include "core/atomic_file.h"
-#include "core/evaluation.h"
+#include "core/util/atomic_file.h"
+#include "core/eval/evaluation.h"
 #include "panels/panels.h"
 
 namespace rrf {
@@ -44,7 +44,7 @@ bool Workbench::startEvaluate() {
     session->models = live_.models();
     session->modelsDir = live_.dir();
     try {
-        session->settings = PredictionSettings::fromProject(state_.project);
+        session->settings = predictionSettingsOf(state_.project);
     } catch (const std::exception& e) {
         state_.log.error(std::string("evaluate: ") + e.what());
         return false;
@@ -124,7 +124,7 @@ void Workbench::pollEvaluate() {
 
     // The run that made these models gets the result, so the Cost panel can place it.
     const ErrorStats& g = e.term(Term::Global).overall;
-    for (panels::Run& r : state_.runs) {
+    for (Run& r : state_.runs) {
         if (r.kind != "train" || r.artifacts.empty()) continue;
         if (fs::path(projectDir()) / fs::path(r.artifacts.front()).parent_path() != fs::path(evaluate_->modelsDir)) continue;
         r.metrics["relative_rmse"] = g.relativeRmse;

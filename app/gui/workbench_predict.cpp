@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <mutex>
 
-#include "core/evaluation.h"
-#include "core/predictor.h"
+#include "core/eval/evaluation.h"
+#include "core/predict/predictor.h"
 
 namespace rrf {
 
@@ -91,7 +91,7 @@ void Workbench::refreshPrediction() {
     session->scene = scene;
     session->models = live_.models();
     try {
-        session->settings = PredictionSettings::fromProject(state_.project);
+        session->settings = predictionSettingsOf(state_.project);
     } catch (const std::exception& e) {
         state_.log.error(std::string("prediction: ") + e.what());
         return;
@@ -144,7 +144,7 @@ bool Workbench::exportPrediction(const std::string& dir) {
     // Exported images come from the CPU predictor: the reference implementation, independent of
     // the GL driver that drew the view.
     try {
-        const Predictor predictor(state_.project.scene, *live_.models(), PredictionSettings::fromProject(state_.project));
+        const Predictor predictor(state_.project.scene, *live_.models(), predictionSettingsOf(state_.project));
         const Camera camera = viewCamera(state_.project);
         const Prediction p = predictor.predict(
             predictor.gbuffer(state_.project.scene.lightPosition(), camera.width, camera.height));

@@ -3,11 +3,11 @@
 
 #include <filesystem>
 
-#include "core/image_io.h"
-#include "core/network_settings.h"
+#include "core/util/image_io.h"
+#include "core/nn/network_settings.h"
 #include "panels/project_io.h"
-#include "core/scene_overrides.h"
-#include "core/text_format.h"
+#include "core/project/scene_overrides.h"
+#include "core/util/text_format.h"
 
 namespace rrf {
 
@@ -124,11 +124,11 @@ bool Workbench::saveRun() {
         state_.log.error("save run: save the project first (runs are stored next to it)");
         return false;
     }
-    panels::Run run;
+    Run run;
     run.kind = "render";
-    run.id = panels::newRunId(state_.runs, run.kind);
+    run.id = newRunId(state_.runs, run.kind);
     run.name = run.id;
-    run.created = panels::localTimestamp();
+    run.created = localTimestamp();
     const std::string relDir = "runs/" + run.id;
     try {
         const RenderOutputs out = render_->write((fs::path(projectDir()) / relDir).string(), ImageFormat::EXR, 0.f);
@@ -161,7 +161,7 @@ bool Workbench::saveRun() {
 
 namespace {
 /// Loads a render run's global/direct/indirect EXR images.
-bool loadRunImages(const panels::Run& run, const std::string& dir, panels::ImageSet& out, std::string& error) {
+bool loadRunImages(const Run& run, const std::string& dir, panels::ImageSet& out, std::string& error) {
     Image* slots[3] = {&out.global, &out.direct, &out.indirect};
     const char* names[3] = {"global.exr", "direct.exr", "indirect.exr"};
     for (int i = 0; i < 3; ++i) {
@@ -182,14 +182,14 @@ bool loadRunImages(const panels::Run& run, const std::string& dir, panels::Image
     return true;
 }
 
-int runSpp(const panels::Run& run) {
+int runSpp(const Run& run) {
     return run.metrics.contains("spp") && run.metrics["spp"].is_number_integer() ? run.metrics["spp"].get<int>() : 0;
 }
 }  // namespace
 
 bool Workbench::compareRun(int index) {
     if (index < 0 || index >= int(state_.runs.size())) return false;
-    const panels::Run& run = state_.runs[size_t(index)];
+    const Run& run = state_.runs[size_t(index)];
     if (run.kind == "train") return loadTrainRun(run);
     panels::ImageSet set;
     std::string error;
@@ -208,7 +208,7 @@ bool Workbench::compareRun(int index) {
 
 bool Workbench::reopenRun(int index) {
     if (index < 0 || index >= int(state_.runs.size())) return false;
-    const panels::Run run = state_.runs[size_t(index)];
+    const Run run = state_.runs[size_t(index)];
     if (run.kind == "train") return loadTrainRun(run);
     panels::ImageSet set;
     std::string error;
@@ -254,12 +254,12 @@ bool Workbench::reopenRun(int index) {
     return true;
 }
 
-bool Workbench::loadTrainRun(const panels::Run& run) {
+bool Workbench::loadTrainRun(const Run& run) {
     // A training run "opens" as its settings and its models: the Network panel shows what trained
     // them, and the prediction view shows what they predict.
     if (run.settings.contains("network") && run.settings.contains("trainer")) {
         try {
-            NetworkSettings::fromJson(run.settings["network"], &run.settings["trainer"], state_.project.path).store(state_.project);
+            storeNetworkSettings(NetworkSettings::fromJson(run.settings["network"], &run.settings["trainer"], state_.project.path), state_.project);
             state_.markDirty();
         } catch (const std::exception& e) {
             state_.log.warning("run '" + run.name + "': its network settings were not restored: " + e.what());

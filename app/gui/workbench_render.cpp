@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-#include "core/camera_rays.h"
+#include "core/scene/camera_rays.h"
 
 namespace rrf {
 

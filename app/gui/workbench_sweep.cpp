@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <mutex>
 
-#include "core/atomic_file.h"
-#include "core/network_settings.h"
-#include "core/sampling_settings.h"
-#include "core/sweep.h"
+#include "core/util/atomic_file.h"
+#include "core/nn/network_settings.h"
+#include "core/data/sampling_settings.h"
+#include "core/eval/sweep.h"
 
 namespace rrf {
 
@@ -39,9 +39,9 @@ bool Workbench::startSweep(const std::string& what) {
     o.what = what;
     try {
         defaultSweepValues(what);  // validates the kind
-        o.sampling = SamplingSettings::fromProject(state_.project);
-        o.training = NetworkSettings::fromProject(state_.project).options;
-        o.prediction = PredictionSettings::fromProject(state_.project);
+        o.sampling = samplingSettingsOf(state_.project);
+        o.training = networkSettingsOf(state_.project).options;
+        o.prediction = predictionSettingsOf(state_.project);
     } catch (const std::exception& e) {
         state_.log.error(std::string("sweep: ") + e.what());
         return false;
@@ -58,7 +58,7 @@ bool Workbench::startSweep(const std::string& what) {
     o.sampling.spp = std::min(o.sampling.spp, 16);
     o.training.trainer.lm.maxEpochs = std::min(o.training.trainer.lm.maxEpochs, 50);
     o.training.trainer.adam.maxEpochs = std::min(o.training.trainer.adam.maxEpochs, 50);
-    session->outBase = (fs::path(projectDir()) / "sweeps" / (what + "-" + panels::localTimestamp())).string();
+    session->outBase = (fs::path(projectDir()) / "sweeps" / (what + "-" + localTimestamp())).string();
     std::replace(session->outBase.end() - 8, session->outBase.end(), ':', '-');  // no ':' in file names
     std::string why;
     const int id = jobs_.start(JobKind::Sweep, "sweep " + what, [session](JobContext& ctx) {

@@ -7,11 +7,11 @@
 #include <map>
 #include <mutex>
 
-#include "core/dataset_file.h"
-#include "core/model_set.h"
-#include "core/network_settings.h"
-#include "core/text_format.h"
-#include "core/training_samples.h"
+#include "core/data/dataset_file.h"
+#include "core/nn/model_set.h"
+#include "core/nn/network_settings.h"
+#include "core/util/text_format.h"
+#include "core/nn/training_samples.h"
 #include "panels/plot.h"
 
 namespace rrf {
@@ -25,7 +25,7 @@ struct TrainSession {
     NetworkSettings settings;
     std::string dataset, modelsDir, runId;
     std::mutex mutex;  ///< guards everything below
-    std::vector<panels::LossCurve> curves;
+    std::vector<LossCurve> curves;
     std::map<std::pair<int, std::string>, size_t> curveIndex;
     int epoch = 0;
     double step = 0, seconds = 0;
@@ -62,14 +62,14 @@ bool Workbench::startTrain(int maxEpochs) {
         return false;
     }
     try {
-        session->settings = NetworkSettings::fromProject(state_.project);
+        session->settings = networkSettingsOf(state_.project);
     } catch (const std::exception& e) {
         state_.log.error(std::string("train: ") + e.what());
         return false;
     }
     if (maxEpochs > 0) session->settings.options.trainer.lm.maxEpochs = session->settings.options.trainer.adam.maxEpochs = maxEpochs;
     session->scene = state_.project.scene;
-    session->runId = panels::newRunId(state_.runs, "train");
+    session->runId = newRunId(state_.runs, "train");
     session->modelsDir = (fs::path(projectDir()) / "runs" / session->runId / "models").string();
     const ObjectTrainingOptions& o = session->settings.options;
     const std::string name = std::string("train ") + json(o.hidden).dump() + " " + o.trainer.typeName();
@@ -92,7 +92,7 @@ bool Workbench::startTrain(int maxEpochs) {
             std::lock_guard<std::mutex> lock(session->mutex);
             auto [it, added] = session->curveIndex.emplace(std::make_pair(object, target), session->curves.size());
             if (added) {
-                panels::LossCurve c;
+                LossCurve c;
                 c.objectId = object;
                 c.object = object >= 0 && object < int(session->scene.objects.size()) ? session->scene.objects[size_t(object)].name : "?";
                 c.target = target;
@@ -177,11 +177,11 @@ void Workbench::pollTrain() {
         train_.reset();
         return;
     }
-    panels::Run run;
+    Run run;
     run.kind = "train";
     run.id = s.runId;
     run.name = s.runId;
-    run.created = panels::localTimestamp();
+    run.created = localTimestamp();
     auto rel = [&](const std::string& p) { return fs::path(p).lexically_relative(projectDir()).generic_string(); };
     run.settings = json{{"network", s.settings.networkJson()}, {"trainer", s.settings.trainerJson()},
                         {"dataset", rel(s.dataset)}, {"scene_hash", hexString(s.scene.contentHash())}};

@@ -26,8 +26,8 @@
 
 #include "app/gl/gl_context.h"
 #include "app/gl/glsl_predictor.h"
-#include "core/project.h"
-#include "core/record_layout.h"
+#include "core/project/project.h"
+#include "core/data/record_layout.h"
 
 using namespace rrf;
 

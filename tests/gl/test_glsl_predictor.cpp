@@ -10,10 +10,10 @@
 #include <gtest/gtest.h>
 
 #include "app/gl/glsl_predictor.h"
-#include "core/camera_rays.h"
-#include "core/nn_objects.h"
-#include "core/path_tracer.h"
-#include "core/predictor.h"
+#include "core/scene/camera_rays.h"
+#include "core/nn/object_training.h"
+#include "core/render/path_tracer.h"
+#include "core/predict/predictor.h"
 #include "tests/gl/gl_test_env.h"
 #include "tests/gl/test_models.h"
 

@@ -9,10 +9,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "core/model_set.h"
-#include "core/record_layout.h"
-#include "core/scene.h"
-#include "core/scene_json.h"
+#include "core/nn/model_set.h"
+#include "core/data/record_layout.h"
+#include "core/scene/scene.h"
+#include "core/scene/scene_json.h"
 
 namespace rrf::test {
 

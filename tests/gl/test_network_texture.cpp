@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/network_texture.h"
+#include "core/predict/network_texture.h"
 #include "tests/gl/test_models.h"
 
 namespace rrf {

@@ -10,7 +10,7 @@
 #include <set>
 #include <string>
 
-#include "core/image_io.h"
+#include "core/util/image_io.h"
 
 namespace {
 /// Distinct 8-bit colours in [x0, x1) × [y0, y1).

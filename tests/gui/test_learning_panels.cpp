@@ -17,6 +17,7 @@ namespace rrf::test {
 
 namespace fs = std::filesystem;
 using namespace rrf::panels;
+using panels::Term;
 
 namespace {
 const std::string kCornell = RRF_SOURCE_DIR "/projects/cornell-box/project.json";
@@ -79,23 +80,23 @@ TEST_F(LearningPanelTest, NoCrashWithoutProjectOrData) {
 TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     WorkbenchState s;
     loadCornell(s);
-    ASSERT_EQ(NetworkSettings::fromProject(s.project).options.hidden, (std::vector<int>{20, 10}));
+    ASSERT_EQ(networkSettingsOf(s.project).options.hidden, (std::vector<int>{20, 10}));
     ASSERT_TRUE(addHiddenLayer(s));
     EXPECT_TRUE(s.dirty);
-    EXPECT_EQ(NetworkSettings::fromProject(s.project).options.hidden, (std::vector<int>{20, 10, 10}));
+    EXPECT_EQ(networkSettingsOf(s.project).options.hidden, (std::vector<int>{20, 10, 10}));
     ASSERT_TRUE(resizeHiddenLayer(s, 0, 32));
     ASSERT_TRUE(removeHiddenLayer(s, 1));
-    EXPECT_EQ(NetworkSettings::fromProject(s.project).options.hidden, (std::vector<int>{32, 10}));
+    EXPECT_EQ(networkSettingsOf(s.project).options.hidden, (std::vector<int>{32, 10}));
     EXPECT_FALSE(resizeHiddenLayer(s, 5, 8)) << "no such layer";
     EXPECT_TRUE(resizeHiddenLayer(s, 1, 100000)) << "sizes are clamped, not refused";
-    EXPECT_EQ(NetworkSettings::fromProject(s.project).options.hidden[1], 4096);
+    EXPECT_EQ(networkSettingsOf(s.project).options.hidden[1], 4096);
     ASSERT_TRUE(removeHiddenLayer(s, 1));
     EXPECT_FALSE(removeHiddenLayer(s, 0)) << "a network keeps at least one hidden layer";
 
-    EXPECT_EQ(NetworkSettings::fromProject(s.project).options.trainer.type, TrainerType::LevenbergMarquardt);
+    EXPECT_EQ(networkSettingsOf(s.project).options.trainer.type, TrainerType::LevenbergMarquardt);
     ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
     EXPECT_FALSE(setTrainerType(s, TrainerType::Adam)) << "no change, nothing stored";
-    const NetworkSettings n = NetworkSettings::fromProject(s.project);
+    const NetworkSettings n = networkSettingsOf(s.project);
     EXPECT_EQ(n.options.trainer.type, TrainerType::Adam);
     EXPECT_EQ(s.project.doc["trainer"]["type"], "adam");
     EXPECT_EQ(n.options.trainer.adam.batchSize, AdamConfig().batchSize) << "Adam starts from its defaults";
@@ -104,7 +105,7 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     // The panel draws the edited settings (Adam parameters, one layer) without asking for anything.
     for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(s); });
     EXPECT_TRUE(s.requests.empty());
-    EXPECT_EQ(NetworkSettings::fromProject(s.project).options.hidden, (std::vector<int>{32}));
+    EXPECT_EQ(networkSettingsOf(s.project).options.hidden, (std::vector<int>{32}));
 }
 
 TEST_F(LearningPanelTest, LossPlotPutsKnownLossesOnTheirDecades) {
@@ -202,7 +203,7 @@ TEST_F(LearningPanelTest, ObjectsTableSortsAndExports) {
 }
 
 TEST_F(LearningPanelTest, CostPanelPlotsEvaluatedTrainingRuns) {
-    std::vector<panels::Run> runs(3);
+    std::vector<rrf::Run> runs(3);
     runs[0].kind = "render";
     runs[1].kind = "train";
     runs[1].name = "evaluated";
@@ -234,13 +235,13 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     ASSERT_TRUE(loadProjectIntoState(s, (dir / "project.json").string(), error)) << error;
     ASSERT_TRUE(addHiddenLayer(s));
     ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
-    NetworkSettings edited = NetworkSettings::fromProject(s.project);
+    NetworkSettings edited = networkSettingsOf(s.project);
     edited.options.trainer.adam.learningRate = 3e-3;
     edited.options.trainer.adam.loss = AdamLoss::RelativeL2;
     edited.options.targets = TargetMode::Joint;
-    edited.store(s.project);
+    storeNetworkSettings(edited, s.project);
 
-    panels::Run run;
+    rrf::Run run;
     run.id = run.name = "train-1";
     run.kind = "train";
     run.curves = {decadeCurve()};
@@ -253,11 +254,11 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
 
     WorkbenchState t;
     ASSERT_TRUE(loadProjectIntoState(t, (dir / "project.json").string(), error)) << error;
-    const NetworkSettings back = NetworkSettings::fromProject(t.project);
+    const NetworkSettings back = networkSettingsOf(t.project);
     EXPECT_EQ(back.networkJson(), edited.networkJson());
     EXPECT_EQ(back.trainerJson(), edited.trainerJson());
     ASSERT_EQ(t.runs.size(), 1u);
-    const panels::Run& r = t.runs[0];
+    const rrf::Run& r = t.runs[0];
     ASSERT_EQ(r.curves.size(), 1u);
     EXPECT_EQ(r.curves[0].label(), "floor global");
     ASSERT_EQ(r.curves[0].points.size(), 4u);

@@ -11,7 +11,7 @@
 
 #include "panels/file_dialog.h"
 #include "panels/project_io.h"
-#include "core/scene_overrides.h"
+#include "core/project/scene_overrides.h"
 #include "panels/view_model.h"
 
 namespace rrf::test {
@@ -32,8 +32,8 @@ fs::path copyCornell(const std::string& name) {
     return dir;
 }
 
-Run sampleRun(const std::string& id) {
-    Run r;
+rrf::Run sampleRun(const std::string& id) {
+    rrf::Run r;
     r.id = id;
     r.name = "run " + id;
     r.kind = "train";
@@ -187,9 +187,9 @@ TEST(Layout, JsonRoundTripAndReset) {
 }
 
 TEST(Runs, IdsAreUnique) {
-    std::vector<panels::Run> runs;
+    std::vector<rrf::Run> runs;
     for (int i = 0; i < 3; ++i) {
-        panels::Run r;
+        rrf::Run r;
         r.id = newRunId(runs, "render");
         runs.push_back(r);
     }

@@ -1,0 +1,50 @@
+# Layering check for core/: every stage folder may include only itself and the stages below it.
+# Run as a CTest test (core_layering): cmake -DRRF_ROOT=<source dir> -P cmake/CheckLayers.cmake
+#
+#   util < scene < render < data < nn < predict < eval < project
+#
+# and nothing in core/ may include app/, panels/, tests/ or GL/GLFW/ImGui headers. Fails listing
+# every offending include (file and the include) so the fix is obvious.
+if(NOT RRF_ROOT)
+  message(FATAL_ERROR "CheckLayers.cmake: pass -DRRF_ROOT=<source dir>")
+endif()
+
+set(stages util scene render data nn predict eval project)
+file(GLOB_RECURSE files RELATIVE ${RRF_ROOT} ${RRF_ROOT}/core/*.h ${RRF_ROOT}/core/*.cpp)
+set(problems "")
+foreach(f ${files})
+  string(REGEX MATCH "^core/([a-z_]+)/" _ ${f})
+  set(own ${CMAKE_MATCH_1})
+  list(FIND stages "${own}" ownRank)
+  if(ownRank EQUAL -1)
+    string(APPEND problems "  ${f}: not inside a stage folder (${stages})\n")
+    continue()
+  endif()
+  # Only the #include lines: other C++ lines may hold unbalanced '[' that would break CMake lists.
+  file(STRINGS ${RRF_ROOT}/${f} lines REGEX "^[ \t]*#[ \t]*include")
+  foreach(line IN LISTS lines)
+    if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*[<\"]([^>\"]+)[>\"]")
+      set(inc ${CMAKE_MATCH_1})
+      if(inc MATCHES "^core/([a-z_]+)/")
+        set(dep ${CMAKE_MATCH_1})
+        list(FIND stages "${dep}" depRank)
+        if(depRank EQUAL -1)
+          string(APPEND problems "  ${f}: includes ${inc}, which is in no stage folder\n")
+        elseif(depRank GREATER ownRank)
+          string(APPEND problems "  ${f}: stage '${own}' includes ${inc} from the higher stage '${dep}'\n")
+        endif()
+      elseif(inc MATCHES "^core/")
+        string(APPEND problems "  ${f}: includes ${inc}, which is in no stage folder\n")
+      elseif(inc MATCHES "^(app|panels|tests|shaders)/" OR inc MATCHES "^(imgui|GLFW/|glad/|GL/|backends/)")
+        string(APPEND problems "  ${f}: core may not include ${inc}\n")
+      endif()
+    endif()
+  endforeach()
+endforeach()
+
+if(problems)
+  message(FATAL_ERROR "core/ layering violations (allowed: each stage includes only itself and lower stages; "
+                      "order: ${stages}):\n${problems}")
+endif()
+list(LENGTH files n)
+message(STATUS "core/ layering: ${n} files, every include goes to the same or a lower stage")

@@ -1,0 +1,213 @@
+#include "core/data/data_generator.h"
+
+#include <chrono>
+
+#include <tbb/parallel_for.h>
+
+#include "core/util/error.h"
+#include "core/data/jitter_grid.h"
+#include "core/util/warp.h"
+#include "core/util/text_format.h"
+
+namespace rrf {
+
+namespace {
+// Domain separation of the random streams: directions/light positions and path samples never
+// share numbers with each other or with the viewpoints (jitter_grid.cpp).
+uint64_t recordSeed(uint64_t seed) { return mix64(seed ^ 0x5245434F52445321ULL); }
+uint64_t pathSeed(uint64_t seed) { return mix64(seed ^ 0x5041544853414D50ULL); }
+
+struct CellOutput {
+    std::vector<float> records;
+    std::vector<int32_t> objects;
+    uint64_t escaped = 0, emitterHits = 0, nonFinite = 0, emptyRecords = 0;
+    uint8_t status = 0;  ///< ViewpointStatus
+};
+}  // namespace
+
+DataGenerator::DataGenerator(const Scene& scene, const SamplingSettings& settings)
+    : scene_(scene),
+      settings_(settings),
+      layout_(RecordLayout::forScene(scene)),
+      accel_(scene),
+      tracer_(scene, accel_, settings.estimator, settings.maxDepth) {
+    if (scene.objects.empty()) throw InputError(scene.sourcePath, "/shapes", "the scene has no objects to generate data for");
+    if (scene.lights.empty()) throw InputError(scene.sourcePath, "/lights", "the scene has no light: every record would be black");
+}
+
+Bounds3 DataGenerator::lightRegion() const {
+    if (!settings_.fixedLight) return scene_.lightRange();
+    Bounds3 r;
+    r.expand(scene_.lightPosition());
+    return r;
+}
+
+bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const Vec3& lightPos, uint64_t recordIndex,
+                                   float* record, int& objectId, TraceCounters& counters, uint64_t& nonFinite,
+                                   RecordOutcome* outcome) const {
+    RecordOutcome unused;
+    RecordOutcome& result = outcome ? *outcome : unused;
+    const Light movable = tracer_.movableLightAt(lightPos);
+    Ray ray;
+    ray.origin = viewpoint;
+    ray.dir = dir;
+    Hit hit;
+    ++counters.rays;
+    if (!tracer_.intersect(ray, movable, hit)) {
+        result = RecordOutcome::Escaped;
+        return false;
+    }
+    if (hit.object < 0) {
+        result = RecordOutcome::HitEmitter;
+        return false;
+    }
+    const Vec3 wo = -dir;
+    double direct[3] = {0, 0, 0}, indirect[3] = {0, 0, 0};
+    int accepted = 0;
+    const uint64_t ps = pathSeed(settings_.seed);
+    for (int s = 0; s < settings_.spp; ++s) {
+        Rng rng(ps, recordIndex, uint64_t(s));
+        const Radiance L = tracer_.shade(hit, wo, movable, rng, counters);
+        if (!L.direct.isFinite() || !L.indirect.isFinite()) {
+            ++nonFinite;
+            continue;
+        }
+        for (int c = 0; c < 3; ++c) {
+            direct[c] += L.direct[c];
+            indirect[c] += L.indirect[c];
+        }
+        ++accepted;
+    }
+    if (accepted == 0) {
+        result = RecordOutcome::NoFiniteSample;
+        return false;
+    }
+    result = RecordOutcome::Stored;
+    const Object& obj = scene_.objects[size_t(hit.object)];
+    layout_.writeInputs(hit.p, wo, lightPos, hit.ng, scene_.materials[size_t(obj.material)], record);
+    float* t = record + layout_.inputCount();
+    for (int c = 0; c < 3; ++c) {
+        t[c] = float(direct[c] / accepted);
+        t[3 + c] = float(indirect[c] / accepted);
+    }
+    objectId = hit.object;
+    return true;
+}
+
+GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atomic<bool>* cancel,
+                                 GeneratorProgress* progress) const {
+    if (shardCount < 1 || shardIndex < 0 || shardIndex >= shardCount)
+        throw InputError("command line", "--shard", "expected k/n with 0 <= k < n");
+    const auto start = std::chrono::steady_clock::now();
+    const JitterGrid grid(scene_.bounds(), settings_.nx, settings_.ny, settings_.nz);
+    const int cells = grid.cellCount();
+    const int begin = int(int64_t(cells) * shardIndex / shardCount);
+    const int end = int(int64_t(cells) * (shardIndex + 1) / shardCount);
+    if (progress) progress->cellsInShard = uint64_t(end - begin);
+    const ViewpointClassifier classifier(tracer_);
+    const Bounds3 region = lightRegion();
+    const Vec3 regionExtent = region.extent();
+    const int fpr = layout_.floatsPerRecord();
+    const uint64_t rs = recordSeed(settings_.seed);
+
+    std::vector<CellOutput> out(size_t(end - begin));
+    std::atomic<uint64_t> rays{0}, shadowRays{0};
+    tbb::parallel_for(begin, end, [&](int cell) {
+        if (cancel && *cancel) return;
+        CellOutput& co = out[size_t(cell - begin)];
+        const Vec3 vp = grid.viewpoint(cell, settings_.seed);
+        const ViewpointStatus status = classifier.classify(vp);
+        co.status = uint8_t(status);
+        if (status == ViewpointStatus::Kept) {
+            TraceCounters counters;
+            std::vector<float> rec(static_cast<size_t>(fpr));
+            for (int j = 0; j < settings_.directions; ++j) {
+                const uint64_t r = uint64_t(cell) * uint64_t(settings_.directions) + uint64_t(j);
+                Rng rng(rs, r);
+                const float u1 = rng.uniform(), u2 = rng.uniform();
+                const Vec3 dir = sampleUniformSphere(u1, u2);
+                const Vec3 lp(region.lo.x + regionExtent.x * rng.uniform(), region.lo.y + regionExtent.y * rng.uniform(),
+                              region.lo.z + regionExtent.z * rng.uniform());
+                int objectId = -1;
+                RecordOutcome outcome;
+                if (estimateRecord(vp, dir, lp, r, rec.data(), objectId, counters, co.nonFinite, &outcome)) {
+                    co.records.insert(co.records.end(), rec.begin(), rec.end());
+                    co.objects.push_back(objectId);
+                } else if (outcome == RecordOutcome::Escaped) {
+                    ++co.escaped;
+                } else if (outcome == RecordOutcome::HitEmitter) {
+                    ++co.emitterHits;
+                } else {
+                    ++co.emptyRecords;
+                }
+            }
+            rays += counters.rays;
+            shadowRays += counters.shadowRays;
+            if (progress) {
+                progress->records += co.objects.size();
+                progress->paths += uint64_t(co.objects.size()) * uint64_t(settings_.spp);
+            }
+        }
+        if (progress) ++progress->cellsDone;
+    });
+
+    GeneratedData data;
+    data.cancelled = cancel && *cancel;
+    data.sceneHash = scene_.contentHash();
+    data.perObject.resize(scene_.objects.size());
+    uint64_t escaped = 0, emitterHits = 0, nonFinite = 0, empty = 0, inside = 0, outside = 0, records = 0;
+    nlohmann::json perCell = nlohmann::json::array();
+    // Regroup by object in cell order. Exact reservations and freeing each cell once copied keep the
+    // peak near one payload instead of two or three (the default Cornell run is ~250 MiB).
+    std::vector<size_t> perObjectCount(scene_.objects.size(), 0);
+    for (const CellOutput& co : out)
+        for (int32_t id : co.objects) ++perObjectCount[size_t(id)];
+    for (size_t i = 0; i < perObjectCount.size(); ++i) data.perObject[i].reserve(perObjectCount[i] * size_t(fpr));
+    for (CellOutput& co : out) {
+        for (size_t i = 0; i < co.objects.size(); ++i) {
+            auto& dst = data.perObject[size_t(co.objects[i])];
+            dst.insert(dst.end(), co.records.begin() + long(i * size_t(fpr)), co.records.begin() + long((i + 1) * size_t(fpr)));
+        }
+        std::vector<float>().swap(co.records);
+        escaped += co.escaped;
+        emitterHits += co.emitterHits;
+        nonFinite += co.nonFinite;
+        empty += co.emptyRecords;
+        records += co.objects.size();
+        inside += co.status == uint8_t(ViewpointStatus::InsideObject);
+        outside += co.status == uint8_t(ViewpointStatus::OutsideScene);
+        perCell.push_back(uint64_t(co.objects.size()));
+    }
+    data.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    data.paths = records * uint64_t(settings_.spp);  // every stored record took spp paths
+    data.rays = rays;
+    data.shadowRays = shadowRays;
+
+    nlohmann::json objects = nlohmann::json::array();
+    for (const Object& o : scene_.objects) objects.push_back({{"id", o.id}, {"name", o.name}});
+    data.header = {
+        {"format", "rrf-dataset"},
+        {"scene_hash", hexString(data.sceneHash)},
+        {"settings", settings_.toJson()},
+        {"light_region", {{"min", {region.lo.x, region.lo.y, region.lo.z}}, {"max", {region.hi.x, region.hi.y, region.hi.z}}}},
+        {"grid_bounds", {{"min", {grid.bounds().lo.x, grid.bounds().lo.y, grid.bounds().lo.z}},
+                         {"max", {grid.bounds().hi.x, grid.bounds().hi.y, grid.bounds().hi.z}}}},
+        {"input_layout", layout_.inputs},
+        {"target_layout", layout_.targets},
+        {"floats_per_record", fpr},
+        {"effects", tracer_.effects().toJson()},
+        {"shard", {{"index", shardIndex}, {"count", shardCount}, {"cell_begin", begin}, {"cell_end", end}, {"cells_total", cells}}},
+        {"objects", objects},
+        {"stats", {{"records", records},
+                   {"cells_dropped_inside_object", inside},
+                   {"cells_dropped_outside_scene", outside},
+                   {"rays_escaped", escaped},
+                   {"rays_hit_emitter", emitterHits},
+                   {"records_without_finite_sample", empty},
+                   {"non_finite_samples_dropped", nonFinite},
+                   {"records_per_cell", perCell}}},
+    };
+    return data;
+}
+
+}  // namespace rrf

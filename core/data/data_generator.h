@@ -1,0 +1,80 @@
+#pragma once
+/// Training-data generator (DESIGN.md "Data generation", seed report §3.3).
+///
+/// For every kept viewpoint of the jitter grid, N_dir uniformly random directions are traced; the
+/// first hit of each makes one record: inputs (hit point, view direction, light position, normal,
+/// BRDF parameters) and targets (direct and indirect RGB, each the mean of `spp` paths of the same
+/// estimators as the renderer). Each record draws its own light position uniformly from the light
+/// region (the light keeps its shape, orientation and radiance). Rays that escape or hit an emitter
+/// are counted, not stored; samples that are NaN/Inf are dropped and counted.
+///
+/// Every random number is keyed by (seed, cell or record index, sample), and records are grouped by
+/// object in cell order, so the output is identical for any thread count, and shard k of n (a
+/// contiguous block of cells) merges with the others into the bytes of the unsharded run.
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/render/path_tracer.h"
+#include "core/data/record_layout.h"
+#include "core/data/sampling_settings.h"
+
+namespace rrf {
+
+/// Live counters, readable from another thread while the generator runs.
+struct GeneratorProgress {
+    std::atomic<uint64_t> cellsDone{0};
+    std::atomic<uint64_t> records{0};
+    std::atomic<uint64_t> paths{0};
+    uint64_t cellsInShard = 0;
+    double fraction() const { return cellsInShard ? double(cellsDone) / double(cellsInShard) : 1.0; }
+};
+
+struct GeneratedData {
+    nlohmann::json header;                        ///< dataset header (settings, layout, shard, stats)
+    std::vector<std::vector<float>> perObject;    ///< records per object (in Scene::objects order)
+    uint64_t sceneHash = 0;
+    double seconds = 0.0;                         ///< wall time (reported, never stored in the file)
+    uint64_t paths = 0, rays = 0, shadowRays = 0; ///< work done, for records/s and samples/s
+    bool cancelled = false;
+};
+
+class DataGenerator {
+public:
+    /// `scene` must outlive the generator. Throws InputError if the settings do not fit the scene.
+    DataGenerator(const Scene& scene, const SamplingSettings& settings);
+
+    /// Generates shard `shardIndex` of `shardCount` (cells [k·C/n, (k+1)·C/n)). Stops early when
+    /// `cancel` becomes true (then `cancelled` is set and the data must not be written).
+    GeneratedData run(int shardIndex = 0, int shardCount = 1, const std::atomic<bool>* cancel = nullptr,
+                      GeneratorProgress* progress = nullptr) const;
+
+    /// Why a ray did or did not make a record.
+    enum class RecordOutcome { Stored, Escaped, HitEmitter, NoFiniteSample };
+
+    /// Estimates the record of one ray (viewpoint, dir) with the light centre at `lightPos`;
+    /// returns false if the ray escapes, hits an emitter or has no finite sample (`outcome`, if
+    /// given, says which). `recordIndex` keys the random numbers. Exposed for tests that compare
+    /// records with rendered pixels.
+    bool estimateRecord(const Vec3& viewpoint, const Vec3& dir, const Vec3& lightPos, uint64_t recordIndex,
+                        float* record, int& objectId, TraceCounters& counters, uint64_t& nonFinite,
+                        RecordOutcome* outcome = nullptr) const;
+
+    const RecordLayout& layout() const { return layout_; }
+    const PathTracer& tracer() const { return tracer_; }
+    /// Region the light centre is drawn from (a single point when the light is fixed).
+    Bounds3 lightRegion() const;
+
+private:
+    const Scene& scene_;
+    SamplingSettings settings_;
+    RecordLayout layout_;
+    Accel accel_;
+    PathTracer tracer_;
+};
+
+}  // namespace rrf

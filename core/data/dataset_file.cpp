@@ -1,0 +1,253 @@
+#include "core/data/dataset_file.h"
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/util/atomic_file.h"
+#include "core/util/rng.h"
+
+namespace rrf {
+
+namespace {
+const unsigned char kMagic[8] = {'R', 'R', 'F', 'D', '\r', '\n', 0x1a, '\n'};
+constexpr size_t kFixedHeader = 64;
+
+struct FixedHeader {
+    unsigned char magic[8];
+    uint32_t version, reserved;
+    uint64_t jsonBytes, payloadOffset, payloadBytes, payloadChecksum, sceneHash, jsonChecksum;
+};
+static_assert(sizeof(FixedHeader) == kFixedHeader, "fixed header must be 64 bytes");
+
+size_t align64(size_t n) { return (n + 63) & ~size_t(63); }
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+    throw std::runtime_error(path + ": " + what);
+}
+}  // namespace
+
+void Checksum64::update(const void* data, size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    total_ += bytes;
+    auto word = [this](const unsigned char* w) {
+        uint64_t v;
+        std::memcpy(&v, w, 8);
+        h_ = mix64(h_ ^ v) + 0x9E3779B97F4A7C15ULL;
+    };
+    while (pendingBytes_ > 0 && pendingBytes_ < 8 && bytes > 0) {
+        pending_[pendingBytes_++] = *p++;
+        --bytes;
+        if (pendingBytes_ == 8) {
+            word(pending_);
+            pendingBytes_ = 0;
+        }
+    }
+    for (; bytes >= 8; p += 8, bytes -= 8) word(p);
+    std::memcpy(pending_ + pendingBytes_, p, bytes);
+    pendingBytes_ += bytes;
+}
+
+uint64_t Checksum64::finish() const {
+    // The length enters at the start in checksum64(); here it is only known at the end, so both
+    // functions fold it in at the end instead.
+    uint64_t tail = 0;
+    std::memcpy(&tail, pending_, pendingBytes_);
+    return mix64(h_ ^ total_ ^ tail ^ (uint64_t(pendingBytes_) << 56));
+}
+
+uint64_t checksum64(const void* data, size_t bytes) {
+    Checksum64 c;
+    c.update(data, bytes);
+    return c.finish();
+}
+
+void writeDataset(const std::string& path, nlohmann::json header, uint64_t sceneHash,
+                  const std::vector<std::vector<float>>& perObject) {
+    const int fpr = header.at("floats_per_record").get<int>();
+    nlohmann::json& objs = header.at("objects");
+    if (objs.size() != perObject.size()) throw std::logic_error("writeDataset: objects and data differ in count");
+    // Records are written straight from the callers' vectors (no payload copy: datasets reach
+    // hundreds of MiB); a first pass computes the checksum the fixed header needs.
+    uint64_t offset = 0;
+    Checksum64 sum;
+    for (size_t i = 0; i < perObject.size(); ++i) {
+        const auto& v = perObject[i];
+        if (v.size() % size_t(fpr) != 0) throw std::logic_error("writeDataset: partial record");
+        objs[i]["count"] = v.size() / size_t(fpr);
+        objs[i]["offset"] = offset;
+        sum.update(v.data(), v.size() * sizeof(float));
+        offset += v.size() * sizeof(float);
+    }
+    const std::string json = header.dump(1);
+    FixedHeader fh{};
+    std::memcpy(fh.magic, kMagic, 8);
+    fh.version = kDatasetVersion;
+    fh.jsonBytes = json.size();
+    fh.payloadOffset = align64(kFixedHeader + json.size());
+    fh.payloadBytes = offset;
+    fh.payloadChecksum = sum.finish();
+    fh.sceneHash = sceneHash;
+    fh.jsonChecksum = checksum64(json.data(), json.size());
+    AtomicFile f(path);
+    f.write(&fh, sizeof fh);
+    f.write(json);
+    const std::string pad(fh.payloadOffset - kFixedHeader - json.size(), '\0');
+    f.write(pad);
+    for (const auto& v : perObject) f.write(v.data(), v.size() * sizeof(float));
+    f.commit();
+}
+
+Dataset::Dataset(const std::string& path, bool verifyPayload, uint64_t expectedSceneHash) : path_(path) {
+    const int fd = ::open(path.c_str(), O_RDONLY);
+    if (fd < 0) fail(path, std::string("cannot open dataset: ") + std::strerror(errno));
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) {
+        ::close(fd);
+        fail(path, "cannot stat dataset");
+    }
+    mapSize_ = size_t(st.st_size);
+    if (mapSize_ < kFixedHeader) {
+        ::close(fd);
+        fail(path, "not a dataset: file is " + std::to_string(mapSize_) + " bytes, shorter than the 64-byte header");
+    }
+    map_ = ::mmap(nullptr, mapSize_, PROT_READ, MAP_PRIVATE, fd, 0);
+    ::close(fd);
+    if (map_ == MAP_FAILED) {
+        map_ = nullptr;
+        fail(path, "cannot map dataset into memory");
+    }
+    try {
+        const auto* base = static_cast<const unsigned char*>(map_);
+        FixedHeader fh;
+        std::memcpy(&fh, base, sizeof fh);
+        if (std::memcmp(fh.magic, kMagic, 8) != 0) fail(path, "not an RRF dataset (wrong magic bytes)");
+        if (fh.version != kDatasetVersion)
+            fail(path, "dataset format version " + std::to_string(fh.version) + " is not supported (this build reads version " +
+                           std::to_string(kDatasetVersion) + ")");
+        if (fh.jsonBytes > mapSize_ - kFixedHeader || fh.payloadOffset < kFixedHeader + fh.jsonBytes ||
+            fh.payloadOffset > mapSize_)
+            fail(path, "truncated or corrupt header");
+        if (fh.payloadBytes != mapSize_ - fh.payloadOffset)
+            fail(path, "truncated file: payload should be " + std::to_string(fh.payloadBytes) + " bytes, found " +
+                           std::to_string(mapSize_ - fh.payloadOffset));
+        const char* json = reinterpret_cast<const char*>(base + kFixedHeader);
+        if (checksum64(json, fh.jsonBytes) != fh.jsonChecksum) fail(path, "header checksum mismatch (file corrupted)");
+        header_ = nlohmann::json::parse(json, json + fh.jsonBytes);
+        sceneHash_ = fh.sceneHash;
+        // The fixed header's hash is not under a checksum; the JSON's copy is, so they must agree.
+        if (header_.contains("scene_hash") &&
+            std::stoull(header_.at("scene_hash").get<std::string>(), nullptr, 16) != sceneHash_)
+            fail(path, "scene hash in the fixed header disagrees with the JSON header (file corrupted)");
+        payload_ = base + fh.payloadOffset;
+        if (expectedSceneHash != 0 && expectedSceneHash != sceneHash_)
+            fail(path, "dataset was generated for a different scene (scene hash mismatch): regenerate it for this project");
+        floatsPerRecord_ = header_.at("floats_per_record").get<int>();
+        inputCount_ = int(header_.at("input_layout").size());
+        if (floatsPerRecord_ <= 0 || inputCount_ >= floatsPerRecord_) fail(path, "inconsistent record layout in header");
+        uint64_t expected = 0;
+        for (const nlohmann::json& o : header_.at("objects")) {
+            DatasetObject d;
+            d.id = o.at("id").get<int>();
+            d.name = o.at("name").get<std::string>();
+            d.count = o.at("count").get<uint64_t>();
+            d.offset = o.at("offset").get<uint64_t>();
+            // Compare counts before multiplying: a crafted count must not wrap the byte size around.
+            const uint64_t recordBytes = uint64_t(floatsPerRecord_) * 4;
+            if (d.offset != expected || d.offset > fh.payloadBytes || d.count > (fh.payloadBytes - d.offset) / recordBytes)
+                fail(path, "object '" + d.name + "' lies outside the payload (corrupt header)");
+            const uint64_t bytes = d.count * recordBytes;
+            if (bytes > fh.payloadBytes - d.offset)
+                fail(path, "object '" + d.name + "' lies outside the payload (corrupt header)");
+            expected += bytes;
+            objects_.push_back(d);
+        }
+        if (expected != fh.payloadBytes) fail(path, "payload size does not match the per-object counts");
+        if (verifyPayload && checksum64(payload_, fh.payloadBytes) != fh.payloadChecksum)
+            fail(path, "payload checksum mismatch (file corrupted)");
+    } catch (const nlohmann::json::exception& e) {
+        ::munmap(map_, mapSize_);
+        map_ = nullptr;
+        fail(path, std::string("malformed dataset header: ") + e.what());
+    } catch (const std::invalid_argument&) {  // stoull on a malformed scene_hash
+        ::munmap(map_, mapSize_);
+        map_ = nullptr;
+        fail(path, "malformed dataset header: scene_hash is not a hexadecimal number");
+    } catch (...) {
+        ::munmap(map_, mapSize_);
+        map_ = nullptr;
+        throw;
+    }
+}
+
+Dataset::~Dataset() {
+    if (map_) ::munmap(map_, mapSize_);
+}
+
+uint64_t Dataset::totalRecords() const {
+    uint64_t n = 0;
+    for (const DatasetObject& o : objects_) n += o.count;
+    return n;
+}
+
+const float* Dataset::records(size_t i) const {
+    return reinterpret_cast<const float*>(payload_ + objects_.at(i).offset);
+}
+
+void mergeDatasets(const std::vector<std::string>& inputs, const std::string& output) {
+    if (inputs.empty()) throw std::runtime_error("merge: no input files");
+    std::vector<std::unique_ptr<Dataset>> shards;
+    for (const std::string& p : inputs) shards.push_back(std::make_unique<Dataset>(p));
+    std::sort(shards.begin(), shards.end(), [](const auto& a, const auto& b) {
+        return a->header().at("shard").at("cell_begin").template get<int>() < b->header().at("shard").at("cell_begin").template get<int>();
+    });
+    const Dataset& first = *shards.front();
+    auto comparable = [](nlohmann::json h) {
+        h.erase("shard");
+        h.erase("stats");
+        for (auto& o : h.at("objects")) {
+            o.erase("count");
+            o.erase("offset");
+        }
+        return h;
+    };
+    const nlohmann::json reference = comparable(first.header());
+    int expectedBegin = 0;
+    const int cells = first.header().at("shard").at("cells_total").get<int>();
+    nlohmann::json header = first.header();
+    nlohmann::json& stats = header.at("stats");
+    std::vector<std::vector<float>> perObject(first.objects().size());
+    for (size_t s = 0; s < shards.size(); ++s) {
+        const Dataset& d = *shards[s];
+        if (d.sceneHash() != first.sceneHash() || comparable(d.header()) != reference)
+            fail(d.path(), "was generated with a different scene or different settings than " + first.path());
+        const nlohmann::json& sh = d.header().at("shard");
+        if (sh.at("cell_begin").get<int>() != expectedBegin)
+            fail(d.path(), "shards do not tile the grid: expected a shard starting at cell " + std::to_string(expectedBegin));
+        expectedBegin = sh.at("cell_end").get<int>();
+        for (size_t i = 0; i < d.objects().size(); ++i) {
+            const float* r = d.records(i);
+            perObject[i].insert(perObject[i].end(), r, r + d.objects()[i].count * size_t(d.floatsPerRecord()));
+        }
+        if (s == 0) continue;
+        // Sum the counters; concatenate per-cell counts in cell order.
+        const nlohmann::json& st = d.header().at("stats");
+        for (auto it = st.begin(); it != st.end(); ++it) {
+            if (it->is_number_unsigned()) stats[it.key()] = stats[it.key()].get<uint64_t>() + it->get<uint64_t>();
+            else if (it->is_array()) for (const auto& v : *it) stats[it.key()].push_back(v);
+        }
+    }
+    if (expectedBegin != cells)
+        fail(shards.back()->path(), "shards do not cover the grid: cells " + std::to_string(expectedBegin) + ".." +
+                                        std::to_string(cells) + " are missing");
+    header["shard"] = {{"index", 0}, {"count", 1}, {"cell_begin", 0}, {"cell_end", cells}, {"cells_total", cells}};
+    writeDataset(output, header, first.sceneHash(), perObject);
+}
+
+}  // namespace rrf

@@ -1,0 +1,77 @@
+#include "core/data/dataset_summary.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+namespace rrf {
+
+std::vector<ObjectSummary> summarizeDataset(const Dataset& data) {
+    std::vector<ObjectSummary> out;
+    const size_t fpr = size_t(data.floatsPerRecord());
+    for (size_t i = 0; i < data.objects().size(); ++i) {
+        const DatasetObject& o = data.objects()[i];
+        ObjectSummary s;
+        s.id = o.id;
+        s.name = o.name;
+        s.count = o.count;
+        s.columns.resize(fpr);
+        const float* r = data.records(i);
+        for (size_t c = 0; c < fpr; ++c) {
+            if (o.count == 0) continue;
+            float lo = r[c], hi = r[c];
+            double sum = 0;
+            for (uint64_t k = 0; k < o.count; ++k) {
+                const float v = r[k * fpr + c];
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+                sum += v;
+            }
+            s.columns[c] = {lo, hi, sum / double(o.count)};
+        }
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+std::string formatDatasetReport(const Dataset& data, const std::vector<ObjectSummary>& summary) {
+    std::ostringstream os;
+    const nlohmann::json& h = data.header();
+    os << "dataset: " << data.path() << "\n";
+    os << "scene hash: " << h.value("scene_hash", "?") << "\n";
+    os << "settings: " << h.at("settings").dump() << "\n";
+    os << "shard: " << h.at("shard").dump() << "\n";
+    os << "records: " << data.totalRecords() << " (" << data.floatsPerRecord() << " floats each)\n";
+    nlohmann::json stats = h.at("stats");
+    const nlohmann::json perCell = stats.value("records_per_cell", nlohmann::json::array());
+    stats.erase("records_per_cell");
+    os << "stats: " << stats.dump() << "\n";
+    if (!perCell.empty()) {
+        uint64_t lo = UINT64_MAX, hi = 0, zero = 0;
+        for (const auto& v : perCell) {
+            const uint64_t n = v.get<uint64_t>();
+            lo = std::min(lo, n);
+            hi = std::max(hi, n);
+            zero += n == 0;
+        }
+        os << "records per cell: min " << lo << ", max " << hi << ", cells without records " << zero << " of "
+           << perCell.size() << "\n";
+    }
+    std::vector<std::string> names = h.at("input_layout").get<std::vector<std::string>>();
+    for (const auto& t : h.at("target_layout")) names.push_back(t.get<std::string>());
+    char line[256];
+    for (const ObjectSummary& s : summary) {
+        os << "\nobject " << s.id << " '" << s.name << "': " << s.count << " records\n";
+        if (s.count == 0) continue;
+        std::snprintf(line, sizeof line, "  %-24s %12s %12s %12s\n", "column", "min", "mean", "max");
+        os << line;
+        for (size_t c = 0; c < s.columns.size() && c < names.size(); ++c) {
+            std::snprintf(line, sizeof line, "  %-24s %12.5g %12.5g %12.5g\n", names[c].c_str(), double(s.columns[c].min),
+                          s.columns[c].mean, double(s.columns[c].max));
+            os << line;
+        }
+    }
+    return os.str();
+}
+
+}  // namespace rrf

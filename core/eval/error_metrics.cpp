@@ -1,0 +1,145 @@
+#include "core/eval/error_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace rrf {
+
+namespace {
+void checkSizes(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height)
+        throw std::invalid_argument("error metrics: prediction is " + std::to_string(a.width) + "x" +
+                                    std::to_string(a.height) + " but the reference is " + std::to_string(b.width) +
+                                    "x" + std::to_string(b.height));
+}
+
+struct Accumulator {
+    double sq = 0, rel = 0, abs = 0, max = 0, ref = 0;
+    uint64_t pixels = 0, bad = 0;
+
+    void add(const Image& p, const Image& r, size_t i) {
+        const float* a = &p.data[3 * i];
+        const float* b = &r.data[3 * i];
+        bool finite = true;
+        for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(a[c]) && std::isfinite(b[c]);
+        if (!finite) {
+            ++bad;
+            return;
+        }
+        for (int c = 0; c < 3; ++c) {
+            const double d = double(a[c]) - double(b[c]);
+            const double rd = d / (std::fabs(double(b[c])) + kRelativeEpsilon);
+            sq += d * d;
+            rel += rd * rd;
+            abs += std::fabs(d);
+            max = std::max(max, std::fabs(d));
+            ref += double(b[c]);
+        }
+        ++pixels;
+    }
+    ErrorStats stats() const {
+        ErrorStats s;
+        s.pixels = pixels;
+        s.nonFinite = bad;
+        if (pixels == 0) return s;
+        const double n = 3.0 * double(pixels);
+        s.rmse = std::sqrt(sq / n);
+        s.relativeRmse = std::sqrt(rel / n);
+        s.mae = abs / n;
+        s.maxError = max;
+        s.meanReference = ref / n;
+        return s;
+    }
+};
+}  // namespace
+
+const char* errorMapName(ErrorMapKind k) {
+    switch (k) {
+    case ErrorMapKind::Absolute: return "absolute";
+    case ErrorMapKind::Relative: return "relative";
+    case ErrorMapKind::Squared: return "squared";
+    }
+    return "?";
+}
+
+nlohmann::json ErrorStats::toJson() const {
+    return {{"pixels", pixels}, {"non_finite_pixels", nonFinite}, {"rmse", rmse},       {"relative_rmse", relativeRmse},
+            {"mae", mae},       {"max_error", maxError},          {"mean_reference", meanReference}};
+}
+
+ErrorStats errorStats(const Image& prediction, const Image& reference, const std::vector<uint32_t>& mask) {
+    checkSizes(prediction, reference);
+    Accumulator acc;
+    const size_t n = prediction.pixelCount();
+    for (uint32_t i : mask) {
+        if (i >= n) throw std::invalid_argument("error metrics: mask pixel " + std::to_string(i) + " outside the image");
+        acc.add(prediction, reference, i);
+    }
+    return acc.stats();
+}
+
+ErrorStats errorStats(const Image& prediction, const Image& reference) {
+    checkSizes(prediction, reference);
+    Accumulator acc;
+    for (size_t i = 0; i < prediction.pixelCount(); ++i) acc.add(prediction, reference, i);
+    return acc.stats();
+}
+
+Image errorMap(const Image& prediction, const Image& reference, ErrorMapKind kind) {
+    checkSizes(prediction, reference);
+    Image out(prediction.width, prediction.height);
+    for (size_t i = 0; i < prediction.pixelCount(); ++i) {
+        const float* a = &prediction.data[3 * i];
+        const float* b = &reference.data[3 * i];
+        double v = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double d = double(a[c]) - double(b[c]);
+            switch (kind) {
+            case ErrorMapKind::Absolute: v += std::fabs(d); break;
+            case ErrorMapKind::Relative: v += std::fabs(d) / (std::fabs(double(b[c])) + kRelativeEpsilon); break;
+            case ErrorMapKind::Squared: v += d * d; break;
+            }
+        }
+        // A NaN or Inf input propagates into v: the map keeps it visible (NaN) instead of a number.
+        const float f = std::isfinite(v) ? float(v / 3.0) : std::numeric_limits<float>::quiet_NaN();
+        out.data[3 * i] = out.data[3 * i + 1] = out.data[3 * i + 2] = f;
+    }
+    return out;
+}
+
+std::vector<std::vector<uint32_t>> objectMasks(const std::vector<int32_t>& objectIds, size_t objectCount) {
+    std::vector<std::vector<uint32_t>> masks(objectCount);
+    for (size_t i = 0; i < objectIds.size(); ++i) {
+        const int32_t id = objectIds[i];
+        if (id >= 0 && size_t(id) < objectCount) masks[size_t(id)].push_back(uint32_t(i));
+    }
+    return masks;
+}
+
+float percentile(const Image& scalar, double q) {
+    std::vector<float> v;
+    v.reserve(scalar.pixelCount());
+    for (size_t i = 0; i < scalar.pixelCount(); ++i)
+        if (std::isfinite(scalar.data[3 * i])) v.push_back(scalar.data[3 * i]);
+    if (v.empty()) return 0.f;
+    q = std::clamp(q, 0.0, 1.0);
+    const size_t k = std::min(v.size() - 1, size_t(std::ceil(q * double(v.size()))) - (q > 0 ? 1 : 0));
+    std::nth_element(v.begin(), v.begin() + long(k), v.end());
+    return v[k];
+}
+
+Image finiteMap(const Image& map, uint64_t& replaced) {
+    Image out = map;
+    replaced = 0;
+    for (size_t i = 0; i < out.pixelCount(); ++i) {
+        float* p = &out.data[3 * i];
+        if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) continue;
+        p[0] = p[1] = p[2] = 0.f;
+        ++replaced;
+    }
+    return out;
+}
+
+}  // namespace rrf

@@ -1,0 +1,64 @@
+#pragma once
+/// Error of a prediction against a reference image (DESIGN.md "Error maps").
+///
+/// Conventions (chosen once, used by every report, table and sweep):
+///  - Errors are per CHANNEL, averaged over R, G and B (not on luminance): a colour shift the
+///    luminance would hide still counts. d = pred − ref per channel.
+///  - Per-pixel maps (one scalar per pixel, stored in all three channels):
+///      absolute  mean_c |d_c|
+///      relative  mean_c |d_c| / (|ref_c| + 0.01)       (the 0.01 keeps black pixels finite)
+///      squared   mean_c d_c²
+///  - Statistics over a set of pixels (a mask), every channel of every pixel one entry:
+///      RMSE = sqrt(mean d²), relative RMSE = sqrt(mean (d / (|ref| + 0.01))²), MAE = mean |d|,
+///      max = max |d|, plus the pixel count and the mean reference value (for scale).
+///  - A pixel whose prediction or reference has a NaN/Inf channel is left out of the statistics and
+///    counted (`nonFinite`); in the maps it is NaN, which falseColor() shows as magenta and
+///    floatMap() turns into 0 with the count reported. Nothing non-finite is ever averaged in.
+/// All sums are in double and run in pixel order, so results are deterministic.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/util/image.h"
+
+namespace rrf {
+
+/// Denominator offset of the relative error, as in Ren et al. and DESIGN.md.
+constexpr double kRelativeEpsilon = 0.01;
+
+enum class ErrorMapKind { Absolute, Relative, Squared };
+/// "absolute" | "relative" | "squared".
+const char* errorMapName(ErrorMapKind k);
+
+struct ErrorStats {
+    uint64_t pixels = 0;     ///< pixels in the mask with finite prediction and reference
+    uint64_t nonFinite = 0;  ///< pixels in the mask left out because of NaN/Inf
+    double rmse = 0, relativeRmse = 0, mae = 0, maxError = 0;
+    double meanReference = 0;  ///< mean reference value (all channels), to put the RMSE in scale
+    nlohmann::json toJson() const;
+};
+
+/// Statistics over the pixels listed in `mask` (indices y·width + x). Throws std::invalid_argument if
+/// the image sizes differ or an index is out of range. An empty mask gives pixels = 0 and zeros.
+ErrorStats errorStats(const Image& prediction, const Image& reference, const std::vector<uint32_t>& mask);
+/// Statistics over every pixel.
+ErrorStats errorStats(const Image& prediction, const Image& reference);
+
+/// Per-pixel error map (one scalar per pixel in all three channels; NaN where an input is non-finite).
+Image errorMap(const Image& prediction, const Image& reference, ErrorMapKind kind);
+
+/// Pixel masks from an object-id buffer (-1 = not an object): index = object id, ascending pixels.
+/// Ids ≥ objectCount are ignored.
+std::vector<std::vector<uint32_t>> objectMasks(const std::vector<int32_t>& objectIds, size_t objectCount);
+
+/// The q-quantile (q ∈ [0,1], nearest rank) of the finite first-channel values of `scalar`; 0 when
+/// there are none. Used for the false-colour range [0, p99].
+float percentile(const Image& scalar, double q);
+
+/// Copy of `map` with non-finite pixels set to 0; their count goes to `replaced`. For EXR output.
+Image finiteMap(const Image& map, uint64_t& replaced);
+
+}  // namespace rrf

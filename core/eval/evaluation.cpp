@@ -1,0 +1,249 @@
+#include "core/eval/evaluation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
+#include "core/util/image_io.h"
+#include "core/render/render_outputs.h"
+
+namespace rrf {
+
+namespace fs = std::filesystem;
+
+namespace {
+double since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+nlohmann::json vec(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+std::string num(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
+}
+}  // namespace
+
+Reference renderReference(const Scene& scene, const Vec3& lightPos, const RenderOptions& options,
+                          const std::atomic<bool>* cancel, std::atomic<double>* progress) {
+    Scene moved = scene;
+    if (!moved.lights.empty()) moved.setLightPosition(lightPos);
+    const Accel accel(moved);
+    Renderer renderer(moved, accel, options);
+    Reference r;
+    r.lightPosition = moved.lightPosition();
+    while (renderer.progress() < 1.0) {
+        if (cancel && cancel->load()) {
+            r.cancelled = true;
+            break;
+        }
+        if (!renderer.runPass()) break;
+        if (progress) *progress = renderer.progress();
+    }
+    const RenderSnapshot s = renderer.snapshot();
+    r.images[int(Term::Direct)] = s.direct;
+    r.images[int(Term::Indirect)] = s.indirect;
+    r.images[int(Term::Global)] = s.global;
+    r.spp = s.sppCompleted;
+    r.seconds = s.seconds;
+    r.nonFinite = s.nonFinite;
+    return r;
+}
+
+Reference loadReference(const std::string& dir) {
+    const std::string meta = (fs::path(dir) / "render.json").string();
+    Reference r;
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(readFile(meta));
+        const auto lp = j.at("light_position").get<std::vector<float>>();
+        if (lp.size() != 3) throw InputError(meta, "/light_position", "expected 3 numbers");
+        r.lightPosition = Vec3(lp[0], lp[1], lp[2]);
+        r.spp = j.value("spp_completed", 0);
+        r.seconds = j.value("seconds", 0.0);
+        r.nonFinite = j.value("non_finite_samples_dropped", uint64_t(0));
+    } catch (const nlohmann::json::exception& e) {
+        throw InputError(meta, "", std::string("not a render.json written by rrf render: ") + e.what());
+    } catch (const std::runtime_error& e) {
+        throw InputError(meta, "", std::string("no reference render here: ") + e.what());
+    }
+    for (int t = 0; t < kTermCount; ++t) {
+        std::string path;
+        for (const char* ext : {".exr", ".pfm"}) {
+            const std::string p = (fs::path(dir) / (std::string(termName(Term(t))) + ext)).string();
+            if (fs::exists(p)) {
+                path = p;
+                break;
+            }
+        }
+        if (path.empty())
+            throw InputError((fs::path(dir) / termName(Term(t))).string() + ".exr", "",
+                             "missing: render the reference with --format exr or pfm");
+        r.images[t] = readImage(path);
+    }
+    return r;
+}
+
+Evaluation evaluate(const Predictor& predictor, const Reference& reference) {
+    const Image& ref = reference.image(Term::Global);
+    if (ref.empty()) throw std::invalid_argument("evaluate: the reference has no pixels");
+    Evaluation e;
+    e.lightPosition = reference.lightPosition;
+    e.referenceSeconds = reference.seconds;
+    e.referenceSpp = reference.spp;
+    e.referenceNonFinite = reference.nonFinite;
+    const auto t0 = std::chrono::steady_clock::now();
+    const GBuffer gb = predictor.gbuffer(reference.lightPosition, ref.width, ref.height);
+    e.gbufferSeconds = since(t0);
+    e.prediction = predictor.predict(gb);
+    e.objectIds = gb.object;
+    // Silhouette pixels are left out: there the reference's box pixel filter mixes two surfaces (or
+    // a surface and the light), which a pixel-centre prediction cannot reproduce whatever the
+    // network — at the light's edge that alone gives errors of the light's radiance.
+    const int w = ref.width, h = ref.height;
+    auto interior = [&](uint32_t i) {
+        const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
+        const int32_t id = gb.object[i];
+        const int dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
+        for (int k = 0; k < 4; ++k) {
+            const int nx = x + dx[k], ny = y + dy[k];
+            if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+            if (gb.object[size_t(ny) * size_t(w) + size_t(nx)] != id) return false;
+        }
+        return true;
+    };
+    std::vector<std::vector<uint32_t>> masks(gb.pixelsByObject.size());
+    std::vector<uint32_t> covered;
+    for (size_t o = 0; o < masks.size(); ++o)
+        for (uint32_t i : gb.pixelsByObject[o]) {
+            if (interior(i)) masks[o].push_back(i);
+            else ++e.silhouettePixels;
+        }
+    for (const auto& px : masks) covered.insert(covered.end(), px.begin(), px.end());
+    std::sort(covered.begin(), covered.end());
+    for (int t = 0; t < kTermCount; ++t) {
+        TermErrors& te = e.terms[t];
+        te.available = e.prediction.available[t];
+        for (const auto& px : masks)
+            te.perObject.push_back(errorStats(e.prediction.images[t], reference.images[t], px));
+        te.overall = errorStats(e.prediction.images[t], reference.images[t], covered);
+    }
+    return e;
+}
+
+nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
+    const Prediction& p = e.prediction;
+    nlohmann::json terms = nlohmann::json::object();
+    for (int t = 0; t < kTermCount; ++t) {
+        const TermErrors& te = e.terms[t];
+        nlohmann::json objects = nlohmann::json::array();
+        for (size_t id = 0; id < te.perObject.size(); ++id) {
+            nlohmann::json o = te.perObject[id].toJson();
+            o["id"] = int(id);
+            o["name"] = id < scene.objects.size() ? scene.objects[id].name : "";
+            objects.push_back(o);
+        }
+        terms[termName(Term(t))] = {{"available", te.available}, {"overall", te.overall.toJson()}, {"objects", objects}};
+    }
+    return {
+        {"light_position", vec(e.lightPosition)},
+        {"silhouette_pixels_excluded", e.silhouettePixels},
+        {"reference", {{"spp", e.referenceSpp}, {"seconds", e.referenceSeconds}, {"non_finite_samples_dropped", e.referenceNonFinite}}},
+        {"prediction",
+         {{"gbuffer_seconds", e.gbufferSeconds},
+          {"inference_seconds", p.inferenceSeconds},
+          {"exact_direct_seconds", p.directSeconds},
+          {"pixels_predicted", p.pixelsPredicted},
+          {"pixels_without_network", p.pixelsWithoutNetwork},
+          {"objects_without_network", p.objectsWithoutNetwork},
+          {"non_finite_values", p.nonFinite},
+          {"unavailable", p.unavailableWhy}}},
+        {"metric",
+         "per channel, averaged over RGB; relative error |d|/(|ref|+0.01); overall = all object pixels"},
+        {"terms", terms},
+    };
+}
+
+std::string evaluationTable(const Scene& scene, const Evaluation& e) {
+    std::ostringstream out;
+    char line[256];
+    std::snprintf(line, sizeof line, "light at (%.3f, %.3f, %.3f), reference %d spp\n", e.lightPosition.x,
+                  e.lightPosition.y, e.lightPosition.z, e.referenceSpp);
+    out << line;
+    std::snprintf(line, sizeof line, "%-9s %-14s %8s %10s %10s %10s %10s %10s\n", "term", "object", "pixels", "RMSE",
+                  "rel.RMSE", "MAE", "max", "mean ref");
+    out << line;
+    for (int t = 0; t < kTermCount; ++t) {
+        const TermErrors& te = e.terms[t];
+        if (!te.available) {
+            std::snprintf(line, sizeof line, "%-9s (not predicted by these networks)\n", termName(Term(t)));
+            out << line;
+            continue;
+        }
+        auto row = [&](const std::string& name, const ErrorStats& s) {
+            std::snprintf(line, sizeof line, "%-9s %-14s %8llu %10s %10s %10s %10s %10s\n", termName(Term(t)),
+                          name.substr(0, 14).c_str(), (unsigned long long)s.pixels, num(s.rmse).c_str(),
+                          num(s.relativeRmse).c_str(), num(s.mae).c_str(), num(s.maxError).c_str(),
+                          num(s.meanReference).c_str());
+            out << line;
+        };
+        for (size_t id = 0; id < te.perObject.size(); ++id)
+            if (te.perObject[id].pixels) row(id < scene.objects.size() ? scene.objects[id].name : std::to_string(id), te.perObject[id]);
+        row("ALL OBJECTS", te.overall);
+    }
+    const Prediction& p = e.prediction;
+    if (!p.objectsWithoutNetwork.empty())
+        out << "objects without a network (shown black): " << p.objectsWithoutNetwork.size() << " objects, "
+            << p.pixelsWithoutNetwork << " pixels\n";
+    out << "NaN/Inf: " << p.nonFinite << " prediction values, " << e.referenceNonFinite << " reference samples\n";
+    out << "silhouette pixels left out of the statistics (box-filter mixing at object edges): " << e.silhouettePixels << "\n";
+    return out.str();
+}
+
+std::vector<std::string> writePredictionImages(const std::string& dir, const Prediction& p, float exposureStops) {
+    makeDirectories(dir);
+    std::vector<std::string> files;
+    for (int t = 0; t < kTermCount; ++t) {
+        if (!p.available[t]) continue;
+        const std::string base = (fs::path(dir) / (std::string("prediction_") + termName(Term(t)))).string();
+        writeImage(base + ".exr", p.images[t], ImageFormat::EXR);
+        writeImage(base + ".png", p.images[t], ImageFormat::PNG, exposureStops);
+        files.push_back(base + ".exr");
+        files.push_back(base + ".png");
+    }
+    return files;
+}
+
+nlohmann::json writeEvaluationImages(const std::string& dir, const Evaluation& e, const Reference& reference,
+                                     float exposureStops) {
+    nlohmann::json files = writePredictionImages(dir, e.prediction, exposureStops);
+    nlohmann::json ranges = nlohmann::json::object();
+    uint64_t nonFinite = 0;
+    for (int t = 0; t < kTermCount; ++t) {
+        if (!e.prediction.available[t]) continue;
+        const std::string term = termName(Term(t));
+        const std::string ref = (fs::path(dir) / ("reference_" + term + ".exr")).string();
+        writeImage(ref, reference.images[t], ImageFormat::EXR);
+        files.push_back(ref);
+        for (ErrorMapKind k : {ErrorMapKind::Absolute, ErrorMapKind::Relative, ErrorMapKind::Squared}) {
+            const Image map = errorMap(e.prediction.images[t], reference.images[t], k);
+            const std::string base = (fs::path(dir) / (std::string("error_") + errorMapName(k) + "_" + term)).string();
+            uint64_t replaced = 0;
+            writeImage(base + ".exr", finiteMap(map, replaced), ImageFormat::EXR);
+            nonFinite += replaced;
+            // [0, p99]: a few edge pixels (box filter vs pixel centre) must not wash out the scale.
+            const float hi = percentile(map, 0.99);
+            writeImage(base + ".png", falseColor(map, 0.f, hi), ImageFormat::PNG);
+            ranges[std::string(errorMapName(k)) + "_" + term] = {0.0, hi};
+            files.push_back(base + ".exr");
+            files.push_back(base + ".png");
+        }
+    }
+    return {{"files", files}, {"false_colour_ranges", ranges}, {"non_finite_map_pixels", nonFinite}};
+}
+
+}  // namespace rrf

@@ -1,0 +1,82 @@
+#pragma once
+/// Evaluation of a prediction against a path-traced reference at the same light position
+/// (DESIGN.md "Error maps"): per term (direct, indirect, global) and per object (masks from the
+/// G-buffer's object ids) error statistics, error maps, a JSON report and a readable table.
+/// Metric conventions are in core/error_metrics.h.
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/eval/error_metrics.h"
+#include "core/predict/predictor.h"
+#include "core/render/renderer.h"
+
+namespace rrf {
+
+/// A ground-truth render (direct, indirect, global) and what made it.
+struct Reference {
+    Image images[kTermCount];  ///< direct, indirect, global
+    Vec3 lightPosition{0.f};
+    int spp = 0;
+    double seconds = 0.0;
+    uint64_t nonFinite = 0;    ///< samples the renderer dropped as NaN/Inf
+    bool cancelled = false;
+    const Image& image(Term t) const { return images[int(t)]; }
+};
+
+/// Renders the reference of `scene` with the movable light centred at `lightPos` (the scene itself is
+/// not modified). `options.seed` keys the noise; stops early when `cancel` becomes true. `progress`
+/// (optional) receives the fraction done after every pass, for a progress line on another thread.
+Reference renderReference(const Scene& scene, const Vec3& lightPos, const RenderOptions& options,
+                          const std::atomic<bool>* cancel = nullptr, std::atomic<double>* progress = nullptr);
+
+/// Reads a directory written by `rrf render` (direct/indirect/global.exr or .pfm and render.json,
+/// whose light position and spp it takes). Throws InputError naming the file.
+Reference loadReference(const std::string& dir);
+
+/// Errors of one term: per object (index = object id; pixels = 0 for objects out of view) and over
+/// all object pixels ("overall"; emitter and background pixels are exact by construction and left out).
+struct TermErrors {
+    bool available = true;
+    std::vector<ErrorStats> perObject;
+    ErrorStats overall;
+};
+
+struct Evaluation {
+    Vec3 lightPosition{0.f};
+    Prediction prediction;
+    TermErrors terms[kTermCount];
+    std::vector<int32_t> objectIds;  ///< G-buffer object id per pixel (the masks)
+    /// Object pixels left out of the statistics because a 4-neighbour shows another object, an
+    /// emitter or the background: the reference's box filter mixes surfaces there.
+    uint64_t silhouettePixels = 0;
+    double gbufferSeconds = 0.0;
+    double referenceSeconds = 0.0;
+    int referenceSpp = 0;
+    uint64_t referenceNonFinite = 0;
+    const TermErrors& term(Term t) const { return terms[int(t)]; }
+};
+
+/// Builds the G-buffer at the reference's light position and size, predicts and compares.
+/// Throws std::invalid_argument if the reference has no pixels.
+Evaluation evaluate(const Predictor& predictor, const Reference& reference);
+
+/// Report of one evaluation: settings, timings, NaN/Inf counts, errors per term and object.
+nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e);
+/// Fixed-width table: one row per term and object, then the overall row of each term.
+std::string evaluationTable(const Scene& scene, const Evaluation& e);
+
+/// Writes into `dir`: prediction_<term>.exr/.png, reference_<term>.exr, error_<kind>_<term>.exr (float
+/// maps, non-finite pixels zeroed and counted) and error_<kind>_<term>.png (viridis over [0, p99] of
+/// the map, the range recorded in the returned JSON). Unavailable terms are skipped.
+/// Returns {"files": [...], "ranges": {...}, "non_finite_map_pixels": n}.
+nlohmann::json writeEvaluationImages(const std::string& dir, const Evaluation& e, const Reference& reference,
+                                     float exposureStops = 0.f);
+
+/// Writes the prediction images (prediction_<term>.exr and .png) of the available terms into `dir`.
+std::vector<std::string> writePredictionImages(const std::string& dir, const Prediction& p, float exposureStops = 0.f);
+
+}  // namespace rrf

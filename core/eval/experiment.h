@@ -1,0 +1,22 @@
+#pragma once
+/// In-memory glue between the stages, for runs that never touch the disk between them (the pipeline
+/// command, sweeps, end-to-end tests): generated records → training samples → trained networks →
+/// a ModelSet the predictor takes. The file-based path (rrf generate / train / evaluate) gives the
+/// same networks from the same settings.
+
+#include <vector>
+
+#include "core/util/stopwatch.h"
+#include "core/data/data_generator.h"
+#include "core/nn/model_set.h"
+#include "core/nn/object_training.h"
+
+namespace rrf {
+
+/// One ObjectSamples per scene object from the generator's records (layout: `layout`).
+std::vector<ObjectSamples> samplesFromGenerated(const GeneratedData& data, const Scene& scene, const RecordLayout& layout);
+
+/// A ModelSet holding the non-skipped networks of `trained` (no files), ready for Predictor.
+ModelSet modelSetFromTrained(const std::vector<ObjectModel>& trained, const Scene& scene, const RecordLayout& layout);
+
+}  // namespace rrf

@@ -1,0 +1,341 @@
+#include "core/eval/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <tuple>
+
+#include "core/util/error.h"
+#include "core/eval/evaluation.h"
+#include "core/eval/experiment.h"
+#include "core/eval/held_out.h"
+#include "core/nn/network_settings.h"
+
+namespace rrf {
+
+namespace {
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> parts;
+    std::istringstream in(s);
+    std::string p;
+    while (std::getline(in, p, sep)) parts.push_back(p);
+    return parts;
+}
+
+int positive(const std::string& text, const std::string& value) {
+    try {
+        size_t used = 0;
+        const int v = std::stoi(text, &used);
+        if (used == text.size() && v > 0) return v;
+    } catch (const std::exception&) {
+    }
+    throw InputError("command line", "--values", "'" + value + "': expected positive integers");
+}
+
+/// "4x100" → 4³ × 100, "6x6x3x200" → 6×6×3 × 200.
+void parseGrid(const std::string& v, SamplingSettings& s) {
+    const std::vector<std::string> p = split(v, 'x');
+    if (p.size() == 2) {
+        s.nx = s.ny = s.nz = positive(p[0], v);
+    } else if (p.size() == 4) {
+        s.nx = positive(p[0], v);
+        s.ny = positive(p[1], v);
+        s.nz = positive(p[2], v);
+    } else {
+        throw InputError("command line", "--values", "'" + v + "': expected NxDIRS (e.g. 4x100) or NXxNYxNZxDIRS");
+    }
+    s.directions = positive(p.back(), v);
+}
+
+struct Context {
+    const Scene& scene;
+    const SweepOptions& o;
+    RecordLayout layout;
+    Reference reference;
+    void log(const std::string& m) const {
+        if (o.log) o.log(m);
+    }
+    bool cancelled() const { return o.cancel && o.cancel->load(); }
+};
+
+/// Trains on `samples`, predicts at the reference's light and fills the row's errors and stages.
+void trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& t,
+                      SweepRow& row, const ObjectTrainingObserver& observer = {}) {
+    Stopwatch train;
+    const std::vector<ObjectModel> trained = trainObjects(samples, t, observer);
+    row.stageSeconds.push_back({"train", train.seconds()});
+    const ModelSet models = modelSetFromTrained(trained, c.scene, c.layout);
+    const Predictor predictor(c.scene, models, c.o.prediction);
+    const Evaluation e = evaluate(predictor, c.reference);
+    row.stageSeconds.push_back({"gbuffer", e.gbufferSeconds});
+    row.stageSeconds.push_back({"predict", e.prediction.inferenceSeconds + e.prediction.directSeconds});
+    row.overall = e.term(Term::Global).overall;
+    row.perObject = e.term(Term::Global).perObject;
+    int64_t params = 0;
+    for (const ObjectModel& m : trained)
+        if (!m.skipped) params += int64_t(m.model.arch.numParams());
+    row.extra["parameters"] = params;
+    row.extra["pixels_without_network"] = e.prediction.pixelsWithoutNetwork;
+    row.extra["non_finite_prediction_values"] = e.prediction.nonFinite;
+    for (Term term : {Term::Direct, Term::Indirect})
+        if (e.term(term).available)
+            row.extra[std::string(termName(term)) + "_relative_rmse"] = e.term(term).overall.relativeRmse;
+}
+
+void sweepSpp(Context& c, SweepResult& r) {
+    std::vector<int> spps;
+    for (const std::string& v : c.o.values) spps.push_back(positive(v, v));
+    std::sort(spps.begin(), spps.end());
+    Scene moved = c.scene;
+    moved.setLightPosition(c.reference.lightPosition);
+    const Accel accel(moved);
+    RenderOptions ro;
+    ro.width = c.o.width;
+    ro.height = c.o.height;
+    ro.spp = spps.back();
+    ro.seed = c.o.seed;
+    Renderer renderer(moved, accel, ro);
+    const PathTracer tracer(moved, accel, Estimator::NEE, 1);
+    const GBuffer gb = buildGBuffer(tracer, c.layout, c.reference.lightPosition, ro.width, ro.height);
+    std::vector<double> xs, ys;
+    int done = 0;  // one sample per pixel per pass (RenderOptions default)
+    for (int target : spps) {
+        while (done < target && !c.cancelled() && renderer.runPass()) ++done;
+        if (c.cancelled()) break;
+        const RenderSnapshot s = renderer.snapshot();
+        SweepRow row;
+        row.setting = std::to_string(target);
+        row.stageSeconds.push_back({"render", s.seconds});
+        row.overall = errorStats(s.global, c.reference.image(Term::Global));
+        for (const auto& px : gb.pixelsByObject) row.perObject.push_back(errorStats(s.global, c.reference.image(Term::Global), px));
+        row.extra["non_finite_samples_dropped"] = s.nonFinite;
+        xs.push_back(double(target));
+        ys.push_back(row.overall.rmse);
+        c.log("spp " + row.setting + ": RMSE " + std::to_string(row.overall.rmse));
+        r.rows.push_back(std::move(row));
+    }
+    r.extra["loglog_slope_rmse"] = logLogSlope(xs, ys);
+}
+
+void sweepGrid(Context& c, SweepResult& r) {
+    for (const std::string& v : c.o.values) {
+        if (c.cancelled()) return;
+        SamplingSettings s = c.o.sampling;
+        parseGrid(v, s);
+        SweepRow row;
+        row.setting = v;
+        const GeneratedData data = DataGenerator(c.scene, s).run(0, 1, c.o.cancel);
+        row.stageSeconds.push_back({"generate", data.seconds});
+        uint64_t records = 0;
+        for (const auto& o : data.perObject) records += o.size() / size_t(c.layout.floatsPerRecord());
+        row.extra["records"] = records;
+        trainAndEvaluate(c, samplesFromGenerated(data, c.scene, c.layout), c.o.training, row);
+        c.log("grid " + v + ": " + std::to_string(records) + " records, relative RMSE " + std::to_string(row.overall.relativeRmse));
+        r.rows.push_back(std::move(row));
+    }
+}
+
+void sweepNetworks(Context& c, SweepResult& r, bool trainers) {
+    const GeneratedData data = DataGenerator(c.scene, c.o.sampling).run(0, 1, c.o.cancel);
+    r.extra["generate_seconds"] = data.seconds;
+    const std::vector<ObjectSamples> samples = samplesFromGenerated(data, c.scene, c.layout);
+    for (const std::string& v : c.o.values) {
+        if (c.cancelled()) return;
+        ObjectTrainingOptions t = c.o.training;
+        SweepRow row;
+        row.setting = v;
+        ObjectTrainingObserver observer;
+        observer.cancel = c.o.cancel;
+        std::mutex m;
+        nlohmann::json curve = nlohmann::json::array();
+        if (trainers) {
+            if (v != "lm" && v != "adam") throw InputError("command line", "--values", "'" + v + "': expected lm or adam");
+            t.trainer = t.trainer.withType(v);
+            observer.onEpoch = [&](int id, const std::string& target, const EpochRecord& e) {
+                std::lock_guard<std::mutex> lock(m);
+                curve.push_back({{"object", id}, {"target", target}, {"epoch", e.epoch}, {"seconds", e.seconds},
+                                 {"train_loss", e.trainLoss}, {"validation_loss", e.validationLoss}});
+            };
+        } else {
+            std::string commas = v;
+            std::replace(commas.begin(), commas.end(), '-', ',');
+            t.hidden = parseHiddenSizes(commas, "--values");
+        }
+        trainAndEvaluate(c, samples, t, row, observer);
+        if (trainers) {
+            // Objects train in parallel, so callbacks arrive interleaved: order them for the reader.
+            std::vector<nlohmann::json> sorted(curve.begin(), curve.end());
+            std::stable_sort(sorted.begin(), sorted.end(), [](const nlohmann::json& a, const nlohmann::json& b) {
+                return std::make_tuple(a["object"].get<int>(), a["target"].get<std::string>(), a["epoch"].get<int>()) <
+                       std::make_tuple(b["object"].get<int>(), b["target"].get<std::string>(), b["epoch"].get<int>());
+            });
+            row.extra["curve"] = sorted;
+        }
+        c.log(r.what + " " + v + ": relative RMSE " + std::to_string(row.overall.relativeRmse));
+        r.rows.push_back(std::move(row));
+    }
+}
+
+std::string num(double v) {
+    if (!std::isfinite(v)) return "nan";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+}  // namespace
+
+std::vector<std::string> defaultSweepValues(const std::string& what) {
+    if (what == "spp") return {"1", "2", "4", "8", "16", "32", "64"};
+    if (what == "grid") return {"2x50", "3x100", "4x200"};
+    if (what == "hidden") return {"5", "10-5", "20-10"};
+    if (what == "trainer") return {"lm", "adam"};
+    throw InputError("command line", "--what", "expected spp, grid, hidden or trainer, got '" + what + "'");
+}
+
+double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int n = 0;
+    for (size_t i = 0; i < std::min(x.size(), y.size()); ++i) {
+        if (!(x[i] > 0 && y[i] > 0)) continue;
+        const double lx = std::log(x[i]), ly = std::log(y[i]);
+        sx += lx;
+        sy += ly;
+        sxx += lx * lx;
+        sxy += lx * ly;
+        ++n;
+    }
+    const double den = n * sxx - sx * sx;
+    if (n < 2 || den == 0) return std::numeric_limits<double>::quiet_NaN();
+    return (n * sxy - sx * sy) / den;
+}
+
+SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
+    SweepOptions o = options;
+    if (o.values.empty()) o.values = defaultSweepValues(o.what);
+    else defaultSweepValues(o.what);  // validates the kind
+    if (scene.lights.empty()) throw InputError(scene.sourcePath, "/lights", "a sweep needs a light");
+    SweepResult r;
+    r.what = o.what;
+    Context c{scene, o, RecordLayout::forScene(scene), {}};
+    r.lightPosition = heldOutLightPositions(scene.lightRange(), 1, o.seed).front();
+    RenderOptions ro;
+    ro.width = o.width;
+    ro.height = o.height;
+    ro.spp = o.referenceSpp > 0 ? o.referenceSpp : (o.what == "spp" ? 1024 : 256);
+    ro.samplesPerPass = std::max(1, ro.spp / 16);
+    ro.seed = mix64(o.seed ^ 0x5245464552454E43ULL);  // never the seed of the renders it judges
+    c.log("reference: " + std::to_string(ro.spp) + " spp at " + std::to_string(ro.width) + "x" + std::to_string(ro.height));
+    c.reference = renderReference(scene, r.lightPosition, ro, o.cancel);
+    r.referenceSpp = c.reference.spp;
+    r.referenceSeconds = c.reference.seconds;
+    if (!c.cancelled()) {
+        if (o.what == "spp") sweepSpp(c, r);
+        else if (o.what == "grid") sweepGrid(c, r);
+        else sweepNetworks(c, r, o.what == "trainer");
+    }
+    r.cancelled = c.cancelled();
+    return r;
+}
+
+std::string sweepCsv(const Scene& scene, const SweepResult& r) {
+    std::ostringstream out;
+    std::vector<std::string> stages;
+    for (const SweepRow& row : r.rows)
+        for (const auto& s : row.stageSeconds)
+            if (std::find(stages.begin(), stages.end(), s.first) == stages.end()) stages.push_back(s.first);
+    out << "what,setting";
+    for (const std::string& s : stages) out << "," << s << "_seconds";
+    out << ",pixels,rmse,relative_rmse,mae,max_error";
+    for (const Object& o : scene.objects) out << "," << o.name << "_rmse," << o.name << "_relative_rmse";
+    out << "\n";
+    for (const SweepRow& row : r.rows) {
+        out << r.what << "," << row.setting;
+        for (const std::string& s : stages) {
+            double v = std::numeric_limits<double>::quiet_NaN();
+            for (const auto& kv : row.stageSeconds)
+                if (kv.first == s) v = kv.second;
+            out << "," << num(v);
+        }
+        out << "," << row.overall.pixels << "," << num(row.overall.rmse) << "," << num(row.overall.relativeRmse) << ","
+            << num(row.overall.mae) << "," << num(row.overall.maxError);
+        for (size_t id = 0; id < scene.objects.size(); ++id) {
+            const bool seen = id < row.perObject.size() && row.perObject[id].pixels > 0;
+            out << "," << (seen ? num(row.perObject[id].rmse) : "") << "," << (seen ? num(row.perObject[id].relativeRmse) : "");
+        }
+        out << "\n";
+    }
+    return out.str();
+}
+
+std::string sweepCurveCsv(const SweepResult& r) {
+    std::ostringstream out;
+    bool any = false;
+    for (const SweepRow& row : r.rows) {
+        if (!row.extra.contains("curve")) continue;
+        if (!any) out << "trainer,object,target,epoch,seconds,train_loss,validation_loss\n";
+        any = true;
+        for (const nlohmann::json& p : row.extra["curve"]) {
+            const double val = p["validation_loss"].is_number() ? p["validation_loss"].get<double>() : std::nan("");
+            out << row.setting << "," << p["object"].get<int>() << "," << p["target"].get<std::string>() << ","
+                << p["epoch"].get<int>() << "," << num(p["seconds"].get<double>()) << ","
+                << num(p["train_loss"].get<double>()) << "," << num(val) << "\n";
+        }
+    }
+    return out.str();
+}
+
+nlohmann::json sweepJson(const Scene& scene, const SweepResult& r) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const SweepRow& row : r.rows) {
+        nlohmann::json stages = nlohmann::json::object(), objects = nlohmann::json::array();
+        for (const auto& kv : row.stageSeconds) stages[kv.first] = kv.second;
+        for (size_t id = 0; id < row.perObject.size(); ++id) {
+            nlohmann::json o = row.perObject[id].toJson();
+            o["id"] = int(id);
+            o["name"] = id < scene.objects.size() ? scene.objects[id].name : "";
+            objects.push_back(o);
+        }
+        rows.push_back({{"setting", row.setting}, {"stage_seconds", stages}, {"error", row.overall.toJson()},
+                        {"objects", objects}, {"extra", row.extra}});
+    }
+    return {{"what", r.what},
+            {"light_position", {r.lightPosition.x, r.lightPosition.y, r.lightPosition.z}},
+            {"reference", {{"spp", r.referenceSpp}, {"seconds", r.referenceSeconds}}},
+            {"error_term", "global"},
+            {"metric", "per channel averaged over RGB; relative error |d|/(|ref|+0.01)"},
+            {"cancelled", r.cancelled},
+            {"extra", r.extra},
+            {"rows", rows}};
+}
+
+std::string sweepTable(const SweepResult& r) {
+    std::ostringstream out;
+    char line[512];
+    for (const SweepRow& row : r.rows) {
+        std::string stages;
+        for (const auto& kv : row.stageSeconds) {
+            std::snprintf(line, sizeof line, "%s %.3f s  ", kv.first.c_str(), kv.second);
+            stages += line;
+        }
+        std::snprintf(line, sizeof line, "| %-10s | %-58s | %10.4g | %10.4g | %10.4g |\n", row.setting.c_str(),
+                      stages.c_str(), row.overall.rmse, row.overall.relativeRmse, row.overall.mae);
+        out << line;
+    }
+    std::snprintf(line, sizeof line, "| %-10s | %-58s | %10s | %10s | %10s |\n|%s|%s|%s|%s|%s|\n", r.what.c_str(),
+                  "wall time per stage", "RMSE", "rel. RMSE", "MAE", "------------", std::string(60, '-').c_str(),
+                  "------------", "------------", "------------");
+    std::string s = line + out.str();
+    if (r.extra.contains("loglog_slope_rmse")) {
+        std::snprintf(line, sizeof line, "log-log slope of RMSE vs spp: %.3f (Monte Carlo: -0.5)\n",
+                      r.extra["loglog_slope_rmse"].is_number() ? r.extra["loglog_slope_rmse"].get<double>() : std::nan(""));
+        s += line;
+    }
+    return s;
+}
+
+}  // namespace rrf

@@ -1,0 +1,82 @@
+#pragma once
+/// What accuracy costs in time (DESIGN.md, issue 6): a series of runs that varies one setting and
+/// records, per setting, the wall time of each stage and the error per object and overall against a
+/// path-traced reference. The CLI writes the rows as CSV and JSON; the GUI's Cost panel reads the same.
+///
+///   spp      path-tracer error vs samples per pixel and render time, against a high-spp reference
+///            with another seed (one progressive render, snapshots at each value); the log-log slope of
+///            RMSE vs spp is fitted (Monte Carlo: −0.5, the 1/√N line)
+///   grid     data-generation grid / N_dir ("4x100" = 4³ viewpoints × 100 directions, or
+///            "6x6x3x200") vs prediction error, with generate/train/predict times
+///   hidden   hidden sizes ("20-10") vs training time, inference time and error (one dataset)
+///   trainer  "lm" vs "adam": error and training time, plus each network's loss-vs-time curve recorded
+///            by the epoch callback
+///
+/// Prediction errors are measured at one held-out light position (heldOutLightPositions(region, 1,
+/// seed)) on the global term over all object pixels; spp errors over the whole image. Everything is
+/// deterministic except the recorded times.
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/eval/error_metrics.h"
+#include "core/nn/object_training.h"
+#include "core/predict/predictor.h"
+#include "core/data/sampling_settings.h"
+
+namespace rrf {
+
+struct SweepOptions {
+    std::string what;                 ///< "spp" | "grid" | "hidden" | "trainer"
+    std::vector<std::string> values;  ///< empty = defaultSweepValues(what)
+    int width = 128, height = 128;    ///< image size of references and predictions
+    int referenceSpp = 0;             ///< 0 = 1024 for spp, 256 otherwise
+    SamplingSettings sampling;        ///< data generation (grid sweeps replace nx/ny/nz/directions)
+    ObjectTrainingOptions training;   ///< networks and trainer (hidden/trainer sweeps replace theirs)
+    PredictionSettings prediction;
+    uint64_t seed = 1;                ///< held-out light position and the spp sweep's render seed
+    const std::atomic<bool>* cancel = nullptr;
+    std::function<void(const std::string&)> log;  ///< progress lines (may be empty)
+};
+
+struct SweepRow {
+    std::string setting;
+    std::vector<std::pair<std::string, double>> stageSeconds;  ///< in stage order
+    ErrorStats overall;                                        ///< global term
+    std::vector<ErrorStats> perObject;                         ///< global term, index = object id
+    nlohmann::json extra = nlohmann::json::object();           ///< records, parameters, curves, …
+};
+
+struct SweepResult {
+    std::string what;
+    Vec3 lightPosition{0.f};
+    int referenceSpp = 0;
+    double referenceSeconds = 0;
+    std::vector<SweepRow> rows;
+    nlohmann::json extra = nlohmann::json::object();  ///< e.g. "loglog_slope_rmse" for spp
+    bool cancelled = false;
+};
+
+/// The small default series of each kind (a minute or two on 2 cores at the default sizes).
+std::vector<std::string> defaultSweepValues(const std::string& what);
+
+/// Runs the sweep. Throws InputError for an unknown kind or a malformed value.
+SweepResult runSweep(const Scene& scene, const SweepOptions& options);
+
+/// Least-squares slope of log(y) against log(x) over the pairs with x, y > 0 (NaN if fewer than 2).
+double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
+
+/// One line per row: setting, each stage's seconds, overall RMSE / relative RMSE / MAE / max, then
+/// RMSE and relative RMSE of every object.
+std::string sweepCsv(const Scene& scene, const SweepResult& r);
+/// Training curves of a trainer sweep (trainer, object, target, epoch, seconds, losses); empty otherwise.
+std::string sweepCurveCsv(const SweepResult& r);
+nlohmann::json sweepJson(const Scene& scene, const SweepResult& r);
+/// Readable table of the rows (and the fitted slope for spp).
+std::string sweepTable(const SweepResult& r);
+
+}  // namespace rrf

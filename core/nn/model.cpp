@@ -1,0 +1,114 @@
+#include "core/nn/model.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rrf {
+
+namespace {
+
+// Inference chunk: 20-10 activations of 2048 samples stay in L2, which beats one huge GEMM.
+constexpr Eigen::Index kPredictChunk = 2048;
+
+MatX<float> gather(const Eigen::Ref<const MatX<float>>& m, const std::vector<uint32_t>& idx) {
+    MatX<float> out(m.rows(), Eigen::Index(idx.size()));
+    for (size_t j = 0; j < idx.size(); ++j) out.col(Eigen::Index(j)) = m.col(idx[j]);
+    return out;
+}
+
+/// RMSE in raw units of the model on the columns `idx`.
+double rawRmse(const NetworkModel& model, const Eigen::Ref<const MatX<float>>& x,
+               const Eigen::Ref<const MatX<float>>& y, const std::vector<uint32_t>& idx) {
+    if (idx.empty()) return std::numeric_limits<double>::quiet_NaN();
+    const MatX<float> pred = model.predict(gather(x, idx));
+    const MatX<float> ref = gather(y, idx);
+    return std::sqrt((pred - ref).cast<double>().squaredNorm() / double(pred.size()));
+}
+
+}  // namespace
+
+template <typename S>
+static MatX<S> predictImpl(const NetworkModel& m, const Eigen::Ref<const MatX<S>>& raw) {
+    if (raw.rows() != m.arch.inputs)
+        throw std::invalid_argument("predict: expected " + std::to_string(m.arch.inputs) + " input rows, got " +
+                                    std::to_string(raw.rows()));
+    const VecX<S> w = m.params.cast<S>();
+    MatX<S> out(m.arch.outputs, raw.cols()), x;
+    std::vector<MatX<S>> acts;
+    for (Eigen::Index c = 0; c < raw.cols(); c += kPredictChunk) {
+        const Eigen::Index nc = std::min(kPredictChunk, raw.cols() - c);
+        x = raw.middleCols(c, nc);
+        m.inputScaler.apply(x);
+        mlpForward<S>(m.arch, w.data(), x, acts);
+        m.outputScaler.invert(acts.back());
+        out.middleCols(c, nc) = acts.back();
+    }
+    return out;
+}
+
+MatX<float> NetworkModel::predict(const Eigen::Ref<const MatX<float>>& rawInputs) const {
+    return predictImpl<float>(*this, rawInputs);
+}
+
+MatX<double> NetworkModel::predictDouble(const Eigen::Ref<const MatX<double>>& rawInputs) const {
+    return predictImpl<double>(*this, rawInputs);
+}
+
+void NetworkModel::validate() const {
+    arch.validate();
+    if (params.size() != arch.numParams())
+        throw std::invalid_argument("model has " + std::to_string(params.size()) + " parameters, the " +
+                                    arch.describe() + " architecture needs " + std::to_string(arch.numParams()));
+    if (inputScaler.offset.size() != arch.inputs || inputScaler.scale.size() != arch.inputs ||
+        outputScaler.offset.size() != arch.outputs || outputScaler.scale.size() != arch.outputs)
+        throw std::invalid_argument("model normalisation sizes do not match the architecture");
+    for (Eigen::Index i = 0; i < params.size(); ++i)
+        if (!std::isfinite(params[i])) throw std::invalid_argument("non-finite weight at index " + std::to_string(i));
+    auto checkScaler = [](const MinMaxScaler& s, const char* what) {
+        for (Eigen::Index i = 0; i < s.size(); ++i)
+            if (!std::isfinite(s.offset[i]) || !std::isfinite(s.scale[i]) || s.scale[i] == 0.0)
+                throw std::invalid_argument(std::string("invalid ") + what + " normalisation at feature " +
+                                            std::to_string(i));
+    };
+    checkScaler(inputScaler, "input");
+    checkScaler(outputScaler, "output");
+}
+
+NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eigen::Ref<const MatX<float>>& inputs,
+                        const Eigen::Ref<const MatX<float>>& targets, const TrainObserver& observer, uint64_t stream) {
+    arch.validate();
+    if (inputs.rows() != arch.inputs || targets.rows() != arch.outputs)
+        throw std::invalid_argument("fitNetwork: data has " + std::to_string(inputs.rows()) + " inputs and " +
+                                    std::to_string(targets.rows()) + " targets, the network " + arch.describe());
+    if (inputs.cols() != targets.cols()) throw std::invalid_argument("fitNetwork: input and target counts differ");
+    if (inputs.cols() == 0) throw std::invalid_argument("fitNetwork: no samples");
+    if (!inputs.allFinite() || !targets.allFinite())
+        throw std::invalid_argument("fitNetwork: non-finite values in the training data");
+
+    NetworkModel model;
+    model.arch = arch;
+    model.trainer = cfg;
+    model.inputScaler = MinMaxScaler::fit(inputs);
+    model.outputScaler = MinMaxScaler::fit(targets);
+
+    const DataSplit split = splitSamples(size_t(inputs.cols()), cfg.seed(), stream);
+    TrainingData d;
+    d.xTrain = gather(inputs, split.train);
+    d.yTrain = gather(targets, split.train);
+    d.xValidation = gather(inputs, split.validation);
+    d.yValidation = gather(targets, split.validation);
+    d.xTest = gather(inputs, split.test);
+    d.yTest = gather(targets, split.test);
+    for (MatX<float>* x : {&d.xTrain, &d.xValidation, &d.xTest}) model.inputScaler.apply(*x);
+    for (MatX<float>* y : {&d.yTrain, &d.yValidation, &d.yTest}) model.outputScaler.apply(*y);
+
+    model.params = initialParams(arch, cfg.seed(), stream);
+    model.training = trainNetwork(arch, cfg, d, model.outputScaler, model.params, observer);
+
+    model.errors.train = rawRmse(model, inputs, targets, split.train);
+    model.errors.validation = rawRmse(model, inputs, targets, split.validation);
+    model.errors.test = rawRmse(model, inputs, targets, split.test);
+    return model;
+}
+
+}  // namespace rrf

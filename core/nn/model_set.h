@@ -1,0 +1,45 @@
+#pragma once
+/// A directory of trained networks for one scene: one model file per object and target
+/// (nn/object_training.h's modelFileName) plus `models.json`, the index that records the scene hash, the
+/// dataset, the record layout and which file holds which network. Prediction loads the set and
+/// refuses models made for another scene or another input layout.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/nn/model.h"
+#include "core/nn/object_training.h"
+#include "core/scene/scene.h"
+
+namespace rrf {
+
+/// Networks of one object: either a joint 6-output net, a global net, or direct and/or indirect nets.
+struct ObjectNetworks {
+    int objectId = -1;
+    std::string name;
+    std::map<std::string, NetworkModel> byTarget;  ///< "direct", "indirect", "global" or "joint"
+    bool has(const std::string& t) const { return byTarget.count(t) != 0; }
+};
+
+struct ModelSet {
+    std::string dir;
+    uint64_t sceneHash = 0;
+    std::vector<std::string> inputLayout;
+    std::vector<ObjectNetworks> objects;  ///< objects with at least one network
+    nlohmann::json index;                 ///< models.json as read
+    const ObjectNetworks* find(int objectId) const;
+};
+
+/// Writes every non-skipped model of `trained` into `dir` (created if missing) and the index.
+/// `extra` is merged into models.json (dataset path, settings, timings). Returns the index.
+nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectModel>& trained, uint64_t sceneHash,
+                            const std::vector<std::string>& inputLayout, const nlohmann::json& extra = {});
+
+/// Loads a model directory. `expectedSceneHash` ≠ 0 rejects models trained for another scene.
+/// Throws InputError / std::runtime_error naming the file.
+ModelSet loadModelSet(const std::string& dir, uint64_t expectedSceneHash = 0);
+
+}  // namespace rrf

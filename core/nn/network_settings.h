@@ -1,0 +1,30 @@
+#pragma once
+/// Network and trainer settings of a project ("network" and "trainer" sections), shared by the CLI
+/// and the GUI:
+///
+///     "network": {"hidden": [20, 10], "activation": "tanh", "targets": "separate"},
+///     "trainer": {"type": "levenberg_marquardt", ...}   (see nn/trainer_config.h)
+///
+/// "targets": "separate" (default: one direct and one indirect net per object, so direct light can
+/// also be computed exactly while the networks predict indirect light), "joint" (one 6-output net),
+/// "global", "direct" or "indirect".
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/nn/object_training.h"
+
+namespace rrf {
+
+struct NetworkSettings {
+    ObjectTrainingOptions options;  ///< hidden sizes, activation, targets, trainer
+    static NetworkSettings fromJson(const nlohmann::json& network, const nlohmann::json* trainer, const std::string& file);
+    nlohmann::json networkJson() const;
+    nlohmann::json trainerJson() const { return options.trainer.toJson(); }
+};
+
+/// Parses "20,10" into hidden sizes; throws InputError naming `option` if malformed.
+std::vector<int> parseHiddenSizes(const std::string& text, const std::string& option);
+
+}  // namespace rrf

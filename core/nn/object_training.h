@@ -1,0 +1,95 @@
+#pragma once
+/// Per-object training (seed 3.4): one network per scene object — or per object and target — fitted
+/// from in-memory samples, objects in parallel.
+///
+/// The dataset reader fills one ObjectSamples per object and calls trainObjects(); the result holds a
+/// NetworkModel per trained network (save each with saveModel) and an entry, marked skipped, with a
+/// message for every object that could not be trained.
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/nn/model.h"
+
+namespace rrf {
+
+/// All training records of one object. Storage is record-major: record i occupies
+/// `inputs[i·numInputs … (i+1)·numInputs)`, `direct[3i … 3i+3)` and `indirect[3i … 3i+3)`, exactly the
+/// layout of a features × N column-major Eigen matrix, so the trainer maps it without a copy.
+///
+/// Input record (numInputs = 12 + n floats), in this order:
+///   hit point x (3), view direction ω (3), light position (3), shading normal (3), BRDF parameters (n).
+/// Targets: direct radiance RGB and indirect radiance RGB (linear, not tone-mapped), as estimated by
+/// the data generator. NaN/Inf must not be present (the dataset reader drops and counts them).
+struct ObjectSamples {
+    int objectId = -1;          ///< scene object index; also keys the object's split and initial weights
+    std::string name;           ///< for messages and model headers
+    int numInputs = 0;          ///< 12 + n
+    std::vector<float> inputs;  ///< size() · numInputs
+    std::vector<float> direct;  ///< size() · 3
+    std::vector<float> indirect;///< size() · 3
+
+    /// Number of records.
+    size_t size() const { return numInputs > 0 ? inputs.size() / size_t(numInputs) : 0; }
+    /// Appends one record (convenience for tests and small tools).
+    void add(const float* in, const float directRgb[3], const float indirectRgb[3]);
+    /// Views as features × N matrices (no copy).
+    Eigen::Map<const MatX<float>> inputMatrix() const;
+    Eigen::Map<const MatX<float>> directMatrix() const;
+    Eigen::Map<const MatX<float>> indirectMatrix() const;
+    /// Throws std::invalid_argument when the three arrays disagree in length.
+    void validate() const;
+};
+
+/// What each network of an object predicts.
+enum class TargetMode {
+    Global,    ///< one 3-output net for direct + indirect (total radiance)
+    Direct,    ///< one 3-output net for direct only
+    Indirect,  ///< one 3-output net for indirect only
+    Separate,  ///< two 3-output nets per object, "direct" and "indirect"
+    Joint      ///< one 6-output net: outputs 0–2 direct, 3–5 indirect
+};
+
+/// "global" | "direct" | "indirect" | "separate" | "joint"; parse throws std::invalid_argument.
+const char* targetModeName(TargetMode m);
+TargetMode parseTargetMode(const std::string& s);
+
+struct ObjectTrainingOptions {
+    std::vector<int> hidden{20, 10};
+    Activation activation = Activation::Tanh;
+    TargetMode targets = TargetMode::Global;
+    TrainerConfig trainer;
+    std::vector<int> objects;  ///< object ids to train; empty = all
+    bool parallel = true;      ///< train objects concurrently (TBB); results are identical either way
+};
+
+/// Progress of all networks. Called concurrently from worker threads: must be thread-safe.
+struct ObjectTrainingObserver {
+    /// (object id, target: "global" | "direct" | "indirect" | "joint", record)
+    std::function<void(int, const std::string&, const EpochRecord&)> onEpoch;
+    std::function<void(const std::string&)> onMessage;
+    const std::atomic<bool>* cancel = nullptr;
+};
+
+struct ObjectModel {
+    int objectId = -1;
+    std::string objectName;
+    std::string target;        ///< as NetworkModel::target
+    bool skipped = false;      ///< no network (no samples, unknown object id, cancelled before start)
+    std::string message;       ///< why it was skipped
+    NetworkModel model;        ///< valid unless skipped
+};
+
+/// Trains the selected objects. The result is in the order of `objects` (then direct before indirect)
+/// and is bit-identical for any thread count. An object with no samples is skipped with a message;
+/// a single-sample object trains (on that one sample, without validation or test sets).
+/// Throws std::invalid_argument for malformed ObjectSamples or a network the trainer cannot handle.
+std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects, const ObjectTrainingOptions& options,
+                                      const ObjectTrainingObserver& observer = {});
+
+/// File name of an object's model inside a models/ directory: "object_<id>_<target>.rrfm".
+std::string modelFileName(int objectId, const std::string& target);
+
+}  // namespace rrf

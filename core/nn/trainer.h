@@ -1,0 +1,99 @@
+#pragma once
+/// Training one network on normalised data: the deterministic train/validation/test split, the
+/// per-epoch record and observer, and the two trainers (Levenberg–Marquardt in nn_lm.cpp, Adam in
+/// nn_adam.cpp). Higher-level entry points that also fit the scalers and build a model are in
+/// nn/model.h (one network) and nn/object_training.h (one network per object).
+///
+/// Losses reported here are in NORMALISED units (targets mapped to [-1, 1] by mapminmax): the MSE for
+/// levenberg_marquardt and adam/mse, the relative L2 loss for adam/relative_l2. Errors in raw units are
+/// computed by fitNetwork (nn/model.h).
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/nn/mlp.h"
+#include "core/nn/trainer_config.h"
+
+namespace rrf {
+
+/// One point of the loss curve. Epoch 0 is the initial network, before any update.
+struct EpochRecord {
+    int epoch = 0;
+    double trainLoss = 0;  ///< loss on the training samples used (Adam: mean over the epoch's batches)
+    /// Loss on the validation set; NaN when the set is empty (objects with fewer than 7 samples).
+    double validationLoss = std::numeric_limits<double>::quiet_NaN();
+    double step = 0;       ///< μ (levenberg_marquardt) or learning rate (adam) used in this epoch
+    double seconds = 0;    ///< wall time since training started
+};
+
+/// What a training run did.
+struct TrainResult {
+    std::vector<EpochRecord> history;  ///< epoch 0 … epochs
+    int epochs = 0;                    ///< epochs run
+    int bestEpoch = 0;                 ///< epoch whose weights were kept (best validation loss)
+    std::string stopReason;            ///< e.g. "validation stop", "maximum epoch reached", "cancelled"
+    bool cancelled = false;
+    double trainLoss = 0, validationLoss = 0, testLoss = 0;  ///< final losses (NaN for an empty set)
+    int64_t trainSamples = 0, validationSamples = 0, testSamples = 0;
+    int64_t trainSamplesUsed = 0;      ///< < trainSamples when the trainer subsampled (max_samples)
+    double seconds = 0;
+    std::vector<std::string> messages; ///< notes for the user (subsampling, solver fallbacks)
+};
+
+/// Hooks into a running trainer. Both callbacks may be empty; they are called on the training thread,
+/// and objects train in parallel, so they must be thread-safe.
+struct TrainObserver {
+    std::function<void(const EpochRecord&)> onEpoch;
+    std::function<void(const std::string&)> onMessage;
+    /// Checked between epochs; when it becomes true the trainer stops, keeping its best weights.
+    const std::atomic<bool>* cancel = nullptr;
+
+    bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+};
+
+/// Index sets of the 70/15/15 split.
+struct DataSplit {
+    std::vector<uint32_t> train, validation, test;
+};
+
+/// Random permutation of 0 … n−1 (Fisher–Yates driven by Rng(seed, stream)), cut 70/15/15 with
+/// the training part rounded up: n = 1 gives one training sample and empty validation and test sets.
+/// A pure function of (n, seed, stream).
+DataSplit splitSamples(size_t n, uint64_t seed, uint64_t stream = 0);
+
+/// Normalised data of one network, samples as columns (features × N).
+struct TrainingData {
+    MatX<float> xTrain, yTrain, xValidation, yValidation, xTest, yTest;
+};
+
+/// Trains `params` (in: initial, out: the weights of the best validation epoch) with Matlab trainlm
+/// semantics: per epoch JᵀJ and Jᵀe are accumulated in double over fixed chunks of the training set
+/// (in parallel, reduced in a fixed order, so the result does not depend on the thread count), then
+/// Δw = −(JᵀJ + μI)⁻¹Jᵀe is tried with μ raised ×mu_inc until the training SSE decreases (μ then
+/// ×mu_dec). Stops on max_epochs, goal, ‖Jᵀe‖ < min_grad, μ > mu_max, max_fail validation failures
+/// or cancel. Throws std::invalid_argument when JᵀJ would not fit in memory (use adam).
+TrainResult trainLevenbergMarquardt(const MlpArch& arch, const LevenbergMarquardtConfig& cfg,
+                                    const TrainingData& data, VecX<double>& params,
+                                    const TrainObserver& observer = {});
+
+/// Trains `params` with Adam on shuffled mini-batches in float. `outputScaler` converts normalised
+/// outputs back to raw units for the relative L2 loss. Single-threaded and deterministic; objects are
+/// parallelised one level up.
+TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const TrainingData& data,
+                      const MinMaxScaler& outputScaler, VecX<double>& params,
+                      const TrainObserver& observer = {});
+
+/// Dispatches on cfg.type.
+TrainResult trainNetwork(const MlpArch& arch, const TrainerConfig& cfg, const TrainingData& data,
+                         const MinMaxScaler& outputScaler, VecX<double>& params,
+                         const TrainObserver& observer = {});
+
+/// Mean squared error of the network on normalised data, computed in double in chunks
+/// (NaN for an empty set).
+double networkMse(const MlpArch& arch, const VecX<double>& params, const MatX<float>& x, const MatX<float>& y);
+
+}  // namespace rrf

@@ -1,0 +1,54 @@
+#pragma once
+/// CPU G-buffer for network prediction (DESIGN.md "Real-time prediction", seed 3.5).
+///
+/// One primary ray through the CENTRE of every pixel (no jitter: a prediction is a function of the
+/// pixel, not a Monte Carlo estimate) gives, per pixel, exactly the network input record of the data
+/// generator (core/record_layout.h):
+///
+///     hit point (3), view direction (3), light position (3), normal (3), BRDF parameters (n)
+///
+/// with the view direction pointing FROM the hit point TO the eye and the geometric normal flipped to
+/// the viewer's side, as DataGenerator::estimateRecord writes them. The light position is an input
+/// column, so the G-buffer depends on it; it also decides which pixels see the movable light, which is
+/// visible geometry. Emitter pixels carry their emitted radiance towards the eye (what the ground
+/// truth's direct image shows there) and no network input.
+///
+/// The ground truth averages a box filter over each pixel, so pixels that straddle an edge are
+/// mixtures the centre ray cannot reproduce; error statistics include them on purpose (they are part
+/// of what a user sees).
+
+#include <cstdint>
+#include <vector>
+
+#include "core/render/path_tracer.h"
+#include "core/data/record_layout.h"
+
+namespace rrf {
+
+struct GBuffer {
+    int width = 0, height = 0;
+    int numInputs = 0;            ///< 12 + n (RecordLayout::inputCount())
+    Vec3 lightPosition{0.f};      ///< centre of the movable light the buffer was made for
+    /// numInputs floats per pixel, pixel i = y·width + x at [i·numInputs, (i+1)·numInputs); zero for
+    /// pixels that hit no object. Column-major inputs × pixels, so it maps onto an Eigen matrix.
+    std::vector<float> inputs;
+    std::vector<int32_t> object;  ///< object id per pixel; -1 for background and emitter pixels
+    std::vector<int32_t> light;   ///< light index for emitter pixels, -1 otherwise
+    std::vector<Vec3> emitted;    ///< emitted radiance towards the eye (emitter pixels), else 0
+    /// Pixel indices of every object (index = object id, ascending pixel order): the masks of the
+    /// per-object error statistics and the batches of the predictor.
+    std::vector<std::vector<uint32_t>> pixelsByObject;
+    std::vector<uint32_t> emitterPixels;  ///< pixels that see an emitter, ascending
+    uint64_t backgroundPixels = 0;        ///< pixels whose ray escapes
+
+    size_t pixelCount() const { return size_t(width) * size_t(height); }
+    const float* input(size_t pixel) const { return inputs.data() + pixel * size_t(numInputs); }
+    bool covered(size_t pixel) const { return object[pixel] >= 0; }
+};
+
+/// Builds the G-buffer of `tracer`'s scene seen by its camera at width × height, with the movable
+/// light's centre at `lightPos` (the tracer's own light for scenes without a movable light).
+/// Parallel over rows (oneTBB); the result does not depend on the thread count.
+GBuffer buildGBuffer(const PathTracer& tracer, const RecordLayout& layout, const Vec3& lightPos, int width, int height);
+
+}  // namespace rrf

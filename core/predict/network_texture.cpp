@@ -1,0 +1,236 @@
+#include "core/predict/network_texture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/data/record_layout.h"
+
+namespace rrf {
+
+namespace {
+
+int vec4s(int n) { return (n + 3) / 4; }
+
+// Texel offsets and counts are stored as floats; integers up to 2^24 are exact in float.
+constexpr size_t kMaxExactInteger = size_t(1) << 24;
+
+/// Appends texels to a growing float array (4 floats each).
+class TexelWriter {
+public:
+    size_t texel() const { return data_.size() / 4; }
+    void texel4(float a, float b, float c, float d) { data_.insert(data_.end(), {a, b, c, d}); }
+    /// Writes `n` values as ⌈n/4⌉ texels, zero-padded.
+    template <typename Get> void padded(int n, Get get) {
+        for (int i = 0; i < 4 * vec4s(n); ++i) data_.push_back(i < n ? float(get(i)) : 0.f);
+    }
+    std::vector<float>& data() { return data_; }
+
+private:
+    std::vector<float> data_;
+};
+
+int slotOf(const std::string& target) {
+    if (target == "direct") return kSlotDirect;
+    if (target == "indirect") return kSlotIndirect;
+    if (target == "global") return kSlotGlobal;
+    if (target == "joint") return kSlotJoint;
+    throw std::invalid_argument("unknown network target '" + target + "'");
+}
+
+void writeNetwork(TexelWriter& w, const NetworkModel& m) {
+    const MlpArch& a = m.arch;
+    w.texel4(float(a.inputs), float(a.outputs), float(a.numLayers()), a.activation == Activation::Relu ? 1.f : 0.f);
+    // The shader computes in float what NetworkModel::predict computes in float: the same casts of
+    // the double-precision scalers and weights.
+    w.padded(a.inputs, [&](int i) { return float(m.inputScaler.offset[i]); });
+    w.padded(a.inputs, [&](int i) { return float(m.inputScaler.scale[i]); });
+    w.padded(a.outputs, [&](int i) { return float(m.outputScaler.offset[i]); });
+    w.padded(a.outputs, [&](int i) { return float(m.outputScaler.scale[i]); });
+    for (int l = 0; l < a.numLayers(); ++l) {
+        const int in = a.layerInputs(l), out = a.layerOutputs(l);
+        w.texel4(float(in), float(out), float(vec4s(in)), 0.f);
+        const double* W = m.params.data() + a.weightOffset(l);  // out × in, column-major
+        for (int j = 0; j < out; ++j) w.padded(in, [&](int i) { return float(W[size_t(j) + size_t(i) * size_t(out)]); });
+        const double* b = m.params.data() + a.biasOffset(l);
+        w.padded(out, [&](int j) { return float(b[j]); });
+    }
+}
+
+// ---- reference evaluation (mirrors shaders/predict.frag) -------------------------------------------
+
+struct TexelReader {
+    const NetworkTexture& t;
+    const float* texel(int i) const {
+        if (i < 0 || size_t(i) >= t.texelCount()) throw std::out_of_range("network texture: texel index out of range");
+        return &t.texels[4 * size_t(i)];
+    }
+    float at(int i, int c) const { return texel(i)[c]; }
+};
+
+/// Eigen 3.4's float tanh (generic_fast_tanh_float), as shaders/predict.frag evaluates it.
+float tanhEigen(float a) {
+    const float x = std::clamp(a, -7.90531110763549805f, 7.90531110763549805f), x2 = x * x;
+    float p = x2 * -2.76076847742355e-16f + 2.00018790482477e-13f;
+    p = x2 * p + -8.60467152213735e-11f;
+    p = x2 * p + 5.12229709037114e-08f;
+    p = x2 * p + 1.48572235717979e-05f;
+    p = x2 * p + 6.37261928875436e-04f;
+    p = x2 * p + 4.89352455891786e-03f;
+    p = x * p;
+    float q = x2 * 1.19825839466702e-06f + 1.18534705686654e-04f;
+    q = x2 * q + 2.26843463243900e-03f;
+    q = x2 * q + 4.89352518554385e-03f;
+    return std::fabs(a) < 0.0004f ? a : p / q;
+}
+
+float dot4(const float* a, const float* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]; }
+
+/// Same steps as predictNetwork() in shaders/predict.frag; `out` receives up to 8 outputs.
+void evaluateNetwork(const TexelReader& r, int base, const float* raw, float* out) {
+    const int in = int(r.at(base, 0)), outs = int(r.at(base, 1)), layers = int(r.at(base, 2));
+    const bool relu = r.at(base, 3) > 0.5f;
+    const int inV = vec4s(in), outV = vec4s(outs);
+    int t = base + 1;
+    const int inOff = t, inScale = t + inV, outOff = t + 2 * inV, outScale = t + 2 * inV + outV;
+    t += 2 * inV + 2 * outV;
+    std::vector<float> a(size_t(4 * vec4s(std::max(r.t.maxLayerWidth, in))), 0.f), b(a.size(), 0.f);
+    for (int i = 0; i < in; ++i) a[size_t(i)] = (raw[i] - r.at(inOff + i / 4, i % 4)) * r.at(inScale + i / 4, i % 4);
+    for (int l = 0; l < layers; ++l) {
+        const int nOut = int(r.at(t, 1)), R = int(r.at(t, 2));
+        const int rows = t + 1, bias = rows + nOut * R;
+        std::fill(b.begin(), b.end(), 0.f);
+        for (int j = 0; j < nOut; ++j) {
+            float s = r.at(bias + j / 4, j % 4);
+            for (int k = 0; k < R; ++k) s += dot4(r.texel(rows + j * R + k), &a[size_t(4 * k)]);
+            if (l + 1 < layers) s = relu ? std::max(s, 0.f) : tanhEigen(s);
+            b[size_t(j)] = s;
+        }
+        std::swap(a, b);
+        t = bias + vec4s(nOut);
+    }
+    for (int k = 0; k < outs; ++k) out[k] = a[size_t(k)] / r.at(outScale + k / 4, k % 4) + r.at(outOff + k / 4, k % 4);
+}
+
+}  // namespace
+
+NetworkTexture packNetworkTexture(const Scene& scene, const ModelSet& models, int maxLayerWidth, int maxRows) {
+    const RecordLayout layout = RecordLayout::forScene(scene);
+    NetworkTexture tex;
+    tex.objectCount = int(scene.objects.size());
+    tex.inputCount = layout.inputCount();
+    tex.offsets.assign(scene.objects.size(), {-1, -1, -1, -1});
+    if (tex.inputCount - 12 > 8) throw std::invalid_argument("network texture: more than 8 BRDF parameters");
+
+    // Validate everything before writing, so that a bad model set fails with one clear message.
+    int widest = tex.inputCount;
+    for (const ObjectNetworks& on : models.objects) {
+        if (on.objectId < 0 || on.objectId >= tex.objectCount)
+            throw std::invalid_argument("network texture: object id " + std::to_string(on.objectId) +
+                                        " is not an object of the scene (" + std::to_string(tex.objectCount) +
+                                        " objects)");
+        for (const auto& [target, m] : on.byTarget) {
+            const int slot = slotOf(target);
+            const std::string who = "network '" + target + "' of object " + std::to_string(on.objectId);
+            m.validate();
+            if (m.arch.inputs != tex.inputCount)
+                throw std::invalid_argument(who + " has " + std::to_string(m.arch.inputs) + " inputs, the scene's records " +
+                                            std::to_string(tex.inputCount));
+            const int wantOut = slot == kSlotJoint ? 6 : 3;
+            if (m.arch.outputs != wantOut)
+                throw std::invalid_argument(who + " has " + std::to_string(m.arch.outputs) + " outputs, expected " +
+                                            std::to_string(wantOut));
+            for (int l = 0; l < m.arch.numLayers(); ++l) widest = std::max(widest, m.arch.layerOutputs(l));
+        }
+    }
+    if (widest > maxLayerWidth)
+        throw std::invalid_argument("network texture: a layer of " + std::to_string(widest) +
+                                    " neurons is wider than the GLSL predictor's limit of " +
+                                    std::to_string(maxLayerWidth));
+    tex.maxLayerWidth = widest;
+
+    TexelWriter w;
+    w.texel4(float(kNetworkTextureVersion), float(tex.objectCount), float(tex.inputCount), float(widest));
+    // Object table first (offsets patched below), then the network blocks.
+    for (const Object& o : scene.objects) {
+        w.texel4(-1.f, -1.f, -1.f, -1.f);
+        float brdf[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+        layout.brdfParameters(scene.materials.at(size_t(o.material)), brdf);
+        w.texel4(brdf[0], brdf[1], brdf[2], brdf[3]);
+        w.texel4(brdf[4], brdf[5], brdf[6], brdf[7]);
+    }
+    for (const ObjectNetworks& on : models.objects) {
+        for (const auto& [target, m] : on.byTarget) {
+            const size_t at = w.texel();
+            if (at >= kMaxExactInteger) throw std::invalid_argument("network texture: too many weights for float offsets");
+            tex.offsets[size_t(on.objectId)][size_t(slotOf(target))] = int(at);
+            w.data()[4 * (1 + 3 * size_t(on.objectId)) + size_t(slotOf(target))] = float(at);
+            writeNetwork(w, m);
+            ++tex.networkCount;
+        }
+    }
+    tex.provides.assign(tex.offsets.size(), {false, false, false});
+    bool anyNetworks = false;
+    for (int t = 0; t < 3; ++t) tex.termAvailable[t] = true;
+    for (size_t o = 0; o < tex.offsets.size(); ++o) {
+        const auto& off = tex.offsets[o];
+        if (off[0] < 0 && off[1] < 0 && off[2] < 0 && off[3] < 0) continue;
+        anyNetworks = true;
+        const bool d = off[kSlotDirect] >= 0 || off[kSlotJoint] >= 0, i = off[kSlotIndirect] >= 0 || off[kSlotJoint] >= 0;
+        tex.provides[o] = {d, i, (d && i) || off[kSlotGlobal] >= 0};
+        for (int t = 0; t < 3; ++t) tex.termAvailable[t] = tex.termAvailable[t] && tex.provides[o][size_t(t)];
+    }
+    if (!anyNetworks)
+        for (int t = 0; t < 3; ++t) tex.termAvailable[t] = false;
+
+    const size_t texels = w.texel();
+    const size_t rows = (texels + size_t(tex.width) - 1) / size_t(tex.width);
+    if (rows > size_t(maxRows))
+        throw std::invalid_argument("network texture: " + std::to_string(texels) + " texels need " + std::to_string(rows) +
+                                    " rows of " + std::to_string(tex.width) + ", more than the limit of " +
+                                    std::to_string(maxRows));
+    tex.height = int(rows);
+    tex.texels = std::move(w.data());
+    tex.texels.resize(4 * tex.texelCount(), 0.f);
+    return tex;
+}
+
+std::array<Vec3, 3> evaluateTerms(const NetworkTexture& tex, int objectId, const float geometricInputs[12]) {
+    std::array<Vec3, 3> terms{Vec3(0.f), Vec3(0.f), Vec3(0.f)};
+    if (objectId < 0 || objectId >= tex.objectCount) return terms;
+    const TexelReader r{tex};
+    float raw[20] = {};
+    std::copy(geometricInputs, geometricInputs + 12, raw);
+    const float* brdf = r.texel(2 + 3 * objectId);
+    for (int i = 12; i < tex.inputCount; ++i) raw[i] = brdf[i - 12];  // texels 2+3o and 3+3o are adjacent
+    const float* off = r.texel(1 + 3 * objectId);
+    float y[8];
+    // Non-finite outputs become 0 per 3-vector, as core/predictor.cpp does.
+    auto finite = [](const Vec3& v) { return v.isFinite() ? v : Vec3(0.f); };
+    bool haveDirect = false, haveIndirect = false;
+    if (off[kSlotJoint] >= 0.f) {
+        evaluateNetwork(r, int(off[kSlotJoint]), raw, y);
+        terms[0] = finite(Vec3(y[0], y[1], y[2]));
+        terms[1] = finite(Vec3(y[3], y[4], y[5]));
+        haveDirect = haveIndirect = true;
+    }
+    if (off[kSlotDirect] >= 0.f) {
+        evaluateNetwork(r, int(off[kSlotDirect]), raw, y);
+        terms[0] = finite(Vec3(y[0], y[1], y[2]));
+        haveDirect = true;
+    }
+    if (off[kSlotIndirect] >= 0.f) {
+        evaluateNetwork(r, int(off[kSlotIndirect]), raw, y);
+        terms[1] = finite(Vec3(y[0], y[1], y[2]));
+        haveIndirect = true;
+    }
+    if (!(haveDirect && haveIndirect) && off[kSlotGlobal] >= 0.f) {
+        evaluateNetwork(r, int(off[kSlotGlobal]), raw, y);
+        terms[2] = finite(Vec3(y[0], y[1], y[2]));
+    } else {
+        terms[2] = terms[0] + terms[1];
+    }
+    return terms;
+}
+
+}  // namespace rrf

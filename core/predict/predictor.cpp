@@ -1,0 +1,259 @@
+#include "core/predict/predictor.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
+
+#include "core/util/error.h"
+
+namespace rrf {
+
+namespace {
+/// Pixels per inference batch: big enough for efficient GEMMs, small enough that two cores share
+/// the work of one object. Fixed, so batch boundaries never depend on the thread count.
+constexpr size_t kBatch = 4096;
+
+double since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Where one object's terms come from: a network and the first of its output rows, or nothing.
+struct Source {
+    const NetworkModel* net = nullptr;
+    int row = 0;
+    bool ok() const { return net != nullptr; }
+};
+
+struct ObjectPlan {
+    Source direct, indirect, global;  ///< global only when direct or indirect is missing
+    bool exactDirect = false;
+};
+
+ObjectPlan planFor(const ObjectNetworks& o, bool exactDirect) {
+    ObjectPlan p;
+    auto get = [&](const char* t) { return o.has(t) ? &o.byTarget.at(t) : nullptr; };
+    if (const NetworkModel* j = get("joint")) {
+        p.direct = {j, 0};
+        p.indirect = {j, 3};
+    }
+    if (const NetworkModel* d = get("direct")) p.direct = {d, 0};
+    if (const NetworkModel* i = get("indirect")) p.indirect = {i, 0};
+    p.exactDirect = exactDirect;
+    if (exactDirect) p.direct = {};
+    const bool directOk = exactDirect || p.direct.ok();
+    if (!(directOk && p.indirect.ok()))
+        if (const NetworkModel* g = get("global")) p.global = {g, 0};
+    return p;
+}
+}  // namespace
+
+const char* termName(Term t) {
+    switch (t) {
+    case Term::Direct: return "direct";
+    case Term::Indirect: return "indirect";
+    case Term::Global: return "global";
+    }
+    return "?";
+}
+
+PredictionSettings PredictionSettings::fromJson(const nlohmann::json& j, const std::string& file) {
+    PredictionSettings s;
+    if (!j.is_object()) throw InputError(file, "/prediction", "expected an object");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        const std::string where = "/prediction/" + it.key();
+        const nlohmann::json& v = it.value();
+        if (it.key() == "direct") {
+            if (!v.is_string() || (v != "network" && v != "exact"))
+                throw InputError(file, where, "expected \"network\" or \"exact\"");
+            s.direct = v == "exact" ? Direct::Exact : Direct::Network;
+        } else if (it.key() == "direct_samples") {
+            if (!v.is_number_integer() || v.get<int64_t>() < 1 || v.get<int64_t>() > 65536)
+                throw InputError(file, where, "expected an integer in 1..65536");
+            s.directSamples = v.get<int>();
+        } else if (it.key() == "seed") {
+            if (!v.is_number_integer() || v.get<int64_t>() < 0) throw InputError(file, where, "expected a non-negative integer");
+            s.seed = v.get<uint64_t>();
+        } else {
+            throw InputError(file, where, "unknown key (known: direct, direct_samples, seed)");
+        }
+    }
+    return s;
+}
+
+nlohmann::json PredictionSettings::toJson() const {
+    return {{"direct", directName()}, {"direct_samples", directSamples}, {"seed", seed}};
+}
+
+Predictor::Predictor(const Scene& scene, const ModelSet& models, const PredictionSettings& settings)
+    : scene_(scene),
+      models_(models),
+      settings_(settings),
+      layout_(RecordLayout::forScene(scene)),
+      accel_(scene),
+      tracer_(scene, accel_, Estimator::NEE, 1) {
+    if (!models.inputLayout.empty() && models.inputLayout != layout_.inputs)
+        throw InputError(models.dir, "/input_layout", "the networks' input layout differs from this scene's record layout");
+    for (const ObjectNetworks& o : models.objects)
+        for (const auto& [target, net] : o.byTarget) {
+            if (net.arch.inputs != layout_.inputCount())
+                throw std::invalid_argument("network " + target + " of object " + std::to_string(o.objectId) + " has " +
+                                            std::to_string(net.arch.inputs) + " inputs, the scene's records have " +
+                                            std::to_string(layout_.inputCount()));
+            const int want = target == "joint" ? 6 : 3;
+            if (net.arch.outputs != want)
+                throw std::invalid_argument("network " + target + " of object " + std::to_string(o.objectId) + " has " +
+                                            std::to_string(net.arch.outputs) + " outputs, expected " + std::to_string(want));
+        }
+}
+
+GBuffer Predictor::gbuffer(const Vec3& lightPos, int width, int height) const {
+    return buildGBuffer(tracer_, layout_, lightPos, width, height);
+}
+
+std::vector<std::string> Predictor::describe() const {
+    std::vector<std::string> lines;
+    for (const Object& obj : scene_.objects) {
+        const ObjectNetworks* o = models_.find(obj.id);
+        std::string nets;
+        if (o)
+            for (const auto& kv : o->byTarget) nets += (nets.empty() ? "" : " + ") + kv.first + " " + kv.second.arch.describe();
+        lines.push_back(std::to_string(obj.id) + " " + obj.name + ": " + (nets.empty() ? "no network" : nets));
+    }
+    return lines;
+}
+
+Prediction Predictor::predict(const GBuffer& gb) const {
+    Prediction pr;
+    for (Image& im : pr.images) im = Image(gb.width, gb.height);
+    const bool exact = settings_.direct == PredictionSettings::Direct::Exact;
+
+    // Emitters show their emission in the direct and global terms, as in the ground truth.
+    for (uint32_t i : gb.emitterPixels) {
+        const int x = int(i % uint32_t(gb.width)), y = int(i / uint32_t(gb.width));
+        pr.images[int(Term::Direct)].set(x, y, gb.emitted[i]);
+        pr.images[int(Term::Global)].set(x, y, gb.emitted[i]);
+    }
+
+    struct Job {
+        size_t object, begin, end;
+        ObjectPlan plan;
+    };
+    std::vector<Job> jobs;
+    uint64_t missing[kTermCount] = {0, 0, 0};
+    for (size_t id = 0; id < gb.pixelsByObject.size(); ++id) {
+        const std::vector<uint32_t>& px = gb.pixelsByObject[id];
+        if (px.empty()) continue;
+        const ObjectNetworks* o = models_.find(int(id));
+        if (!o || o->byTarget.empty()) {
+            pr.objectsWithoutNetwork.push_back(int(id));
+            pr.pixelsWithoutNetwork += px.size();
+            continue;
+        }
+        const ObjectPlan plan = planFor(*o, exact);
+        const bool d = plan.exactDirect || plan.direct.ok(), ind = plan.indirect.ok();
+        if (!d) missing[int(Term::Direct)] += px.size();
+        if (!ind) missing[int(Term::Indirect)] += px.size();
+        if (!(d && ind) && !plan.global.ok()) missing[int(Term::Global)] += px.size();
+        pr.pixelsPredicted += px.size();
+        for (size_t b = 0; b < px.size(); b += kBatch) jobs.push_back({id, b, std::min(px.size(), b + kBatch), plan});
+    }
+    for (int t = 0; t < kTermCount; ++t) {
+        if (!missing[t]) continue;
+        pr.available[t] = false;
+        pr.unavailableWhy.push_back(std::string(termName(Term(t))) + ": " + std::to_string(missing[t]) +
+                                    " covered pixels belong to objects whose networks do not predict it");
+    }
+
+    auto t0 = std::chrono::steady_clock::now();
+    std::vector<uint64_t> jobNonFinite(jobs.size(), 0);
+    tbb::parallel_for(size_t(0), jobs.size(), [&](size_t j) {
+        const Job& job = jobs[j];
+        const std::vector<uint32_t>& px = gb.pixelsByObject[job.object];
+        const Eigen::Index n = Eigen::Index(job.end - job.begin);
+        MatX<float> x(gb.numInputs, n);
+        for (Eigen::Index k = 0; k < n; ++k)
+            x.col(k) = Eigen::Map<const VecX<float>>(gb.input(px[job.begin + size_t(k)]), gb.numInputs);
+        // Each distinct network runs once per batch even when it feeds two terms (joint).
+        const NetworkModel* nets[3] = {job.plan.direct.net, job.plan.indirect.net, job.plan.global.net};
+        MatX<float> outs[3];
+        for (int a = 0; a < 3; ++a) {
+            if (!nets[a]) continue;
+            int same = -1;
+            for (int b = 0; b < a; ++b)
+                if (nets[b] == nets[a]) same = b;
+            outs[a] = same >= 0 ? outs[same] : nets[a]->predict(x);
+        }
+        const int rows[3] = {job.plan.direct.row, job.plan.indirect.row, job.plan.global.row};
+        uint64_t bad = 0;
+        auto value = [&](int a, Eigen::Index k) {
+            Vec3 v(outs[a](rows[a], k), outs[a](rows[a] + 1, k), outs[a](rows[a] + 2, k));
+            if (!v.isFinite()) {
+                ++bad;
+                v = Vec3(0.f);
+            }
+            return v;
+        };
+        for (Eigen::Index k = 0; k < n; ++k) {
+            const uint32_t i = px[job.begin + size_t(k)];
+            const int xx = int(i % uint32_t(gb.width)), yy = int(i / uint32_t(gb.width));
+            const Vec3 d = nets[0] ? value(0, k) : Vec3(0.f);
+            const Vec3 ind = nets[1] ? value(1, k) : Vec3(0.f);
+            if (nets[0]) pr.images[int(Term::Direct)].set(xx, yy, d);
+            if (nets[1]) pr.images[int(Term::Indirect)].set(xx, yy, ind);
+            // In exact mode the direct term is added to the global image after the exact pass.
+            if (nets[2]) pr.images[int(Term::Global)].set(xx, yy, value(2, k));
+            else pr.images[int(Term::Global)].set(xx, yy, d + ind);
+        }
+        jobNonFinite[j] = bad;
+    });
+    for (uint64_t b : jobNonFinite) pr.nonFinite += b;
+    pr.inferenceSeconds = since(t0);
+
+    if (exact) {
+        t0 = std::chrono::steady_clock::now();
+        const Light movable = tracer_.movableLightAt(gb.lightPosition);
+        const uint64_t seed = mix64(settings_.seed ^ 0x4558414354444952ULL);  // own stream: "EXACTDIR"
+        const int spp = settings_.directSamples;
+        std::vector<char> hasGlobalNet(scene_.objects.size(), 0);
+        for (const Job& job : jobs) hasGlobalNet[job.object] = job.plan.global.ok();
+        std::vector<uint64_t> rowBad(size_t(gb.height), 0);
+        tbb::parallel_for(0, gb.height, [&](int y) {
+            TraceCounters counters;
+            for (int x = 0; x < gb.width; ++x) {
+                const size_t i = size_t(y) * size_t(gb.width) + size_t(x);
+                const int id = gb.object[i];
+                if (id < 0) continue;
+                const float* r = gb.input(i);
+                Hit hit;
+                hit.p = Vec3(r[0], r[1], r[2]);
+                hit.ng = Vec3(r[9], r[10], r[11]);
+                hit.object = id;
+                const Vec3 wo(r[3], r[4], r[5]);
+                double sum[3] = {0, 0, 0};
+                int accepted = 0;
+                for (int s = 0; s < spp; ++s) {
+                    Rng rng(seed, i, uint64_t(s));
+                    const Vec3 L = tracer_.shade(hit, wo, movable, rng, counters).direct;
+                    if (!L.isFinite()) {
+                        ++rowBad[size_t(y)];
+                        continue;
+                    }
+                    for (int c = 0; c < 3; ++c) sum[c] += double(L[c]);
+                    ++accepted;
+                }
+                const double w = accepted ? 1.0 / accepted : 0.0;
+                const Vec3 d(float(sum[0] * w), float(sum[1] * w), float(sum[2] * w));
+                pr.images[int(Term::Direct)].set(x, y, d);
+                // A global net already holds the direct light; add exact direct light only where none did.
+                if (!hasGlobalNet[size_t(id)])
+                    pr.images[int(Term::Global)].set(x, y, pr.images[int(Term::Global)].at(x, y) + d);
+            }
+        });
+        for (uint64_t b : rowBad) pr.nonFinite += b;
+        pr.directSeconds = since(t0);
+    }
+    return pr;
+}
+
+}  // namespace rrf

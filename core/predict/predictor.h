@@ -1,0 +1,99 @@
+#pragma once
+/// CPU prediction (DESIGN.md "Real-time prediction", seed 3.5): every covered pixel of a G-buffer is
+/// evaluated with its object's networks, batched per object (NetworkModel::predict, Eigen GEMMs),
+/// giving the direct, indirect and global images.
+///
+/// What each term comes from depends on the networks an object has (network "targets"):
+///   separate  direct and indirect nets → direct, indirect, global = direct + indirect
+///   joint     one 6-output net         → outputs 0–2 direct, 3–5 indirect, global = sum
+///   global    one net                  → global only; direct and indirect are unavailable
+///   direct / indirect only             → that term only
+/// With the project option "prediction": {"direct": "exact"} the direct term is computed with shadow
+/// rays instead (next-event estimation with `direct_samples` light samples per pixel, the ground
+/// truth's own estimator) and the networks supply only indirect light, as in Ren et al. 2013.
+///
+/// Emitter pixels show the emitted radiance (direct term), as the ground truth does; background pixels
+/// are black. Pixels of objects without a network are black and counted; a term that some covered
+/// pixels cannot get is reported unavailable (the image still holds what could be predicted).
+/// Non-finite network outputs are replaced by 0 and counted, never written.
+///
+/// Deterministic: batches are fixed chunks of each object's pixels in ascending order, so the images
+/// are bit-identical for any thread count.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/predict/gbuffer.h"
+#include "core/util/image.h"
+#include "core/nn/model_set.h"
+#include "core/scene/scene.h"
+
+namespace rrf {
+
+/// The project's "prediction" section.
+struct PredictionSettings {
+    enum class Direct { Network, Exact };
+    Direct direct = Direct::Network;  ///< "direct": "network" | "exact"
+    int directSamples = 64;           ///< "direct_samples": NEE samples per pixel for exact direct light
+    uint64_t seed = 1;                ///< "seed": keys the exact direct light's samples
+
+    /// Reads the section (missing keys keep their defaults). Throws InputError naming `file` and the
+    /// JSON path for unknown keys or bad values.
+    static PredictionSettings fromJson(const nlohmann::json& j, const std::string& file);
+    nlohmann::json toJson() const;
+    const char* directName() const { return direct == Direct::Exact ? "exact" : "network"; }
+};
+
+/// The three prediction terms, in this order everywhere (images, reports, tables).
+enum class Term { Direct = 0, Indirect = 1, Global = 2 };
+constexpr int kTermCount = 3;
+const char* termName(Term t);
+
+struct Prediction {
+    Image images[kTermCount];            ///< direct, indirect, global (index with int(Term))
+    bool available[kTermCount] = {true, true, true};  ///< false: some covered pixel lacks this term
+    std::vector<std::string> unavailableWhy;  ///< one line per unavailable term
+    std::vector<int> objectsWithoutNetwork;    ///< visible objects with no network at all (shown black)
+    uint64_t pixelsWithoutNetwork = 0;
+    /// Non-finite values kept out of the images: network outputs (replaced by 0) and exact direct
+    /// light samples (dropped from their pixel's mean).
+    uint64_t nonFinite = 0;
+    uint64_t pixelsPredicted = 0;        ///< pixels evaluated by at least one network
+    double inferenceSeconds = 0.0;       ///< network evaluation
+    double directSeconds = 0.0;          ///< exact direct light (0 in network mode)
+
+    const Image& image(Term t) const { return images[int(t)]; }
+};
+
+class Predictor {
+public:
+    /// `scene` and `models` must outlive the predictor. Models are matched to objects by id; their
+    /// input count must equal the scene's record layout (loadModelSet already checks the layout).
+    /// Throws std::invalid_argument if a network's input or output count does not fit.
+    Predictor(const Scene& scene, const ModelSet& models, const PredictionSettings& settings = {});
+
+    /// G-buffer of the scene's camera at width × height with the movable light centred at `lightPos`.
+    GBuffer gbuffer(const Vec3& lightPos, int width, int height) const;
+    /// Evaluates the networks (and the exact direct light if chosen) over `gb`.
+    Prediction predict(const GBuffer& gb) const;
+
+    const PredictionSettings& settings() const { return settings_; }
+    const RecordLayout& layout() const { return layout_; }
+    const PathTracer& tracer() const { return tracer_; }
+    const Scene& scene() const { return scene_; }
+    /// One line per object: which networks it has ("separate", "joint", ..., or "none").
+    std::vector<std::string> describe() const;
+
+private:
+    const Scene& scene_;
+    const ModelSet& models_;
+    PredictionSettings settings_;
+    RecordLayout layout_;
+    Accel accel_;
+    PathTracer tracer_;  ///< NEE, one bounce: primary rays and exact direct light
+};
+
+}  // namespace rrf

@@ -1,0 +1,61 @@
+#pragma once
+/// Experiment runs stored in the project's "runs" section. A run is a record of one piece of work
+/// (a ground-truth render today; data generation, training and evaluation as those stages land):
+/// the settings it ran with, its loss history, its metrics, its timings and the files it produced.
+/// Sections this build does not know are kept verbatim, so a newer workbench's runs survive a
+/// round trip through an older one.
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace rrf {
+
+/// One point of a loss curve (training runs).
+struct LossPoint {
+    int epoch = 0;
+    double train = 0.0;
+    double validation = 0.0;  ///< NaN when there is no validation set
+    double seconds = 0.0;
+};
+
+/// The loss history of one network of a training run.
+struct LossCurve {
+    int objectId = -1;
+    std::string object;  ///< object name
+    std::string target;  ///< "direct", "indirect", "global" or "joint"
+    std::vector<LossPoint> points;
+    /// "<object> <target>", for legends and read-outs.
+    std::string label() const { return object + " " + target; }
+};
+
+struct Run {
+    std::string id;        ///< unique within the project, also the artifact directory name
+    std::string name;      ///< user-visible, editable
+    std::string kind;      ///< "render", later "generate", "train", "evaluate"
+    std::string created;   ///< local time, ISO 8601
+    nlohmann::json settings = nlohmann::json::object();  ///< snapshot of every setting that made the run
+    std::vector<LossPoint> loss;                          ///< aggregate curve; empty for non-training runs
+    std::vector<LossCurve> curves;                        ///< one per network (training runs)
+    nlohmann::json metrics = nlohmann::json::object();   ///< e.g. {"relative_error": 0.01, "spp": 64}
+    nlohmann::json timings = nlohmann::json::object();   ///< seconds per stage
+    std::vector<std::string> artifacts;                   ///< files, relative to the project directory
+    nlohmann::json extra = nlohmann::json::object();     ///< unknown keys, kept for round trips
+
+    nlohmann::json toJson() const;
+    /// Throws std::invalid_argument naming the problem when `j` is not a run object.
+    static Run fromJson(const nlohmann::json& j);
+};
+
+/// Reads doc["runs"]; malformed entries are skipped and described in `problems`.
+std::vector<Run> runsFromDoc(const nlohmann::json& doc, std::vector<std::string>* problems = nullptr);
+/// Writes `runs` to doc["runs"] (removes the key when there are none).
+void storeRunsInDoc(const std::vector<Run>& runs, nlohmann::json& doc);
+
+/// A new id "<kind>-<yyyymmdd-hhmmss>[-n]" not yet used in `runs`.
+std::string newRunId(const std::vector<Run>& runs, const std::string& kind);
+/// Current local time as "yyyy-mm-ddThh:mm:ss".
+std::string localTimestamp();
+
+}  // namespace rrf

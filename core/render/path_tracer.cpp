@@ -1,0 +1,206 @@
+#include "core/render/path_tracer.h"
+
+#include <algorithm>
+
+namespace rrf {
+
+PathTracer::PathTracer(const Scene& scene, const Accel& accel, Estimator estimator, int maxDepth)
+    : scene_(scene), accel_(accel), estimator_(estimator), maxDepth_(std::max(1, maxDepth)) {
+    effects_ = Effects::derive(scene);
+    for (const Material& m : scene.materials) brdfs_.emplace_back(m);
+    for (size_t i = 0; i < scene.lights.size(); ++i)
+        (scene.lights[i].type == Light::Type::Rect ? rectLights_ : pointLights_).push_back(int(i));
+    if (scene.movableLight >= 0 && scene.movableLight < int(scene.lights.size())) {
+        movable_ = scene.movableLight;
+        movableDefault_ = scene.lights[size_t(movable_)];
+    }
+}
+
+Light PathTracer::movableLightAt(const Vec3& p) const {
+    Light l = movableDefault_;
+    l.moveTo(p);
+    return l;
+}
+
+namespace {
+/// Ray–parallelogram intersection (corner + s·e1 + t·e2, s,t ∈ [0,1]) in (tmin, tmax).
+bool intersectParallelogram(const Ray& ray, const Light& l, float tmax, float& t) {
+    const Vec3 n = cross(l.edge1, l.edge2);
+    const float denom = dot(ray.dir, n);
+    if (denom == 0.f) return false;
+    t = dot(l.corner - ray.origin, n) / denom;
+    if (!(t > ray.tmin && t < tmax)) return false;
+    const Vec3 q = ray.origin + ray.dir * t - l.corner;
+    const float nn = dot(n, n);
+    const float a = dot(cross(q, l.edge2), n) / nn;
+    const float b = dot(cross(l.edge1, q), n) / nn;
+    return a >= 0.f && a <= 1.f && b >= 0.f && b <= 1.f;
+}
+}  // namespace
+
+bool PathTracer::intersect(const Ray& ray, const Light& movable, Hit& hit) const {
+    bool found = accel_.intersect(ray, hit);
+    float t;
+    if (movable_ >= 0 && movable.type == Light::Type::Rect &&
+        intersectParallelogram(ray, movable, found ? hit.t : ray.tmax, t)) {
+        hit = Hit{};
+        hit.t = t;
+        hit.p = ray.origin + ray.dir * t;
+        hit.ng = movable.normal();
+        hit.light = movable_;
+        found = true;
+    }
+    return found;
+}
+
+bool PathTracer::occluded(const Ray& ray, const Light& movable) const {
+    float t;
+    if (movable_ >= 0 && movable.type == Light::Type::Rect && intersectParallelogram(ray, movable, ray.tmax, t))
+        return true;
+    return accel_.occluded(ray);
+}
+
+
+int PathTracer::materialOf(const Hit& hit) const {
+    // Moving a light never changes its material, so the scene's copy answers for the movable one too.
+    return hit.object >= 0 ? scene_.objects[size_t(hit.object)].material : scene_.lights[size_t(hit.light)].material;
+}
+
+Radiance PathTracer::trace(const Ray& ray, const Light& movable, Rng& rng, TraceCounters& counters) const {
+    Hit hit;
+    ++counters.rays;
+    if (counters.rayLog) counters.rayLog->push_back(ray);
+    if (!intersect(ray, movable, hit)) return {};
+    return shade(hit, -ray.dir, movable, rng, counters);
+}
+
+Radiance PathTracer::shade(const Hit& hit, const Vec3& wo, const Light& movable, Rng& rng,
+                           TraceCounters& counters) const {
+    return effects_.glossy ? shadeImpl<true>(hit, wo, movable, rng, counters)
+                           : shadeImpl<false>(hit, wo, movable, rng, counters);
+}
+
+template <bool kGlossy>
+Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng, TraceCounters& counters) const {
+    Radiance L;
+    // Emission seen directly is always counted.
+    if (hit.light >= 0) L.direct += light(hit.light, movable).emittedTowards(wo);
+    const bool nee = estimator_ == Estimator::NEE;
+    Vec3 beta(1.f);
+    for (int depth = 0;; ++depth) {
+        const int mat = materialOf(hit);
+        if (mat < 0) break;
+        const Brdf& brdf = brdfs_[size_t(mat)];
+        const float side = dot(wo, hit.ng);
+        if (side == 0.f) break;  // exactly grazing: no reflection
+        const Vec3 n = side > 0.f ? hit.ng : -hit.ng;  // two-sided surfaces: shade the side we see
+        const Frame frame(n);
+        const Vec3 woLocal = frame.toLocal(wo);
+        Vec3& target = depth == 0 ? L.direct : L.indirect;
+        if (nee) target += beta * sampleDirect<kGlossy>(hit.p, hit.ng, n, frame, woLocal, brdf, movable, rng, counters);
+
+        // Bounce: always for the naive estimator's first reflection (that is its direct light), and
+        // beyond that only if the scene lets light travel between surfaces. NEE at depth d already
+        // accounts for paths of d+1 reflections; the naive estimator needs the bounce at depth d to
+        // see them, so for it the depth limit applies after the emission test below.
+        if (nee && depth + 1 >= maxDepth_) break;
+        if ((nee || depth >= 1) && !effects_.indirect) break;
+        const float uLobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        Vec3 wiLocal, weight;
+        bool ok;
+        if constexpr (kGlossy) {
+            ok = brdf.sample(woLocal, uLobe, u1, u2, wiLocal, weight);
+        } else {
+            (void)uLobe;
+            wiLocal = sampleCosineHemisphere(u1, u2);
+            weight = brdf.kd;
+            ok = wiLocal.z > 0.f;
+        }
+        if (!ok) break;
+        beta *= weight;
+        if (depth >= 1) {
+            // Russian roulette: survive with the path's throughput, bounded away from 0 so that the
+            // 1/q weight stays bounded (q never 0).
+            const float q = std::clamp(beta.maxComponent(), 0.05f, 1.f);
+            if (q < 1.f) {
+                if (rng.uniform() >= q) break;
+                beta = beta / q;
+            }
+        }
+        if (beta.isZero()) break;
+        const Vec3 wi = frame.toWorld(wiLocal);
+        Ray r;
+        r.origin = accel_.spawnOrigin(hit.p, hit.ng, wi);
+        r.dir = wi;
+        Hit next;
+        ++counters.rays;
+        if (counters.rayLog) counters.rayLog->push_back(r);
+        if (!intersect(r, movable, next)) break;
+        if (next.light >= 0 && !nee) {
+            Vec3& t = depth == 0 ? L.direct : L.indirect;
+            t += beta * light(next.light, movable).emittedTowards(-wi);
+        }
+        if (!nee && depth + 1 >= maxDepth_) break;
+        hit = next;
+        wo = -wi;
+    }
+    return L;
+}
+
+template <bool kGlossy>
+Vec3 PathTracer::sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, const Frame& frame, const Vec3& woLocal,
+                              const Brdf& brdf, const Light& movable, Rng& rng, TraceCounters& counters) const {
+    Vec3 sum(0.f);
+    auto evalBrdf = [&](const Vec3& wi) -> Vec3 {
+        if constexpr (kGlossy) return brdf.eval(woLocal, frame.toLocal(wi));
+        else return brdf.kd * kInvPi;
+    };
+    auto visible = [&](const Vec3& wi, const Vec3& target) {
+        Ray s;
+        s.origin = accel_.spawnOrigin(p, ng, wi);
+        const Vec3 d = target - s.origin;
+        const float dist = length(d);
+        // Stop short of the target so the light's own quad does not occlude its sample point.
+        s.tmax = dist * (1.f - 1e-4f) - accel_.offset(target);
+        if (!(s.tmax > 0.f)) return true;  // nothing fits between the point and the light
+        s.dir = d / dist;
+        ++counters.shadowRays;
+        if (counters.shadowRayLog) counters.shadowRayLog->push_back(s);
+        return !occluded(s, movable);
+    };
+    for (int li : rectLights_) {
+        const Light& l = light(li, movable);
+        const float u1 = rng.uniform(), u2 = rng.uniform();
+        const Vec3 x = l.corner + l.edge1 * u1 + l.edge2 * u2;
+        const Vec3 d = x - p;
+        const float dist2 = lengthSquared(d);
+        if (!(dist2 > 0.f)) continue;
+        const float dist = std::sqrt(dist2);
+        const Vec3 wi = d / dist;
+        const float cosTheta = dot(wi, n);
+        if (cosTheta <= 0.f) continue;
+        const Vec3 nl = cross(l.edge1, l.edge2);  // |nl| = area
+        float cosLArea = -dot(wi, nl);            // cos θ' · A
+        if (!l.oneSided) cosLArea = std::fabs(cosLArea);
+        if (cosLArea <= 0.f) continue;
+        const Vec3 f = evalBrdf(wi);
+        if (f.isZero() || !visible(wi, x)) continue;
+        // Area sampling with pdf 1/A turned into solid angle: Le f cosθ cosθ' A / d².
+        sum += l.radiance * f * (cosTheta * cosLArea / dist2);
+    }
+    for (int li : pointLights_) {
+        const Light& l = light(li, movable);
+        const Vec3 d = l.position - p;
+        const float dist2 = lengthSquared(d);
+        if (!(dist2 > 0.f)) continue;
+        const Vec3 wi = d / std::sqrt(dist2);
+        const float cosTheta = dot(wi, n);
+        if (cosTheta <= 0.f) continue;
+        const Vec3 f = evalBrdf(wi);
+        if (f.isZero() || !visible(wi, l.position)) continue;
+        sum += l.intensity * f * (cosTheta / dist2);
+    }
+    return sum;
+}
+
+}  // namespace rrf

@@ -1,0 +1,95 @@
+#pragma once
+/// Monte Carlo path tracer producing the two training targets separately:
+///
+///   direct   = emission seen directly + light reaching the eye after exactly one reflection
+///   indirect = light reaching the eye after two or more reflections
+///   global   = direct + indirect
+///
+/// Two estimators. `NEE`: direct light by light sampling only (uniform points on rect lights with
+/// pdf 1/area — not the seed report's 2/|v1×v2|, which is a triangle's pdf — and point lights),
+/// indirect light by BRDF sampling with Russian roulette; emission hit by BRDF rays is ignored
+/// because NEE already counted it. `Naive`: BRDF sampling only, emission counted when a ray hits an
+/// emitter (point lights are invisible to it). Both converge to the same image.
+
+#include <atomic>
+#include <cstdint>
+#include <vector>
+
+#include "core/scene/accel.h"
+#include "core/render/brdf.h"
+#include "core/scene/effects.h"
+#include "core/render/render_settings.h"
+#include "core/util/rng.h"
+
+namespace rrf {
+
+struct Radiance {
+    Vec3 direct{0.f};
+    Vec3 indirect{0.f};
+    Vec3 global() const { return direct + indirect; }
+};
+
+/// Per-thread ray statistics (summed by the caller).
+struct TraceCounters {
+    uint64_t rays = 0;        ///< closest-hit queries (primary and bounce rays)
+    uint64_t shadowRays = 0;  ///< occlusion queries
+    /// Optional logs of every query, so a benchmark can replay the tracer's own ray distribution
+    /// through plain Embree calls. Null (the default) costs one predictable branch per ray.
+    std::vector<Ray>* rayLog = nullptr;
+    std::vector<Ray>* shadowRayLog = nullptr;
+};
+
+class PathTracer {
+public:
+    /// `scene` and `accel` must outlive the tracer.
+    PathTracer(const Scene& scene, const Accel& accel, Estimator estimator, int maxDepth = 64);
+
+    /// Radiance arriving at ray.origin from direction −ray.dir, with the movable light where the
+    /// scene puts it.
+    Radiance trace(const Ray& ray, Rng& rng, TraceCounters& counters) const {
+        return trace(ray, movableDefault_, rng, counters);
+    }
+    /// Same, with the movable light replaced by `movable` (from movableLightAt()).
+    Radiance trace(const Ray& ray, const Light& movable, Rng& rng, TraceCounters& counters) const;
+    /// Radiance leaving the surface point `hit` towards `wo` (unit, pointing away from the surface).
+    /// Used by the data generator, which shoots each record's first ray once and estimates many paths.
+    Radiance shade(const Hit& hit, const Vec3& wo, Rng& rng, TraceCounters& counters) const {
+        return shade(hit, wo, movableDefault_, rng, counters);
+    }
+    Radiance shade(const Hit& hit, const Vec3& wo, const Light& movable, Rng& rng, TraceCounters& counters) const;
+
+    /// Closest hit against the static BVH and the movable light (if it is a rect light).
+    bool intersect(const Ray& ray, const Light& movable, Hit& hit) const;
+    bool intersect(const Ray& ray, Hit& hit) const { return intersect(ray, movableDefault_, hit); }
+    /// Copy of the movable light with its centre at `p` (shape and emission unchanged).
+    Light movableLightAt(const Vec3& p) const;
+
+    const Effects& effects() const { return effects_; }
+    Estimator estimator() const { return estimator_; }
+    const Accel& accel() const { return accel_; }
+    const Scene& scene() const { return scene_; }
+
+private:
+    template <bool kGlossy>
+    Radiance shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng, TraceCounters& counters) const;
+    template <bool kGlossy>
+    Vec3 sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, const Frame& frame, const Vec3& woLocal,
+                      const Brdf& brdf, const Light& movable, Rng& rng, TraceCounters& counters) const;
+    bool occluded(const Ray& ray, const Light& movable) const;
+    const Light& light(int index, const Light& movable) const {
+        return index == movable_ ? movable : scene_.lights[size_t(index)];
+    }
+    int materialOf(const Hit& hit) const;
+
+    const Scene& scene_;
+    const Accel& accel_;
+    Estimator estimator_;
+    int maxDepth_;
+    Effects effects_;
+    std::vector<Brdf> brdfs_;
+    std::vector<int> rectLights_, pointLights_;
+    int movable_ = -1;       ///< index of the movable light, -1 if the scene has none
+    Light movableDefault_;   ///< the movable light where the scene puts it
+};
+
+}  // namespace rrf

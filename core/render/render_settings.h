@@ -1,0 +1,31 @@
+#pragma once
+/// Ground-truth render settings (the project's "render" section) and the estimator choice shared by
+/// the path tracer, the data generator and the references.
+
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace rrf {
+
+enum class Estimator { NEE, Naive };
+
+/// Ground-truth render settings ("render" section).
+struct RenderSettings {
+    int spp = 64;              ///< samples per pixel
+    int width = 0, height = 0; ///< 0 = the scene camera's size
+    Estimator estimator = Estimator::NEE;
+    uint64_t seed = 1;
+    int maxDepth = 64;         ///< hard bound on path length (Russian roulette ends paths before)
+    float exposure = 0.f;      ///< stops, for PNG output
+};
+
+/// The "render" section for `s` (every key written).
+nlohmann::json renderSettingsToJson(const RenderSettings& s);
+/// Parses a "render" section (missing keys keep their defaults). Throws InputError naming `file`
+/// and the JSON path (`where` is the section's own path) for unknown keys or bad values.
+RenderSettings parseRenderSettings(const nlohmann::json& section, const std::string& file,
+                                   const std::string& where = "/render");
+
+}  // namespace rrf

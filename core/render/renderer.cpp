@@ -1,0 +1,173 @@
+#include "core/render/renderer.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+
+namespace rrf {
+
+RenderOptions renderOptionsFor(const Scene& scene, const RenderSettings& s, int passes) {
+    RenderOptions o;
+    o.width = s.width > 0 ? s.width : scene.camera.width;
+    o.height = s.height > 0 ? s.height : scene.camera.height;
+    o.spp = std::max(1, s.spp);
+    o.seed = s.seed;
+    o.maxDepth = s.maxDepth;
+    o.estimator = s.estimator;
+    o.samplesPerPass = std::max(1, o.spp / std::max(1, passes));
+    return o;
+}
+
+Renderer::Renderer(const Scene& scene, const Accel& accel, const RenderOptions& options)
+    : scene_(scene),
+      options_(options),
+      tracer_(scene, accel, options.estimator, options.maxDepth),
+      camera_(scene.camera, options.width, options.height),
+      pixels_(size_t(options.width) * size_t(options.height)) {}
+
+void Renderer::run(const std::function<void(int)>& onPass) {
+    while (sppDone_ < options_.spp && !cancelled_) {
+        if (!runPass()) break;
+        if (onPass) onPass(sppDone_);
+    }
+}
+
+bool Renderer::runPass() {
+    const int samples = std::min(std::max(1, options_.samplesPerPass), options_.spp - sppDone_);
+    if (samples <= 0) return true;
+    const auto start = std::chrono::steady_clock::now();
+    struct Local {
+        TraceCounters counters;
+        uint64_t nonFinite = 0;
+    };
+    tbb::combinable<Local> locals;
+    const int ts = std::max(1, options_.tileSize);
+    pass_.assign(pixels_.size(), Pixel{});
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, options_.height, ts, 0, options_.width, ts),
+                      [&](const tbb::blocked_range2d<int>& r) {
+                          if (cancelled_) return;
+                          Local& l = locals.local();
+                          renderTile(r.cols().begin(), r.rows().begin(), r.cols().end(), r.rows().end(), samples,
+                                     l.counters, l.nonFinite);
+                      });
+    // A cancelled pass is merged too: each pixel carries its own sample count, so the tiles that did
+    // finish stay unbiased.
+    mergePass();
+    Local total;
+    locals.combine_each([&](const Local& l) {
+        total.counters.rays += l.counters.rays;
+        total.counters.shadowRays += l.counters.shadowRays;
+        total.nonFinite += l.nonFinite;
+    });
+    rays_ += total.counters.rays;
+    shadowRays_ += total.counters.shadowRays;
+    nonFinite_ += total.nonFinite;
+    seconds_ = seconds_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (cancelled_) return false;
+    sppDone_ += samples;
+    ++passes_;
+    return true;
+}
+
+void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite) {
+    uint64_t accepted = 0;
+    for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+            const uint64_t index = uint64_t(y) * uint64_t(options_.width) + uint64_t(x);
+            // pixels_[index].next only changes in mergePass(), on this thread after the pass.
+            const uint32_t first = pixels_[index].next;
+            Pixel& px = pass_[index];
+            for (int s = 0; s < samples; ++s) {
+                Rng rng(options_.seed, index, first + px.next++);
+                const float jx = rng.uniform(), jy = rng.uniform();
+                const Radiance L = tracer_.trace(camera_.generate(x, y, jx, jy), rng, counters);
+                if (!L.direct.isFinite() || !L.indirect.isFinite()) {
+                    ++nonFinite;
+                    continue;
+                }
+                const Vec3 g = L.global();
+                for (int c = 0; c < 3; ++c) {
+                    px.direct[c] += L.direct[c];
+                    px.indirect[c] += L.indirect[c];
+                    px.sq[c] += double(g[c]) * double(g[c]);
+                }
+                ++px.accepted;
+                ++accepted;
+            }
+        }
+    }
+    samples_ += accepted;
+}
+
+void Renderer::mergePass() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (size_t i = 0; i < pixels_.size(); ++i) {
+        Pixel& dst = pixels_[i];
+        const Pixel& src = pass_[i];
+        for (int c = 0; c < 3; ++c) {
+            dst.direct[c] += src.direct[c];
+            dst.indirect[c] += src.indirect[c];
+            dst.sq[c] += src.sq[c];
+        }
+        dst.accepted += src.accepted;
+        dst.next += src.next;
+    }
+}
+
+double Renderer::progress() const {
+    return options_.spp > 0 ? std::min(1.0, double(sppDone_) / double(options_.spp)) : 1.0;
+}
+
+RenderSnapshot Renderer::snapshot() const {
+    RenderSnapshot s;
+    const int w = options_.width, h = options_.height;
+    s.direct = Image(w, h);
+    s.indirect = Image(w, h);
+    s.global = Image(w, h);
+    s.variance = Image(w, h);
+    double sumMean = 0, sumVar = 0;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (size_t i = 0; i < pixels_.size(); ++i) {
+            const Pixel& p = pixels_[i];
+            if (p.accepted == 0) continue;
+            const double inv = 1.0 / p.accepted;
+            for (int c = 0; c < 3; ++c) {
+                const double d = p.direct[c] * inv, ind = p.indirect[c] * inv, g = d + ind;
+                s.direct.data[3 * i + size_t(c)] = float(d);
+                s.indirect.data[3 * i + size_t(c)] = float(ind);
+                // Sum the stored floats so that global == direct + indirect holds exactly in the images.
+                s.global.data[3 * i + size_t(c)] = float(d) + float(ind);
+                // Variance of the mean: (E[x²] − E[x]²) / (n − 1), clamped against rounding.
+                const double var = p.accepted > 1 ? std::max(0.0, p.sq[c] * inv - g * g) / (p.accepted - 1) : 0.0;
+                s.variance.data[3 * i + size_t(c)] = float(var);
+                sumMean += g;
+                sumVar += var;
+            }
+        }
+    }
+    s.passes = passes_;
+    s.samples = samples_;
+    s.nonFinite = nonFinite_;
+    s.sppCompleted = sppDone_;
+    s.seconds = seconds_;
+    // Pixel errors are independent, so the variance of the image mean is Σvar / (3wh)².
+    const double count = 3.0 * w * h;
+    s.relativeError = sumMean > 0 ? std::sqrt(sumVar) / count / (sumMean / count) : 0.0;
+    return s;
+}
+
+RenderStats Renderer::stats() const {
+    RenderStats s;
+    s.samples = samples_;
+    s.rays = rays_;
+    s.shadowRays = shadowRays_;
+    s.nonFinite = nonFinite_;
+    s.seconds = seconds_;
+    return s;
+}
+
+}  // namespace rrf

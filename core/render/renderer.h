@@ -1,0 +1,110 @@
+#pragma once
+/// Progressive, tiled, multi-threaded (oneTBB) ground-truth renderer.
+///
+/// Each pass adds `samplesPerPass` samples to every pixel. Sums are kept in double per pixel, together
+/// with the sum of squares of the global radiance (per-pixel variance of the mean). Sample k of pixel
+/// i always uses Rng(seed, i, k), so the image is bit-identical for any thread count and any pass
+/// split. A sample whose direct or indirect radiance is NaN/Inf is dropped and counted; the pixel
+/// keeps its own sample count so the mean stays unbiased.
+///
+/// Thread safety: run()/runPass() on one worker thread; snapshot(), cancel(), progress() and stats()
+/// may be called from any other thread at any time (the UI thread polls them); snapshot() shows the
+/// passes completed so far and does not block for the duration of a pass.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "core/scene/camera_rays.h"
+#include "core/util/image.h"
+#include "core/render/path_tracer.h"
+
+namespace rrf {
+
+struct RenderOptions {
+    int width = 256, height = 256;
+    int spp = 64;
+    Estimator estimator = Estimator::NEE;
+    uint64_t seed = 1;
+    int maxDepth = 64;
+    int samplesPerPass = 1;
+    int tileSize = 16;
+};
+
+/// Options for rendering `scene` with a project's render settings: a size of 0 means the camera's,
+/// and the spp are split into about `passes` passes (each pass refreshes snapshots and progress).
+RenderOptions renderOptionsFor(const Scene& scene, const RenderSettings& settings, int passes);
+
+/// A consistent copy of the current estimate.
+struct RenderSnapshot {
+    Image direct, indirect, global;
+    Image variance;            ///< per-pixel variance of the global mean (per channel)
+    int passes = 0;
+    uint64_t samples = 0;      ///< samples accepted so far (all pixels)
+    uint64_t nonFinite = 0;    ///< samples dropped because they were NaN/Inf
+    int sppCompleted = 0;      ///< samples per pixel of completed passes
+    double seconds = 0.0;      ///< render time so far
+    /// Relative standard error of the image mean of the global image, a convergence estimate.
+    double relativeError = 0.0;
+};
+
+struct RenderStats {
+    uint64_t samples = 0, rays = 0, shadowRays = 0, nonFinite = 0;
+    double seconds = 0.0;
+    double samplesPerSecond() const { return seconds > 0 ? double(samples) / seconds : 0.0; }
+    double raysPerSecond() const { return seconds > 0 ? double(rays + shadowRays) / seconds : 0.0; }
+};
+
+class Renderer {
+public:
+    /// `scene` and `accel` must outlive the renderer.
+    Renderer(const Scene& scene, const Accel& accel, const RenderOptions& options);
+
+    /// Runs passes until options.spp samples per pixel are done or cancel() is called.
+    /// `onPass` (optional) is called on the calling thread after each pass with the spp done so far.
+    void run(const std::function<void(int sppDone)>& onPass = {});
+    /// One pass of `samplesPerPass` samples per pixel; returns false if it was cancelled midway.
+    bool runPass();
+
+    void cancel() { cancelled_ = true; }
+    bool cancelled() const { return cancelled_; }
+    /// Fraction of the requested samples done, in [0,1].
+    double progress() const;
+    RenderSnapshot snapshot() const;
+    RenderStats stats() const;
+
+    const PathTracer& tracer() const { return tracer_; }
+    const RenderOptions& options() const { return options_; }
+
+private:
+    struct Pixel {
+        double direct[3] = {0, 0, 0};
+        double indirect[3] = {0, 0, 0};
+        double sq[3] = {0, 0, 0};  ///< sum of squares of global radiance
+        uint32_t accepted = 0;     ///< finite samples accumulated
+        uint32_t next = 0;         ///< next sample index (counts dropped samples too)
+    };
+    void renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite);
+    void mergePass();
+
+    const Scene& scene_;
+    RenderOptions options_;
+    PathTracer tracer_;
+    CameraRays camera_;
+    std::vector<Pixel> pixels_;  ///< committed sums: what snapshot() shows
+    /// Sums of the pass in progress. A pass writes only here (each pixel from one thread, without a
+    /// lock) and is merged into pixels_ under the mutex at its end, so snapshot() never waits for a
+    /// pass — only for the sub-millisecond merge.
+    std::vector<Pixel> pass_;
+    mutable std::mutex mutex_;  ///< guards pixels_ between mergePass() and snapshot()
+    std::atomic<bool> cancelled_{false};
+    std::atomic<int> passes_{0};
+    std::atomic<int> sppDone_{0};
+    std::atomic<uint64_t> samples_{0}, rays_{0}, shadowRays_{0}, nonFinite_{0};
+    std::atomic<double> seconds_{0.0};
+};
+
+}  // namespace rrf

@@ -1,0 +1,163 @@
+#include "core/scene/accel.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace rrf {
+
+namespace {
+void embreeError(void*, RTCError code, const char* str) {
+    // Errors are turned into exceptions where they are detected (rtcGetDeviceError after builds);
+    // this callback only exists so Embree does not print to stderr behind the user's back.
+    (void)code;
+    (void)str;
+}
+
+void check(RTCDevice device, const char* what) {
+    const RTCError e = rtcGetDeviceError(device);
+    if (e != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree error during ") + what + " (code " + std::to_string(int(e)) + ")");
+}
+}  // namespace
+
+Accel::Accel(const Scene& scene) {
+    sceneScale_ = scene.scale();
+    device_ = rtcNewDevice("threads=0");
+    if (!device_) throw std::runtime_error("Embree: cannot create device (code " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    rtcSetDeviceErrorFunction(device_, embreeError, nullptr);
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+
+    for (const Object& o : scene.objects) {
+        GeomInfo info;
+        info.object = o.id;
+        if (o.kind == Object::Kind::Sphere) addSphere(o.center, o.radius, info);
+        else addMesh(o.positions, o.indices, o.kind == Object::Kind::Quads, std::move(info));
+    }
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& l = scene.lights[i];
+        // The movable light is intersected analytically by the path tracer, so that it can sit at a
+        // different place for every path (training records) without rebuilding the BVH.
+        if (l.type != Light::Type::Rect || int(i) == scene.movableLight) continue;
+        GeomInfo info;
+        info.light = int(i);
+        addMesh({l.corner, l.corner + l.edge1, l.corner + l.edge1 + l.edge2, l.corner + l.edge2}, {0, 1, 2, 3},
+                true, std::move(info));
+    }
+    rtcCommitScene(scene_);
+    check(device_, "BVH build");
+}
+
+Accel::~Accel() {
+    if (scene_) rtcReleaseScene(scene_);
+    if (device_) rtcReleaseDevice(device_);
+}
+
+void Accel::addMesh(const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices, bool quads,
+                    GeomInfo info) {
+    const unsigned nv = quads ? 4 : 3;
+    const size_t prims = indices.size() / nv;
+    RTCGeometry g = rtcNewGeometry(device_, quads ? RTC_GEOMETRY_TYPE_QUAD : RTC_GEOMETRY_TYPE_TRIANGLE);
+    // rtcSetNewGeometryBuffer pads the allocation so Embree's 16-byte SIMD loads stay in bounds.
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), positions.size()));
+    for (size_t i = 0; i < positions.size(); ++i) {
+        v[3 * i] = positions[i].x;
+        v[3 * i + 1] = positions[i].y;
+        v[3 * i + 2] = positions[i].z;
+    }
+    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, quads ? RTC_FORMAT_UINT4 : RTC_FORMAT_UINT3, nv * sizeof(uint32_t), prims));
+    std::copy(indices.begin(), indices.begin() + long(prims * nv), idx);
+    info.normals.resize(prims);
+    for (size_t p = 0; p < prims; ++p) {
+        const uint32_t* q = &indices[p * nv];
+        Vec3 n = quads ? cross(positions[q[2]] - positions[q[0]], positions[q[3]] - positions[q[1]])
+                       : cross(positions[q[1]] - positions[q[0]], positions[q[2]] - positions[q[0]]);
+        const float len = length(n);
+        info.normals[p] = len > 0.f ? n / len : Vec3(0, 0, 1);
+    }
+    rtcCommitGeometry(g);
+    const unsigned id = rtcAttachGeometry(scene_, g);
+    rtcReleaseGeometry(g);
+    check(device_, "geometry creation");
+    if (id != geoms_.size()) throw std::runtime_error("Embree returned an unexpected geometry id");
+    geoms_.push_back(std::move(info));
+}
+
+void Accel::addSphere(const Vec3& c, float r, GeomInfo info) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+    v[0] = c.x;
+    v[1] = c.y;
+    v[2] = c.z;
+    v[3] = r;
+    rtcCommitGeometry(g);
+    const unsigned id = rtcAttachGeometry(scene_, g);
+    rtcReleaseGeometry(g);
+    check(device_, "sphere creation");
+    if (id != geoms_.size()) throw std::runtime_error("Embree returned an unexpected geometry id");
+    info.sphere = true;
+    info.center = c;
+    geoms_.push_back(std::move(info));
+}
+
+bool Accel::intersect(const Ray& ray, Hit& hit) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = ray.origin.x;
+    rh.ray.org_y = ray.origin.y;
+    rh.ray.org_z = ray.origin.z;
+    rh.ray.dir_x = ray.dir.x;
+    rh.ray.dir_y = ray.dir.y;
+    rh.ray.dir_z = ray.dir.z;
+    rh.ray.tnear = ray.tmin;
+    rh.ray.tfar = ray.tmax;
+    rh.ray.time = 0.f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    const GeomInfo& g = geoms_[rh.hit.geomID];
+    hit.t = rh.ray.tfar;
+    hit.p = ray.origin + ray.dir * rh.ray.tfar;
+    hit.object = g.object;
+    hit.light = g.light;
+    hit.prim = rh.hit.primID;
+    if (g.sphere) {
+        // Embree's Ng for spheres is (p − c) unnormalised; normalise our own for precision.
+        const Vec3 n(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+        const float len = length(n);
+        hit.ng = len > 0.f ? n / len : normalize(hit.p - g.center);
+    } else {
+        hit.ng = g.normals[rh.hit.primID];
+    }
+    return true;
+}
+
+bool Accel::occluded(const Ray& ray) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = ray.origin.x;
+    r.org_y = ray.origin.y;
+    r.org_z = ray.origin.z;
+    r.dir_x = ray.dir.x;
+    r.dir_y = ray.dir.y;
+    r.dir_z = ray.dir.z;
+    r.tnear = ray.tmin;
+    r.tfar = ray.tmax;
+    r.time = 0.f;
+    r.mask = 0xFFFFFFFFu;
+    r.id = 0;
+    r.flags = 0;
+    rtcOccluded1(scene_, &ctx, &r);
+    return r.tfar < 0.f;  // Embree sets tfar = -inf on a hit
+}
+
+}  // namespace rrf

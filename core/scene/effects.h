@@ -1,0 +1,32 @@
+#pragma once
+/// The light-transport effects a scene calls for, derived from its materials, lights and geometry.
+/// The path tracer runs only the code paths listed here (no Phong evaluation in a Lambert scene, no
+/// bounce rays when no surface can light another), and the list is printed and stored with every
+/// output so a user sees what was simulated.
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/scene/scene.h"
+
+namespace rrf {
+
+struct Effects {
+    bool diffuse = false;            ///< some material has kd > 0
+    bool glossy = false;             ///< some Phong material has ks > 0
+    bool rectLights = false;         ///< area lights (sampled by NEE, visible to rays)
+    bool pointLights = false;        ///< point lights (NEE only: no ray can hit them)
+    bool reflectiveEmitters = false; ///< an emitter surface that also reflects (furnace scenes)
+    bool indirect = false;           ///< light can bounce between surfaces (≥ 2 reflecting surfaces, or a concave one)
+    float maxAlbedo = 0.f;           ///< largest kd+ks component: how long Russian roulette keeps paths
+    double maxPhongExponent = 0.0;
+
+    static Effects derive(const Scene& scene);
+    /// One human-readable line per effect, e.g. "glossy reflection (Phong, exponent up to 100)".
+    std::vector<std::string> describe() const;
+    nlohmann::json toJson() const;
+};
+
+}  // namespace rrf

@@ -1,0 +1,216 @@
+#include "core/util/json_reader.h"
+
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/util/atomic_file.h"
+
+namespace rrf {
+
+using nlohmann::json;
+
+JsonReader::JsonReader(const json& value, std::string file, std::string pointer)
+    : value_(&value), file_(std::move(file)), pointer_(std::move(pointer)) {}
+
+void JsonReader::fail(const std::string& what) const { throw InputError(file_, pointer_, what); }
+
+void JsonReader::expected(const std::string& what) const {
+    fail("expected " + what + ", got " + describe(*value_));
+}
+
+std::string JsonReader::describe(const json& v) {
+    switch (v.type()) {
+        case json::value_t::null: return "null";
+        case json::value_t::boolean: return "boolean";
+        case json::value_t::string: return "string";
+        case json::value_t::number_integer:
+        case json::value_t::number_unsigned:
+        case json::value_t::number_float: return "number";
+        case json::value_t::object: return "object";
+        case json::value_t::array:
+            return "array of " + std::to_string(v.size()) + (v.size() == 1 ? " element" : " elements");
+        default: return "binary data";
+    }
+}
+
+std::string JsonReader::child(const std::string& base, const std::string& key) {
+    std::string escaped;
+    for (char c : key) {
+        if (c == '~') escaped += "~0";
+        else if (c == '/') escaped += "~1";
+        else escaped += c;
+    }
+    return base + "/" + escaped;
+}
+
+std::string JsonReader::child(const std::string& base, size_t index) {
+    return base + "/" + std::to_string(index);
+}
+
+void JsonReader::requireObject() const {
+    if (!value_->is_object()) expected("object");
+}
+
+size_t JsonReader::requireArray() const {
+    if (!value_->is_array()) expected("array");
+    return value_->size();
+}
+
+bool JsonReader::has(const std::string& key) const {
+    return value_->is_object() && value_->contains(key);
+}
+
+JsonReader JsonReader::at(const std::string& key) const {
+    requireObject();
+    const auto it = value_->find(key);
+    if (it == value_->end()) fail("missing required field '" + key + "'");
+    return JsonReader(*it, file_, child(pointer_, key));
+}
+
+std::optional<JsonReader> JsonReader::find(const std::string& key) const {
+    requireObject();
+    const auto it = value_->find(key);
+    if (it == value_->end()) return std::nullopt;
+    return JsonReader(*it, file_, child(pointer_, key));
+}
+
+JsonReader JsonReader::at(size_t index) const {
+    const size_t n = requireArray();
+    if (index >= n) fail("index " + std::to_string(index) + " out of range (size " + std::to_string(n) + ")");
+    return JsonReader((*value_)[index], file_, child(pointer_, index));
+}
+
+void JsonReader::checkKeys(std::initializer_list<const char*> allowed) const {
+    requireObject();
+    for (auto it = value_->begin(); it != value_->end(); ++it) {
+        bool known = false;
+        for (const char* a : allowed) known = known || it.key() == a;
+        if (known) continue;
+        std::string list;
+        for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        throw InputError(file_, child(pointer_, it.key()),
+                         "unknown key '" + it.key() + "' (allowed here: " + list + ")");
+    }
+}
+
+double JsonReader::number() const {
+    if (!value_->is_number()) expected("number");
+    const double v = value_->get<double>();
+    // The parser turns out-of-range literals such as 1e999 into infinities.
+    if (!std::isfinite(v)) fail("expected a finite number");
+    return v;
+}
+
+float JsonReader::floatValue() const {
+    const double v = number();
+    if (std::fabs(v) > double(std::numeric_limits<float>::max()))
+        fail("number " + formatNumber(v) + " is too large for single precision");
+    return float(v);
+}
+
+int64_t JsonReader::integer(int64_t lo, int64_t hi) const {
+    if (!value_->is_number()) expected("integer");
+    if (value_->is_number_float()) {
+        const double d = value_->get<double>();
+        if (!std::isfinite(d) || d != std::floor(d)) expected("integer");
+        if (d >= double(lo) && d <= double(hi)) return int64_t(d);
+    } else if (value_->is_number_unsigned()) {
+        const uint64_t u = value_->get<uint64_t>();
+        if (u <= uint64_t(std::numeric_limits<int64_t>::max()) && int64_t(u) >= lo && int64_t(u) <= hi)
+            return int64_t(u);
+    } else {
+        const int64_t i = value_->get<int64_t>();
+        if (i >= lo && i <= hi) return i;
+    }
+    fail("integer " + value_->dump() + " out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+}
+
+uint64_t JsonReader::unsignedInteger() const {
+    if (value_->is_number_unsigned()) return value_->get<uint64_t>();
+    if (value_->is_number_integer() && value_->get<int64_t>() >= 0) return uint64_t(value_->get<int64_t>());
+    expected("non-negative integer");
+}
+
+bool JsonReader::boolean() const {
+    if (!value_->is_boolean()) expected("true or false");
+    return value_->get<bool>();
+}
+
+std::string JsonReader::string() const {
+    if (!value_->is_string()) expected("string");
+    return value_->get<std::string>();
+}
+
+Vec3 JsonReader::vec3() const {
+    if (!value_->is_array() || value_->size() != 3) expected("array of 3 numbers");
+    Vec3 v;
+    for (size_t i = 0; i < 3; ++i) v[int(i)] = at(i).floatValue();
+    return v;
+}
+
+float JsonReader::floatOr(const std::string& key, float fallback) const {
+    const auto r = find(key);
+    return r ? r->floatValue() : fallback;
+}
+
+int64_t JsonReader::integerOr(const std::string& key, int64_t fallback, int64_t lo, int64_t hi) const {
+    const auto r = find(key);
+    return r ? r->integer(lo, hi) : fallback;
+}
+
+bool JsonReader::booleanOr(const std::string& key, bool fallback) const {
+    const auto r = find(key);
+    return r ? r->boolean() : fallback;
+}
+
+std::string JsonReader::stringOr(const std::string& key, const std::string& fallback) const {
+    const auto r = find(key);
+    return r ? r->string() : fallback;
+}
+
+Vec3 JsonReader::vec3Or(const std::string& key, const Vec3& fallback) const {
+    const auto r = find(key);
+    return r ? r->vec3() : fallback;
+}
+
+std::string formatNumber(double v) {
+    std::ostringstream out;
+    out << std::setprecision(7) << v;
+    return out.str();
+}
+
+json parseJsonText(const std::string& text, const std::string& file) {
+    try {
+        return json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    } catch (const json::parse_error& e) {
+        // nlohmann reports a 1-based byte count; turn it into line and column for editors.
+        const size_t byte = std::min(e.byte, text.size() + 1);
+        size_t line = 1, column = 1;
+        for (size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
+            if (text[i] == '\n') { ++line; column = 1; }
+            else ++column;
+        }
+        std::string detail = e.what();
+        // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 3, column 5: " prefix.
+        const size_t colon = detail.find(": ");
+        if (colon != std::string::npos) detail = detail.substr(colon + 2);
+        throw InputError(file, "",
+                         "malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
+                             " (byte " + std::to_string(e.byte) + "): " + detail);
+    }
+}
+
+json readJsonFile(const std::string& path) {
+    std::string text;
+    try {
+        text = readFile(path);
+    } catch (const std::runtime_error& e) {
+        throw InputError(path, "", std::string("cannot read file (") + e.what() + ")");
+    }
+    return parseJsonText(text, path);
+}
+
+}  // namespace rrf
