@@ -1,4 +1,4 @@
-// The rendering hard cases of DESIGN.md: Phong exponents up to 1e6, grazing incidence, points on or
+// The rendering hard cases of docs/design.md §7: Phong exponents up to 1e6, grazing incidence, points on or
 // next to the light's plane, tiny and huge lights, scene scales 1e-3 … 1e4, degenerate geometry and
 // rays exactly along edges. Everything must stay finite, and where a closed form exists, right.
 

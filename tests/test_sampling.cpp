@@ -96,7 +96,7 @@ TEST(Sampling, CosineHemisphereChiSquare) {
 }
 
 TEST(Sampling, PhongLobeChiSquare) {
-    // Exponents from broad to the narrow lobes of DESIGN.md's hard cases.
+    // Exponents from broad to the narrow lobes of the hard cases (docs/design.md §7).
     uint64_t seed = 100;
     for (const float n : {1.f, 10.f, 100.f, 1e4f}) {
         const double p = lobeChiSquare([n](float u, float v) { return samplePhongLobe(u, v, n); },

@@ -1,5 +1,5 @@
 #pragma once
-/// GLSL prediction (seed 3.5): rasterises the scene into a G-buffer and evaluates every object's
+/// GLSL prediction (docs/design.md §13): rasterises the scene into a G-buffer and evaluates every object's
 /// radiance regression networks in a fragment shader, producing direct, indirect and global images.
 ///
 /// Two passes per frame, both into float framebuffer objects of the camera's size:

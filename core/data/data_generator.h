@@ -1,5 +1,5 @@
 #pragma once
-/// Training-data generator (DESIGN.md "Data generation", seed report §3.3).
+/// Training-data generator (docs/design.md §8).
 ///
 /// For every kept viewpoint of the jitter grid, N_dir uniformly random directions are traced; the
 /// first hit of each makes one record: inputs (hit point, view direction, light position, normal,

@@ -1,5 +1,5 @@
 #pragma once
-/// Jittered viewpoint grid of the data generator (seed report §3.3): the scene bounds split into
+/// Jittered viewpoint grid of the data generator (docs/design.md §8): the scene bounds split into
 /// Nx × Ny × Nz cells with one uniformly random viewpoint per cell, so that every region of the scene
 /// is seen from nearby — 200 unstructured viewpoints left corners of the scene without data.
 ///

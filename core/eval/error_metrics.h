@@ -1,5 +1,5 @@
 #pragma once
-/// Error of a prediction against a reference image (DESIGN.md "Error maps").
+/// Error of a prediction against a reference image (docs/design.md §14).
 ///
 /// Conventions (chosen once, used by every report, table and sweep):
 ///  - Errors are per CHANNEL, averaged over R, G and B (not on luminance): a colour shift the
@@ -26,7 +26,7 @@
 
 namespace rrf {
 
-/// Denominator offset of the relative error, as in Ren et al. and DESIGN.md.
+/// Denominator offset of the relative error, as in Ren et al. (docs/design.md §14).
 constexpr double kRelativeEpsilon = 0.01;
 
 enum class ErrorMapKind { Absolute, Relative, Squared };

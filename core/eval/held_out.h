@@ -1,5 +1,5 @@
 #pragma once
-/// Held-out light positions (DESIGN.md "Held-out lights"): evaluation at K light positions drawn
+/// Held-out light positions (docs/design.md §15): evaluation at K light positions drawn
 /// from the light region on a random stream that the data generator never uses, and the spread
 /// (mean, min, max) of the errors across them — the generalisation a user cares about.
 

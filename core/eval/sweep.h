@@ -1,5 +1,5 @@
 #pragma once
-/// What accuracy costs in time (DESIGN.md, issue 6): a series of runs that varies one setting and
+/// What accuracy costs in time (docs/design.md §15): a series of runs that varies one setting and
 /// records, per setting, the wall time of each stage and the error per object and overall against a
 /// path-traced reference. The CLI writes the rows as CSV and JSON; the GUI's Cost panel reads the same.
 ///

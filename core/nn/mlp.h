@@ -1,5 +1,5 @@
 #pragma once
-/// Multi-layer perceptron used as a radiance regression function (Ren et al. 2013, seed 3.4).
+/// Multi-layer perceptron used as a radiance regression function (Ren et al. 2013; docs/design.md §10).
 ///
 /// A network is `inputs → hidden[0] → … → hidden[k-1] → outputs`: affine layers, tanh (or ReLU)
 /// after every hidden layer and a linear output layer. All parameters live in ONE flat vector so that

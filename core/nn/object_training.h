@@ -1,5 +1,5 @@
 #pragma once
-/// Per-object training (seed 3.4): one network per scene object — or per object and target — fitted
+/// Per-object training (docs/design.md §10): one network per scene object — or per object and target — fitted
 /// from in-memory samples, objects in parallel.
 ///
 /// The dataset reader fills one ObjectSamples per object and calls trainObjects(); the result holds a

@@ -1,5 +1,5 @@
 #pragma once
-/// CPU G-buffer for network prediction (DESIGN.md "Real-time prediction", seed 3.5).
+/// CPU G-buffer for network prediction (docs/design.md §13).
 ///
 /// One primary ray through the CENTRE of every pixel (no jitter: a prediction is a function of the
 /// pixel, not a Monte Carlo estimate) gives, per pixel, exactly the network input record of the data

@@ -1,5 +1,5 @@
 #pragma once
-/// CPU prediction (DESIGN.md "Real-time prediction", seed 3.5): every covered pixel of a G-buffer is
+/// CPU prediction (docs/design.md §13): every covered pixel of a G-buffer is
 /// evaluated with its object's networks, batched per object (NetworkModel::predict, Eigen GEMMs),
 /// giving the direct, indirect and global images.
 ///

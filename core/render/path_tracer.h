@@ -5,11 +5,12 @@
 ///   indirect = light reaching the eye after two or more reflections
 ///   global   = direct + indirect
 ///
-/// Two estimators. `NEE`: direct light by light sampling only (uniform points on rect lights with
-/// pdf 1/area — not the seed report's 2/|v1×v2|, which is a triangle's pdf — and point lights),
-/// indirect light by BRDF sampling with Russian roulette; emission hit by BRDF rays is ignored
-/// because NEE already counted it. `Naive`: BRDF sampling only, emission counted when a ray hits an
-/// emitter (point lights are invisible to it). Both converge to the same image.
+/// Two estimators (docs/design.md §4–§5). `NEE`: direct light by light sampling only (uniform
+/// points on rect lights with pdf 1/area — not the seed report's 2/|v1×v2|, which is a triangle's
+/// pdf — and point lights), indirect light by BRDF sampling with Russian roulette; emission hit by
+/// BRDF rays is ignored because NEE already counted it. `Naive`: BRDF sampling only, emission
+/// counted when a ray hits an emitter (point lights are invisible to it). Both converge to the same
+/// image.
 
 #include <atomic>
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
 /// Warping functions from [0,1)² to directions, with their densities (solid angle). All directions
-/// are in the local frame of the surface (z = normal). Written for the hard cases of DESIGN.md:
+/// are in the local frame of the surface (z = normal). Written for the hard cases of docs/design.md §7:
 /// Phong exponents up to 1e6 must give finite, correctly distributed directions.
 
 #include <cmath>
