@@ -1,4 +1,4 @@
-// Cost panel: what accuracy costs in time. Each sweep of this session (core/sweep.h, run as a job)
+// Cost panel: what accuracy costs in time. Each sweep of this session (core/eval/sweep.h, run as a job)
 // is one line of points (setting's wall time, relative RMSE of the global term), and the project's
 // evaluated training runs are one more series; both axes are log10 with decade grids, so the path
 // tracer's 1/sqrt(N) shows as a straight line. Hovering a point names its setting and values.

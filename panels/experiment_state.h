@@ -92,7 +92,7 @@ struct CostView {
     int hoverSeries = -1, hoverPoint = -1;
 };
 
-/// Sweep kinds offered by the Cost panel (core/sweep.h).
+/// Sweep kinds offered by the Cost panel (core/eval/sweep.h).
 constexpr const char* kSweepKinds[] = {"spp", "grid", "hidden", "trainer"};
 constexpr int kSweepKindCount = 4;
 

@@ -5,7 +5,7 @@
 
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec4 aGeometry;  // polygon: triangle plane (unit n, d = n·p); sphere: (centre, radius)
-layout(location = 2) in vec3 aNormal;    // polygon: geometric normal as core/accel.cpp stores it
+layout(location = 2) in vec3 aNormal;    // polygon: geometric normal as core/scene/accel.cpp stores it
 layout(location = 3) in vec2 aInfo;      // (object id, or -2 for a light; kind, see gbuffer.frag)
 layout(location = 4) in vec3 aEmission;  // lights: emitted radiance
 

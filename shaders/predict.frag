@@ -1,12 +1,12 @@
 #version 330 core
 // Network pass: one full-screen triangle; each pixel reads its G-buffer entry and evaluates its
 // object's radiance regression networks, whose weights and mapminmax scalers come from the float
-// texture uNetworks (layout documented in core/network_texture.h). The host prepends
+// texture uNetworks (layout documented in core/predict/network_texture.h). The host prepends
 //   #define RRF_MAX_VEC4 n        vec4s in the widest layer (inputs included)
 //   #define RRF_NET_WIDTH_LOG2 k  log2 of the network texture's width in texels
 // All arithmetic is float, in the order of NetworkModel::predict: (x - offset) * scale, affine
 // layers with tanh/ReLU, linear output layer, y / scale + offset. evaluateTerms() in
-// core/network_texture.cpp mirrors this shader step by step.
+// core/predict/network_texture.cpp mirrors this shader step by step.
 //
 // Outputs (RGBA32F): 0 direct, 1 indirect, 2 global; alpha 1 where an object or a light was hit.
 
@@ -113,7 +113,7 @@ void main() {
     rawIn[3] = texel(entry + 1);
     rawIn[4] = texel(entry + 2);
 
-    // Term rules of core/network_texture.h (the same as core/predictor.cpp).
+    // Term rules of core/predict/network_texture.h (the same as core/predict/predictor.cpp).
     vec4 off = texel(entry);
     vec3 direct = vec3(0.0), indirect = vec3(0.0), global, unused;
     if (off.w >= 0.0) {

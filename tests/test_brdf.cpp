@@ -1,4 +1,4 @@
-// Tests of the Lambert + modified Phong mixture in core/brdf.h: sampling against the mixture pdf
+// Tests of the Lambert + modified Phong mixture in core/render/brdf.h: sampling against the mixture pdf
 // (chi-square), normalisation of the pdf, the sample weight, and energy conservation.
 
 #include <gtest/gtest.h>

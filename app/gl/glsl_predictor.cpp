@@ -56,7 +56,7 @@ void addQuad(std::vector<float>& out, const Vec3& v0, const Vec3& v1, const Vec3
     addTriangle(out, v2, v3, v1, normal, id, kind, emission);
 }
 
-/// The normal core/accel.cpp stores for a primitive (float arithmetic, same expression).
+/// The normal core/scene/accel.cpp stores for a primitive (float arithmetic, same expression).
 Vec3 accelNormal(const Vec3* q, bool quad) {
     Vec3 n = quad ? cross(q[2] - q[0], q[3] - q[1]) : cross(q[1] - q[0], q[2] - q[0]);
     const float len = length(n);

@@ -9,7 +9,7 @@
 ///   2. shaders/fullscreen.vert + predict.frag: the network inputs (RecordLayout order) are formed
 ///      from the G-buffer, the light position and the object's BRDF parameters, and the object's
 ///      networks are evaluated with weights and scalers from the RGBA32F texture of
-///      core/network_texture.h (how direct / indirect / global are formed is documented there).
+///      core/predict/network_texture.h (how direct / indirect / global are formed is documented there).
 /// The prediction equals NetworkModel::predict on the same inputs to float rounding.
 ///
 /// Usage for live relighting (all calls on the thread whose GL 3.3 core context is current):

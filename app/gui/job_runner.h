@@ -18,7 +18,7 @@
 
 namespace rrf {
 
-/// Predict: the CPU fallback of the live prediction; Sweep: a cost-of-accuracy series (core/sweep.h).
+/// Predict: the CPU fallback of the live prediction; Sweep: a cost-of-accuracy series (core/eval/sweep.h).
 enum class JobKind { Render, Generate, Train, Evaluate, Predict, Sweep };
 const char* jobKindName(JobKind kind);
 /// True when jobs of kinds a and b must not run at the same time (one needs what the other makes,

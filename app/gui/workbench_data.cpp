@@ -1,4 +1,4 @@
-// Workbench: the data-generation job (core/data_generator.h) and its dataset file.
+// Workbench: the data-generation job (core/data/data_generator.h) and its dataset file.
 #include "app/gui/workbench.h"
 
 #include <filesystem>

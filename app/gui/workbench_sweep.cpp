@@ -1,4 +1,4 @@
-// Workbench: the "Run sweep" job of the Cost panel (core/sweep.h) with sizes small enough for an
+// Workbench: the "Run sweep" job of the Cost panel (core/eval/sweep.h) with sizes small enough for an
 // interactive session; the rows become an accuracy-versus-time series and are written as CSV and
 // JSON under <project dir>/sweeps/, as `rrf sweep` writes them.
 #include "app/gui/workbench.h"

@@ -2,7 +2,7 @@
 /// Evaluation of a prediction against a path-traced reference at the same light position
 /// (docs/design.md §14): per term (direct, indirect, global) and per object (masks from the
 /// G-buffer's object ids) error statistics, error maps, a JSON report and a readable table.
-/// Metric conventions are in core/error_metrics.h.
+/// Metric conventions are in core/eval/error_metrics.h.
 
 #include <atomic>
 #include <string>

@@ -1,4 +1,4 @@
-// Adam training on shuffled mini-batches, in float (see nn_trainer.h).
+// Adam training on shuffled mini-batches, in float (see core/nn/trainer.h).
 #include <chrono>
 #include <cmath>
 #include <numeric>

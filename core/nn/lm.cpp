@@ -1,4 +1,4 @@
-// Levenberg–Marquardt training with Matlab trainlm semantics (see nn_trainer.h).
+// Levenberg–Marquardt training with Matlab trainlm semantics (see core/nn/trainer.h).
 #include <chrono>
 #include <cmath>
 #include <stdexcept>

@@ -1,7 +1,7 @@
 #pragma once
 /// Training one network on normalised data: the deterministic train/validation/test split, the
-/// per-epoch record and observer, and the two trainers (Levenberg–Marquardt in nn_lm.cpp, Adam in
-/// nn_adam.cpp). Higher-level entry points that also fit the scalers and build a model are in
+/// per-epoch record and observer, and the two trainers (Levenberg–Marquardt in lm.cpp, Adam in
+/// adam.cpp). Higher-level entry points that also fit the scalers and build a model are in
 /// nn/model.h (one network) and nn/object_training.h (one network per object).
 ///
 /// Losses reported here are in NORMALISED units (targets mapped to [-1, 1] by mapminmax): the MSE for

@@ -3,7 +3,7 @@
 ///
 /// One primary ray through the CENTRE of every pixel (no jitter: a prediction is a function of the
 /// pixel, not a Monte Carlo estimate) gives, per pixel, exactly the network input record of the data
-/// generator (core/record_layout.h):
+/// generator (core/data/record_layout.h):
 ///
 ///     hit point (3), view direction (3), light position (3), normal (3), BRDF parameters (n)
 ///
@@ -14,8 +14,8 @@
 /// truth's direct image shows there) and no network input.
 ///
 /// The ground truth averages a box filter over each pixel, so pixels that straddle an edge are
-/// mixtures the centre ray cannot reproduce; error statistics include them on purpose (they are part
-/// of what a user sees).
+/// mixtures the centre ray cannot reproduce; evaluate() leaves them out of the error statistics and
+/// counts them (the silhouette mask, docs/design.md §14).
 
 #include <cstdint>
 #include <vector>

@@ -205,7 +205,7 @@ std::array<Vec3, 3> evaluateTerms(const NetworkTexture& tex, int objectId, const
     for (int i = 12; i < tex.inputCount; ++i) raw[i] = brdf[i - 12];  // texels 2+3o and 3+3o are adjacent
     const float* off = r.texel(1 + 3 * objectId);
     float y[8];
-    // Non-finite outputs become 0 per 3-vector, as core/predictor.cpp does.
+    // Non-finite outputs become 0 per 3-vector, as core/predict/predictor.cpp does.
     auto finite = [](const Vec3& v) { return v.isFinite() ? v : Vec3(0.f); };
     bool haveDirect = false, haveIndirect = false;
     if (off[kSlotJoint] >= 0.f) {

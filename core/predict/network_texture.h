@@ -27,7 +27,7 @@
 /// that the shader computes each neuron as a sum of vec4 dot products. Zero padding multiplies
 /// zero activations, so padded lanes never change a sum.
 ///
-/// How the terms are formed (shader, evaluateTerms below and core/predictor.cpp agree):
+/// How the terms are formed (shader, evaluateTerms below and core/predict/predictor.cpp agree):
 ///   direct   = the "direct" network, else outputs 0–2 of the "joint" network, else 0 (unavailable)
 ///   indirect = the "indirect" network, else outputs 3–5 of the "joint" network, else 0 (unavailable)
 ///   global   = direct + indirect when both are available, else the "global" network if there is

@@ -2,7 +2,7 @@
 /// Float RGB images: the common currency of the renderer, the predictor and the error maps.
 ///
 /// Layout: row-major, top row first, x grows to the right; three floats (R, G, B) per pixel, linear
-/// radiance (never gamma-encoded). File I/O lives in core/image_io.h.
+/// radiance (never gamma-encoded). File I/O lives in core/util/image_io.h.
 
 #include <cstddef>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-/// Reading and writing images (core/image.h).
+/// Reading and writing images (core/util/image.h).
 ///
 /// Formats:
 ///  - EXR: 32-bit float RGB, linear, ZIP-compressed (lossless). Reading accepts any channel layout
@@ -12,7 +12,7 @@
 ///    with rounding. Reading decodes any 8- or 16-bit image stb_image understands (PNG, JPEG,
 ///    BMP, TGA, ...) through the sRGB curve back to linear; Radiance .hdr is read as linear.
 ///
-/// All writes are atomic (core/atomic_file.h): a reader never sees a half-written image, and a
+/// All writes are atomic (core/util/atomic_file.h): a reader never sees a half-written image, and a
 /// refused or failed write leaves neither the destination nor a temporary file behind.
 /// Errors are std::runtime_error whose message starts with the file name.
 

@@ -98,7 +98,7 @@ inline ModelSet mixedModelSet(const Scene& scene, Activation act = Activation::T
 }
 
 /// CPU reference: direct, indirect, global of one object for raw inputs (inputs × N), combined by the
-/// rules of core/network_texture.h but computed with NetworkModel::predict (S = float) or
+/// rules of core/predict/network_texture.h but computed with NetworkModel::predict (S = float) or
 /// NetworkModel::predictDouble (S = double, to measure how far float itself is from exact).
 template <typename S> struct CpuTermsT {
     MatX<S> direct, indirect, global;

@@ -1,4 +1,4 @@
-// The packed network texture (core/network_texture.h) without GL: the layout read back by the CPU
+// The packed network texture (core/predict/network_texture.h) without GL: the layout read back by the CPU
 // mirror of the shader must reproduce NetworkModel::predict, and models that do not fit the scene
 // must be rejected with a message.
 
