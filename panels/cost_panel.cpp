@@ -2,6 +2,8 @@
 // is one line of points (setting's wall time, relative RMSE of the global term), and the project's
 // evaluated training runs are one more series; both axes are log10 with decade grids, so the path
 // tracer's 1/sqrt(N) shows as a straight line. Hovering a point names its setting and values.
+// Every error is core's relative RMSE (core/eval/error_metrics.h: sweeps compute it in core, a run's
+// "relative_rmse" comes from rrf::evaluate), the figure `rrf evaluate` reports for the global term.
 #include <algorithm>
 #include <cmath>
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/eval/error_metrics.h"
+#include "core/render/term.h"
 #include "core/util/vec3.h"
 #include "core/project/runs.h"
 
@@ -53,10 +54,11 @@ struct EvaluationInfo {
     Vec3 lightPosition{0.f};
     int referenceSpp = 0;
     double seconds = 0.0;
-    /// Rows per term, indexed like panels::Term (global, direct, indirect).
-    std::vector<ObjectErrorRow> rows[3];
-    ErrorStats overall[3];
-    bool available[3] = {false, false, false};
+    /// Rows per term, indexed with int(Term). The statistics are core's (errorStats through
+    /// rrf::evaluate), the figures `rrf evaluate` reports.
+    std::vector<ObjectErrorRow> rows[kTermCount];
+    ErrorStats overall[kTermCount];
+    bool available[kTermCount] = {false, false, false};
 };
 
 /// Columns of the Objects table, also the sort keys.

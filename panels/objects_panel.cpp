@@ -1,6 +1,8 @@
 // Objects panel: the last evaluation's error per object for the term the views show (RMSE, relative
 // RMSE, MAE, max, pixels, training samples and time), sortable by any column; clicking a row selects
 // the object, which the views highlight (ViewState::selectedObject, as the Scene panel does).
+// The figures are core's ErrorStats from rrf::evaluate (core/eval/error_metrics.h, per channel), the
+// same numbers `rrf evaluate` reports; the panel only sorts and shows them.
 #include <algorithm>
 #include <cstdio>
 

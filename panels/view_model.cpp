@@ -22,24 +22,9 @@ void falseColourRgba(const Image& error, float hi, const std::vector<int>* ids, 
 }
 }  // namespace
 
-float pixelError(const Vec3& reference, const Vec3& compared, ErrorMetric metric) {
-    const float r = luminance(reference), c = luminance(compared);
-    const float d = c - r;
-    switch (metric) {
-        case ErrorMetric::Absolute: return std::fabs(d);
-        case ErrorMetric::Relative: return std::fabs(d) / (std::fabs(r) + 0.01f);
-        case ErrorMetric::Squared: return d * d;
-    }
-    return std::fabs(d);
-}
-
-Image errorImage(const Image& reference, const Image& compared, ErrorMetric metric) {
-    if (reference.empty() || reference.width != compared.width || reference.height != compared.height) return {};
-    Image out(reference.width, reference.height);
-    for (int y = 0; y < reference.height; ++y)
-        for (int x = 0; x < reference.width; ++x)
-            out.set(x, y, Vec3(pixelError(reference.at(x, y), compared.at(x, y), metric)));
-    return out;
+Image viewErrorMap(const Image& groundTruth, const Image& compared, ErrorMapKind kind) {
+    if (groundTruth.empty() || groundTruth.width != compared.width || groundTruth.height != compared.height) return {};
+    return errorMap(compared, groundTruth, kind);
 }
 
 void toneMapRgba(const Image& image, float exposure, const std::vector<int>* ids, int selected,
@@ -85,7 +70,7 @@ void ViewModel::update(const WorkbenchState& s) {
         else if (error) falseColourRgba(img, s.view.errorMax, idsFor(img), k.selected, d.rgba);
         else toneMapRgba(img, s.view.exposure, idsFor(img), k.selected, d.rgba);
     };
-    if (errorChanged) error_ = errorImage(ref, cmp, s.view.metric);
+    if (errorChanged) error_ = viewErrorMap(ref, cmp, s.view.metric);
     fill(views_[kReference], ref, false);
     fill(views_[kCompared], cmp, false);
     fill(views_[kError], error_, true);

@@ -3,20 +3,23 @@
 /// term of the ground truth and of the compared image, tone-mapped with the exposure, and the
 /// false-colour error map between them; all as 8-bit RGBA ready for texture upload. Results are
 /// cached and recomputed only when an input changed, so calling update() every frame is cheap.
+///
+/// The error map is core's errorMap(compared, groundTruth, kind) (core/eval/error_metrics.h: per
+/// channel, averaged over R, G, B), so a pixel of the Views error is the value `rrf evaluate` and the
+/// Objects table are built from.
 
 #include <cstdint>
 #include <vector>
 
+#include "core/eval/error_metrics.h"
 #include "core/util/image.h"
 #include "panels/workbench_state.h"
 
 namespace rrf::panels {
 
-/// Error of one pixel on luminance: |c − r|, |c − r| / (r + 0.01) or (c − r)².
-float pixelError(const Vec3& reference, const Vec3& compared, ErrorMetric metric);
-
-/// Per-pixel error (in every channel) of two images of equal size; empty if the sizes differ.
-Image errorImage(const Image& reference, const Image& compared, ErrorMetric metric);
+/// The Views error map: core's errorMap of `compared` against `groundTruth`; empty when either is
+/// empty or their sizes differ (nothing to compare, which the view says instead of failing).
+Image viewErrorMap(const Image& groundTruth, const Image& compared, ErrorMapKind kind);
 
 /// One displayable image.
 struct DisplayImage {
@@ -46,7 +49,7 @@ private:
         uint64_t gt = ~0ull, cmp = ~0ull;
         Term term = Term::Global;
         CompareSource source = CompareSource::Prediction;
-        ErrorMetric metric = ErrorMetric::Absolute;
+        ErrorMapKind metric = ErrorMapKind::Absolute;
         float exposure = 0.f, errorMax = 0.f;
         int selected = -2;
         size_t ids = 0;

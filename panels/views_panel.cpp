@@ -1,6 +1,8 @@
 // Views panel: ground truth | compared image | error map side by side. The three views share one
 // zoom/pan (wheel zooms about the cursor, drag pans), one exposure and one hover read-out.
 #include <algorithm>
+#include <array>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -15,6 +17,33 @@ namespace rrf::panels {
 
 namespace {
 constexpr float kMinZoom = 0.25f, kMaxZoom = 64.f;
+/// The term combo lists global first (what one looks at most); its entries map to core's Term here.
+constexpr Term kTermMenu[] = {Term::Global, Term::Direct, Term::Indirect};
+
+/// Combo over `items` (names from `name`); returns true and sets `value` when the user picked another.
+template <typename T, size_t N, typename Name>
+bool enumCombo(const char* label, T& value, const T (&items)[N], Name name) {
+    bool changed = false;
+    if (ImGui::BeginCombo(label, name(value))) {
+        for (const T& item : items) {
+            const bool selected = item == value;
+            if (ImGui::Selectable(name(item), selected) && !selected) value = item, changed = true;
+            if (selected) ImGui::SetItemDefaultFocus();
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+/// "relative: mean_c |d_c| / (|ref_c| + 0.01)", the label of an error map kind in the views.
+const char* errorMapLabel(ErrorMapKind k) {
+    static const auto labels = [] {
+        std::array<std::string, std::size(kErrorMapKinds)> l;
+        for (ErrorMapKind e : kErrorMapKinds) l[size_t(e)] = std::string(errorMapName(e)) + ": " + errorMapFormula(e);
+        return l;
+    }();
+    return labels[size_t(k)].c_str();
+}
 
 /// Screen mapping of one view: image pixel q ↦ centre + (q − imageCentre − pan) · scale.
 struct ViewRect {
@@ -58,16 +87,16 @@ void drawToolbar(WorkbenchState& state) {
     }
 
     const float w = ImGui::GetFontSize() * 7;
-    int term = int(v.term);
     ImGui::SetNextItemWidth(w);
-    if (ImGui::Combo("term", &term, "global\0direct\0indirect\0")) v.term = Term(term);
+    enumCombo("term", v.term, kTermMenu, termName);
     ImGui::SameLine();
     ImGui::SetNextItemWidth(w);
     ImGui::SliderFloat("exposure", &v.exposure, -8.f, 8.f, "%+.1f EV");
     ImGui::SameLine();
-    int metric = int(v.metric);
-    ImGui::SetNextItemWidth(w * 1.6f);
-    if (ImGui::Combo("error", &metric, "absolute |d|\0relative |d|/(ref+0.01)\0squared d^2\0")) v.metric = ErrorMetric(metric);
+    ImGui::SetNextItemWidth(w * 2.4f);
+    enumCombo("error", v.metric, kErrorMapKinds, errorMapLabel);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("per channel, averaged over R, G, B (d = compared - ground truth):\nthe metric rrf evaluate and the Objects table report");
     ImGui::SameLine();
     ImGui::SetNextItemWidth(w);
     ImGui::DragFloat("scale max", &v.errorMax, v.errorMax * 0.01f + 1e-6f, 1e-6f, 1e6f, "%.3g",
@@ -189,7 +218,7 @@ void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp
         ImGui::Text("  compared (%.4g, %.4g, %.4g)", c.x, c.y, c.z);
         if (cmp.width == ref.width && cmp.height == ref.height) {
             ImGui::SameLine();
-            ImGui::Text("  error %.4g", pixelError(r, c, v.metric));
+            ImGui::Text("  error %.4g", pixelError(c, r, v.metric));
         }
     }
 }
@@ -212,7 +241,7 @@ void drawViewsPanel(WorkbenchState& state) {
     const ImageSet& compared = state.compared();
     const std::string cmpTitle = compared.empty() ? std::string(state.view.compareSource == CompareSource::Run ? "Compared run" : "Prediction")
                                                   : compared.label;
-    const std::string errTitle = std::string("Error: ") + errorMetricName(state.view.metric);
+    const std::string errTitle = std::string("Error: ") + errorMapLabel(state.view.metric);
 
     ImVec2 hover(-1, -1);
     bool over = drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);

@@ -5,24 +5,6 @@
 
 namespace rrf::panels {
 
-const char* termName(Term t) {
-    switch (t) {
-        case Term::Global: return "global";
-        case Term::Direct: return "direct";
-        case Term::Indirect: return "indirect";
-    }
-    return "global";
-}
-
-const char* errorMetricName(ErrorMetric m) {
-    switch (m) {
-        case ErrorMetric::Absolute: return "absolute |d|";
-        case ErrorMetric::Relative: return "relative |d|/(ref+0.01)";
-        case ErrorMetric::Squared: return "squared d^2";
-    }
-    return "absolute";
-}
-
 std::string WorkbenchState::projectName() const {
     if (!hasProject) return "untitled";
     if (project.doc.is_object() && project.doc.contains("name") && project.doc["name"].is_string()) {

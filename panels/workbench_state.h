@@ -11,6 +11,8 @@
 
 #include <imgui.h>
 
+#include "core/eval/error_metrics.h"
+#include "core/render/term.h"
 #include "core/scene/accel.h"
 #include "core/util/image.h"
 #include "core/project/project.h"
@@ -21,15 +23,8 @@
 
 namespace rrf::panels {
 
-/// Which radiance term the views show.
-enum class Term { Global, Direct, Indirect };
-/// Per-pixel error between the reference (ground truth) and the compared image, on luminance.
-enum class ErrorMetric { Absolute, Relative, Squared };
 /// What the middle view shows: the trained models' prediction or a saved run's images.
 enum class CompareSource { Prediction, Run };
-
-const char* termName(Term t);
-const char* errorMetricName(ErrorMetric m);
 
 /// Things panels ask the application to do.
 enum class Command {
@@ -80,8 +75,10 @@ struct ImageSet {
 
 /// Display settings of the three side-by-side views.
 struct ViewState {
-    Term term = Term::Global;
-    ErrorMetric metric = ErrorMetric::Relative;
+    Term term = Term::Global;   ///< the radiance term the views show
+    /// The error map between the compared image and the ground truth: core's per-pixel metric
+    /// (core/eval/error_metrics.h, mean over R, G, B), the quantity `rrf evaluate` reports.
+    ErrorMapKind metric = ErrorMapKind::Relative;
     float exposure = 0.f;       ///< stops
     float errorMax = 0.25f;     ///< top of the false-colour scale
     float zoom = 1.f;           ///< view pixels per image pixel, relative to fitting the pane
@@ -156,8 +153,5 @@ struct WorkbenchState {
     /// The images of the middle view (the prediction or the compared run, per view.compareSource).
     const ImageSet& compared() const { return view.compareSource == CompareSource::Run ? compare : prediction; }
 };
-
-/// Index of a panels::Term in core's direct/indirect/global order (core/predictor.h).
-inline int coreTermIndex(Term t) { return t == Term::Direct ? 0 : t == Term::Indirect ? 1 : 2; }
 
 }  // namespace rrf::panels

@@ -4,11 +4,15 @@
 // texture uNetworks (layout documented in core/predict/network_texture.h). The host prepends
 //   #define RRF_MAX_VEC4 n        vec4s in the widest layer (inputs included)
 //   #define RRF_NET_WIDTH_LOG2 k  log2 of the network texture's width in texels
+//   #define RRF_TERM_DIRECT 0, RRF_TERM_INDIRECT 1, RRF_TERM_GLOBAL 2
+//                                 output location of each term: its index in core's Term
+//                                 (core/render/term.h), which is also the host's colour attachment
 // All arithmetic is float, in the order of NetworkModel::predict: (x - offset) * scale, affine
 // layers with tanh/ReLU, linear output layer, y / scale + offset. evaluateTerms() in
 // core/predict/network_texture.cpp mirrors this shader step by step.
 //
-// Outputs (RGBA32F): 0 direct, 1 indirect, 2 global; alpha 1 where an object or a light was hit.
+// Outputs (RGBA32F), one per term at location RRF_TERM_<term>; alpha 1 where an object or a light
+// was hit.
 
 uniform sampler2D uGPosition;
 uniform sampler2D uGNormal;
@@ -17,9 +21,9 @@ uniform sampler2D uNetworks;
 uniform vec3 uEye;
 uniform vec3 uLight;  // movable light's centre: the network's light-position input
 
-layout(location = 0) out vec4 oDirect;
-layout(location = 1) out vec4 oIndirect;
-layout(location = 2) out vec4 oGlobal;
+layout(location = RRF_TERM_DIRECT) out vec4 oDirect;
+layout(location = RRF_TERM_INDIRECT) out vec4 oIndirect;
+layout(location = RRF_TERM_GLOBAL) out vec4 oGlobal;
 
 const int kWidthMask = (1 << RRF_NET_WIDTH_LOG2) - 1;
 

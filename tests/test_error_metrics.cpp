@@ -117,3 +117,27 @@ TEST(ErrorMetrics, RejectsMismatchedSizesAndBadMasks) {
     EXPECT_THROW(errorMap(Image(2, 2), Image(3, 2), ErrorMapKind::Absolute), std::invalid_argument);
     EXPECT_THROW(errorStats(Image(2, 2), Image(2, 2), std::vector<uint32_t>{4}), std::invalid_argument);
 }
+
+TEST(ErrorMetrics, PixelErrorIsTheMapAtThatPixel) {
+    // A coloured pixel with a NaN neighbour: the read-out of one pixel and the map agree bit for bit.
+    const Image ref = make(2, 1, {Vec3(0.8f, 0.2f, 0.05f), Vec3(1.f)});
+    const Image pred = make(2, 1, {Vec3(0.5f, 0.4f, 0.05f), Vec3(NAN, 1.f, 1.f)});
+    for (ErrorMapKind k : kErrorMapKinds) {
+        const Image map = errorMap(pred, ref, k);
+        EXPECT_EQ(pixelError(pred.at(0, 0), ref.at(0, 0), k), map.at(0, 0).x) << errorMapName(k);
+        EXPECT_TRUE(std::isnan(pixelError(pred.at(1, 0), ref.at(1, 0), k))) << errorMapName(k);
+    }
+    EXPECT_NEAR(pixelError(pred.at(0, 0), ref.at(0, 0), ErrorMapKind::Absolute), (0.3 + 0.2 + 0.0) / 3.0, 1e-6);
+    EXPECT_NEAR(pixelError(pred.at(0, 0), ref.at(0, 0), ErrorMapKind::Relative), (0.3 / 0.81 + 0.2 / 0.21) / 3.0, 1e-6);
+    EXPECT_NEAR(pixelError(pred.at(0, 0), ref.at(0, 0), ErrorMapKind::Squared), (0.09 + 0.04) / 3.0, 1e-6);
+}
+
+TEST(ErrorMetrics, MapKindNamesRoundTrip) {
+    for (ErrorMapKind k : kErrorMapKinds) {
+        ASSERT_TRUE(parseErrorMapKind(errorMapName(k)).has_value()) << errorMapName(k);
+        EXPECT_EQ(*parseErrorMapKind(errorMapName(k)), k);
+        EXPECT_STRNE(errorMapFormula(k), "?");
+    }
+    EXPECT_FALSE(parseErrorMapKind("luminance").has_value());
+    EXPECT_FALSE(parseErrorMapKind("Relative").has_value());
+}

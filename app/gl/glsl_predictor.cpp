@@ -1,6 +1,7 @@
 #include "app/gl/glsl_predictor.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -8,15 +9,6 @@
 #include <glad/gl.h>
 
 namespace rrf {
-
-const char* predictionTermName(PredictionTerm t) {
-    switch (t) {
-        case PredictionTerm::Direct: return "direct";
-        case PredictionTerm::Indirect: return "indirect";
-        case PredictionTerm::Global: return "global";
-    }
-    return "?";
-}
 
 namespace {
 
@@ -172,8 +164,15 @@ GlslPredictor::GlslPredictor(const Scene& scene, const ModelSet& models, const s
 
     const std::string dir = shaderDir.empty() || shaderDir.back() == '/' ? shaderDir : shaderDir + "/";
     gbufferProgram_ = GlProgram::fromFiles(dir + "gbuffer.vert", dir + "gbuffer.frag");
-    const std::string defines = "#define RRF_MAX_VEC4 " + std::to_string((networks_.maxLayerWidth + 3) / 4) +
-                                "\n#define RRF_NET_WIDTH_LOG2 " + std::to_string(log2Exact(networks_.width)) + "\n";
+    std::string defines = "#define RRF_MAX_VEC4 " + std::to_string((networks_.maxLayerWidth + 3) / 4) +
+                          "\n#define RRF_NET_WIDTH_LOG2 " + std::to_string(log2Exact(networks_.width)) + "\n";
+    // Output location of each term = its index in core's Term, so read(term) and texture(term) can
+    // use int(term) as the colour attachment.
+    for (Term t : kTerms) {
+        std::string name = termName(t);
+        std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::toupper(c)); });
+        defines += "#define RRF_TERM_" + name + " " + std::to_string(int(t)) + "\n";
+    }
     predictProgram_ = GlProgram::fromFiles(dir + "fullscreen.vert", dir + "predict.frag", defines);
 
     glUseProgram(predictProgram_.id());
@@ -292,11 +291,13 @@ void GlslPredictor::allocateTargets() {
 
     glGenFramebuffers(1, &outputFbo_);
     glBindFramebuffer(GL_FRAMEBUFFER, outputFbo_);
-    for (int i = 0; i < 3; ++i) {
+    static_assert(kTermCount == 3, "one colour attachment per term");
+    for (Term t : kTerms) {
+        const int i = int(t);
         outputTex_[size_t(i)] = makeFloatTexture(w, h, nullptr);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + i), GL_TEXTURE_2D, outputTex_[size_t(i)], 0);
     }
-    glDrawBuffers(3, drawBuffers);
+    glDrawBuffers(kTermCount, drawBuffers);
     checkFramebuffer("prediction");
     checkGl("allocating render targets");
     targetWidth_ = w;
@@ -405,7 +406,7 @@ std::vector<float> GlslPredictor::readAttachment(unsigned fbo, int attachment) c
     return rgba;
 }
 
-Image GlslPredictor::read(PredictionTerm term) const {
+Image GlslPredictor::read(Term term) const {
     const std::vector<float> rgba = readAttachment(outputFbo_, int(term));
     Image img(targetWidth_, targetHeight_);
     for (int y = 0; y < img.height; ++y) {

@@ -10,6 +10,8 @@
 ///      from the G-buffer, the light position and the object's BRDF parameters, and the object's
 ///      networks are evaluated with weights and scalers from the RGBA32F texture of
 ///      core/predict/network_texture.h (how direct / indirect / global are formed is documented there).
+///      Each term t is written to colour output int(t) (core/render/term.h; the host passes the
+///      locations to the shader as RRF_TERM_DIRECT/INDIRECT/GLOBAL).
 /// The prediction equals NetworkModel::predict on the same inputs to float rounding.
 ///
 /// Usage for live relighting (all calls on the thread whose GL 3.3 core context is current):
@@ -17,7 +19,7 @@
 ///     GlslPredictor gp(scene, models);      // once per scene + model set: compiles, uploads
 ///     gp.setLightPosition(p);               // when the user drags the light
 ///     gp.render();                          // ~ a few ms on a GPU
-///     Image img = gp.read(PredictionTerm::Global);     // or draw gp.texture(term) directly
+///     Image img = gp.read(Term::Global);    // or draw gp.texture(term) directly
 ///
 /// render() saves and restores the GL state it touches (framebuffer bindings, viewport, program,
 /// vertex array, texture bindings of units 0–3, depth/blend/cull/scissor state), so it can be called
@@ -31,6 +33,7 @@
 #include "core/util/image.h"
 #include "core/nn/model_set.h"
 #include "core/predict/network_texture.h"
+#include "core/render/term.h"
 #include "core/scene/scene.h"
 
 #ifndef RRF_SHADER_DIR
@@ -38,11 +41,6 @@
 #endif
 
 namespace rrf {
-
-enum class PredictionTerm { Direct = 0, Indirect = 1, Global = 2 };
-
-/// "direct" / "indirect" / "global".
-const char* predictionTermName(PredictionTerm t);
 
 /// The G-buffer of the last render(), read back (top row first, like rrf::Image).
 struct GlGBuffer {
@@ -83,13 +81,13 @@ public:
     void render();
 
     /// The prediction of the last render() as an image (top row first).
-    Image read(PredictionTerm term) const;
+    Image read(Term term) const;
     /// The G-buffer of the last render().
     GlGBuffer readGBuffer() const;
 
     /// RGBA32F texture holding a term of the last render(), GL convention (bottom row first); alpha
     /// is 1 where an object or a light was hit, 0 on background. Owned by the predictor.
-    unsigned texture(PredictionTerm term) const { return outputTex_[size_t(term)]; }
+    unsigned texture(Term term) const { return outputTex_[size_t(term)]; }
     int width() const { return scene_.camera.width; }
     int height() const { return scene_.camera.height; }
     /// The packed networks (which terms the models provide, network count, texture size).
@@ -110,7 +108,8 @@ private:
     bool lightsDirty_ = true;
     unsigned networkTex_ = 0;
     unsigned gbufferFbo_ = 0, depthRb_ = 0, outputFbo_ = 0;
-    std::array<unsigned, 3> gbufferTex_{}, outputTex_{};
+    std::array<unsigned, 3> gbufferTex_{};
+    std::array<unsigned, kTermCount> outputTex_{};  ///< index int(Term), attachment int(Term)
     int targetWidth_ = 0, targetHeight_ = 0;
     int maxTextureSize_ = 0;
 };

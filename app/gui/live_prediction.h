@@ -14,6 +14,7 @@
 
 #include "core/util/image.h"
 #include "core/nn/model_set.h"
+#include "core/render/term.h"
 #include "core/scene/scene.h"
 
 namespace rrf {
@@ -42,8 +43,8 @@ public:
     std::shared_ptr<const ModelSet> models() const { return models_; }
 
     /// GLSL path only: renders with `camera` (its width × height) and the light at `lightPos`, and
-    /// returns the direct, indirect and global images (top row first). Throws GlError on GL failure.
-    void renderGlsl(const Camera& camera, const Vec3& lightPos, Image out[3]);
+    /// returns the images of every term, out[int(Term)] (top row first). Throws GlError on GL failure.
+    void renderGlsl(const Camera& camera, const Vec3& lightPos, Image out[kTermCount]);
 
 private:
     std::shared_ptr<const ModelSet> models_;

@@ -145,14 +145,15 @@ bool Script::execute(Workbench& wb, const json& s) {
     } else if (what == "view") {
         if (s.contains("term")) {
             const std::string t = text(s, "term");
-            require(t == "global" || t == "direct" || t == "indirect", "unknown term '" + t + "'");
-            st.view.term = t == "direct" ? panels::Term::Direct : t == "indirect" ? panels::Term::Indirect : panels::Term::Global;
+            const std::optional<Term> term = parseTerm(t);
+            require(term.has_value(), "unknown term '" + t + "' (global, direct or indirect)");
+            st.view.term = *term;
         }
         if (s.contains("metric")) {
             const std::string m = text(s, "metric");
-            require(m == "absolute" || m == "relative" || m == "squared", "unknown metric '" + m + "'");
-            st.view.metric = m == "absolute" ? panels::ErrorMetric::Absolute
-                             : m == "squared" ? panels::ErrorMetric::Squared : panels::ErrorMetric::Relative;
+            const std::optional<ErrorMapKind> metric = parseErrorMapKind(m);
+            require(metric.has_value(), "unknown metric '" + m + "' (absolute, relative or squared)");
+            st.view.metric = *metric;
         }
         st.view.exposure = float(number(s, "exposure", st.view.exposure));
         st.view.errorMax = float(number(s, "error_max", st.view.errorMax));

@@ -51,9 +51,7 @@ bool Workbench::startEvaluate() {
     }
     // The reference is the ground truth the views show, at the light position it was rendered at.
     Reference& ref = session->reference;
-    ref.images[0] = state_.groundTruth.direct;
-    ref.images[1] = state_.groundTruth.indirect;
-    ref.images[2] = state_.groundTruth.global;
+    for (Term t : kTerms) ref.images[int(t)] = state_.groundTruth.term(t);
     ref.lightPosition = state_.project.scene.lightPosition();
     ref.spp = state_.render.spp;
     ref.seconds = state_.render.seconds;
@@ -105,8 +103,8 @@ void Workbench::pollEvaluate() {
             t.second += r.seconds;
         }
     const Scene& scene = evaluate_->scene;
-    for (panels::Term t : {panels::Term::Global, panels::Term::Direct, panels::Term::Indirect}) {
-        const TermErrors& te = e.terms[panels::coreTermIndex(t)];
+    for (Term t : kTerms) {
+        const TermErrors& te = e.term(t);
         info.available[int(t)] = te.available;
         info.overall[int(t)] = te.overall;
         for (size_t id = 0; id < te.perObject.size() && id < scene.objects.size(); ++id) {
@@ -151,7 +149,7 @@ bool Workbench::exportObjectsCsv(const std::string& path) {
     const int t = int(state_.view.term);
     const auto rows = panels::sortedObjectRows(e.rows[t], state_.objectsView.sortColumn, state_.objectsView.ascending);
     try {
-        writeFileAtomically(path, panels::objectRowsCsv(rows, panels::termName(state_.view.term)));
+        writeFileAtomically(path, panels::objectRowsCsv(rows, termName(state_.view.term)));
     } catch (const std::exception& ex) {
         state_.log.error(std::string("export table: ") + ex.what());
         return false;

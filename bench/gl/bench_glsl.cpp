@@ -88,7 +88,7 @@ Timing timeFrames(GlslPredictor& gp, const Scene& scene, int frames) {
     for (int f = 0; f < frames; ++f) {
         gp.setLightPosition(lightAt(f));
         gp.render();
-        const Image img = gp.read(PredictionTerm::Global);
+        const Image img = gp.read(Term::Global);
         if (img.data.empty()) std::printf(" ");
     }
     t.readMs = (now() - t0) * 1e3 / frames;
@@ -100,7 +100,7 @@ Timing timeFrames(GlslPredictor& gp, const Scene& scene, int frames) {
 /// of these networks: no float implementation can agree with another much better than that).
 std::pair<double, double> maxRelativeVsCpu(const GlslPredictor& gp, const Scene& scene, const ModelSet& set) {
     const GlGBuffer g = gp.readGBuffer();
-    const Image gl = gp.read(PredictionTerm::Global);
+    const Image gl = gp.read(Term::Global);
     const RecordLayout layout = RecordLayout::forScene(scene);
     double worst = 0, floatFloor = 0;
     for (const ObjectNetworks& on : set.objects) {

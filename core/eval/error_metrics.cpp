@@ -15,6 +15,9 @@ void checkSizes(const Image& a, const Image& b) {
                                     "x" + std::to_string(b.height));
 }
 
+/// d / (|ref| + 0.01): the relative error of one channel, shared by the maps and the statistics.
+double relativeDifference(double d, double ref) { return d / (std::fabs(ref) + kRelativeEpsilon); }
+
 struct Accumulator {
     double sq = 0, rel = 0, abs = 0, max = 0, ref = 0;
     uint64_t pixels = 0, bad = 0;
@@ -30,7 +33,7 @@ struct Accumulator {
         }
         for (int c = 0; c < 3; ++c) {
             const double d = double(a[c]) - double(b[c]);
-            const double rd = d / (std::fabs(double(b[c])) + kRelativeEpsilon);
+            const double rd = relativeDifference(d, double(b[c]));
             sq += d * d;
             rel += rd * rd;
             abs += std::fabs(d);
@@ -64,6 +67,21 @@ const char* errorMapName(ErrorMapKind k) {
     return "?";
 }
 
+std::optional<ErrorMapKind> parseErrorMapKind(std::string_view name) {
+    for (ErrorMapKind k : kErrorMapKinds)
+        if (name == errorMapName(k)) return k;
+    return std::nullopt;
+}
+
+const char* errorMapFormula(ErrorMapKind k) {
+    switch (k) {
+    case ErrorMapKind::Absolute: return "mean_c |d_c|";
+    case ErrorMapKind::Relative: return "mean_c |d_c| / (|ref_c| + 0.01)";
+    case ErrorMapKind::Squared: return "mean_c d_c^2";
+    }
+    return "?";
+}
+
 nlohmann::json ErrorStats::toJson() const {
     return {{"pixels", pixels}, {"non_finite_pixels", nonFinite}, {"rmse", rmse},       {"relative_rmse", relativeRmse},
             {"mae", mae},       {"max_error", maxError},          {"mean_reference", meanReference}};
@@ -87,23 +105,27 @@ ErrorStats errorStats(const Image& prediction, const Image& reference) {
     return acc.stats();
 }
 
+float pixelError(const Vec3& prediction, const Vec3& reference, ErrorMapKind kind) {
+    double v = 0;
+    for (int c = 0; c < 3; ++c) {
+        const double d = double(prediction[c]) - double(reference[c]);
+        switch (kind) {
+        case ErrorMapKind::Absolute: v += std::fabs(d); break;
+        case ErrorMapKind::Relative: v += std::fabs(relativeDifference(d, double(reference[c]))); break;
+        case ErrorMapKind::Squared: v += d * d; break;
+        }
+    }
+    // A NaN or Inf input propagates into v: the map keeps it visible (NaN) instead of a number.
+    return std::isfinite(v) ? float(v / 3.0) : std::numeric_limits<float>::quiet_NaN();
+}
+
 Image errorMap(const Image& prediction, const Image& reference, ErrorMapKind kind) {
     checkSizes(prediction, reference);
     Image out(prediction.width, prediction.height);
     for (size_t i = 0; i < prediction.pixelCount(); ++i) {
         const float* a = &prediction.data[3 * i];
         const float* b = &reference.data[3 * i];
-        double v = 0;
-        for (int c = 0; c < 3; ++c) {
-            const double d = double(a[c]) - double(b[c]);
-            switch (kind) {
-            case ErrorMapKind::Absolute: v += std::fabs(d); break;
-            case ErrorMapKind::Relative: v += std::fabs(d) / (std::fabs(double(b[c])) + kRelativeEpsilon); break;
-            case ErrorMapKind::Squared: v += d * d; break;
-            }
-        }
-        // A NaN or Inf input propagates into v: the map keeps it visible (NaN) instead of a number.
-        const float f = std::isfinite(v) ? float(v / 3.0) : std::numeric_limits<float>::quiet_NaN();
+        const float f = pixelError(Vec3(a[0], a[1], a[2]), Vec3(b[0], b[1], b[2]), kind);
         out.data[3 * i] = out.data[3 * i + 1] = out.data[3 * i + 2] = f;
     }
     return out;

@@ -17,7 +17,9 @@
 /// All sums are in double and run in pixel order, so results are deterministic.
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -30,8 +32,15 @@ namespace rrf {
 constexpr double kRelativeEpsilon = 0.01;
 
 enum class ErrorMapKind { Absolute, Relative, Squared };
-/// "absolute" | "relative" | "squared".
+/// Every kind, in the order the workbench offers them.
+constexpr ErrorMapKind kErrorMapKinds[] = {ErrorMapKind::Absolute, ErrorMapKind::Relative, ErrorMapKind::Squared};
+/// "absolute" | "relative" | "squared": the spelling of reports, file names and scripts.
 const char* errorMapName(ErrorMapKind k);
+/// The kind spelled `name` (as errorMapName writes it); nullopt for anything else, so each front end
+/// names the bad value in its own terms.
+std::optional<ErrorMapKind> parseErrorMapKind(std::string_view name);
+/// The per-pixel formula for labels, e.g. "mean_c |d_c| / (|ref_c| + 0.01)".
+const char* errorMapFormula(ErrorMapKind k);
 
 struct ErrorStats {
     uint64_t pixels = 0;     ///< pixels in the mask with finite prediction and reference
@@ -47,7 +56,13 @@ ErrorStats errorStats(const Image& prediction, const Image& reference, const std
 /// Statistics over every pixel.
 ErrorStats errorStats(const Image& prediction, const Image& reference);
 
+/// Error of one pixel as the maps define it (mean over R, G, B of |d|, |d| / (|ref| + 0.01) or d²);
+/// NaN where a channel of either input is non-finite. errorMap() is this function at every pixel, so a
+/// read-out of one pixel shows exactly the map's value.
+float pixelError(const Vec3& prediction, const Vec3& reference, ErrorMapKind kind);
+
 /// Per-pixel error map (one scalar per pixel in all three channels; NaN where an input is non-finite).
+/// Throws std::invalid_argument if the image sizes differ.
 Image errorMap(const Image& prediction, const Image& reference, ErrorMapKind kind);
 
 /// Pixel masks from an object-id buffer (-1 = not an object): index = object id, ascending pixels.

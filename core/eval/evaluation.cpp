@@ -229,7 +229,7 @@ nlohmann::json writeEvaluationImages(const std::string& dir, const Evaluation& e
         const std::string ref = (fs::path(dir) / ("reference_" + term + ".exr")).string();
         writeImage(ref, reference.images[t], ImageFormat::EXR);
         files.push_back(ref);
-        for (ErrorMapKind k : {ErrorMapKind::Absolute, ErrorMapKind::Relative, ErrorMapKind::Squared}) {
+        for (ErrorMapKind k : kErrorMapKinds) {
             const Image map = errorMap(e.prediction.images[t], reference.images[t], k);
             const std::string base = (fs::path(dir) / (std::string("error_") + errorMapName(k) + "_" + term)).string();
             uint64_t replaced = 0;

@@ -12,6 +12,7 @@
 
 #include "core/eval/error_metrics.h"
 #include "core/predict/predictor.h"
+#include "core/render/term.h"
 #include "core/render/renderer.h"
 
 namespace rrf {

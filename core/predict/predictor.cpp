@@ -48,15 +48,6 @@ ObjectPlan planFor(const ObjectNetworks& o, bool exactDirect) {
 }
 }  // namespace
 
-const char* termName(Term t) {
-    switch (t) {
-    case Term::Direct: return "direct";
-    case Term::Indirect: return "indirect";
-    case Term::Global: return "global";
-    }
-    return "?";
-}
-
 PredictionSettings PredictionSettings::fromJson(const nlohmann::json& j, const std::string& file) {
     PredictionSettings s;
     if (!j.is_object()) throw InputError(file, "/prediction", "expected an object");

@@ -29,6 +29,7 @@
 #include "core/predict/gbuffer.h"
 #include "core/util/image.h"
 #include "core/nn/model_set.h"
+#include "core/render/term.h"
 #include "core/scene/scene.h"
 
 namespace rrf {
@@ -46,11 +47,6 @@ struct PredictionSettings {
     nlohmann::json toJson() const;
     const char* directName() const { return direct == Direct::Exact ? "exact" : "network"; }
 };
-
-/// The three prediction terms, in this order everywhere (images, reports, tables).
-enum class Term { Direct = 0, Indirect = 1, Global = 2 };
-constexpr int kTermCount = 3;
-const char* termName(Term t);
 
 struct Prediction {
     Image images[kTermCount];            ///< direct, indirect, global (index with int(Term))

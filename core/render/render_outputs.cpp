@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/render/term.h"
 #include "core/util/atomic_file.h"
 #include "core/util/text_format.h"
 
@@ -50,8 +51,10 @@ RenderOutputs writeRenderOutputs(const std::string& dir, const Scene& scene, con
     makeDirectories(dir);
     RenderOutputs out;
     const std::string ext = imageFormatName(format);
-    const std::pair<const char*, const Image*> images[] = {
-        {"global", &snapshot.global}, {"direct", &snapshot.direct}, {"indirect", &snapshot.indirect}};
+    // File names are the terms' names, which loadReference (core/eval) reads back.
+    const std::pair<const char*, const Image*> images[] = {{termName(Term::Global), &snapshot.global},
+                                                           {termName(Term::Direct), &snapshot.direct},
+                                                           {termName(Term::Indirect), &snapshot.indirect}};
     for (const auto& [name, image] : images) {
         const std::string path = (fs::path(dir) / (std::string(name) + "." + ext)).string();
         writeImage(path, *image, format, exposureStops);

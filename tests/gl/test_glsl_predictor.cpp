@@ -90,8 +90,8 @@ struct PredictionComparison {
 /// Feeds exactly the G-buffer's inputs to NetworkModel::predict and compares every covered pixel.
 PredictionComparison comparePrediction(const Scene& scene, const ModelSet& set, const GlslPredictor& gp) {
     const GlGBuffer g = gp.readGBuffer();
-    const Image gl[3] = {gp.read(PredictionTerm::Direct), gp.read(PredictionTerm::Indirect),
-                         gp.read(PredictionTerm::Global)};
+    const Image gl[3] = {gp.read(Term::Direct), gp.read(Term::Indirect),
+                         gp.read(Term::Global)};
     const RecordLayout layout = RecordLayout::forScene(scene);
     const Vec3 eye = scene.camera.eye, light = gp.lightPosition();
     PredictionComparison r;
@@ -104,7 +104,7 @@ PredictionComparison comparePrediction(const Scene& scene, const ModelSet& set, 
                 if (r.failures++ == 0) {
                     char b[256];
                     std::snprintf(b, sizeof b, "pixel (%d,%d) %s channel %d: GLSL %.9g CPU %.9g", x, y,
-                                  predictionTermName(PredictionTerm(term)), ch, double(v[ch]), double(cpu[ch]));
+                                  termName(Term(term)), ch, double(v[ch]), double(cpu[ch]));
                     r.firstFailure = b;
                 }
             }
@@ -381,7 +381,7 @@ TEST(GlslPredictor, OneSidedLightIsDarkFromBehind) {
     GlslPredictor gp(scene, test::mixedModelSet(scene));
     gp.render();
     const GlGBuffer g = gp.readGBuffer();
-    const Image direct = gp.read(PredictionTerm::Direct);
+    const Image direct = gp.read(Term::Direct);
     size_t lightPixels = 0;
     for (int y = 0; y < g.height; ++y)
         for (int x = 0; x < g.width; ++x)
@@ -398,11 +398,11 @@ TEST(GlslPredictor, MovingTheLightChangesInputAndGeometry) {
     const Scene scene = test::cornellBox();
     GlslPredictor gp(scene, test::mixedModelSet(scene));
     gp.render();
-    const Image before = gp.read(PredictionTerm::Global);
+    const Image before = gp.read(Term::Global);
     const std::vector<int> idsBefore = gp.readGBuffer().objectId;
     gp.setLightPosition(Vec3(0.4f, 0.7f, 0.3f));
     gp.render();
-    const Image after = gp.read(PredictionTerm::Global);
+    const Image after = gp.read(Term::Global);
     const std::vector<int> idsAfter = gp.readGBuffer().objectId;
     size_t changed = 0;
     for (size_t i = 0; i < before.data.size(); ++i) changed += before.data[i] != after.data[i];
@@ -421,7 +421,7 @@ TEST(GlslPredictor, ResizeWithSetCamera) {
     gp.setCamera(cam);
     scene.camera = cam;
     gp.render();
-    EXPECT_EQ(gp.read(PredictionTerm::Global).width, 97);
+    EXPECT_EQ(gp.read(Term::Global).width, 97);
     expectEquivalent(scene, set, gp, 0.5);  // the wide frame shows background beside the box
     cam.width = 0;
     EXPECT_THROW(gp.setCamera(cam), std::invalid_argument);
@@ -444,7 +444,7 @@ TEST(GlslPredictor, RestoresCallerGlState) {
     glEnable(GL_BLEND);
     glActiveTexture(GL_TEXTURE2);
     gp.render();
-    (void)gp.read(PredictionTerm::Direct);
+    (void)gp.read(Term::Direct);
     GLint v[4], drawFbo, readFbo, boundVao, active, unit0;
     glGetIntegerv(GL_VIEWPORT, v);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFbo);
@@ -534,7 +534,7 @@ TEST(GlslPredictor, AgreesWithCorePredictorImages) {
     size_t compared = 0, failures = 0;
     double worst = 0;
     for (int t = 0; t < 3; ++t) {
-        const Image gl = gp.read(PredictionTerm(t));
+        const Image gl = gp.read(Term(t));
         for (int y = 1; y + 1 < h; ++y)
             for (int x = 1; x + 1 < w; ++x) {
                 const int id = cpuId(x, y);

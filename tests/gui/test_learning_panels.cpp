@@ -17,7 +17,6 @@ namespace rrf::test {
 
 namespace fs = std::filesystem;
 using namespace rrf::panels;
-using panels::Term;
 
 namespace {
 const std::string kCornell = RRF_SOURCE_DIR "/projects/cornell-box/project.json";

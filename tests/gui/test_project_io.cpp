@@ -218,9 +218,10 @@ TEST(FileDialog, ConfirmChecksThePath) {
 }
 
 TEST(ViewModel, ErrorMetricsAndHighlight) {
-    EXPECT_FLOAT_EQ(pixelError(Vec3(1.f), Vec3(1.5f), ErrorMetric::Absolute), 0.5f);
-    EXPECT_NEAR(pixelError(Vec3(1.f), Vec3(1.5f), ErrorMetric::Relative), 0.5f / 1.01f, 1e-6f);
-    EXPECT_FLOAT_EQ(pixelError(Vec3(1.f), Vec3(1.5f), ErrorMetric::Squared), 0.25f);
+    // core's per-pixel metric, compared image (1.5) first, ground truth (1.0) second.
+    EXPECT_FLOAT_EQ(pixelError(Vec3(1.5f), Vec3(1.f), ErrorMapKind::Absolute), 0.5f);
+    EXPECT_NEAR(pixelError(Vec3(1.5f), Vec3(1.f), ErrorMapKind::Relative), 0.5f / 1.01f, 1e-6f);
+    EXPECT_FLOAT_EQ(pixelError(Vec3(1.5f), Vec3(1.f), ErrorMapKind::Squared), 0.25f);
 
     WorkbenchState s;
     s.groundTruth.global = Image(2, 1, Vec3(0.5f));
@@ -231,7 +232,7 @@ TEST(ViewModel, ErrorMetricsAndHighlight) {
     s.objectIds = {3, 4};
     s.idWidth = 2;
     s.idHeight = 1;
-    s.view.metric = ErrorMetric::Absolute;
+    s.view.metric = ErrorMapKind::Absolute;
     ViewModel vm;
     vm.update(s);
     ASSERT_EQ(vm.error().width, 2);
@@ -249,6 +250,44 @@ TEST(ViewModel, ErrorMetricsAndHighlight) {
     s.view.exposure = 1.f;
     vm.update(s);
     EXPECT_EQ(vm.image(ViewModel::kReference).rgba[4], 255) << "0.5 at +1 EV is white";
+}
+
+TEST(ViewModel, ErrorMapIsTheMetricRrfEvaluateReports) {
+    // A coloured pixel, where the luminance error and the per-channel mean differ: the Views error
+    // map must hold core's metric (per channel, averaged over R, G, B), as `rrf evaluate`'s
+    // error_<kind>_<term> maps and its per-object statistics do.
+    const Vec3 truth(0.8f, 0.2f, 0.05f), predicted(0.5f, 0.4f, 0.05f);
+    WorkbenchState s;
+    s.groundTruth.direct = Image(3, 2, Vec3(0.1f));
+    s.groundTruth.direct.set(1, 1, truth);
+    s.groundTruth.touch();
+    s.prediction.direct = Image(3, 2, Vec3(0.1f));
+    s.prediction.direct.set(1, 1, predicted);
+    s.prediction.touch();
+    s.view.term = Term::Direct;
+    ViewModel vm;
+    for (ErrorMapKind k : kErrorMapKinds) {
+        s.view.metric = k;
+        vm.update(s);
+        ASSERT_EQ(vm.error().width, 3) << errorMapName(k);
+        const float shown = vm.error().at(1, 1).x;
+        EXPECT_EQ(shown, errorMap(s.prediction.direct, s.groundTruth.direct, k).at(1, 1).x) << errorMapName(k);
+        EXPECT_EQ(shown, pixelError(predicted, truth, k)) << "the hover read-out shows the map's value";
+        const float lum = luminance(predicted) - luminance(truth);
+        const float lumError = k == ErrorMapKind::Absolute   ? std::fabs(lum)
+                               : k == ErrorMapKind::Relative ? std::fabs(lum) / (luminance(truth) + 0.01f)
+                                                             : lum * lum;
+        EXPECT_GT(std::fabs(shown - lumError), 0.01f) << errorMapName(k) << ": the pixel must tell the definitions apart";
+    }
+    // The per-object statistics of `rrf evaluate` over this one pixel agree with the map.
+    const ErrorStats one = errorStats(s.prediction.direct, s.groundTruth.direct, {uint32_t(1 * 3 + 1)});
+    s.view.metric = ErrorMapKind::Absolute;
+    vm.update(s);
+    EXPECT_NEAR(vm.error().at(1, 1).x, one.mae, 1e-7);
+    s.view.metric = ErrorMapKind::Squared;
+    vm.update(s);
+    EXPECT_NEAR(vm.error().at(1, 1).x, one.rmse * one.rmse, 1e-7);
+    EXPECT_NEAR(vm.error().at(1, 1).x, (0.09 + 0.04) / 3.0, 1e-6);
 }
 
 }  // namespace rrf::test
