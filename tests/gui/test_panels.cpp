@@ -63,6 +63,8 @@ TEST_F(PanelTest, AllPanelsDrawWithoutProjectAndWithout) {
     }
     EXPECT_TRUE(s.requests.empty()) << "idle frames must not ask for anything";
     EXPECT_FALSE(s.dirty) << "idle frames must not edit the project";
+    EXPECT_FALSE(s.project.sampling.has_value()) << "drawing must not write a default sampling section";
+    EXPECT_TRUE(s.project.overrides.empty()) << "drawing must not record scene overrides";
 }
 
 TEST_F(PanelTest, SplitterDragResizesTheLeftColumn) {

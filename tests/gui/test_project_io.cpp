@@ -127,6 +127,25 @@ TEST(ProjectIo, BadFileKeepsTheOpenProject) {
     fs::remove_all(dir);
 }
 
+TEST(ProjectIo, MalformedSettingsSectionIsRefusedAtLoadAndTheOpenProjectKept) {
+    // A bad value in a settings section is reported when the file is opened (file, JSON pointer,
+    // what was expected), no longer when a panel first draws it: the workbench shows the message
+    // and keeps the project it had open.
+    const fs::path dir = copyCornell("malformed");
+    WorkbenchState s;
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, (dir / "project.json").string(), error)) << error;
+    nlohmann::json doc = nlohmann::json::parse(std::ifstream(dir / "project.json"));
+    doc["sampling"] = {{"grid", {4, "four", 4}}};
+    std::ofstream(dir / "bad_sampling.json") << doc.dump(2);
+    EXPECT_FALSE(loadProjectIntoState(s, (dir / "bad_sampling.json").string(), error));
+    EXPECT_NE(error.find("bad_sampling.json: /sampling/grid/1: expected integer, got string"), std::string::npos)
+        << error;
+    EXPECT_TRUE(s.hasProject);
+    EXPECT_EQ(s.project.path, (dir / "project.json").string());
+    fs::remove_all(dir);
+}
+
 TEST(ProjectIo, FailedSaveChangesNothing) {
     const fs::path dir = copyCornell("failsave");
     WorkbenchState s;
