@@ -63,7 +63,7 @@ void drawCostPanel(WorkbenchState& state) {
     CostView& v = state.costView;
     std::vector<const CostSeries*> series;
     for (const CostSeries& s : state.cost.sweeps) series.push_back(&s);
-    const CostSeries runs = runsCostSeries(state.runs);
+    const CostSeries runs = runsCostSeries(state.project.runs);
     if (v.showRuns && !runs.points.empty()) series.push_back(&runs);
 
     double xlo = INFINITY, xhi = 0, ylo = INFINITY, yhi = 0;

@@ -9,21 +9,11 @@
 namespace rrf::panels {
 
 namespace {
-float clampFraction(float f, float fallback) {
-    if (!std::isfinite(f)) return fallback;
-    return std::clamp(f, kMinPaneFraction, kMaxPaneFraction);
-}
-
-float readFraction(const nlohmann::json& j, const char* key, float fallback) {
-    if (!j.is_object() || !j.contains(key) || !j[key].is_number()) return fallback;
-    return clampFraction(j[key].get<float>(), fallback);
-}
-
 /// One splitter between two panes along `axis`; `first` is the size of the pane before it.
 void splitter(const char* id, ImGuiAxis axis, const ImVec2& origin, float total, float cross, float thickness,
               float& first) {
     float second = total - first - thickness;
-    const float minSize = total * kMinPaneFraction;
+    const float minSize = total * PaneLayout::kMinFraction;
     ImRect bb;
     if (axis == ImGuiAxis_X)
         bb = ImRect(ImVec2(origin.x + first, origin.y), ImVec2(origin.x + first + thickness, origin.y + cross));
@@ -33,29 +23,20 @@ void splitter(const char* id, ImGuiAxis axis, const ImVec2& origin, float total,
 }
 }  // namespace
 
-nlohmann::json LayoutState::toJson() const { return nlohmann::json{{"left", left}, {"bottom", bottom}}; }
-
-LayoutState LayoutState::fromJson(const nlohmann::json& j) {
-    LayoutState s;
-    s.left = readFraction(j, "left", kDefaultLeft);
-    s.bottom = readFraction(j, "bottom", kDefaultBottom);
-    return s;
-}
-
-void drawWorkspace(LayoutState& layout, const std::function<void()>& left, const std::function<void()>& centre,
+void drawWorkspace(PaneLayout& layout, const std::function<void()>& left, const std::function<void()>& centre,
                    const std::function<void()>& bottom) {
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const float t = std::max(4.f, std::round(ImGui::GetFontSize() * 0.35f));
     if (avail.x < 4 * t || avail.y < 4 * t) return;  // minimised window: nothing sensible to draw
 
-    layout.left = clampFraction(layout.left, LayoutState::kDefaultLeft);
-    layout.bottom = clampFraction(layout.bottom, LayoutState::kDefaultBottom);
+    layout.left = PaneLayout::clampFraction(layout.left, PaneLayout::kDefaultLeft);
+    layout.bottom = PaneLayout::clampFraction(layout.bottom, PaneLayout::kDefaultBottom);
 
     // Left column | right side.
     float leftW = std::round(layout.left * avail.x);
     splitter("##split-left", ImGuiAxis_X, origin, avail.x, avail.y, t, leftW);
-    layout.left = clampFraction(leftW / avail.x, LayoutState::kDefaultLeft);
+    layout.left = PaneLayout::clampFraction(leftW / avail.x, PaneLayout::kDefaultLeft);
     leftW = std::round(layout.left * avail.x);
     const float rightW = avail.x - leftW - t;
 
@@ -63,7 +44,7 @@ void drawWorkspace(LayoutState& layout, const std::function<void()>& left, const
     const ImVec2 rightOrigin(origin.x + leftW + t, origin.y);
     float centreH = avail.y - std::round(layout.bottom * avail.y) - t;
     splitter("##split-bottom", ImGuiAxis_Y, rightOrigin, avail.y, rightW, t, centreH);
-    layout.bottom = clampFraction((avail.y - centreH - t) / avail.y, LayoutState::kDefaultBottom);
+    layout.bottom = PaneLayout::clampFraction((avail.y - centreH - t) / avail.y, PaneLayout::kDefaultBottom);
     centreH = avail.y - std::round(layout.bottom * avail.y) - t;
     const float bottomH = avail.y - centreH - t;
 

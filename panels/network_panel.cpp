@@ -1,12 +1,12 @@
 // Network panel: hidden layers, activation, what the networks predict, the trainer and its
-// parameters, and the parameter count of each network. The project's "network" and "trainer"
-// sections are the only copy of these settings: every edit goes through NetworkSettings::store.
+// parameters, and the parameter count of each network. Project::network is the only copy of these
+// settings: every edit goes through store().
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include <imgui.h>
 
-#include "core/util/error.h"
 #include "core/data/record_layout.h"
 #include "panels/panels.h"
 
@@ -15,20 +15,11 @@ namespace rrf::panels {
 namespace {
 constexpr int kMaxLayerSize = 4096, kMaxLayers = 8;
 
-/// Parses the settings; on a malformed section shows why and returns false.
-bool readSettings(const WorkbenchState& state, NetworkSettings& out) {
-    try {
-        out = networkSettingsOf(state.project);
-        return true;
-    } catch (const std::exception& e) {
-        ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "The project's network/trainer sections are invalid:");
-        ImGui::TextWrapped("%s", e.what());
-        return false;
-    }
-}
+/// The settings in effect. A project without network/trainer sections keeps none until an edit.
+NetworkSettings current(const WorkbenchState& state) { return state.project.networkOrDefault(); }
 
 void store(WorkbenchState& state, const NetworkSettings& s) {
-    storeNetworkSettings(s, state.project);
+    state.project.network = s;
     state.markDirty();
 }
 
@@ -113,8 +104,10 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
     arch.outputs = s.options.targets == TargetMode::Joint ? 6 : 3;
     const int perObject = s.options.targets == TargetMode::Separate ? 2 : 1;
     const long long params = (long long)arch.numParams();
-    ImGui::Text("%d inputs -> %s -> %d outputs: %lld parameters per network", arch.inputs,
-                nlohmann::json(arch.hidden).dump().c_str(), arch.outputs, params);
+    std::string hidden;
+    for (const int h : arch.hidden) hidden += (hidden.empty() ? "" : ", ") + std::to_string(h);
+    ImGui::Text("%d inputs -> [%s] -> %d outputs: %lld parameters per network", arch.inputs, hidden.c_str(),
+                arch.outputs, params);
     ImGui::Text("%d network%s per object, %zu objects: %lld parameters in all", perObject, perObject > 1 ? "s" : "",
                 state.project.scene.objects.size(), params * perObject * (long long)state.project.scene.objects.size());
     if (s.options.trainer.type == TrainerType::LevenbergMarquardt)
@@ -123,7 +116,7 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
 }  // namespace
 
 bool addHiddenLayer(WorkbenchState& state) {
-    NetworkSettings s = networkSettingsOf(state.project);
+    NetworkSettings s = current(state);
     if (int(s.options.hidden.size()) >= kMaxLayers) return false;
     // A new layer repeats the last one's size: a sensible start that the user then resizes.
     s.options.hidden.push_back(s.options.hidden.empty() ? 10 : s.options.hidden.back());
@@ -132,7 +125,7 @@ bool addHiddenLayer(WorkbenchState& state) {
 }
 
 bool removeHiddenLayer(WorkbenchState& state, int index) {
-    NetworkSettings s = networkSettingsOf(state.project);
+    NetworkSettings s = current(state);
     // The file format needs at least one hidden layer.
     if (s.options.hidden.size() <= 1 || index < 0 || index >= int(s.options.hidden.size())) return false;
     s.options.hidden.erase(s.options.hidden.begin() + index);
@@ -141,7 +134,7 @@ bool removeHiddenLayer(WorkbenchState& state, int index) {
 }
 
 bool resizeHiddenLayer(WorkbenchState& state, int index, int size) {
-    NetworkSettings s = networkSettingsOf(state.project);
+    NetworkSettings s = current(state);
     if (index < 0 || index >= int(s.options.hidden.size())) return false;
     size = std::clamp(size, 1, kMaxLayerSize);
     if (s.options.hidden[size_t(index)] == size) return false;
@@ -151,7 +144,7 @@ bool resizeHiddenLayer(WorkbenchState& state, int index, int size) {
 }
 
 bool setTrainerType(WorkbenchState& state, TrainerType type) {
-    NetworkSettings s = networkSettingsOf(state.project);
+    NetworkSettings s = current(state);
     if (s.options.trainer.type == type) return false;
     s.options.trainer.type = type;  // the other trainer's parameters keep their defaults
     store(state, s);
@@ -163,8 +156,7 @@ void drawNetworkPanel(WorkbenchState& state) {
         ImGui::TextDisabled("No project is open.");
         return;
     }
-    NetworkSettings s;
-    if (!readSettings(state, s)) return;
+    NetworkSettings s = current(state);
 
     ImGui::TextUnformatted("Hidden layers");
     int remove = -1;
@@ -185,7 +177,7 @@ void drawNetworkPanel(WorkbenchState& state) {
     ImGui::BeginDisabled(int(s.options.hidden.size()) >= kMaxLayers);
     if (ImGui::Button("Add layer")) addHiddenLayer(state);
     ImGui::EndDisabled();
-    s = networkSettingsOf(state.project);  // the layer edits above are stored already
+    s = current(state);  // the layer edits above are stored already
 
     int activation = int(s.options.activation);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
@@ -208,7 +200,7 @@ void drawNetworkPanel(WorkbenchState& state) {
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
     if (ImGui::Combo("trainer", &trainer, "Levenberg-Marquardt\0Adam\0")) {
         setTrainerType(state, TrainerType(trainer));
-        s = networkSettingsOf(state.project);
+        s = current(state);
     }
     const bool changed = s.options.trainer.type == TrainerType::Adam ? drawAdam(s.options.trainer.adam)
                                                                       : drawLevenbergMarquardt(s.options.trainer.lm);

@@ -30,9 +30,8 @@ void drawObjectsPanel(WorkbenchState& state);
 /// Cost: accuracy versus time from sweeps and from the project's runs.
 void drawCostPanel(WorkbenchState& state);
 
-// Network panel edits (the panel's buttons call these; each stores the settings and marks the
-// project dirty, and returns false when nothing changed). They throw InputError like
-// NetworkSettings::fromProject when the project's sections are malformed.
+// Network panel edits (the panel's buttons call these; each stores the edited settings in
+// Project::network and marks the project dirty, and returns false when nothing changed).
 bool addHiddenLayer(WorkbenchState& state);
 bool removeHiddenLayer(WorkbenchState& state, int index);
 bool resizeHiddenLayer(WorkbenchState& state, int index, int size);

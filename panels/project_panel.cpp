@@ -1,6 +1,7 @@
 // Project panel: the project's name and files, the ground-truth render settings, recent projects and
 // the runs table (re-open, compare, delete).
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include <imgui.h>
@@ -11,10 +12,10 @@
 namespace rrf::panels {
 
 namespace {
-std::string metricText(const nlohmann::json& metrics, const char* key, const char* fmt) {
-    if (!metrics.is_object() || !metrics.contains(key) || !metrics[key].is_number()) return "-";
+std::string numberText(std::optional<double> v, const char* fmt) {
+    if (!v) return "-";
     char buf[32];
-    std::snprintf(buf, sizeof buf, fmt, metrics[key].get<double>());
+    std::snprintf(buf, sizeof buf, fmt, *v);
     return buf;
 }
 
@@ -50,7 +51,7 @@ void drawRenderSettings(WorkbenchState& state) {
 }
 
 void drawRuns(WorkbenchState& state) {
-    if (state.runs.empty()) {
+    if (state.project.runs.empty()) {
         ImGui::TextDisabled("No runs yet. \"Save run\" in the Views panel records the current ground truth.");
         return;
     }
@@ -66,8 +67,8 @@ void drawRuns(WorkbenchState& state) {
     ImGui::TableSetupColumn("time (s)");
     ImGui::TableSetupColumn("");
     ImGui::TableHeadersRow();
-    for (size_t i = 0; i < state.runs.size(); ++i) {
-        Run& run = state.runs[i];
+    for (size_t i = 0; i < state.project.runs.size(); ++i) {
+        Run& run = state.project.runs[i];
         ImGui::PushID(run.id.c_str());
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
@@ -77,11 +78,11 @@ void drawRuns(WorkbenchState& state) {
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(run.kind.c_str());
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(metricText(run.metrics, "spp", "%.0f").c_str());
+        ImGui::TextUnformatted(numberText(run.metric("spp"), "%.0f").c_str());
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(metricText(run.metrics, "relative_error", "%.2e").c_str());
+        ImGui::TextUnformatted(numberText(run.metric("relative_error"), "%.2e").c_str());
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(metricText(run.timings, "render", "%.2f").c_str());
+        ImGui::TextUnformatted(numberText(run.timing("render"), "%.2f").c_str());
         ImGui::TableNextColumn();
         if (ImGui::SmallButton("Re-open")) state.request(Command::ReopenRun, {}, int(i));
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Restore this run's settings and show its images");
@@ -113,7 +114,7 @@ void drawProjectPanel(WorkbenchState& state) {
     ImGui::Separator();
     std::string name = state.projectName();
     if (ImGui::InputText("name", &name)) {
-        state.project.doc["name"] = name;
+        state.project.name = name;
         state.markDirty();
     }
     ImGui::TextDisabled("file   %s", state.project.path.empty() ? "(not saved yet)" : state.project.path.c_str());

@@ -1,10 +1,9 @@
-// Sampling panel: the data generator's settings (the project's "sampling" section), what a run will
+// Sampling panel: the data generator's settings (Project::sampling), what a run will
 // cost before it starts, and how many records each object got after it ran.
 #include <cstdio>
 
 #include <imgui.h>
 
-#include "core/util/error.h"
 #include "core/data/record_layout.h"
 #include "core/data/sampling_settings.h"
 #include "panels/panels.h"
@@ -53,18 +52,8 @@ void drawSamplingPanel(WorkbenchState& state) {
         ImGui::TextDisabled("No project is open.");
         return;
     }
-    SamplingSettings s;
-    try {
-        s = samplingSettingsOf(state.project);
-    } catch (const InputError& e) {
-        ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "The project's sampling section is invalid:");
-        ImGui::TextWrapped("%s", e.what());
-        if (ImGui::Button("Reset to defaults")) {
-            state.project.doc["sampling"] = SamplingSettings().toJson();
-            state.markDirty();
-        }
-        return;
-    }
+    // Edits a copy: a project without a sampling section keeps none until the user changes something.
+    SamplingSettings s = state.project.samplingOrDefault();
     bool changed = false;
     const float w = ImGui::GetFontSize() * 10;
     int grid[3] = {s.nx, s.ny, s.nz};
@@ -87,7 +76,7 @@ void drawSamplingPanel(WorkbenchState& state) {
     }
     changed |= ImGui::Checkbox("fixed light (ignore the light region)", &s.fixedLight);
     if (changed) {
-        state.project.doc["sampling"] = s.toJson();
+        state.project.sampling = s;
         state.markDirty();
     }
     const Bounds3& r = state.project.scene.lightRegion;

@@ -7,7 +7,7 @@
 
 #include "core/scene/effects.h"
 #include "panels/panels.h"
-#include "core/project/scene_overrides.h"
+#include "core/project/scene_edits.h"
 
 namespace rrf::panels {
 
@@ -53,9 +53,9 @@ void drawObjects(WorkbenchState& state) {
 }
 
 void drawMaterials(WorkbenchState& state) {
-    Scene& scene = state.project.scene;
+    const Scene& scene = state.project.scene;
     for (size_t i = 0; i < scene.materials.size(); ++i) {
-        Material& m = scene.materials[i];
+        Material m = scene.materials[i];  // edited as a copy: editMaterial applies and records it
         ImGui::PushID(int(i));
         if (ImGui::TreeNode("##mat", "%s (%s)", m.name.c_str(), m.type == Material::Type::Phong ? "Phong" : "Lambert")) {
             const bool kd = ImGui::ColorEdit3("kd (diffuse)", &m.kd.x, ImGuiColorEditFlags_Float);
@@ -64,9 +64,7 @@ void drawMaterials(WorkbenchState& state) {
             if (m.type == Material::Type::Phong || ks)
                 ex = ImGui::DragFloat("exponent", &m.exponent, 1.f, 0.f, 1e6f, "%.1f", ImGuiSliderFlags_Logarithmic);
             if (kd || ks || ex) {
-                if (enforceEnergyConservation(m, kd)) ImGui::SetTooltip("kd + ks limited to 1 per channel");
-                if (m.ks.x > 0.f || m.ks.y > 0.f || m.ks.z > 0.f) m.type = Material::Type::Phong;
-                recordMaterialOverride(state.project, int(i));
+                if (editMaterial(state.project, int(i), m, kd)) ImGui::SetTooltip("kd + ks limited to 1 per channel");
                 state.markDirty();
                 state.request(Command::SceneChanged);
             }
@@ -77,7 +75,7 @@ void drawMaterials(WorkbenchState& state) {
 }
 
 void drawLights(WorkbenchState& state) {
-    Scene& scene = state.project.scene;
+    const Scene& scene = state.project.scene;
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         const Light& l = scene.lights[i];
         const Vec3 c = l.center();
@@ -116,8 +114,7 @@ void drawLights(WorkbenchState& state) {
         moved = true;
     }
     if (moved) {
-        scene.setLightPosition(clampToLightRegion(scene, p));
-        recordLightOverride(state.project);
+        moveLight(state.project, p);
         state.markDirty();
         state.request(Command::SceneChanged);
     }

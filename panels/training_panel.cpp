@@ -22,7 +22,7 @@ struct Shown {
 Shown shownCurves(const WorkbenchState& state) {
     if (!state.training.curves.empty() || state.training.running)
         return {&state.training.curves, state.training.running ? "live" : "this session"};
-    for (auto it = state.runs.rbegin(); it != state.runs.rend(); ++it)
+    for (auto it = state.project.runs.rbegin(); it != state.project.runs.rend(); ++it)
         if (it->kind == "train" && !it->curves.empty()) return {&it->curves, "run '" + it->name + "'"};
     return {&state.training.curves, ""};
 }

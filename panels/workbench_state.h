@@ -110,6 +110,8 @@ struct DatasetInfo {
 };
 
 struct WorkbenchState {
+    /// The open project: its typed sections (settings, runs, pane layout, scene overrides) are what
+    /// the panels edit.
     Project project;
     bool hasProject = false;
     bool dirty = false;  ///< unsaved changes
@@ -135,9 +137,7 @@ struct WorkbenchState {
     /// GL textures of the three views, set by the application (null in tests: nothing is drawn).
     ImTextureID viewTextures[3] = {nullptr, nullptr, nullptr};
 
-    LayoutState layout;
-    std::vector<Run> runs;
-    int compareRun = -1;  ///< index into runs shown in the compare view, -1 = none
+    int compareRun = -1;  ///< index into project.runs shown in the compare view, -1 = none
     std::vector<std::string> recent;
     Log log;
     std::vector<Request> requests;
@@ -148,7 +148,7 @@ struct WorkbenchState {
         requests.push_back({c, std::move(path), index});
     }
     void markDirty() { dirty = true; }
-    /// Name for titles: the project's "name", else its file name, else "untitled".
+    /// Name for titles: the project's name, else its file name, else "untitled".
     std::string projectName() const;
     /// The images of the middle view (the prediction or the compared run, per view.compareSource).
     const ImageSet& compared() const { return view.compareSource == CompareSource::Run ? compare : prediction; }

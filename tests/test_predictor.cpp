@@ -194,7 +194,7 @@ TEST(Predictor, SettingsAreValidated) {
     EXPECT_THROW(PredictionSettings::fromJson({{"direct_samples", 0}}, "p.json"), InputError);
     EXPECT_THROW(PredictionSettings::fromJson({{"typo", 1}}, "p.json"), InputError);
     const Project p = loadProjectOrScene(kCornell);
-    EXPECT_EQ(predictionSettingsOf(p).direct, PredictionSettings::Direct::Network);
+    EXPECT_EQ(p.prediction.direct, PredictionSettings::Direct::Network);
     // A network with the wrong number of inputs is refused up front, not at the first frame.
     const ModelSet bad = modelsFor(p.scene, [](int) {
         return std::map<std::string, NetworkModel>{{"global", copyInputNet(14, {0, 1, 2})}};

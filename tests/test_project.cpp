@@ -9,6 +9,7 @@
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/project/project.h"
+#include "core/project/scene_edits.h"
 
 using namespace rrf;
 using nlohmann::json;
@@ -61,14 +62,22 @@ TEST(Project, LoadsCornellProject) {
     EXPECT_EQ(p.render.width, 0);
     EXPECT_EQ(p.scene.objects.size(), 7u);
     EXPECT_EQ(p.scene.sourcePath, kCornellDir + "/scene.json");
-    EXPECT_EQ(p.doc["name"], "Cornell box");
+    EXPECT_EQ(p.name, "Cornell box");
+    EXPECT_FALSE(p.sampling.has_value()) << "the file has no sampling section";
+    EXPECT_FALSE(p.network.has_value()) << "the file has no network or trainer section";
+    EXPECT_TRUE(p.warnings.empty());
 }
 
 TEST(Project, RoundTripKeepsUnknownSectionsAndRebasesSceneRef) {
     Project p = loadProjectOrScene(kCornellDir + "/project.json");
-    p.doc["network"] = {{"hidden", {20, 10}}, {"activation", "tanh"}};
-    p.doc["runs"] = json::array({{{"id", 3}, {"rmse", 0.125}}});
-    p.doc["layout"] = {{"left", 0.25}};
+    NetworkSettings network;
+    network.options.hidden = {20, 10};
+    p.network = network;
+    rrf::Run run;
+    run.id = "3";
+    run.metrics = {{"rmse", 0.125}};
+    p.runs = {run};
+    p.layout.left = 0.25f;
     p.render.spp = 256;
     p.render.estimator = Estimator::Naive;
     p.render.seed = 18446744073709551615ULL;
@@ -96,10 +105,12 @@ TEST(Project, RoundTripKeepsUnknownSectionsAndRebasesSceneRef) {
     EXPECT_FLOAT_EQ(q.render.exposure, -1.5f);
     EXPECT_EQ(q.render.width, 128);
     EXPECT_EQ(q.render.maxDepth, 64);
-    EXPECT_EQ(q.doc["network"], p.doc["network"]);
-    EXPECT_EQ(q.doc["runs"], p.doc["runs"]);
-    EXPECT_EQ(q.doc["layout"], p.doc["layout"]);
-    EXPECT_EQ(q.doc["name"], "Cornell box");
+    ASSERT_TRUE(q.network.has_value());
+    EXPECT_EQ(q.network->networkJson(), p.network->networkJson());
+    ASSERT_EQ(q.runs.size(), 1u);
+    EXPECT_EQ(q.runs[0].toJson(), p.runs[0].toJson());
+    EXPECT_EQ(q.layout, p.layout);
+    EXPECT_EQ(q.name, "Cornell box");
 }
 
 TEST(Project, BareSceneGetsDefaultSettings) {
@@ -107,7 +118,8 @@ TEST(Project, BareSceneGetsDefaultSettings) {
     EXPECT_EQ(p.scene.objects.size(), 7u);
     EXPECT_EQ(p.sceneRef, "scene.json");
     EXPECT_EQ(p.render.spp, RenderSettings().spp);
-    EXPECT_EQ(p.doc["rrf_project"], 1);
+    EXPECT_EQ(p.name, "scene");
+    EXPECT_FALSE(p.sampling.has_value());
     // Saving over the scene file itself would destroy it.
     EXPECT_THROW(saveProject(p, kCornellDir + "/scene.json"), std::runtime_error);
 
@@ -133,7 +145,8 @@ TEST(Project, EmbeddedSceneRebasesObjPathsOnSave) {
 
     const Project q = loadProjectOrScene(dir + "/b/moved.json");
     EXPECT_EQ(q.scene.contentHash(), p.scene.contentHash());
-    EXPECT_EQ(q.doc["trainer"]["type"], "lm");
+    ASSERT_TRUE(q.network.has_value());
+    EXPECT_EQ(q.network->options.trainer.type, TrainerType::LevenbergMarquardt);
 }
 
 TEST(Project, EmbeddedSceneErrorsPointIntoProject) {
@@ -179,4 +192,162 @@ TEST(Project, VersionAndKindAreChecked) {
     EXPECT_NE(msg.find("none.json: neither a project"), std::string::npos) << msg;
     msg = loadError(writeText(dir + "/noversion.json", R"({"scene": "x.json"})"));
     EXPECT_NE(msg.find("noversion.json: missing required field 'rrf_project'"), std::string::npos) << msg;
+}
+
+namespace {
+/// Writes a project with `sections` added to the Cornell box project and returns its path.
+std::string cornellWith(const std::string& dir, const std::string& name, const json& sections) {
+    json doc = {{"rrf_project", 1}, {"scene", kCornellDir + "/scene.json"}};
+    for (auto it = sections.begin(); it != sections.end(); ++it) doc[it.key()] = it.value();
+    return writeText(dir + "/" + name, doc.dump(2));
+}
+}  // namespace
+
+TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
+    const std::string dir = freshDir("typed_roundtrip");
+    Project p = loadProjectOrScene(kCornellDir + "/project.json");
+    p.name = "typed";
+    SamplingSettings sampling;
+    sampling.nx = 3;
+    sampling.ny = 4;
+    sampling.nz = 5;
+    sampling.directions = 77;
+    sampling.spp = 9;
+    sampling.seed = 18446744073709551615ULL;
+    sampling.fixedLight = true;
+    sampling.estimator = Estimator::Naive;
+    sampling.maxDepth = 7;
+    p.sampling = sampling;
+    NetworkSettings network;
+    network.options.hidden = {8, 4, 2};
+    network.options.activation = Activation::Relu;
+    network.options.targets = TargetMode::Joint;
+    network.options.trainer = network.options.trainer.withType("adam");
+    network.options.trainer.adam.learningRate = 3e-3;
+    network.options.trainer.adam.loss = AdamLoss::RelativeL2;
+    p.network = network;
+    p.prediction.direct = PredictionSettings::Direct::Exact;
+    p.prediction.directSamples = 12;
+    p.prediction.seed = 5;
+    rrf::Run run;
+    run.id = "train-1";
+    run.kind = "train";
+    run.loss = {{0, 1.0, 2.0, 0.5}};
+    run.curves = {{0, "floor", "global", {{0, 1.0, 2.0, 0.5}}}};
+    run.artifacts = {"runs/train-1/models/models.json"};
+    run.extra = {{"future", true}};
+    p.runs = {run};
+    p.layout.left = 0.4f;
+    p.layout.bottom = 0.2f;
+    const Vec3 light = moveLight(p, Vec3(0.1f, 0.99f, -0.05f));
+    Material white = p.scene.materials[0];
+    white.kd = Vec3(0.5f, 0.4f, 0.3f);
+    editMaterial(p, 0, white, true);
+    p.otherSections["future_section"] = {{"kept", {1, 2, 3}}};
+
+    const std::string path = dir + "/typed.json";
+    saveProject(p, path);
+    const Project q = loadProjectOrScene(path);
+    EXPECT_TRUE(q.warnings.empty());
+    EXPECT_EQ(q.name, "typed");
+    ASSERT_TRUE(q.sampling.has_value());
+    EXPECT_EQ(q.sampling->toJson(), sampling.toJson());
+    ASSERT_TRUE(q.network.has_value());
+    EXPECT_EQ(q.network->networkJson(), network.networkJson());
+    EXPECT_EQ(q.network->trainerJson(), network.trainerJson());
+    EXPECT_EQ(q.prediction.toJson(), p.prediction.toJson());
+    ASSERT_EQ(q.runs.size(), 1u);
+    EXPECT_EQ(q.runs[0].toJson(), run.toJson());
+    EXPECT_EQ(q.layout, p.layout);
+    EXPECT_EQ(q.overrides.toJson(), p.overrides.toJson());
+    EXPECT_FLOAT_EQ(q.scene.lightPosition().y, light.y);
+    EXPECT_FLOAT_EQ(q.scene.materials[0].kd.x, 0.5f);
+    EXPECT_EQ(q.scene.contentHash(), p.scene.contentHash()) << "the overrides are applied at load";
+    EXPECT_EQ(q.otherSections, p.otherSections);
+    EXPECT_EQ(q.render.spp, p.render.spp);
+}
+
+TEST(Project, AbsentSectionsStayAbsentOnSave) {
+    const std::string dir = freshDir("absent");
+    Project p = loadProjectOrScene(kCornellDir + "/project.json");
+    saveProject(p, dir + "/p.json");
+    const json doc = json::parse(readFile(dir + "/p.json"));
+    EXPECT_FALSE(doc.contains("sampling")) << "absent: the front ends' own defaults apply";
+    EXPECT_FALSE(doc.contains("network"));
+    EXPECT_FALSE(doc.contains("trainer"));
+    EXPECT_FALSE(doc.contains("runs"));
+    EXPECT_FALSE(doc.contains("scene_overrides"));
+}
+
+TEST(Project, BadValueInEachSettingsSectionIsReportedAtLoad) {
+    const std::string dir = freshDir("bad_sections");
+    const std::pair<json, std::string> cases[] = {
+        {{{"render", {{"max_depth", 0}}}}, "/render/max_depth: integer 0 out of range"},
+        {{{"sampling", {{"grid", {4, 0, 4}}}}}, "/sampling/grid/1: integer 0 out of range"},
+        {{{"sampling", {{"directions", "many"}}}}, "/sampling/directions: expected integer, got string"},
+        {{{"sampling", {{"gird", {4, 4, 4}}}}}, "/sampling/gird: unknown key 'gird'"},
+        {{{"network", {{"hidden", {20, 5000}}}}}, "/network/hidden/1: integer 5000 out of range [1, 4096]"},
+        {{{"network", {{"activation", "sigmoid"}}}}, "/network/activation: expected one of \"tanh\", \"relu\""},
+        {{{"trainer", {{"type", "adam"}, {"learning_rate", 0}}}}, "/trainer/learning_rate: value 0 out of range (0, 1000]"},
+        {{{"trainer", {{"mu_decrease", 0.1}}}}, "/trainer/mu_decrease: unknown key 'mu_decrease'"},
+        {{{"prediction", {{"direct", "magic"}}}}, "/prediction/direct: expected one of \"network\", \"exact\""},
+        {{{"prediction", {{"direct_samples", 0}}}}, "/prediction/direct_samples: integer 0 out of range"},
+        {{{"name", 3}}, "/name: expected string, got number"},
+    };
+    int i = 0;
+    for (const auto& [sections, expected] : cases) {
+        const std::string name = "bad" + std::to_string(i++) + ".json";
+        const std::string msg = loadError(cornellWith(dir, name, sections));
+        EXPECT_NE(msg.find(name + ": " + expected), std::string::npos) << msg;
+    }
+}
+
+TEST(Project, DamagedWorkbenchSectionsAreWarningsNamingTheirPointer) {
+    const std::string dir = freshDir("damaged_sections");
+    const std::string path = cornellWith(
+        dir, "d.json",
+        {{"layout", {{"left", "wide"}}},
+         {"runs", json::array({{{"id", "ok"}}, {{"id", "bad"}, {"loss", "none"}}})},
+         {"scene_overrides", {{"light_position", {0, 1}}, {"materials", {{"white", {{"kd", {0.5, 0.5, 0.5}}}}}}}}});
+    const Project p = loadProjectOrScene(path);
+    ASSERT_EQ(p.runs.size(), 1u);
+    EXPECT_EQ(p.runs[0].id, "ok");
+    ASSERT_EQ(p.warnings.size(), 3u);
+    EXPECT_NE(p.warnings[0].find("d.json: /runs/1/loss: expected array, got string"), std::string::npos) << p.warnings[0];
+    EXPECT_NE(p.warnings[1].find("d.json: /layout/left: expected number, got string"), std::string::npos) << p.warnings[1];
+    EXPECT_NE(p.warnings[2].find("d.json: /scene_overrides/light_position: expected array of 3 numbers"),
+              std::string::npos)
+        << p.warnings[2];
+    EXPECT_FLOAT_EQ(p.layout.left, PaneLayout::kDefaultLeft);
+    EXPECT_TRUE(p.overrides.materials.count("white")) << "the other overrides still apply";
+    for (const Material& m : p.scene.materials)
+        if (m.name == "white") {
+            EXPECT_FLOAT_EQ(m.kd.x, 0.5f);
+        }
+}
+
+TEST(SceneEdits, MoveLightClampsAndRecords) {
+    Project p = loadProjectOrScene(kCornellDir + "/project.json");
+    ASSERT_FALSE(p.scene.lightRegion.empty());
+    const Vec3 used = moveLight(p, Vec3(100.f, 100.f, 100.f));
+    EXPECT_TRUE(p.scene.lightRegion.contains(used));
+    ASSERT_TRUE(p.overrides.lightPosition.has_value());
+    EXPECT_FLOAT_EQ(p.overrides.lightPosition->x, p.scene.lightPosition().x);
+    EXPECT_FLOAT_EQ(p.scene.lightPosition().x, used.x);
+}
+
+TEST(SceneEdits, EditMaterialEnforcesEnergyConservationAndRecords) {
+    Project p = loadProjectOrScene(kCornellDir + "/project.json");
+    Material m = p.scene.materials[0];
+    m.kd = Vec3(0.9f);
+    m.ks = Vec3(0.5f);
+    m.exponent = 20.f;
+    EXPECT_TRUE(editMaterial(p, 0, m, true)) << "kd + ks > 1 is limited";
+    const Material& e = p.scene.materials[0];
+    EXPECT_NEAR(e.ks.x, 0.1f, 1e-6f);
+    EXPECT_EQ(e.type, Material::Type::Phong);
+    const MaterialOverride& o = p.overrides.materials.at(e.name);
+    EXPECT_NEAR(o.ks->y, 0.1f, 1e-6f);
+    EXPECT_FLOAT_EQ(*o.exponent, 20.f);
+    EXPECT_FALSE(editMaterial(p, 99, m, true)) << "no such material";
 }

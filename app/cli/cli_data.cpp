@@ -30,7 +30,7 @@ void parseShard(const std::string& text, int& k, int& n) {
 
 int runGenerate(const GenerateArgs& a) {
     const Project project = loadProjectOrScene(a.input);
-    SamplingSettings s = samplingSettingsOf(project);
+    SamplingSettings s = project.samplingOrDefault();
     if (!a.grid.empty()) {
         const Vec3 g = parseVec3(a.grid, "--grid");
         if (g.x < 1 || g.y < 1 || g.z < 1 || g.x != float(int(g.x)) || g.y != float(int(g.y)) || g.z != float(int(g.z)))

@@ -39,7 +39,7 @@ void write(const std::string& file, const std::string& text) {
 }
 
 PredictionSettings predictionSettings(const Project& p, const Args& a) {
-    PredictionSettings s = predictionSettingsOf(p);
+    PredictionSettings s = p.prediction;
     if (!a.direct.empty()) s.direct = a.direct == "exact" ? PredictionSettings::Direct::Exact : PredictionSettings::Direct::Network;
     return s;
 }
@@ -158,17 +158,15 @@ int runPredict(const Args& a) {
 
 /// Settings of the pipeline and sweeps: the project's sections where present, small defaults where not.
 void stageSettings(const Project& p, const Args& a, bool quick, SamplingSettings& s, ObjectTrainingOptions& t) {
-    const bool hasSampling = p.doc.is_object() && p.doc.contains("sampling");
-    s = samplingSettingsOf(p);
-    if (quick || !hasSampling) {
+    s = p.samplingOrDefault();
+    if (quick || !p.sampling) {
         // 15³ × 1200 directions (the paper's) is hours on 2 cores; these finish in minutes.
         s.nx = s.ny = s.nz = quick ? 5 : 6;
         s.directions = quick ? 150 : 200;
         s.spp = quick ? 16 : 32;
     }
-    t = networkSettingsOf(p).options;
-    const bool hasTrainer = p.doc.is_object() && p.doc.contains("trainer");
-    if (quick || !hasTrainer) t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = quick ? 50 : 100;
+    t = p.networkOrDefault().options;
+    if (quick || !p.network) t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = quick ? 50 : 100;
     if (a.grid > 0) s.nx = s.ny = s.nz = a.grid;
     if (a.dirs > 0) s.directions = a.dirs;
     if (a.dataSpp > 0) s.spp = a.dataSpp;

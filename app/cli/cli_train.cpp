@@ -51,7 +51,7 @@ std::string fmt(double v) {
 
 int runTrain(const TrainArgs& a) {
     const Project project = loadProjectOrScene(a.input);
-    NetworkSettings settings = networkSettingsOf(project);
+    NetworkSettings settings = project.networkOrDefault();
     ObjectTrainingOptions& o = settings.options;
     if (!a.hidden.empty()) o.hidden = parseHiddenSizes(a.hidden, "--hidden");
     if (!a.trainer.empty()) o.trainer = o.trainer.withType(a.trainer);

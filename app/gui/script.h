@@ -12,8 +12,8 @@
 /// reopen_run {index}, set_light {position}, select_object {id}, view {term, metric, exposure,
 /// error_max, zoom}, open {path?: default re-opens the current file}, save {path?}, export_images {dir}, screenshot {path},
 /// frames {count}, tab {name: bring a panel tab to the front}, check {runs, ground_truth_spp_min, errors,
-/// compare, dataset, prediction, evaluated, train_runs, sweeps}. An unknown step fails the script
-/// (it never skips silently).
+/// compare, dataset, prediction, evaluated, train_runs, sweeps}. An unknown step or key fails the
+/// script when it is loaded (it never skips silently), naming the file and the step's JSON pointer.
 
 #include <chrono>
 #include <string>
@@ -28,7 +28,8 @@ class Script {
 public:
     enum class Status { Running, Done, Failed };
 
-    /// Reads and checks the step list; false with `error` set if the file is unusable.
+    /// Reads and checks the step list (each step's "do" and keys); false with `error` set (file, JSON
+    /// pointer, what was expected) if the file is unusable.
     bool load(const std::string& path, std::string& error);
     /// Carries out (or keeps waiting on) the current step; call once per frame.
     Status step(Workbench& workbench);
@@ -41,6 +42,7 @@ private:
     bool execute(Workbench& wb, const nlohmann::json& s);
 
     nlohmann::json steps_ = nlohmann::json::array();
+    std::string file_;  ///< the script's path, for messages
     size_t next_ = 0;
     bool waiting_ = false;
     int framesLeft_ = 0;

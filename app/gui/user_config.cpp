@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "core/util/atomic_file.h"
+#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -23,14 +23,16 @@ std::string userConfigDir() {
 
 void RecentProjects::load() {
     paths_.clear();
-    std::ifstream in(file_);
-    if (!in) return;
+    std::error_code ec;
+    if (!fs::exists(file_, ec)) return;
     try {
-        const nlohmann::json j = nlohmann::json::parse(in);
-        if (!j.is_array()) return;
-        for (const auto& p : j)
-            if (p.is_string() && paths_.size() < kMaxRecent) paths_.push_back(p.get<std::string>());
-    } catch (const std::exception&) {
+        const nlohmann::json j = readJsonFile(file_);
+        const JsonReader list(j, file_);
+        const size_t n = list.requireArray();
+        // Entries that are not strings are skipped: the list is only a convenience.
+        for (size_t i = 0; i < n && paths_.size() < kMaxRecent; ++i)
+            if (list.at(i).value().is_string()) paths_.push_back(list.at(i).string());
+    } catch (const InputError&) {
         paths_.clear();
     }
 }

@@ -93,7 +93,7 @@ void Workbench::drawHost() {
         ImGui::EndTabItem();
     };
     panels::drawWorkspace(
-        state_.layout,
+        state_.project.layout,
         [&] {
             if (ImGui::BeginTabBar("##left-tabs")) {
                 tab("Project", panels::drawProjectPanel);
@@ -335,10 +335,10 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
             case Command::ReopenRun: reopenRun(r.index); break;
             case Command::CompareRun: compareRun(r.index); break;
             case Command::DeleteRun:
-                if (r.index >= 0 && r.index < int(state_.runs.size())) {
-                    state_.log.info("removed run '" + state_.runs[size_t(r.index)].name +
+                if (r.index >= 0 && r.index < int(state_.project.runs.size())) {
+                    state_.log.info("removed run '" + state_.project.runs[size_t(r.index)].name +
                                     "' from the project (its files stay on disk)");
-                    state_.runs.erase(state_.runs.begin() + r.index);
+                    state_.project.runs.erase(state_.project.runs.begin() + r.index);
                     if (state_.compareRun == r.index) {
                         state_.compareRun = -1;
                         state_.compare = panels::ImageSet{};
@@ -357,7 +357,7 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
                 if (r.path.empty()) openDialog(DialogPurpose::ExportScreenshot);
                 else screenshotRequest_ = r.path;
                 break;
-            case Command::ResetLayout: state_.layout.reset(); break;
+            case Command::ResetLayout: state_.project.layout.reset(); break;
             case Command::Quit: requestQuit(); break;
         }
     }

@@ -35,7 +35,7 @@ bool Workbench::startGenerate() {
     }
     auto session = std::make_shared<GenerateSession>();
     try {
-        session->settings = samplingSettingsOf(state_.project);
+        session->settings = state_.project.samplingOrDefault();
     } catch (const std::exception& e) {
         state_.log.error(std::string("generate: ") + e.what());
         return false;

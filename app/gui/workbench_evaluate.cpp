@@ -44,7 +44,7 @@ bool Workbench::startEvaluate() {
     session->models = live_.models();
     session->modelsDir = live_.dir();
     try {
-        session->settings = predictionSettingsOf(state_.project);
+        session->settings = state_.project.prediction;
     } catch (const std::exception& e) {
         state_.log.error(std::string("evaluate: ") + e.what());
         return false;
@@ -122,7 +122,7 @@ void Workbench::pollEvaluate() {
 
     // The run that made these models gets the result, so the Cost panel can place it.
     const ErrorStats& g = e.term(Term::Global).overall;
-    for (Run& r : state_.runs) {
+    for (Run& r : state_.project.runs) {
         if (r.kind != "train" || r.artifacts.empty()) continue;
         if (fs::path(projectDir()) / fs::path(r.artifacts.front()).parent_path() != fs::path(evaluate_->modelsDir)) continue;
         r.metrics["relative_rmse"] = g.relativeRmse;

@@ -91,7 +91,7 @@ void Workbench::refreshPrediction() {
     session->scene = scene;
     session->models = live_.models();
     try {
-        session->settings = predictionSettingsOf(state_.project);
+        session->settings = state_.project.prediction;
     } catch (const std::exception& e) {
         state_.log.error(std::string("prediction: ") + e.what());
         return;
@@ -144,7 +144,7 @@ bool Workbench::exportPrediction(const std::string& dir) {
     // Exported images come from the CPU predictor: the reference implementation, independent of
     // the GL driver that drew the view.
     try {
-        const Predictor predictor(state_.project.scene, *live_.models(), predictionSettingsOf(state_.project));
+        const Predictor predictor(state_.project.scene, *live_.models(), state_.project.prediction);
         const Camera camera = viewCamera(state_.project);
         const Prediction p = predictor.predict(
             predictor.gbuffer(state_.project.scene.lightPosition(), camera.width, camera.height));

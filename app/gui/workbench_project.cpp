@@ -6,7 +6,8 @@
 #include "core/util/image_io.h"
 #include "core/nn/network_settings.h"
 #include "panels/project_io.h"
-#include "core/project/scene_overrides.h"
+#include "core/project/scene_edits.h"
+#include "core/util/json_reader.h"
 #include "core/util/text_format.h"
 
 namespace rrf {
@@ -56,7 +57,7 @@ bool Workbench::openProject(const std::string& path) {
     // Models belong to the previous project; the last training run's models (if still on disk)
     // drive the prediction of this one.
     live_.reset();
-    for (auto it = state_.runs.rbegin(); it != state_.runs.rend(); ++it) {
+    for (auto it = state_.project.runs.rbegin(); it != state_.project.runs.rend(); ++it) {
         if (it->kind != "train" || it->artifacts.empty()) continue;
         const fs::path models = fs::path(projectDir()) / fs::path(it->artifacts.front()).parent_path();
         if (fs::exists(models / "models.json", ec)) loadModels(models.string());
@@ -71,7 +72,7 @@ void Workbench::newProjectFromScene(const std::string& scenePath) {
     if (!openProject(scenePath)) return;
     // A new project references the scene and has no file yet: the first Save asks where.
     untitled_ = true;
-    state_.project.doc["name"] = "untitled";
+    state_.project.name = "untitled";
     state_.dirty = true;
 }
 
@@ -126,7 +127,7 @@ bool Workbench::saveRun() {
     }
     Run run;
     run.kind = "render";
-    run.id = newRunId(state_.runs, run.kind);
+    run.id = newRunId(state_.project.runs, run.kind);
     run.name = run.id;
     run.created = localTimestamp();
     const std::string relDir = "runs/" + run.id;
@@ -146,14 +147,13 @@ bool Workbench::saveRun() {
     run.settings = json{{"render", renderSettingsToJson(settings)},
                         {"light_position", vec3Json(render_->scene().lightPosition())},
                         {"scene_hash", hexString(render_->scene().contentHash())}};
-    if (state_.project.doc.contains("scene_overrides"))
-        run.settings["scene_overrides"] = state_.project.doc["scene_overrides"];
+    if (!state_.project.overrides.empty()) run.settings["scene_overrides"] = state_.project.overrides.toJson();
     run.metrics = json{{"spp", snap->sppCompleted},
                        {"relative_error", snap->relativeError},
                        {"non_finite_samples", snap->nonFinite},
                        {"samples_per_second", stats.samplesPerSecond()}};
     run.timings = json{{"render", snap->seconds}};
-    state_.runs.push_back(run);
+    state_.project.runs.push_back(run);
     state_.markDirty();
     state_.log.info("saved run '" + run.name + "' (" + std::to_string(snap->sppCompleted) + " spp) to " + relDir);
     return true;
@@ -182,14 +182,12 @@ bool loadRunImages(const Run& run, const std::string& dir, panels::ImageSet& out
     return true;
 }
 
-int runSpp(const Run& run) {
-    return run.metrics.contains("spp") && run.metrics["spp"].is_number_integer() ? run.metrics["spp"].get<int>() : 0;
-}
+int runSpp(const Run& run) { return int(run.metric("spp").value_or(0)); }
 }  // namespace
 
 bool Workbench::compareRun(int index) {
-    if (index < 0 || index >= int(state_.runs.size())) return false;
-    const Run& run = state_.runs[size_t(index)];
+    if (index < 0 || index >= int(state_.project.runs.size())) return false;
+    const Run& run = state_.project.runs[size_t(index)];
     if (run.kind == "train") return loadTrainRun(run);
     panels::ImageSet set;
     std::string error;
@@ -207,8 +205,8 @@ bool Workbench::compareRun(int index) {
 }
 
 bool Workbench::reopenRun(int index) {
-    if (index < 0 || index >= int(state_.runs.size())) return false;
-    const Run run = state_.runs[size_t(index)];
+    if (index < 0 || index >= int(state_.project.runs.size())) return false;
+    const Run run = state_.project.runs[size_t(index)];
     if (run.kind == "train") return loadTrainRun(run);
     panels::ImageSet set;
     std::string error;
@@ -218,29 +216,28 @@ bool Workbench::reopenRun(int index) {
     }
     if (renderJob_) jobs_.cancel(renderJob_);
     restartRender_ = false;
-    if (run.settings.contains("render")) {
+    // The run's settings snapshot is read like the project's sections (file and JSON pointer in every
+    // message); a part that does not read is reported and the current setting kept.
+    const JsonReader settings(run.settings, state_.project.path, "/runs/" + std::to_string(index) + "/settings");
+    if (settings.has("render")) {
         try {
-            state_.project.render = parseRenderSettings(run.settings["render"], state_.project.path,
-                                                        "/runs/" + run.name + "/settings/render");
+            state_.project.render = parseRenderSettings(settings.value().at("render"), settings.file(),
+                                                        JsonReader::child(settings.pointer(), "render"));
         } catch (const std::exception& e) {
             state_.log.warning(std::string("re-open run: render settings kept as they are: ") + e.what());
         }
     }
-    if (run.settings.contains("scene_overrides")) {
-        state_.project.doc["scene_overrides"] = run.settings["scene_overrides"];
+    if (const auto overrides = settings.find("scene_overrides")) {
         std::vector<std::string> problems;
-        applySceneOverrides(state_.project, problems);
+        state_.project.overrides = SceneOverrides::fromJson(*overrides, problems);
+        applySceneOverrides(state_.project.overrides, state_.project.scene, problems, overrides->pointer());
         for (const std::string& p : problems) state_.log.warning("re-open run: " + p);
     }
-    if (run.settings.contains("light_position") && run.settings["light_position"].is_array() &&
-        run.settings["light_position"].size() == 3 && !state_.project.scene.lights.empty()) {
-        const json& p = run.settings["light_position"];
-        if (!p[0].is_number() || !p[1].is_number() || !p[2].is_number()) {
-            state_.log.warning("re-open run: the light position of '" + run.name + "' is not three numbers; kept the current one");
-        } else {
-            state_.project.scene.setLightPosition(clampToLightRegion(
-                state_.project.scene, Vec3(p[0].get<float>(), p[1].get<float>(), p[2].get<float>())));
-            recordLightOverride(state_.project);
+    if (const auto light = settings.find("light_position"); light && !state_.project.scene.lights.empty()) {
+        try {
+            moveLight(state_.project, light->vec3());
+        } catch (const InputError& e) {
+            state_.log.warning(std::string("re-open run: light position kept as it is: ") + e.what());
         }
     }
     sceneChanged(false);
@@ -259,7 +256,8 @@ bool Workbench::loadTrainRun(const Run& run) {
     // them, and the prediction view shows what they predict.
     if (run.settings.contains("network") && run.settings.contains("trainer")) {
         try {
-            storeNetworkSettings(NetworkSettings::fromJson(run.settings["network"], &run.settings["trainer"], state_.project.path), state_.project);
+            state_.project.network = NetworkSettings::fromJson(run.settings["network"], &run.settings["trainer"],
+                                                               state_.project.path + " (run '" + run.name + "')");
             state_.markDirty();
         } catch (const std::exception& e) {
             state_.log.warning("run '" + run.name + "': its network settings were not restored: " + e.what());

@@ -39,9 +39,9 @@ bool Workbench::startSweep(const std::string& what) {
     o.what = what;
     try {
         defaultSweepValues(what);  // validates the kind
-        o.sampling = samplingSettingsOf(state_.project);
-        o.training = networkSettingsOf(state_.project).options;
-        o.prediction = predictionSettingsOf(state_.project);
+        o.sampling = state_.project.samplingOrDefault();
+        o.training = state_.project.networkOrDefault().options;
+        o.prediction = state_.project.prediction;
     } catch (const std::exception& e) {
         state_.log.error(std::string("sweep: ") + e.what());
         return false;

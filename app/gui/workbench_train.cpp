@@ -62,14 +62,14 @@ bool Workbench::startTrain(int maxEpochs) {
         return false;
     }
     try {
-        session->settings = networkSettingsOf(state_.project);
+        session->settings = state_.project.networkOrDefault();
     } catch (const std::exception& e) {
         state_.log.error(std::string("train: ") + e.what());
         return false;
     }
     if (maxEpochs > 0) session->settings.options.trainer.lm.maxEpochs = session->settings.options.trainer.adam.maxEpochs = maxEpochs;
     session->scene = state_.project.scene;
-    session->runId = newRunId(state_.runs, "train");
+    session->runId = newRunId(state_.project.runs, "train");
     session->modelsDir = (fs::path(projectDir()) / "runs" / session->runId / "models").string();
     const ObjectTrainingOptions& o = session->settings.options;
     const std::string name = std::string("train ") + json(o.hidden).dump() + " " + o.trainer.typeName();
@@ -185,14 +185,14 @@ void Workbench::pollTrain() {
     auto rel = [&](const std::string& p) { return fs::path(p).lexically_relative(projectDir()).generic_string(); };
     run.settings = json{{"network", s.settings.networkJson()}, {"trainer", s.settings.trainerJson()},
                         {"dataset", rel(s.dataset)}, {"scene_hash", hexString(s.scene.contentHash())}};
-    if (state_.project.doc.contains("sampling")) run.settings["sampling"] = state_.project.doc["sampling"];
+    if (state_.project.sampling) run.settings["sampling"] = state_.project.sampling->toJson();
     run.curves = s.curves;
     run.loss = panels::aggregateLoss(s.curves);
     run.metrics = json{{"networks", s.networks}, {"skipped", s.skipped}, {"epochs", s.epoch}};
     run.timings = json{{"train", s.trainSeconds}};
     if (state_.dataset.path == s.dataset && state_.dataset.seconds > 0) run.timings["generate"] = state_.dataset.seconds;
     run.artifacts.push_back(rel((fs::path(s.modelsDir) / "models.json").string()));
-    state_.runs.push_back(run);
+    state_.project.runs.push_back(run);
     state_.markDirty();
     state_.log.info("trained " + std::to_string(s.networks) + " networks in " + std::to_string(int(s.trainSeconds + 0.5)) +
                     " s; models in " + rel(s.modelsDir) + ", run '" + run.name + "' recorded");

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "core/util/error.h"
+#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -26,33 +27,16 @@ std::vector<int> parseHiddenSizes(const std::string& text, const std::string& op
 
 NetworkSettings NetworkSettings::fromJson(const nlohmann::json& n, const nlohmann::json* trainer, const std::string& file) {
     NetworkSettings s;
-    s.options.targets = TargetMode::Separate;  // the project default (see the header), whatever nn/object_training.h defaults to
-    if (!n.is_object()) throw InputError(file, "/network", "expected an object");
-    for (auto it = n.begin(); it != n.end(); ++it)
-        if (it.key() != "hidden" && it.key() != "activation" && it.key() != "targets")
-            throw InputError(file, "/network/" + it.key(), "unknown key (known: hidden, activation, targets)");
-    if (n.contains("hidden")) {
-        const nlohmann::json& h = n.at("hidden");
-        if (!h.is_array() || h.empty()) throw InputError(file, "/network/hidden", "expected a non-empty array of layer sizes");
+    const JsonReader r(n, file, "/network");
+    r.checkKeys({"hidden", "activation", "targets"});
+    if (const auto hidden = r.find("hidden")) {
+        if (hidden->requireArray() == 0) hidden->fail("expected a non-empty array of layer sizes");
         s.options.hidden.clear();
-        for (size_t i = 0; i < h.size(); ++i) {
-            // Range-check the 64-bit value: get<int>() would wrap 4294967316 to 20.
-            if (!h[i].is_number_integer() || h[i].get<int64_t>() < 1 || h[i].get<int64_t>() > 4096)
-                throw InputError(file, "/network/hidden/" + std::to_string(i), "expected a layer size in 1..4096");
-            s.options.hidden.push_back(h[i].get<int>());
-        }
+        for (size_t i = 0; i < hidden->value().size(); ++i) s.options.hidden.push_back(int(hidden->at(i).integer(1, 4096)));
     }
-    try {
-        if (n.contains("activation")) s.options.activation = parseActivation(n.at("activation").get<std::string>());
-    } catch (const std::exception& e) {
-        throw InputError(file, "/network/activation", std::string("expected \"tanh\" or \"relu\": ") + e.what());
-    }
-    try {
-        if (n.contains("targets")) s.options.targets = parseTargetMode(n.at("targets").get<std::string>());
-    } catch (const std::exception& e) {
-        throw InputError(file, "/network/targets",
-                         std::string("expected \"separate\", \"joint\", \"global\", \"direct\" or \"indirect\": ") + e.what());
-    }
+    s.options.activation = parseActivation(r.choiceOr("activation", activationName(s.options.activation), {"tanh", "relu"}));
+    s.options.targets = parseTargetMode(r.choiceOr("targets", targetModeName(s.options.targets),
+                                                   {"separate", "joint", "global", "direct", "indirect"}));
     if (trainer) s.options.trainer = TrainerConfig::fromJson(*trainer, file, "/trainer");
     return s;
 }

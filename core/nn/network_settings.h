@@ -19,6 +19,11 @@ namespace rrf {
 
 struct NetworkSettings {
     ObjectTrainingOptions options;  ///< hidden sizes, activation, targets, trainer
+
+    /// The project defaults: ObjectTrainingOptions' defaults with separate direct and indirect nets.
+    NetworkSettings() { options.targets = TargetMode::Separate; }
+    /// Reads the "network" section and, when given, the "trainer" section (missing keys keep their
+    /// defaults). Throws InputError naming `file` and the JSON pointer for unknown keys or bad values.
     static NetworkSettings fromJson(const nlohmann::json& network, const nlohmann::json* trainer, const std::string& file);
     nlohmann::json networkJson() const;
     nlohmann::json trainerJson() const { return options.trainer.toJson(); }

@@ -5,7 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "core/util/error.h"
+#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -48,27 +48,13 @@ ObjectPlan planFor(const ObjectNetworks& o, bool exactDirect) {
 }
 }  // namespace
 
-PredictionSettings PredictionSettings::fromJson(const nlohmann::json& j, const std::string& file) {
+PredictionSettings PredictionSettings::fromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
+    const JsonReader r(j, file, where);
+    r.checkKeys({"direct", "direct_samples", "seed"});
     PredictionSettings s;
-    if (!j.is_object()) throw InputError(file, "/prediction", "expected an object");
-    for (auto it = j.begin(); it != j.end(); ++it) {
-        const std::string where = "/prediction/" + it.key();
-        const nlohmann::json& v = it.value();
-        if (it.key() == "direct") {
-            if (!v.is_string() || (v != "network" && v != "exact"))
-                throw InputError(file, where, "expected \"network\" or \"exact\"");
-            s.direct = v == "exact" ? Direct::Exact : Direct::Network;
-        } else if (it.key() == "direct_samples") {
-            if (!v.is_number_integer() || v.get<int64_t>() < 1 || v.get<int64_t>() > 65536)
-                throw InputError(file, where, "expected an integer in 1..65536");
-            s.directSamples = v.get<int>();
-        } else if (it.key() == "seed") {
-            if (!v.is_number_integer() || v.get<int64_t>() < 0) throw InputError(file, where, "expected a non-negative integer");
-            s.seed = v.get<uint64_t>();
-        } else {
-            throw InputError(file, where, "unknown key (known: direct, direct_samples, seed)");
-        }
-    }
+    s.direct = r.choiceOr("direct", s.directName(), {"network", "exact"}) == "exact" ? Direct::Exact : Direct::Network;
+    s.directSamples = int(r.integerOr("direct_samples", s.directSamples, 1, 65536));
+    s.seed = r.unsignedOr("seed", s.seed);
     return s;
 }
 

@@ -43,7 +43,8 @@ struct PredictionSettings {
 
     /// Reads the section (missing keys keep their defaults). Throws InputError naming `file` and the
     /// JSON path for unknown keys or bad values.
-    static PredictionSettings fromJson(const nlohmann::json& j, const std::string& file);
+    static PredictionSettings fromJson(const nlohmann::json& j, const std::string& file,
+                                       const std::string& where = "/prediction");
     nlohmann::json toJson() const;
     const char* directName() const { return direct == Direct::Exact ? "exact" : "network"; }
 };

@@ -1,7 +1,5 @@
 #include "core/project/project.h"
 
-#include "core/project/scene_overrides.h"
-
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -22,6 +20,28 @@ namespace {
 
 constexpr int kProjectVersion = 1;
 
+/// Top-level keys this build reads into typed fields; any other key is kept in otherSections.
+bool isKnownSection(const std::string& key) {
+    for (const char* k : {"rrf_project", "name", "scene", "render", "sampling", "network", "trainer", "prediction",
+                          "runs", "layout", "scene_overrides"})
+        if (key == k) return true;
+    return false;
+}
+
+/// Writes the typed sections into `doc`. Absent optional sections stay absent (their absence means
+/// "the front end's defaults"); workbench records are written only when there are some.
+void writeSections(const Project& p, json& doc) {
+    doc["render"] = renderSettingsToJson(p.render);
+    if (p.sampling) doc["sampling"] = p.sampling->toJson();
+    if (p.network) {
+        doc["network"] = p.network->networkJson();
+        doc["trainer"] = p.network->trainerJson();
+    }
+    doc["prediction"] = p.prediction.toJson();
+    if (!p.runs.empty()) doc["runs"] = runsToJson(p.runs);
+    doc["layout"] = p.layout.toJson();
+    if (!p.overrides.empty()) doc["scene_overrides"] = p.overrides.toJson();
+}
 
 /// Absolute, lexically normalised form of `p` (no symlink resolution: the user's spelling of the
 /// directory layout is what relative references are written against).
@@ -46,13 +66,37 @@ void rebaseEmbeddedScene(json& scene, const std::string& oldDir, const std::stri
     }
 }
 
+/// Parses the sections after "scene" into `p` (the scene is loaded already).
+void readSections(const JsonReader& root, Project& p) {
+    const std::string& file = root.file();
+    if (const auto name = root.find("name")) p.name = name->string();
+    if (root.has("render")) p.render = parseRenderSettings(root.value().at("render"), file);
+    if (root.has("sampling")) p.sampling = SamplingSettings::fromJson(root.value().at("sampling"), file);
+    if (root.has("network") || root.has("trainer")) {
+        const json empty = json::object();
+        const json& network = root.has("network") ? root.value().at("network") : empty;
+        p.network = NetworkSettings::fromJson(network, root.has("trainer") ? &root.value().at("trainer") : nullptr, file);
+    }
+    if (root.has("prediction")) p.prediction = PredictionSettings::fromJson(root.value().at("prediction"), file);
+    if (const auto runs = root.find("runs")) p.runs = readRuns(*runs, p.warnings);
+    if (const auto layout = root.find("layout")) p.layout = PaneLayout::fromJson(*layout, p.warnings);
+    if (const auto overrides = root.find("scene_overrides")) {
+        p.overrides = SceneOverrides::fromJson(*overrides, p.warnings);
+        std::vector<std::string> problems;
+        applySceneOverrides(p.overrides, p.scene, problems);
+        for (const std::string& m : problems) p.scene.warnings.push_back("scene_overrides: " + m);
+    }
+    for (auto it = root.value().begin(); it != root.value().end(); ++it)
+        if (!isKnownSection(it.key())) p.otherSections[it.key()] = it.value();
+}
+
 }  // namespace
 
 Project loadProjectOrScene(const std::string& path) {
     Project p;
     p.path = path;
     const std::string dir = directoryOf(path);
-    json doc = readJsonFile(path);
+    const json doc = readJsonFile(path);
     const JsonReader root(doc, path);
     root.requireObject();
 
@@ -63,10 +107,7 @@ Project loadProjectOrScene(const std::string& path) {
         // back to `path` is refused by saveProject so the scene file cannot be overwritten.
         p.scene = parseSceneAt(root, dir);
         p.sceneRef = fs::path(path).filename().generic_string();
-        p.doc = json{{"rrf_project", kProjectVersion},
-                     {"name", fs::path(path).stem().string()},
-                     {"scene", p.sceneRef},
-                     {"render", renderSettingsToJson(p.render)}};
+        p.name = fs::path(path).stem().string();
         return p;
     }
 
@@ -75,7 +116,6 @@ Project loadProjectOrScene(const std::string& path) {
     if (v != kProjectVersion)
         version.fail("unsupported project version " + std::to_string(v) + " (this build reads version " +
                      std::to_string(kProjectVersion) + ")");
-    if (auto name = root.find("name")) name->string();
 
     const JsonReader sceneField = root.at("scene");
     if (sceneField.value().is_string()) {
@@ -92,23 +132,16 @@ Project loadProjectOrScene(const std::string& path) {
         sceneField.fail("expected a scene file name (string) or an embedded scene (object), got " +
                         JsonReader::describe(sceneField.value()));
     }
-
-    if (root.has("render")) p.render = parseRenderSettings(doc.at("render"), path);
-    p.doc = std::move(doc);
-    // Edits made in the workbench live in "scene_overrides"; apply them here so that the CLI and the
-    // GUI see the same scene (and datasets and models record the same scene hash).
-    std::vector<std::string> problems;
-    applySceneOverrides(p, problems);
-    for (const std::string& m : problems) p.scene.warnings.push_back("scene_overrides: " + m);
+    readSections(root, p);
     return p;
 }
 
 void saveProject(Project& project, const std::string& path) {
     const std::string oldDir = directoryOf(project.path);
     const std::string newDir = directoryOf(path);
-    json doc = project.doc.is_object() ? project.doc : json::object();
-    if (!doc.contains("rrf_project")) doc["rrf_project"] = kProjectVersion;
-    doc["render"] = renderSettingsToJson(project.render);
+    json doc = project.otherSections.is_object() ? project.otherSections : json::object();
+    doc["rrf_project"] = kProjectVersion;
+    if (!project.name.empty()) doc["name"] = project.name;
 
     std::string newRef;
     json newSceneJson = project.sceneJson;
@@ -122,6 +155,7 @@ void saveProject(Project& project, const std::string& path) {
         rebaseEmbeddedScene(newSceneJson, oldDir, newDir);
         doc["scene"] = newSceneJson;
     }
+    writeSections(project, doc);
 
     std::string text;
     try {
@@ -131,34 +165,9 @@ void saveProject(Project& project, const std::string& path) {
     }
     writeFileAtomically(path, text);
     // Only after a successful write does the in-memory project follow the file.
-    project.doc = std::move(doc);
     project.path = path;
     project.sceneRef = newRef;
     project.sceneJson = std::move(newSceneJson);
-}
-
-SamplingSettings samplingSettingsOf(const Project& project) {
-    if (!project.doc.is_object() || !project.doc.contains("sampling")) return {};
-    return SamplingSettings::fromJson(project.doc.at("sampling"), project.path);
-}
-
-NetworkSettings networkSettingsOf(const Project& project) {
-    const json& d = project.doc;
-    const json empty = json::object();
-    if (!d.is_object()) return NetworkSettings::fromJson(empty, nullptr, project.path);
-    return NetworkSettings::fromJson(d.contains("network") ? d.at("network") : empty,
-                                     d.contains("trainer") ? &d.at("trainer") : nullptr, project.path);
-}
-
-void storeNetworkSettings(const NetworkSettings& settings, Project& project) {
-    project.doc["network"] = settings.networkJson();
-    project.doc["trainer"] = settings.trainerJson();
-}
-
-PredictionSettings predictionSettingsOf(const Project& project) {
-    if (project.doc.is_object() && project.doc.contains("prediction"))
-        return PredictionSettings::fromJson(project.doc.at("prediction"), project.path);
-    return {};
 }
 
 }  // namespace rrf

@@ -1,17 +1,22 @@
 #pragma once
 /// Project file: a JSON document that references (or embeds) a scene and holds the settings of every
-/// stage. Typed settings live in structs; sections owned by later stages (sampling, network, trainer,
-/// runs, layout) are kept as JSON so that every module parses its own section and nothing is lost
-/// on a load/save round trip.
+/// stage. The document is typed: every section is parsed once, by loadProjectOrScene, into the fields
+/// below, which are the only live copy; saveProject writes them back. Top-level sections this build
+/// does not know are kept verbatim (otherSections) so a newer program's sections survive a round trip.
+/// The format is described in docs/file-formats.md.
 
-#include <cstdint>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "core/data/sampling_settings.h"
 #include "core/nn/network_settings.h"
 #include "core/predict/predictor.h"
+#include "core/project/pane_layout.h"
+#include "core/project/runs.h"
+#include "core/project/scene_overrides.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
@@ -19,28 +24,41 @@ namespace rrf {
 
 struct Project {
     std::string path;           ///< where the project was loaded from / will be saved to
+    std::string name;           ///< "name": display name; empty = none
     std::string sceneRef;       ///< scene file relative to the project dir; empty if embedded
-    nlohmann::json sceneJson;   ///< the embedded scene (when sceneRef is empty)
-    Scene scene;                ///< the loaded scene
-    RenderSettings render;
-    nlohmann::json doc;         ///< the whole document, including sections other modules own
+    nlohmann::json sceneJson;   ///< the embedded scene (when sceneRef is empty), written back as given
+    Scene scene;                ///< the loaded scene with `overrides` applied
+    SceneOverrides overrides;   ///< "scene_overrides": the workbench's edits of the scene
+    RenderSettings render;      ///< "render"
+    /// "sampling"; empty when the file has none: front ends then pick their own defaults (rrf
+    /// pipeline uses small quick sizes), and the section stays absent on save.
+    std::optional<SamplingSettings> sampling;
+    /// "network" and "trainer"; empty when the file has neither (see `sampling`).
+    std::optional<NetworkSettings> network;
+    PredictionSettings prediction;  ///< "prediction"
+    std::vector<Run> runs;          ///< "runs"
+    PaneLayout layout;              ///< "layout": the workbench's pane sizes
+    /// Top-level sections this build does not know (an object), kept only for load/save round trips.
+    nlohmann::json otherSections = nlohmann::json::object();
+    /// Problems in the workbench's own sections (layout, runs, scene_overrides) that did not stop the
+    /// load, each naming the file and the JSON pointer. Problems applying the overrides to the scene
+    /// are in scene.warnings.
+    std::vector<std::string> warnings;
+
+    /// The sampling settings in effect (the defaults when the file has none).
+    SamplingSettings samplingOrDefault() const { return sampling.value_or(SamplingSettings()); }
+    /// The network and trainer settings in effect (the defaults when the file has none).
+    NetworkSettings networkOrDefault() const { return network.value_or(NetworkSettings()); }
 };
 
 /// Loads a project file, or a bare scene file (a document with "shapes" and no "scene" key), in
-/// which case default settings are used. Throws InputError naming the file and JSON path.
+/// which case default settings are used. Every section is parsed here: a bad value in a settings
+/// section (render, sampling, network, trainer, prediction) throws InputError naming the file, the
+/// JSON pointer and what was expected; damaged workbench sections are reported in `warnings`.
 Project loadProjectOrScene(const std::string& path);
 
-/// Serialises `project` (typed settings written back into project.doc) and writes it atomically
-/// (temporary file + rename). Throws std::runtime_error on I/O failure.
+/// Serialises `project` and writes it atomically (temporary file + rename), re-basing relative scene
+/// and OBJ references onto the new directory. Throws std::runtime_error on I/O failure.
 void saveProject(Project& project, const std::string& path);
-
-/// The project's "sampling" section (defaults when absent). Throws InputError for bad values.
-SamplingSettings samplingSettingsOf(const Project& project);
-/// The project's "network" and "trainer" sections (defaults where absent).
-NetworkSettings networkSettingsOf(const Project& project);
-/// Writes `settings` back into the project's "network" and "trainer" sections.
-void storeNetworkSettings(const NetworkSettings& settings, Project& project);
-/// The project's "prediction" section (defaults when absent).
-PredictionSettings predictionSettingsOf(const Project& project);
 
 }  // namespace rrf

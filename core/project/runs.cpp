@@ -19,16 +19,11 @@ bool known(const std::string& key) {
     return false;
 }
 
-std::string stringOr(const json& j, const char* key, const std::string& fallback) {
-    if (!j.contains(key)) return fallback;
-    if (!j[key].is_string()) throw std::invalid_argument(std::string("'") + key + "' must be a string");
-    return j[key].get<std::string>();
-}
-
-json objectOr(const json& j, const char* key) {
-    if (!j.contains(key)) return json::object();
-    if (!j[key].is_object()) throw std::invalid_argument(std::string("'") + key + "' must be an object");
-    return j[key];
+json objectOr(const JsonReader& r, const char* key) {
+    const auto v = r.find(key);
+    if (!v) return json::object();
+    v->requireObject();
+    return v->value();
 }
 
 // JSON has no NaN: a missing validation loss is written as null and read back as NaN.
@@ -53,17 +48,31 @@ json lossJson(const std::vector<LossPoint>& loss) {
     return l;
 }
 
-std::vector<LossPoint> lossFromJson(const json& j) {
-    if (!j.is_array()) throw std::invalid_argument("'loss' must be an array");
+std::vector<LossPoint> lossFromJson(const JsonReader& r) {
     std::vector<LossPoint> loss;
-    for (const json& p : j) {
-        if (!p.is_array() || p.size() != 4 || !p[0].is_number_integer())
-            throw std::invalid_argument("'loss' entries must be [epoch, train, validation, seconds]");
-        loss.push_back({p[0].get<int>(), numberFrom(p[1]), numberFrom(p[2]), numberFrom(p[3])});
+    const size_t n = r.requireArray();
+    for (size_t i = 0; i < n; ++i) {
+        const JsonReader p = r.at(i);
+        if (!p.isArray() || p.value().size() != 4)
+            p.fail("expected [epoch, train, validation, seconds], got " + JsonReader::describe(p.value()));
+        loss.push_back({int(p.at(size_t(0)).integer(std::numeric_limits<int>::min(), std::numeric_limits<int>::max())), numberFrom(p.value()[1]),
+                        numberFrom(p.value()[2]), numberFrom(p.value()[3])});
     }
     return loss;
 }
 }  // namespace
+
+namespace {
+std::optional<double> numberIn(const json& section, const std::string& key) {
+    if (!section.is_object()) return std::nullopt;
+    const auto it = section.find(key);
+    if (it == section.end() || !it->is_number()) return std::nullopt;
+    return it->get<double>();
+}
+}  // namespace
+
+std::optional<double> Run::metric(const std::string& key) const { return numberIn(metrics, key); }
+std::optional<double> Run::timing(const std::string& key) const { return numberIn(timings, key); }
 
 json Run::toJson() const {
     json j = extra.is_object() ? extra : json::object();
@@ -86,70 +95,62 @@ json Run::toJson() const {
     return j;
 }
 
-Run Run::fromJson(const json& j) {
-    if (!j.is_object()) throw std::invalid_argument("a run must be an object");
+Run Run::fromJson(const JsonReader& j) {
+    j.requireObject();
     Run r;
-    r.id = stringOr(j, "id", "");
-    if (r.id.empty()) throw std::invalid_argument("a run needs a non-empty 'id'");
-    r.name = stringOr(j, "name", r.id);
-    r.kind = stringOr(j, "kind", "render");
-    r.created = stringOr(j, "created", "");
+    r.id = j.stringOr("id", "");
+    if (r.id.empty()) j.fail("a run needs a non-empty 'id'");
+    r.name = j.stringOr("name", r.id);
+    r.kind = j.stringOr("kind", "render");
+    r.created = j.stringOr("created", "");
     r.settings = objectOr(j, "settings");
     r.metrics = objectOr(j, "metrics");
     r.timings = objectOr(j, "timings");
-    if (j.contains("loss")) r.loss = lossFromJson(j["loss"]);
-    if (j.contains("curves")) {
-        if (!j["curves"].is_array()) throw std::invalid_argument("'curves' must be an array");
-        for (const json& c : j["curves"]) {
-            if (!c.is_object() || !c.contains("object") || !c["object"].is_number_integer())
-                throw std::invalid_argument("'curves' entries need an integer 'object'");
+    if (const auto loss = j.find("loss")) r.loss = lossFromJson(*loss);
+    if (const auto curves = j.find("curves")) {
+        const size_t n = curves->requireArray();
+        for (size_t i = 0; i < n; ++i) {
+            const JsonReader c = curves->at(i);
             LossCurve curve;
-            curve.objectId = c["object"].get<int>();
-            curve.object = stringOr(c, "name", std::to_string(curve.objectId));
-            curve.target = stringOr(c, "target", "global");
-            if (c.contains("loss")) curve.points = lossFromJson(c["loss"]);
+            curve.objectId = int(c.at("object").integer(std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+            curve.object = c.stringOr("name", std::to_string(curve.objectId));
+            curve.target = c.stringOr("target", "global");
+            if (const auto loss = c.find("loss")) curve.points = lossFromJson(*loss);
             r.curves.push_back(std::move(curve));
         }
     }
-    if (j.contains("artifacts")) {
-        if (!j["artifacts"].is_array()) throw std::invalid_argument("'artifacts' must be an array");
-        for (const json& a : j["artifacts"]) {
-            if (!a.is_string()) throw std::invalid_argument("'artifacts' entries must be strings");
-            r.artifacts.push_back(a.get<std::string>());
-        }
+    if (const auto artifacts = j.find("artifacts")) {
+        const size_t n = artifacts->requireArray();
+        for (size_t i = 0; i < n; ++i) r.artifacts.push_back(artifacts->at(i).string());
     }
-    for (auto it = j.begin(); it != j.end(); ++it)
+    for (auto it = j.value().begin(); it != j.value().end(); ++it)
         if (!known(it.key())) r.extra[it.key()] = it.value();
     return r;
 }
 
-std::vector<Run> runsFromDoc(const json& doc, std::vector<std::string>* problems) {
+std::vector<Run> readRuns(const JsonReader& section, std::vector<std::string>& warnings) {
     std::vector<Run> runs;
-    if (!doc.is_object() || !doc.contains("runs")) return runs;
-    const json& list = doc["runs"];
-    if (!list.is_array()) {
-        if (problems) problems->push_back("/runs: expected an array; the runs were not loaded");
+    if (!section.isArray()) {
+        warnings.push_back(InputError(section.file(), section.pointer(),
+                                      "expected an array, got " + JsonReader::describe(section.value()) +
+                                          "; the runs were not loaded")
+                               .what());
         return runs;
     }
-    for (size_t i = 0; i < list.size(); ++i) {
+    for (size_t i = 0; i < section.value().size(); ++i) {
         try {
-            runs.push_back(Run::fromJson(list[i]));
-        } catch (const std::exception& e) {
-            if (problems) problems->push_back("/runs/" + std::to_string(i) + ": " + e.what() + " (run skipped)");
+            runs.push_back(Run::fromJson(section.at(i)));
+        } catch (const InputError& e) {
+            warnings.push_back(std::string(e.what()) + " (run skipped)");
         }
     }
     return runs;
 }
 
-void storeRunsInDoc(const std::vector<Run>& runs, json& doc) {
-    if (!doc.is_object()) doc = json::object();
-    if (runs.empty()) {
-        doc.erase("runs");
-        return;
-    }
+json runsToJson(const std::vector<Run>& runs) {
     json list = json::array();
     for (const Run& r : runs) list.push_back(r.toJson());
-    doc["runs"] = std::move(list);
+    return list;
 }
 
 std::string newRunId(const std::vector<Run>& runs, const std::string& kind) {

@@ -5,10 +5,13 @@
 /// Sections this build does not know are kept verbatim, so a newer workbench's runs survive a
 /// round trip through an older one.
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -43,15 +46,22 @@ struct Run {
     std::vector<std::string> artifacts;                   ///< files, relative to the project directory
     nlohmann::json extra = nlohmann::json::object();     ///< unknown keys, kept for round trips
 
+    /// metrics[key] / timings[key] when it is a number (for tables), else nothing.
+    std::optional<double> metric(const std::string& key) const;
+    std::optional<double> timing(const std::string& key) const;
+
     nlohmann::json toJson() const;
-    /// Throws std::invalid_argument naming the problem when `j` is not a run object.
-    static Run fromJson(const nlohmann::json& j);
+    /// Reads one run. Throws InputError naming the file, the JSON pointer and what was expected when
+    /// `r` is not a run object.
+    static Run fromJson(const JsonReader& r);
 };
 
-/// Reads doc["runs"]; malformed entries are skipped and described in `problems`.
-std::vector<Run> runsFromDoc(const nlohmann::json& doc, std::vector<std::string>* problems = nullptr);
-/// Writes `runs` to doc["runs"] (removes the key when there are none).
-void storeRunsInDoc(const std::vector<Run>& runs, nlohmann::json& doc);
+/// Reads the project's "runs" section. Runs are the workbench's own records, so one damaged entry
+/// must not lock the user out of the project: it is skipped and described in `warnings` (file, JSON
+/// pointer, what was expected), and the other runs are kept.
+std::vector<Run> readRuns(const JsonReader& section, std::vector<std::string>& warnings);
+/// The "runs" section for `runs`.
+nlohmann::json runsToJson(const std::vector<Run>& runs);
 
 /// A new id "<kind>-<yyyymmdd-hhmmss>[-n]" not yet used in `runs`.
 std::string newRunId(const std::vector<Run>& runs, const std::string& kind);

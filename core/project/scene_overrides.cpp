@@ -8,95 +8,88 @@ namespace rrf {
 using nlohmann::json;
 
 namespace {
-bool readVec3(const json& j, Vec3& out) {
-    if (!j.is_array() || j.size() != 3) return false;
-    float v[3];
-    for (int i = 0; i < 3; ++i) {
-        if (!j[i].is_number()) return false;
-        v[i] = j[i].get<float>();
-        if (!std::isfinite(v[i])) return false;
-    }
-    out = Vec3(v[0], v[1], v[2]);
-    return true;
-}
-
 json vec3Json(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
 
-json& overrides(Project& p) {
-    if (!p.doc.is_object()) p.doc = json::object();
-    json& o = p.doc["scene_overrides"];
-    if (!o.is_object()) o = json::object();
-    return o;
+MaterialOverride readMaterialOverride(const JsonReader& r) {
+    r.checkKeys({"kd", "ks", "exponent"});
+    MaterialOverride m;
+    if (const auto kd = r.find("kd")) m.kd = kd->vec3();
+    if (const auto ks = r.find("ks")) m.ks = ks->vec3();
+    if (const auto ex = r.find("exponent")) m.exponent = float(ex->number(0.0, 1e30));
+    return m;
 }
 }  // namespace
 
-void applySceneOverrides(Project& project, std::vector<std::string>& problems) {
-    if (!project.doc.is_object() || !project.doc.contains("scene_overrides")) return;
-    const json& o = project.doc["scene_overrides"];
-    if (!o.is_object()) {
-        problems.push_back("/scene_overrides: expected an object; ignored");
-        return;
+json SceneOverrides::toJson() const {
+    json o = json::object();
+    if (lightPosition) o["light_position"] = vec3Json(*lightPosition);
+    if (!materials.empty()) {
+        json mats = json::object();
+        for (const auto& [name, m] : materials) {
+            json entry = json::object();
+            if (m.kd) entry["kd"] = vec3Json(*m.kd);
+            if (m.ks) entry["ks"] = vec3Json(*m.ks);
+            if (m.exponent) entry["exponent"] = *m.exponent;
+            mats[name] = entry;
+        }
+        o["materials"] = mats;
     }
-    Scene& scene = project.scene;
-    if (o.contains("light_position")) {
-        Vec3 p;
-        if (!readVec3(o["light_position"], p)) {
-            problems.push_back("/scene_overrides/light_position: expected [x, y, z]; ignored");
-        } else if (scene.lights.empty()) {
-            problems.push_back("/scene_overrides/light_position: the scene has no light; ignored");
+    return o;
+}
+
+SceneOverrides SceneOverrides::fromJson(const JsonReader& section, std::vector<std::string>& warnings) {
+    SceneOverrides o;
+    auto lenient = [&](auto&& read) {
+        try {
+            read();
+        } catch (const InputError& e) {
+            warnings.push_back(std::string(e.what()) + "; ignored");
+        }
+    };
+    lenient([&] { section.checkKeys({"light_position", "materials"}); });
+    if (!section.isObject()) return o;
+    if (const auto light = section.find("light_position")) lenient([&] { o.lightPosition = light->vec3(); });
+    if (const auto mats = section.find("materials")) {
+        lenient([&] { mats->requireObject(); });
+        if (!mats->isObject()) return o;
+        for (auto it = mats->value().begin(); it != mats->value().end(); ++it) {
+            const JsonReader entry = mats->at(it.key());
+            lenient([&] { o.materials[it.key()] = readMaterialOverride(entry); });
+        }
+    }
+    return o;
+}
+
+void applySceneOverrides(const SceneOverrides& o, Scene& scene, std::vector<std::string>& problems,
+                         const std::string& where) {
+    if (o.lightPosition) {
+        const std::string at = JsonReader::child(where, "light_position");
+        const Vec3 p = *o.lightPosition;
+        if (scene.lights.empty()) {
+            problems.push_back(at + ": the scene has no light; ignored");
         } else {
             const Vec3 c = clampToLightRegion(scene, p);
             if (c.x != p.x || c.y != p.y || c.z != p.z)
-                problems.push_back("/scene_overrides/light_position: outside the light region; clamped into it");
+                problems.push_back(at + ": outside the light region; clamped into it");
             scene.setLightPosition(c);
         }
     }
-    if (o.contains("materials")) {
-        const json& mats = o["materials"];
-        if (!mats.is_object()) {
-            problems.push_back("/scene_overrides/materials: expected an object; ignored");
-            return;
+    for (const auto& [name, mo] : o.materials) {
+        const std::string at = JsonReader::child(JsonReader::child(where, "materials"), name);
+        auto m = std::find_if(scene.materials.begin(), scene.materials.end(),
+                              [&](const Material& mat) { return mat.name == name; });
+        if (m == scene.materials.end()) {
+            problems.push_back(at + ": no such material in the scene; ignored");
+            continue;
         }
-        for (auto it = mats.begin(); it != mats.end(); ++it) {
-            const std::string where = "/scene_overrides/materials/" + it.key();
-            auto m = std::find_if(scene.materials.begin(), scene.materials.end(),
-                                  [&](const Material& mat) { return mat.name == it.key(); });
-            if (m == scene.materials.end()) {
-                problems.push_back(where + ": no such material in the scene; ignored");
-                continue;
-            }
-            const json& v = it.value();
-            Material edited = *m;
-            bool ok = v.is_object();
-            if (ok && v.contains("kd")) ok = readVec3(v["kd"], edited.kd);
-            if (ok && v.contains("ks")) ok = readVec3(v["ks"], edited.ks);
-            if (ok && v.contains("exponent")) {
-                ok = v["exponent"].is_number() && std::isfinite(v["exponent"].get<double>()) &&
-                     v["exponent"].get<double>() >= 0.0;
-                if (ok) edited.exponent = v["exponent"].get<float>();
-            }
-            if (!ok) {
-                problems.push_back(where + ": expected {kd: [r,g,b], ks: [r,g,b], exponent: n ≥ 0}; ignored");
-                continue;
-            }
-            if (enforceEnergyConservation(edited, true))
-                problems.push_back(where + ": kd + ks exceeded 1 or left [0, 1]; ks lowered");
-            if (edited.ks.x > 0.f || edited.ks.y > 0.f || edited.ks.z > 0.f) edited.type = Material::Type::Phong;
-            *m = edited;
-        }
+        Material edited = *m;
+        if (mo.kd) edited.kd = *mo.kd;
+        if (mo.ks) edited.ks = *mo.ks;
+        if (mo.exponent) edited.exponent = *mo.exponent;
+        if (enforceEnergyConservation(edited, true)) problems.push_back(at + ": kd + ks exceeded 1 or left [0, 1]; ks lowered");
+        if (edited.ks.x > 0.f || edited.ks.y > 0.f || edited.ks.z > 0.f) edited.type = Material::Type::Phong;
+        *m = edited;
     }
-}
-
-void recordMaterialOverride(Project& project, int index) {
-    if (index < 0 || index >= int(project.scene.materials.size())) return;
-    const Material& m = project.scene.materials[size_t(index)];
-    overrides(project)["materials"][m.name] =
-        json{{"kd", vec3Json(m.kd)}, {"ks", vec3Json(m.ks)}, {"exponent", m.exponent}};
-}
-
-void recordLightOverride(Project& project) {
-    if (project.scene.lights.empty()) return;
-    overrides(project)["light_position"] = vec3Json(project.scene.lightPosition());
 }
 
 bool enforceEnergyConservation(Material& m, bool kdEdited) {

@@ -8,24 +8,45 @@
 ///       "materials": { "white": { "kd": [0.8, 0.7, 0.6], "ks": [0, 0, 0], "exponent": 1 } }
 ///     }
 ///
-/// The workbench applies them right after loading a project.
+/// They are applied right after the scene is loaded, so the CLI and the GUI see the same scene (and
+/// datasets and models record the same scene hash). Editing goes through core/project/scene_edits.h,
+/// which records the override and applies it in one step.
 
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "core/project/project.h"
+#include <nlohmann/json.hpp>
+
+#include "core/scene/scene.h"
+#include "core/util/json_reader.h"
 
 namespace rrf {
 
-/// Applies project.doc["scene_overrides"] to project.scene. Entries that do not fit the scene
-/// (unknown material, light position outside the light region, malformed values) are skipped and
-/// described in `problems`; the rest still apply.
-void applySceneOverrides(Project& project, std::vector<std::string>& problems);
+/// New parameters of one material; a field left empty keeps the scene's value.
+struct MaterialOverride {
+    std::optional<Vec3> kd, ks;
+    std::optional<float> exponent;
+};
 
-/// Records the current parameters of material `index` as an override.
-void recordMaterialOverride(Project& project, int index);
-/// Records the current position of the movable light as an override.
-void recordLightOverride(Project& project);
+struct SceneOverrides {
+    std::optional<Vec3> lightPosition;                  ///< centre of the movable light
+    std::map<std::string, MaterialOverride> materials;  ///< by material name
+
+    bool empty() const { return !lightPosition && materials.empty(); }
+    nlohmann::json toJson() const;
+    /// Reads the section. The overrides are the workbench's own record of the user's edits, so a
+    /// damaged entry must not lock the user out of the project: an entry of the wrong shape is
+    /// skipped and described in `warnings` (file, JSON pointer, what was expected); the rest is kept.
+    static SceneOverrides fromJson(const JsonReader& section, std::vector<std::string>& warnings);
+};
+
+/// Applies `overrides` to `scene`. Entries that do not fit the scene (unknown material, a light
+/// position outside the light region, a scene without lights) are skipped or clamped and described
+/// in `problems` (prefixed with `where`, the section's JSON pointer); the rest still apply.
+void applySceneOverrides(const SceneOverrides& overrides, Scene& scene, std::vector<std::string>& problems,
+                         const std::string& where = "/scene_overrides");
 
 /// Keeps kd + ks ≤ 1 per channel (energy conservation) by lowering the coefficient the user did not
 /// just edit (ks when `kdEdited`, kd otherwise), and clamps both to [0, 1]. Returns true if anything

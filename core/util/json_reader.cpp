@@ -104,6 +104,14 @@ double JsonReader::number() const {
     return v;
 }
 
+double JsonReader::number(double lo, double hi, bool excludeLo) const {
+    const double v = number();
+    if (v < lo || v > hi || (excludeLo && v == lo))
+        fail("value " + formatNumber(v) + " out of range " + (excludeLo ? "(" : "[") + formatNumber(lo) + ", " +
+             formatNumber(hi) + "]");
+    return v;
+}
+
 float JsonReader::floatValue() const {
     const double v = number();
     if (std::fabs(v) > double(std::numeric_limits<float>::max()))
@@ -156,6 +164,11 @@ float JsonReader::floatOr(const std::string& key, float fallback) const {
     return r ? r->floatValue() : fallback;
 }
 
+double JsonReader::numberOr(const std::string& key, double fallback, double lo, double hi, bool excludeLo) const {
+    const auto r = find(key);
+    return r ? r->number(lo, hi, excludeLo) : fallback;
+}
+
 int64_t JsonReader::integerOr(const std::string& key, int64_t fallback, int64_t lo, int64_t hi) const {
     const auto r = find(key);
     return r ? r->integer(lo, hi) : fallback;
@@ -174,6 +187,24 @@ std::string JsonReader::stringOr(const std::string& key, const std::string& fall
 Vec3 JsonReader::vec3Or(const std::string& key, const Vec3& fallback) const {
     const auto r = find(key);
     return r ? r->vec3() : fallback;
+}
+
+uint64_t JsonReader::unsignedOr(const std::string& key, uint64_t fallback) const {
+    const auto r = find(key);
+    return r ? r->unsignedInteger() : fallback;
+}
+
+std::string JsonReader::choiceOr(const std::string& key, const std::string& fallback,
+                                 std::initializer_list<const char*> allowed) const {
+    const auto r = find(key);
+    if (!r) return fallback;
+    const std::string s = r->string();
+    std::string list;
+    for (const char* a : allowed) {
+        if (s == a) return s;
+        list += (list.empty() ? "\"" : ", \"") + std::string(a) + "\"";
+    }
+    r->fail("expected one of " + list + ", got \"" + s + "\"");
 }
 
 std::string formatNumber(double v) {

@@ -50,6 +50,8 @@ public:
     // ---- scalars -------------------------------------------------------------------------------
     /// Finite number (integers accepted).
     double number() const;
+    /// Finite number in [lo, hi], or in (lo, hi] when `excludeLo` ("value 0 out of range (0, 1]").
+    double number(double lo, double hi, bool excludeLo = false) const;
     /// Finite number that is also finite as a float.
     float floatValue() const;
     /// Integer (a float with an integral value such as 256.0 is accepted) in [lo, hi].
@@ -63,10 +65,15 @@ public:
 
     // ---- members with defaults -----------------------------------------------------------------
     float floatOr(const std::string& key, float fallback) const;
+    double numberOr(const std::string& key, double fallback, double lo, double hi, bool excludeLo = false) const;
     int64_t integerOr(const std::string& key, int64_t fallback, int64_t lo, int64_t hi) const;
     bool booleanOr(const std::string& key, bool fallback) const;
     std::string stringOr(const std::string& key, const std::string& fallback) const;
     Vec3 vec3Or(const std::string& key, const Vec3& fallback) const;
+    uint64_t unsignedOr(const std::string& key, uint64_t fallback) const;
+    /// A string member that must be one of `allowed` ("expected one of \"nee\", \"naive\", got \"bidir\"").
+    std::string choiceOr(const std::string& key, const std::string& fallback,
+                         std::initializer_list<const char*> allowed) const;
 
     /// JSON pointer of `key` below `base` (escapes '~' and '/').
     static std::string child(const std::string& base, const std::string& key);

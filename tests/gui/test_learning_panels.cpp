@@ -73,38 +73,38 @@ TEST_F(LearningPanelTest, NoCrashWithoutProjectOrData) {
     for (int i = 0; i < 3; ++i) frame([&] { drawLearningPanels(s); });
     EXPECT_TRUE(s.requests.empty()) << "idle frames must not ask for anything";
     EXPECT_FALSE(s.dirty) << "idle frames must not edit the project";
-    EXPECT_FALSE(s.project.doc.contains("network")) << "drawing must not write default sections";
+    EXPECT_FALSE(s.project.network.has_value()) << "drawing must not write default sections";
 }
 
 TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     WorkbenchState s;
     loadCornell(s);
-    ASSERT_EQ(networkSettingsOf(s.project).options.hidden, (std::vector<int>{20, 10}));
+    ASSERT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{20, 10}));
     ASSERT_TRUE(addHiddenLayer(s));
     EXPECT_TRUE(s.dirty);
-    EXPECT_EQ(networkSettingsOf(s.project).options.hidden, (std::vector<int>{20, 10, 10}));
+    EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{20, 10, 10}));
     ASSERT_TRUE(resizeHiddenLayer(s, 0, 32));
     ASSERT_TRUE(removeHiddenLayer(s, 1));
-    EXPECT_EQ(networkSettingsOf(s.project).options.hidden, (std::vector<int>{32, 10}));
+    EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{32, 10}));
     EXPECT_FALSE(resizeHiddenLayer(s, 5, 8)) << "no such layer";
     EXPECT_TRUE(resizeHiddenLayer(s, 1, 100000)) << "sizes are clamped, not refused";
-    EXPECT_EQ(networkSettingsOf(s.project).options.hidden[1], 4096);
+    EXPECT_EQ(s.project.networkOrDefault().options.hidden[1], 4096);
     ASSERT_TRUE(removeHiddenLayer(s, 1));
     EXPECT_FALSE(removeHiddenLayer(s, 0)) << "a network keeps at least one hidden layer";
 
-    EXPECT_EQ(networkSettingsOf(s.project).options.trainer.type, TrainerType::LevenbergMarquardt);
+    EXPECT_EQ(s.project.networkOrDefault().options.trainer.type, TrainerType::LevenbergMarquardt);
     ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
     EXPECT_FALSE(setTrainerType(s, TrainerType::Adam)) << "no change, nothing stored";
-    const NetworkSettings n = networkSettingsOf(s.project);
+    const NetworkSettings n = s.project.networkOrDefault();
     EXPECT_EQ(n.options.trainer.type, TrainerType::Adam);
-    EXPECT_EQ(s.project.doc["trainer"]["type"], "adam");
+    EXPECT_EQ(s.project.network->trainerJson()["type"], "adam");
     EXPECT_EQ(n.options.trainer.adam.batchSize, AdamConfig().batchSize) << "Adam starts from its defaults";
     EXPECT_EQ(n.options.targets, TargetMode::Separate) << "the project default is kept by the edits";
 
     // The panel draws the edited settings (Adam parameters, one layer) without asking for anything.
     for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(s); });
     EXPECT_TRUE(s.requests.empty());
-    EXPECT_EQ(networkSettingsOf(s.project).options.hidden, (std::vector<int>{32}));
+    EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{32}));
 }
 
 TEST_F(LearningPanelTest, LossPlotPutsKnownLossesOnTheirDecades) {
@@ -217,7 +217,7 @@ TEST_F(LearningPanelTest, CostPanelPlotsEvaluatedTrainingRuns) {
 
     WorkbenchState s;
     loadCornell(s);
-    s.runs = runs;
+    s.project.runs = runs;
     s.cost.sweeps.push_back({"sweep spp", {{0.1, 0.5, "1"}, {0.4, 0.25, "4"}, {1.6, 0.125, "16"}}});
     for (int i = 0; i < 3; ++i) frame([&] { drawCostPanel(s); });
     EXPECT_TRUE(s.requests.empty());
@@ -234,11 +234,11 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     ASSERT_TRUE(loadProjectIntoState(s, (dir / "project.json").string(), error)) << error;
     ASSERT_TRUE(addHiddenLayer(s));
     ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
-    NetworkSettings edited = networkSettingsOf(s.project);
+    NetworkSettings edited = s.project.networkOrDefault();
     edited.options.trainer.adam.learningRate = 3e-3;
     edited.options.trainer.adam.loss = AdamLoss::RelativeL2;
     edited.options.targets = TargetMode::Joint;
-    storeNetworkSettings(edited, s.project);
+    s.project.network = edited;
 
     rrf::Run run;
     run.id = run.name = "train-1";
@@ -248,16 +248,16 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     run.settings = {{"network", edited.networkJson()}, {"trainer", edited.trainerJson()}};
     run.metrics = {{"relative_rmse", 0.2}};
     run.artifacts = {"runs/train-1/models/models.json"};
-    s.runs.push_back(run);
+    s.project.runs.push_back(run);
     ASSERT_TRUE(saveStateToProject(s, (dir / "project.json").string(), error)) << error;
 
     WorkbenchState t;
     ASSERT_TRUE(loadProjectIntoState(t, (dir / "project.json").string(), error)) << error;
-    const NetworkSettings back = networkSettingsOf(t.project);
+    const NetworkSettings back = t.project.networkOrDefault();
     EXPECT_EQ(back.networkJson(), edited.networkJson());
     EXPECT_EQ(back.trainerJson(), edited.trainerJson());
-    ASSERT_EQ(t.runs.size(), 1u);
-    const rrf::Run& r = t.runs[0];
+    ASSERT_EQ(t.project.runs.size(), 1u);
+    const rrf::Run& r = t.project.runs[0];
     ASSERT_EQ(r.curves.size(), 1u);
     EXPECT_EQ(r.curves[0].label(), "floor global");
     ASSERT_EQ(r.curves[0].points.size(), 4u);

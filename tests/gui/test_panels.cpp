@@ -16,7 +16,7 @@ const std::string kCornell = RRF_SOURCE_DIR "/projects/cornell-box/project.json"
 
 void drawAll(WorkbenchState& s) {
     drawWorkspace(
-        s.layout,
+        s.project.layout,
         [&] {
             if (ImGui::BeginTabBar("##l")) {
                 if (ImGui::BeginTabItem("Project")) {
@@ -63,11 +63,13 @@ TEST_F(PanelTest, AllPanelsDrawWithoutProjectAndWithout) {
     }
     EXPECT_TRUE(s.requests.empty()) << "idle frames must not ask for anything";
     EXPECT_FALSE(s.dirty) << "idle frames must not edit the project";
+    EXPECT_FALSE(s.project.sampling.has_value()) << "drawing must not write a default sampling section";
+    EXPECT_TRUE(s.project.overrides.empty()) << "drawing must not record scene overrides";
 }
 
 TEST_F(PanelTest, SplitterDragResizesTheLeftColumn) {
     WorkbenchState s;
-    const float before = s.layout.left;
+    const float before = s.project.layout.left;
     const float x = before * 1600.f + 2.f;  // on the 5-pixel splitter right of the left column
     mouse(x, 500, false);
     frame([&] { drawAll(s); });
@@ -79,13 +81,13 @@ TEST_F(PanelTest, SplitterDragResizesTheLeftColumn) {
     }
     mouse(x + 160.f, 500, false);
     frame([&] { drawAll(s); });
-    EXPECT_NEAR(s.layout.left, before + 160.f / 1600.f, 2.f / 1600.f);
-    EXPECT_FLOAT_EQ(s.layout.bottom, LayoutState::kDefaultBottom) << "the other splitter must not move";
+    EXPECT_NEAR(s.project.layout.left, before + 160.f / 1600.f, 2.f / 1600.f);
+    EXPECT_FLOAT_EQ(s.project.layout.bottom, PaneLayout::kDefaultBottom) << "the other splitter must not move";
 }
 
 TEST_F(PanelTest, SplitterCannotCollapseAPane) {
     WorkbenchState s;
-    const float x = s.layout.left * 1600.f + 2.f;
+    const float x = s.project.layout.left * 1600.f + 2.f;
     mouse(x, 500, false);
     frame([&] { drawAll(s); });
     for (int i = 0; i < 20; ++i) {
@@ -94,7 +96,7 @@ TEST_F(PanelTest, SplitterCannotCollapseAPane) {
     }
     mouse(0, 500, false);
     frame([&] { drawAll(s); });
-    EXPECT_GE(s.layout.left, kMinPaneFraction - 1e-4f);
+    EXPECT_GE(s.project.layout.left, PaneLayout::kMinFraction - 1e-4f);
 }
 
 TEST_F(PanelTest, RenderButtonClickRequestsOneRender) {

@@ -11,7 +11,7 @@
 
 #include "panels/file_dialog.h"
 #include "panels/project_io.h"
-#include "core/project/scene_overrides.h"
+#include "core/project/scene_edits.h"
 #include "panels/view_model.h"
 
 namespace rrf::test {
@@ -54,7 +54,7 @@ TEST(ProjectIo, SaveAndReopenKeepsEverySettingAndRun) {
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(a, (dir / "project.json").string(), error)) << error;
 
-    a.project.doc["name"] = "round trip";
+    a.project.name = "round trip";
     a.project.render.spp = 123;
     a.project.render.seed = 77;
     a.project.render.estimator = Estimator::Naive;
@@ -62,18 +62,18 @@ TEST(ProjectIo, SaveAndReopenKeepsEverySettingAndRun) {
     a.project.render.width = 64;
     a.project.render.height = 48;
     a.view.exposure = 1.5f;
-    a.layout.left = 0.4f;
-    a.layout.bottom = 0.2f;
-    a.runs = {sampleRun("a"), sampleRun("b")};
-    Material& white = a.project.scene.materials[0];
+    a.project.layout.left = 0.4f;
+    a.project.layout.bottom = 0.2f;
+    a.project.runs = {sampleRun("a"), sampleRun("b")};
+    Material white = a.project.scene.materials[0];
     white.kd = Vec3(0.3f, 0.4f, 0.5f);
     white.ks = Vec3(0.2f, 0.1f, 0.f);
     white.exponent = 42.f;
-    white.type = Material::Type::Phong;  // as the Scene panel does when ks becomes non-zero
-    recordMaterialOverride(a.project, 0);
-    a.project.scene.setLightPosition(Vec3(0.25f, 0.8f, -0.125f));
-    recordLightOverride(a.project);
-    a.project.doc["sampling"] = {{"grid", {4, 4, 4}}};  // another module's section survives too
+    editMaterial(a.project, 0, white, true);  // as the Scene panel does
+    moveLight(a.project, Vec3(0.25f, 0.8f, -0.125f));
+    SamplingSettings sampling;
+    sampling.nz = 4;
+    a.project.sampling = sampling;  // another module's section survives too
     a.dirty = true;
 
     const std::string saved = (dir / "saved.json").string();
@@ -90,12 +90,12 @@ TEST(ProjectIo, SaveAndReopenKeepsEverySettingAndRun) {
     EXPECT_EQ(b.project.render.width, 64);
     EXPECT_EQ(b.project.render.height, 48);
     EXPECT_FLOAT_EQ(b.view.exposure, 1.5f);
-    EXPECT_FLOAT_EQ(b.layout.left, 0.4f);
-    EXPECT_FLOAT_EQ(b.layout.bottom, 0.2f);
-    ASSERT_EQ(b.runs.size(), 2u);
-    for (size_t i = 0; i < 2; ++i) EXPECT_EQ(b.runs[i].toJson(), a.runs[i].toJson());
-    EXPECT_TRUE(std::isnan(b.runs[0].loss[1].validation));
-    EXPECT_EQ(b.runs[0].extra["future_key"]["x"], 1);
+    EXPECT_FLOAT_EQ(b.project.layout.left, 0.4f);
+    EXPECT_FLOAT_EQ(b.project.layout.bottom, 0.2f);
+    ASSERT_EQ(b.project.runs.size(), 2u);
+    for (size_t i = 0; i < 2; ++i) EXPECT_EQ(b.project.runs[i].toJson(), a.project.runs[i].toJson());
+    EXPECT_TRUE(std::isnan(b.project.runs[0].loss[1].validation));
+    EXPECT_EQ(b.project.runs[0].extra["future_key"]["x"], 1);
     const Material& w = b.project.scene.materials[0];
     EXPECT_FLOAT_EQ(w.kd.y, 0.4f);
     EXPECT_FLOAT_EQ(w.ks.x, 0.2f);
@@ -105,7 +105,8 @@ TEST(ProjectIo, SaveAndReopenKeepsEverySettingAndRun) {
     EXPECT_FLOAT_EQ(p.x, 0.25f);
     EXPECT_FLOAT_EQ(p.y, 0.8f);
     EXPECT_FLOAT_EQ(p.z, -0.125f);
-    EXPECT_EQ(b.project.doc["sampling"]["grid"][2], 4);
+    ASSERT_TRUE(b.project.sampling.has_value());
+    EXPECT_EQ(b.project.sampling->nz, 4);
     EXPECT_EQ(b.project.scene.contentHash(), a.project.scene.contentHash());
     fs::remove_all(dir);
 }
@@ -123,6 +124,25 @@ TEST(ProjectIo, BadFileKeepsTheOpenProject) {
     EXPECT_TRUE(s.hasProject);
     EXPECT_TRUE(s.dirty) << "a failed open must not touch the open project";
     EXPECT_EQ(s.projectName(), "Cornell box");
+    fs::remove_all(dir);
+}
+
+TEST(ProjectIo, MalformedSettingsSectionIsRefusedAtLoadAndTheOpenProjectKept) {
+    // A bad value in a settings section is reported when the file is opened (file, JSON pointer,
+    // what was expected), no longer when a panel first draws it: the workbench shows the message
+    // and keeps the project it had open.
+    const fs::path dir = copyCornell("malformed");
+    WorkbenchState s;
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, (dir / "project.json").string(), error)) << error;
+    nlohmann::json doc = nlohmann::json::parse(std::ifstream(dir / "project.json"));
+    doc["sampling"] = {{"grid", {4, "four", 4}}};
+    std::ofstream(dir / "bad_sampling.json") << doc.dump(2);
+    EXPECT_FALSE(loadProjectIntoState(s, (dir / "bad_sampling.json").string(), error));
+    EXPECT_NE(error.find("bad_sampling.json: /sampling/grid/1: expected integer, got string"), std::string::npos)
+        << error;
+    EXPECT_TRUE(s.hasProject);
+    EXPECT_EQ(s.project.path, (dir / "project.json").string());
     fs::remove_all(dir);
 }
 
@@ -148,9 +168,9 @@ TEST(ProjectIo, DamagedWorkbenchSectionsAreReportedNotFatal) {
     WorkbenchState s;
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, (dir / "project.json").string(), error)) << error;
-    EXPECT_EQ(s.runs.size(), 1u);
-    EXPECT_FLOAT_EQ(s.layout.left, LayoutState::kDefaultLeft);
-    EXPECT_FLOAT_EQ(s.layout.bottom, kMaxPaneFraction);
+    EXPECT_EQ(s.project.runs.size(), 1u);
+    EXPECT_FLOAT_EQ(s.project.layout.left, PaneLayout::kDefaultLeft);
+    EXPECT_FLOAT_EQ(s.project.layout.bottom, PaneLayout::kMaxFraction);
     EXPECT_TRUE(s.project.scene.lightRegion.contains(s.project.scene.lightPosition()));
     EXPECT_GE(s.log.entries().size(), 4u) << s.log.text();
     fs::remove_all(dir);
@@ -177,13 +197,18 @@ TEST(SceneOverrides, EnergyConservationLowersTheOtherCoefficient) {
 }
 
 TEST(Layout, JsonRoundTripAndReset) {
-    LayoutState l;
+    std::vector<std::string> warnings;
+    auto read = [&](const nlohmann::json& j) { return PaneLayout::fromJson(JsonReader(j, "p.json", "/layout"), warnings); };
+    PaneLayout l;
     l.left = 0.5f;
     l.bottom = 0.1f;
-    EXPECT_EQ(LayoutState::fromJson(l.toJson()), l);
+    EXPECT_EQ(read(l.toJson()), l);
     l.reset();
-    EXPECT_EQ(l, LayoutState());
-    EXPECT_EQ(LayoutState::fromJson(nlohmann::json("garbage")), LayoutState());
+    EXPECT_EQ(l, PaneLayout());
+    EXPECT_TRUE(warnings.empty());
+    EXPECT_EQ(read(nlohmann::json("garbage")), PaneLayout());
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("p.json: /layout: expected an object, got string"), std::string::npos) << warnings[0];
 }
 
 TEST(Runs, IdsAreUnique) {
