@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
     const DataGenerator generator(scene, gen);
     const GeneratedData g = generator.run();
     const uint64_t records = g.header.at("stats").at("records").get<uint64_t>();
-    const double genRaysPerS = double(g.rays + g.shadowRays) / g.seconds;
+    const double genRaysPerS = double(g.stats.rays + g.stats.shadowRays) / g.seconds;
 
     std::printf("| measurement | work | time (s) | records/s | path samples/s | rays/s (incl. shadow) |\n");
     std::printf("|---|---|---:|---:|---:|---:|\n");
@@ -115,11 +115,11 @@ int main(int argc, char** argv) {
                 humanCount(double(rs.samples)).c_str(), rs.seconds, humanCount(rs.samplesPerSecond()).c_str(),
                 humanCount(rs.raysPerSecond()).c_str());
     std::printf("| generator grid %dx%dx%d, %d dirs, %d spp | %s records, %s paths | %.2f | %s | %s | %s |\n", gen.nx,
-                gen.ny, gen.nz, gen.directions, gen.spp, humanCount(double(records)).c_str(), humanCount(double(g.paths)).c_str(),
-                g.seconds, humanCount(double(records) / g.seconds).c_str(), humanCount(double(g.paths) / g.seconds).c_str(),
+                gen.ny, gen.nz, gen.directions, gen.spp, humanCount(double(records)).c_str(), humanCount(double(g.stats.paths)).c_str(),
+                g.seconds, humanCount(double(records) / g.seconds).c_str(), humanCount(double(g.stats.paths) / g.seconds).c_str(),
                 humanCount(genRaysPerS).c_str());
     std::printf("| generator / renderer | | | | %.2fx | %.2fx |\n",
-                (double(g.paths) / g.seconds) / rs.samplesPerSecond(), genRaysPerS / rs.raysPerSecond());
+                (double(g.stats.paths) / g.seconds) / rs.samplesPerSecond(), genRaysPerS / rs.raysPerSecond());
 
     if (!memory) return 0;
     // 3. Memory of the default run (spp 1), then the written file.

@@ -31,15 +31,23 @@ void drawCoverage(const DatasetInfo& d) {
         ImGui::TextDisabled("No dataset generated in this session.");
         return;
     }
+    const GeneratorStats& g = d.generator;
     ImGui::TextWrapped("%s (%.1f s)", d.path.c_str(), d.seconds);
+    ImGui::Text("%llu records from %llu of %llu viewpoints (%llu inside objects, %llu outside the scene)",
+                (unsigned long long)g.records, (unsigned long long)g.keptCells(), (unsigned long long)g.cells(),
+                (unsigned long long)g.cellsDroppedInsideObject, (unsigned long long)g.cellsDroppedOutsideScene);
+    ImGui::Text("rays without a record: %llu escaped, %llu hit a light, %llu without a finite sample",
+                (unsigned long long)g.raysEscaped, (unsigned long long)g.raysHitEmitter,
+                (unsigned long long)g.recordsWithoutFiniteSample);
     if (!ImGui::BeginTable("##coverage", 2, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
     ImGui::TableSetupColumn("object");
     ImGui::TableSetupColumn("records");
     ImGui::TableHeadersRow();
-    for (const auto& [name, count] : d.recordsPerObject) {
+    for (size_t i = 0; i < g.recordsPerObject.size(); ++i) {
+        const uint64_t count = g.recordsPerObject[i];
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(name.c_str());
+        ImGui::TextUnformatted(i < d.objectNames.size() ? d.objectNames[i].c_str() : "?");
         ImGui::TableNextColumn();
         ImGui::Text("%llu%s", (unsigned long long)count, count == 0 ? "  (no data: cannot train)" : "");
     }

@@ -14,6 +14,7 @@
 #include "core/eval/error_metrics.h"
 #include "core/render/term.h"
 #include "core/scene/accel.h"
+#include "core/data/generator_stats.h"
 #include "core/util/image.h"
 #include "core/project/project.h"
 #include "panels/experiment_state.h"
@@ -99,13 +100,15 @@ struct RenderProgress {
     double samplesPerSecond = 0.0;
 };
 
-/// The last generated dataset: where it is and how many records each object got.
+/// The last generated dataset: where it is and what the generator did (records per object, cells
+/// and rays that made no record).
 struct DatasetInfo {
     bool running = false;
     double progress = 0.0;
     std::string path;  ///< empty until a dataset was written
     int inputCount = 0;  ///< network inputs per record of that dataset (0 = unknown)
-    std::vector<std::pair<std::string, uint64_t>> recordsPerObject;
+    std::vector<std::string> objectNames;  ///< the scene's objects when it was generated (index = id)
+    GeneratorStats generator;
     double seconds = 0.0;
 };
 

@@ -65,23 +65,20 @@ int runGenerate(const GenerateArgs& a) {
         return 130;
     }
     writeDataset(a.out, data.header, data.sceneHash, data.perObject);
-    const nlohmann::json& st = data.header.at("stats");
-    std::printf("%llu records in %.2f s: %srecords/s, %spath samples/s, %srays/s\n",
-                (unsigned long long)st.at("records").get<uint64_t>(), data.seconds,
-                humanCount(double(st.at("records").get<uint64_t>()) / data.seconds).c_str(),
-                humanCount(double(data.paths) / data.seconds).c_str(),
-                humanCount(double(data.rays + data.shadowRays) / data.seconds).c_str());
-    std::printf("cells: %d in shard, %llu dropped inside objects, %llu dropped outside the scene\n",
-                data.header.at("shard").at("cell_end").get<int>() - data.header.at("shard").at("cell_begin").get<int>(),
-                (unsigned long long)st.at("cells_dropped_inside_object").get<uint64_t>(),
-                (unsigned long long)st.at("cells_dropped_outside_scene").get<uint64_t>());
+    const GeneratorStats& st = data.stats;
+    std::printf("%llu records in %.2f s: %srecords/s, %spath samples/s, %srays/s\n", (unsigned long long)st.records,
+                data.seconds, humanCount(double(st.records) / data.seconds).c_str(),
+                humanCount(double(st.paths) / data.seconds).c_str(),
+                humanCount(double(st.rays + st.shadowRays) / data.seconds).c_str());
+    std::printf("cells: %llu in shard, %llu dropped inside objects, %llu dropped outside the scene\n",
+                (unsigned long long)st.cells(), (unsigned long long)st.cellsDroppedInsideObject,
+                (unsigned long long)st.cellsDroppedOutsideScene);
     std::printf("rays escaped: %llu, rays hitting an emitter: %llu, NaN/Inf samples dropped: %llu\n",
-                (unsigned long long)st.at("rays_escaped").get<uint64_t>(),
-                (unsigned long long)st.at("rays_hit_emitter").get<uint64_t>(),
-                (unsigned long long)st.at("non_finite_samples_dropped").get<uint64_t>());
-    for (size_t i = 0; i < data.perObject.size(); ++i)
-        std::printf("  object %zu %-12s %10zu records\n", i, project.scene.objects[i].name.c_str(),
-                    data.perObject[i].size() / size_t(gen.layout().floatsPerRecord()));
+                (unsigned long long)st.raysEscaped, (unsigned long long)st.raysHitEmitter,
+                (unsigned long long)st.nonFiniteSamplesDropped);
+    for (size_t i = 0; i < st.recordsPerObject.size(); ++i)
+        std::printf("  object %zu %-12s %10llu records\n", i, project.scene.objects[i].name.c_str(),
+                    (unsigned long long)st.recordsPerObject[i]);
     std::printf("wrote %s\n", a.out.c_str());
     return 0;
 }

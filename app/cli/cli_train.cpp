@@ -2,7 +2,6 @@
 #include <cmath>
 #include <cstdio>
 #include <mutex>
-#include <chrono>
 #include <sstream>
 #include <string>
 
@@ -13,6 +12,7 @@
 #include "core/nn/model_set.h"
 #include "core/nn/network_settings.h"
 #include "core/project/project.h"
+#include "core/nn/training_run.h"
 #include "core/nn/training_samples.h"
 
 namespace rrf::cli {
@@ -73,15 +73,10 @@ int runTrain(const TrainArgs& a) {
     std::fflush(stdout);
 
     std::mutex printMutex;
-    std::atomic<int> epochsDone{0};
-    const int networksPerObject = o.targets == TargetMode::Separate ? 2 : 1;
-    const size_t objectCount = o.objects.empty() ? samples.size() : o.objects.size();
-    const double totalEpochs = double(objectCount) * networksPerObject * o.trainer.maxEpochs();
     std::atomic<bool> cancel{false};
     ObjectTrainingObserver observer;
     observer.cancel = &cancel;
     observer.onEpoch = [&](int id, const std::string& target, const EpochRecord& r) {
-        ++epochsDone;
         if (a.logEvery <= 0 || r.epoch % a.logEvery != 0) return;
         std::lock_guard<std::mutex> lock(printMutex);
         std::printf("object %d %-10s %-8s epoch %4d  train %-10s validation %-10s step %-9s %7.2f s\n", id,
@@ -93,16 +88,16 @@ int runTrain(const TrainArgs& a) {
         std::lock_guard<std::mutex> lock(printMutex);
         std::printf("note: %s\n", m.c_str());
     };
-    std::vector<ObjectModel> trained;
-    const auto start = std::chrono::steady_clock::now();
+    TrainingProgress progress;
+    TrainingRun run;
     runWithProgress(
-        "train", [&] { trained = trainObjects(samples, o, observer); },
-        [&] { return std::make_pair(std::min(1.0, epochsDone / std::max(1.0, totalEpochs)), std::string()); },
-        [&] { cancel = true; });
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        "train", [&] { run = trainNetworks(samples, o, observer, &progress); },
+        [&] { return std::make_pair(progress.fraction(), std::string()); }, [&] { cancel = true; });
+    const std::vector<ObjectModel>& trained = run.models;
+    const double seconds = run.seconds;
 
     nlohmann::json extra = {{"dataset", a.data}, {"project", a.input}, {"network", settings.networkJson()},
-                            {"trainer", settings.trainerJson()}, {"seconds", seconds}, {"cancelled", bool(cancel)}};
+                            {"trainer", settings.trainerJson()}, {"seconds", seconds}, {"cancelled", run.cancelled}};
     saveModelSet(a.out, trained, project.scene.contentHash(), data.header().at("input_layout").get<std::vector<std::string>>(),
                  extra);
 
@@ -119,9 +114,9 @@ int runTrain(const TrainArgs& a) {
                     (long long)m.model.arch.numParams(), t.epochs, fmt(m.model.errors.train).c_str(),
                     fmt(m.model.errors.validation).c_str(), fmt(m.model.errors.test).c_str(), t.seconds);
     }
-    std::printf("trained in %.2f s%s; wrote %s/models.json\n", seconds, cancel ? " (stopped early by Ctrl-C)" : "",
+    std::printf("trained in %.2f s%s; wrote %s/models.json\n", seconds, run.cancelled ? " (stopped early by Ctrl-C)" : "",
                 a.out.c_str());
-    return cancel ? 130 : 0;
+    return run.cancelled ? 130 : 0;
 }
 }  // namespace
 

@@ -46,6 +46,18 @@ void JobContext::onCancel(std::function<void()> hook) {
     if (cancel_.load() && cancelHook_) cancelHook_();  // cancelled before the hook was installed
 }
 
+void JobContext::post(const std::string& line) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    messages_.push_back(line);
+}
+
+std::vector<std::string> JobContext::takeMessages() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<std::string> out;
+    out.swap(messages_);
+    return out;
+}
+
 JobRunner::~JobRunner() {
     cancelAll();
     waitAll();
@@ -143,6 +155,26 @@ bool JobRunner::running(JobKind kind) const {
     std::lock_guard<std::mutex> lock(mutex_);
     return std::any_of(entries_.begin(), entries_.end(),
                        [&](const auto& e) { return !e->done.load() && e->info.kind == kind; });
+}
+
+bool JobRunner::running(int id) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return std::any_of(entries_.begin(), entries_.end(),
+                       [&](const auto& e) { return e->info.id == id && !e->done.load(); });
+}
+
+std::optional<JobInfo> JobRunner::info(int id) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& e : entries_)
+        if (e->info.id == id && !e->done.load()) return snapshot(*e);
+    return std::nullopt;
+}
+
+std::shared_ptr<JobContext> JobRunner::context(int id) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& e : entries_)
+        if (e->info.id == id) return e->context;
+    return nullptr;
 }
 
 bool JobRunner::idle() const {

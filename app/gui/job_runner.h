@@ -1,8 +1,9 @@
 #pragma once
-/// Background jobs of the workbench (render, generate, train, evaluate), each on its own worker
-/// thread. A job reports progress, ETA and a status line through its JobContext; the UI thread
-/// polls JobRunner::jobs() every frame and reacts to finished jobs via takeFinished(). Workers never
-/// touch ImGui or GL: what they produce they publish as snapshots that the UI thread copies.
+/// Background jobs of the workbench (render, generate, train, evaluate, predict, sweep), each on its
+/// own worker thread. A job reports progress, ETA, a status line and log lines through its
+/// JobContext; the UI thread polls JobRunner::jobs() every frame and logs finished jobs via
+/// takeFinished(). Workers never touch ImGui or GL: what they produce they publish as snapshots that
+/// the UI thread copies. The workbench drives each kind of job through a JobSession (job_session.h).
 ///
 /// Starting a job whose kind conflicts with a running one is refused (with the reason), never
 /// queued silently: the user decides what to stop.
@@ -12,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -35,6 +37,10 @@ public:
     const std::atomic<bool>& cancelFlag() const { return cancel_; }
     /// Called (on the UI thread) when the job is cancelled, e.g. to forward to Renderer::cancel().
     void onCancel(std::function<void()> hook);
+    /// A line for the workbench log (worker side); the UI thread collects them with takeMessages().
+    void post(const std::string& line);
+    /// The lines posted since the last call, oldest first.
+    std::vector<std::string> takeMessages();
 
 private:
     friend class JobRunner;
@@ -44,6 +50,7 @@ private:
     std::string status_;
     std::string error_;  ///< set by the runner when the job's function threw
     std::function<void()> cancelHook_;
+    std::vector<std::string> messages_;
 };
 
 /// A copy of one job's state for display.
@@ -75,6 +82,12 @@ public:
     /// Running jobs, oldest first.
     std::vector<JobInfo> jobs() const;
     bool running(JobKind kind) const;
+    /// True while job `id` runs (false for 0, finished or unknown ids).
+    bool running(int id) const;
+    /// The state of job `id` while it runs (null otherwise).
+    std::optional<JobInfo> info(int id) const;
+    /// The context of job `id` (null for an unknown id); it outlives the job for whoever holds it.
+    std::shared_ptr<JobContext> context(int id) const;
     bool idle() const;
     /// Jobs that finished since the last call (each reported once), joined.
     std::vector<JobInfo> takeFinished();

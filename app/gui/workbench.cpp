@@ -53,7 +53,18 @@ void Workbench::showError(const std::string& title, const std::string& message) 
     errorModal_ = true;
 }
 
+void Workbench::dropJobs() {
+    for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &generateJob_, &trainJob_, &evaluateJob_,
+                                                                      &predictJob_, &sweepJob_})
+        job->drop();
+    render_.reset();
+    trainLive_.reset();
+    predictPending_ = false;
+}
+
 void Workbench::frame() {
+    // Ended jobs are logged first, so their results' lines follow "... finished after N s".
+    logFinishedJobs();
     pollRender();
     pollGenerate();
     pollTrain();
@@ -314,22 +325,16 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
             case Command::StartRender: startRender(); break;
             case Command::CancelRender: cancelRender(); break;
             case Command::Generate: startGenerate(); break;
-            case Command::CancelGenerate:
-                if (generateJob_) jobs_.cancel(generateJob_);
-                break;
+            case Command::CancelGenerate: generateJob_.cancel(); break;
             case Command::Train: startTrain(); break;
-            case Command::CancelTrain:
-                if (trainJob_) jobs_.cancel(trainJob_);
-                break;
+            case Command::CancelTrain: trainJob_.cancel(); break;
             case Command::Evaluate: startEvaluate(); break;
             case Command::ExportObjectsCsv:
                 if (r.path.empty()) openDialog(DialogPurpose::ExportObjectsCsv);
                 else exportObjectsCsv(r.path);
                 break;
             case Command::RunSweep: startSweep(r.path); break;
-            case Command::CancelSweep:
-                if (sweepJob_) jobs_.cancel(sweepJob_);
-                break;
+            case Command::CancelSweep: sweepJob_.cancel(); break;
             case Command::SceneChanged: sceneEdited = true; break;  // many edits in a frame: one restart
             case Command::SaveRun: saveRun(); break;
             case Command::ReopenRun: reopenRun(r.index); break;

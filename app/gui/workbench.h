@@ -9,6 +9,7 @@
 
 #include "app/gui/gl_texture.h"
 #include "app/gui/job_runner.h"
+#include "app/gui/job_session.h"
 #include "app/gui/live_prediction.h"
 #include "app/gui/render_session.h"
 #include "app/gui/user_config.h"
@@ -18,11 +19,12 @@
 
 namespace rrf {
 
-struct GenerateSession;
-struct TrainSession;
-struct EvaluateSession;
-struct PredictSession;
-struct SweepSession;
+struct GeneratedDataset;
+struct TrainingOutcome;
+struct TrainingLive;
+struct EvaluationOutcome;
+struct Prediction;
+struct SweepOutcome;
 
 class Workbench {
 public:
@@ -100,6 +102,13 @@ private:
     void pollEvaluate();
     void pollPredict();
     void pollSweep();
+    /// Logs the jobs that ended since the last frame (finished, stopped or failed).
+    void logFinishedJobs();
+    /// Cancels every session's job and forgets it, so nothing a previous project's job finishes
+    /// lands in the project opened now.
+    void dropJobs();
+    /// A finished training run: records it as a run and loads its models.
+    void trainingFinished(TrainingOutcome& outcome);
     /// Brings the middle view's prediction up to date with the scene's light (GLSL now, or a CPU job).
     void refreshPrediction();
     bool predictRunning() const;
@@ -129,21 +138,19 @@ private:
     DialogPurpose dialogPurpose_ = DialogPurpose::None;
     RecentProjects recent_;
 
-    std::shared_ptr<RenderSession> render_;
-    int renderJob_ = 0;
+    // One session per kind of job (job_session.h). render_ and train live hold what the UI shows
+    // while the job runs; the sessions deliver each job's result once it has ended.
+    std::shared_ptr<RenderSession> render_;  ///< the current ground truth's render (snapshots, outputs)
+    JobSession<RenderStats> renderJob_{jobs_, JobKind::Render, state_.log};
     uint64_t renderRevision_ = 0;
-    std::shared_ptr<GenerateSession> generate_;
-    int generateJob_ = 0;
-    std::shared_ptr<TrainSession> train_;
-    int trainJob_ = 0;
+    JobSession<GeneratedDataset> generateJob_{jobs_, JobKind::Generate, state_.log};
+    std::shared_ptr<TrainingLive> trainLive_;  ///< loss curves of the running training, for the plot
+    JobSession<TrainingOutcome> trainJob_{jobs_, JobKind::Train, state_.log};
     uint64_t trainRevision_ = 0;
-    std::shared_ptr<EvaluateSession> evaluate_;
-    int evaluateJob_ = 0;
-    std::shared_ptr<PredictSession> predict_;
-    int predictJob_ = 0;
+    JobSession<EvaluationOutcome> evaluateJob_{jobs_, JobKind::Evaluate, state_.log};
+    JobSession<Prediction> predictJob_{jobs_, JobKind::Predict, state_.log};
     bool predictPending_ = false;  ///< the light moved while a CPU prediction ran
-    std::shared_ptr<SweepSession> sweep_;
-    int sweepJob_ = 0;
+    JobSession<SweepOutcome> sweepJob_{jobs_, JobKind::Sweep, state_.log};
     LivePrediction live_;
     bool restartRender_ = false;   ///< a scene edit arrived while the old render was stopping
     bool untitled_ = false;        ///< the project has no file of its own yet (New)

@@ -1,12 +1,13 @@
 // Workbench: evaluation of the trained models against the ground truth shown in the views
-// (core/eval/evaluation.h, CPU predictor, on a worker), the Objects table it fills, its CSV export, and
+// (core/evaluation.h, CPU predictor, on a worker), the Objects table it fills, its CSV export, and
 // the metrics it adds to the training run whose models it judged.
 #include "app/gui/workbench.h"
 
 #include <filesystem>
-#include <mutex>
+#include <map>
 
 #include "core/util/atomic_file.h"
+#include "core/util/stopwatch.h"
 #include "core/eval/evaluation.h"
 #include "panels/panels.h"
 
@@ -15,94 +16,28 @@ namespace rrf {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-/// Shared between the evaluate job and the UI thread.
-struct EvaluateSession {
-    Scene scene;
-    std::shared_ptr<const ModelSet> models;
-    PredictionSettings settings;
-    Reference reference;
-    std::string modelsDir;
-    std::mutex mutex;
-    bool done = false;
-    Evaluation result;
-    double seconds = 0;
+/// A finished evaluation: the Objects table, ready to show, and what the training run gets.
+struct EvaluationOutcome {
+    panels::EvaluationInfo info;
+    ErrorStats global;         ///< the global term over all object pixels
+    std::string modelsDir;     ///< the models that were judged
 };
 
-bool Workbench::evaluateRunning() const { return evaluateJob_ != 0 && jobs_.running(JobKind::Evaluate); }
-
-bool Workbench::startEvaluate() {
-    if (!live_.loaded()) {
-        state_.log.error("evaluate: no trained models; train first");
-        return false;
-    }
-    if (state_.groundTruth.empty()) {
-        state_.log.error("evaluate: no ground truth yet; render first");
-        return false;
-    }
-    auto session = std::make_shared<EvaluateSession>();
-    session->scene = state_.project.scene;
-    session->models = live_.models();
-    session->modelsDir = live_.dir();
-    try {
-        session->settings = state_.project.prediction;
-    } catch (const std::exception& e) {
-        state_.log.error(std::string("evaluate: ") + e.what());
-        return false;
-    }
-    // The reference is the ground truth the views show, at the light position it was rendered at.
-    Reference& ref = session->reference;
-    for (Term t : kTerms) ref.images[int(t)] = state_.groundTruth.term(t);
-    ref.lightPosition = state_.project.scene.lightPosition();
-    ref.spp = state_.render.spp;
-    ref.seconds = state_.render.seconds;
-    std::string why;
-    const int id = jobs_.start(JobKind::Evaluate, "evaluate", [session](JobContext& ctx) {
-        const auto start = std::chrono::steady_clock::now();
-        ctx.setStatus("predicting");
-        const Predictor predictor(session->scene, *session->models, session->settings);
-        Evaluation e = evaluate(predictor, session->reference);
-        ctx.setProgress(1.0);
-        std::lock_guard<std::mutex> lock(session->mutex);
-        session->result = std::move(e);
-        session->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        session->done = true;
-    }, &why);
-    if (!id) {
-        state_.log.error("evaluate refused: " + why);
-        return false;
-    }
-    evaluate_ = session;
-    evaluateJob_ = id;
-    state_.evaluation.running = true;
-    return true;
-}
-
-void Workbench::pollEvaluate() {
-    state_.evaluation.running = evaluateRunning();
-    if (!evaluate_ || state_.evaluation.running) return;
-    // The local keeps the session (and its mutex) alive until the lock is released below.
-    const std::shared_ptr<EvaluateSession> session = evaluate_;
-    std::lock_guard<std::mutex> lock(session->mutex);
-    if (!evaluate_->done) {
-        evaluate_.reset();
-        return;
-    }
-    const Evaluation& e = evaluate_->result;
+namespace {
+/// The Objects table of `e`: per term, one row per object in view or trained, with the samples and
+/// training time from the models' own training records.
+panels::EvaluationInfo objectsTable(const Evaluation& e, const Scene& scene, const ModelSet& models) {
     panels::EvaluationInfo info;
     info.valid = true;
     info.lightPosition = e.lightPosition;
-    info.referenceSpp = evaluate_->reference.spp;
-    info.seconds = evaluate_->seconds;
-    // Samples and training time per object, from the models' own training records.
     std::map<int, std::pair<uint64_t, double>> training;
-    for (const ObjectNetworks& o : evaluate_->models->objects)
+    for (const ObjectNetworks& o : models.objects)
         for (const auto& [target, m] : o.byTarget) {
             auto& t = training[o.objectId];
             const TrainResult& r = m.training;
             t.first = std::max<uint64_t>(t.first, uint64_t(r.trainSamples + r.validationSamples + r.testSamples));
             t.second += r.seconds;
         }
-    const Scene& scene = evaluate_->scene;
     for (Term t : kTerms) {
         const TermErrors& te = e.term(t);
         info.available[int(t)] = te.available;
@@ -117,27 +52,78 @@ void Workbench::pollEvaluate() {
             info.rows[int(t)].push_back(row);
         }
     }
-    state_.evaluation = std::move(info);
-    state_.focusTab = "Objects";
+    return info;
+}
+}  // namespace
 
-    // The run that made these models gets the result, so the Cost panel can place it.
-    const ErrorStats& g = e.term(Term::Global).overall;
-    for (Run& r : state_.project.runs) {
-        if (r.kind != "train" || r.artifacts.empty()) continue;
-        if (fs::path(projectDir()) / fs::path(r.artifacts.front()).parent_path() != fs::path(evaluate_->modelsDir)) continue;
-        r.metrics["relative_rmse"] = g.relativeRmse;
-        r.metrics["rmse"] = g.rmse;
-        r.metrics["mae"] = g.mae;
-        r.metrics["evaluated_spp"] = evaluate_->reference.spp;
-        r.metrics["evaluated_light"] = json::array({e.lightPosition.x, e.lightPosition.y, e.lightPosition.z});
-        r.timings["evaluate"] = evaluate_->seconds;
-        state_.markDirty();
+bool Workbench::evaluateRunning() const { return evaluateJob_.running(); }
+
+bool Workbench::startEvaluate() {
+    if (!live_.loaded()) {
+        state_.log.error("evaluate: no trained models; train first");
+        return false;
     }
-    char line[160];
-    std::snprintf(line, sizeof line, "evaluated: global term relative RMSE %.4g, RMSE %.4g over %llu pixels (%.1f s)",
-                  g.relativeRmse, g.rmse, (unsigned long long)g.pixels, evaluate_->seconds);
-    state_.log.info(line);
-    evaluate_.reset();
+    if (state_.groundTruth.empty()) {
+        state_.log.error("evaluate: no ground truth yet; render first");
+        return false;
+    }
+    const PredictionSettings settings = state_.project.prediction;
+    auto scene = std::make_shared<const Scene>(state_.project.scene);
+    const std::shared_ptr<const ModelSet> models = live_.models();
+    const std::string modelsDir = live_.dir();
+    // The reference is the ground truth the views show, at the light position it was rendered at.
+    // Image copies share nothing with the views, so the worker reads them while the UI draws.
+    auto reference = std::make_shared<Reference>();
+    for (Term t : kTerms) reference->images[int(t)] = state_.groundTruth.term(t);
+    reference->lightPosition = state_.project.scene.lightPosition();
+    reference->spp = state_.render.spp;
+    reference->seconds = state_.render.seconds;
+    const bool started = evaluateJob_.start("evaluate", [scene, models, modelsDir, settings, reference](JobContext& ctx)
+                                                            -> std::optional<EvaluationOutcome> {
+        const Stopwatch clock;
+        ctx.setStatus("predicting");
+        const Predictor predictor(*scene, *models, settings);
+        const Evaluation e = evaluate(predictor, *reference);
+        EvaluationOutcome out;
+        out.info = objectsTable(e, *scene, *models);
+        out.info.referenceSpp = reference->spp;
+        out.info.seconds = clock.seconds();
+        out.global = e.term(Term::Global).overall;
+        out.modelsDir = modelsDir;
+        ctx.setProgress(1.0);
+        return out;
+    });
+    if (!started) return false;
+    state_.evaluation.running = true;
+    return true;
+}
+
+void Workbench::pollEvaluate() {
+    state_.evaluation.running = evaluateRunning();
+    evaluateJob_.poll([&](EvaluationOutcome& out) {
+        const double seconds = out.info.seconds;
+        const int spp = out.info.referenceSpp;
+        const Vec3 light = out.info.lightPosition;
+        state_.evaluation = std::move(out.info);
+        state_.focusTab = "Objects";
+        // The run that made these models gets the result, so the Cost panel can place it.
+        const ErrorStats& g = out.global;
+        for (Run& r : state_.project.runs) {
+            if (r.kind != "train" || r.artifacts.empty()) continue;
+            if (fs::path(projectDir()) / fs::path(r.artifacts.front()).parent_path() != fs::path(out.modelsDir)) continue;
+            r.metrics["relative_rmse"] = g.relativeRmse;
+            r.metrics["rmse"] = g.rmse;
+            r.metrics["mae"] = g.mae;
+            r.metrics["evaluated_spp"] = spp;
+            r.metrics["evaluated_light"] = json::array({light.x, light.y, light.z});
+            r.timings["evaluate"] = seconds;
+            state_.markDirty();
+        }
+        char line[160];
+        std::snprintf(line, sizeof line, "evaluated: global term relative RMSE %.4g, RMSE %.4g over %llu pixels (%.1f s)",
+                      g.relativeRmse, g.rmse, (unsigned long long)g.pixels, seconds);
+        state_.log.info(line);
+    });
 }
 
 bool Workbench::exportObjectsCsv(const std::string& path) {

@@ -4,7 +4,6 @@
 #include "app/gui/workbench.h"
 
 #include <filesystem>
-#include <mutex>
 
 #include "core/eval/evaluation.h"
 #include "core/predict/predictor.h"
@@ -12,18 +11,6 @@
 namespace rrf {
 
 namespace fs = std::filesystem;
-
-/// Shared between a CPU predict job and the UI thread.
-struct PredictSession {
-    Scene scene;
-    std::shared_ptr<const ModelSet> models;
-    PredictionSettings settings;
-    Vec3 light{0.f};
-    int width = 0, height = 0;
-    std::mutex mutex;
-    bool done = false;
-    Prediction prediction;
-};
 
 namespace {
 /// The ground truth's camera: the scene camera at the render settings' size, so the prediction
@@ -87,55 +74,38 @@ void Workbench::refreshPrediction() {
         predictPending_ = true;  // the light moved again: predict once more when this one is done
         return;
     }
-    auto session = std::make_shared<PredictSession>();
-    session->scene = scene;
-    session->models = live_.models();
-    try {
-        session->settings = state_.project.prediction;
-    } catch (const std::exception& e) {
-        state_.log.error(std::string("prediction: ") + e.what());
-        return;
-    }
-    session->light = scene.lightPosition();
-    session->width = camera.width;
-    session->height = camera.height;
+    const PredictionSettings settings = state_.project.prediction;
+    auto shared = std::make_shared<const Scene>(scene);
+    const std::shared_ptr<const ModelSet> models = live_.models();
+    const Vec3 light = scene.lightPosition();
     std::string why;
-    const int id = jobs_.start(JobKind::Predict, "CPU prediction", [session](JobContext& ctx) {
-        const Predictor predictor(session->scene, *session->models, session->settings);
-        const GBuffer gb = predictor.gbuffer(session->light, session->width, session->height);
+    const bool started = predictJob_.start("CPU prediction", [shared, models, settings, light, camera](JobContext& ctx)
+                                               -> std::optional<Prediction> {
+        const Predictor predictor(*shared, *models, settings);
+        const GBuffer gb = predictor.gbuffer(light, camera.width, camera.height);
         Prediction p = predictor.predict(gb);
         ctx.setProgress(1.0);
-        std::lock_guard<std::mutex> lock(session->mutex);
-        session->prediction = std::move(p);
-        session->done = true;
+        return p;
     }, &why);
-    if (!id) {
+    if (!started) {
         state_.log.warning("prediction deferred: " + why);
         predictPending_ = true;
         return;
     }
-    predict_ = session;
-    predictJob_ = id;
     predictPending_ = false;
 }
 
-bool Workbench::predictRunning() const { return predictJob_ != 0 && jobs_.running(JobKind::Predict); }
+bool Workbench::predictRunning() const { return predictJob_.running(); }
 
 void Workbench::pollPredict() {
-    if (predict_ && !predictRunning()) {
-        // The local keeps the session (and its mutex) alive until the lock is released below.
-        const std::shared_ptr<PredictSession> session = predict_;
-        std::lock_guard<std::mutex> lock(session->mutex);
-        if (predict_->done) {
-            panels::ImageSet& p = state_.prediction;
-            p.direct = std::move(predict_->prediction.images[0]);
-            p.indirect = std::move(predict_->prediction.images[1]);
-            p.global = std::move(predict_->prediction.images[2]);
-            p.label = "Prediction (CPU)";
-            p.touch();
-        }
-        predict_.reset();
-    }
+    predictJob_.poll([&](Prediction& prediction) {
+        panels::ImageSet& p = state_.prediction;
+        p.direct = std::move(prediction.images[0]);
+        p.indirect = std::move(prediction.images[1]);
+        p.global = std::move(prediction.images[2]);
+        p.label = "Prediction (CPU)";
+        p.touch();
+    });
     if (predictPending_ && !predictRunning() && !trainRunning()) refreshPrediction();
 }
 

@@ -45,15 +45,7 @@ bool Workbench::openProject(const std::string& path) {
     // Stop the previous project's jobs and forget their sessions, so that nothing they finish lands
     // in this project (their workers still complete into the old project's directory). The new
     // ground truth starts converging right away.
-    for (const int job : {renderJob_, generateJob_, trainJob_, evaluateJob_, predictJob_, sweepJob_})
-        if (job) jobs_.cancel(job);
-    render_.reset();
-    generate_.reset();
-    train_.reset();
-    evaluate_.reset();
-    predict_.reset();
-    sweep_.reset();
-    predictPending_ = false;
+    dropJobs();
     // Models belong to the previous project; the last training run's models (if still on disk)
     // drive the prediction of this one.
     live_.reset();
@@ -214,8 +206,7 @@ bool Workbench::reopenRun(int index) {
         state_.log.error("re-open run: " + error);
         return false;
     }
-    if (renderJob_) jobs_.cancel(renderJob_);
-    restartRender_ = false;
+    cancelRender();
     // The run's settings snapshot is read like the project's sections (file and JSON pointer in every
     // message); a part that does not read is reported and the current setting kept.
     const JsonReader settings(run.settings, state_.project.path, "/runs/" + std::to_string(index) + "/settings");

@@ -7,10 +7,10 @@
 
 namespace rrf {
 
-bool Workbench::renderRunning() const { return renderJob_ != 0 && jobs_.running(JobKind::Render); }
+bool Workbench::renderRunning() const { return renderJob_.running(); }
 
 void Workbench::cancelRender() {
-    if (renderJob_) jobs_.cancel(renderJob_);
+    renderJob_.cancel();
     restartRender_ = false;
 }
 
@@ -21,16 +21,14 @@ bool Workbench::startRender() {
     }
     const RenderOptions options = renderOptionsFor(state_.project.scene, state_.project.render, kGuiRenderPasses);
     auto session = std::make_shared<RenderSession>(state_.project.scene, options);
-    std::string why;
     char name[64];
     std::snprintf(name, sizeof name, "ground truth %dx%d, %d spp", options.width, options.height, options.spp);
-    const int id = jobs_.start(JobKind::Render, name, [session](JobContext& ctx) { session->run(ctx); }, &why);
-    if (!id) {
-        state_.log.error("render refused: " + why);
-        return false;
-    }
+    const bool started = renderJob_.start(name, [session](JobContext& ctx) -> std::optional<RenderStats> {
+        session->run(ctx);
+        return session->stats();
+    });
+    if (!started) return false;
     render_ = session;
-    renderJob_ = id;
     renderRevision_ = 0;
     state_.render = panels::RenderProgress{};
     state_.render.running = true;
@@ -39,19 +37,17 @@ bool Workbench::startRender() {
     return true;
 }
 
-void Workbench::pollRender() {
-    // Finished jobs first, so a restart waiting for the old render can go ahead this frame.
+void Workbench::logFinishedJobs() {
     for (const JobInfo& j : jobs_.takeFinished()) {
         if (j.failed) state_.log.error(std::string(jobKindName(j.kind)) + " '" + j.name + "' failed: " + j.error);
         else state_.log.info(std::string(jobKindName(j.kind)) + " '" + j.name + "' " +
                              (j.cancelled ? "stopped" : "finished") + " after " + std::to_string(int(j.seconds + 0.5)) + " s");
-        if (j.id == renderJob_) renderJob_ = 0;
-        if (j.id == generateJob_) generateJob_ = 0;
-        if (j.id == trainJob_) trainJob_ = 0;
-        if (j.id == evaluateJob_) evaluateJob_ = 0;
-        if (j.id == predictJob_) predictJob_ = 0;
-        if (j.id == sweepJob_) sweepJob_ = 0;
     }
+}
+
+void Workbench::pollRender() {
+    // The snapshots are the render's live output; its final statistics need nothing more.
+    renderJob_.poll([](const RenderStats&) {});
     if (render_) {
         uint64_t revision = 0;
         const auto snap = render_->latest(&revision);
@@ -89,7 +85,7 @@ void Workbench::sceneChanged(bool restartRender, bool geometryChanged) {
     // The old render no longer matches the scene: stop it and start again once it has stopped.
     // This is a replacement the user asked for by editing, not a queued conflicting job.
     if (renderRunning()) {
-        jobs_.cancel(renderJob_);
+        renderJob_.cancel();
         restartRender_ = true;
     } else {
         startRender();

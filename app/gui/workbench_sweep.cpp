@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <mutex>
 
 #include "core/util/atomic_file.h"
 #include "core/nn/network_settings.h"
@@ -16,26 +15,21 @@ namespace rrf {
 
 namespace fs = std::filesystem;
 
-struct SweepSession {
-    Scene scene;
-    SweepOptions options;
+/// A finished (not cancelled) sweep: its series for the Cost panel and where its files went.
+struct SweepOutcome {
+    panels::CostSeries series;
     std::string outBase;  ///< <project dir>/sweeps/<what>-<time>, + .csv / .json
-    std::mutex mutex;
-    std::vector<std::string> messages;
-    bool done = false;
-    SweepResult result;
 };
 
-bool Workbench::sweepRunning() const { return sweepJob_ != 0 && jobs_.running(JobKind::Sweep); }
+bool Workbench::sweepRunning() const { return sweepJob_.running(); }
 
 bool Workbench::startSweep(const std::string& what) {
     if (!state_.hasProject) {
         state_.log.error("sweep: no project is open");
         return false;
     }
-    auto session = std::make_shared<SweepSession>();
-    session->scene = state_.project.scene;
-    SweepOptions& o = session->options;
+    auto scene = std::make_shared<const Scene>(state_.project.scene);
+    SweepOptions o;
     o.what = what;
     try {
         defaultSweepValues(what);  // validates the kind
@@ -58,36 +52,34 @@ bool Workbench::startSweep(const std::string& what) {
     o.sampling.spp = std::min(o.sampling.spp, 16);
     o.training.trainer.lm.maxEpochs = std::min(o.training.trainer.lm.maxEpochs, 50);
     o.training.trainer.adam.maxEpochs = std::min(o.training.trainer.adam.maxEpochs, 50);
-    session->outBase = (fs::path(projectDir()) / "sweeps" / (what + "-" + localTimestamp())).string();
-    std::replace(session->outBase.end() - 8, session->outBase.end(), ':', '-');  // no ':' in file names
-    std::string why;
-    const int id = jobs_.start(JobKind::Sweep, "sweep " + what, [session](JobContext& ctx) {
-        SweepOptions opt = session->options;
+    std::string outBase = (fs::path(projectDir()) / "sweeps" / (what + "-" + localTimestamp())).string();
+    std::replace(outBase.end() - 8, outBase.end(), ':', '-');  // no ':' in file names
+    const bool started = sweepJob_.start("sweep " + what, [scene, o, outBase](JobContext& ctx) -> std::optional<SweepOutcome> {
+        SweepOptions opt = o;
         opt.cancel = &ctx.cancelFlag();
         int lines = 0;
         const double expected = double(opt.values.empty() ? defaultSweepValues(opt.what).size() : opt.values.size()) + 1;
         opt.log = [&](const std::string& line) {
             ctx.setStatus(line);
             ctx.setProgress(std::min(0.99, ++lines / (2.0 * expected)));
-            std::lock_guard<std::mutex> lock(session->mutex);
-            session->messages.push_back(line);
+            ctx.post(line);
         };
-        SweepResult r = runSweep(session->scene, opt);
-        if (!r.cancelled) {
-            fs::create_directories(fs::path(session->outBase).parent_path());
-            writeFileAtomically(session->outBase + ".csv", sweepCsv(session->scene, r));
-            writeFileAtomically(session->outBase + ".json", sweepJson(session->scene, r).dump(2));
+        const SweepResult r = runSweep(*scene, opt);
+        if (r.cancelled) return std::nullopt;
+        fs::create_directories(fs::path(outBase).parent_path());
+        writeFileAtomically(outBase + ".csv", sweepCsv(*scene, r));
+        writeFileAtomically(outBase + ".json", sweepJson(*scene, r).dump(2));
+        SweepOutcome out;
+        out.outBase = outBase;
+        out.series.name = "sweep " + r.what;
+        for (const SweepRow& row : r.rows) {
+            double seconds = 0;
+            for (const auto& stage : row.stageSeconds) seconds += stage.second;
+            out.series.points.push_back({seconds, row.overall.relativeRmse, row.setting});
         }
-        std::lock_guard<std::mutex> lock(session->mutex);
-        session->result = std::move(r);
-        session->done = true;
-    }, &why);
-    if (!id) {
-        state_.log.error("sweep refused: " + why);
-        return false;
-    }
-    sweep_ = session;
-    sweepJob_ = id;
+        return out;
+    });
+    if (!started) return false;
     state_.cost.running = true;
     state_.log.info("sweep '" + what + "' started (64x64 images, small data and epochs)");
     return true;
@@ -95,32 +87,12 @@ bool Workbench::startSweep(const std::string& what) {
 
 void Workbench::pollSweep() {
     state_.cost.running = sweepRunning();
-    if (!sweep_) return;
-    std::vector<std::string> messages;
-    {
-        std::lock_guard<std::mutex> lock(sweep_->mutex);
-        messages.swap(sweep_->messages);
-    }
-    for (const std::string& m : messages) state_.log.info("sweep: " + m);
-    for (const JobInfo& j : jobs_.jobs())
-        if (j.id == sweepJob_) state_.cost.progress = j.progress;
-    if (state_.cost.running) return;
-    // The local keeps the session (and its mutex) alive until the lock is released below.
-    const std::shared_ptr<SweepSession> session = sweep_;
-    std::lock_guard<std::mutex> lock(session->mutex);
-    if (sweep_->done && !sweep_->result.cancelled) {
-        panels::CostSeries s;
-        s.name = "sweep " + sweep_->result.what;
-        for (const SweepRow& row : sweep_->result.rows) {
-            double seconds = 0;
-            for (const auto& stage : row.stageSeconds) seconds += stage.second;
-            s.points.push_back({seconds, row.overall.relativeRmse, row.setting});
-        }
-        state_.cost.sweeps.push_back(std::move(s));
+    if (state_.cost.running) state_.cost.progress = sweepJob_.progress();
+    sweepJob_.poll([&](SweepOutcome& out) {
+        state_.cost.sweeps.push_back(std::move(out.series));
         state_.focusTab = "Cost";
-        state_.log.info("sweep written to " + sweep_->outBase + ".csv and .json");
-    }
-    sweep_.reset();
+        state_.log.info("sweep written to " + out.outBase + ".csv and .json");
+    });
 }
 
 }  // namespace rrf

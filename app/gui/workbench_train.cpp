@@ -1,6 +1,6 @@
 // Workbench: the training job. It reads the dataset, trains one network per object (and target)
-// with core/nn_objects on a worker, publishes every network's epoch records under a mutex for the
-// live loss plot, saves the models into <project dir>/runs/<run>/models and records a "train" run.
+// with core/nn/training_run on a worker, publishes every network's epoch records under a mutex for
+// the live loss plot, saves the models into <project dir>/runs/<run>/models and records a "train" run.
 #include "app/gui/workbench.h"
 
 #include <filesystem>
@@ -10,8 +10,10 @@
 #include "core/data/dataset_file.h"
 #include "core/nn/model_set.h"
 #include "core/nn/network_settings.h"
-#include "core/util/text_format.h"
+#include "core/nn/training_run.h"
 #include "core/nn/training_samples.h"
+#include "core/util/stopwatch.h"
+#include "core/util/text_format.h"
 #include "panels/plot.h"
 
 namespace rrf {
@@ -19,25 +21,33 @@ namespace rrf {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-/// Shared between the train job (worker, and trainObjects' own threads) and the UI thread.
-struct TrainSession {
-    Scene scene;
-    NetworkSettings settings;
-    std::string dataset, modelsDir, runId;
+/// What the loss plot shows while a training job runs: written by the trainer's threads, copied by
+/// the UI thread when `revision` changed.
+struct TrainingLive {
     std::mutex mutex;  ///< guards everything below
     std::vector<LossCurve> curves;
     std::map<std::pair<int, std::string>, size_t> curveIndex;
     int epoch = 0;
     double step = 0, seconds = 0;
-    int64_t epochsDone = 0;
     uint64_t revision = 0;
-    std::vector<std::string> messages;
-    bool saved = false;  ///< models written
-    double trainSeconds = 0;
-    int networks = 0, skipped = 0;
 };
 
-bool Workbench::trainRunning() const { return trainJob_ != 0 && jobs_.running(JobKind::Train); }
+/// A finished training job: where its models went and what the run did (models themselves stay on
+/// the worker; they are on disk).
+struct TrainingOutcome {
+    std::string dataset, modelsDir, runId;
+    NetworkSettings settings;
+    uint64_t sceneHash = 0;
+    std::vector<LossCurve> curves;  ///< ordered by (object, target)
+    double seconds = 0;
+    int networks = 0, skipped = 0, epochs = 0;
+};
+
+namespace {
+LossPoint lossPoint(const EpochRecord& r) { return {r.epoch, r.trainLoss, r.validationLoss, r.seconds}; }
+}  // namespace
+
+bool Workbench::trainRunning() const { return trainJob_.running(); }
 
 std::string Workbench::datasetPath() const {
     if (!state_.dataset.path.empty()) return state_.dataset.path;
@@ -55,126 +65,111 @@ bool Workbench::startTrain(int maxEpochs) {
         state_.log.error("train: save the project first (models are stored next to it)");
         return false;
     }
-    auto session = std::make_shared<TrainSession>();
-    session->dataset = datasetPath();
-    if (session->dataset.empty()) {
+    TrainingOutcome job;
+    job.dataset = datasetPath();
+    if (job.dataset.empty()) {
         state_.log.error("train: no dataset yet; generate one in the Sampling panel");
         return false;
     }
-    try {
-        session->settings = state_.project.networkOrDefault();
-    } catch (const std::exception& e) {
-        state_.log.error(std::string("train: ") + e.what());
-        return false;
-    }
-    if (maxEpochs > 0) session->settings.options.trainer.lm.maxEpochs = session->settings.options.trainer.adam.maxEpochs = maxEpochs;
-    session->scene = state_.project.scene;
-    session->runId = newRunId(state_.project.runs, "train");
-    session->modelsDir = (fs::path(projectDir()) / "runs" / session->runId / "models").string();
-    const ObjectTrainingOptions& o = session->settings.options;
+    job.settings = state_.project.networkOrDefault();
+    if (maxEpochs > 0) job.settings.options.trainer.lm.maxEpochs = job.settings.options.trainer.adam.maxEpochs = maxEpochs;
+    job.sceneHash = state_.project.scene.contentHash();
+    job.runId = newRunId(state_.project.runs, "train");
+    job.modelsDir = (fs::path(projectDir()) / "runs" / job.runId / "models").string();
+    std::vector<std::string> names;
+    for (const Object& o : state_.project.scene.objects) names.push_back(o.name);
+    const ObjectTrainingOptions& o = job.settings.options;
     const std::string name = std::string("train ") + json(o.hidden).dump() + " " + o.trainer.typeName();
-    std::string why;
-    const int id = jobs_.start(JobKind::Train, name, [session](JobContext& ctx) {
+    auto live = std::make_shared<TrainingLive>();
+    const bool started = trainJob_.start(name, [job, live, names](JobContext& ctx) -> std::optional<TrainingOutcome> {
+        TrainingOutcome out = job;
         ctx.setStatus("reading the dataset");
-        const Dataset data(session->dataset, true, session->scene.contentHash());
+        const Dataset data(out.dataset, true, out.sceneHash);
         uint64_t dropped = 0;
         const std::vector<ObjectSamples> samples = samplesFromDataset(data, &dropped);
-        if (dropped) {
-            std::lock_guard<std::mutex> lock(session->mutex);
-            session->messages.push_back(std::to_string(dropped) + " records with NaN/Inf dropped from the dataset");
-        }
-        const ObjectTrainingOptions& opt = session->settings.options;
-        const double budget = double(samples.size()) * (opt.targets == TargetMode::Separate ? 2 : 1) * opt.trainer.maxEpochs();
-        const auto start = std::chrono::steady_clock::now();
+        if (dropped) ctx.post(std::to_string(dropped) + " records with NaN/Inf dropped from the dataset");
+        TrainingProgress progress;
+        const Stopwatch clock;
         ObjectTrainingObserver observer;
         observer.cancel = &ctx.cancelFlag();
-        observer.onEpoch = [&, session](int object, const std::string& target, const EpochRecord& r) {
-            std::lock_guard<std::mutex> lock(session->mutex);
-            auto [it, added] = session->curveIndex.emplace(std::make_pair(object, target), session->curves.size());
+        observer.onEpoch = [&](int object, const std::string& target, const EpochRecord& r) {
+            ctx.setProgress(progress.fraction());
+            std::lock_guard<std::mutex> lock(live->mutex);
+            auto [it, added] = live->curveIndex.emplace(std::make_pair(object, target), live->curves.size());
             if (added) {
                 LossCurve c;
                 c.objectId = object;
-                c.object = object >= 0 && object < int(session->scene.objects.size()) ? session->scene.objects[size_t(object)].name : "?";
+                c.object = object >= 0 && object < int(names.size()) ? names[size_t(object)] : "?";
                 c.target = target;
-                session->curves.push_back(std::move(c));
+                live->curves.push_back(std::move(c));
             }
-            session->curves[it->second].points.push_back({r.epoch, r.trainLoss, r.validationLoss, r.seconds});
-            session->epoch = std::max(session->epoch, r.epoch);
-            session->step = r.step;
-            session->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            ++session->epochsDone;
-            ++session->revision;
-            ctx.setProgress(std::min(1.0, double(session->epochsDone) / std::max(1.0, budget)));
+            live->curves[it->second].points.push_back(lossPoint(r));
+            live->epoch = std::max(live->epoch, r.epoch);
+            live->step = r.step;
+            live->seconds = clock.seconds();
+            ++live->revision;
         };
-        observer.onMessage = [session](const std::string& m) {
-            std::lock_guard<std::mutex> lock(session->mutex);
-            session->messages.push_back(m);
-        };
+        observer.onMessage = [&](const std::string& m) { ctx.post(m); };
         ctx.setStatus("training");
-        const std::vector<ObjectModel> trained = trainObjects(samples, opt, observer);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        int networks = 0, skipped = 0;
-        for (const ObjectModel& m : trained) (m.skipped ? skipped : networks) += 1;
-        if (networks > 0) {
+        TrainingRun run = trainNetworks(samples, out.settings.options, observer, &progress);
+        if (run.networks > 0) {
             ctx.setStatus("saving the models");
-            const json extra = {{"dataset", session->dataset}, {"network", session->settings.networkJson()},
-                                {"trainer", session->settings.trainerJson()}, {"seconds", seconds},
-                                {"cancelled", ctx.cancelled()}};
-            saveModelSet(session->modelsDir, trained, session->scene.contentHash(),
+            const json extra = {{"dataset", out.dataset}, {"network", out.settings.networkJson()},
+                                {"trainer", out.settings.trainerJson()}, {"seconds", run.seconds},
+                                {"cancelled", run.cancelled}};
+            saveModelSet(out.modelsDir, run.models, out.sceneHash,
                          data.header().at("input_layout").get<std::vector<std::string>>(), extra);
         }
-        std::lock_guard<std::mutex> lock(session->mutex);
-        session->saved = networks > 0;
-        session->networks = networks;
-        session->skipped = skipped;
-        session->trainSeconds = seconds;
-        ++session->revision;
-        ctx.setStatus(networks > 0 ? "models saved" : "no network trained");
-    }, &why);
-    if (!id) {
-        state_.log.error("train refused: " + why);
-        return false;
-    }
-    train_ = session;
-    trainJob_ = id;
+        for (const NetworkCurve& n : run.curves) {
+            LossCurve c;
+            c.objectId = n.objectId;
+            c.object = n.objectId >= 0 && n.objectId < int(names.size()) ? names[size_t(n.objectId)] : "?";
+            c.target = n.target;
+            for (const EpochRecord& r : n.epochs) {
+                c.points.push_back(lossPoint(r));
+                out.epochs = std::max(out.epochs, r.epoch);
+            }
+            out.curves.push_back(std::move(c));
+        }
+        out.seconds = run.seconds;
+        out.networks = run.networks;
+        out.skipped = run.skipped;
+        ctx.setStatus(run.networks > 0 ? "models saved" : "no network trained");
+        return out;
+    });
+    if (!started) return false;
+    trainLive_ = live;
     trainRevision_ = ~0ull;
     state_.training = panels::TrainingInfo{};
     state_.training.running = true;
     state_.training.trainer = o.trainer.typeName();
-    state_.training.runId = session->runId;
+    state_.training.runId = job.runId;
     state_.focusTab = "Training";
-    state_.log.info("train started: " + name + " on " + session->dataset);
+    state_.log.info("train started: " + name + " on " + job.dataset);
     return true;
 }
 
 void Workbench::pollTrain() {
     state_.training.running = trainRunning();
-    if (!train_) return;
-    // The local keeps the session (and its mutex) alive while it is locked below and train_ is reset.
-    const std::shared_ptr<TrainSession> session = train_;
-    TrainSession& s = *session;
-    std::vector<std::string> messages;
-    {
-        std::lock_guard<std::mutex> lock(s.mutex);
-        messages.swap(s.messages);
-        if (s.revision != trainRevision_) {
-            trainRevision_ = s.revision;
-            state_.training.curves = s.curves;
-            state_.training.epoch = s.epoch;
-            state_.training.step = s.step;
-            state_.training.seconds = s.seconds;
+    if (trainLive_) {
+        std::lock_guard<std::mutex> lock(trainLive_->mutex);
+        if (trainLive_->revision != trainRevision_) {
+            trainRevision_ = trainLive_->revision;
+            state_.training.curves = trainLive_->curves;
+            state_.training.epoch = trainLive_->epoch;
+            state_.training.step = trainLive_->step;
+            state_.training.seconds = trainLive_->seconds;
         }
     }
-    for (const std::string& m : messages) state_.log.info("train: " + m);
-    for (const JobInfo& j : jobs_.jobs())
-        if (j.id == trainJob_) state_.training.progress = j.progress;
-    if (state_.training.running) return;
+    if (state_.training.running) state_.training.progress = trainJob_.progress();
+    trainJob_.poll([&](TrainingOutcome& outcome) { trainingFinished(outcome); });
+    if (!state_.training.running) trainLive_.reset();
+}
 
-    std::lock_guard<std::mutex> lock(s.mutex);
+void Workbench::trainingFinished(TrainingOutcome& s) {
     state_.training.progress = 1.0;
-    if (!s.saved) {
+    if (s.networks == 0) {
         state_.log.error("train: no network was trained (see the messages above); nothing saved");
-        train_.reset();
         return;
     }
     Run run;
@@ -184,21 +179,20 @@ void Workbench::pollTrain() {
     run.created = localTimestamp();
     auto rel = [&](const std::string& p) { return fs::path(p).lexically_relative(projectDir()).generic_string(); };
     run.settings = json{{"network", s.settings.networkJson()}, {"trainer", s.settings.trainerJson()},
-                        {"dataset", rel(s.dataset)}, {"scene_hash", hexString(s.scene.contentHash())}};
+                        {"dataset", rel(s.dataset)}, {"scene_hash", hexString(s.sceneHash)}};
     if (state_.project.sampling) run.settings["sampling"] = state_.project.sampling->toJson();
-    run.curves = s.curves;
-    run.loss = panels::aggregateLoss(s.curves);
-    run.metrics = json{{"networks", s.networks}, {"skipped", s.skipped}, {"epochs", s.epoch}};
-    run.timings = json{{"train", s.trainSeconds}};
+    state_.training.curves = s.curves;
+    run.curves = std::move(s.curves);
+    run.loss = panels::aggregateLoss(run.curves);
+    run.metrics = json{{"networks", s.networks}, {"skipped", s.skipped}, {"epochs", s.epochs}};
+    run.timings = json{{"train", s.seconds}};
     if (state_.dataset.path == s.dataset && state_.dataset.seconds > 0) run.timings["generate"] = state_.dataset.seconds;
     run.artifacts.push_back(rel((fs::path(s.modelsDir) / "models.json").string()));
     state_.project.runs.push_back(run);
     state_.markDirty();
-    state_.log.info("trained " + std::to_string(s.networks) + " networks in " + std::to_string(int(s.trainSeconds + 0.5)) +
+    state_.log.info("trained " + std::to_string(s.networks) + " networks in " + std::to_string(int(s.seconds + 0.5)) +
                     " s; models in " + rel(s.modelsDir) + ", run '" + run.name + "' recorded");
-    const std::string dir = s.modelsDir;
-    train_.reset();
-    loadModels(dir);
+    loadModels(s.modelsDir);
 }
 
 }  // namespace rrf

@@ -155,8 +155,8 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
     data.cancelled = cancel && *cancel;
     data.sceneHash = scene_.contentHash();
     data.perObject.resize(scene_.objects.size());
-    uint64_t escaped = 0, emitterHits = 0, nonFinite = 0, empty = 0, inside = 0, outside = 0, records = 0;
-    nlohmann::json perCell = nlohmann::json::array();
+    GeneratorStats& st = data.stats;
+    st.recordsPerCell.reserve(out.size());
     // Regroup by object in cell order. Exact reservations and freeing each cell once copied keep the
     // peak near one payload instead of two or three (the default Cornell run is ~250 MiB).
     std::vector<size_t> perObjectCount(scene_.objects.size(), 0);
@@ -169,19 +169,20 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
             dst.insert(dst.end(), co.records.begin() + long(i * size_t(fpr)), co.records.begin() + long((i + 1) * size_t(fpr)));
         }
         std::vector<float>().swap(co.records);
-        escaped += co.escaped;
-        emitterHits += co.emitterHits;
-        nonFinite += co.nonFinite;
-        empty += co.emptyRecords;
-        records += co.objects.size();
-        inside += co.status == uint8_t(ViewpointStatus::InsideObject);
-        outside += co.status == uint8_t(ViewpointStatus::OutsideScene);
-        perCell.push_back(uint64_t(co.objects.size()));
+        st.raysEscaped += co.escaped;
+        st.raysHitEmitter += co.emitterHits;
+        st.nonFiniteSamplesDropped += co.nonFinite;
+        st.recordsWithoutFiniteSample += co.emptyRecords;
+        st.records += co.objects.size();
+        st.cellsDroppedInsideObject += co.status == uint8_t(ViewpointStatus::InsideObject);
+        st.cellsDroppedOutsideScene += co.status == uint8_t(ViewpointStatus::OutsideScene);
+        st.recordsPerCell.push_back(uint64_t(co.objects.size()));
     }
+    for (const std::vector<float>& records : data.perObject) st.recordsPerObject.push_back(records.size() / size_t(fpr));
     data.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    data.paths = records * uint64_t(settings_.spp);  // every stored record took spp paths
-    data.rays = rays;
-    data.shadowRays = shadowRays;
+    st.paths = st.records * uint64_t(settings_.spp);  // every stored record took spp paths
+    st.rays = rays;
+    st.shadowRays = shadowRays;
 
     nlohmann::json objects = nlohmann::json::array();
     for (const Object& o : scene_.objects) objects.push_back({{"id", o.id}, {"name", o.name}});
@@ -198,14 +199,7 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
         {"effects", tracer_.effects().toJson()},
         {"shard", {{"index", shardIndex}, {"count", shardCount}, {"cell_begin", begin}, {"cell_end", end}, {"cells_total", cells}}},
         {"objects", objects},
-        {"stats", {{"records", records},
-                   {"cells_dropped_inside_object", inside},
-                   {"cells_dropped_outside_scene", outside},
-                   {"rays_escaped", escaped},
-                   {"rays_hit_emitter", emitterHits},
-                   {"records_without_finite_sample", empty},
-                   {"non_finite_samples_dropped", nonFinite},
-                   {"records_per_cell", perCell}}},
+        {"stats", st.toJson()},
     };
     return data;
 }

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/render/path_tracer.h"
+#include "core/data/generator_stats.h"
 #include "core/data/record_layout.h"
 #include "core/data/sampling_settings.h"
 
@@ -35,11 +36,11 @@ struct GeneratorProgress {
 };
 
 struct GeneratedData {
-    nlohmann::json header;                        ///< dataset header (settings, layout, shard, stats)
+    nlohmann::json header;                        ///< dataset header (settings, layout, shard, stats.toJson())
     std::vector<std::vector<float>> perObject;    ///< records per object (in Scene::objects order)
+    GeneratorStats stats;                         ///< what the run did, typed
     uint64_t sceneHash = 0;
     double seconds = 0.0;                         ///< wall time (reported, never stored in the file)
-    uint64_t paths = 0, rays = 0, shadowRays = 0; ///< work done, for records/s and samples/s
     bool cancelled = false;
 };
 

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/data/generator_stats.h"
+
 namespace rrf {
 
 std::vector<ObjectSummary> summarizeDataset(const Dataset& data) {
@@ -43,19 +45,14 @@ std::string formatDatasetReport(const Dataset& data, const std::vector<ObjectSum
     os << "shard: " << h.at("shard").dump() << "\n";
     os << "records: " << data.totalRecords() << " (" << data.floatsPerRecord() << " floats each)\n";
     nlohmann::json stats = h.at("stats");
-    const nlohmann::json perCell = stats.value("records_per_cell", nlohmann::json::array());
     stats.erase("records_per_cell");
     os << "stats: " << stats.dump() << "\n";
-    if (!perCell.empty()) {
-        uint64_t lo = UINT64_MAX, hi = 0, zero = 0;
-        for (const auto& v : perCell) {
-            const uint64_t n = v.get<uint64_t>();
-            lo = std::min(lo, n);
-            hi = std::max(hi, n);
-            zero += n == 0;
-        }
-        os << "records per cell: min " << lo << ", max " << hi << ", cells without records " << zero << " of "
-           << perCell.size() << "\n";
+    const GeneratorStats typed = GeneratorStats::fromHeader(h, data.path());
+    if (!typed.recordsPerCell.empty()) {
+        const auto [lo, hi] = std::minmax_element(typed.recordsPerCell.begin(), typed.recordsPerCell.end());
+        const auto zero = std::count(typed.recordsPerCell.begin(), typed.recordsPerCell.end(), uint64_t(0));
+        os << "records per cell: min " << *lo << ", max " << *hi << ", cells without records " << zero << " of "
+           << typed.cells() << "\n";
     }
     std::vector<std::string> names = h.at("input_layout").get<std::vector<std::string>>();
     for (const auto& t : h.at("target_layout")) names.push_back(t.get<std::string>());

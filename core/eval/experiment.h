@@ -1,8 +1,9 @@
 #pragma once
 /// In-memory glue between the stages, for runs that never touch the disk between them (the pipeline
 /// command, sweeps, end-to-end tests): generated records → training samples → trained networks →
-/// a ModelSet the predictor takes. The file-based path (rrf generate / train / evaluate) gives the
-/// same networks from the same settings.
+/// a ModelSet the predictor takes. Training itself is trainNetworks (core/nn/training_run.h), as in
+/// the file-based path (rrf generate / train / evaluate), which gives the same networks from the
+/// same settings.
 
 #include <vector>
 

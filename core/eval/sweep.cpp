@@ -4,15 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <mutex>
 #include <sstream>
-#include <tuple>
 
 #include "core/util/error.h"
 #include "core/eval/evaluation.h"
 #include "core/eval/experiment.h"
 #include "core/eval/held_out.h"
 #include "core/nn/network_settings.h"
+#include "core/nn/training_run.h"
 
 namespace rrf {
 
@@ -63,11 +62,14 @@ struct Context {
 };
 
 /// Trains on `samples`, predicts at the reference's light and fills the row's errors and stages.
-void trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& t,
-                      SweepRow& row, const ObjectTrainingObserver& observer = {}) {
-    Stopwatch train;
-    const std::vector<ObjectModel> trained = trainObjects(samples, t, observer);
-    row.stageSeconds.push_back({"train", train.seconds()});
+/// Returns the training run (its curves feed the trainer sweep).
+TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& t,
+                             SweepRow& row) {
+    ObjectTrainingObserver observer;
+    observer.cancel = c.o.cancel;
+    TrainingRun run = trainNetworks(samples, t, observer);
+    const std::vector<ObjectModel>& trained = run.models;
+    row.stageSeconds.push_back({"train", run.seconds});
     const ModelSet models = modelSetFromTrained(trained, c.scene, c.layout);
     const Predictor predictor(c.scene, models, c.o.prediction);
     const Evaluation e = evaluate(predictor, c.reference);
@@ -84,6 +86,7 @@ void trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>& sample
     for (Term term : {Term::Direct, Term::Indirect})
         if (e.term(term).available)
             row.extra[std::string(termName(term)) + "_relative_rmse"] = e.term(term).overall.relativeRmse;
+    return run;
 }
 
 void sweepSpp(Context& c, SweepResult& r) {
@@ -148,32 +151,23 @@ void sweepNetworks(Context& c, SweepResult& r, bool trainers) {
         ObjectTrainingOptions t = c.o.training;
         SweepRow row;
         row.setting = v;
-        ObjectTrainingObserver observer;
-        observer.cancel = c.o.cancel;
-        std::mutex m;
-        nlohmann::json curve = nlohmann::json::array();
         if (trainers) {
             if (v != "lm" && v != "adam") throw InputError("command line", "--values", "'" + v + "': expected lm or adam");
             t.trainer = t.trainer.withType(v);
-            observer.onEpoch = [&](int id, const std::string& target, const EpochRecord& e) {
-                std::lock_guard<std::mutex> lock(m);
-                curve.push_back({{"object", id}, {"target", target}, {"epoch", e.epoch}, {"seconds", e.seconds},
-                                 {"train_loss", e.trainLoss}, {"validation_loss", e.validationLoss}});
-            };
         } else {
             std::string commas = v;
             std::replace(commas.begin(), commas.end(), '-', ',');
             t.hidden = parseHiddenSizes(commas, "--values");
         }
-        trainAndEvaluate(c, samples, t, row, observer);
+        const TrainingRun run = trainAndEvaluate(c, samples, t, row);
         if (trainers) {
-            // Objects train in parallel, so callbacks arrive interleaved: order them for the reader.
-            std::vector<nlohmann::json> sorted(curve.begin(), curve.end());
-            std::stable_sort(sorted.begin(), sorted.end(), [](const nlohmann::json& a, const nlohmann::json& b) {
-                return std::make_tuple(a["object"].get<int>(), a["target"].get<std::string>(), a["epoch"].get<int>()) <
-                       std::make_tuple(b["object"].get<int>(), b["target"].get<std::string>(), b["epoch"].get<int>());
-            });
-            row.extra["curve"] = sorted;
+            // Each network's loss against time, networks in (object, target) order, epochs in order.
+            nlohmann::json curve = nlohmann::json::array();
+            for (const NetworkCurve& n : run.curves)
+                for (const EpochRecord& e : n.epochs)
+                    curve.push_back({{"object", n.objectId}, {"target", n.target}, {"epoch", e.epoch}, {"seconds", e.seconds},
+                                     {"train_loss", e.trainLoss}, {"validation_loss", e.validationLoss}});
+            row.extra["curve"] = curve;
         }
         c.log(r.what + " " + v + ": relative RMSE " + std::to_string(row.overall.relativeRmse));
         r.rows.push_back(std::move(row));

@@ -1,4 +1,6 @@
-// The job runner: progress and status from workers, cancel, failures, and refusal of conflicts.
+// The job runner: progress and status from workers, cancel, failures, and refusal of conflicts;
+// and the workbench's job sessions on top of it: results delivered once, refusals logged, messages
+// forwarded, dropped jobs never deliver, cancel acts at once.
 #include <chrono>
 #include <stdexcept>
 #include <thread>
@@ -6,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "app/gui/job_runner.h"
+#include "app/gui/job_session.h"
 
 namespace rrf::test {
 
@@ -20,6 +23,25 @@ void spinUntilCancelled(JobContext& ctx) {
 std::vector<JobInfo> waitFinished(JobRunner& runner) {
     runner.waitAll();
     return {};
+}
+
+/// Polls `session` until the job has ended and its result (if any) was handed over.
+template <class Result>
+std::vector<Result> pollUntilEnded(JobSession<Result>& session) {
+    std::vector<Result> delivered;
+    for (int i = 0; i < 5000; ++i) {
+        const bool wasRunning = session.running();
+        session.poll([&](Result& r) { delivered.push_back(r); });
+        if (!wasRunning) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return delivered;
+}
+
+bool logContains(const panels::Log& log, const std::string& text) {
+    for (const panels::LogEntry& e : log.entries())
+        if (e.text.find(text) != std::string::npos) return true;
+    return false;
 }
 }  // namespace
 
@@ -86,6 +108,95 @@ TEST(JobRunner, ConflictMatrixIsSymmetric) {
     EXPECT_FALSE(jobsConflict(JobKind::Render, JobKind::Generate));
     EXPECT_TRUE(jobsConflict(JobKind::Train, JobKind::Predict)) << "prediction reads the models training replaces";
     EXPECT_FALSE(jobsConflict(JobKind::Sweep, JobKind::Train)) << "a sweep writes no project files";
+}
+
+TEST(JobSession, DeliversTheResultOnceAfterTheJobEnded) {
+    JobRunner runner;
+    panels::Log log;
+    JobSession<int> session(runner, JobKind::Evaluate, log);
+    ASSERT_TRUE(session.start("answer", [](JobContext& ctx) -> std::optional<int> {
+        ctx.post("thinking");
+        return 42;
+    }));
+    const std::vector<int> delivered = pollUntilEnded(session);
+    ASSERT_EQ(delivered.size(), 1u);
+    EXPECT_EQ(delivered[0], 42);
+    int again = 0;
+    session.poll([&](int&) { ++again; });
+    EXPECT_EQ(again, 0) << "each result is delivered once";
+    EXPECT_TRUE(logContains(log, "evaluate: thinking")) << "worker lines reach the log with the job's kind";
+    runner.waitAll();
+}
+
+TEST(JobSession, SameKindIsRefusedWithALoggedReason) {
+    JobRunner runner;
+    panels::Log log;
+    JobSession<int> first(runner, JobKind::Train, log), second(runner, JobKind::Train, log);
+    ASSERT_TRUE(first.start("train A", [](JobContext& ctx) -> std::optional<int> {
+        spinUntilCancelled(ctx);
+        return std::nullopt;
+    }));
+    EXPECT_FALSE(second.start("train B", [](JobContext&) -> std::optional<int> { return 1; }));
+    EXPECT_EQ(log.errorCount(), 1u);
+    EXPECT_TRUE(logContains(log, "train refused: cannot start train while 'train A' is running"));
+    std::string why;
+    EXPECT_FALSE(second.start("train B", [](JobContext&) -> std::optional<int> { return 1; }, &why));
+    EXPECT_NE(why.find("train A"), std::string::npos) << "a caller that asks for the reason gets it instead of the log";
+    EXPECT_EQ(log.errorCount(), 1u);
+    first.cancel();
+    EXPECT_TRUE(pollUntilEnded(first).empty()) << "cancelled without a result: nothing delivered";
+    runner.waitAll();
+}
+
+TEST(JobSession, CancelStopsTheWorkerWithinASecond) {
+    JobRunner runner;
+    panels::Log log;
+    JobSession<int> session(runner, JobKind::Render, log);
+    ASSERT_TRUE(session.start("render", [](JobContext& ctx) -> std::optional<int> {
+        spinUntilCancelled(ctx);
+        return 7;  // what it had when stopped
+    }));
+    EXPECT_TRUE(session.running());
+    const auto start = std::chrono::steady_clock::now();
+    session.cancel();
+    const std::vector<int> delivered = pollUntilEnded(session);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+    EXPECT_FALSE(session.running());
+    EXPECT_EQ(delivered, std::vector<int>{7}) << "a stopped worker may still hand over what it has";
+    runner.waitAll();
+}
+
+TEST(JobSession, DroppedJobNeverDeliversAndBlocksItsKindUntilItStopped) {
+    JobRunner runner;
+    panels::Log log;
+    JobSession<int> session(runner, JobKind::Generate, log);
+    std::atomic<bool> release{false};
+    ASSERT_TRUE(session.start("old project", [&](JobContext& ctx) -> std::optional<int> {
+        ctx.post("old line");
+        while (!release.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        return 1;
+    }));
+    session.drop();
+    EXPECT_TRUE(session.running()) << "the cancelled worker has not returned yet";
+    std::string why;
+    EXPECT_FALSE(session.start("new project", [](JobContext&) -> std::optional<int> { return 2; }, &why));
+    release = true;
+    EXPECT_TRUE(pollUntilEnded(session).empty()) << "the previous project's result is discarded";
+    EXPECT_FALSE(logContains(log, "old line"));
+    ASSERT_TRUE(session.start("new project", [](JobContext&) -> std::optional<int> { return 2; }));
+    EXPECT_EQ(pollUntilEnded(session), std::vector<int>{2});
+    runner.waitAll();
+}
+
+TEST(JobSession, FailedJobDeliversNothingAndTheRunnerReportsIt) {
+    JobRunner runner;
+    panels::Log log;
+    JobSession<int> session(runner, JobKind::Sweep, log);
+    ASSERT_TRUE(session.start("boom", [](JobContext&) -> std::optional<int> { throw std::runtime_error("bad value"); }));
+    EXPECT_TRUE(pollUntilEnded(session).empty());
+    const std::vector<JobInfo> done = runner.takeFinished();
+    ASSERT_EQ(done.size(), 1u);
+    EXPECT_EQ(done[0].error, "bad value");
 }
 
 }  // namespace rrf::test

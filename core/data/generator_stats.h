@@ -1,0 +1,45 @@
+#pragma once
+/// What one data-generator run did, typed: the counters stored in the dataset header's "stats"
+/// section (records, dropped viewpoints, rays that made no record, records per cell), the records
+/// per object, and the work that is reported but never stored (paths and rays traced).
+/// `rrf generate` prints it, the workbench shows it, `rrf inspect` reads it back from a file.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace rrf {
+
+struct GeneratorStats {
+    // ---- stored in the header's "stats" section (the keys toJson() writes) -----------------------
+    uint64_t records = 0;
+    uint64_t cellsDroppedInsideObject = 0;   ///< viewpoints inside a closed object
+    uint64_t cellsDroppedOutsideScene = 0;   ///< viewpoints outside the scene's walls
+    uint64_t raysEscaped = 0;                ///< directions that left the scene
+    uint64_t raysHitEmitter = 0;             ///< directions whose first hit is a light
+    uint64_t recordsWithoutFiniteSample = 0; ///< hits where every path sample was NaN/Inf
+    uint64_t nonFiniteSamplesDropped = 0;    ///< NaN/Inf path samples left out of a record's mean
+    std::vector<uint64_t> recordsPerCell;    ///< in cell order over the shard's cells
+
+    // ---- stored elsewhere in the header ("objects"/"count"), or not at all -------------------------
+    std::vector<uint64_t> recordsPerObject;  ///< index = scene object id
+    uint64_t paths = 0, rays = 0, shadowRays = 0;  ///< work done, for records/s and samples/s (not stored)
+
+    /// Viewpoint cells of the run (the length of recordsPerCell).
+    uint64_t cells() const { return recordsPerCell.size(); }
+    /// Cells that were traced (not dropped inside an object or outside the scene).
+    uint64_t keptCells() const {
+        const uint64_t dropped = cellsDroppedInsideObject + cellsDroppedOutsideScene;
+        return cells() > dropped ? cells() - dropped : 0;
+    }
+
+    /// The header's "stats" section.
+    nlohmann::json toJson() const;
+    /// Reads a dataset header's "stats" section and its objects' counts. `file` names the dataset in
+    /// errors; a missing or mistyped field is an InputError naming its JSON pointer.
+    static GeneratorStats fromHeader(const nlohmann::json& header, const std::string& file);
+};
+
+}  // namespace rrf

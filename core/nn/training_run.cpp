@@ -1,0 +1,64 @@
+#include "core/nn/training_run.h"
+
+#include <algorithm>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include "core/util/stopwatch.h"
+
+namespace rrf {
+
+double TrainingProgress::fraction() const {
+    const double budget = epochBudget.load();
+    return budget > 0 ? std::min(1.0, double(epochs.load()) / budget) : 0.0;
+}
+
+double trainingEpochBudget(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options) {
+    const size_t objects = options.objects.empty() ? samples.size() : options.objects.size();
+    const int networksPerObject = options.targets == TargetMode::Separate ? 2 : 1;
+    return double(objects) * networksPerObject * options.trainer.maxEpochs();
+}
+
+TrainingRun trainNetworks(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options,
+                          const ObjectTrainingObserver& observer, TrainingProgress* progress) {
+    std::map<int, const std::string*> names;
+    for (const ObjectSamples& s : samples) names.emplace(s.objectId, &s.name);
+    if (progress) {
+        progress->epochs = 0;
+        progress->epochBudget = trainingEpochBudget(samples, options);
+    }
+    // Objects train concurrently: the curves are collected under a lock and ordered at the end, so the
+    // result does not depend on which thread finished an epoch first.
+    std::mutex mutex;
+    std::map<std::pair<int, std::string>, NetworkCurve> curves;
+    ObjectTrainingObserver inner;
+    inner.cancel = observer.cancel;
+    inner.onMessage = observer.onMessage;
+    inner.onEpoch = [&](int object, const std::string& target, const EpochRecord& r) {
+        {
+            std::lock_guard<std::mutex> lock(mutex);
+            NetworkCurve& c = curves[{object, target}];
+            if (c.epochs.empty()) {
+                c.objectId = object;
+                const auto it = names.find(object);
+                c.object = it != names.end() ? *it->second : std::string();
+                c.target = target;
+            }
+            c.epochs.push_back(r);
+        }
+        if (progress) ++progress->epochs;
+        if (observer.onEpoch) observer.onEpoch(object, target, r);
+    };
+
+    TrainingRun run;
+    const Stopwatch clock;
+    run.models = trainObjects(samples, options, inner);
+    run.seconds = clock.seconds();
+    run.cancelled = observer.cancel && observer.cancel->load();
+    for (const ObjectModel& m : run.models) (m.skipped ? run.skipped : run.networks) += 1;
+    for (auto& kv : curves) run.curves.push_back(std::move(kv.second));
+    return run;
+}
+
+}  // namespace rrf

@@ -1,0 +1,51 @@
+#pragma once
+/// One training run over per-object samples, as `rrf train`, the workbench's Train job and the sweeps
+/// all do it: the networks of every selected object (core/nn/object_training.h), each network's loss
+/// curve, the wall time and the counts of trained and skipped networks. Front ends differ only in
+/// where the samples come from and what they do with the result (save a model directory, record a
+/// run, evaluate in memory), so the result is identical for identical samples and options.
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "core/nn/object_training.h"
+
+namespace rrf {
+
+/// Live counters of a training run, readable from another thread while it runs (the data
+/// generator's GeneratorProgress pattern): the UI thread or the CLI's progress line polls fraction().
+struct TrainingProgress {
+    std::atomic<int64_t> epochs{0};          ///< network epochs finished, over all networks
+    std::atomic<double> epochBudget{0.0};    ///< most epochs the run can take (set when it starts)
+    double fraction() const;
+};
+
+/// The epochs of one network in the order they ran.
+struct NetworkCurve {
+    int objectId = -1;
+    std::string object;  ///< object name
+    std::string target;  ///< "global" | "direct" | "indirect" | "joint"
+    std::vector<EpochRecord> epochs;
+};
+
+struct TrainingRun {
+    std::vector<ObjectModel> models;  ///< as trainObjects returns them (skipped entries included)
+    /// One per network that ran at least one epoch, ordered by (object id, target name).
+    std::vector<NetworkCurve> curves;
+    double seconds = 0.0;             ///< wall time of the whole run
+    int networks = 0, skipped = 0;    ///< trained networks / skipped entries of `models`
+    bool cancelled = false;           ///< the cancel flag was set when the run ended
+};
+
+/// The most network epochs `options` can spend on `samples` (selected objects × networks per
+/// object × epoch limit): the denominator of a progress fraction.
+double trainingEpochBudget(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options);
+
+/// Trains the networks of `samples` with `options`. `observer` (may be empty) sees every epoch and
+/// message from the worker threads and carries the cancel flag; `progress` (may be null) is updated
+/// as epochs finish. Throws what trainObjects throws.
+TrainingRun trainNetworks(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options,
+                          const ObjectTrainingObserver& observer = {}, TrainingProgress* progress = nullptr);
+
+}  // namespace rrf

@@ -1,0 +1,70 @@
+// Typed generator statistics: what DataGenerator::run counts is what the dataset header stores, and
+// a written file reads back into the same numbers (the CLI prints them, the workbench shows them).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <numeric>
+
+#include <unistd.h>
+
+#include "core/data/data_generator.h"
+#include "core/data/dataset_file.h"
+#include "core/data/generator_stats.h"
+#include "core/project/project.h"
+#include "core/util/error.h"
+
+using namespace rrf;
+namespace fs = std::filesystem;
+
+namespace {
+SamplingSettings tinySettings() {
+    SamplingSettings s;
+    s.nx = s.ny = s.nz = 3;
+    s.directions = 12;
+    s.spp = 2;
+    s.seed = 7;
+    return s;
+}
+}  // namespace
+
+TEST(GeneratorStats, RunCountsAreTheHeaderStats) {
+    const Project project = loadProjectOrScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json");
+    const SamplingSettings s = tinySettings();
+    const GeneratedData d = DataGenerator(project.scene, s).run();
+    const GeneratorStats& st = d.stats;
+    EXPECT_EQ(st.toJson(), d.header.at("stats")) << "the header stores exactly the typed counters";
+    EXPECT_EQ(st.cells(), uint64_t(s.nx * s.ny * s.nz));
+    ASSERT_EQ(st.recordsPerObject.size(), project.scene.objects.size());
+    EXPECT_EQ(std::accumulate(st.recordsPerObject.begin(), st.recordsPerObject.end(), uint64_t(0)), st.records);
+    EXPECT_EQ(std::accumulate(st.recordsPerCell.begin(), st.recordsPerCell.end(), uint64_t(0)), st.records);
+    EXPECT_EQ(st.records + st.raysEscaped + st.raysHitEmitter + st.recordsWithoutFiniteSample,
+              st.keptCells() * uint64_t(s.directions));
+    EXPECT_EQ(st.paths, st.records * uint64_t(s.spp));
+    EXPECT_GT(st.rays, 0u);
+}
+
+TEST(GeneratorStats, WrittenDatasetReadsBackTheSameStats) {
+    const Project project = loadProjectOrScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json");
+    const GeneratedData d = DataGenerator(project.scene, tinySettings()).run();
+    const fs::path path = fs::temp_directory_path() / ("rrf_generator_stats_" + std::to_string(::getpid()) + ".rrfd");
+    writeDataset(path.string(), d.header, d.sceneHash, d.perObject);
+    const Dataset file(path.string());
+    const GeneratorStats read = GeneratorStats::fromHeader(file.header(), file.path());
+    EXPECT_EQ(read.toJson(), d.stats.toJson());
+    EXPECT_EQ(read.recordsPerObject, d.stats.recordsPerObject);
+    EXPECT_EQ(read.paths, 0u) << "work counters are not stored";
+    fs::remove(path);
+}
+
+TEST(GeneratorStats, MistypedCounterNamesItsPointer) {
+    nlohmann::json header = {{"stats", {{"records", "many"}}}};
+    try {
+        GeneratorStats::fromHeader(header, "data.rrfd");
+        FAIL() << "a string counter must be rejected";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.file(), "data.rrfd");
+        EXPECT_EQ(e.where(), "/stats/records");
+    }
+    header["stats"] = {{"records", 3}};
+    EXPECT_EQ(GeneratorStats::fromHeader(header, "data.rrfd").records, 3u) << "older files: finer counters read as 0";
+}

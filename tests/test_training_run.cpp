@@ -1,0 +1,75 @@
+// The one training orchestration (core/nn/training_run.h) used by rrf train, the workbench and the
+// sweeps: the same networks as trainObjects, per-network curves in a fixed order, progress and counts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/nn/training_run.h"
+#include "core/util/rng.h"
+
+using namespace rrf;
+
+namespace {
+ObjectSamples syntheticObject(int id, int n) {
+    ObjectSamples s;
+    s.objectId = id;
+    s.name = "object" + std::to_string(id);
+    s.numInputs = 13;
+    for (int i = 0; i < n; ++i) {
+        Rng rng(200 + uint64_t(id), uint64_t(i));
+        float in[13];
+        for (float& v : in) v = 2.f * rng.uniform() - 1.f;
+        const float d[3] = {1.f + in[6] * in[0], 0.5f + 0.2f * in[7], 2.f};
+        const float ind[3] = {0.1f * std::exp(in[1]), 0.2f, 0.05f * (in[2] + 1.f)};
+        s.add(in, d, ind);
+    }
+    return s;
+}
+}  // namespace
+
+TEST(TrainingRun, SameNetworksAsTrainObjectsWithOrderedCurves) {
+    const std::vector<ObjectSamples> objs = {syntheticObject(2, 120), syntheticObject(0, 80), syntheticObject(1, 0)};
+    ObjectTrainingOptions o;
+    o.hidden = {5};
+    o.targets = TargetMode::Separate;
+    o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 4}});
+    TrainingProgress progress;
+    const TrainingRun run = trainNetworks(objs, o, {}, &progress);
+    const std::vector<ObjectModel> direct = trainObjects(objs, o);
+    ASSERT_EQ(run.models.size(), direct.size());
+    for (size_t i = 0; i < direct.size(); ++i) {
+        EXPECT_EQ(run.models[i].skipped, direct[i].skipped);
+        if (direct[i].skipped) continue;
+        EXPECT_TRUE(run.models[i].model.params == direct[i].model.params) << "network " << i << " differs";
+    }
+    EXPECT_EQ(run.networks, 4);
+    EXPECT_EQ(run.skipped, 2) << "object 1 has no samples: both of its targets are skipped";
+    ASSERT_EQ(run.curves.size(), 4u);
+    EXPECT_EQ(run.curves[0].objectId, 0);
+    EXPECT_EQ(run.curves[0].target, "direct");
+    EXPECT_EQ(run.curves[1].target, "indirect");
+    EXPECT_EQ(run.curves[2].objectId, 2);
+    EXPECT_EQ(run.curves[2].object, "object2");
+    for (const NetworkCurve& c : run.curves) {
+        ASSERT_FALSE(c.epochs.empty());
+        for (size_t e = 0; e < c.epochs.size(); ++e) EXPECT_EQ(c.epochs[e].epoch, int(e)) << "epoch 0 is the initial loss";
+    }
+    EXPECT_DOUBLE_EQ(progress.epochBudget.load(), 3.0 * 2 * 4);
+    EXPECT_GT(progress.fraction(), 0.0);
+    EXPECT_LE(progress.fraction(), 1.0);
+    EXPECT_FALSE(run.cancelled);
+    EXPECT_GT(run.seconds, 0.0);
+}
+
+TEST(TrainingRun, CancelledBeforeStartTrainsNothing) {
+    const std::vector<ObjectSamples> objs = {syntheticObject(0, 50)};
+    ObjectTrainingOptions o;
+    o.hidden = {3};
+    std::atomic<bool> cancel{true};
+    ObjectTrainingObserver observer;
+    observer.cancel = &cancel;
+    const TrainingRun run = trainNetworks(objs, o, observer);
+    EXPECT_TRUE(run.cancelled);
+    EXPECT_EQ(run.networks, 0);
+    EXPECT_TRUE(run.curves.empty());
+}
