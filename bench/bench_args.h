@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <limits>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -34,6 +35,9 @@ inline std::string projectOrDefault(const std::string& given, const char* progra
         std::exit(1);
     }
 }
+
+/// Check for a positive integer option (CLI::PositiveNumber's message names the double range).
+inline const CLI::Range kPositive{1, std::numeric_limits<int>::max()};
 
 /// Help text of a project option whose default is the bundled Cornell box.
 inline constexpr const char* kProjectHelp = "project or scene file (default: the bundled Cornell box)";

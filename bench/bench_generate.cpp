@@ -52,7 +52,7 @@ void addGridOption(CLI::App& app, const std::string& name, SamplingSettings& s, 
         ->delimiter(',')
         ->expected(3)
         ->type_name("NX,NY,NZ")
-        ->check(CLI::PositiveNumber)
+        ->check(bench::kPositive)
         ->default_str(std::to_string(s.nx) + "," + std::to_string(s.ny) + "," + std::to_string(s.nz));
 }
 
@@ -74,13 +74,13 @@ int main(int argc, char** argv) {
                  "bench_generate"};
     app.add_option("project", input, bench::kProjectHelp);
     addGridOption(app, "--grid", gen, genGrid, "jitter grid of the throughput run");
-    app.add_option("--dirs", gen.directions, "directions per cell of the throughput run")->check(CLI::PositiveNumber)->capture_default_str();
-    app.add_option("--spp", gen.spp, "paths per record of the throughput run")->check(CLI::PositiveNumber)->capture_default_str();
-    app.add_option("--render-spp", renderSpp, "samples per pixel of the renderer run")->check(CLI::PositiveNumber)->capture_default_str();
-    app.add_option("--width", width, "renderer image width")->check(CLI::PositiveNumber)->capture_default_str();
-    app.add_option("--height", height, "renderer image height")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--dirs", gen.directions, "directions per cell of the throughput run")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--spp", gen.spp, "paths per record of the throughput run")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--render-spp", renderSpp, "samples per pixel of the renderer run")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--width", width, "renderer image width")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--height", height, "renderer image height")->check(bench::kPositive)->capture_default_str();
     addGridOption(app, "--mem-grid", mem, memGrid, "jitter grid of the memory run");
-    app.add_option("--mem-dirs", mem.directions, "directions per cell of the memory run")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--mem-dirs", mem.directions, "directions per cell of the memory run")->check(bench::kPositive)->capture_default_str();
     app.add_flag("--no-memory", noMemory, "skip the memory run");
     app.add_option("--out", out, "dataset file of the memory run (default: a temporary file, removed afterwards)");
     bench::parseArgs(app, argc, argv);

@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
     app.add_option("--hidden", hidden, "hidden layer sizes of the networks")
         ->delimiter(',')
         ->type_name("N,N,...")
-        ->check(CLI::PositiveNumber)
+        ->check(bench::kPositive)
         ->default_str("20,10");
     bench::parseArgs(app, argc, argv);
     project = bench::projectOrDefault(project, "bench_predict");

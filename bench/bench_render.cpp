@@ -68,9 +68,9 @@ int main(int argc, char** argv) {
     int spp = 16, width = 256, height = 256;
     CLI::App app{"Path-tracer benchmark: plain Embree rays versus the tracer, 1 and 2 threads", "bench_render"};
     app.add_option("project", input, bench::kProjectHelp);
-    app.add_option("--spp", spp, "samples per pixel of the tracer run")->check(CLI::PositiveNumber)->capture_default_str();
-    app.add_option("--width", width, "image width")->check(CLI::PositiveNumber)->capture_default_str();
-    app.add_option("--height", height, "image height")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--spp", spp, "samples per pixel of the tracer run")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--width", width, "image width")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--height", height, "image height")->check(bench::kPositive)->capture_default_str();
     bench::parseArgs(app, argc, argv);
     input = bench::projectOrDefault(input, "bench_render");
     const Project project = loadProjectOrScene(input);

@@ -166,7 +166,7 @@ int main(int argc, char** argv) {
     CLI::App app{"Milliseconds per frame of the GLSL predictor (G-buffer + networks)", "bench_glsl"};
     app.add_option("--size", size, "image width and height")->check(CLI::Range(1, 16384))->capture_default_str();
     app.add_option("--frames", frames, "frames to average over (after 2 warm-up frames)")
-        ->check(CLI::PositiveNumber)
+        ->check(bench::kPositive)
         ->capture_default_str();
     app.add_option("--project", project, bench::kProjectHelp)->type_name("FILE");
     app.add_option("--models", models, "trained model directory of the project (default: untrained networks)")
