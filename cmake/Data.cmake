@@ -9,10 +9,17 @@ set(RRF_INSTALL_BINDIR bin)
 set(RRF_INSTALL_DATADIR share/rrf-workbench)
 set(RRF_BUILD_DATADIR ${CMAKE_BINARY_DIR}/${RRF_INSTALL_DATADIR})
 
-# One copy command per file, so an edited shader or project reaches the build tree at the next build
-# (and only changed files are copied); CONFIGURE_DEPENDS picks up added or removed files.
+# The bundled projects are projects/<name>/ without what working in them produces: the folders the
+# workbench writes next to a project (app/gui: data/, export/, models/, runs/, sweeps/) and dataset,
+# model and temporary files. So running the workbench on a source project never ships its outputs.
 file(GLOB_RECURSE RRF_DATA_FILES CONFIGURE_DEPENDS RELATIVE ${CMAKE_SOURCE_DIR}
      ${CMAKE_SOURCE_DIR}/shaders/* ${CMAKE_SOURCE_DIR}/projects/*)
+list(FILTER RRF_DATA_FILES EXCLUDE REGEX "^projects/[^/]+/(data|export|models|runs|sweeps)/")
+list(FILTER RRF_DATA_FILES EXCLUDE REGEX "\\.(rrfd|rrfm|tmp)$")
+
+# One copy command per file, so an edited shader or project reaches the build tree at the next build
+# (and only changed files are copied); CONFIGURE_DEPENDS picks up added or removed files. The same
+# list is installed.
 set(RRF_DATA_OUTPUTS "")
 foreach(f ${RRF_DATA_FILES})
   add_custom_command(
@@ -22,7 +29,7 @@ foreach(f ${RRF_DATA_FILES})
     COMMENT "Copying ${f} to ${RRF_INSTALL_DATADIR}/ in the build tree"
     VERBATIM)
   list(APPEND RRF_DATA_OUTPUTS ${RRF_BUILD_DATADIR}/${f})
+  get_filename_component(dir ${f} DIRECTORY)
+  install(FILES ${CMAKE_SOURCE_DIR}/${f} DESTINATION ${RRF_INSTALL_DATADIR}/${dir})
 endforeach()
 add_custom_target(rrf_data ALL DEPENDS ${RRF_DATA_OUTPUTS})
-
-install(DIRECTORY ${CMAKE_SOURCE_DIR}/shaders ${CMAKE_SOURCE_DIR}/projects DESTINATION ${RRF_INSTALL_DATADIR})
