@@ -16,14 +16,14 @@
 // at 4 spp; memory run 15,15,15 × 1200 × 1 spp written to a temporary file (removed afterwards).
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include "bench/bench_args.h"
 #include "core/scene/accel.h"
 #include "core/data/data_generator.h"
 #include "core/util/text_format.h"
@@ -45,23 +45,21 @@ double maxRssMiB() {
     return double(u.ru_maxrss) / 1024.0;
 }
 
-bool parseGrid(const char* text, SamplingSettings& s) {
-    return std::sscanf(text, "%d,%d,%d", &s.nx, &s.ny, &s.nz) == 3 && s.nx > 0 && s.ny > 0 && s.nz > 0;
-}
-
-int usage() {
-    std::fprintf(stderr,
-                 "usage: bench_generate [project.json] [--grid nx,ny,nz] [--dirs N] [--spp N] [--render-spp N]\n"
-                 "                      [--width W --height H] [--mem-grid nx,ny,nz] [--mem-dirs N] [--no-memory]\n"
-                 "                      [--out file.rrfd]\n");
-    return 2;
+/// Binds `--<name> nx,ny,nz` to the grid of `s` (three positive integers).
+void addGridOption(CLI::App& app, const std::string& name, SamplingSettings& s, std::vector<int>& grid, const char* help) {
+    grid = {s.nx, s.ny, s.nz};
+    app.add_option(name, grid, help)
+        ->delimiter(',')
+        ->expected(3)
+        ->type_name("NX,NY,NZ")
+        ->check(bench::kPositive)
+        ->default_str(std::to_string(s.nx) + "," + std::to_string(s.ny) + "," + std::to_string(s.nz));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string input = std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json";
-    std::string out;
+    std::string input, out;
     SamplingSettings gen;
     gen.nx = gen.ny = gen.nz = 6;
     gen.directions = 200;
@@ -69,25 +67,27 @@ int main(int argc, char** argv) {
     SamplingSettings mem;  // the default run: 15³ grid, 1200 directions
     mem.spp = 1;
     int renderSpp = 4, width = 256, height = 256;
-    bool memory = true;
-    for (int i = 1; i < argc; ++i) {
-        const bool hasValue = i + 1 < argc;
-        if (!std::strcmp(argv[i], "--grid") && hasValue) {
-            if (!parseGrid(argv[++i], gen)) return usage();
-        } else if (!std::strcmp(argv[i], "--mem-grid") && hasValue) {
-            if (!parseGrid(argv[++i], mem)) return usage();
-        } else if (!std::strcmp(argv[i], "--dirs") && hasValue) gen.directions = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--mem-dirs") && hasValue) mem.directions = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--spp") && hasValue) gen.spp = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--render-spp") && hasValue) renderSpp = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--width") && hasValue) width = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--height") && hasValue) height = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--out") && hasValue) out = argv[++i];
-        else if (!std::strcmp(argv[i], "--no-memory")) memory = false;
-        else if (argv[i][0] == '-') return usage();
-        else input = argv[i];
-    }
-    if (gen.directions < 1 || gen.spp < 1 || mem.directions < 1 || renderSpp < 1 || width < 1 || height < 1) return usage();
+    bool noMemory = false;
+    std::vector<int> genGrid, memGrid;
+
+    CLI::App app{"Data-generator benchmark: generator versus renderer throughput, and the memory of the default run",
+                 "bench_generate"};
+    app.add_option("project", input, bench::kProjectHelp);
+    addGridOption(app, "--grid", gen, genGrid, "jitter grid of the throughput run");
+    app.add_option("--dirs", gen.directions, "directions per cell of the throughput run")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--spp", gen.spp, "paths per record of the throughput run")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--render-spp", renderSpp, "samples per pixel of the renderer run")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--width", width, "renderer image width")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--height", height, "renderer image height")->check(bench::kPositive)->capture_default_str();
+    addGridOption(app, "--mem-grid", mem, memGrid, "jitter grid of the memory run");
+    app.add_option("--mem-dirs", mem.directions, "directions per cell of the memory run")->check(bench::kPositive)->capture_default_str();
+    app.add_flag("--no-memory", noMemory, "skip the memory run");
+    app.add_option("--out", out, "dataset file of the memory run (default: a temporary file, removed afterwards)");
+    bench::parseArgs(app, argc, argv);
+    input = bench::projectOrDefault(input, "bench_generate");
+    gen.nx = genGrid[0], gen.ny = genGrid[1], gen.nz = genGrid[2];
+    mem.nx = memGrid[0], mem.ny = memGrid[1], mem.nz = memGrid[2];
+    const bool memory = !noMemory;
 
     const Project project = loadProjectOrScene(input);
     const Scene& scene = project.scene;

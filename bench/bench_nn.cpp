@@ -9,13 +9,13 @@
 // Everything runs on synthetic data; no files are read or written.
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <thread>
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include "bench/bench_args.h"
 #include "core/nn/model.h"
 #include "core/util/rng.h"
 
@@ -120,7 +120,10 @@ void printTable() {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const bool quick = argc > 1 && !std::strcmp(argv[1], "--quick");
+    bool quick = false;
+    CLI::App app{"Network throughput (LM, Adam, inference) against this machine's Eigen GEMM rate", "bench_nn"};
+    app.add_flag("--quick", quick, "shorter measurements, less data");
+    bench::parseArgs(app, argc, argv);
     g_minT = quick ? 0.3 : 1.0;
     const int cores = tbb::info::default_concurrency();
 

@@ -11,11 +11,12 @@
 // exact direct light (prediction "direct": "exact") at 16 shadow-ray samples per pixel.
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <string>
+#include <vector>
 
 #include <tbb/global_control.h>
 
+#include "bench/bench_args.h"
 #include "core/eval/evaluation.h"
 #include "core/eval/experiment.h"
 #include "core/nn/network_settings.h"
@@ -74,19 +75,21 @@ FrameTimes timePrediction(const Scene& scene, const ModelSet& models, const Vec3
 
 int main(int argc, char** argv) {
     bool quick = false;
-    std::string project = std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json", hidden = "20,10";
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--quick")) quick = true;
-        else if (!std::strcmp(argv[i], "--project") && i + 1 < argc) project = argv[++i];
-        else if (!std::strcmp(argv[i], "--hidden") && i + 1 < argc) hidden = argv[++i];
-        else {
-            std::fprintf(stderr, "usage: bench_predict [--quick] [--project FILE] [--hidden 20,10]\n");
-            return 2;
-        }
-    }
+    std::string project;
+    std::vector<int> hidden{20, 10};
+    CLI::App app{"CPU prediction per 256x256 frame versus path tracing the same frame", "bench_predict"};
+    app.add_flag("--quick", quick, "fewer frames, 16 spp ground truth");
+    app.add_option("--project", project, bench::kProjectHelp)->type_name("FILE");
+    app.add_option("--hidden", hidden, "hidden layer sizes of the networks")
+        ->delimiter(',')
+        ->type_name("N,N,...")
+        ->check(bench::kPositive)
+        ->default_str("20,10");
+    bench::parseArgs(app, argc, argv);
+    project = bench::projectOrDefault(project, "bench_predict");
     const Project p = loadProjectOrScene(project);
     const Scene& scene = p.scene;
-    const ModelSet models = randomModels(scene, parseHiddenSizes(hidden, "--hidden"));
+    const ModelSet models = randomModels(scene, hidden);
     const Vec3 light = scene.lightPosition();
     const int frames = quick ? 5 : 20, spp = quick ? 16 : 64;
     std::printf("bench_predict: %s, 256x256, networks %s (2 per object, %zu objects), ground truth %d spp\n\n",

@@ -7,7 +7,6 @@
 // Default: the bundled Cornell box at 256x256, NEE.
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -15,6 +14,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include "bench/bench_args.h"
 #include "core/scene/accel.h"
 #include "core/scene/camera_rays.h"
 #include "core/project/project.h"
@@ -64,14 +64,15 @@ double plainEmbree(const Accel& accel, const std::vector<Ray>& rays, bool occlud
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string input = std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json";
+    std::string input;
     int spp = 16, width = 256, height = 256;
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--spp") && i + 1 < argc) spp = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--width") && i + 1 < argc) width = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--height") && i + 1 < argc) height = std::atoi(argv[++i]);
-        else input = argv[i];
-    }
+    CLI::App app{"Path-tracer benchmark: plain Embree rays versus the tracer, 1 and 2 threads", "bench_render"};
+    app.add_option("project", input, bench::kProjectHelp);
+    app.add_option("--spp", spp, "samples per pixel of the tracer run")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--width", width, "image width")->check(bench::kPositive)->capture_default_str();
+    app.add_option("--height", height, "image height")->check(bench::kPositive)->capture_default_str();
+    bench::parseArgs(app, argc, argv);
+    input = bench::projectOrDefault(input, "bench_render");
     const Project project = loadProjectOrScene(input);
     const Scene& scene = project.scene;
     const Accel accel(scene);

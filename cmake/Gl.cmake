@@ -4,15 +4,17 @@
 
 file(GLOB RRF_GL_SOURCES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/app/gl/*.cpp)
 add_library(rrf_gl STATIC ${RRF_GL_SOURCES})
-target_link_libraries(rrf_gl PUBLIC rrf_core rrf_glad glfw OpenGL::GL ${CMAKE_DL_LIBS})
-# Shaders are read at run time from the source tree, so editing a shader needs no rebuild.
-target_compile_definitions(rrf_gl PUBLIC RRF_SHADER_DIR="${CMAKE_SOURCE_DIR}/shaders")
+target_link_libraries(rrf_gl PUBLIC rrf_core rrf_glad glfw OpenGL::GL ${CMAKE_DL_LIBS} PRIVATE rrf_warnings)
+# Shaders are read at run time from the data directory (core/util/data_dir.h): a program that uses
+# rrf_gl needs the build tree's copy, which every build refreshes from shaders/.
+add_dependencies(rrf_gl rrf_data)
 
 if(RRF_BUILD_TESTS)
   find_package(GTest REQUIRED)
   file(GLOB RRF_GL_TEST_SOURCES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/gl/*.cpp)
   add_executable(rrf_gl_tests ${RRF_GL_TEST_SOURCES})
-  target_link_libraries(rrf_gl_tests PRIVATE rrf_gl GTest::gtest)
+  target_link_libraries(rrf_gl_tests PRIVATE rrf_gl GTest::gtest rrf_warnings)
+  target_compile_definitions(rrf_gl_tests PRIVATE RRF_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
   # The GL tests need an X server: CTest always runs them inside a fresh Xvfb (Mesa llvmpipe unless a
   # GPU driver is configured). A missing xvfb-run is a test FAILURE with a message, never a skip.
   find_program(RRF_XVFB_RUN xvfb-run)
@@ -28,5 +30,5 @@ endif()
 
 if(RRF_BUILD_BENCH)
   add_executable(bench_glsl ${CMAKE_SOURCE_DIR}/bench/gl/bench_glsl.cpp)
-  target_link_libraries(bench_glsl PRIVATE rrf_gl)
+  target_link_libraries(bench_glsl PRIVATE rrf_gl CLI11::CLI11 rrf_warnings)
 endif()

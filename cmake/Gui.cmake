@@ -19,7 +19,7 @@ set(RRF_HAVE_GUI_DEPS TRUE)
 # ---- panels: ImGui views over core state (no GLFW, no GL) ----------------------------------------
 file(GLOB RRF_PANELS_SOURCES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/panels/*.cpp)
 add_library(rrf_panels STATIC ${RRF_PANELS_SOURCES})
-target_link_libraries(rrf_panels PUBLIC rrf_core PkgConfig::IMGUI)
+target_link_libraries(rrf_panels PUBLIC rrf_core PkgConfig::IMGUI PRIVATE rrf_warnings)
 
 # ---- GLSL prediction (app/gl): the workbench's live prediction draws with it ----------------------
 include(cmake/Gl.cmake)
@@ -27,7 +27,10 @@ include(cmake/Gl.cmake)
 # ---- rrf-workbench: window, GL, job runner, main ------------------------------------------------
 file(GLOB RRF_GUI_SOURCES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/app/gui/*.cpp)
 add_executable(rrf-workbench ${RRF_GUI_SOURCES})
-target_link_libraries(rrf-workbench PRIVATE rrf_panels rrf_gl rrf_glad glfw OpenGL::GL ${CMAKE_DL_LIBS})
+target_link_libraries(rrf-workbench PRIVATE rrf_panels rrf_gl rrf_glad glfw OpenGL::GL ${CMAKE_DL_LIBS}
+                                            CLI11::CLI11 rrf_warnings)
+add_dependencies(rrf-workbench rrf_data)  # the default project and the shaders (core/util/data_dir.h)
+install(TARGETS rrf-workbench RUNTIME DESTINATION ${RRF_INSTALL_BINDIR})
 
 # ---- GUI tests ----------------------------------------------------------------------------------
 if(RRF_BUILD_TESTS)
@@ -41,12 +44,13 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_learning_panels.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp)
-  target_link_libraries(rrf_gui_tests PRIVATE rrf_panels GTest::gtest GTest::gtest_main)
+  target_link_libraries(rrf_gui_tests PRIVATE rrf_panels GTest::gtest GTest::gtest_main rrf_warnings)
+  target_compile_definitions(rrf_gui_tests PRIVATE RRF_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
   include(GoogleTest)
   gtest_discover_tests(rrf_gui_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 120)
 
   add_executable(rrf_gui_shotcheck ${CMAKE_SOURCE_DIR}/tests/gui/shot_check.cpp)
-  target_link_libraries(rrf_gui_shotcheck PRIVATE rrf_core)
+  target_link_libraries(rrf_gui_shotcheck PRIVATE rrf_core rrf_warnings)
 
   # The real window under Xvfb: N frames on the Cornell box, then a screenshot that must show the
   # ground truth; and a scripted session (render, save a run, save/re-open, compare, generate, train,

@@ -8,6 +8,8 @@
 
 #include <glad/gl.h>
 
+#include "core/util/data_dir.h"
+
 namespace rrf {
 
 namespace {
@@ -151,6 +153,10 @@ int log2Exact(int v) {
 }  // namespace
 
 GlslPredictor::GlslPredictor(const Scene& scene, const ModelSet& models, const std::string& shaderDir) : scene_(scene) {
+    // Resolved before any GL work, so a missing data directory is reported as such (with the places
+    // looked in) rather than as a shader file that cannot be read.
+    const std::string dirName = shaderDir.empty() ? rrf::shaderDir().string() : shaderDir;
+    const std::string dir = dirName.back() == '/' ? dirName : dirName + "/";
     GlStateGuard guard;
     checkGl("state before GlslPredictor");
     GLint maxTex = 0;
@@ -162,7 +168,6 @@ GlslPredictor::GlslPredictor(const Scene& scene, const ModelSet& models, const s
                       std::to_string(maxTex));
     static_assert((kNetworkTextureWidth & (kNetworkTextureWidth - 1)) == 0, "the shader indexes with shifts and masks");
 
-    const std::string dir = shaderDir.empty() || shaderDir.back() == '/' ? shaderDir : shaderDir + "/";
     gbufferProgram_ = GlProgram::fromFiles(dir + "gbuffer.vert", dir + "gbuffer.frag");
     std::string defines = "#define RRF_MAX_VEC4 " + std::to_string((networks_.maxLayerWidth + 3) / 4) +
                           "\n#define RRF_NET_WIDTH_LOG2 " + std::to_string(log2Exact(networks_.width)) + "\n";

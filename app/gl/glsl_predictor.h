@@ -36,10 +36,6 @@
 #include "core/render/term.h"
 #include "core/scene/scene.h"
 
-#ifndef RRF_SHADER_DIR
-#error "RRF_SHADER_DIR must name the shaders/ directory (set by cmake/Gl.cmake)"
-#endif
-
 namespace rrf {
 
 /// The G-buffer of the last render(), read back (top row first, like rrf::Image).
@@ -58,10 +54,12 @@ struct GlGBuffer {
 class GlslPredictor {
 public:
     /// Uploads the scene's geometry and the packed networks and compiles the shaders from
-    /// `shaderDir`. Needs a current OpenGL 3.3 core context with glad loaded (see GlContext).
+    /// `shaderDir` (empty: rrf::shaderDir(), the data directory's shaders/, core/util/data_dir.h).
+    /// Needs a current OpenGL 3.3 core context with glad loaded (see GlContext).
     /// Throws std::invalid_argument for models that do not fit the scene (packNetworkTexture),
-    /// GlError for a shader that does not compile (message names the file) or any GL failure.
-    GlslPredictor(const Scene& scene, const ModelSet& models, const std::string& shaderDir = RRF_SHADER_DIR);
+    /// GlError for a shader that does not compile (message names the file) or any GL failure,
+    /// std::runtime_error (naming where it looked) when there is no data directory.
+    GlslPredictor(const Scene& scene, const ModelSet& models, const std::string& shaderDir = {});
     ~GlslPredictor();
     GlslPredictor(const GlslPredictor&) = delete;
     GlslPredictor& operator=(const GlslPredictor&) = delete;

@@ -1,84 +1,49 @@
 // rrf-workbench [project.json] [--frames N] [--screenshot out.png] [--script steps.json]
 //
-// Opens the workbench on a project (the bundled Cornell box by default). --frames N draws N frames
+// Opens the workbench on a project (by default the bundled Cornell box of the data directory, see
+// core/util/data_dir.h, which also holds the shaders). --frames N draws N frames
 // (after the script, if any) and exits; --screenshot writes the last frame to a PNG. The exit status
 // is non-zero if the project cannot be opened, the script fails or the screenshot cannot be written
 // in these automated modes.
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
+#include <exception>
 #include <string>
+
+#include <CLI/CLI.hpp>
 
 #include "app/gui/script.h"
 #include "app/gui/user_config.h"
 #include "app/gui/window.h"
 #include "app/gui/workbench.h"
+#include "core/util/data_dir.h"
 #include "core/util/image_io.h"
 
 namespace {
 
 struct Args {
-    std::string project = RRF_SOURCE_DIR "/projects/cornell-box/project.json";
+    std::string project;  ///< empty: the bundled Cornell box from the data directory
     int frames = -1;
     std::string screenshot, script;
 };
 
-void usage(FILE* to) {
-    std::fprintf(to,
-                 "usage: rrf-workbench [project.json] [--frames N] [--screenshot out.png] [--script steps.json]\n"
-                 "  project.json        project or scene file (default: the bundled Cornell box)\n"
-                 "  --frames N          draw N frames (after the script), then exit\n"
-                 "  --screenshot FILE   write the last frame to a PNG file\n"
-                 "  --script FILE       run a scripted session (JSON array of steps) first\n");
-}
-
+/// Parses argv into `a`. Returns false with the exit status in `exitCode` when the program should
+/// stop: 0 after --help, 2 for a usage error (CLI11 prints the message).
 bool parse(int argc, char** argv, Args& a, int& exitCode) {
-    bool haveProject = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string s = argv[i];
-        auto value = [&](const char* name) -> const char* {
-            if (i + 1 >= argc) {
-                std::fprintf(stderr, "rrf-workbench: %s needs a value\n", name);
-                return nullptr;
-            }
-            return argv[++i];
-        };
-        if (s == "-h" || s == "--help") {
-            usage(stdout);
-            exitCode = 0;
-            return false;
-        } else if (s == "--frames") {
-            const char* v = value("--frames");
-            char* end = nullptr;
-            const long n = v ? std::strtol(v, &end, 10) : -1;
-            if (!v || *end || n < 1 || n > 1000000) {
-                std::fprintf(stderr, "rrf-workbench: --frames needs a positive integer\n");
-                exitCode = 2;
-                return false;
-            }
-            a.frames = int(n);
-        } else if (s == "--screenshot" || s == "--script") {
-            const char* v = value(s.c_str());
-            if (!v) {
-                exitCode = 2;
-                return false;
-            }
-            (s == "--script" ? a.script : a.screenshot) = v;
-        } else if (!s.empty() && s[0] == '-') {
-            std::fprintf(stderr, "rrf-workbench: unknown option %s\n", s.c_str());
-            usage(stderr);
-            exitCode = 2;
-            return false;
-        } else if (haveProject) {
-            std::fprintf(stderr, "rrf-workbench: only one project file may be given\n");
-            exitCode = 2;
-            return false;
-        } else {
-            a.project = s;
-            haveProject = true;
-        }
+    CLI::App app{"RRF Workbench: learn global illumination with radiance regression functions", "rrf-workbench"};
+    app.add_option("project", a.project, "project or scene file (default: the bundled Cornell box)");
+    app.add_option("--frames", a.frames, "draw N frames (after the script), then exit")
+        ->type_name("N")
+        ->check(CLI::Range(1, 1000000));
+    app.add_option("--screenshot", a.screenshot, "write the last frame to a PNG file")->type_name("FILE");
+    app.add_option("--script", a.script, "run a scripted session (JSON array of steps) first")->type_name("FILE");
+    try {
+        app.parse(argc, argv);
+        return true;
+    } catch (const CLI::ParseError& e) {
+        const int cliStatus = app.exit(e);
+        exitCode = cliStatus == 0 ? 0 : 2;
+        return false;
     }
-    return true;
 }
 
 bool writeScreenshot(const rrf::Window& window, const std::string& path, std::string& error) {
@@ -109,6 +74,17 @@ int main(int argc, char** argv) {
         return 2;
     }
 
+    // The shaders and the bundled projects: a program without them is a broken build or installation,
+    // so say so (and where it looked) before opening a window.
+    std::string dataDir;
+    try {
+        dataDir = rrf::dataDir().string();
+        if (args.project.empty()) args.project = rrf::bundledProject(rrf::kDefaultProject).string();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "rrf-workbench: %s\n", e.what());
+        return 1;
+    }
+
     const std::string configDir = rrf::userConfigDir();
     rrf::Window window;
     if (!window.create(1600, 1000, "RRF Workbench", configDir, !automated, error)) {
@@ -119,6 +95,7 @@ int main(int argc, char** argv) {
     int status = 0;
     {
         rrf::Workbench wb(configDir);
+        wb.state().log.info("data directory: " + dataDir);
         if (!wb.openProject(args.project) && automated) {
             std::fprintf(stderr, "rrf-workbench: cannot open %s\n", args.project.c_str());
             status = 1;

@@ -17,7 +17,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +24,7 @@
 #include <glad/gl.h>
 
 #include "app/gl/gl_context.h"
+#include "bench/bench_args.h"
 #include "app/gl/glsl_predictor.h"
 #include "core/project/project.h"
 #include "core/data/record_layout.h"
@@ -162,25 +162,17 @@ std::string join(const std::vector<int>& v) {
 
 int main(int argc, char** argv) {
     int size = 256, frames = 50;
-    std::string project = std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json", models;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string {
-            if (i + 1 >= argc) {
-                std::fprintf(stderr, "%s needs a value\n", a.c_str());
-                std::exit(2);
-            }
-            return argv[++i];
-        };
-        if (a == "--size") size = std::stoi(next());
-        else if (a == "--frames") frames = std::max(1, std::stoi(next()));
-        else if (a == "--project") project = next();
-        else if (a == "--models") models = next();
-        else {
-            std::fprintf(stderr, "usage: bench_glsl [--size N] [--frames N] [--project P --models DIR]\n");
-            return 2;
-        }
-    }
+    std::string project, models;
+    CLI::App app{"Milliseconds per frame of the GLSL predictor (G-buffer + networks)", "bench_glsl"};
+    app.add_option("--size", size, "image width and height")->check(CLI::Range(1, 16384))->capture_default_str();
+    app.add_option("--frames", frames, "frames to average over (after 2 warm-up frames)")
+        ->check(bench::kPositive)
+        ->capture_default_str();
+    app.add_option("--project", project, bench::kProjectHelp)->type_name("FILE");
+    app.add_option("--models", models, "trained model directory of the project (default: untrained networks)")
+        ->type_name("DIR");
+    bench::parseArgs(app, argc, argv);
+    project = bench::projectOrDefault(project, "bench_glsl");
     try {
         GlContext ctx;
         Scene scene = loadProjectOrScene(project).scene;

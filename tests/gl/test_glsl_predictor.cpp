@@ -479,7 +479,7 @@ TEST(GlslPredictor, ShaderErrorsNameTheFile) {
     const fs::path dir = fs::temp_directory_path() / ("rrf_gl_shaders_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     for (const char* f : {"gbuffer.vert", "gbuffer.frag", "fullscreen.vert", "predict.frag"})
-        fs::copy_file(fs::path(RRF_SHADER_DIR) / f, dir / f, fs::copy_options::overwrite_existing);
+        fs::copy_file(fs::path(RRF_SOURCE_DIR) / "shaders" / f, dir / f, fs::copy_options::overwrite_existing);
     {
         std::ofstream bad(dir / "predict.frag", std::ios::app);
         bad << "\nvoid broken() { undeclared_identifier = 1; }\n";
