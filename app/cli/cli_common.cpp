@@ -1,14 +1,15 @@
 #include "app/cli/cli_common.h"
 
+#include <chrono>
 #include <csignal>
-#include <cmath>
 #include <cstdio>
-#include <exception>
-#include <sstream>
+#include <filesystem>
 #include <thread>
+#include <utility>
 
 #include <unistd.h>
 
+#include "core/util/atomic_file.h"
 #include "core/util/error.h"
 
 namespace rrf::cli {
@@ -43,24 +44,27 @@ std::unique_ptr<tbb::global_control> limitThreads(int threads) {
     return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(threads));
 }
 
-Vec3 parseVec3(const std::string& text, const std::string& option) {
-    Vec3 v;
-    std::istringstream in(text);
-    for (int i = 0; i < 3; ++i) {
-        std::string part;
-        if (!std::getline(in, part, ',')) throw InputError("command line", option, "expected x,y,z, got '" + text + "'");
-        try {
-            size_t used = 0;
-            v[i] = std::stof(part, &used);
-            if (used != part.size()) throw std::invalid_argument(part);
-        } catch (const std::exception&) {
-            throw InputError("command line", option, "expected x,y,z numbers, got '" + text + "'");
-        }
-        if (!std::isfinite(v[i])) throw InputError("command line", option, "coordinates must be finite, got '" + text + "'");
-    }
-    std::string rest;
-    if (std::getline(in, rest)) throw InputError("command line", option, "expected exactly 3 numbers, got '" + text + "'");
-    return v;
+std::string outputPath(const std::string& dir, const std::string& name) {
+    return (std::filesystem::path(dir) / name).string();
+}
+
+void writeReported(const std::string& file, const std::string& text) {
+    writeFileAtomically(file, text);
+    std::printf("wrote %s\n", file.c_str());
+}
+
+std::string errorMessage(const std::exception& e) {
+    const auto* setting = dynamic_cast<const SettingError*>(&e);
+    if (!setting) return e.what();
+    // Core names settings, not flags (core/util/error.h); each one core can name, and the flag that sets it.
+    static const std::pair<const char*, const char*> kFlags[] = {
+        {"shard", "--shard"},
+        {"sweep values", "--values"},
+        {"sweep dimension", "--what"},
+    };
+    for (const auto& [name, flag] : kFlags)
+        if (setting->setting() == name) return std::string("command line: ") + flag + ": " + setting->detail();
+    return e.what();
 }
 
 void runWithProgress(const std::string& label, const std::function<void()>& work,

@@ -1,18 +1,16 @@
 #pragma once
-/// Shared pieces of the rrf subcommands: Ctrl-C handling, thread limits, option parsing and a
-/// progress line with ETA on stderr.
+/// Shared pieces of the rrf subcommands: Ctrl-C handling, thread limits, a progress line with ETA on
+/// stderr, output files and the one place where core's setting names become flags in error messages.
 
 #include <atomic>
-#include <chrono>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
 
-#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
 #include "core/util/text_format.h"
-#include "core/util/vec3.h"
 
 namespace rrf::cli {
 
@@ -22,8 +20,15 @@ std::atomic<bool>& installInterruptHandler();
 /// Limits oneTBB to `threads` worker threads for the lifetime of the returned object (0 = all cores).
 std::unique_ptr<tbb::global_control> limitThreads(int threads);
 
-/// Parses "x,y,z" into a Vec3; throws rrf::InputError naming `option` if malformed or not finite.
-Vec3 parseVec3(const std::string& text, const std::string& option);
+/// `dir`/`name` as a path string.
+std::string outputPath(const std::string& dir, const std::string& name);
+
+/// Writes `text` to `file` atomically and prints "wrote <file>".
+void writeReported(const std::string& file, const std::string& text);
+
+/// The message `rrf` prints for an error: a SettingError names the flag that sets the setting
+/// ("sweep values" → "command line: --values: ..."), anything else its own message.
+std::string errorMessage(const std::exception& e);
 
 /// Runs `work` on a worker thread while the calling thread reports progress every 200 ms and turns
 /// Ctrl-C into `cancel()`. `progress` returns the fraction done in [0,1] and a short status text.

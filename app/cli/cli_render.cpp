@@ -1,8 +1,11 @@
 // `rrf render`: progressive ground-truth render of a project or scene file.
 #include <cstdio>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "core/scene/accel.h"
 #include "core/util/error.h"
@@ -14,29 +17,22 @@ namespace rrf::cli {
 
 namespace {
 struct RenderArgs {
-    std::string input, out, mode, format = "exr", lightPos;
-    int spp = -1, width = -1, height = -1, threads = 0;
-    long long seed = -1;
-    float exposure = 0.f;
-    bool exposureSet = false;
+    std::string input, out, format = "exr";
+    std::optional<Vec3> lightPos;
+    int threads = 0;
+    SettingFlags<RenderSettings> render;  ///< --spp, --width, --height, --mode, --seed, --exposure
 };
 
 int runRender(const RenderArgs& a) {
     Project project = loadProjectOrScene(a.input);
     Scene& scene = project.scene;
-    RenderSettings settings = project.render;
-    if (a.width > 0) settings.width = a.width;
-    if (a.height > 0) settings.height = a.height;
-    if (a.spp > 0) settings.spp = a.spp;
-    if (a.seed >= 0) settings.seed = uint64_t(a.seed);
-    if (!a.mode.empty()) settings.estimator = a.mode == "naive" ? Estimator::Naive : Estimator::NEE;
+    const RenderSettings settings = a.render.applied(project.render);
     // Enough passes for a live progress line, few enough that pass overhead stays negligible.
     const RenderOptions o = renderOptionsFor(scene, settings, 16);
     const ImageFormat format = imageFormatFromName(a.format);
-    const float exposure = a.exposureSet ? a.exposure : project.render.exposure;
-    if (!a.lightPos.empty()) {
+    if (a.lightPos) {
         if (scene.lights.empty()) throw InputError(a.input, "/lights", "--light-pos given but the scene has no light");
-        scene.setLightPosition(parseVec3(a.lightPos, "--light-pos"));
+        scene.setLightPosition(*a.lightPos);
     }
     auto threads = limitThreads(a.threads);
 
@@ -59,7 +55,7 @@ int runRender(const RenderArgs& a) {
 
     const RenderSnapshot snap = renderer.snapshot();
     const RenderStats st = renderer.stats();
-    const RenderOutputs out = writeRenderOutputs(a.out, scene, renderer, snap, format, exposure);
+    const RenderOutputs out = writeRenderOutputs(a.out, scene, renderer, snap, format, settings.exposure);
     std::printf("%s %d/%d spp in %.2f s: %ssamples/s, %srays/s (%llu rays + %llu shadow rays)\n",
                 renderer.cancelled() ? "cancelled after" : "rendered", snap.sppCompleted, o.spp, st.seconds,
                 humanCount(st.samplesPerSecond()).c_str(), humanCount(st.raysPerSecond()).c_str(),
@@ -73,21 +69,26 @@ int runRender(const RenderArgs& a) {
 }  // namespace
 
 void addRenderCommand(CLI::App& app, int& exitCode) {
-    auto args = std::make_shared<RenderArgs>();
+    auto a = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render the ground truth (global, direct, indirect images)");
-    cmd->add_option("input", args->input, "project or scene JSON file")->required();
-    cmd->add_option("--out", args->out, "output directory")->required();
-    cmd->add_option("--spp", args->spp, "samples per pixel (default: the project's)")->check(CLI::PositiveNumber);
-    cmd->add_option("--width", args->width, "image width")->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", args->height, "image height")->check(CLI::Range(1, 16384));
-    cmd->add_option("--mode", args->mode, "estimator")->check(CLI::IsMember({"nee", "naive"}));
-    cmd->add_option("--light-pos", args->lightPos, "move the light's centre to x,y,z");
-    cmd->add_option("--threads", args->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
-    cmd->add_option("--seed", args->seed, "random seed")->check(CLI::NonNegativeNumber);
-    cmd->add_option("--format", args->format, "image format")->check(CLI::IsMember({"exr", "pfm", "png"}));
-    cmd->add_option("--exposure", args->exposure, "exposure in stops for PNG output")
-        ->each([args](const std::string&) { args->exposureSet = true; });
-    cmd->callback([args, &exitCode] { exitCode = runRender(*args); });
+    cmd->add_option("input", a->input, "project or scene JSON file")->required();
+    cmd->add_option("--out", a->out, "output directory")->required();
+    SettingFlags<RenderSettings>& r = a->render;
+    r.add<int>(cmd, "--spp", "samples per pixel (default: the project's)", [](RenderSettings& s, const int& n) { s.spp = n; })
+        ->check(positive());
+    r.add<int>(cmd, "--width", "image width", [](RenderSettings& s, const int& n) { s.width = n; })->check(CLI::Range(1, 16384));
+    r.add<int>(cmd, "--height", "image height", [](RenderSettings& s, const int& n) { s.height = n; })->check(CLI::Range(1, 16384));
+    r.add<std::string>(cmd, "--mode", "estimator",
+                       [](RenderSettings& s, const std::string& m) { s.estimator = m == "naive" ? Estimator::Naive : Estimator::NEE; })
+        ->check(CLI::IsMember({"nee", "naive"}));
+    addVec3Option(cmd, "--light-pos", a->lightPos, "move the light's centre to x,y,z");
+    cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(nonNegative());
+    r.add<long long>(cmd, "--seed", "random seed", [](RenderSettings& s, const long long& seed) { s.seed = uint64_t(seed); })
+        ->check(nonNegative());
+    cmd->add_option("--format", a->format, "image format")->check(CLI::IsMember({"exr", "pfm", "png"}));
+    r.add<float>(cmd, "--exposure", "exposure in stops for PNG output (default: the project's)",
+                 [](RenderSettings& s, const float& stops) { s.exposure = stops; });
+    cmd->callback([a, &exitCode] { exitCode = runRender(*a); });
 }
 
 }  // namespace rrf::cli

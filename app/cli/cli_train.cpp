@@ -2,10 +2,13 @@
 #include <cmath>
 #include <cstdio>
 #include <mutex>
+#include <memory>
 #include <sstream>
+#include <vector>
 #include <string>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "core/data/dataset_file.h"
 #include "core/util/error.h"
@@ -19,16 +22,16 @@ namespace rrf::cli {
 
 namespace {
 struct TrainArgs {
-    std::string input, data, out, hidden, trainer, objects, targets;
-    int epochs = -1, threads = 0, logEvery = 10;
+    std::string input, data, out;
+    std::vector<std::string> objects;
+    int threads = 0, logEvery = 10;
+    SettingFlags<ObjectTrainingOptions> network;  ///< --hidden, --trainer, --epochs, --targets
 };
 
 /// "--objects 0,3,tall-box": ids or names of scene objects.
-std::vector<int> parseObjects(const std::string& text, const Scene& scene) {
+std::vector<int> objectIds(const std::vector<std::string>& names, const Scene& scene) {
     std::vector<int> ids;
-    std::istringstream in(text);
-    std::string part;
-    while (std::getline(in, part, ',')) {
+    for (const std::string& part : names) {
         int found = -1;
         for (const Object& o : scene.objects)
             if (o.name == part || std::to_string(o.id) == part) found = o.id;
@@ -53,14 +56,8 @@ int runTrain(const TrainArgs& a) {
     const Project project = loadProjectOrScene(a.input);
     NetworkSettings settings = project.networkOrDefault();
     ObjectTrainingOptions& o = settings.options;
-    if (!a.hidden.empty()) o.hidden = parseHiddenSizes(a.hidden, "--hidden");
-    if (!a.trainer.empty()) o.trainer = o.trainer.withType(a.trainer);
-    if (a.epochs > 0) {
-        o.trainer.lm.maxEpochs = a.epochs;
-        o.trainer.adam.maxEpochs = a.epochs;
-    }
-    if (!a.targets.empty()) o.targets = parseTargetMode(a.targets);
-    if (!a.objects.empty()) o.objects = parseObjects(a.objects, project.scene);
+    a.network.applyTo(o);
+    if (!a.objects.empty()) o.objects = objectIds(a.objects, project.scene);
     auto threads = limitThreads(a.threads);
 
     const Dataset data(a.data, true, project.scene.contentHash());
@@ -126,14 +123,17 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("input", a->input, "project or scene JSON file")->required();
     cmd->add_option("--data", a->data, "dataset file (.rrfd) made for this scene")->required();
     cmd->add_option("--out", a->out, "output model directory")->required();
-    cmd->add_option("--hidden", a->hidden, "hidden layer sizes, e.g. 20,10");
-    cmd->add_option("--trainer", a->trainer, "trainer")->check(CLI::IsMember({"lm", "adam"}));
-    cmd->add_option("--epochs", a->epochs, "maximum epochs")->check(CLI::PositiveNumber);
-    cmd->add_option("--objects", a->objects, "objects to train (ids or names, comma-separated)");
-    cmd->add_option("--targets", a->targets, "what the networks predict")
+    addNetworkFlags(cmd, a->network);
+    cmd->add_option("--objects", a->objects, "objects to train (ids or names, comma-separated)")
+        ->delimiter(',')
+        ->allow_extra_args(false)
+        ->type_name("ID|NAME[,...]");
+    a->network
+        .add<std::string>(cmd, "--targets", "what the networks predict",
+                          [](ObjectTrainingOptions& t, const std::string& m) { t.targets = parseTargetMode(m); })
         ->check(CLI::IsMember({"separate", "joint", "global", "direct", "indirect"}));
-    cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
-    cmd->add_option("--log-every", a->logEvery, "print every N-th epoch (0 = none)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(nonNegative());
+    cmd->add_option("--log-every", a->logEvery, "print every N-th epoch (0 = none)")->check(nonNegative());
     cmd->callback([a, &exitCode] { exitCode = runTrain(*a); });
 }
 

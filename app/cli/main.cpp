@@ -1,11 +1,13 @@
 // rrf: the command-line front end of RRF Workbench. It runs the same core engine as the GUI, with no
-// display. Errors in inputs print one clear message (file, JSON path, what was expected) and exit 1.
+// display. Errors in inputs print one clear message (file, JSON path or flag, what was expected) and
+// exit 1, whether CLI11 finds them in a flag's value or the engine in a file or a setting.
 #include <cstdio>
 #include <exception>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 
 int main(int argc, char** argv) {
@@ -13,9 +15,14 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     int exitCode = 0;
     rrf::cli::addRenderCommand(app, exitCode);
-    rrf::cli::addDataCommands(app, exitCode);
+    rrf::cli::addGenerateCommand(app, exitCode);
+    rrf::cli::addMergeCommand(app, exitCode);
+    rrf::cli::addInspectCommand(app, exitCode);
     rrf::cli::addTrainCommand(app, exitCode);
-    rrf::cli::addPredictCommands(app, exitCode);
+    rrf::cli::addEvaluateCommand(app, exitCode);
+    rrf::cli::addPredictCommand(app, exitCode);
+    rrf::cli::addSweepCommand(app, exitCode);
+    rrf::cli::addPipelineCommand(app, exitCode);
     // CLI11 would only say "A subcommand is required" for a typo; name the word and the choices.
     if (argc > 1 && argv[1][0] != '-') {
         std::string known;
@@ -32,9 +39,11 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // app.exit prints CLI11's message (or the help, which exits 0); a bad flag is bad input like
+        // any other, so it exits 1 rather than with CLI11's per-kind code.
+        return app.exit(e) == 0 ? 0 : 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "rrf: error: %s\n", e.what());
+        std::fprintf(stderr, "rrf: error: %s\n", rrf::cli::errorMessage(e).c_str());
         return 1;
     }
     return exitCode;

@@ -97,7 +97,8 @@ bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const
 GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atomic<bool>* cancel,
                                  GeneratorProgress* progress) const {
     if (shardCount < 1 || shardIndex < 0 || shardIndex >= shardCount)
-        throw InputError("command line", "--shard", "expected k/n with 0 <= k < n");
+        throw SettingError("shard", "expected part k of n with 0 <= k < n, got k = " + std::to_string(shardIndex) +
+                                        ", n = " + std::to_string(shardCount));
     const auto start = std::chrono::steady_clock::now();
     const JitterGrid grid(scene_.bounds(), settings_.nx, settings_.ny, settings_.nz);
     const int cells = grid.cellCount();

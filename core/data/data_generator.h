@@ -50,7 +50,8 @@ public:
     DataGenerator(const Scene& scene, const SamplingSettings& settings);
 
     /// Generates shard `shardIndex` of `shardCount` (cells [k·C/n, (k+1)·C/n)). Stops early when
-    /// `cancel` becomes true (then `cancelled` is set and the data must not be written).
+    /// `cancel` becomes true (then `cancelled` is set and the data must not be written). Throws
+    /// SettingError naming the setting "shard" unless 0 <= shardIndex < shardCount.
     GeneratedData run(int shardIndex = 0, int shardCount = 1, const std::atomic<bool>* cancel = nullptr,
                       GeneratorProgress* progress = nullptr) const;
 

@@ -17,42 +17,65 @@ namespace rrf {
 
 namespace {
 
-std::vector<std::string> split(const std::string& s, char sep) {
-    std::vector<std::string> parts;
-    std::istringstream in(s);
-    std::string p;
-    while (std::getline(in, p, sep)) parts.push_back(p);
-    return parts;
-}
+/// The setting that lists what a sweep compares (front ends map it to their own field or flag).
+const char* const kValuesSetting = "sweep values";
 
-int positive(const std::string& text, const std::string& value) {
+int positiveValue(const std::string& text, const std::string& value, int max, const std::string& expected) {
     try {
         size_t used = 0;
         const int v = std::stoi(text, &used);
-        if (used == text.size() && v > 0) return v;
+        if (used == text.size() && v > 0 && v <= max) return v;
     } catch (const std::exception&) {
     }
-    throw InputError("command line", "--values", "'" + value + "': expected positive integers");
+    throw SettingError(kValuesSetting, "'" + value + "': expected " + expected);
 }
 
-/// "4x100" → 4³ × 100, "6x6x3x200" → 6×6×3 × 200.
-void parseGrid(const std::string& v, SamplingSettings& s) {
-    const std::vector<std::string> p = split(v, 'x');
-    if (p.size() == 2) {
-        s.nx = s.ny = s.nz = positive(p[0], v);
-    } else if (p.size() == 4) {
-        s.nx = positive(p[0], v);
-        s.ny = positive(p[1], v);
-        s.nz = positive(p[2], v);
-    } else {
-        throw InputError("command line", "--values", "'" + v + "': expected NxDIRS (e.g. 4x100) or NXxNYxNZxDIRS");
+/// One setting of the series, read from its value before anything runs, so a bad value costs no
+/// reference render.
+struct SweepPoint {
+    std::string setting;             ///< the value as given: the row's label
+    int spp = 0;                     ///< spp
+    SamplingSettings sampling;       ///< grid, dirs
+    ObjectTrainingOptions training;  ///< hidden, trainer
+};
+
+/// "4,4,4": the grid as --grid and the project's "grid": [4, 4, 4] spell it.
+void readGrid(const std::string& v, SamplingSettings& s) {
+    const std::string expected = "3 integers nx,ny,nz in 1..1000 (e.g. 4,4,4)";
+    std::vector<int> n;
+    std::istringstream in(v);
+    for (std::string part; std::getline(in, part, ',');) n.push_back(positiveValue(part, v, 1000, expected));
+    if (n.size() != 3 || v.back() == ',') throw SettingError(kValuesSetting, "'" + v + "': expected " + expected);
+    s.nx = n[0];
+    s.ny = n[1];
+    s.nz = n[2];
+}
+
+std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
+    std::vector<SweepPoint> points;
+    for (const std::string& v : o.values) {
+        SweepPoint p{v, 0, o.sampling, o.training};
+        if (o.what == "spp") {
+            p.spp = positiveValue(v, v, 1 << 20, "one positive integer (samples per pixel)");
+        } else if (o.what == "grid") {
+            readGrid(v, p.sampling);
+        } else if (o.what == "dirs") {
+            p.sampling.directions = positiveValue(v, v, 10000000, "one positive integer (directions per viewpoint)");
+        } else if (o.what == "hidden") {
+            p.training.hidden = parseHiddenSizes(v, kValuesSetting);
+        } else {
+            if (v != "lm" && v != "adam") throw SettingError(kValuesSetting, "'" + v + "': expected lm or adam");
+            p.training.trainer = p.training.trainer.withType(v);
+        }
+        points.push_back(std::move(p));
     }
-    s.directions = positive(p.back(), v);
+    return points;
 }
 
 struct Context {
     const Scene& scene;
     const SweepOptions& o;
+    std::vector<SweepPoint> points;
     RecordLayout layout;
     Reference reference;
     void log(const std::string& m) const {
@@ -90,28 +113,28 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
 }
 
 void sweepSpp(Context& c, SweepResult& r) {
-    std::vector<int> spps;
-    for (const std::string& v : c.o.values) spps.push_back(positive(v, v));
-    std::sort(spps.begin(), spps.end());
+    std::vector<SweepPoint> points = c.points;
+    std::stable_sort(points.begin(), points.end(), [](const SweepPoint& a, const SweepPoint& b) { return a.spp < b.spp; });
     Scene moved = c.scene;
     moved.setLightPosition(c.reference.lightPosition);
     const Accel accel(moved);
     RenderOptions ro;
     ro.width = c.o.width;
     ro.height = c.o.height;
-    ro.spp = spps.back();
+    ro.spp = points.back().spp;
     ro.seed = c.o.seed;
     Renderer renderer(moved, accel, ro);
     const PathTracer tracer(moved, accel, Estimator::NEE, 1);
     const GBuffer gb = buildGBuffer(tracer, c.layout, c.reference.lightPosition, ro.width, ro.height);
     std::vector<double> xs, ys;
     int done = 0;  // one sample per pixel per pass (RenderOptions default)
-    for (int target : spps) {
+    for (const SweepPoint& point : points) {
+        const int target = point.spp;
         while (done < target && !c.cancelled() && renderer.runPass()) ++done;
         if (c.cancelled()) break;
         const RenderSnapshot s = renderer.snapshot();
         SweepRow row;
-        row.setting = std::to_string(target);
+        row.setting = point.setting;
         row.stageSeconds.push_back({"render", s.seconds});
         row.overall = errorStats(s.global, c.reference.image(Term::Global));
         for (const auto& px : gb.pixelsByObject) row.perObject.push_back(errorStats(s.global, c.reference.image(Term::Global), px));
@@ -124,20 +147,20 @@ void sweepSpp(Context& c, SweepResult& r) {
     r.extra["loglog_slope_rmse"] = logLogSlope(xs, ys);
 }
 
-void sweepGrid(Context& c, SweepResult& r) {
-    for (const std::string& v : c.o.values) {
+/// grid and dirs: new data for each point, then the same networks on each.
+void sweepData(Context& c, SweepResult& r) {
+    for (const SweepPoint& p : c.points) {
         if (c.cancelled()) return;
-        SamplingSettings s = c.o.sampling;
-        parseGrid(v, s);
         SweepRow row;
-        row.setting = v;
-        const GeneratedData data = DataGenerator(c.scene, s).run(0, 1, c.o.cancel);
+        row.setting = p.setting;
+        const GeneratedData data = DataGenerator(c.scene, p.sampling).run(0, 1, c.o.cancel);
         row.stageSeconds.push_back({"generate", data.seconds});
         uint64_t records = 0;
         for (const auto& o : data.perObject) records += o.size() / size_t(c.layout.floatsPerRecord());
         row.extra["records"] = records;
         trainAndEvaluate(c, samplesFromGenerated(data, c.scene, c.layout), c.o.training, row);
-        c.log("grid " + v + ": " + std::to_string(records) + " records, relative RMSE " + std::to_string(row.overall.relativeRmse));
+        c.log(r.what + " " + p.setting + ": " + std::to_string(records) + " records, relative RMSE " +
+              std::to_string(row.overall.relativeRmse));
         r.rows.push_back(std::move(row));
     }
 }
@@ -146,20 +169,11 @@ void sweepNetworks(Context& c, SweepResult& r, bool trainers) {
     const GeneratedData data = DataGenerator(c.scene, c.o.sampling).run(0, 1, c.o.cancel);
     r.extra["generate_seconds"] = data.seconds;
     const std::vector<ObjectSamples> samples = samplesFromGenerated(data, c.scene, c.layout);
-    for (const std::string& v : c.o.values) {
+    for (const SweepPoint& p : c.points) {
         if (c.cancelled()) return;
-        ObjectTrainingOptions t = c.o.training;
         SweepRow row;
-        row.setting = v;
-        if (trainers) {
-            if (v != "lm" && v != "adam") throw InputError("command line", "--values", "'" + v + "': expected lm or adam");
-            t.trainer = t.trainer.withType(v);
-        } else {
-            std::string commas = v;
-            std::replace(commas.begin(), commas.end(), '-', ',');
-            t.hidden = parseHiddenSizes(commas, "--values");
-        }
-        const TrainingRun run = trainAndEvaluate(c, samples, t, row);
+        row.setting = p.setting;
+        const TrainingRun run = trainAndEvaluate(c, samples, p.training, row);
         if (trainers) {
             // Each network's loss against time, networks in (object, target) order, epochs in order.
             nlohmann::json curve = nlohmann::json::array();
@@ -169,9 +183,17 @@ void sweepNetworks(Context& c, SweepResult& r, bool trainers) {
                                      {"train_loss", e.trainLoss}, {"validation_loss", e.validationLoss}});
             row.extra["curve"] = curve;
         }
-        c.log(r.what + " " + v + ": relative RMSE " + std::to_string(row.overall.relativeRmse));
+        c.log(r.what + " " + p.setting + ": relative RMSE " + std::to_string(row.overall.relativeRmse));
         r.rows.push_back(std::move(row));
     }
+}
+
+/// A CSV field: quoted when it holds a comma (grid "4,4,4", hidden "20,10") or a quote (RFC 4180).
+std::string csvField(const std::string& text) {
+    if (text.find_first_of(",\"\n") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+    return quoted + "\"";
 }
 
 std::string num(double v) {
@@ -185,10 +207,11 @@ std::string num(double v) {
 
 std::vector<std::string> defaultSweepValues(const std::string& what) {
     if (what == "spp") return {"1", "2", "4", "8", "16", "32", "64"};
-    if (what == "grid") return {"2x50", "3x100", "4x200"};
-    if (what == "hidden") return {"5", "10-5", "20-10"};
+    if (what == "grid") return {"2,2,2", "3,3,3", "4,4,4"};
+    if (what == "dirs") return {"50", "100", "200"};
+    if (what == "hidden") return {"5", "10,5", "20,10"};
     if (what == "trainer") return {"lm", "adam"};
-    throw InputError("command line", "--what", "expected spp, grid, hidden or trainer, got '" + what + "'");
+    throw SettingError("sweep dimension", "expected spp, grid, dirs, hidden or trainer, got '" + what + "'");
 }
 
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
@@ -215,7 +238,7 @@ SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
     if (scene.lights.empty()) throw InputError(scene.sourcePath, "/lights", "a sweep needs a light");
     SweepResult r;
     r.what = o.what;
-    Context c{scene, o, RecordLayout::forScene(scene), {}};
+    Context c{scene, o, sweepPoints(o), RecordLayout::forScene(scene), {}};
     r.lightPosition = heldOutLightPositions(scene.lightRange(), 1, o.seed).front();
     RenderOptions ro;
     ro.width = o.width;
@@ -229,7 +252,7 @@ SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
     r.referenceSeconds = c.reference.seconds;
     if (!c.cancelled()) {
         if (o.what == "spp") sweepSpp(c, r);
-        else if (o.what == "grid") sweepGrid(c, r);
+        else if (o.what == "grid" || o.what == "dirs") sweepData(c, r);
         else sweepNetworks(c, r, o.what == "trainer");
     }
     r.cancelled = c.cancelled();
@@ -248,7 +271,7 @@ std::string sweepCsv(const Scene& scene, const SweepResult& r) {
     for (const Object& o : scene.objects) out << "," << o.name << "_rmse," << o.name << "_relative_rmse";
     out << "\n";
     for (const SweepRow& row : r.rows) {
-        out << r.what << "," << row.setting;
+        out << r.what << "," << csvField(row.setting);
         for (const std::string& s : stages) {
             double v = std::numeric_limits<double>::quiet_NaN();
             for (const auto& kv : row.stageSeconds)
@@ -275,7 +298,7 @@ std::string sweepCurveCsv(const SweepResult& r) {
         any = true;
         for (const nlohmann::json& p : row.extra["curve"]) {
             const double val = p["validation_loss"].is_number() ? p["validation_loss"].get<double>() : std::nan("");
-            out << row.setting << "," << p["object"].get<int>() << "," << p["target"].get<std::string>() << ","
+            out << csvField(row.setting) << "," << p["object"].get<int>() << "," << p["target"].get<std::string>() << ","
                 << p["epoch"].get<int>() << "," << num(p["seconds"].get<double>()) << ","
                 << num(p["train_loss"].get<double>()) << "," << num(val) << "\n";
         }

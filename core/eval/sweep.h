@@ -6,11 +6,18 @@
 ///   spp      path-tracer error vs samples per pixel and render time, against a high-spp reference
 ///            with another seed (one progressive render, snapshots at each value); the log-log slope of
 ///            RMSE vs spp is fitted (Monte Carlo: −0.5, the 1/√N line)
-///   grid     data-generation grid / N_dir ("4x100" = 4³ viewpoints × 100 directions, or
-///            "6x6x3x200") vs prediction error, with generate/train/predict times
-///   hidden   hidden sizes ("20-10") vs training time, inference time and error (one dataset)
+///   grid     data-generation grid vs prediction error, with generate/train/predict times; a value is
+///            "nx,ny,nz" as the project's "grid": [nx, ny, nz] (e.g. "4,4,4"); the directions per
+///            viewpoint stay the sampling settings'
+///   dirs     directions per viewpoint (N_dir, e.g. "200") vs prediction error, on the sampling grid
+///   hidden   hidden sizes vs training time, inference time and error (one dataset); a value is
+///            "20,10" as the project's "hidden": [20, 10]
 ///   trainer  "lm" vs "adam": error and training time, plus each network's loss-vs-time curve recorded
 ///            by the epoch callback
+///
+/// Each value is one setting, spelled as outside a JSON file everywhere else (integers, comma-
+/// separated lists); every value is read before anything runs, and a bad one throws SettingError
+/// naming "sweep values" (an unknown kind: "sweep dimension").
 ///
 /// Prediction errors are measured at one held-out light position (heldOutLightPositions(region, 1,
 /// seed)) on the global term over all object pixels; spp errors over the whole image. Everything is
@@ -31,11 +38,11 @@
 namespace rrf {
 
 struct SweepOptions {
-    std::string what;                 ///< "spp" | "grid" | "hidden" | "trainer"
-    std::vector<std::string> values;  ///< empty = defaultSweepValues(what)
+    std::string what;                 ///< "spp" | "grid" | "dirs" | "hidden" | "trainer"
+    std::vector<std::string> values;  ///< one setting each ("16", "4,4,4", "20,10", "lm"); empty = defaultSweepValues(what)
     int width = 128, height = 128;    ///< image size of references and predictions
     int referenceSpp = 0;             ///< 0 = 1024 for spp, 256 otherwise
-    SamplingSettings sampling;        ///< data generation (grid sweeps replace nx/ny/nz/directions)
+    SamplingSettings sampling;        ///< data generation (grid sweeps replace nx/ny/nz, dirs sweeps directions)
     ObjectTrainingOptions training;   ///< networks and trainer (hidden/trainer sweeps replace theirs)
     PredictionSettings prediction;
     uint64_t seed = 1;                ///< held-out light position and the spp sweep's render seed
@@ -61,16 +68,17 @@ struct SweepResult {
     bool cancelled = false;
 };
 
-/// The small default series of each kind (a minute or two on 2 cores at the default sizes).
+/// The small default series of each kind (a minute or two on 2 cores at the default sizes). Throws
+/// SettingError naming "sweep dimension" for an unknown kind.
 std::vector<std::string> defaultSweepValues(const std::string& what);
 
-/// Runs the sweep. Throws InputError for an unknown kind or a malformed value.
+/// Runs the sweep. Throws SettingError for an unknown kind or a malformed value (before rendering).
 SweepResult runSweep(const Scene& scene, const SweepOptions& options);
 
 /// Least-squares slope of log(y) against log(x) over the pairs with x, y > 0 (NaN if fewer than 2).
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
 
-/// One line per row: setting, each stage's seconds, overall RMSE / relative RMSE / MAE / max, then
+/// One line per row: setting (quoted when it holds commas), each stage's seconds, overall RMSE / relative RMSE / MAE / max, then
 /// RMSE and relative RMSE of every object.
 std::string sweepCsv(const Scene& scene, const SweepResult& r);
 /// Training curves of a trainer sweep (trainer, object, target, epoch, seconds, losses); empty otherwise.

@@ -7,7 +7,7 @@
 
 namespace rrf {
 
-std::vector<int> parseHiddenSizes(const std::string& text, const std::string& option) {
+std::vector<int> parseHiddenSizes(const std::string& text, const std::string& setting) {
     std::vector<int> sizes;
     std::istringstream in(text);
     std::string part;
@@ -18,10 +18,10 @@ std::vector<int> parseHiddenSizes(const std::string& text, const std::string& op
             if (used != part.size() || v < 1 || v > 4096) throw std::invalid_argument(part);
             sizes.push_back(v);
         } catch (const std::exception&) {
-            throw InputError("command line", option, "expected comma-separated layer sizes in 1..4096 (e.g. 20,10), got '" + text + "'");
+            throw SettingError(setting, "expected comma-separated layer sizes in 1..4096 (e.g. 20,10), got '" + text + "'");
         }
     }
-    if (sizes.empty()) throw InputError("command line", option, "expected at least one hidden layer size");
+    if (sizes.empty()) throw SettingError(setting, "expected at least one hidden layer size, got '" + text + "'");
     return sizes;
 }
 

@@ -29,7 +29,8 @@ struct NetworkSettings {
     nlohmann::json trainerJson() const { return options.trainer.toJson(); }
 };
 
-/// Parses "20,10" into hidden sizes; throws InputError naming `option` if malformed.
-std::vector<int> parseHiddenSizes(const std::string& text, const std::string& option);
+/// Reads hidden sizes written as text, "20,10" (the spelling of `network.hidden` = [20, 10] outside a
+/// JSON file, e.g. a sweep value); throws SettingError naming `setting` if malformed or out of 1..4096.
+std::vector<int> parseHiddenSizes(const std::string& text, const std::string& setting);
 
 }  // namespace rrf

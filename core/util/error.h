@@ -25,4 +25,15 @@ private:
     std::string file_, where_, what_;
 };
 
+/// A bad value of a setting that a front end gave rather than a file (a command-line flag, a sweep
+/// value, a GUI field). Core names the setting as it knows it ("shard", "sweep values"), never a
+/// front end's spelling of it; each front end maps the name to its own (the CLI to its flag) when it
+/// reports the error.
+class SettingError : public InputError {
+public:
+    SettingError(const std::string& setting, const std::string& what) : InputError("settings", setting, what) {}
+
+    const std::string& setting() const { return where(); }
+};
+
 }  // namespace rrf

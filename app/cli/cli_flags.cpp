@@ -1,0 +1,135 @@
+#include "app/cli/cli_flags.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "core/nn/network_settings.h"
+#include "core/project/project.h"
+
+namespace rrf::cli {
+
+namespace {
+/// Each element of a ',' list must be a finite number ("nan" and "inf" convert to a float).
+const CLI::Validator kFinite(
+    [](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v)) return "expected a finite number, got '" + text + "'";
+        return {};
+    },
+    "");
+}  // namespace
+
+namespace {
+CLI::Validator atLeast(long long min, const char* what, const char* name) {
+    return CLI::Validator(
+        [min, what](std::string& text) -> std::string {
+            long long v = 0;
+            if (CLI::detail::lexical_cast(text, v) && v >= min) return {};
+            return std::string("expected ") + what + ", got '" + text + "'";
+        },
+        name);
+}
+}  // namespace
+
+const CLI::Validator& positive() {
+    static const CLI::Validator v = atLeast(1, "a positive integer", "POSITIVE");
+    return v;
+}
+
+const CLI::Validator& nonNegative() {
+    static const CLI::Validator v = atLeast(0, "a non-negative integer", "NONNEGATIVE");
+    return v;
+}
+
+void addSamplingFlags(CLI::App* cmd, SettingFlags<SamplingSettings>& flags, const std::string& sppFlag) {
+    // One word per flag (allow_extra_args(false)): "--grid 4,4" must not take the next flag as its third number.
+    flags
+        .add<std::vector<int>>(
+            cmd, "--grid", "jitter grid: exactly 3 integers, e.g. 15,15,15 (default: the project's)",
+            [](SamplingSettings& s, const std::vector<int>& g) {
+                s.nx = g[0];
+                s.ny = g[1];
+                s.nz = g[2];
+            },
+            exactly<int>(3, "nx,ny,nz"))
+        ->delimiter(',')
+        ->allow_extra_args(false)
+        ->check(CLI::Range(1, 1000))  // the project reader's range for "grid" (core/data/sampling_settings.cpp)
+        ->type_name("NX,NY,NZ");
+    flags.add<int>(cmd, "--dirs", "directions per viewpoint", [](SamplingSettings& s, const int& n) { s.directions = n; })
+        ->check(positive());
+    flags.add<int>(cmd, sppFlag, "paths per record", [](SamplingSettings& s, const int& n) { s.spp = n; })->check(positive());
+}
+
+void addNetworkFlags(CLI::App* cmd, SettingFlags<ObjectTrainingOptions>& flags) {
+    flags.add<std::vector<int>>(cmd, "--hidden", "hidden layer sizes: a list of integers, e.g. 20,10",
+                                [](ObjectTrainingOptions& t, const std::vector<int>& h) { t.hidden = h; })
+        ->delimiter(',')
+        ->allow_extra_args(false)
+        ->check(CLI::Range(1, 4096))  // as the project's "hidden" (core/nn/network_settings.cpp)
+        ->type_name("N[,N...]");
+    flags.add<std::string>(cmd, "--trainer", "trainer",
+                           [](ObjectTrainingOptions& t, const std::string& type) { t.trainer = t.trainer.withType(type); })
+        ->check(CLI::IsMember({"lm", "adam"}));
+    flags.add<int>(cmd, "--epochs", "maximum epochs", [](ObjectTrainingOptions& t, const int& n) {
+             t.trainer.lm.maxEpochs = n;
+             t.trainer.adam.maxEpochs = n;
+         })->check(positive());
+}
+
+CLI::Option* addVec3Option(CLI::App* cmd, const std::string& flag, std::optional<Vec3>& target, const std::string& help) {
+    return addCheckedOption<std::vector<float>>(
+               cmd, flag, help, [&target](const std::vector<float>& v) { target = Vec3(v[0], v[1], v[2]); },
+               exactly<float>(3, "x,y,z"))
+        ->delimiter(',')
+        ->allow_extra_args(false)
+        ->check(kFinite)
+        ->type_name("X,Y,Z");
+}
+
+void addPredictionOptions(CLI::App* cmd, PredictionArgs& a) {
+    cmd->add_option("input", a.input, "project or scene JSON file")->required();
+    cmd->add_option("--out", a.out, "output directory")->required();
+    cmd->add_option("--threads", a.threads, "worker threads (0 = all cores)")->check(nonNegative());
+    cmd->add_option("--width", a.width, "image width (default: the project's)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--height", a.height, "image height (default: the project's)")->check(CLI::Range(1, 16384));
+    a.prediction
+        .add<std::string>(cmd, "--direct", "direct light from the networks or exact shadow rays (default: the project's)",
+                          [](PredictionSettings& s, const std::string& d) {
+                              s.direct = d == "exact" ? PredictionSettings::Direct::Exact : PredictionSettings::Direct::Network;
+                          })
+        ->check(CLI::IsMember({"network", "exact"}));
+}
+
+void addExperimentFlags(CLI::App* cmd, ExperimentFlags& flags) {
+    addSamplingFlags(cmd, flags.sampling, "--data-spp");
+    addNetworkFlags(cmd, flags.network);
+}
+
+void experimentSettings(const Project& p, const ExperimentFlags& flags, bool quick, SamplingSettings& s,
+                        ObjectTrainingOptions& t) {
+    s = p.samplingOrDefault();
+    if (quick || !p.sampling) {
+        // 15³ × 1200 directions (the paper's) is hours on 2 cores; these finish in minutes.
+        s.nx = s.ny = s.nz = quick ? 5 : 6;
+        s.directions = quick ? 150 : 200;
+        s.spp = quick ? 16 : 32;
+    }
+    t = p.networkOrDefault().options;
+    if (quick || !p.network) t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = quick ? 50 : 100;
+    flags.sampling.applyTo(s);
+    flags.network.applyTo(t);
+}
+
+std::string describeExperiment(const SamplingSettings& s, const ObjectTrainingOptions& t) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "grid %dx%dx%d, %d directions, %d spp per record; network %s, targets %s, %s, %d epochs",
+                  s.nx, s.ny, s.nz, s.directions, s.spp, nlohmann::json(t.hidden).dump().c_str(), targetModeName(t.targets),
+                  t.trainer.typeName(), t.trainer.maxEpochs());
+    return buf;
+}
+
+}  // namespace rrf::cli

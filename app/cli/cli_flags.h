@@ -1,0 +1,130 @@
+#pragma once
+/// Flags that set fields of the typed settings (sampling, network and trainer, prediction, render).
+///
+/// The settings come from the project named on the same command line, so they exist only after
+/// parsing: CLI11 converts and checks each flag's value into the field's type while it parses, and
+/// the command writes the flags that were given over the project's values with applyTo(). Each
+/// setting has the spelling it has in the project file, written without brackets:
+///
+///     project "grid": [15, 15, 15]   --grid 15,15,15   (exactly 3 integers)
+///     project "hidden": [20, 10]     --hidden 20,10    (a list of integers)
+///
+/// and a sweep's values are spelled the same way, one setting per value (`--values 5 10,5 20,10`).
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "core/data/sampling_settings.h"
+#include "core/nn/object_training.h"
+#include "core/predict/predictor.h"
+#include "core/util/vec3.h"
+
+namespace rrf {
+struct Project;
+}
+
+namespace rrf::cli {
+
+/// Adds `flag`, converted and checked by CLI11 as a T (an int, a string, or a std::vector of numbers
+/// with a delimiter); `check`, if given, judges the whole value while parsing (e.g. its length) and
+/// returns why it is wrong, or "". `store` receives the value.
+template <class T>
+CLI::Option* addCheckedOption(CLI::App* cmd, const std::string& flag, const std::string& help,
+                              std::function<void(const T&)> store, std::function<std::string(const T&)> check = {}) {
+    return cmd->add_option_function<T>(
+        flag,
+        [store, check, flag](const T& v) {
+            if (check)
+                if (const std::string why = check(v); !why.empty()) throw CLI::ValidationError(flag, why);
+            store(v);
+        },
+        help);
+}
+
+/// A check for addCheckedOption: exactly `n` numbers, written as `spelling` (e.g. "nx,ny,nz").
+template <class Number>
+std::function<std::string(const std::vector<Number>&)> exactly(size_t n, const std::string& spelling) {
+    return [n, spelling](const std::vector<Number>& v) -> std::string {
+        if (v.size() == n) return "";
+        return "expected exactly " + std::to_string(n) + " numbers " + spelling + ", got " + std::to_string(v.size());
+    };
+}
+
+/// Flags that override fields of one settings struct.
+template <class Settings>
+class SettingFlags {
+public:
+    /// Adds `flag` as addCheckedOption does; when given, `set(settings, value)` writes it.
+    template <class T>
+    CLI::Option* add(CLI::App* cmd, const std::string& flag, const std::string& help,
+                     std::function<void(Settings&, const T&)> set, std::function<std::string(const T&)> check = {}) {
+        auto value = std::make_shared<std::optional<T>>();
+        setters_.push_back([value, set](Settings& s) {
+            if (*value) set(s, **value);
+        });
+        return addCheckedOption<T>(cmd, flag, help, [value](const T& v) { *value = v; }, check);
+    }
+
+    /// Writes the flags that were given over `settings`, in the order they were added (so --trainer
+    /// switches the trainer before --epochs sets its limit).
+    void applyTo(Settings& settings) const {
+        for (const auto& set : setters_) set(settings);
+    }
+
+    /// `settings` with the given flags written over it.
+    Settings applied(Settings settings) const {
+        applyTo(settings);
+        return settings;
+    }
+
+private:
+    std::vector<std::function<void(Settings&)>> setters_;
+};
+
+/// Positive and non-negative integers, with a readable message (CLI11's PositiveNumber prints the
+/// largest double as its range).
+const CLI::Validator& positive();
+const CLI::Validator& nonNegative();
+
+/// --grid NX,NY,NZ, --dirs N and the paths per record under `sppFlag` (--spp for `rrf generate`,
+/// --data-spp where --spp is the reference's).
+void addSamplingFlags(CLI::App* cmd, SettingFlags<SamplingSettings>& flags, const std::string& sppFlag);
+
+/// --hidden N,N,..., --trainer lm|adam and --epochs N.
+void addNetworkFlags(CLI::App* cmd, SettingFlags<ObjectTrainingOptions>& flags);
+
+/// `flag` x,y,z: exactly three finite numbers, stored in `target` when given.
+CLI::Option* addVec3Option(CLI::App* cmd, const std::string& flag, std::optional<Vec3>& target, const std::string& help);
+
+/// The options of every command that predicts with networks (evaluate, predict, sweep, pipeline).
+struct PredictionArgs {
+    std::string input, out;
+    int threads = 0, width = -1, height = -1;
+    SettingFlags<PredictionSettings> prediction;  ///< --direct
+};
+
+/// input, --out, --threads, --width, --height and --direct.
+void addPredictionOptions(CLI::App* cmd, PredictionArgs& a);
+
+/// The flags of the commands that generate data and train on it in one run (sweep, pipeline).
+struct ExperimentFlags {
+    SettingFlags<SamplingSettings> sampling;     ///< --grid, --dirs, --data-spp
+    SettingFlags<ObjectTrainingOptions> network;  ///< --hidden, --trainer, --epochs
+};
+
+void addExperimentFlags(CLI::App* cmd, ExperimentFlags& flags);
+
+/// Data and network settings of the pipeline and of sweeps: the project's sections where present,
+/// sizes that finish in minutes where not (or all of them when `quick`), then the flags.
+void experimentSettings(const Project& p, const ExperimentFlags& flags, bool quick, SamplingSettings& s,
+                        ObjectTrainingOptions& t);
+
+/// One line: grid, directions, spp per record, network, targets, trainer and epochs.
+std::string describeExperiment(const SamplingSettings& s, const ObjectTrainingOptions& t);
+
+}  // namespace rrf::cli

@@ -1,0 +1,88 @@
+// `rrf generate`: training records (jitter grid × directions × light positions) for a project's
+// scene, whole or as shard k of n.
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/cli_flags.h"
+#include "app/cli/commands.h"
+#include "core/data/data_generator.h"
+#include "core/data/dataset_file.h"
+#include "core/project/project.h"
+
+namespace rrf::cli {
+
+namespace {
+struct GenerateArgs {
+    std::string input, out;
+    std::vector<int> shard{0, 1};  ///< k of n; DataGenerator::run checks 0 <= k < n
+    int threads = 0;
+    SettingFlags<SamplingSettings> sampling;
+};
+
+int runGenerate(const GenerateArgs& a) {
+    const Project project = loadProjectOrScene(a.input);
+    const SamplingSettings s = a.sampling.applied(project.samplingOrDefault());
+    const int k = a.shard[0], n = a.shard[1];
+    auto threads = limitThreads(a.threads);
+
+    DataGenerator gen(project.scene, s);
+    std::printf("rrf generate: %s, grid %dx%dx%d, %d directions, %d spp, seed %llu, shard %d/%d\n", a.input.c_str(), s.nx,
+                s.ny, s.nz, s.directions, s.spp, (unsigned long long)s.seed, k, n);
+    std::printf("inputs (%d): ", gen.layout().inputCount());
+    for (const std::string& name : gen.layout().inputs) std::printf("%s ", name.c_str());
+    std::printf("\n");
+    std::fflush(stdout);
+    GeneratorProgress progress;
+    std::atomic<bool> cancel{false};
+    GeneratedData data;
+    runWithProgress(
+        "generate", [&] { data = gen.run(k, n, &cancel, &progress); },
+        [&] { return std::make_pair(progress.fraction(), std::to_string(progress.records.load()) + " records"); },
+        [&] { cancel = true; });
+    if (data.cancelled) {
+        std::fprintf(stderr, "generate: cancelled, no dataset written (%s untouched)\n", a.out.c_str());
+        return 130;
+    }
+    writeDataset(a.out, data.header, data.sceneHash, data.perObject);
+    const GeneratorStats& st = data.stats;
+    std::printf("%llu records in %.2f s: %srecords/s, %spath samples/s, %srays/s\n", (unsigned long long)st.records,
+                data.seconds, humanCount(double(st.records) / data.seconds).c_str(),
+                humanCount(double(st.paths) / data.seconds).c_str(),
+                humanCount(double(st.rays + st.shadowRays) / data.seconds).c_str());
+    std::printf("cells: %llu in shard, %llu dropped inside objects, %llu dropped outside the scene\n",
+                (unsigned long long)st.cells(), (unsigned long long)st.cellsDroppedInsideObject,
+                (unsigned long long)st.cellsDroppedOutsideScene);
+    std::printf("rays escaped: %llu, rays hitting an emitter: %llu, NaN/Inf samples dropped: %llu\n",
+                (unsigned long long)st.raysEscaped, (unsigned long long)st.raysHitEmitter,
+                (unsigned long long)st.nonFiniteSamplesDropped);
+    for (size_t i = 0; i < st.recordsPerObject.size(); ++i)
+        std::printf("  object %zu %-12s %10llu records\n", i, project.scene.objects[i].name.c_str(),
+                    (unsigned long long)st.recordsPerObject[i]);
+    std::printf("wrote %s\n", a.out.c_str());
+    return 0;
+}
+}  // namespace
+
+void addGenerateCommand(CLI::App& app, int& exitCode) {
+    auto a = std::make_shared<GenerateArgs>();
+    CLI::App* cmd = app.add_subcommand("generate", "Generate training records (jitter grid x directions x lights)");
+    cmd->add_option("input", a->input, "project or scene JSON file")->required();
+    cmd->add_option("--out", a->out, "output dataset file (.rrfd)")->required();
+    addSamplingFlags(cmd, a->sampling, "--spp");
+    a->sampling.add<long long>(cmd, "--seed", "random seed", [](SamplingSettings& s, const long long& seed) { s.seed = uint64_t(seed); })
+        ->check(nonNegative());
+    cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(nonNegative());
+    addCheckedOption<std::vector<int>>(
+        cmd, "--shard", "generate part k of n (e.g. 0/4); merge the parts with `rrf merge`",
+        [a](const std::vector<int>& kn) { a->shard = kn; }, exactly<int>(2, "k/n"))
+        ->delimiter('/')
+        ->allow_extra_args(false)
+        ->type_name("K/N");
+    cmd->callback([a, &exitCode] { exitCode = runGenerate(*a); });
+}
+
+}  // namespace rrf::cli

@@ -1,0 +1,129 @@
+// `rrf pipeline`: ground truth, training data, networks and evaluation (at the ground truth's light
+// and at held-out lights) in one run, with each stage's wall time.
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/cli_evaluation.h"
+#include "app/cli/cli_flags.h"
+#include "app/cli/commands.h"
+#include "core/data/data_generator.h"
+#include "core/data/dataset_file.h"
+#include "core/eval/experiment.h"
+#include "core/eval/held_out.h"
+#include "core/nn/model_set.h"
+#include "core/nn/training_run.h"
+#include "core/project/project.h"
+#include "core/render/render_outputs.h"
+#include "core/util/atomic_file.h"
+#include "core/util/image_io.h"
+#include "core/util/stopwatch.h"
+
+namespace rrf::cli {
+
+namespace {
+struct PipelineArgs : PredictionArgs {
+    bool quick = false;
+    int spp = -1, heldOut = 0;
+    long long seed = 1;
+    ExperimentFlags experiment;
+};
+
+int runPipeline(const PipelineArgs& a) {
+    Stopwatch total;
+    const Project p = loadProjectOrScene(a.input);
+    const Scene& scene = p.scene;
+    auto threads = limitThreads(a.threads);
+    SamplingSettings s;
+    ObjectTrainingOptions t;
+    experimentSettings(p, a.experiment, a.quick, s, t);
+    const RenderOptions ro = referenceOptions(p, a.spp > 0 ? a.spp : (a.quick ? 32 : 64), a.width > 0 ? a.width : (a.quick ? 128 : -1),
+                                              a.height > 0 ? a.height : (a.quick ? 128 : -1));
+    const int heldOut = a.heldOut > 0 ? a.heldOut : (a.quick ? 1 : 2);
+    makeDirectories(a.out);
+    std::printf("rrf pipeline%s: %s -> %s\n  ground truth %dx%d, %d spp; %s; %d held-out lights\n", a.quick ? " --quick" : "",
+                a.input.c_str(), a.out.c_str(), ro.width, ro.height, ro.spp, describeExperiment(s, t).c_str(), heldOut);
+    std::vector<std::pair<std::string, double>> stages;
+
+    // 1. Ground truth at the scene's light position.
+    const Reference gt = renderWithProgress(scene, scene.lightPosition(), ro, "ground truth");
+    {
+        const std::string dir = outputPath(a.out, "ground_truth");
+        makeDirectories(dir);
+        for (int k = 0; k < kTermCount; ++k)
+            writeImage(outputPath(dir, std::string(termName(Term(k))) + ".exr"), gt.images[k], ImageFormat::EXR);
+        writeImage(outputPath(dir, "global.png"), gt.image(Term::Global), ImageFormat::PNG, p.render.exposure);
+        const Vec3 lp = gt.lightPosition;
+        writeFileAtomically(outputPath(dir, "render.json"),
+                            nlohmann::json{{"light_position", {lp.x, lp.y, lp.z}}, {"spp_completed", gt.spp}, {"seconds", gt.seconds},
+                                           {"non_finite_samples_dropped", gt.nonFinite}, {"width", ro.width}, {"height", ro.height}}
+                                    .dump(2) + "\n");
+        stages.push_back({"ground truth", gt.seconds});
+        std::printf("[1/4] ground truth: %.1f s -> %s\n", gt.seconds, dir.c_str());
+    }
+    // 2. Training data.
+    const DataGenerator generator(scene, s);
+    GeneratorProgress gp;
+    std::atomic<bool> cancel{false};
+    GeneratedData data;
+    runWithProgress("generate", [&] { data = generator.run(0, 1, &cancel, &gp); },
+                    [&] { return std::make_pair(gp.fraction(), humanCount(double(gp.records)) + "records"); }, [&] { cancel = true; });
+    if (data.cancelled) throw std::runtime_error("interrupted while generating data");
+    const std::string dataset = outputPath(a.out, "dataset.rrfd");
+    writeDataset(dataset, data.header, data.sceneHash, data.perObject);
+    stages.push_back({"generate", data.seconds});
+    std::printf("[2/4] generate: %llu records in %.1f s -> %s\n", (unsigned long long)data.stats.records,
+                data.seconds, dataset.c_str());
+    // 3. Networks.
+    const RecordLayout layout = generator.layout();
+    const std::vector<ObjectSamples> samples = samplesFromGenerated(data, scene, layout);
+    TrainingProgress progress;
+    ObjectTrainingObserver obs;
+    obs.cancel = &cancel;
+    TrainingRun run;
+    runWithProgress("train", [&] { run = trainNetworks(samples, t, obs, &progress); },
+                    [&] { return std::make_pair(progress.fraction(), std::string()); }, [&] { cancel = true; });
+    const std::vector<ObjectModel>& trained = run.models;
+    stages.push_back({"train", run.seconds});
+    const std::string modelDir = outputPath(a.out, "models");
+    saveModelSet(modelDir, trained, scene.contentHash(), layout.inputs,
+                 {{"dataset", dataset}, {"project", a.input}, {"seconds", stages.back().second}, {"cancelled", bool(cancel)}});
+    std::printf("[3/4] train: %.1f s -> %s\n", stages.back().second, modelDir.c_str());
+    // 4. Evaluation: at the ground truth's light, then at held-out lights.
+    const ModelSet models = loadModelSet(modelDir, scene.contentHash());
+    const Predictor predictor(scene, models, a.prediction.applied(p.prediction));
+    Stopwatch evalClock;
+    std::printf("[4/4] evaluate at the ground truth's light:");
+    evaluateAll(p, predictor, {gt.lightPosition}, ro, &gt, outputPath(a.out, "evaluation"), p.render.exposure);
+    std::printf("\nevaluate at %d held-out light positions:", heldOut);
+    evaluateAll(p, predictor, heldOutLightPositions(scene.lightRange(), heldOut, uint64_t(a.seed)), ro, nullptr,
+                outputPath(a.out, "held_out"), p.render.exposure);
+    stages.push_back({"evaluate", evalClock.seconds()});
+    std::printf("\n%-14s %10s\n", "stage", "seconds");
+    for (const auto& st : stages) std::printf("%-14s %10.2f\n", st.first.c_str(), st.second);
+    std::printf("%-14s %10.2f\nresults in %s (ground_truth/, dataset.rrfd, models/, evaluation/, held_out/)\n", "total",
+                total.seconds(), a.out.c_str());
+    return cancel ? 130 : 0;
+}
+}  // namespace
+
+void addPipelineCommand(CLI::App& app, int& exitCode) {
+    auto a = std::make_shared<PipelineArgs>();
+    CLI::App* cmd = app.add_subcommand("pipeline", "Ground truth, data, training and evaluation in one run");
+    addPredictionOptions(cmd, *a);
+    cmd->add_flag("--quick", a->quick, "small grid, directions, spp and epochs (about a minute on 2 cores)");
+    cmd->add_option("--spp", a->spp, "ground-truth samples per pixel")->check(positive());
+    cmd->add_option("--held-out", a->heldOut, "held-out light positions to evaluate")->check(positive());
+    addExperimentFlags(cmd, a->experiment);
+    cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());
+    cmd->callback([a, &exitCode] { exitCode = runPipeline(*a); });
+}
+
+}  // namespace rrf::cli
