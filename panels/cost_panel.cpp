@@ -15,16 +15,12 @@
 namespace rrf::panels {
 
 namespace {
-double number(const nlohmann::json& j, const char* key) {
-    return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
-}
-
 void drawToolbar(WorkbenchState& state) {
     CostView& v = state.costView;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6);
     ImGui::Combo("sweep", &v.what, kSweepKinds, kSweepKindCount);
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("spp: path tracer vs samples; grid: data generation; hidden: network size; trainer: LM vs Adam");
+        ImGui::SetTooltip("spp: path tracer vs samples; grid: viewpoint grid; dirs: directions per viewpoint; hidden: network size; trainer: LM vs Adam");
     ImGui::SameLine();
     if (!state.cost.running) {
         ImGui::BeginDisabled(!state.hasProject);
@@ -47,11 +43,9 @@ CostSeries runsCostSeries(const std::vector<Run>& runs) {
     s.name = "project runs";
     for (const Run& r : runs) {
         if (r.kind != "train") continue;
-        const double error = number(r.metrics, "relative_rmse");
-        double seconds = number(r.timings, "train");
+        const double error = r.metric("relative_rmse").value_or(NAN);
         // The cost of a training run is what it took to get there: data generation plus training.
-        const double generate = number(r.timings, "generate");
-        if (std::isfinite(generate)) seconds += generate;
+        const double seconds = r.timing("train").value_or(NAN) + r.timing("generate").value_or(0.0);
         if (!(error > 0) || !(seconds > 0)) continue;
         s.points.push_back({seconds, error, r.name});
     }

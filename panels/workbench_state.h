@@ -17,7 +17,7 @@
 #include "core/data/generator_stats.h"
 #include "core/util/image.h"
 #include "core/project/project.h"
-#include "panels/experiment_state.h"
+#include "panels/learning_state.h"
 #include "panels/layout.h"
 #include "panels/log.h"
 #include "core/project/runs.h"
@@ -72,6 +72,7 @@ struct ImageSet {
     /// cache already holds for different images.
     void touch();
     const Image& term(Term t) const { return t == Term::Direct ? direct : t == Term::Indirect ? indirect : global; }
+    Image& term(Term t) { return t == Term::Direct ? direct : t == Term::Indirect ? indirect : global; }
 };
 
 /// Display settings of the three side-by-side views.

@@ -55,7 +55,7 @@ void Workbench::refreshPrediction() {
     }
     const Camera camera = viewCamera(state_.project);
     if (live_.usesGlsl()) {
-        Image images[3];
+        Image images[kTermCount];
         try {
             live_.renderGlsl(camera, scene.lightPosition(), images);
         } catch (const std::exception& e) {
@@ -63,9 +63,7 @@ void Workbench::refreshPrediction() {
             return;
         }
         panels::ImageSet& p = state_.prediction;
-        p.direct = std::move(images[0]);
-        p.indirect = std::move(images[1]);
-        p.global = std::move(images[2]);
+        for (Term t : kTerms) p.term(t) = std::move(images[int(t)]);
         p.label = "Prediction (GLSL)";
         p.touch();
         return;
@@ -100,9 +98,7 @@ bool Workbench::predictRunning() const { return predictJob_.running(); }
 void Workbench::pollPredict() {
     predictJob_.poll([&](Prediction& prediction) {
         panels::ImageSet& p = state_.prediction;
-        p.direct = std::move(prediction.images[0]);
-        p.indirect = std::move(prediction.images[1]);
-        p.global = std::move(prediction.images[2]);
+        for (Term t : kTerms) p.term(t) = std::move(prediction.images[int(t)]);
         p.label = "Prediction (CPU)";
         p.touch();
     });

@@ -95,7 +95,7 @@ struct CostView {
 };
 
 /// Sweep kinds offered by the Cost panel (core/eval/sweep.h).
-constexpr const char* kSweepKinds[] = {"spp", "grid", "hidden", "trainer"};
-constexpr int kSweepKindCount = 4;
+constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer"};
+constexpr int kSweepKindCount = 5;
 
 }  // namespace rrf::panels
