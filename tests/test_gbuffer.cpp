@@ -60,6 +60,10 @@ TEST(GBuffer, BackWallPixelHoldsTheRecordLayout) {
     EXPECT_EQ(Vec3(r[9], r[10], r[11]), Vec3(0.f, 0.f, 1.f));  // facing the viewer
     const Material& white = s.materials[size_t(s.objects[size_t(g.object[i])].material)];
     EXPECT_EQ(Vec3(r[12], r[13], r[14]), white.kd);
+    // The footprint mask's per-pixel normal and distance from the eye agree with the record.
+    EXPECT_EQ(g.normal[i], Vec3(r[9], r[10], r[11]));
+    EXPECT_EQ(g.position(i), Vec3(r[0], r[1], r[2]));
+    EXPECT_NEAR(g.distance[i], length(expected - s.camera.eye), 1e-5);
 }
 
 TEST(GBuffer, NormalsFaceTheViewerAndWallsKeepTheirMaterial) {
@@ -103,6 +107,8 @@ TEST(GBuffer, EmitterPixelsCarryTheLightsRadianceAndFollowTheLight) {
         EXPECT_EQ(ga.light[p], s.movableLight);
         EXPECT_EQ(ga.object[p], -1);
         EXPECT_EQ(ga.emitted[p], l.radiance);  // seen from below: the emitting side
+        EXPECT_EQ(ga.normal[p], Vec3(0.f));  // no surface for the footprint mask to compare
+        EXPECT_EQ(ga.distance[p], 0.f);
     }
     EXPECT_NE(ga.emitterPixels, gb.emitterPixels);
     // The light column is the requested position on every covered pixel.

@@ -5,6 +5,7 @@
 
 #include "core/util/error.h"
 #include "core/eval/evaluation.h"
+#include "core/predict/footprint_mask.h"
 #include "core/predict/predictor.h"
 #include "core/project/project.h"
 
@@ -202,26 +203,29 @@ TEST(Predictor, SettingsAreValidated) {
     EXPECT_THROW(Predictor(p.scene, bad), std::invalid_argument);
 }
 
-TEST(Evaluation, SilhouettePixelsAreLeftOutAndCounted) {
-    // Reference = the copy networks' exact prediction, except that every silhouette pixel (a
-    // 4-neighbour shows another object, the light or the background) is off by 1000 — what the
-    // box-filtered ground truth does at the light's edge. The errors must be exactly 0 and the
-    // silhouette pixels counted; an interior pixel off by 1 must show up.
+TEST(Evaluation, FootprintPixelsAreLeftOutAndCounted) {
+    // Reference = the copy networks' exact prediction, except that every pixel the footprint mask
+    // leaves out (core/predict/footprint_mask.h) is off by 1000 — what the box-filtered ground truth
+    // does at the light's edge. The errors must be exactly 0 and the left-out pixels counted, and
+    // they include every silhouette of the older 4-neighbour object-id rule; a kept pixel off by 1
+    // must show up.
     const Project p = loadProjectOrScene(kCornell);
     const Scene& s = p.scene;
     const ModelSet models = lightAndAlbedoModels(s);
     const Predictor pred(s, models);
     const int w = 48, h = 48;
     const GBuffer g = pred.gbuffer(kLight, w, h);
+    const FootprintMask mask = footprintMask(g);
     const Prediction exact = pred.predict(g);
     Reference ref;
     ref.lightPosition = kLight;
     for (int t = 0; t < kTermCount; ++t) ref.images[t] = exact.images[t];
-    uint64_t silhouettes = 0;
+    uint64_t silhouettes = 0, leftOut = 0;
     int interiorX = -1, interiorY = -1;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const int32_t id = g.object[size_t(y) * size_t(w) + size_t(x)];
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            const int32_t id = g.object[i];
             if (id < 0) continue;
             bool edge = false;
             const int dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
@@ -231,6 +235,10 @@ TEST(Evaluation, SilhouettePixelsAreLeftOutAndCounted) {
             }
             if (edge) {
                 ++silhouettes;
+                EXPECT_FALSE(mask.isKept(i)) << "silhouette pixel (" << x << ", " << y << ") kept";
+            }
+            if (!mask.isKept(i)) {
+                ++leftOut;
                 for (int t = 0; t < kTermCount; ++t) ref.images[t].set(x, y, ref.images[t].at(x, y) + Vec3(1000.f));
             } else if (interiorX < 0) {
                 interiorX = x;
@@ -238,9 +246,11 @@ TEST(Evaluation, SilhouettePixelsAreLeftOutAndCounted) {
             }
         }
     ASSERT_GT(silhouettes, 0u);
+    ASSERT_GT(leftOut, silhouettes);  // creases of the boxes and pixels diagonal to the light besides
     ASSERT_GE(interiorX, 0);
     const Evaluation e = evaluate(pred, ref);
-    EXPECT_EQ(e.silhouettePixels, silhouettes);
+    EXPECT_EQ(e.footprint.counts.total(), leftOut);
+    EXPECT_EQ(e.term(Term::Global).overall.pixels, g.pixelCount() - g.emitterPixels.size() - g.backgroundPixels - leftOut);
     EXPECT_EQ(e.term(Term::Global).overall.rmse, 0.0);
     EXPECT_EQ(e.term(Term::Global).overall.maxError, 0.0);
 

@@ -101,30 +101,12 @@ Evaluation evaluate(const Predictor& predictor, const Reference& reference) {
     e.gbufferSeconds = since(t0);
     e.prediction = predictor.predict(gb);
     e.objectIds = gb.object;
-    // Silhouette pixels are left out: there the reference's box pixel filter mixes two surfaces (or
-    // a surface and the light), which a pixel-centre prediction cannot reproduce whatever the
-    // network — at the light's edge that alone gives errors of the light's radiance.
-    const int w = ref.width, h = ref.height;
-    auto interior = [&](uint32_t i) {
-        const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));
-        const int32_t id = gb.object[i];
-        const int dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
-        for (int k = 0; k < 4; ++k) {
-            const int nx = x + dx[k], ny = y + dy[k];
-            if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-            if (gb.object[size_t(ny) * size_t(w) + size_t(nx)] != id) return false;
-        }
-        return true;
-    };
-    std::vector<std::vector<uint32_t>> masks(gb.pixelsByObject.size());
-    std::vector<uint32_t> covered;
-    for (size_t o = 0; o < masks.size(); ++o)
-        for (uint32_t i : gb.pixelsByObject[o]) {
-            if (interior(i)) masks[o].push_back(i);
-            else ++e.silhouettePixels;
-        }
-    for (const auto& px : masks) covered.insert(covered.end(), px.begin(), px.end());
-    std::sort(covered.begin(), covered.end());
+    // Pixels whose footprint may cover more than one surface are left out and counted: the
+    // reference's box filter mixes surfaces there, which a pixel-centre prediction cannot reproduce
+    // whatever the network (core/predict/footprint_mask.h).
+    e.footprint = footprintMask(gb);
+    const std::vector<std::vector<uint32_t>>& masks = e.footprint.keptByObject;
+    const std::vector<uint32_t>& covered = e.footprint.kept;
     for (int t = 0; t < kTermCount; ++t) {
         TermErrors& te = e.terms[t];
         te.available = e.prediction.available[t];
@@ -151,7 +133,7 @@ nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
     }
     return {
         {"light_position", vec(e.lightPosition)},
-        {"silhouette_pixels_excluded", e.silhouettePixels},
+        {"footprint_mask", e.footprint.counts.toJson()},
         {"reference", {{"spp", e.referenceSpp}, {"seconds", e.referenceSeconds}, {"non_finite_samples_dropped", e.referenceNonFinite}}},
         {"prediction",
          {{"gbuffer_seconds", e.gbufferSeconds},
@@ -163,7 +145,7 @@ nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
           {"non_finite_values", p.nonFinite},
           {"unavailable", p.unavailableWhy}}},
         {"metric",
-         "per channel, averaged over RGB; relative error |d|/(|ref|+0.01); overall = all object pixels"},
+         "per channel, averaged over RGB; relative error |d|/(|ref|+0.01); overall = all object pixels the footprint mask keeps"},
         {"terms", terms},
     };
 }
@@ -200,7 +182,7 @@ std::string evaluationTable(const Scene& scene, const Evaluation& e) {
         out << "objects without a network (shown black): " << p.objectsWithoutNetwork.size() << " objects, "
             << p.pixelsWithoutNetwork << " pixels\n";
     out << "NaN/Inf: " << p.nonFinite << " prediction values, " << e.referenceNonFinite << " reference samples\n";
-    out << "silhouette pixels left out of the statistics (box-filter mixing at object edges): " << e.silhouettePixels << "\n";
+    out << e.footprint.counts.describe() << "\n";
     return out.str();
 }
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/eval/error_metrics.h"
+#include "core/predict/footprint_mask.h"
 #include "core/predict/predictor.h"
 #include "core/render/term.h"
 #include "core/render/renderer.h"
@@ -39,7 +40,8 @@ Reference renderReference(const Scene& scene, const Vec3& lightPos, const Render
 Reference loadReference(const std::string& dir);
 
 /// Errors of one term: per object (index = object id; pixels = 0 for objects out of view) and over
-/// all object pixels ("overall"; emitter and background pixels are exact by construction and left out).
+/// all object pixels ("overall"; emitter and background pixels are exact by construction and left out),
+/// both over the pixels the footprint mask keeps.
 struct TermErrors {
     bool available = true;
     std::vector<ErrorStats> perObject;
@@ -50,10 +52,11 @@ struct Evaluation {
     Vec3 lightPosition{0.f};
     Prediction prediction;
     TermErrors terms[kTermCount];
-    std::vector<int32_t> objectIds;  ///< G-buffer object id per pixel (the masks)
-    /// Object pixels left out of the statistics because a 4-neighbour shows another object, an
-    /// emitter or the background: the reference's box filter mixes surfaces there.
-    uint64_t silhouettePixels = 0;
+    std::vector<int32_t> objectIds;  ///< G-buffer object id per pixel
+    /// Which pixels the statistics compare (the kept pixels per object and overall) and how many
+    /// object pixels were left out and why: those whose footprint may cover more than one surface,
+    /// where the reference's box filter mixes surfaces (core/predict/footprint_mask.h).
+    FootprintMask footprint;
     double gbufferSeconds = 0.0;
     double referenceSeconds = 0.0;
     int referenceSpp = 0;

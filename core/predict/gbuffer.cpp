@@ -23,6 +23,8 @@ GBuffer buildGBuffer(const PathTracer& tracer, const RecordLayout& layout, const
     g.object.assign(n, -1);
     g.light.assign(n, -1);
     g.emitted.assign(n, Vec3(0.f));
+    g.normal.assign(n, Vec3(0.f));
+    g.distance.assign(n, 0.f);
 
     const CameraRays camera(scene.camera, width, height);
     tbb::parallel_for(0, height, [&](int y) {
@@ -39,6 +41,8 @@ GBuffer buildGBuffer(const PathTracer& tracer, const RecordLayout& layout, const
                 continue;
             }
             g.object[i] = hit.object;
+            g.normal[i] = dot(wo, hit.ng) >= 0.f ? hit.ng : -hit.ng;  // as RecordLayout::writeInputs flips it
+            g.distance[i] = hit.t;                                     // ray.dir is unit
             layout.writeInputs(hit.p, wo, g.lightPosition, hit.ng,
                                scene.materials[size_t(scene.objects[size_t(hit.object)].material)],
                                g.inputs.data() + i * size_t(g.numInputs));

@@ -13,9 +13,11 @@
 /// visible geometry. Emitter pixels carry their emitted radiance towards the eye (what the ground
 /// truth's direct image shows there) and no network input.
 ///
-/// The ground truth averages a box filter over each pixel, so pixels that straddle an edge are
-/// mixtures the centre ray cannot reproduce; evaluate() leaves them out of the error statistics and
-/// counts them (the silhouette mask, docs/design.md §14).
+/// The ground truth averages a box filter over each pixel, so a pixel whose footprint covers more than
+/// one surface is a mixture the centre ray cannot reproduce. The per-pixel normal and distance below
+/// exist for that test: core/predict/footprint_mask.h finds such pixels (another object, a crease, a
+/// depth step or the light in the 3×3 neighbourhood), and every error statistic leaves them out and
+/// counts them (docs/design.md §14).
 
 #include <cstdint>
 #include <vector>
@@ -35,6 +37,12 @@ struct GBuffer {
     std::vector<int32_t> object;  ///< object id per pixel; -1 for background and emitter pixels
     std::vector<int32_t> light;   ///< light index for emitter pixels, -1 otherwise
     std::vector<Vec3> emitted;    ///< emitted radiance towards the eye (emitter pixels), else 0
+    /// Unit geometric normal flipped to the viewer's side (the network input's normal) for object
+    /// pixels, 0 elsewhere. The footprint mask compares neighbours' normals.
+    std::vector<Vec3> normal;
+    /// Distance from the eye to the hit point along the centre ray for object pixels, 0 elsewhere.
+    /// The footprint mask measures depth steps relative to it.
+    std::vector<float> distance;
     /// Pixel indices of every object (index = object id, ascending pixel order): the masks of the
     /// per-object error statistics and the batches of the predictor.
     std::vector<std::vector<uint32_t>> pixelsByObject;
@@ -43,6 +51,11 @@ struct GBuffer {
 
     size_t pixelCount() const { return size_t(width) * size_t(height); }
     const float* input(size_t pixel) const { return inputs.data() + pixel * size_t(numInputs); }
+    /// Hit point of an object pixel (its first three inputs).
+    Vec3 position(size_t pixel) const {
+        const float* r = input(pixel);
+        return Vec3(r[0], r[1], r[2]);
+    }
     bool covered(size_t pixel) const { return object[pixel] >= 0; }
 };
 
