@@ -7,10 +7,6 @@
 
 namespace rrf::panels {
 
-namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-}  // namespace
-
 float PlotAxis::toPixel(double value) const {
     double v = value;
     if (log) {
@@ -124,31 +120,6 @@ void drawAxes(ImDrawList* dl, const ImVec2& min, const ImVec2& max, const PlotAx
         dl->AddText(ImVec2(max.x - ts.x, max.y + ts.y + 4), text, xLabel);
     }
     if (yLabel) dl->AddText(ImVec2(min.x, min.y - ImGui::GetFontSize() - 2), text, yLabel);
-}
-
-std::vector<LossPoint> aggregateLoss(const std::vector<LossCurve>& curves) {
-    int last = -1;
-    for (const LossCurve& c : curves)
-        if (!c.points.empty()) last = std::max(last, c.points.back().epoch);
-    std::vector<LossPoint> out;
-    if (last < 0) return out;
-    std::vector<size_t> at(curves.size(), 0);  // per curve: index of the point for the current epoch
-    for (int e = 0; e <= last; ++e) {
-        double train = 0, validation = 0, seconds = 0;
-        int nTrain = 0, nValidation = 0;
-        for (size_t i = 0; i < curves.size(); ++i) {
-            const std::vector<LossPoint>& p = curves[i].points;
-            if (p.empty() || p.front().epoch > e) continue;
-            while (at[i] + 1 < p.size() && p[at[i] + 1].epoch <= e) ++at[i];
-            const LossPoint& q = p[at[i]];
-            if (std::isfinite(q.train)) train += q.train, ++nTrain;
-            if (std::isfinite(q.validation)) validation += q.validation, ++nValidation;
-            seconds = std::max(seconds, q.seconds);
-        }
-        if (nTrain == 0 && nValidation == 0) continue;
-        out.push_back({e, nTrain ? train / nTrain : kNaN, nValidation ? validation / nValidation : kNaN, seconds});
-    }
-    return out;
 }
 
 PlotArea plotArea(const char* id, float legendWidth) {

@@ -50,9 +50,5 @@ ImU32 seriesColour(int i, float alpha = 1.f);
 /// "1e-3", "0.25", "40": a short tick label.
 std::string tickLabel(double value);
 
-/// Mean of several networks' curves per epoch. A network that stopped earlier contributes its last
-/// value (its kept weights do not change after it stops), so the mean does not jump when one
-/// finishes. NaN validation values are left out of the validation mean. Seconds: the maximum.
-std::vector<LossPoint> aggregateLoss(const std::vector<LossCurve>& curves);
 
 }  // namespace rrf::panels

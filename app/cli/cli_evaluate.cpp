@@ -12,6 +12,9 @@
 #include "core/eval/held_out.h"
 #include "core/nn/model_set.h"
 #include "core/project/project.h"
+#include "core/project/run_recording.h"
+#include "core/util/error.h"
+#include "core/util/stopwatch.h"
 #include "core/render/render_outputs.h"
 
 namespace rrf::cli {
@@ -23,10 +26,48 @@ struct EvaluateArgs : PredictionArgs {
     int heldOut = 0, spp = -1;
     long long seed = 1;
     float exposure = 0.f;
+    bool record = false;
 };
 
-int runEvaluate(const EvaluateArgs& a) {
+/// For --record: the train run that made `a.models` must be in the project, since the evaluation's
+/// metrics go into it (as the workbench does); the files go to runs/<that run>/evaluation unless --out.
+void prepareRecording(const Project& p, EvaluateArgs& a) {
+    if (!a.record) {
+        if (a.out.empty()) throw InputError("command line", "--out", "an output directory is required (or --record)");
+        return;
+    }
+    if (isBareScene(p))
+        throw InputError("command line", "--record", a.input + " is a scene file, not a project: there is no project to record the run in");
+    const Run* trained = findTrainRun(p.runs, projectDirectory(p), a.models);
+    if (!trained)
+        throw InputError("command line", "--record",
+                         "the models in " + a.models + " are not from a train run recorded in " + a.input +
+                             " (train them with rrf train --record)");
+    if (a.out.empty()) a.out = outputPath(runDirectory(projectDirectory(p), *trained), "evaluation");
+}
+
+/// Adds what `evals` measured to the train run that made the models and saves the project.
+void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vector<Evaluation>& evals, double seconds) {
+    EvaluationRecord r;
+    for (const Evaluation& e : evals) {
+        const ErrorStats& g = e.term(Term::Global).overall;
+        r.global.pixels += g.pixels;
+        r.global.relativeRmse += g.relativeRmse / double(evals.size());
+        r.global.rmse += g.rmse / double(evals.size());
+        r.global.mae += g.mae / double(evals.size());
+        r.lights.push_back(e.lightPosition);
+    }
+    r.referenceSpp = evals.empty() ? 0 : evals.front().referenceSpp;
+    r.seconds = seconds;
+    r.artifacts = {outputPath(a.out, evals.size() > 1 ? "held_out.json" : "evaluation.json")};
+    const std::string dir = projectDirectory(p);
+    editRuns(a.input, [&](std::vector<Run>& runs) { recordEvaluation(runs, dir, a.models, r); });
+    std::printf("recorded the evaluation in the train run of %s in %s\n", a.models.c_str(), a.input.c_str());
+}
+
+int runEvaluate(EvaluateArgs a) {
     const Project p = loadProjectOrScene(a.input);
+    prepareRecording(p, a);
     auto threads = limitThreads(a.threads);
     const ModelSet models = loadModelSet(a.models, p.scene.contentHash());
     const Predictor predictor(p.scene, models, a.prediction.applied(p.prediction));
@@ -38,7 +79,9 @@ int runEvaluate(const EvaluateArgs& a) {
         const Reference ref = loadReference(a.reference);
         std::printf("reference: %s (%d spp, light at %.3f,%.3f,%.3f)\n", a.reference.c_str(), ref.spp, ref.lightPosition.x,
                     ref.lightPosition.y, ref.lightPosition.z);
-        evaluateAll(p, predictor, {ref.lightPosition}, ro, &ref, a.out, a.exposure);
+        const Stopwatch clock;
+        const std::vector<Evaluation> evals = evaluateAll(p, predictor, {ref.lightPosition}, ro, &ref, a.out, a.exposure);
+        if (a.record) recordEvaluations(a, p, evals, clock.seconds());
         return 0;
     }
     std::vector<Vec3> lights;
@@ -49,7 +92,9 @@ int runEvaluate(const EvaluateArgs& a) {
     } else {
         lights = {a.lightPos.value_or(p.scene.lightPosition())};
     }
-    evaluateAll(p, predictor, lights, ro, nullptr, a.out, a.exposure);
+    const Stopwatch clock;
+    const std::vector<Evaluation> evals = evaluateAll(p, predictor, lights, ro, nullptr, a.out, a.exposure);
+    if (a.record) recordEvaluations(a, p, evals, clock.seconds());
     return 0;
 }
 }  // namespace
@@ -65,6 +110,11 @@ void addEvaluateCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--spp", a->spp, "reference samples per pixel (default: the project's)")->check(positive());
     cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());
     cmd->add_option("--exposure", a->exposure, "exposure in stops for PNG output");
+    cmd->get_option("--out")->required(false)->description("output directory (required unless --record)");
+    cmd->add_flag("--record", a->record,
+                  "add the evaluation's metrics to the project's train run that made --models, as the workbench does "
+                  "(files under runs/<that run>/evaluation unless --out); this saves the project file, which the CLI "
+                  "otherwise never changes");
     cmd->callback([a, &exitCode] { exitCode = runEvaluate(*a); });
 }
 

@@ -12,6 +12,8 @@
 #include "core/render/render_outputs.h"
 #include "core/render/renderer.h"
 #include "core/project/project.h"
+#include "core/project/run_recording.h"
+#include "app/cli/cli_record.h"
 
 namespace rrf::cli {
 
@@ -20,10 +22,16 @@ struct RenderArgs {
     std::string input, out, format = "exr";
     std::optional<Vec3> lightPos;
     int threads = 0;
+    bool record = false;
     SettingFlags<RenderSettings> render;  ///< --spp, --width, --height, --mode, --seed, --exposure
 };
 
-int runRender(const RenderArgs& a) {
+int runRender(RenderArgs a) {
+    // With --record the outputs go where the workbench puts a run's files, unless --out says otherwise.
+    if (a.record && a.format != "exr")
+        throw InputError("command line", "--format",
+                         "a recorded run stores EXR images, as the workbench does (it re-opens and compares those); got " + a.format);
+    std::optional<Run> run = beginRecording(a.record, a.input, "render", a.out, "");
     Project project = loadProjectOrScene(a.input);
     Scene& scene = project.scene;
     const RenderSettings settings = a.render.applied(project.render);
@@ -64,6 +72,10 @@ int runRender(const RenderArgs& a) {
     std::printf("relative standard error of the image mean: %.3g\n", snap.relativeError);
     for (const std::string& p : out.images) std::printf("wrote %s\n", p.c_str());
     std::printf("wrote %s\n", out.metadata.c_str());
+    if (run) {
+        setRenderRun(*run, projectDirectory(project), settings, o.spp, scene, project.overrides, snap, st, out);
+        finishRecording(a.input, *run);
+    }
     return renderer.cancelled() ? 130 : 0;
 }
 }  // namespace
@@ -72,7 +84,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     auto a = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render the ground truth (global, direct, indirect images)");
     cmd->add_option("input", a->input, "project or scene JSON file")->required();
-    cmd->add_option("--out", a->out, "output directory")->required();
+    cmd->add_option("--out", a->out, "output directory (required unless --record)");
     SettingFlags<RenderSettings>& r = a->render;
     r.add<int>(cmd, "--spp", "samples per pixel (default: the project's)", [](RenderSettings& s, const int& n) { s.spp = n; })
         ->check(positive());
@@ -88,6 +100,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--format", a->format, "image format")->check(CLI::IsMember({"exr", "pfm", "png"}));
     r.add<float>(cmd, "--exposure", "exposure in stops for PNG output (default: the project's)",
                  [](RenderSettings& s, const float& stops) { s.exposure = stops; });
+    cmd->add_flag("--record", a->record, recordHelp("a render run"));
     cmd->callback([a, &exitCode] { exitCode = runRender(*a); });
 }
 

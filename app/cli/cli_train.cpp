@@ -1,5 +1,6 @@
 // `rrf train`: one network per object (and target) from a dataset, saved as a model directory.
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <mutex>
 #include <memory>
@@ -15,6 +16,8 @@
 #include "core/nn/model_set.h"
 #include "core/nn/network_settings.h"
 #include "core/project/project.h"
+#include "core/project/run_recording.h"
+#include "app/cli/cli_record.h"
 #include "core/nn/training_run.h"
 #include "core/nn/training_samples.h"
 
@@ -25,6 +28,7 @@ struct TrainArgs {
     std::string input, data, out;
     std::vector<std::string> objects;
     int threads = 0, logEvery = 10;
+    bool record = false;
     SettingFlags<ObjectTrainingOptions> network;  ///< --hidden, --trainer, --epochs, --targets
 };
 
@@ -52,7 +56,7 @@ std::string fmt(double v) {
     return buf;
 }
 
-int runTrain(const TrainArgs& a) {
+int runTrain(const TrainArgs& a, std::optional<Run> record) {
     const Project project = loadProjectOrScene(a.input);
     NetworkSettings settings = project.networkOrDefault();
     ObjectTrainingOptions& o = settings.options;
@@ -113,6 +117,14 @@ int runTrain(const TrainArgs& a) {
     }
     std::printf("trained in %.2f s%s; wrote %s/models.json\n", seconds, run.cancelled ? " (stopped early by Ctrl-C)" : "",
                 a.out.c_str());
+    if (record && run.networks > 0) {
+        TrainRecord r{settings, project.sampling, a.data, a.out, project.scene.contentHash(),
+                      lossCurves(run.curves), run.networks, run.skipped, run.seconds, std::nullopt};
+        setTrainRun(*record, projectDirectory(project), std::move(r));
+        finishRecording(a.input, *record);
+    } else if (record) {
+        std::printf("no network was trained; no run recorded\n");
+    }
     return run.cancelled ? 130 : 0;
 }
 }  // namespace
@@ -122,7 +134,7 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
     CLI::App* cmd = app.add_subcommand("train", "Train one network per object (and target) on a dataset");
     cmd->add_option("input", a->input, "project or scene JSON file")->required();
     cmd->add_option("--data", a->data, "dataset file (.rrfd) made for this scene")->required();
-    cmd->add_option("--out", a->out, "output model directory")->required();
+    cmd->add_option("--out", a->out, "output model directory (required unless --record)");
     addNetworkFlags(cmd, a->network);
     cmd->add_option("--objects", a->objects, "objects to train (ids or names, comma-separated)")
         ->delimiter(',')
@@ -134,7 +146,11 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
         ->check(CLI::IsMember({"separate", "joint", "global", "direct", "indirect"}));
     cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(nonNegative());
     cmd->add_option("--log-every", a->logEvery, "print every N-th epoch (0 = none)")->check(nonNegative());
-    cmd->callback([a, &exitCode] { exitCode = runTrain(*a); });
+    cmd->add_flag("--record", a->record, recordHelp("a train run (models under runs/<id>/models)"));
+    cmd->callback([a, &exitCode] {
+        std::optional<Run> record = beginRecording(a->record, a->input, "train", a->out, "models");
+        exitCode = runTrain(*a, std::move(record));
+    });
 }
 
 }  // namespace rrf::cli

@@ -9,6 +9,7 @@
 #include "core/util/atomic_file.h"
 #include "core/util/stopwatch.h"
 #include "core/eval/evaluation.h"
+#include "core/project/run_recording.h"
 #include "panels/panels.h"
 
 namespace rrf {
@@ -108,17 +109,12 @@ void Workbench::pollEvaluate() {
         state_.focusTab = "Objects";
         // The run that made these models gets the result, so the Cost panel can place it.
         const ErrorStats& g = out.global;
-        for (Run& r : state_.project.runs) {
-            if (r.kind != "train" || r.artifacts.empty()) continue;
-            if (fs::path(projectDir()) / fs::path(r.artifacts.front()).parent_path() != fs::path(out.modelsDir)) continue;
-            r.metrics["relative_rmse"] = g.relativeRmse;
-            r.metrics["rmse"] = g.rmse;
-            r.metrics["mae"] = g.mae;
-            r.metrics["evaluated_spp"] = spp;
-            r.metrics["evaluated_light"] = json::array({light.x, light.y, light.z});
-            r.timings["evaluate"] = seconds;
-            state_.markDirty();
-        }
+        EvaluationRecord record;
+        record.global = g;
+        record.referenceSpp = spp;
+        record.lights = {light};
+        record.seconds = seconds;
+        if (recordEvaluation(state_.project.runs, projectDir(), out.modelsDir, record) > 0) state_.markDirty();
         char line[160];
         std::snprintf(line, sizeof line, "evaluated: global term relative RMSE %.4g, RMSE %.4g over %llu pixels (%.1f s)",
                       g.relativeRmse, g.rmse, (unsigned long long)g.pixels, seconds);

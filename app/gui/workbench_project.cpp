@@ -6,9 +6,9 @@
 #include "core/util/image_io.h"
 #include "core/nn/network_settings.h"
 #include "panels/project_io.h"
+#include "core/project/run_recording.h"
 #include "core/project/scene_edits.h"
 #include "core/util/json_reader.h"
-#include "core/util/text_format.h"
 
 namespace rrf {
 
@@ -19,13 +19,11 @@ namespace {
 constexpr auto kAutosaveInterval = std::chrono::minutes(2);
 
 std::string autosavePath(const std::string& projectPath) { return projectPath + ".autosave.json"; }
-
-json vec3Json(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
 }  // namespace
 
 std::string Workbench::projectDir() const {
-    if (!state_.hasProject || state_.project.path.empty()) return fs::current_path().string();
-    return fs::absolute(fs::path(state_.project.path)).parent_path().string();
+    if (!state_.hasProject) return fs::current_path().string();
+    return projectDirectory(state_.project);
 }
 
 bool Workbench::openProject(const std::string& path) {
@@ -117,34 +115,17 @@ bool Workbench::saveRun() {
         state_.log.error("save run: save the project first (runs are stored next to it)");
         return false;
     }
-    Run run;
-    run.kind = "render";
-    run.id = newRunId(state_.project.runs, run.kind);
-    run.name = run.id;
-    run.created = localTimestamp();
+    Run run = beginRun(state_.project.runs, "render");
     const std::string relDir = "runs/" + run.id;
+    const auto snap = render_->latest();
     try {
-        const RenderOutputs out = render_->write((fs::path(projectDir()) / relDir).string(), ImageFormat::EXR, 0.f);
-        for (const std::string& p : out.images)
-            run.artifacts.push_back(fs::path(p).lexically_relative(projectDir()).generic_string());
-        run.artifacts.push_back(fs::path(out.metadata).lexically_relative(projectDir()).generic_string());
+        const RenderOutputs out = render_->write(runDirectory(projectDir(), run), ImageFormat::EXR, 0.f);
+        setRenderRun(run, projectDir(), state_.project.render, render_->options().spp, render_->scene(),
+                     state_.project.overrides, *snap, render_->stats(), out);
     } catch (const std::exception& e) {
         state_.log.error(std::string("save run: ") + e.what());
         return false;
     }
-    const auto snap = render_->latest();
-    const RenderStats stats = render_->stats();
-    RenderSettings settings = state_.project.render;
-    settings.spp = render_->options().spp;
-    run.settings = json{{"render", renderSettingsToJson(settings)},
-                        {"light_position", vec3Json(render_->scene().lightPosition())},
-                        {"scene_hash", hexString(render_->scene().contentHash())}};
-    if (!state_.project.overrides.empty()) run.settings["scene_overrides"] = state_.project.overrides.toJson();
-    run.metrics = json{{"spp", snap->sppCompleted},
-                       {"relative_error", snap->relativeError},
-                       {"non_finite_samples", snap->nonFinite},
-                       {"samples_per_second", stats.samplesPerSecond()}};
-    run.timings = json{{"render", snap->seconds}};
     state_.project.runs.push_back(run);
     state_.markDirty();
     state_.log.info("saved run '" + run.name + "' (" + std::to_string(snap->sppCompleted) + " spp) to " + relDir);

@@ -12,6 +12,7 @@
 #include "core/nn/network_settings.h"
 #include "core/nn/training_run.h"
 #include "core/nn/training_samples.h"
+#include "core/project/run_recording.h"
 #include "core/util/stopwatch.h"
 #include "core/util/text_format.h"
 #include "panels/plot.h"
@@ -40,7 +41,7 @@ struct TrainingOutcome {
     uint64_t sceneHash = 0;
     std::vector<LossCurve> curves;  ///< ordered by (object, target)
     double seconds = 0;
-    int networks = 0, skipped = 0, epochs = 0;
+    int networks = 0, skipped = 0;
 };
 
 namespace {
@@ -120,17 +121,7 @@ bool Workbench::startTrain(int maxEpochs) {
             saveModelSet(out.modelsDir, run.models, out.sceneHash,
                          data.header().at("input_layout").get<std::vector<std::string>>(), extra);
         }
-        for (const NetworkCurve& n : run.curves) {
-            LossCurve c;
-            c.objectId = n.objectId;
-            c.object = n.objectId >= 0 && n.objectId < int(names.size()) ? names[size_t(n.objectId)] : "?";
-            c.target = n.target;
-            for (const EpochRecord& r : n.epochs) {
-                c.points.push_back(lossPoint(r));
-                out.epochs = std::max(out.epochs, r.epoch);
-            }
-            out.curves.push_back(std::move(c));
-        }
+        out.curves = lossCurves(run.curves);
         out.seconds = run.seconds;
         out.networks = run.networks;
         out.skipped = run.skipped;
@@ -172,22 +163,14 @@ void Workbench::trainingFinished(TrainingOutcome& s) {
         state_.log.error("train: no network was trained (see the messages above); nothing saved");
         return;
     }
-    Run run;
-    run.kind = "train";
-    run.id = s.runId;
-    run.name = s.runId;
-    run.created = localTimestamp();
-    auto rel = [&](const std::string& p) { return fs::path(p).lexically_relative(projectDir()).generic_string(); };
-    run.settings = json{{"network", s.settings.networkJson()}, {"trainer", s.settings.trainerJson()},
-                        {"dataset", rel(s.dataset)}, {"scene_hash", hexString(s.sceneHash)}};
-    if (state_.project.sampling) run.settings["sampling"] = state_.project.sampling->toJson();
+    Run run = beginRun(state_.project.runs, "train");
+    run.id = run.name = s.runId;  // the models were saved under runs/<runId>/ when the job started
+    auto rel = [&](const std::string& p) { return projectRelative(projectDir(), p); };
     state_.training.curves = s.curves;
-    run.curves = std::move(s.curves);
-    run.loss = panels::aggregateLoss(run.curves);
-    run.metrics = json{{"networks", s.networks}, {"skipped", s.skipped}, {"epochs", s.epochs}};
-    run.timings = json{{"train", s.seconds}};
-    if (state_.dataset.path == s.dataset && state_.dataset.seconds > 0) run.timings["generate"] = state_.dataset.seconds;
-    run.artifacts.push_back(rel((fs::path(s.modelsDir) / "models.json").string()));
+    TrainRecord record{s.settings, state_.project.sampling, s.dataset, s.modelsDir, s.sceneHash, std::move(s.curves),
+                       s.networks, s.skipped, s.seconds, std::nullopt};
+    if (state_.dataset.path == s.dataset && state_.dataset.seconds > 0) record.generateSeconds = state_.dataset.seconds;
+    setTrainRun(run, projectDir(), std::move(record));
     state_.project.runs.push_back(run);
     state_.markDirty();
     state_.log.info("trained " + std::to_string(s.networks) + " networks in " + std::to_string(int(s.seconds + 0.5)) +

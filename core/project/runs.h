@@ -1,7 +1,7 @@
 #pragma once
 /// Experiment runs stored in the project's "runs" section. A run is a record of one piece of work
-/// (a ground-truth render today; data generation, training and evaluation as those stages land):
-/// the settings it ran with, its loss history, its metrics, its timings and the files it produced.
+/// (a ground-truth render or a training run; an evaluation adds its metrics to the training run whose
+/// models it judged): the settings it ran with, its loss history, its metrics, its timings and the files it produced.
 /// Sections this build does not know are kept verbatim, so a newer workbench's runs survive a
 /// round trip through an older one.
 
@@ -36,7 +36,7 @@ struct LossCurve {
 struct Run {
     std::string id;        ///< unique within the project, also the artifact directory name
     std::string name;      ///< user-visible, editable
-    std::string kind;      ///< "render", later "generate", "train", "evaluate"
+    std::string kind;      ///< "render" or "train"
     std::string created;   ///< local time, ISO 8601
     nlohmann::json settings = nlohmann::json::object();  ///< snapshot of every setting that made the run
     std::vector<LossPoint> loss;                          ///< aggregate curve; empty for non-training runs
@@ -62,6 +62,11 @@ struct Run {
 std::vector<Run> readRuns(const JsonReader& section, std::vector<std::string>& warnings);
 /// The "runs" section for `runs`.
 nlohmann::json runsToJson(const std::vector<Run>& runs);
+
+/// Mean of several networks' curves per epoch. A network that stopped earlier contributes its last
+/// value (its kept weights do not change after it stops), so the mean does not jump when one
+/// finishes. NaN validation values are left out of the validation mean. Seconds: the maximum.
+std::vector<LossPoint> aggregateLoss(const std::vector<LossCurve>& curves);
 
 /// A new id "<kind>-<yyyymmdd-hhmmss>[-n]" not yet used in `runs`.
 std::string newRunId(const std::vector<Run>& runs, const std::string& kind);
