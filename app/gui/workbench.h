@@ -77,7 +77,7 @@ public:
     bool evaluateRunning() const;
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
     bool exportObjectsCsv(const std::string& path);
-    /// Runs a cost sweep ("spp", "grid", "hidden" or "trainer") with interactive sizes.
+    /// Runs a cost sweep of one of the kinds in kSweepKinds (core/eval/sweep.h) with interactive sizes.
     bool startSweep(const std::string& what);
     bool sweepRunning() const;
 

@@ -35,7 +35,7 @@ struct TrainingLive {
 /// A finished training job: where its models went and what the run did (models themselves stay on
 /// the worker; they are on disk).
 struct TrainingOutcome {
-    std::string dataset, modelsDir, runId;
+    std::string dataset, project, modelsDir, runId;
     NetworkSettings settings;
     uint64_t sceneHash = 0;
     std::vector<LossCurve> curves;  ///< ordered by (object, target)
@@ -45,6 +45,17 @@ struct TrainingOutcome {
 
 namespace {
 LossPoint lossPoint(const EpochRecord& r) { return {r.epoch, r.trainLoss, r.validationLoss, r.seconds}; }
+
+/// A network's loss curve as the plot takes it (the live plot fills `points` as epochs finish).
+LossCurve lossCurve(int objectId, const std::string& object, const std::string& target,
+                    const std::vector<EpochRecord>& epochs = {}) {
+    LossCurve c;
+    c.objectId = objectId;
+    c.object = object;
+    c.target = target;
+    for (const EpochRecord& r : epochs) c.points.push_back(lossPoint(r));
+    return c;
+}
 }  // namespace
 
 bool Workbench::trainRunning() const { return trainJob_.running(); }
@@ -67,6 +78,7 @@ bool Workbench::startTrain(int maxEpochs) {
     }
     TrainingOutcome job;
     job.dataset = datasetPath();
+    job.project = state_.project.path;
     if (job.dataset.empty()) {
         state_.log.error("train: no dataset yet; generate one in the Sampling panel");
         return false;
@@ -96,13 +108,9 @@ bool Workbench::startTrain(int maxEpochs) {
             ctx.setProgress(progress.fraction());
             std::lock_guard<std::mutex> lock(live->mutex);
             auto [it, added] = live->curveIndex.emplace(std::make_pair(object, target), live->curves.size());
-            if (added) {
-                LossCurve c;
-                c.objectId = object;
-                c.object = object >= 0 && object < int(names.size()) ? names[size_t(object)] : "?";
-                c.target = target;
-                live->curves.push_back(std::move(c));
-            }
+            if (added)
+                live->curves.push_back(
+                    lossCurve(object, object >= 0 && object < int(names.size()) ? names[size_t(object)] : "?", target));
             live->curves[it->second].points.push_back(lossPoint(r));
             live->epoch = std::max(live->epoch, r.epoch);
             live->step = r.step;
@@ -114,22 +122,11 @@ bool Workbench::startTrain(int maxEpochs) {
         TrainingRun run = trainNetworks(samples, out.settings.options, observer, &progress);
         if (run.networks > 0) {
             ctx.setStatus("saving the models");
-            const json extra = {{"dataset", out.dataset}, {"network", out.settings.networkJson()},
-                                {"trainer", out.settings.trainerJson()}, {"seconds", run.seconds},
-                                {"cancelled", run.cancelled}};
-            saveModelSet(out.modelsDir, run.models, out.sceneHash,
-                         data.header().at("input_layout").get<std::vector<std::string>>(), extra);
+            saveTrainingRun(out.modelsDir, run, out.settings, out.sceneHash, data.inputLayout(), {out.dataset, out.project});
         }
         for (const NetworkCurve& n : run.curves) {
-            LossCurve c;
-            c.objectId = n.objectId;
-            c.object = n.objectId >= 0 && n.objectId < int(names.size()) ? names[size_t(n.objectId)] : "?";
-            c.target = n.target;
-            for (const EpochRecord& r : n.epochs) {
-                c.points.push_back(lossPoint(r));
-                out.epochs = std::max(out.epochs, r.epoch);
-            }
-            out.curves.push_back(std::move(c));
+            out.curves.push_back(lossCurve(n.objectId, n.object, n.target, n.epochs));
+            if (!n.epochs.empty()) out.epochs = std::max(out.epochs, n.epochs.back().epoch);
         }
         out.seconds = run.seconds;
         out.networks = run.networks;
