@@ -2,30 +2,10 @@
 // sweeps: the same networks as trainObjects, per-network curves in a fixed order, progress and counts.
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include "core/nn/training_run.h"
-#include "core/util/rng.h"
+#include "tests/synthetic_samples.h"
 
 using namespace rrf;
-
-namespace {
-ObjectSamples syntheticObject(int id, int n) {
-    ObjectSamples s;
-    s.objectId = id;
-    s.name = "object" + std::to_string(id);
-    s.numInputs = 13;
-    for (int i = 0; i < n; ++i) {
-        Rng rng(200 + uint64_t(id), uint64_t(i));
-        float in[13];
-        for (float& v : in) v = 2.f * rng.uniform() - 1.f;
-        const float d[3] = {1.f + in[6] * in[0], 0.5f + 0.2f * in[7], 2.f};
-        const float ind[3] = {0.1f * std::exp(in[1]), 0.2f, 0.05f * (in[2] + 1.f)};
-        s.add(in, d, ind);
-    }
-    return s;
-}
-}  // namespace
 
 TEST(TrainingRun, SameNetworksAsTrainObjectsWithOrderedCurves) {
     const std::vector<ObjectSamples> objs = {syntheticObject(2, 120), syntheticObject(0, 80), syntheticObject(1, 0)};

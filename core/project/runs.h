@@ -1,6 +1,6 @@
 #pragma once
 /// Experiment runs stored in the project's "runs" section. A run is a record of one piece of work
-/// (a ground-truth render today; data generation, training and evaluation as those stages land):
+/// (a ground-truth render, a data generation, a training, an evaluation):
 /// the settings it ran with, its loss history, its metrics, its timings and the files it produced.
 /// Sections this build does not know are kept verbatim, so a newer workbench's runs survive a
 /// round trip through an older one.
@@ -36,7 +36,7 @@ struct LossCurve {
 struct Run {
     std::string id;        ///< unique within the project, also the artifact directory name
     std::string name;      ///< user-visible, editable
-    std::string kind;      ///< "render", later "generate", "train", "evaluate"
+    std::string kind;      ///< "render", "generate", "train" or "evaluate"
     std::string created;   ///< local time, ISO 8601
     nlohmann::json settings = nlohmann::json::object();  ///< snapshot of every setting that made the run
     std::vector<LossPoint> loss;                          ///< aggregate curve; empty for non-training runs
