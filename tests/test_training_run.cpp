@@ -2,6 +2,11 @@
 // sweeps: the same networks as trainObjects, per-network curves in a fixed order, progress and counts.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
+#include <unistd.h>
+
+#include "core/nn/model_set.h"
 #include "core/nn/training_run.h"
 #include "tests/synthetic_samples.h"
 
@@ -52,4 +57,27 @@ TEST(TrainingRun, CancelledBeforeStartTrainsNothing) {
     EXPECT_TRUE(run.cancelled);
     EXPECT_EQ(run.networks, 0);
     EXPECT_TRUE(run.curves.empty());
+}
+
+TEST(TrainingRun, SavedModelSetRecordsWhereTheRunCameFrom) {
+    ObjectTrainingOptions o;
+    o.hidden = {3};
+    o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 2}});
+    const TrainingRun run = trainNetworks({syntheticObject(0, 60)}, o);
+    NetworkSettings settings;
+    settings.options = o;
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("rrf_training_run_" + std::to_string(::getpid()));
+    std::vector<std::string> layout;
+    for (int i = 0; i < 14; ++i) layout.push_back("in" + std::to_string(i));
+    saveTrainingRun(dir.string(), run, settings, 0x1234, layout, {"data/dataset.rrfd", "project.json"});
+    const ModelSet set = loadModelSet(dir.string(), 0x1234);
+    EXPECT_EQ(set.inputLayout, layout);
+    EXPECT_EQ(set.index.at("dataset"), "data/dataset.rrfd");
+    EXPECT_EQ(set.index.at("project"), "project.json");
+    EXPECT_EQ(set.index.at("network"), settings.networkJson());
+    EXPECT_EQ(set.index.at("trainer"), settings.trainerJson());
+    EXPECT_EQ(set.index.at("seconds").get<double>(), run.seconds);
+    EXPECT_EQ(set.index.at("cancelled"), false);
+    std::filesystem::remove_all(dir);
 }
