@@ -3,7 +3,9 @@
 #
 #   util < scene < render < data < nn < predict < eval < project
 #
-# and nothing in core/ may include app/, panels/, tests/ or GL/GLFW/ImGui headers. Fails listing
+# and nothing in core/ may include app/, panels/, tests/ or GL/GLFW/ImGui headers; every quoted
+# include names its path from the source root ("core/<stage>/…"; <…> system and library includes are
+# not checked further). Fails listing
 # every offending include (file and the include) so the fix is obvious.
 if(NOT RRF_ROOT)
   message(FATAL_ERROR "CheckLayers.cmake: pass -DRRF_ROOT=<source dir>")
@@ -23,8 +25,9 @@ foreach(f ${files})
   # Only the #include lines: other C++ lines may hold unbalanced '[' that would break CMake lists.
   file(STRINGS ${RRF_ROOT}/${f} lines REGEX "^[ \t]*#[ \t]*include")
   foreach(line IN LISTS lines)
-    if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*[<\"]([^>\"]+)[>\"]")
-      set(inc ${CMAKE_MATCH_1})
+    if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*([<\"])([^>\"]+)[>\"]")
+      set(delim "${CMAKE_MATCH_1}")
+      set(inc ${CMAKE_MATCH_2})
       if(inc MATCHES "^core/([a-z_]+)/")
         set(dep ${CMAKE_MATCH_1})
         list(FIND stages "${dep}" depRank)
@@ -37,6 +40,10 @@ foreach(f ${files})
         string(APPEND problems "  ${f}: includes ${inc}, which is in no stage folder\n")
       elseif(inc MATCHES "^(app|panels|tests|shaders)/" OR inc MATCHES "^(imgui|GLFW/|glad/|GL/|backends/)")
         string(APPEND problems "  ${f}: core may not include ${inc}\n")
+      elseif(delim STREQUAL "\"")
+        # A quoted include is a project file and must name its stage; a bare or relative name would
+        # slip past the stage check above.
+        string(APPEND problems "  ${f}: quoted include \"${inc}\" does not start with core/<stage>/\n")
       endif()
     endif()
   endforeach()

@@ -9,6 +9,7 @@
 
 #include <imgui.h>
 
+#include "core/eval/sweep.h"
 #include "panels/panels.h"
 #include "panels/plot.h"
 

@@ -73,7 +73,7 @@ struct ObjectsView {
 struct CostPoint {
     double seconds = 0.0;        ///< wall time the setting cost
     double error = 0.0;          ///< relative RMSE (global term, all object pixels)
-    std::string label;           ///< the setting, e.g. "16 spp", "20-10"
+    std::string label;           ///< the setting, e.g. "16 spp", "20,10"
 };
 
 struct CostSeries {
@@ -89,13 +89,9 @@ struct CostInfo {
 };
 
 struct CostView {
-    int what = 0;                ///< index into kSweepKinds
+    int what = 0;                ///< index into kSweepKinds (core/eval/sweep.h)
     bool showRuns = true;
     int hoverSeries = -1, hoverPoint = -1;
 };
-
-/// Sweep kinds offered by the Cost panel (core/eval/sweep.h).
-constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer"};
-constexpr int kSweepKindCount = 5;
 
 }  // namespace rrf::panels

@@ -42,7 +42,7 @@ enum class Command {
     CancelTrain,      ///< stop training; the networks keep their best epoch and are saved
     Evaluate,         ///< compare the prediction with the ground truth per object and term
     ExportObjectsCsv, ///< path: the Objects table as CSV (empty path: ask)
-    RunSweep,         ///< path: what to sweep ("spp", "grid", "hidden", "trainer")
+    RunSweep,         ///< path: what to sweep ("spp", "grid", "dirs", "hidden", "trainer")
     CancelSweep,
     SaveRun,          ///< record the current ground truth as a run
     ReopenRun,        ///< index: restore the run's settings and show its images as the ground truth

@@ -155,6 +155,16 @@ TEST(CliFlags, BadSettingValuesNameTheirFlag) {
     fs::remove_all(dir);
 }
 
+TEST(CliFlags, BadShardIsRefusedBeforeGenerating) {
+    const fs::path dir = tempDir("shard");
+    const Result r = runCli("generate " + kCornell + " --shard 3/2 --out " + (dir / "d.rrfd").string());
+    EXPECT_NE(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("--shard"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("100%"), std::string::npos) << "no generation ran before the refusal:\n" << r.output;
+    EXPECT_EQ(r.output.find(" records"), std::string::npos) << r.output;
+    fs::remove_all(dir);
+}
+
 TEST(CliFlags, HelpStatesOneSpellingPerSetting) {
     const Result generate = runCli("generate --help");
     EXPECT_NE(generate.output.find("NX,NY,NZ"), std::string::npos) << generate.output;

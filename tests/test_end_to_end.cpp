@@ -11,6 +11,7 @@
 #include "core/eval/held_out.h"
 #include "core/project/project.h"
 #include "core/util/rng.h"
+#include "core/util/stopwatch.h"
 #include "core/eval/sweep.h"
 
 using namespace rrf;

@@ -68,3 +68,31 @@ TEST(GeneratorStats, MistypedCounterNamesItsPointer) {
     header["stats"] = {{"records", 3}};
     EXPECT_EQ(GeneratorStats::fromHeader(header, "data.rrfd").records, 3u) << "older files: finer counters read as 0";
 }
+
+TEST(GeneratorStats, AddingTheNextShardSumsCountersAndAppendsCells) {
+    GeneratorStats a;
+    a.records = 5;
+    a.cellsDroppedInsideObject = 1;
+    a.raysEscaped = 2;
+    a.recordsPerCell = {3, 2};
+    a.recordsPerObject = {4, 1};
+    a.paths = 10;
+    GeneratorStats b;
+    b.records = 4;
+    b.cellsDroppedOutsideScene = 2;
+    b.raysHitEmitter = 3;
+    b.nonFiniteSamplesDropped = 1;
+    b.recordsPerCell = {0, 4};
+    b.recordsPerObject = {1, 2, 1};
+    b.paths = 8;
+    a += b;
+    EXPECT_EQ(a.records, 9u);
+    EXPECT_EQ(a.cellsDroppedInsideObject, 1u);
+    EXPECT_EQ(a.cellsDroppedOutsideScene, 2u);
+    EXPECT_EQ(a.raysEscaped, 2u);
+    EXPECT_EQ(a.raysHitEmitter, 3u);
+    EXPECT_EQ(a.nonFiniteSamplesDropped, 1u);
+    EXPECT_EQ(a.recordsPerCell, (std::vector<uint64_t>{3, 2, 0, 4})) << "cells stay in cell order";
+    EXPECT_EQ(a.recordsPerObject, (std::vector<uint64_t>{5, 3, 1}));
+    EXPECT_EQ(a.paths, 18u);
+}

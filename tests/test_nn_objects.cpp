@@ -7,29 +7,11 @@
 #include <tbb/global_control.h>
 
 #include "core/nn/object_training.h"
-#include "core/util/rng.h"
+#include "tests/synthetic_samples.h"
 
 using namespace rrf;
 
 namespace {
-
-/// A synthetic object: 14 inputs (12 geometry + 2 BRDF), smooth direct and indirect targets.
-ObjectSamples syntheticObject(int id, int n) {
-    ObjectSamples s;
-    s.objectId = id;
-    s.name = "object" + std::to_string(id);
-    s.numInputs = 14;
-    for (int i = 0; i < n; ++i) {
-        Rng rng(100 + uint64_t(id), uint64_t(i));
-        float in[14];
-        for (float& v : in) v = 2.f * rng.uniform() - 1.f;
-        in[13] = 0.25f;  // a BRDF parameter constant over the object: a dead input
-        const float d[3] = {1.f + in[6] * in[0], 0.5f + 0.2f * in[7], 3.f};
-        const float ind[3] = {0.1f * std::exp(in[1]), 0.2f, 0.05f * (in[2] + 1.f)};
-        s.add(in, d, ind);
-    }
-    return s;
-}
 
 ObjectTrainingOptions lmOptions(int epochs) {
     ObjectTrainingOptions o;

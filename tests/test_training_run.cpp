@@ -2,30 +2,15 @@
 // sweeps: the same networks as trainObjects, per-network curves in a fixed order, progress and counts.
 #include <gtest/gtest.h>
 
-#include <cmath>
+#include <filesystem>
 
+#include <unistd.h>
+
+#include "core/nn/model_set.h"
 #include "core/nn/training_run.h"
-#include "core/util/rng.h"
+#include "tests/synthetic_samples.h"
 
 using namespace rrf;
-
-namespace {
-ObjectSamples syntheticObject(int id, int n) {
-    ObjectSamples s;
-    s.objectId = id;
-    s.name = "object" + std::to_string(id);
-    s.numInputs = 13;
-    for (int i = 0; i < n; ++i) {
-        Rng rng(200 + uint64_t(id), uint64_t(i));
-        float in[13];
-        for (float& v : in) v = 2.f * rng.uniform() - 1.f;
-        const float d[3] = {1.f + in[6] * in[0], 0.5f + 0.2f * in[7], 2.f};
-        const float ind[3] = {0.1f * std::exp(in[1]), 0.2f, 0.05f * (in[2] + 1.f)};
-        s.add(in, d, ind);
-    }
-    return s;
-}
-}  // namespace
 
 TEST(TrainingRun, SameNetworksAsTrainObjectsWithOrderedCurves) {
     const std::vector<ObjectSamples> objs = {syntheticObject(2, 120), syntheticObject(0, 80), syntheticObject(1, 0)};
@@ -72,4 +57,27 @@ TEST(TrainingRun, CancelledBeforeStartTrainsNothing) {
     EXPECT_TRUE(run.cancelled);
     EXPECT_EQ(run.networks, 0);
     EXPECT_TRUE(run.curves.empty());
+}
+
+TEST(TrainingRun, SavedModelSetRecordsWhereTheRunCameFrom) {
+    ObjectTrainingOptions o;
+    o.hidden = {3};
+    o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 2}});
+    const TrainingRun run = trainNetworks({syntheticObject(0, 60)}, o);
+    NetworkSettings settings;
+    settings.options = o;
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("rrf_training_run_" + std::to_string(::getpid()));
+    std::vector<std::string> layout;
+    for (int i = 0; i < 14; ++i) layout.push_back("in" + std::to_string(i));
+    saveTrainingRun(dir.string(), run, settings, 0x1234, layout, {"data/dataset.rrfd", "project.json"});
+    const ModelSet set = loadModelSet(dir.string(), 0x1234);
+    EXPECT_EQ(set.inputLayout, layout);
+    EXPECT_EQ(set.index.at("dataset"), "data/dataset.rrfd");
+    EXPECT_EQ(set.index.at("project"), "project.json");
+    EXPECT_EQ(set.index.at("network"), settings.networkJson());
+    EXPECT_EQ(set.index.at("trainer"), settings.trainerJson());
+    EXPECT_EQ(set.index.at("seconds").get<double>(), run.seconds);
+    EXPECT_EQ(set.index.at("cancelled"), false);
+    std::filesystem::remove_all(dir);
 }

@@ -20,9 +20,7 @@ const CLI::Validator kFinite(
         return {};
     },
     "");
-}  // namespace
 
-namespace {
 CLI::Validator atLeast(long long min, const char* what, const char* name) {
     return CLI::Validator(
         [min, what](std::string& text) -> std::string {

@@ -18,7 +18,7 @@ namespace rrf::cli {
 namespace {
 struct GenerateArgs {
     std::string input, out;
-    std::vector<int> shard{0, 1};  ///< k of n; DataGenerator::run checks 0 <= k < n
+    std::vector<int> shard{0, 1};  ///< k of n; checkShard refuses all but 0 <= k < n
     int threads = 0;
     SettingFlags<SamplingSettings> sampling;
 };
@@ -27,6 +27,7 @@ int runGenerate(const GenerateArgs& a) {
     const Project project = loadProjectOrScene(a.input);
     const SamplingSettings s = a.sampling.applied(project.samplingOrDefault());
     const int k = a.shard[0], n = a.shard[1];
+    checkShard(k, n);
     auto threads = limitThreads(a.threads);
 
     DataGenerator gen(project.scene, s);

@@ -90,11 +90,11 @@ int runPipeline(const PipelineArgs& a) {
     TrainingRun run;
     runWithProgress("train", [&] { run = trainNetworks(samples, t, obs, &progress); },
                     [&] { return std::make_pair(progress.fraction(), std::string()); }, [&] { cancel = true; });
-    const std::vector<ObjectModel>& trained = run.models;
     stages.push_back({"train", run.seconds});
     const std::string modelDir = outputPath(a.out, "models");
-    saveModelSet(modelDir, trained, scene.contentHash(), layout.inputs,
-                 {{"dataset", dataset}, {"project", a.input}, {"seconds", stages.back().second}, {"cancelled", bool(cancel)}});
+    NetworkSettings network;
+    network.options = t;
+    saveTrainingRun(modelDir, run, network, scene.contentHash(), layout.inputs, {dataset, a.input});
     std::printf("[3/4] train: %.1f s -> %s\n", stages.back().second, modelDir.c_str());
     // 4. Evaluation: at the ground truth's light, then at held-out lights.
     const ModelSet models = loadModelSet(modelDir, scene.contentHash());

@@ -1,6 +1,7 @@
 // `rrf sweep`: error against wall time while one setting varies (core/eval/sweep.h), written as CSV,
 // JSON and a table.
 #include <cstdio>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -67,7 +68,8 @@ void addSweepCommand(CLI::App& app, int& exitCode) {
     auto a = std::make_shared<SweepArgs>();
     CLI::App* cmd = app.add_subcommand("sweep", "Error against wall time while one setting varies");
     addPredictionOptions(cmd, *a);
-    cmd->add_option("--what", a->what, "what varies")->required()->check(CLI::IsMember({"spp", "grid", "dirs", "hidden", "trainer"}));
+    cmd->add_option("--what", a->what, "what varies")->required()
+        ->check(CLI::IsMember(std::vector<std::string>(std::begin(kSweepKinds), std::end(kSweepKinds))));
     cmd->add_option("--values", a->values,
                     "the settings to compare, one per value, each spelled as its own flag: spp: 1 4 16; "
                     "grid (as --grid): 2,2,2 4,4,4 6,6,3; dirs (as --dirs): 50 200; hidden (as --hidden): 5 10,5 20,10; "

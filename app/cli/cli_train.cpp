@@ -97,10 +97,7 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     const std::vector<ObjectModel>& trained = run.models;
     const double seconds = run.seconds;
 
-    nlohmann::json extra = {{"dataset", a.data}, {"project", a.input}, {"network", settings.networkJson()},
-                            {"trainer", settings.trainerJson()}, {"seconds", seconds}, {"cancelled", run.cancelled}};
-    saveModelSet(a.out, trained, project.scene.contentHash(), data.header().at("input_layout").get<std::vector<std::string>>(),
-                 extra);
+    saveTrainingRun(a.out, run, settings, project.scene.contentHash(), data.inputLayout(), {a.data, a.input});
 
     std::printf("\n%-4s %-12s %-9s %9s %7s %7s %-11s %-11s %-11s %8s\n", "id", "object", "target", "samples", "params",
                 "epochs", "train RMSE", "valid RMSE", "test RMSE", "time s");

@@ -151,12 +151,6 @@ std::vector<JobInfo> JobRunner::jobs() const {
     return out;
 }
 
-bool JobRunner::running(JobKind kind) const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return std::any_of(entries_.begin(), entries_.end(),
-                       [&](const auto& e) { return !e->done.load() && e->info.kind == kind; });
-}
-
 bool JobRunner::running(int id) const {
     std::lock_guard<std::mutex> lock(mutex_);
     return std::any_of(entries_.begin(), entries_.end(),

@@ -81,7 +81,6 @@ public:
     void cancelAll();
     /// Running jobs, oldest first.
     std::vector<JobInfo> jobs() const;
-    bool running(JobKind kind) const;
     /// True while job `id` runs (false for 0, finished or unknown ids).
     bool running(int id) const;
     /// The state of job `id` while it runs (null otherwise).

@@ -8,7 +8,8 @@
 /// a worker that checks it at least once a second stops within a second.
 ///
 /// The worker gets the runner's JobContext (progress, status, post() for log lines, cancelled())
-/// and returns std::optional<Result>: nothing when it was cancelled or had nothing to deliver. It
+/// and returns std::optional<Result>: nothing when it was cancelled or had nothing to deliver
+/// (JobSession<void>: a worker that returns nothing). It
 /// never touches ImGui, GL or the workbench state; what the UI shows while it runs (render
 /// snapshots, loss curves) it publishes through its own shared object, which the UI thread copies.
 
@@ -101,6 +102,23 @@ private:
     void forgetResult() override { slot_.reset(); }
 
     std::shared_ptr<Slot> slot_;
+};
+
+/// A job whose output is published while it runs (the ground-truth render's snapshots), so nothing
+/// is handed over when it ends: the worker returns nothing and poll() only forwards its log lines.
+template <>
+class JobSession<void> : public JobSessionBase {
+public:
+    using Work = std::function<void(JobContext&)>;
+    using JobSessionBase::JobSessionBase;
+
+    /// Starts `work` on a worker thread (see launch() for refusals).
+    bool start(const std::string& name, Work work, std::string* why = nullptr) { return launch(name, std::move(work), why); }
+    /// UI thread, every frame: forwards the job's log lines.
+    void poll() { forwardMessages(); }
+
+private:
+    void forgetResult() override {}
 };
 
 }  // namespace rrf

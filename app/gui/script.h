@@ -7,7 +7,7 @@
 ///       {"do": "compare_run", "index": 0}, {"do": "check", "runs": 1}, {"do": "frames", "count": 5} ]
 ///
 /// Steps: render {spp}, generate {grid, dirs, spp}, train {epochs, hidden, trainer, targets}, evaluate,
-/// sweep {what: spp|grid|hidden|trainer},
+/// sweep {what: spp|grid|dirs|hidden|trainer},
 /// wait {for: render|jobs, timeout_s}, save_run, compare_run {index},
 /// reopen_run {index}, set_light {position}, select_object {id}, view {term, metric, exposure,
 /// error_max, zoom}, open {path?: default re-opens the current file}, save {path?}, export_images {dir}, screenshot {path},

@@ -62,6 +62,14 @@ void Workbench::dropJobs() {
     predictPending_ = false;
 }
 
+void Workbench::logFinishedJobs() {
+    for (const JobInfo& j : jobs_.takeFinished()) {
+        if (j.failed) state_.log.error(std::string(jobKindName(j.kind)) + " '" + j.name + "' failed: " + j.error);
+        else state_.log.info(std::string(jobKindName(j.kind)) + " '" + j.name + "' " +
+                             (j.cancelled ? "stopped" : "finished") + " after " + std::to_string(int(j.seconds + 0.5)) + " s");
+    }
+}
+
 void Workbench::frame() {
     // Ended jobs are logged first, so their results' lines follow "... finished after N s".
     logFinishedJobs();

@@ -77,7 +77,7 @@ public:
     bool evaluateRunning() const;
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
     bool exportObjectsCsv(const std::string& path);
-    /// Runs a cost sweep ("spp", "grid", "hidden" or "trainer") with interactive sizes.
+    /// Runs a cost sweep of one of the kinds in kSweepKinds (core/eval/sweep.h) with interactive sizes.
     bool startSweep(const std::string& what);
     bool sweepRunning() const;
 
@@ -141,7 +141,7 @@ private:
     // One session per kind of job (job_session.h). render_ and train live hold what the UI shows
     // while the job runs; the sessions deliver each job's result once it has ended.
     std::shared_ptr<RenderSession> render_;  ///< the current ground truth's render (snapshots, outputs)
-    JobSession<RenderStats> renderJob_{jobs_, JobKind::Render, state_.log};
+    JobSession<void> renderJob_{jobs_, JobKind::Render, state_.log};
     uint64_t renderRevision_ = 0;
     JobSession<GeneratedDataset> generateJob_{jobs_, JobKind::Generate, state_.log};
     std::shared_ptr<TrainingLive> trainLive_;  ///< loss curves of the running training, for the plot

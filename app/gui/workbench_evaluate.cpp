@@ -1,5 +1,5 @@
 // Workbench: evaluation of the trained models against the ground truth shown in the views
-// (core/evaluation.h, CPU predictor, on a worker), the Objects table it fills, its CSV export, and
+// (core/eval/evaluation.h, CPU predictor, on a worker), the Objects table it fills, its CSV export, and
 // the metrics it adds to the training run whose models it judged.
 #include "app/gui/workbench.h"
 

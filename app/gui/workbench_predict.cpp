@@ -1,5 +1,5 @@
 // Workbench: the trained models' prediction in the middle view. The GLSL path renders on the UI
-// thread in the same frame as a light move; the CPU path (core/predictor) runs as a Predict job when
+// thread in the same frame as a light move; the CPU path (core/predict/predictor.h) runs as a Predict job when
 // the GLSL predictor could not be built.
 #include "app/gui/workbench.h"
 

@@ -23,10 +23,7 @@ bool Workbench::startRender() {
     auto session = std::make_shared<RenderSession>(state_.project.scene, options);
     char name[64];
     std::snprintf(name, sizeof name, "ground truth %dx%d, %d spp", options.width, options.height, options.spp);
-    const bool started = renderJob_.start(name, [session](JobContext& ctx) -> std::optional<RenderStats> {
-        session->run(ctx);
-        return session->stats();
-    });
+    const bool started = renderJob_.start(name, [session](JobContext& ctx) { session->run(ctx); });
     if (!started) return false;
     render_ = session;
     renderRevision_ = 0;
@@ -37,17 +34,8 @@ bool Workbench::startRender() {
     return true;
 }
 
-void Workbench::logFinishedJobs() {
-    for (const JobInfo& j : jobs_.takeFinished()) {
-        if (j.failed) state_.log.error(std::string(jobKindName(j.kind)) + " '" + j.name + "' failed: " + j.error);
-        else state_.log.info(std::string(jobKindName(j.kind)) + " '" + j.name + "' " +
-                             (j.cancelled ? "stopped" : "finished") + " after " + std::to_string(int(j.seconds + 0.5)) + " s");
-    }
-}
-
 void Workbench::pollRender() {
-    // The snapshots are the render's live output; its final statistics need nothing more.
-    renderJob_.poll([](const RenderStats&) {});
+    renderJob_.poll();
     if (render_) {
         uint64_t revision = 0;
         const auto snap = render_->latest(&revision);

@@ -36,7 +36,7 @@ struct TrainingLive {
 /// A finished training job: where its models went and what the run did (models themselves stay on
 /// the worker; they are on disk).
 struct TrainingOutcome {
-    std::string dataset, modelsDir, runId;
+    std::string dataset, project, modelsDir, runId;
     NetworkSettings settings;
     uint64_t sceneHash = 0;
     std::vector<LossCurve> curves;  ///< ordered by (object, target)
@@ -46,6 +46,15 @@ struct TrainingOutcome {
 
 namespace {
 LossPoint lossPoint(const EpochRecord& r) { return {r.epoch, r.trainLoss, r.validationLoss, r.seconds}; }
+
+/// An empty loss curve for the live plot, which fills `points` as epochs finish.
+LossCurve lossCurve(int objectId, const std::string& object, const std::string& target) {
+    LossCurve c;
+    c.objectId = objectId;
+    c.object = object;
+    c.target = target;
+    return c;
+}
 }  // namespace
 
 bool Workbench::trainRunning() const { return trainJob_.running(); }
@@ -68,6 +77,7 @@ bool Workbench::startTrain(int maxEpochs) {
     }
     TrainingOutcome job;
     job.dataset = datasetPath();
+    job.project = state_.project.path;
     if (job.dataset.empty()) {
         state_.log.error("train: no dataset yet; generate one in the Sampling panel");
         return false;
@@ -97,13 +107,9 @@ bool Workbench::startTrain(int maxEpochs) {
             ctx.setProgress(progress.fraction());
             std::lock_guard<std::mutex> lock(live->mutex);
             auto [it, added] = live->curveIndex.emplace(std::make_pair(object, target), live->curves.size());
-            if (added) {
-                LossCurve c;
-                c.objectId = object;
-                c.object = object >= 0 && object < int(names.size()) ? names[size_t(object)] : "?";
-                c.target = target;
-                live->curves.push_back(std::move(c));
-            }
+            if (added)
+                live->curves.push_back(
+                    lossCurve(object, object >= 0 && object < int(names.size()) ? names[size_t(object)] : "?", target));
             live->curves[it->second].points.push_back(lossPoint(r));
             live->epoch = std::max(live->epoch, r.epoch);
             live->step = r.step;
@@ -115,11 +121,7 @@ bool Workbench::startTrain(int maxEpochs) {
         TrainingRun run = trainNetworks(samples, out.settings.options, observer, &progress);
         if (run.networks > 0) {
             ctx.setStatus("saving the models");
-            const json extra = {{"dataset", out.dataset}, {"network", out.settings.networkJson()},
-                                {"trainer", out.settings.trainerJson()}, {"seconds", run.seconds},
-                                {"cancelled", run.cancelled}};
-            saveModelSet(out.modelsDir, run.models, out.sceneHash,
-                         data.header().at("input_layout").get<std::vector<std::string>>(), extra);
+            saveTrainingRun(out.modelsDir, run, out.settings, out.sceneHash, data.inputLayout(), {out.dataset, out.project});
         }
         out.curves = lossCurves(run.curves);
         out.seconds = run.seconds;

@@ -94,11 +94,15 @@ bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const
     return true;
 }
 
-GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atomic<bool>* cancel,
-                                 GeneratorProgress* progress) const {
+void checkShard(int shardIndex, int shardCount) {
     if (shardCount < 1 || shardIndex < 0 || shardIndex >= shardCount)
         throw SettingError("shard", "expected part k of n with 0 <= k < n, got k = " + std::to_string(shardIndex) +
                                         ", n = " + std::to_string(shardCount));
+}
+
+GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atomic<bool>* cancel,
+                                 GeneratorProgress* progress) const {
+    checkShard(shardIndex, shardCount);
     const auto start = std::chrono::steady_clock::now();
     const JitterGrid grid(scene_.bounds(), settings_.nx, settings_.ny, settings_.nz);
     const int cells = grid.cellCount();

@@ -44,6 +44,10 @@ struct GeneratedData {
     bool cancelled = false;
 };
 
+/// Throws SettingError naming the setting "shard" unless 0 <= shardIndex < shardCount (part k of n).
+/// DataGenerator::run checks it; front ends call it first to refuse a bad shard before any work.
+void checkShard(int shardIndex, int shardCount);
+
 class DataGenerator {
 public:
     /// `scene` must outlive the generator. Throws InputError if the settings do not fit the scene.

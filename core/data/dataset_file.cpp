@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/data/generator_stats.h"
 #include "core/util/atomic_file.h"
 #include "core/util/rng.h"
 
@@ -149,7 +150,8 @@ Dataset::Dataset(const std::string& path, bool verifyPayload, uint64_t expectedS
         if (expectedSceneHash != 0 && expectedSceneHash != sceneHash_)
             fail(path, "dataset was generated for a different scene (scene hash mismatch): regenerate it for this project");
         floatsPerRecord_ = header_.at("floats_per_record").get<int>();
-        inputCount_ = int(header_.at("input_layout").size());
+        inputLayout_ = header_.at("input_layout").get<std::vector<std::string>>();
+        inputCount_ = int(inputLayout_.size());
         if (floatsPerRecord_ <= 0 || inputCount_ >= floatsPerRecord_) fail(path, "inconsistent record layout in header");
         uint64_t expected = 0;
         for (const nlohmann::json& o : header_.at("objects")) {
@@ -221,7 +223,7 @@ void mergeDatasets(const std::vector<std::string>& inputs, const std::string& ou
     int expectedBegin = 0;
     const int cells = first.header().at("shard").at("cells_total").get<int>();
     nlohmann::json header = first.header();
-    nlohmann::json& stats = header.at("stats");
+    GeneratorStats stats = GeneratorStats::fromHeader(first.header(), first.path());
     std::vector<std::vector<float>> perObject(first.objects().size());
     for (size_t s = 0; s < shards.size(); ++s) {
         const Dataset& d = *shards[s];
@@ -235,17 +237,13 @@ void mergeDatasets(const std::vector<std::string>& inputs, const std::string& ou
             const float* r = d.records(i);
             perObject[i].insert(perObject[i].end(), r, r + d.objects()[i].count * size_t(d.floatsPerRecord()));
         }
-        if (s == 0) continue;
-        // Sum the counters; concatenate per-cell counts in cell order.
-        const nlohmann::json& st = d.header().at("stats");
-        for (auto it = st.begin(); it != st.end(); ++it) {
-            if (it->is_number_unsigned()) stats[it.key()] = stats[it.key()].get<uint64_t>() + it->get<uint64_t>();
-            else if (it->is_array()) for (const auto& v : *it) stats[it.key()].push_back(v);
-        }
+        // Shards are in cell order, so appending their per-cell counts keeps the cell order.
+        if (s > 0) stats += GeneratorStats::fromHeader(d.header(), d.path());
     }
     if (expectedBegin != cells)
         fail(shards.back()->path(), "shards do not cover the grid: cells " + std::to_string(expectedBegin) + ".." +
                                         std::to_string(cells) + " are missing");
+    header["stats"] = stats.toJson();
     header["shard"] = {{"index", 0}, {"count", 1}, {"cell_begin", 0}, {"cell_end", cells}, {"cells_total", cells}};
     writeDataset(output, header, first.sceneHash(), perObject);
 }

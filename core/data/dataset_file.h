@@ -70,6 +70,9 @@ public:
     uint64_t sceneHash() const { return sceneHash_; }
     int floatsPerRecord() const { return floatsPerRecord_; }
     int inputCount() const { return inputCount_; }
+    /// Names of the input columns of every record ("input_layout"), in column order; a model set
+    /// trained on this dataset stores them so prediction builds its inputs the same way.
+    const std::vector<std::string>& inputLayout() const { return inputLayout_; }
     const std::vector<DatasetObject>& objects() const { return objects_; }
     uint64_t totalRecords() const;
     /// Records of objects()[i]: count × floatsPerRecord floats.
@@ -80,6 +83,7 @@ private:
     nlohmann::json header_;
     uint64_t sceneHash_ = 0;
     int floatsPerRecord_ = 0, inputCount_ = 0;
+    std::vector<std::string> inputLayout_;
     std::vector<DatasetObject> objects_;
     void* map_ = nullptr;
     size_t mapSize_ = 0;

@@ -44,17 +44,18 @@ std::string formatDatasetReport(const Dataset& data, const std::vector<ObjectSum
     os << "settings: " << h.at("settings").dump() << "\n";
     os << "shard: " << h.at("shard").dump() << "\n";
     os << "records: " << data.totalRecords() << " (" << data.floatsPerRecord() << " floats each)\n";
-    nlohmann::json stats = h.at("stats");
-    stats.erase("records_per_cell");
-    os << "stats: " << stats.dump() << "\n";
     const GeneratorStats typed = GeneratorStats::fromHeader(h, data.path());
+    os << "generator: " << typed.records << " records; viewpoint cells dropped: " << typed.cellsDroppedInsideObject
+       << " inside an object, " << typed.cellsDroppedOutsideScene << " outside the scene; rays escaped "
+       << typed.raysEscaped << ", hit an emitter " << typed.raysHitEmitter << "; records without a finite sample "
+       << typed.recordsWithoutFiniteSample << "; non-finite samples dropped " << typed.nonFiniteSamplesDropped << "\n";
     if (!typed.recordsPerCell.empty()) {
         const auto [lo, hi] = std::minmax_element(typed.recordsPerCell.begin(), typed.recordsPerCell.end());
         const auto zero = std::count(typed.recordsPerCell.begin(), typed.recordsPerCell.end(), uint64_t(0));
         os << "records per cell: min " << *lo << ", max " << *hi << ", cells without records " << zero << " of "
            << typed.cells() << "\n";
     }
-    std::vector<std::string> names = h.at("input_layout").get<std::vector<std::string>>();
+    std::vector<std::string> names = data.inputLayout();
     for (const auto& t : h.at("target_layout")) names.push_back(t.get<std::string>());
     char line[256];
     for (const ObjectSummary& s : summary) {

@@ -15,6 +15,23 @@ nlohmann::json GeneratorStats::toJson() const {
             {"records_per_cell", recordsPerCell}};
 }
 
+GeneratorStats& GeneratorStats::operator+=(const GeneratorStats& other) {
+    records += other.records;
+    cellsDroppedInsideObject += other.cellsDroppedInsideObject;
+    cellsDroppedOutsideScene += other.cellsDroppedOutsideScene;
+    raysEscaped += other.raysEscaped;
+    raysHitEmitter += other.raysHitEmitter;
+    recordsWithoutFiniteSample += other.recordsWithoutFiniteSample;
+    nonFiniteSamplesDropped += other.nonFiniteSamplesDropped;
+    recordsPerCell.insert(recordsPerCell.end(), other.recordsPerCell.begin(), other.recordsPerCell.end());
+    if (recordsPerObject.size() < other.recordsPerObject.size()) recordsPerObject.resize(other.recordsPerObject.size(), 0);
+    for (size_t i = 0; i < other.recordsPerObject.size(); ++i) recordsPerObject[i] += other.recordsPerObject[i];
+    paths += other.paths;
+    rays += other.rays;
+    shadowRays += other.shadowRays;
+    return *this;
+}
+
 GeneratorStats GeneratorStats::fromHeader(const nlohmann::json& header, const std::string& file) {
     const JsonReader h(header, file);
     const JsonReader st = h.at("stats");

@@ -35,6 +35,10 @@ struct GeneratorStats {
         return cells() > dropped ? cells() - dropped : 0;
     }
 
+    /// Adds the run `other` that covers the cells after this one's (the next shard, the next worker's
+    /// cells): sums the counters and the per-object records, appends `other`'s per-cell counts.
+    GeneratorStats& operator+=(const GeneratorStats& other);
+
     /// The header's "stats" section.
     nlohmann::json toJson() const;
     /// Reads a dataset header's "stats" section and its objects' counts. `file` names the dataset in

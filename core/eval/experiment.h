@@ -7,7 +7,6 @@
 
 #include <vector>
 
-#include "core/util/stopwatch.h"
 #include "core/data/data_generator.h"
 #include "core/nn/model_set.h"
 #include "core/nn/object_training.h"

@@ -211,7 +211,9 @@ std::vector<std::string> defaultSweepValues(const std::string& what) {
     if (what == "dirs") return {"50", "100", "200"};
     if (what == "hidden") return {"5", "10,5", "20,10"};
     if (what == "trainer") return {"lm", "adam"};
-    throw SettingError("sweep dimension", "expected spp, grid, dirs, hidden or trainer, got '" + what + "'");
+    std::string kinds;
+    for (const char* k : kSweepKinds) kinds += std::string(kinds.empty() ? "" : ", ") + k;
+    throw SettingError("sweep dimension", "expected one of " + kinds + ", got '" + what + "'");
 }
 
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {

@@ -37,8 +37,12 @@
 
 namespace rrf {
 
+/// The kinds of sweep (SweepOptions::what), the one list the CLI's --what and the Cost panel offer.
+constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer"};
+constexpr int kSweepKindCount = int(sizeof kSweepKinds / sizeof kSweepKinds[0]);
+
 struct SweepOptions {
-    std::string what;                 ///< "spp" | "grid" | "dirs" | "hidden" | "trainer"
+    std::string what;                 ///< one of kSweepKinds
     std::vector<std::string> values;  ///< one setting each ("16", "4,4,4", "20,10", "lm"); empty = defaultSweepValues(what)
     int width = 128, height = 128;    ///< image size of references and predictions
     int referenceSpp = 0;             ///< 0 = 1024 for spp, 256 otherwise

@@ -5,6 +5,7 @@
 #include <mutex>
 #include <tuple>
 
+#include "core/nn/model_set.h"
 #include "core/util/stopwatch.h"
 
 namespace rrf {
@@ -59,6 +60,15 @@ TrainingRun trainNetworks(const std::vector<ObjectSamples>& samples, const Objec
     for (const ObjectModel& m : run.models) (m.skipped ? run.skipped : run.networks) += 1;
     for (auto& kv : curves) run.curves.push_back(std::move(kv.second));
     return run;
+}
+
+nlohmann::json saveTrainingRun(const std::string& dir, const TrainingRun& run, const NetworkSettings& settings,
+                               uint64_t sceneHash, const std::vector<std::string>& inputLayout,
+                               const TrainingProvenance& provenance) {
+    const nlohmann::json extra = {{"dataset", provenance.dataset},       {"project", provenance.project},
+                                  {"network", settings.networkJson()},   {"trainer", settings.trainerJson()},
+                                  {"seconds", run.seconds},              {"cancelled", run.cancelled}};
+    return saveModelSet(dir, run.models, sceneHash, inputLayout, extra);
 }
 
 }  // namespace rrf

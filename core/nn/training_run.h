@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "core/nn/network_settings.h"
 #include "core/nn/object_training.h"
 
 namespace rrf {
@@ -47,5 +50,20 @@ double trainingEpochBudget(const std::vector<ObjectSamples>& samples, const Obje
 /// as epochs finish. Throws what trainObjects throws.
 TrainingRun trainNetworks(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options,
                           const ObjectTrainingObserver& observer = {}, TrainingProgress* progress = nullptr);
+
+/// Where a training run's samples and settings came from, for models.json.
+struct TrainingProvenance {
+    std::string dataset;  ///< the dataset file the samples were read from
+    std::string project;  ///< the project (or bare scene) file the settings came from
+};
+
+/// Saves the models of `run` into `dir` as a model set (core/nn/model_set.h) for the scene with hash
+/// `sceneHash`, whose inputs are `inputLayout`. Every front end that trains (`rrf train`,
+/// `rrf pipeline`, the workbench's Train job) saves through here, so models.json holds the same
+/// fields whoever wrote it: "dataset", "project", "network", "trainer" (`settings`), "seconds" and
+/// "cancelled" (from `run`). Returns the index written.
+nlohmann::json saveTrainingRun(const std::string& dir, const TrainingRun& run, const NetworkSettings& settings,
+                               uint64_t sceneHash, const std::vector<std::string>& inputLayout,
+                               const TrainingProvenance& provenance);
 
 }  // namespace rrf

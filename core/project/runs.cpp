@@ -61,9 +61,7 @@ std::vector<LossPoint> lossFromJson(const JsonReader& r) {
     }
     return loss;
 }
-}  // namespace
 
-namespace {
 std::optional<double> numberIn(const json& section, const std::string& key) {
     if (!section.is_object()) return std::nullopt;
     const auto it = section.find(key);

@@ -1,7 +1,7 @@
 #pragma once
 /// The three radiance terms the renderer produces and everything downstream predicts, compares and
 /// shows: direct light (one bounce from the light, plus emission seen directly), indirect light (all
-/// longer paths) and global = direct + indirect (DESIGN.md "Rendering (core)": both parts are kept as
+/// longer paths) and global = direct + indirect (docs/design.md §2: both parts are kept as
 /// separate images because both are training targets).
 ///
 /// This is the one Term of the project: images, reports, tables, the CPU and GLSL predictors (the
