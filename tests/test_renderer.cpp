@@ -31,7 +31,8 @@ bool sameBits(const Image& a, const Image& b) {
 
 bool sameBits(const RenderSnapshot& a, const RenderSnapshot& b) {
     return sameBits(a.direct, b.direct) && sameBits(a.indirect, b.indirect) && sameBits(a.global, b.global) &&
-           sameBits(a.variance, b.variance);
+           sameBits(a.variance, b.variance) && sameBits(a.directVariance, b.directVariance) &&
+           sameBits(a.indirectVariance, b.indirectVariance);
 }
 
 }  // namespace

@@ -77,8 +77,10 @@ int runEvaluate(EvaluateArgs a) {
     const RenderOptions ro = referenceOptions(p, a.spp, a.width, a.height);
     if (!a.reference.empty()) {
         const Reference ref = loadReference(a.reference);
-        std::printf("reference: %s (%d spp, light at %.3f,%.3f,%.3f)\n", a.reference.c_str(), ref.spp, ref.lightPosition.x,
-                    ref.lightPosition.y, ref.lightPosition.z);
+        std::printf("reference: %s (%d spp, light at %.3f,%.3f,%.3f; noise %s)\n", a.reference.c_str(), ref.spp,
+                    ref.lightPosition.x, ref.lightPosition.y, ref.lightPosition.z,
+                    ref.variance(Term::Global).empty() ? "unknown: no variance images, noise floors are not known"
+                                                       : "known from its variance images");
         const Stopwatch clock;
         const std::vector<Evaluation> evals = evaluateAll(p, predictor, {ref.lightPosition}, ro, &ref, a.out, a.exposure);
         if (a.record) recordEvaluations(a, p, evals, clock.seconds());

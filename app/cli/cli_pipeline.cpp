@@ -61,10 +61,16 @@ int runPipeline(const PipelineArgs& a) {
             writeImage(outputPath(dir, std::string(termName(Term(k))) + ".exr"), gt.images[k], ImageFormat::EXR);
         writeImage(outputPath(dir, "global.png"), gt.image(Term::Global), ImageFormat::PNG, p.render.exposure);
         const Vec3 lp = gt.lightPosition;
-        writeFileAtomically(outputPath(dir, "render.json"),
-                            nlohmann::json{{"light_position", {lp.x, lp.y, lp.z}}, {"spp_completed", gt.spp}, {"seconds", gt.seconds},
-                                           {"non_finite_samples_dropped", gt.nonFinite}, {"width", ro.width}, {"height", ro.height}}
-                                    .dump(2) + "\n");
+        nlohmann::json meta{{"light_position", {lp.x, lp.y, lp.z}}, {"spp_completed", gt.spp}, {"seconds", gt.seconds},
+                            {"non_finite_samples_dropped", gt.nonFinite}, {"width", ro.width}, {"height", ro.height}};
+        // The variances make the directory a reference with a known noise floor (rrf evaluate --reference).
+        if (!gt.variance(Term::Global).empty()) {
+            std::vector<std::string> written;
+            meta["variance_images"] = writeVarianceImages(
+                dir, {&gt.variance(Term::Direct), &gt.variance(Term::Indirect), &gt.variance(Term::Global)}, ImageFormat::EXR,
+                written);
+        }
+        writeFileAtomically(outputPath(dir, "render.json"), meta.dump(2) + "\n");
         stages.push_back({"ground truth", gt.seconds});
         std::printf("[1/4] ground truth: %.1f s -> %s\n", gt.seconds, dir.c_str());
     }

@@ -71,6 +71,7 @@ int runRender(RenderArgs a) {
     std::printf("NaN/Inf samples dropped: %llu\n", (unsigned long long)st.nonFinite);
     std::printf("relative standard error of the image mean: %.3g\n", snap.relativeError);
     for (const std::string& p : out.images) std::printf("wrote %s\n", p.c_str());
+    for (const std::string& p : out.variances) std::printf("wrote %s (per-pixel variance of the mean)\n", p.c_str());
     std::printf("wrote %s\n", out.metadata.c_str());
     if (run) {
         setRenderRun(*run, projectDirectory(project), settings, o.spp, scene, project.overrides, snap, st, out);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -18,15 +19,25 @@ void checkSizes(const Image& a, const Image& b) {
 /// d / (|ref| + 0.01): the relative error of one channel, shared by the maps and the statistics.
 double relativeDifference(double d, double ref) { return d / (std::fabs(ref) + kRelativeEpsilon); }
 
+/// Sums over the pixels of a mask, in pixel order. `variance` (may be null) is the reference's per-pixel
+/// variance of the mean; with it the sums of the noise floor and the corrected error are kept too.
 struct Accumulator {
+    const Image& prediction;
+    const Image& reference;
+    const Image* variance;
     double sq = 0, rel = 0, abs = 0, max = 0, ref = 0;
+    double var = 0, relVar = 0;  ///< Σ v and Σ v / (|ref| + 0.01)²
     uint64_t pixels = 0, bad = 0;
 
-    void add(const Image& p, const Image& r, size_t i) {
-        const float* a = &p.data[3 * i];
-        const float* b = &r.data[3 * i];
+    void add(size_t i) {
+        const float* a = &prediction.data[3 * i];
+        const float* b = &reference.data[3 * i];
+        const float* v = variance ? &variance->data[3 * i] : nullptr;
         bool finite = true;
         for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(a[c]) && std::isfinite(b[c]);
+        // A variance is a non-negative number; anything else (a damaged file) cannot be subtracted.
+        if (v)
+            for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(v[c]) && v[c] >= 0.f;
         if (!finite) {
             ++bad;
             return;
@@ -39,6 +50,12 @@ struct Accumulator {
             abs += std::fabs(d);
             max = std::max(max, std::fabs(d));
             ref += double(b[c]);
+            if (v) {
+                // The relative weight 1 / (|ref| + 0.01)² is the one the relative RMSE gives d².
+                const double w = relativeDifference(1.0, double(b[c]));
+                var += double(v[c]);
+                relVar += double(v[c]) * w * w;
+            }
         }
         ++pixels;
     }
@@ -46,6 +63,8 @@ struct Accumulator {
         ErrorStats s;
         s.pixels = pixels;
         s.nonFinite = bad;
+        s.noiseKnown = variance != nullptr;
+        if (s.noiseKnown) s.rmseNoiseFloor = s.rmseCorrected = s.relativeRmseNoiseFloor = s.relativeRmseCorrected = 0;
         if (pixels == 0) return s;
         const double n = 3.0 * double(pixels);
         s.rmse = std::sqrt(sq / n);
@@ -53,9 +72,47 @@ struct Accumulator {
         s.mae = abs / n;
         s.maxError = max;
         s.meanReference = ref / n;
+        if (s.noiseKnown) {
+            // mean(d² − v) = mean d² − mean v: the sums are subtracted once, then clamped at 0 (the
+            // estimate of a squared error can fall below 0 where the prediction is within the noise).
+            s.rmseNoiseFloor = std::sqrt(var / n);
+            s.relativeRmseNoiseFloor = std::sqrt(relVar / n);
+            s.rmseCorrected = std::sqrt(std::max(0.0, (sq - var) / n));
+            s.relativeRmseCorrected = std::sqrt(std::max(0.0, (rel - relVar) / n));
+        }
         return s;
     }
 };
+
+/// Nullptr for "unknown" (an empty image); throws if a given variance does not match the reference.
+const Image* knownVariance(const Image& variance, const Image& reference) {
+    if (variance.empty()) return nullptr;
+    if (variance.width != reference.width || variance.height != reference.height)
+        throw std::invalid_argument("error metrics: the reference's variance is " + std::to_string(variance.width) + "x" +
+                                    std::to_string(variance.height) + " but the reference is " +
+                                    std::to_string(reference.width) + "x" + std::to_string(reference.height));
+    return &variance;
+}
+
+ErrorStats maskedStats(const Image& prediction, const Image& reference, const Image* variance,
+                       const std::vector<uint32_t>& mask) {
+    checkSizes(prediction, reference);
+    Accumulator acc{prediction, reference, variance};
+    const size_t n = prediction.pixelCount();
+    for (uint32_t i : mask) {
+        if (i >= n) throw std::invalid_argument("error metrics: mask pixel " + std::to_string(i) + " outside the image");
+        acc.add(i);
+    }
+    return acc.stats();
+}
+
+ErrorStats allPixelStats(const Image& prediction, const Image& reference, const Image* variance) {
+    checkSizes(prediction, reference);
+    Accumulator acc{prediction, reference, variance};
+    for (size_t i = 0; i < prediction.pixelCount(); ++i) acc.add(i);
+    return acc.stats();
+}
+
 }  // namespace
 
 const char* errorMapName(ErrorMapKind k) {
@@ -83,26 +140,41 @@ const char* errorMapFormula(ErrorMapKind k) {
 }
 
 nlohmann::json ErrorStats::toJson() const {
-    return {{"pixels", pixels}, {"non_finite_pixels", nonFinite}, {"rmse", rmse},       {"relative_rmse", relativeRmse},
-            {"mae", mae},       {"max_error", maxError},          {"mean_reference", meanReference}};
+    return {{"pixels", pixels},
+            {"non_finite_pixels", nonFinite},
+            {"rmse", rmse},
+            {"rmse_noise_floor", noiseFigureJson(rmseNoiseFloor)},
+            {"rmse_corrected", noiseFigureJson(rmseCorrected)},
+            {"relative_rmse", relativeRmse},
+            {"relative_rmse_noise_floor", noiseFigureJson(relativeRmseNoiseFloor)},
+            {"relative_rmse_corrected", noiseFigureJson(relativeRmseCorrected)},
+            {"mae", mae},
+            {"max_error", maxError},
+            {"mean_reference", meanReference}};
 }
 
 ErrorStats errorStats(const Image& prediction, const Image& reference, const std::vector<uint32_t>& mask) {
-    checkSizes(prediction, reference);
-    Accumulator acc;
-    const size_t n = prediction.pixelCount();
-    for (uint32_t i : mask) {
-        if (i >= n) throw std::invalid_argument("error metrics: mask pixel " + std::to_string(i) + " outside the image");
-        acc.add(prediction, reference, i);
-    }
-    return acc.stats();
+    return maskedStats(prediction, reference, nullptr, mask);
 }
 
-ErrorStats errorStats(const Image& prediction, const Image& reference) {
-    checkSizes(prediction, reference);
-    Accumulator acc;
-    for (size_t i = 0; i < prediction.pixelCount(); ++i) acc.add(prediction, reference, i);
-    return acc.stats();
+ErrorStats errorStats(const Image& prediction, const Image& reference) { return allPixelStats(prediction, reference, nullptr); }
+
+ErrorStats errorStatsWithNoise(const Image& prediction, const Image& reference, const Image& referenceVariance,
+                               const std::vector<uint32_t>& mask) {
+    return maskedStats(prediction, reference, knownVariance(referenceVariance, reference), mask);
+}
+
+ErrorStats errorStatsWithNoise(const Image& prediction, const Image& reference, const Image& referenceVariance) {
+    return allPixelStats(prediction, reference, knownVariance(referenceVariance, reference));
+}
+
+nlohmann::json noiseFigureJson(double value) { return std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value); }
+
+std::string noiseFigureText(double value) {
+    if (std::isnan(value)) return "unknown";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", value);
+    return buf;
 }
 
 float pixelError(const Vec3& prediction, const Vec3& reference, ErrorMapKind kind) {

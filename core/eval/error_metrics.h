@@ -11,12 +11,26 @@
 ///  - Statistics over a set of pixels (a mask), every channel of every pixel one entry:
 ///      RMSE = sqrt(mean d²), relative RMSE = sqrt(mean (d / (|ref| + 0.01))²), MAE = mean |d|,
 ///      max = max |d|, plus the pixel count and the mean reference value (for scale).
+///  - The reference's own noise. A reference r is a Monte Carlo mean: for a prediction p and the
+///    truth t, E[(p − r)²] = (p − t)² + Var(r). Given the reference's per-pixel variance of the mean
+///    v = Var(r) (the renderer's, per channel), RMSE and relative RMSE come with
+///      noise floor   sqrt(mean v)                  and  sqrt(mean v / (|ref| + 0.01)²)
+///                    (the figure the reference's noise alone gives: a perfect prediction's expected error)
+///      corrected     sqrt(max(0, mean(d² − v)))    and  sqrt(max(0, mean((d² − v) / (|ref| + 0.01)²)))
+///                    (an unbiased estimate of the squared error against the truth, clamped at 0)
+///    over the same pixels. The absolute figure is unbiased. The relative one is so to first order in
+///    the reference's relative noise σ/(|ref| + 0.01): its weight uses the noisy reference, which
+///    leaves a bias of order (σ/(|ref| + 0.01))² times the figure (tests/test_noise_floor.cpp derives
+///    it), so it needs a reference whose per-pixel relative noise is small.
+///    Without the variance (a reference saved without it) both are unknown:
+///    NaN, "unknown" in tables and null in JSON, never 0. MAE and max stay raw.
 ///  - A pixel whose prediction or reference has a NaN/Inf channel is left out of the statistics and
 ///    counted (`nonFinite`); in the maps it is NaN, which falseColor() shows as magenta and
 ///    floatMap() turns into 0 with the count reported. Nothing non-finite is ever averaged in.
 /// All sums are in double and run in pixel order, so results are deterministic.
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -43,18 +57,44 @@ std::optional<ErrorMapKind> parseErrorMapKind(std::string_view name);
 const char* errorMapFormula(ErrorMapKind k);
 
 struct ErrorStats {
-    uint64_t pixels = 0;     ///< pixels in the mask with finite prediction and reference
-    uint64_t nonFinite = 0;  ///< pixels in the mask left out because of NaN/Inf
+    uint64_t pixels = 0;     ///< pixels in the mask with finite prediction, reference (and variance)
+    uint64_t nonFinite = 0;  ///< pixels in the mask left out because of NaN/Inf (or a negative variance)
     double rmse = 0, relativeRmse = 0, mae = 0, maxError = 0;
     double meanReference = 0;  ///< mean reference value (all channels), to put the RMSE in scale
+    /// True when the reference's variance was given: the four figures below are then numbers,
+    /// otherwise NaN ("unknown"). See the header comment for the formulas.
+    bool noiseKnown = false;
+    double rmseNoiseFloor = kUnknownNoise, rmseCorrected = kUnknownNoise;
+    double relativeRmseNoiseFloor = kUnknownNoise, relativeRmseCorrected = kUnknownNoise;
+    /// {"pixels", "non_finite_pixels", "rmse", "rmse_noise_floor", "rmse_corrected", "relative_rmse",
+    /// "relative_rmse_noise_floor", "relative_rmse_corrected", "mae", "max_error", "mean_reference"};
+    /// the noise figures are null when unknown.
     nlohmann::json toJson() const;
+
+    static constexpr double kUnknownNoise = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Statistics over the pixels listed in `mask` (indices y·width + x). Throws std::invalid_argument if
 /// the image sizes differ or an index is out of range. An empty mask gives pixels = 0 and zeros.
+/// The noise floor and corrected figures are unknown (the reference's variance is not given).
 ErrorStats errorStats(const Image& prediction, const Image& reference, const std::vector<uint32_t>& mask);
-/// Statistics over every pixel.
+/// Statistics over every pixel (noise unknown).
 ErrorStats errorStats(const Image& prediction, const Image& reference);
+/// As above, with the reference's per-pixel, per-channel variance of the mean `referenceVariance`
+/// (same size as the reference): the noise floor and noise-corrected figures are filled in. An empty
+/// `referenceVariance` means "not known" (as the overloads without it). A pixel with a non-finite or
+/// negative variance is left out and counted like a non-finite one.
+/// (A name of its own: errorStats(p, r, {}) stays the empty mask.)
+ErrorStats errorStatsWithNoise(const Image& prediction, const Image& reference, const Image& referenceVariance,
+                               const std::vector<uint32_t>& mask);
+/// Statistics over every pixel, with the reference's variance of the mean (see above).
+ErrorStats errorStatsWithNoise(const Image& prediction, const Image& reference, const Image& referenceVariance);
+
+/// A noise figure for tables: the number as printf "%.4g" writes it, or "unknown" for NaN (a
+/// reference without its variance) — an unknown floor is never shown as 0.
+std::string noiseFigureText(double value);
+/// A noise figure in JSON: the number, or null for NaN (unknown).
+nlohmann::json noiseFigureJson(double value);
 
 /// Error of one pixel as the maps define it (mean over R, G, B of |d|, |d| / (|ref| + 0.01) or d²);
 /// NaN where a channel of either input is non-finite. errorMap() is this function at every pixel, so a

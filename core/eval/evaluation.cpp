@@ -48,6 +48,9 @@ Reference renderReference(const Scene& scene, const Vec3& lightPos, const Render
     r.images[int(Term::Direct)] = s.direct;
     r.images[int(Term::Indirect)] = s.indirect;
     r.images[int(Term::Global)] = s.global;
+    // With one sample a pixel's variance cannot be estimated (the renderer stores 0): unknown, not 0.
+    if (s.sppCompleted >= 2)
+        for (Term t : kTerms) r.variances[int(t)] = s.varianceOf(t);
     r.spp = s.sppCompleted;
     r.seconds = s.seconds;
     r.nonFinite = s.nonFinite;
@@ -85,6 +88,24 @@ Reference loadReference(const std::string& dir) {
                              "missing: render the reference with --format exr or pfm");
         r.images[t] = readImage(path);
     }
+    // Variances are optional: a render.json without "variance_images" leaves the noise unknown.
+    if (j.contains("variance_images")) {
+        const nlohmann::json& files = j["variance_images"];
+        for (Term t : kTerms) {
+            const std::string pointer = std::string("/variance_images/") + termName(t);
+            if (!files.is_object() || !files.contains(termName(t)) || !files[termName(t)].is_string())
+                throw InputError(meta, pointer, "expected the file name of the variance image");
+            const std::string path = (fs::path(dir) / files[termName(t)].get<std::string>()).string();
+            if (!fs::exists(path)) throw InputError(path, "", std::string("missing: listed in ") + meta + " at " + pointer);
+            Image v = readImage(path);
+            const Image& im = r.image(t);
+            if (v.width != im.width || v.height != im.height)
+                throw InputError(path, "", "expected a " + std::to_string(im.width) + "x" + std::to_string(im.height) +
+                                               " variance image like " + termName(t) + ", got " + std::to_string(v.width) +
+                                               "x" + std::to_string(v.height));
+            r.variances[int(t)] = std::move(v);
+        }
+    }
     return r;
 }
 
@@ -96,6 +117,7 @@ Evaluation evaluate(const Predictor& predictor, const Reference& reference) {
     e.referenceSeconds = reference.seconds;
     e.referenceSpp = reference.spp;
     e.referenceNonFinite = reference.nonFinite;
+    e.referenceNoiseKnown = !reference.variance(Term::Global).empty();
     const auto t0 = std::chrono::steady_clock::now();
     const GBuffer gb = predictor.gbuffer(reference.lightPosition, ref.width, ref.height);
     e.gbufferSeconds = since(t0);
@@ -110,9 +132,10 @@ Evaluation evaluate(const Predictor& predictor, const Reference& reference) {
     for (int t = 0; t < kTermCount; ++t) {
         TermErrors& te = e.terms[t];
         te.available = e.prediction.available[t];
+        const Image& variance = reference.variances[t];  // empty: noise unknown
         for (const auto& px : masks)
-            te.perObject.push_back(errorStats(e.prediction.images[t], reference.images[t], px));
-        te.overall = errorStats(e.prediction.images[t], reference.images[t], covered);
+            te.perObject.push_back(errorStatsWithNoise(e.prediction.images[t], reference.images[t], variance, px));
+        te.overall = errorStatsWithNoise(e.prediction.images[t], reference.images[t], variance, covered);
     }
     return e;
 }
@@ -134,7 +157,12 @@ nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
     return {
         {"light_position", vec(e.lightPosition)},
         {"footprint_mask", e.footprint.counts.toJson()},
-        {"reference", {{"spp", e.referenceSpp}, {"seconds", e.referenceSeconds}, {"non_finite_samples_dropped", e.referenceNonFinite}}},
+        {"reference",
+         {{"spp", e.referenceSpp},
+          {"seconds", e.referenceSeconds},
+          {"non_finite_samples_dropped", e.referenceNonFinite},
+          {"noise", e.referenceNoiseKnown ? "per-pixel variance of the mean known: noise floor and corrected figures given"
+                                          : "unknown (the reference has no variance images): noise floor and corrected figures are null"}}},
         {"prediction",
          {{"gbuffer_seconds", e.gbufferSeconds},
           {"inference_seconds", p.inferenceSeconds},
@@ -145,19 +173,25 @@ nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
           {"non_finite_values", p.nonFinite},
           {"unavailable", p.unavailableWhy}}},
         {"metric",
-         "per channel, averaged over RGB; relative error |d|/(|ref|+0.01); overall = all object pixels the footprint mask keeps"},
+         "per channel, averaged over RGB; relative error |d|/(|ref|+0.01); overall = all object pixels the footprint mask keeps; "
+         "*_noise_floor = the figure the reference's own noise gives (sqrt of the mean variance of the mean, relative: "
+         "divided by (|ref|+0.01)^2); *_corrected = sqrt(max(0, mean(d^2 - variance))) (relative: each term divided by "
+         "(|ref|+0.01)^2), an estimate of the error against the noise-free truth"},
         {"terms", terms},
     };
 }
 
 std::string evaluationTable(const Scene& scene, const Evaluation& e) {
     std::ostringstream out;
-    char line[256];
-    std::snprintf(line, sizeof line, "light at (%.3f, %.3f, %.3f), reference %d spp\n", e.lightPosition.x,
-                  e.lightPosition.y, e.lightPosition.z, e.referenceSpp);
+    char line[320];
+    std::snprintf(line, sizeof line, "light at (%.3f, %.3f, %.3f), reference %d spp, reference noise %s\n", e.lightPosition.x,
+                  e.lightPosition.y, e.lightPosition.z, e.referenceSpp,
+                  e.referenceNoiseKnown ? "known (per-pixel variance of the mean)" : "unknown (no variance images)");
     out << line;
-    std::snprintf(line, sizeof line, "%-9s %-14s %8s %10s %10s %10s %10s %10s\n", "term", "object", "pixels", "RMSE",
-                  "rel.RMSE", "MAE", "max", "mean ref");
+    // Each error comes with the reference's noise floor (what the reference's noise alone gives) and
+    // the corrected figure (the error against the noise-free truth); see core/eval/error_metrics.h.
+    std::snprintf(line, sizeof line, "%-9s %-14s %8s %10s %11s %10s %10s %11s %10s %10s %10s %10s\n", "term", "object",
+                  "pixels", "RMSE", "noise floor", "corrected", "rel.RMSE", "noise floor", "corrected", "MAE", "max", "mean ref");
     out << line;
     for (int t = 0; t < kTermCount; ++t) {
         const TermErrors& te = e.terms[t];
@@ -167,9 +201,11 @@ std::string evaluationTable(const Scene& scene, const Evaluation& e) {
             continue;
         }
         auto row = [&](const std::string& name, const ErrorStats& s) {
-            std::snprintf(line, sizeof line, "%-9s %-14s %8llu %10s %10s %10s %10s %10s\n", termName(Term(t)),
-                          name.substr(0, 14).c_str(), (unsigned long long)s.pixels, num(s.rmse).c_str(),
-                          num(s.relativeRmse).c_str(), num(s.mae).c_str(), num(s.maxError).c_str(),
+            std::snprintf(line, sizeof line, "%-9s %-14s %8llu %10s %11s %10s %10s %11s %10s %10s %10s %10s\n",
+                          termName(Term(t)), name.substr(0, 14).c_str(), (unsigned long long)s.pixels, num(s.rmse).c_str(),
+                          noiseFigureText(s.rmseNoiseFloor).c_str(), noiseFigureText(s.rmseCorrected).c_str(),
+                          num(s.relativeRmse).c_str(), noiseFigureText(s.relativeRmseNoiseFloor).c_str(),
+                          noiseFigureText(s.relativeRmseCorrected).c_str(), num(s.mae).c_str(), num(s.maxError).c_str(),
                           num(s.meanReference).c_str());
             out << line;
         };
@@ -177,6 +213,8 @@ std::string evaluationTable(const Scene& scene, const Evaluation& e) {
             if (te.perObject[id].pixels) row(id < scene.objects.size() ? scene.objects[id].name : std::to_string(id), te.perObject[id]);
         row("ALL OBJECTS", te.overall);
     }
+    out << "noise floor: the error the reference's own Monte Carlo noise gives; corrected: the error with that noise "
+           "subtracted (sqrt(max(0, mean(d^2 - Var(ref))))), an estimate against the noise-free truth\n";
     const Prediction& p = e.prediction;
     if (!p.objectsWithoutNetwork.empty())
         out << "objects without a network (shown black): " << p.objectsWithoutNetwork.size() << " objects, "

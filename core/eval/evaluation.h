@@ -21,12 +21,18 @@ namespace rrf {
 /// A ground-truth render (direct, indirect, global) and what made it.
 struct Reference {
     Image images[kTermCount];  ///< direct, indirect, global
+    /// Per-pixel, per-channel variance of the mean of each term (the renderer's): the reference's own
+    /// noise, which every error figure against it reports as its noise floor and subtracts in the
+    /// corrected figure (core/eval/error_metrics.h). Empty = unknown (a reference saved without it,
+    /// or one of fewer than 2 spp).
+    Image variances[kTermCount];
     Vec3 lightPosition{0.f};
     int spp = 0;
     double seconds = 0.0;
     uint64_t nonFinite = 0;    ///< samples the renderer dropped as NaN/Inf
     bool cancelled = false;
     const Image& image(Term t) const { return images[int(t)]; }
+    const Image& variance(Term t) const { return variances[int(t)]; }
 };
 
 /// Renders the reference of `scene` with the movable light centred at `lightPos` (the scene itself is
@@ -36,7 +42,9 @@ Reference renderReference(const Scene& scene, const Vec3& lightPos, const Render
                           const std::atomic<bool>* cancel = nullptr, std::atomic<double>* progress = nullptr);
 
 /// Reads a directory written by `rrf render` (direct/indirect/global.exr or .pfm and render.json,
-/// whose light position and spp it takes). Throws InputError naming the file.
+/// whose light position and spp it takes) and the variance images render.json lists under
+/// "variance_images"; a render.json without that key (an older render) gives a reference whose
+/// noise is unknown. Throws InputError naming the file.
 Reference loadReference(const std::string& dir);
 
 /// Errors of one term: per object (index = object id; pixels = 0 for objects out of view) and over
@@ -61,6 +69,7 @@ struct Evaluation {
     double referenceSeconds = 0.0;
     int referenceSpp = 0;
     uint64_t referenceNonFinite = 0;
+    bool referenceNoiseKnown = false;  ///< the reference carried its variance (noise floors are numbers)
     const TermErrors& term(Term t) const { return terms[int(t)]; }
 };
 
@@ -68,9 +77,11 @@ struct Evaluation {
 /// Throws std::invalid_argument if the reference has no pixels.
 Evaluation evaluate(const Predictor& predictor, const Reference& reference);
 
-/// Report of one evaluation: settings, timings, NaN/Inf counts, errors per term and object.
+/// Report of one evaluation: settings, timings, NaN/Inf counts, errors per term and object (each with
+/// the reference's noise floor and the noise-corrected figures, null when unknown).
 nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e);
-/// Fixed-width table: one row per term and object, then the overall row of each term.
+/// Fixed-width table: one row per term and object, then the overall row of each term; RMSE and
+/// relative RMSE each with "noise floor" and "corrected" columns ("unknown" without the variance).
 std::string evaluationTable(const Scene& scene, const Evaluation& e);
 
 /// Writes into `dir`: prediction_<term>.exr/.png, reference_<term>.exr, error_<kind>_<term>.exr (float

@@ -33,6 +33,30 @@ void Spread::add(double v) {
     ++count;
 }
 
+nlohmann::json Spread::toJson() const {
+    auto value = [&](double v) { return count ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    return {{"mean", value(mean)}, {"min", value(min)}, {"max", value(max)}, {"count", count}};
+}
+
+void HeldOutSummary::Row::add(const ErrorStats& s) {
+    rmse.add(s.rmse);
+    relativeRmse.add(s.relativeRmse);
+    if (!s.noiseKnown) return;  // an unknown floor is left out of the spread, never counted as 0
+    rmseNoiseFloor.add(s.rmseNoiseFloor);
+    rmseCorrected.add(s.rmseCorrected);
+    relativeRmseNoiseFloor.add(s.relativeRmseNoiseFloor);
+    relativeRmseCorrected.add(s.relativeRmseCorrected);
+}
+
+nlohmann::json HeldOutSummary::Row::toJson() const {
+    return {{"rmse", rmse.toJson()},
+            {"rmse_noise_floor", rmseNoiseFloor.toJson()},
+            {"rmse_corrected", rmseCorrected.toJson()},
+            {"relative_rmse", relativeRmse.toJson()},
+            {"relative_rmse_noise_floor", relativeRmseNoiseFloor.toJson()},
+            {"relative_rmse_corrected", relativeRmseCorrected.toJson()}};
+}
+
 HeldOutSummary summarizeHeldOut(const std::vector<Evaluation>& evaluations, size_t objectCount) {
     HeldOutSummary s;
     for (int t = 0; t < kTermCount; ++t) s.perObject[t].resize(objectCount);
@@ -41,14 +65,9 @@ HeldOutSummary summarizeHeldOut(const std::vector<Evaluation>& evaluations, size
             const TermErrors& te = e.terms[t];
             s.available[t] = s.available[t] && te.available;
             for (size_t id = 0; id < std::min(objectCount, te.perObject.size()); ++id) {
-                if (!te.perObject[id].pixels) continue;
-                s.perObject[t][id].rmse.add(te.perObject[id].rmse);
-                s.perObject[t][id].relativeRmse.add(te.perObject[id].relativeRmse);
+                if (te.perObject[id].pixels) s.perObject[t][id].add(te.perObject[id]);
             }
-            if (te.overall.pixels) {
-                s.overall[t].rmse.add(te.overall.rmse);
-                s.overall[t].relativeRmse.add(te.overall.relativeRmse);
-            }
+            if (te.overall.pixels) s.overall[t].add(te.overall);
         }
     return s;
 }
@@ -58,25 +77,22 @@ nlohmann::json heldOutJson(const Scene& scene, const HeldOutSummary& s) {
     for (int t = 0; t < kTermCount; ++t) {
         nlohmann::json objects = nlohmann::json::array();
         for (size_t id = 0; id < s.perObject[t].size(); ++id) {
-            const HeldOutSummary::Row& r = s.perObject[t][id];
-            objects.push_back({{"id", int(id)},
-                               {"name", id < scene.objects.size() ? scene.objects[id].name : ""},
-                               {"rmse", r.rmse.toJson()},
-                               {"relative_rmse", r.relativeRmse.toJson()}});
+            nlohmann::json o = s.perObject[t][id].toJson();
+            o["id"] = int(id);
+            o["name"] = id < scene.objects.size() ? scene.objects[id].name : "";
+            objects.push_back(o);
         }
-        terms[termName(Term(t))] = {{"available", s.available[t]},
-                                    {"overall", {{"rmse", s.overall[t].rmse.toJson()},
-                                                 {"relative_rmse", s.overall[t].relativeRmse.toJson()}}},
-                                    {"objects", objects}};
+        terms[termName(Term(t))] = {{"available", s.available[t]}, {"overall", s.overall[t].toJson()}, {"objects", objects}};
     }
     return terms;
 }
 
 std::string heldOutTable(const Scene& scene, const HeldOutSummary& s) {
     std::ostringstream out;
-    char line[256];
-    std::snprintf(line, sizeof line, "%-9s %-14s %3s | %-29s | %-29s\n", "term", "object", "K", "relative RMSE mean/min/max",
-                  "RMSE mean/min/max");
+    char line[400];
+    std::snprintf(line, sizeof line, "%-9s %-14s %3s | %-29s | %11s | %-29s | %-29s | %11s | %10s\n", "term", "object", "K",
+                  "rel.RMSE mean/min/max", "noise floor", "corrected mean/min/max", "RMSE mean/min/max", "noise floor",
+                  "corrected");
     out << line;
     for (int t = 0; t < kTermCount; ++t) {
         if (!s.available[t]) {
@@ -85,15 +101,25 @@ std::string heldOutTable(const Scene& scene, const HeldOutSummary& s) {
             continue;
         }
         auto row = [&](const std::string& name, const HeldOutSummary::Row& r) {
-            std::snprintf(line, sizeof line, "%-9s %-14s %3d | %9.4g %9.4g %9.4g | %9.4g %9.4g %9.4g\n", termName(Term(t)),
-                          name.substr(0, 14).c_str(), r.rmse.count, r.relativeRmse.mean, r.relativeRmse.min,
-                          r.relativeRmse.max, r.rmse.mean, r.rmse.min, r.rmse.max);
+            // Corrected min/max exist only where the noise was known; "unknown" otherwise.
+            const Spread& c = r.relativeRmseCorrected;
+            const std::string cMin = noiseFigureText(c.count ? c.min : ErrorStats::kUnknownNoise);
+            const std::string cMax = noiseFigureText(c.count ? c.max : ErrorStats::kUnknownNoise);
+            std::snprintf(line, sizeof line,
+                          "%-9s %-14s %3d | %9.4g %9.4g %9.4g | %11s | %9s %9s %9s | %9.4g %9.4g %9.4g | %11s | %10s\n",
+                          termName(Term(t)), name.substr(0, 14).c_str(), r.rmse.count, r.relativeRmse.mean, r.relativeRmse.min,
+                          r.relativeRmse.max, noiseFigureText(r.relativeRmseNoiseFloor.meanOrUnknown()).c_str(),
+                          noiseFigureText(c.meanOrUnknown()).c_str(), cMin.c_str(), cMax.c_str(), r.rmse.mean, r.rmse.min,
+                          r.rmse.max, noiseFigureText(r.rmseNoiseFloor.meanOrUnknown()).c_str(),
+                          noiseFigureText(r.rmseCorrected.meanOrUnknown()).c_str());
             out << line;
         };
         for (size_t id = 0; id < s.perObject[t].size(); ++id)
             if (s.perObject[t][id].rmse.count) row(id < scene.objects.size() ? scene.objects[id].name : std::to_string(id), s.perObject[t][id]);
         row("ALL OBJECTS", s.overall[t]);
     }
+    out << "noise floor: the error the references' own noise gives (mean over the K lights); corrected: the error "
+           "with that noise subtracted, an estimate against the noise-free truth\n";
     return out.str();
 }
 

@@ -20,15 +20,23 @@ std::vector<Vec3> heldOutLightPositions(const Bounds3& region, int k, uint64_t s
 
 struct Spread {
     double mean = 0, min = 0, max = 0;
-    int count = 0;  ///< evaluations in which the object was visible
+    int count = 0;  ///< evaluations that had the figure (object visible; for noise figures: noise known)
     void add(double v);
-    nlohmann::json toJson() const { return {{"mean", mean}, {"min", min}, {"max", max}, {"count", count}}; }
+    /// Mean, or NaN (an unknown figure, "unknown" in tables) when no evaluation had it.
+    double meanOrUnknown() const { return count ? mean : ErrorStats::kUnknownNoise; }
+    /// {"mean", "min", "max", "count"}; the three numbers are null when count is 0.
+    nlohmann::json toJson() const;
 };
 
-/// Spread of RMSE and relative RMSE per term, per object and overall, across evaluations.
+/// Spread of RMSE and relative RMSE per term, per object and overall, across evaluations, each with
+/// the spread of the references' noise floor and of the noise-corrected figure (over the evaluations
+/// whose reference noise was known).
 struct HeldOutSummary {
     struct Row {
         Spread rmse, relativeRmse;
+        Spread rmseNoiseFloor, rmseCorrected, relativeRmseNoiseFloor, relativeRmseCorrected;
+        void add(const ErrorStats& s);
+        nlohmann::json toJson() const;
     };
     bool available[kTermCount] = {true, true, true};
     std::vector<Row> perObject[kTermCount];  ///< index = object id
@@ -37,7 +45,8 @@ struct HeldOutSummary {
 
 HeldOutSummary summarizeHeldOut(const std::vector<Evaluation>& evaluations, size_t objectCount);
 nlohmann::json heldOutJson(const Scene& scene, const HeldOutSummary& s);
-/// Fixed-width table: term, object, relative RMSE mean/min/max, RMSE mean/min/max.
+/// Fixed-width table: term, object, K, relative RMSE mean/min/max, its noise floor (mean), its
+/// corrected value mean/min/max, then RMSE mean/min/max, noise floor and corrected (means).
 std::string heldOutTable(const Scene& scene, const HeldOutSummary& s);
 
 }  // namespace rrf

@@ -107,8 +107,12 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
     row.extra["pixels_without_network"] = e.prediction.pixelsWithoutNetwork;
     row.extra["non_finite_prediction_values"] = e.prediction.nonFinite;
     for (Term term : {Term::Direct, Term::Indirect})
-        if (e.term(term).available)
-            row.extra[std::string(termName(term)) + "_relative_rmse"] = e.term(term).overall.relativeRmse;
+        if (e.term(term).available) {
+            const ErrorStats& st = e.term(term).overall;
+            row.extra[std::string(termName(term)) + "_relative_rmse"] = st.relativeRmse;
+            row.extra[std::string(termName(term)) + "_relative_rmse_noise_floor"] = noiseFigureJson(st.relativeRmseNoiseFloor);
+            row.extra[std::string(termName(term)) + "_relative_rmse_corrected"] = noiseFigureJson(st.relativeRmseCorrected);
+        }
     return run;
 }
 
@@ -126,7 +130,9 @@ void sweepSpp(Context& c, SweepResult& r) {
     Renderer renderer(moved, accel, ro);
     const PathTracer tracer(moved, accel, Estimator::NEE, 1);
     const GBuffer gb = buildGBuffer(tracer, c.layout, c.reference.lightPosition, ro.width, ro.height);
-    std::vector<double> xs, ys;
+    std::vector<double> xs, ys, ysCorrected;
+    const Image& reference = c.reference.image(Term::Global);
+    const Image& variance = c.reference.variance(Term::Global);  // the reference's own noise
     int done = 0;  // one sample per pixel per pass (RenderOptions default)
     for (const SweepPoint& point : points) {
         const int target = point.spp;
@@ -136,15 +142,19 @@ void sweepSpp(Context& c, SweepResult& r) {
         SweepRow row;
         row.setting = point.setting;
         row.stageSeconds.push_back({"render", s.seconds});
-        row.overall = errorStats(s.global, c.reference.image(Term::Global));
-        for (const auto& px : gb.pixelsByObject) row.perObject.push_back(errorStats(s.global, c.reference.image(Term::Global), px));
+        row.overall = errorStatsWithNoise(s.global, reference, variance);
+        for (const auto& px : gb.pixelsByObject) row.perObject.push_back(errorStatsWithNoise(s.global, reference, variance, px));
         row.extra["non_finite_samples_dropped"] = s.nonFinite;
         xs.push_back(double(target));
         ys.push_back(row.overall.rmse);
-        c.log("spp " + row.setting + ": RMSE " + std::to_string(row.overall.rmse));
+        ysCorrected.push_back(row.overall.rmseCorrected);
+        c.log("spp " + row.setting + ": RMSE " + std::to_string(row.overall.rmse) + " (reference noise floor " +
+              noiseFigureText(row.overall.rmseNoiseFloor) + ", corrected " + noiseFigureText(row.overall.rmseCorrected) + ")");
         r.rows.push_back(std::move(row));
     }
     r.extra["loglog_slope_rmse"] = logLogSlope(xs, ys);
+    // Without the reference's noise the curve flattens towards its floor; the corrected slope does not.
+    r.extra["loglog_slope_rmse_corrected"] = noiseFigureJson(logLogSlope(xs, ysCorrected));
 }
 
 /// grid and dirs: new data for each point, then the same networks on each.
@@ -160,7 +170,8 @@ void sweepData(Context& c, SweepResult& r) {
         row.extra["records"] = records;
         trainAndEvaluate(c, samplesFromGenerated(data, c.scene, c.layout), c.o.training, row);
         c.log(r.what + " " + p.setting + ": " + std::to_string(records) + " records, relative RMSE " +
-              std::to_string(row.overall.relativeRmse));
+              std::to_string(row.overall.relativeRmse) + " (noise floor " + noiseFigureText(row.overall.relativeRmseNoiseFloor) +
+              ", corrected " + noiseFigureText(row.overall.relativeRmseCorrected) + ")");
         r.rows.push_back(std::move(row));
     }
 }
@@ -183,7 +194,9 @@ void sweepNetworks(Context& c, SweepResult& r, bool trainers) {
                                      {"train_loss", e.trainLoss}, {"validation_loss", e.validationLoss}});
             row.extra["curve"] = curve;
         }
-        c.log(r.what + " " + p.setting + ": relative RMSE " + std::to_string(row.overall.relativeRmse));
+        c.log(r.what + " " + p.setting + ": relative RMSE " + std::to_string(row.overall.relativeRmse) + " (noise floor " +
+              noiseFigureText(row.overall.relativeRmseNoiseFloor) + ", corrected " +
+              noiseFigureText(row.overall.relativeRmseCorrected) + ")");
         r.rows.push_back(std::move(row));
     }
 }
@@ -202,6 +215,9 @@ std::string num(double v) {
     std::snprintf(buf, sizeof buf, "%.6g", v);
     return buf;
 }
+
+/// A noise figure in CSV: empty when unknown (NaN), so a reader sees a missing value, never 0.
+std::string noiseField(double v) { return std::isnan(v) ? std::string() : num(v); }
 
 }  // namespace
 
@@ -269,8 +285,11 @@ std::string sweepCsv(const Scene& scene, const SweepResult& r) {
             if (std::find(stages.begin(), stages.end(), s.first) == stages.end()) stages.push_back(s.first);
     out << "what,setting";
     for (const std::string& s : stages) out << "," << s << "_seconds";
-    out << ",pixels,rmse,relative_rmse,mae,max_error";
-    for (const Object& o : scene.objects) out << "," << o.name << "_rmse," << o.name << "_relative_rmse";
+    out << ",pixels,rmse,rmse_noise_floor,rmse_corrected,relative_rmse,relative_rmse_noise_floor,relative_rmse_corrected,"
+           "mae,max_error";
+    for (const Object& o : scene.objects)
+        out << "," << o.name << "_rmse," << o.name << "_relative_rmse," << o.name << "_relative_rmse_noise_floor," << o.name
+            << "_relative_rmse_corrected";
     out << "\n";
     for (const SweepRow& row : r.rows) {
         out << r.what << "," << csvField(row.setting);
@@ -280,11 +299,15 @@ std::string sweepCsv(const Scene& scene, const SweepResult& r) {
                 if (kv.first == s) v = kv.second;
             out << "," << num(v);
         }
-        out << "," << row.overall.pixels << "," << num(row.overall.rmse) << "," << num(row.overall.relativeRmse) << ","
-            << num(row.overall.mae) << "," << num(row.overall.maxError);
+        const ErrorStats& e = row.overall;
+        out << "," << e.pixels << "," << num(e.rmse) << "," << noiseField(e.rmseNoiseFloor) << "," << noiseField(e.rmseCorrected)
+            << "," << num(e.relativeRmse) << "," << noiseField(e.relativeRmseNoiseFloor) << ","
+            << noiseField(e.relativeRmseCorrected) << "," << num(e.mae) << "," << num(e.maxError);
         for (size_t id = 0; id < scene.objects.size(); ++id) {
             const bool seen = id < row.perObject.size() && row.perObject[id].pixels > 0;
-            out << "," << (seen ? num(row.perObject[id].rmse) : "") << "," << (seen ? num(row.perObject[id].relativeRmse) : "");
+            const ErrorStats& o = seen ? row.perObject[id] : ErrorStats{};
+            out << "," << (seen ? num(o.rmse) : "") << "," << (seen ? num(o.relativeRmse) : "") << ","
+                << noiseField(o.relativeRmseNoiseFloor) << "," << noiseField(o.relativeRmseCorrected);
         }
         out << "\n";
     }
@@ -326,7 +349,9 @@ nlohmann::json sweepJson(const Scene& scene, const SweepResult& r) {
             {"light_position", {r.lightPosition.x, r.lightPosition.y, r.lightPosition.z}},
             {"reference", {{"spp", r.referenceSpp}, {"seconds", r.referenceSeconds}}},
             {"error_term", "global"},
-            {"metric", "per channel averaged over RGB; relative error |d|/(|ref|+0.01)"},
+            {"metric", "per channel averaged over RGB; relative error |d|/(|ref|+0.01); *_noise_floor = the figure the "
+                       "reference's own noise gives, *_corrected = the figure with the reference's per-pixel variance of the "
+                       "mean subtracted from the squared error (clamped at 0); null when unknown"},
             {"cancelled", r.cancelled},
             {"extra", r.extra},
             {"rows", rows}};
@@ -334,24 +359,33 @@ nlohmann::json sweepJson(const Scene& scene, const SweepResult& r) {
 
 std::string sweepTable(const SweepResult& r) {
     std::ostringstream out;
-    char line[512];
+    char line[640];
     for (const SweepRow& row : r.rows) {
         std::string stages;
         for (const auto& kv : row.stageSeconds) {
             std::snprintf(line, sizeof line, "%s %.3f s  ", kv.first.c_str(), kv.second);
             stages += line;
         }
-        std::snprintf(line, sizeof line, "| %-10s | %-58s | %10.4g | %10.4g | %10.4g |\n", row.setting.c_str(),
-                      stages.c_str(), row.overall.rmse, row.overall.relativeRmse, row.overall.mae);
+        const ErrorStats& e = row.overall;
+        std::snprintf(line, sizeof line, "| %-10s | %-58s | %10.4g | %11s | %10s | %10.4g | %11s | %10s | %10.4g |\n",
+                      row.setting.c_str(), stages.c_str(), e.rmse, noiseFigureText(e.rmseNoiseFloor).c_str(),
+                      noiseFigureText(e.rmseCorrected).c_str(), e.relativeRmse, noiseFigureText(e.relativeRmseNoiseFloor).c_str(),
+                      noiseFigureText(e.relativeRmseCorrected).c_str(), e.mae);
         out << line;
     }
-    std::snprintf(line, sizeof line, "| %-10s | %-58s | %10s | %10s | %10s |\n|%s|%s|%s|%s|%s|\n", r.what.c_str(),
-                  "wall time per stage", "RMSE", "rel. RMSE", "MAE", "------------", std::string(60, '-').c_str(),
-                  "------------", "------------", "------------");
+    const std::string rule10(12, '-'), rule11(13, '-');
+    std::snprintf(line, sizeof line, "| %-10s | %-58s | %10s | %11s | %10s | %10s | %11s | %10s | %10s |\n|%s|%s|%s|%s|%s|%s|%s|%s|%s|\n",
+                  r.what.c_str(), "wall time per stage", "RMSE", "noise floor", "corrected", "rel.RMSE", "noise floor",
+                  "corrected", "MAE", rule10.c_str(), std::string(60, '-').c_str(), rule10.c_str(), rule11.c_str(),
+                  rule10.c_str(), rule10.c_str(), rule11.c_str(), rule10.c_str(), rule10.c_str());
     std::string s = line + out.str();
+    s += "noise floor: the error the reference's own noise gives; corrected: the error with that noise subtracted\n";
     if (r.extra.contains("loglog_slope_rmse")) {
-        std::snprintf(line, sizeof line, "log-log slope of RMSE vs spp: %.3f (Monte Carlo: -0.5)\n",
-                      r.extra["loglog_slope_rmse"].is_number() ? r.extra["loglog_slope_rmse"].get<double>() : std::nan(""));
+        const auto slope = [&](const char* key) {
+            return r.extra.contains(key) && r.extra[key].is_number() ? r.extra[key].get<double>() : std::nan("");
+        };
+        std::snprintf(line, sizeof line, "log-log slope of RMSE vs spp: %.3f raw, %s corrected (Monte Carlo: -0.5)\n",
+                      slope("loglog_slope_rmse"), noiseFigureText(slope("loglog_slope_rmse_corrected")).c_str());
         s += line;
     }
     return s;

@@ -46,6 +46,22 @@ nlohmann::json renderMetadata(const Scene& scene, const Renderer& renderer, cons
     };
 }
 
+nlohmann::json writeVarianceImages(const std::string& dir, const std::array<const Image*, kTermCount>& variances,
+                                   ImageFormat format, std::vector<std::string>& written) {
+    makeDirectories(dir);
+    // A variance is a float per channel; an 8-bit format would round it away.
+    const ImageFormat floatFormat = format == ImageFormat::PFM ? ImageFormat::PFM : ImageFormat::EXR;
+    nlohmann::json files = nlohmann::json::object();
+    for (Term t : kTerms) {
+        const std::string name = std::string("variance_") + termName(t) + "." + imageFormatName(floatFormat);
+        const std::string path = (fs::path(dir) / name).string();
+        writeImage(path, *variances[size_t(t)], floatFormat);
+        written.push_back(path);
+        files[termName(t)] = name;
+    }
+    return files;
+}
+
 RenderOutputs writeRenderOutputs(const std::string& dir, const Scene& scene, const Renderer& renderer,
                                  const RenderSnapshot& snapshot, ImageFormat format, float exposureStops) {
     makeDirectories(dir);
@@ -60,8 +76,15 @@ RenderOutputs writeRenderOutputs(const std::string& dir, const Scene& scene, con
         writeImage(path, *image, format, exposureStops);
         out.images.push_back(path);
     }
+    nlohmann::json meta = renderMetadata(scene, renderer, snapshot);
+    // With fewer than 2 samples per pixel the variance cannot be estimated (the snapshot holds 0):
+    // no files, so a reader sees "unknown" instead of a floor of 0.
+    if (snapshot.sppCompleted >= 2)
+        meta["variance_images"] = writeVarianceImages(
+        dir, {&snapshot.varianceOf(Term::Direct), &snapshot.varianceOf(Term::Indirect), &snapshot.varianceOf(Term::Global)},
+        format, out.variances);
     out.metadata = (fs::path(dir) / "render.json").string();
-    writeFileAtomically(out.metadata, renderMetadata(scene, renderer, snapshot).dump(2) + "\n");
+    writeFileAtomically(out.metadata, meta.dump(2) + "\n");
     return out;
 }
 

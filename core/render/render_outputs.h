@@ -1,8 +1,11 @@
 #pragma once
 /// Writing a finished (or cancelled) ground-truth render to a directory: `global`, `direct` and
-/// `indirect` images in the chosen format plus `render.json` recording the settings, the derived
-/// effects, timings and the NaN/Inf count — so an image never travels without what made it.
+/// `indirect` images in the chosen format, each term's per-pixel variance of the mean
+/// (`variance_<term>`, always a float format: the noise floor of any error measured against the
+/// render) and `render.json` recording the settings, the derived effects, timings, the NaN/Inf count
+/// and the variance files — so an image never travels without what made it or how noisy it is.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -10,19 +13,29 @@
 
 #include "core/util/image_io.h"
 #include "core/render/renderer.h"
+#include "core/render/term.h"
 
 namespace rrf {
 
 struct RenderOutputs {
-    std::vector<std::string> images;  ///< paths written, global first
-    std::string metadata;             ///< path of render.json
+    std::vector<std::string> images;     ///< paths written, global first
+    std::vector<std::string> variances;  ///< variance_<term> paths written, direct, indirect, global
+    std::string metadata;                ///< path of render.json
 };
 
 /// Metadata of a render as JSON (settings, effects, statistics, light position, scene hash).
 nlohmann::json renderMetadata(const Scene& scene, const Renderer& renderer, const RenderSnapshot& snapshot);
 
-/// Writes global/direct/indirect.<ext> and render.json into `dir` (created if missing), each file
-/// atomically. Throws std::runtime_error naming the file on failure.
+/// Writes each term's variance of the mean, `variances[int(t)]`, as variance_<term>.<ext> into `dir`
+/// (created if missing), in `format` if it holds floats (EXR, PFM) and EXR otherwise. Appends the paths
+/// to `written` and returns render.json's "variance_images" entry: {"<term>": file name in `dir`}.
+nlohmann::json writeVarianceImages(const std::string& dir, const std::array<const Image*, kTermCount>& variances,
+                                   ImageFormat format, std::vector<std::string>& written);
+
+/// Writes global/direct/indirect.<ext>, variance_<term>.<exr|pfm> and render.json (with
+/// "variance_images"; both left out below 2 spp, where the variance is unknown) into `dir` (created
+/// if missing), each file atomically. Throws std::runtime_error
+/// naming the file on failure.
 RenderOutputs writeRenderOutputs(const std::string& dir, const Scene& scene, const Renderer& renderer,
                                  const RenderSnapshot& snapshot, ImageFormat format, float exposureStops);
 

@@ -90,9 +90,12 @@ void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCoun
                 }
                 const Vec3 g = L.global();
                 for (int c = 0; c < 3; ++c) {
-                    px.direct[c] += L.direct[c];
-                    px.indirect[c] += L.indirect[c];
-                    px.sq[c] += double(g[c]) * double(g[c]);
+                    const double d = L.direct[c], ind = L.indirect[c], glob = g[c];
+                    px.direct[c] += d;
+                    px.indirect[c] += ind;
+                    px.sq[int(Term::Direct)][c] += d * d;
+                    px.sq[int(Term::Indirect)][c] += ind * ind;
+                    px.sq[int(Term::Global)][c] += glob * glob;
                 }
                 ++px.accepted;
                 ++accepted;
@@ -110,7 +113,7 @@ void Renderer::mergePass() {
         for (int c = 0; c < 3; ++c) {
             dst.direct[c] += src.direct[c];
             dst.indirect[c] += src.indirect[c];
-            dst.sq[c] += src.sq[c];
+            for (int t = 0; t < kTermCount; ++t) dst.sq[t][c] += src.sq[t][c];
         }
         dst.accepted += src.accepted;
         dst.next += src.next;
@@ -128,6 +131,8 @@ RenderSnapshot Renderer::snapshot() const {
     s.indirect = Image(w, h);
     s.global = Image(w, h);
     s.variance = Image(w, h);
+    s.directVariance = Image(w, h);
+    s.indirectVariance = Image(w, h);
     double sumMean = 0, sumVar = 0;
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -135,15 +140,20 @@ RenderSnapshot Renderer::snapshot() const {
             const Pixel& p = pixels_[i];
             if (p.accepted == 0) continue;
             const double inv = 1.0 / p.accepted;
+            // Variance of the mean: (E[x²] − E[x]²) / (n − 1), clamped against rounding.
+            auto varianceOfMean = [&](const double* sq, int c, double mean) {
+                return p.accepted > 1 ? std::max(0.0, sq[c] * inv - mean * mean) / (p.accepted - 1) : 0.0;
+            };
             for (int c = 0; c < 3; ++c) {
                 const double d = p.direct[c] * inv, ind = p.indirect[c] * inv, g = d + ind;
                 s.direct.data[3 * i + size_t(c)] = float(d);
                 s.indirect.data[3 * i + size_t(c)] = float(ind);
                 // Sum the stored floats so that global == direct + indirect holds exactly in the images.
                 s.global.data[3 * i + size_t(c)] = float(d) + float(ind);
-                // Variance of the mean: (E[x²] − E[x]²) / (n − 1), clamped against rounding.
-                const double var = p.accepted > 1 ? std::max(0.0, p.sq[c] * inv - g * g) / (p.accepted - 1) : 0.0;
+                const double var = varianceOfMean(p.sq[int(Term::Global)], c, g);
                 s.variance.data[3 * i + size_t(c)] = float(var);
+                s.directVariance.data[3 * i + size_t(c)] = float(varianceOfMean(p.sq[int(Term::Direct)], c, d));
+                s.indirectVariance.data[3 * i + size_t(c)] = float(varianceOfMean(p.sq[int(Term::Indirect)], c, ind));
                 sumMean += g;
                 sumVar += var;
             }

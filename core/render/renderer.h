@@ -2,7 +2,8 @@
 /// Progressive, tiled, multi-threaded (oneTBB) ground-truth renderer.
 ///
 /// Each pass adds `samplesPerPass` samples to every pixel. Sums are kept in double per pixel, together
-/// with the sum of squares of the global radiance (per-pixel variance of the mean). Sample k of pixel
+/// with the sums of squares of the direct, indirect and global radiance (each term's per-pixel variance
+/// of the mean: the noise floor of every error measured against this render). Sample k of pixel
 /// i always uses Rng(seed, i, k), so the image is bit-identical for any thread count and any pass
 /// split. A sample whose direct or indirect radiance is NaN/Inf is dropped and counted; the pixel
 /// keeps its own sample count so the mean stays unbiased.
@@ -21,6 +22,7 @@
 #include "core/scene/camera_rays.h"
 #include "core/util/image.h"
 #include "core/render/path_tracer.h"
+#include "core/render/term.h"
 
 namespace rrf {
 
@@ -41,7 +43,12 @@ RenderOptions renderOptionsFor(const Scene& scene, const RenderSettings& setting
 /// A consistent copy of the current estimate.
 struct RenderSnapshot {
     Image direct, indirect, global;
-    Image variance;            ///< per-pixel variance of the global mean (per channel)
+    /// Per-pixel, per-channel variance of the mean of each term, Var(mean) = max(0, E[x²] − E[x]²) / (n − 1)
+    /// over the pixel's n accepted samples (0 where n < 2). The global one is not the sum of the other
+    /// two: direct and indirect radiance of one path are correlated.
+    Image variance;            ///< of the global mean
+    Image directVariance;      ///< of the direct mean
+    Image indirectVariance;    ///< of the indirect mean
     int passes = 0;
     uint64_t samples = 0;      ///< samples accepted so far (all pixels)
     uint64_t nonFinite = 0;    ///< samples dropped because they were NaN/Inf
@@ -49,6 +56,12 @@ struct RenderSnapshot {
     double seconds = 0.0;      ///< render time so far
     /// Relative standard error of the image mean of the global image, a convergence estimate.
     double relativeError = 0.0;
+
+    const Image& image(Term t) const { return t == Term::Direct ? direct : t == Term::Indirect ? indirect : global; }
+    /// The variance of the mean of term `t` (variance, directVariance or indirectVariance).
+    const Image& varianceOf(Term t) const {
+        return t == Term::Direct ? directVariance : t == Term::Indirect ? indirectVariance : variance;
+    }
 };
 
 struct RenderStats {
@@ -83,7 +96,8 @@ private:
     struct Pixel {
         double direct[3] = {0, 0, 0};
         double indirect[3] = {0, 0, 0};
-        double sq[3] = {0, 0, 0};  ///< sum of squares of global radiance
+        /// Sums of squares per term (index int(Term)) and channel, for the variances of the means.
+        double sq[kTermCount][3] = {};
         uint32_t accepted = 0;     ///< finite samples accumulated
         uint32_t next = 0;         ///< next sample index (counts dropped samples too)
     };
