@@ -1,6 +1,7 @@
 // Network panel: hidden layers, activation, what the networks predict, the trainer and its
-// parameters, and the parameter count of each network. Project::network is the only copy of these
-// settings: every edit goes through store().
+// parameters, and the parameter count of each network. Project::network and Project::trainer are the
+// only copies of these settings: every edit goes through storeNetwork() or storeTrainer(), so editing
+// the layers does not add a "trainer" section to the project (nor the trainer a "network" one).
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -13,13 +14,20 @@
 namespace rrf::panels {
 
 namespace {
-constexpr int kMaxLayerSize = 4096, kMaxLayers = 8;
+constexpr int kMaxLayers = 8;
 
 /// The settings in effect. A project without network/trainer sections keeps none until an edit.
 NetworkSettings current(const WorkbenchState& state) { return state.project.networkOrDefault(); }
 
-void store(WorkbenchState& state, const NetworkSettings& s) {
+/// Stores the "network" part of `s` (layers, activation, targets).
+void storeNetwork(WorkbenchState& state, const NetworkSettings& s) {
     state.project.network = s;
+    state.markDirty();
+}
+
+/// Stores the trainer of `s`.
+void storeTrainer(WorkbenchState& state, const NetworkSettings& s) {
+    state.project.trainer = s.options.trainer;
     state.markDirty();
 }
 
@@ -120,7 +128,7 @@ bool addHiddenLayer(WorkbenchState& state) {
     if (int(s.options.hidden.size()) >= kMaxLayers) return false;
     // A new layer repeats the last one's size: a sensible start that the user then resizes.
     s.options.hidden.push_back(s.options.hidden.empty() ? 10 : s.options.hidden.back());
-    store(state, s);
+    storeNetwork(state, s);
     return true;
 }
 
@@ -129,25 +137,25 @@ bool removeHiddenLayer(WorkbenchState& state, int index) {
     // The file format needs at least one hidden layer.
     if (s.options.hidden.size() <= 1 || index < 0 || index >= int(s.options.hidden.size())) return false;
     s.options.hidden.erase(s.options.hidden.begin() + index);
-    store(state, s);
+    storeNetwork(state, s);
     return true;
 }
 
 bool resizeHiddenLayer(WorkbenchState& state, int index, int size) {
     NetworkSettings s = current(state);
     if (index < 0 || index >= int(s.options.hidden.size())) return false;
-    size = std::clamp(size, 1, kMaxLayerSize);
+    size = std::clamp(size, 1, kMaxHiddenSize);
     if (s.options.hidden[size_t(index)] == size) return false;
     s.options.hidden[size_t(index)] = size;
-    store(state, s);
+    storeNetwork(state, s);
     return true;
 }
 
 bool setTrainerType(WorkbenchState& state, TrainerType type) {
     NetworkSettings s = current(state);
     if (s.options.trainer.type == type) return false;
-    s.options.trainer.type = type;  // the other trainer's parameters keep their defaults
-    store(state, s);
+    s.options.trainer = s.options.trainer.withType(type);
+    storeTrainer(state, s);
     return true;
 }
 
@@ -183,14 +191,14 @@ void drawNetworkPanel(WorkbenchState& state) {
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
     if (ImGui::Combo("activation", &activation, "tanh\0relu\0")) {
         s.options.activation = Activation(activation);
-        store(state, s);
+        storeNetwork(state, s);
     }
     // Combo order is TargetMode's order: global, direct, indirect, separate, joint.
     int targets = int(s.options.targets);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
     if (ImGui::Combo("targets", &targets, "global\0direct\0indirect\0separate (direct + indirect nets)\0joint (6 outputs)\0")) {
         s.options.targets = TargetMode(targets);
-        store(state, s);
+        storeNetwork(state, s);
     }
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("per object: one global net, one net per term (separate), or one 6-output net (joint)");
@@ -204,7 +212,7 @@ void drawNetworkPanel(WorkbenchState& state) {
     }
     const bool changed = s.options.trainer.type == TrainerType::Adam ? drawAdam(s.options.trainer.adam)
                                                                       : drawLevenbergMarquardt(s.options.trainer.lm);
-    if (changed) store(state, s);
+    if (changed) storeTrainer(state, s);
 
     ImGui::Separator();
     drawParameterCount(state, s);

@@ -66,16 +66,16 @@ void drawSamplingPanel(WorkbenchState& state) {
     const float w = ImGui::GetFontSize() * 10;
     int grid[3] = {s.nx, s.ny, s.nz};
     ImGui::SetNextItemWidth(w);
-    if (ImGui::DragInt3("jitter grid", grid, 0.2f, 1, 64)) {
+    if (ImGui::DragInt3("jitter grid", grid, 0.2f, 1, kMaxGridCells)) {
         s.nx = grid[0];
         s.ny = grid[1];
         s.nz = grid[2];
         changed = true;
     }
     ImGui::SetNextItemWidth(w);
-    changed |= ImGui::DragInt("directions (N_dir)", &s.directions, 10.f, 1, 100000);
+    changed |= ImGui::DragInt("directions (N_dir)", &s.directions, 10.f, 1, kMaxDirections);
     ImGui::SetNextItemWidth(w);
-    changed |= ImGui::DragInt("paths per record", &s.spp, 1.f, 1, 65536);
+    changed |= ImGui::DragInt("paths per record", &s.spp, 1.f, 1, kMaxSamplesPerRecord);
     int seed = int(s.seed & 0x7fffffff);
     ImGui::SetNextItemWidth(w);
     if (ImGui::InputInt("seed##sampling", &seed)) {

@@ -216,8 +216,10 @@ TEST(FootprintMask, ExactDirectLightOfTheShortBoxMatchesItsReferenceWithinNoise)
     ref.images[int(Term::Global)] = snap.global;
 
     ModelSet none;  // exact direct light needs no network; the indirect term is not compared here
-    const PredictionSettings exact =
-        PredictionSettings::fromJson({{"direct", "exact"}, {"direct_samples", spp}, {"seed", 3}}, "test");
+    PredictionSettings exact;
+    exact.direct = PredictionSettings::Direct::Exact;
+    exact.directSamples = spp;
+    exact.seed = 3;
     const Predictor pred(s, none, exact);
     const Evaluation e = evaluate(pred, ref);
     const int box = objectId(s, "short-box");

@@ -7,6 +7,7 @@
 #include "core/eval/evaluation.h"
 #include "core/predict/footprint_mask.h"
 #include "core/predict/predictor.h"
+#include "core/util/json_reader.h"
 #include "core/project/project.h"
 
 using namespace rrf;
@@ -62,6 +63,12 @@ ModelSet lightAndAlbedoModels(const Scene& s) {
 }
 
 const Vec3 kLight(0.2f, 0.9f, -0.1f);
+
+/// A "prediction" section as the project reader reads it.
+PredictionSettings readPrediction(const nlohmann::json& section) {
+    return PredictionSettings::fromJson(JsonReader(section, "p.json", "/prediction"));
+}
+
 }  // namespace
 
 TEST(Predictor, CopyNetworksReproduceTheirInputsExactly) {
@@ -155,7 +162,7 @@ TEST(Predictor, ExactDirectMatchesThePathTracersDirectLight) {
     const ModelSet models = modelsFor(s, [](int) {
         return std::map<std::string, NetworkModel>{{"indirect", copyInputNet(15, {12, 13, 14})}};
     });
-    PredictionSettings settings = PredictionSettings::fromJson({{"direct", "exact"}, {"direct_samples", 32}}, "test");
+    PredictionSettings settings = readPrediction({{"direct", "exact"}, {"direct_samples", 32}});
     ASSERT_EQ(settings.direct, PredictionSettings::Direct::Exact);
     const Predictor pred(s, models, settings);
     const Prediction out = pred.predict(pred.gbuffer(kLight, 32, 32));
@@ -191,9 +198,9 @@ TEST(Predictor, ExactDirectMatchesThePathTracersDirectLight) {
 }
 
 TEST(Predictor, SettingsAreValidated) {
-    EXPECT_THROW(PredictionSettings::fromJson({{"direct", "magic"}}, "p.json"), InputError);
-    EXPECT_THROW(PredictionSettings::fromJson({{"direct_samples", 0}}, "p.json"), InputError);
-    EXPECT_THROW(PredictionSettings::fromJson({{"typo", 1}}, "p.json"), InputError);
+    EXPECT_THROW(readPrediction({{"direct", "magic"}}), InputError);
+    EXPECT_THROW(readPrediction({{"direct_samples", 0}}), InputError);
+    EXPECT_THROW(readPrediction({{"typo", 1}}), InputError);
     const Project p = loadProjectOrScene(kCornell);
     EXPECT_EQ(p.prediction.direct, PredictionSettings::Direct::Network);
     // A network with the wrong number of inputs is refused up front, not at the first frame.

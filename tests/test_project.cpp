@@ -10,6 +10,7 @@
 #include "core/util/error.h"
 #include "core/project/project.h"
 #include "core/project/scene_edits.h"
+#include "core/util/json_reader.h"
 
 using namespace rrf;
 using nlohmann::json;
@@ -145,8 +146,9 @@ TEST(Project, EmbeddedSceneRebasesObjPathsOnSave) {
 
     const Project q = loadProjectOrScene(dir + "/b/moved.json");
     EXPECT_EQ(q.scene.contentHash(), p.scene.contentHash());
-    ASSERT_TRUE(q.network.has_value());
-    EXPECT_EQ(q.network->options.trainer.type, TrainerType::LevenbergMarquardt);
+    EXPECT_FALSE(q.network.has_value()) << "the file has only a trainer section";
+    ASSERT_TRUE(q.trainer.has_value());
+    EXPECT_EQ(q.trainer->type, TrainerType::LevenbergMarquardt);
 }
 
 TEST(Project, EmbeddedSceneErrorsPointIntoProject) {
@@ -226,6 +228,7 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     network.options.trainer.adam.learningRate = 3e-3;
     network.options.trainer.adam.loss = AdamLoss::RelativeL2;
     p.network = network;
+    p.trainer = network.options.trainer;
     p.prediction.direct = PredictionSettings::Direct::Exact;
     p.prediction.directSamples = 12;
     p.prediction.seed = 5;
@@ -254,7 +257,9 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     EXPECT_EQ(q.sampling->toJson(), sampling.toJson());
     ASSERT_TRUE(q.network.has_value());
     EXPECT_EQ(q.network->networkJson(), network.networkJson());
-    EXPECT_EQ(q.network->trainerJson(), network.trainerJson());
+    ASSERT_TRUE(q.trainer.has_value());
+    EXPECT_EQ(q.trainer->toJson(), network.trainerJson());
+    EXPECT_EQ(q.networkOrDefault().trainerJson(), network.trainerJson());
     EXPECT_EQ(q.prediction.toJson(), p.prediction.toJson());
     ASSERT_EQ(q.runs.size(), 1u);
     EXPECT_EQ(q.runs[0].toJson(), run.toJson());
@@ -277,6 +282,94 @@ TEST(Project, AbsentSectionsStayAbsentOnSave) {
     EXPECT_FALSE(doc.contains("trainer"));
     EXPECT_FALSE(doc.contains("runs"));
     EXPECT_FALSE(doc.contains("scene_overrides"));
+}
+
+TEST(Project, NetworkWithoutTrainerStaysWithoutTrainerOnSave) {
+    const std::string dir = freshDir("network_only");
+    Project p = loadProjectOrScene(cornellWith(dir, "n.json", {{"network", {{"hidden", {8, 4}}}}}));
+    ASSERT_TRUE(p.network.has_value());
+    EXPECT_FALSE(p.trainer.has_value()) << "the file has no trainer section";
+    EXPECT_EQ(p.networkOrDefault().options.hidden, (std::vector<int>{8, 4}));
+    EXPECT_EQ(p.networkOrDefault().trainerJson(), TrainerConfig().toJson()) << "the trainer in effect is the default";
+
+    // An edit of the network section alone must not add a trainer section.
+    NetworkSettings edited = p.networkOrDefault();
+    edited.options.hidden = {6};
+    p.network = edited;
+    saveProject(p, dir + "/saved.json");
+    const json doc = json::parse(readFile(dir + "/saved.json"));
+    EXPECT_EQ(doc["network"]["hidden"], json::array({6}));
+    EXPECT_FALSE(doc.contains("trainer")) << doc.dump(2);
+    EXPECT_FALSE(loadProjectOrScene(dir + "/saved.json").trainer.has_value());
+}
+
+TEST(Project, TrainerWithoutNetworkStaysWithoutNetworkOnSave) {
+    const std::string dir = freshDir("trainer_only");
+    Project p = loadProjectOrScene(cornellWith(dir, "t.json", {{"trainer", {{"type", "adam"}, {"max_epochs", 7}}}}));
+    EXPECT_FALSE(p.network.has_value());
+    ASSERT_TRUE(p.trainer.has_value());
+    EXPECT_EQ(p.networkOrDefault().options.trainer.maxEpochs(), 7);
+    saveProject(p, dir + "/saved.json");
+    const json doc = json::parse(readFile(dir + "/saved.json"));
+    EXPECT_FALSE(doc.contains("network")) << doc.dump(2);
+    EXPECT_EQ(doc["trainer"]["max_epochs"], 7);
+}
+
+TEST(Project, SectionReadersNameTheirPointerBelowAnyBase) {
+    // Section readers take the pointer of where the section sits, e.g. inside a run's settings.
+    const json run = {{"network", {{"hidden", {0}}}}, {"trainer", {{"typo", 1}}}, {"sampling", {{"grid", {1, 2}}}}};
+    const JsonReader settings(run, "p.json", "/runs/3/settings");
+    auto message = [](auto read) {
+        try {
+            read();
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    std::string msg = message([&] { NetworkSettings::fromJson(settings.at("network")); });
+    EXPECT_NE(msg.find("p.json: /runs/3/settings/network/hidden/0: integer 0 out of range"), std::string::npos) << msg;
+    msg = message([&] { TrainerConfig::fromJson(settings.at("trainer")); });
+    EXPECT_NE(msg.find("p.json: /runs/3/settings/trainer/typo: unknown key"), std::string::npos) << msg;
+    msg = message([&] { SamplingSettings::fromJson(settings.at("sampling")); });
+    EXPECT_NE(msg.find("p.json: /runs/3/settings/sampling/grid: expected an array of 3 integers"), std::string::npos)
+        << msg;
+}
+
+TEST(Project, SectionReadersKeepTheBaseForOmittedKeys) {
+    SamplingSettings base;
+    base.nx = 3;
+    base.directions = 17;
+    base.fixedLight = true;
+    const json section = {{"spp", 5}};
+    const SamplingSettings s = SamplingSettings::fromJson(JsonReader(section, "script.json", "/2"), base);
+    EXPECT_EQ(s.nx, 3);
+    EXPECT_EQ(s.directions, 17);
+    EXPECT_TRUE(s.fixedLight);
+    EXPECT_EQ(s.spp, 5);
+
+    NetworkSettings n;
+    n.options.hidden = {9, 9};
+    n.options.activation = Activation::Relu;
+    const json targets = {{"targets", "joint"}};
+    const NetworkSettings m = NetworkSettings::fromJson(JsonReader(targets, "script.json", "/3"), n);
+    EXPECT_EQ(m.options.hidden, (std::vector<int>{9, 9}));
+    EXPECT_EQ(m.options.activation, Activation::Relu);
+    EXPECT_EQ(m.options.targets, TargetMode::Joint);
+}
+
+TEST(Project, SwitchingTheTrainerKeepsBothTrainersParameters) {
+    TrainerConfig c;
+    c.lm.maxEpochs = 40;
+    c.adam.learningRate = 2e-3;
+    const TrainerConfig adam = c.withType("adam");
+    EXPECT_EQ(adam.type, TrainerType::Adam);
+    EXPECT_EQ(adam.adam.learningRate, 2e-3);
+    EXPECT_EQ(adam.maxEpochs(), AdamConfig().maxEpochs) << "Adam runs with its own epoch limit";
+    const TrainerConfig back = adam.withType(TrainerType::LevenbergMarquardt);
+    EXPECT_EQ(back.toJson(), c.toJson()) << "switching back loses nothing";
+    EXPECT_EQ(c.withType("lm").toJson(), c.toJson());
+    EXPECT_THROW(c.withType("sgd"), SettingError);
 }
 
 TEST(Project, BadValueInEachSettingsSectionIsReportedAtLoad) {

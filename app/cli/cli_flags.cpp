@@ -55,11 +55,12 @@ void addSamplingFlags(CLI::App* cmd, SettingFlags<SamplingSettings>& flags, cons
             exactly<int>(3, "nx,ny,nz"))
         ->delimiter(',')
         ->allow_extra_args(false)
-        ->check(CLI::Range(1, 1000))  // the project reader's range for "grid" (core/data/sampling_settings.cpp)
+        ->check(CLI::Range(1, kMaxGridCells))
         ->type_name("NX,NY,NZ");
     flags.add<int>(cmd, "--dirs", "directions per viewpoint", [](SamplingSettings& s, const int& n) { s.directions = n; })
-        ->check(positive());
-    flags.add<int>(cmd, sppFlag, "paths per record", [](SamplingSettings& s, const int& n) { s.spp = n; })->check(positive());
+        ->check(CLI::Range(1, kMaxDirections));
+    flags.add<int>(cmd, sppFlag, "paths per record", [](SamplingSettings& s, const int& n) { s.spp = n; })
+        ->check(CLI::Range(1, kMaxSamplesPerRecord));
 }
 
 void addNetworkFlags(CLI::App* cmd, SettingFlags<ObjectTrainingOptions>& flags) {
@@ -67,7 +68,7 @@ void addNetworkFlags(CLI::App* cmd, SettingFlags<ObjectTrainingOptions>& flags) 
                                 [](ObjectTrainingOptions& t, const std::vector<int>& h) { t.hidden = h; })
         ->delimiter(',')
         ->allow_extra_args(false)
-        ->check(CLI::Range(1, 4096))  // as the project's "hidden" (core/nn/network_settings.cpp)
+        ->check(CLI::Range(1, kMaxHiddenSize))
         ->type_name("N[,N...]");
     flags.add<std::string>(cmd, "--trainer", "trainer",
                            [](ObjectTrainingOptions& t, const std::string& type) { t.trainer = t.trainer.withType(type); })
@@ -117,7 +118,7 @@ void experimentSettings(const Project& p, const ExperimentFlags& flags, bool qui
         s.spp = quick ? 16 : 32;
     }
     t = p.networkOrDefault().options;
-    if (quick || !p.network) t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = quick ? 50 : 100;
+    if (quick || !p.trainer) t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = quick ? 50 : 100;
     flags.sampling.applyTo(s);
     flags.network.applyTo(t);
 }

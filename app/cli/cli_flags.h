@@ -21,7 +21,7 @@
 
 #include "core/data/sampling_settings.h"
 #include "core/nn/object_training.h"
-#include "core/predict/predictor.h"
+#include "core/predict/prediction_settings.h"
 #include "core/util/vec3.h"
 
 namespace rrf {
@@ -120,7 +120,9 @@ struct ExperimentFlags {
 void addExperimentFlags(CLI::App* cmd, ExperimentFlags& flags);
 
 /// Data and network settings of the pipeline and of sweeps: the project's sections where present,
-/// sizes that finish in minutes where not (or all of them when `quick`), then the flags.
+/// sizes that finish in minutes where not (or all of them when `quick`), then the flags. Without a
+/// "sampling" section the data sizes are small; without a "trainer" section (whether or not there
+/// is a "network") the epoch limit is.
 void experimentSettings(const Project& p, const ExperimentFlags& flags, bool quick, SamplingSettings& s,
                         ObjectTrainingOptions& t);
 

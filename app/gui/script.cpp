@@ -15,45 +15,44 @@ namespace rrf {
 using nlohmann::json;
 
 namespace {
-/// The keys each step may have besides "do"; a step not listed here is unknown.
-const std::map<std::string, std::vector<const char*>>& stepKeys() {
-    static const std::map<std::string, std::vector<const char*>> keys = {
-        {"render", {"spp"}},
-        {"generate", {"grid", "dirs", "spp"}},
-        {"train", {"epochs", "hidden", "trainer", "targets"}},
-        {"evaluate", {}},
-        {"sweep", {"what"}},
-        {"wait", {"for", "timeout_s"}},
-        {"save_run", {}},
-        {"compare_run", {"index"}},
-        {"reopen_run", {"index"}},
-        {"set_light", {"position"}},
-        {"select_object", {"id"}},
-        {"view", {"term", "metric", "exposure", "error_max", "zoom"}},
-        {"open", {"path"}},
-        {"save", {"path"}},
-        {"export_images", {"dir"}},
-        {"screenshot", {"path"}},
-        {"frames", {"count"}},
-        {"tab", {"name"}},
-        {"check", {"runs", "ground_truth_spp_min", "errors", "compare", "dataset", "prediction", "evaluated",
-                   "train_runs", "sweeps"}},
-    };
+/// The keys each step may have besides "do"; a step not listed here is unknown. generate and train
+/// take the project's own "sampling" and "network" keys (read by the same readers).
+const std::map<std::string, std::vector<std::string>>& stepKeys() {
+    static const std::map<std::string, std::vector<std::string>> keys = [] {
+        std::vector<std::string> train = {"epochs", "trainer"};
+        train.insert(train.end(), NetworkSettings::keys().begin(), NetworkSettings::keys().end());
+        return std::map<std::string, std::vector<std::string>>{
+            {"render", {"spp"}},
+            {"generate", SamplingSettings::keys()},
+            {"train", train},
+            {"evaluate", {}},
+            {"sweep", {"what"}},
+            {"wait", {"for", "timeout_s"}},
+            {"save_run", {}},
+            {"compare_run", {"index"}},
+            {"reopen_run", {"index"}},
+            {"set_light", {"position"}},
+            {"select_object", {"id"}},
+            {"view", {"term", "metric", "exposure", "error_max", "zoom"}},
+            {"open", {"path"}},
+            {"save", {"path"}},
+            {"export_images", {"dir"}},
+            {"screenshot", {"path"}},
+            {"frames", {"count"}},
+            {"tab", {"name"}},
+            {"check", {"runs", "ground_truth_spp_min", "errors", "compare", "dataset", "prediction", "evaluated",
+                       "train_runs", "sweeps"}},
+        };
+    }();
     return keys;
 }
 
-/// Rejects keys the step does not take (checkKeys with a run-time list).
-void checkStepKeys(const JsonReader& step, const std::vector<const char*>& allowed) {
-    for (auto it = step.value().begin(); it != step.value().end(); ++it) {
-        if (it.key() == "do") continue;
-        bool known = false;
-        for (const char* a : allowed) known = known || it.key() == a;
-        if (known) continue;
-        std::string list = "do";
-        for (const char* a : allowed) list += std::string(", ") + a;
-        throw InputError(step.file(), JsonReader::child(step.pointer(), it.key()),
-                         "unknown key '" + it.key() + "' (allowed here: " + list + ")");
-    }
+/// The step without "do" and `also`: the settings section it carries, at the step's own JSON pointer.
+json sectionOf(const JsonReader& step, std::initializer_list<const char*> also) {
+    json section = step.value();
+    section.erase("do");
+    for (const char* key : also) section.erase(key);
+    return section;
 }
 
 int intOr(const JsonReader& s, const char* key, int fallback) {
@@ -72,7 +71,9 @@ bool Script::load(const std::string& path, std::string& error) {
             const std::string what = step.at("do").string();
             const auto keys = stepKeys().find(what);
             if (keys == stepKeys().end()) step.at("do").fail("unknown step '" + what + "'");
-            checkStepKeys(step, keys->second);
+            std::vector<std::string> allowed = {"do"};
+            allowed.insert(allowed.end(), keys->second.begin(), keys->second.end());
+            step.checkKeys(allowed);
         }
     } catch (const InputError& e) {
         error = e.what();
@@ -133,38 +134,26 @@ bool Script::execute(Workbench& wb, const json& s) {
             return false;
         }
     } else if (what == "generate") {
-        // Optional overrides of the project's sampling settings, for small scripted datasets.
-        if (r.has("grid") || r.has("dirs") || r.has("spp")) {
-            SamplingSettings sampling = st.project.samplingOrDefault();
-            if (const auto grid = r.find("grid")) {
-                if (grid->requireArray() != 3) grid->fail("expected [nx, ny, nz]");
-                int* dims[] = {&sampling.nx, &sampling.ny, &sampling.nz};
-                for (size_t i = 0; i < 3; ++i) *dims[i] = int(grid->at(i).integer(1, 1000));
-            }
-            sampling.directions = int(r.integerOr("dirs", sampling.directions, 1, 10000000));
-            sampling.spp = int(r.integerOr("spp", sampling.spp, 1, 1000000));
-            st.project.sampling = sampling;
-        }
+        // Optional overrides of the project's sampling settings, for small scripted datasets: the
+        // step's keys are the "sampling" section's, and keys it omits keep their current values.
+        const json section = sectionOf(r, {});
+        if (!section.empty())
+            st.project.sampling = SamplingSettings::fromJson(JsonReader(section, r.file(), r.pointer()),
+                                                             st.project.samplingOrDefault());
         require(wb.startGenerate(), "the generator could not start (see the log)");
     } else if (what == "train") {
-        // Optional overrides of the project's network settings, for small scripted runs.
-        if (r.has("hidden") || r.has("trainer") || r.has("targets")) {
-            NetworkSettings n = st.project.networkOrDefault();
-            if (const auto hidden = r.find("hidden")) {
-                if (hidden->requireArray() == 0) hidden->fail("expected a non-empty array of layer sizes");
-                n.options.hidden.clear();
-                for (size_t i = 0; i < hidden->value().size(); ++i)
-                    n.options.hidden.push_back(int(hidden->at(i).integer(1, 4096)));
-            }
-            n.options.targets = parseTargetMode(r.choiceOr("targets", targetModeName(n.options.targets),
-                                                           {"separate", "joint", "global", "direct", "indirect"}));
-            if (r.has("trainer")) {
-                // The named trainer with its defaults, as a project section {"type": name} gives.
-                const std::string type = r.choiceOr("trainer", "", {"levenberg_marquardt", "lm", "adam"});
-                n.options.trainer = TrainerConfig();
-                n.options.trainer.type = type == "adam" ? TrainerType::Adam : TrainerType::LevenbergMarquardt;
-            }
-            st.project.network = n;
+        // Optional overrides of the project's network settings, for small scripted runs: the step's
+        // keys are the "network" section's (omitted keys keep their current values) and "trainer"
+        // switches the trainer as the Network panel does.
+        const json section = sectionOf(r, {"epochs", "trainer"});
+        if (!section.empty()) {
+            st.project.network = NetworkSettings::fromJson(JsonReader(section, r.file(), r.pointer()),
+                                                           st.project.networkOrDefault());
+            st.markDirty();
+        }
+        if (r.has("trainer")) {
+            const std::string type = r.choiceOr("trainer", "", {"levenberg_marquardt", "lm", "adam"});
+            st.project.trainer = st.project.networkOrDefault().options.trainer.withType(type);
             st.markDirty();
         }
         require(wb.startTrain(intOr(r, "epochs", 0)), "training could not start (see the log)");

@@ -6,7 +6,9 @@
 ///       {"do": "set_light", "position": [0.2, 0.9, 0]}, {"do": "wait", "for": "render"},
 ///       {"do": "compare_run", "index": 0}, {"do": "check", "runs": 1}, {"do": "frames", "count": 5} ]
 ///
-/// Steps: render {spp}, generate {grid, dirs, spp}, train {epochs, hidden, trainer, targets}, evaluate,
+/// Steps: render {spp}, generate {the "sampling" section's keys: grid, directions, spp, seed, light,
+/// estimator, max_depth}, train {epochs, trainer, and the "network" section's keys: hidden,
+/// activation, targets}, evaluate,
 /// sweep {what: spp|grid|dirs|hidden|trainer},
 /// wait {for: render|jobs, timeout_s}, save_run, compare_run {index},
 /// reopen_run {index}, set_light {position}, select_object {id}, view {term, metric, exposure,

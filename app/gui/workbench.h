@@ -114,8 +114,9 @@ private:
     bool predictRunning() const;
     /// Adds the CPU prediction's images to an export directory (no-op without models).
     bool exportPrediction(const std::string& dir);
-    /// Re-opens / compares a training run: restores its network settings and loads its models.
-    bool loadTrainRun(const Run& run);
+    /// Re-opens / compares a training run (project.runs[index]): restores its network and trainer
+    /// settings and loads its models.
+    bool loadTrainRun(const Run& run, int index);
     /// The dataset training reads: this session's, else the project's data/dataset.rrfd if present.
     std::string datasetPath() const;
     /// Draws a tab item, bringing it to the front once when state_.focusTab names it.

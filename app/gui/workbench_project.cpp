@@ -161,7 +161,7 @@ int runSpp(const Run& run) { return int(run.metric("spp").value_or(0)); }
 bool Workbench::compareRun(int index) {
     if (index < 0 || index >= int(state_.project.runs.size())) return false;
     const Run& run = state_.project.runs[size_t(index)];
-    if (run.kind == "train") return loadTrainRun(run);
+    if (run.kind == "train") return loadTrainRun(run, index);
     panels::ImageSet set;
     std::string error;
     if (!loadRunImages(run, projectDir(), set, error)) {
@@ -180,7 +180,7 @@ bool Workbench::compareRun(int index) {
 bool Workbench::reopenRun(int index) {
     if (index < 0 || index >= int(state_.project.runs.size())) return false;
     const Run run = state_.project.runs[size_t(index)];
-    if (run.kind == "train") return loadTrainRun(run);
+    if (run.kind == "train") return loadTrainRun(run, index);
     panels::ImageSet set;
     std::string error;
     if (!loadRunImages(run, projectDir(), set, error)) {
@@ -191,10 +191,9 @@ bool Workbench::reopenRun(int index) {
     // The run's settings snapshot is read like the project's sections (file and JSON pointer in every
     // message); a part that does not read is reported and the current setting kept.
     const JsonReader settings(run.settings, state_.project.path, "/runs/" + std::to_string(index) + "/settings");
-    if (settings.has("render")) {
+    if (const auto render = settings.find("render")) {
         try {
-            state_.project.render = parseRenderSettings(settings.value().at("render"), settings.file(),
-                                                        JsonReader::child(settings.pointer(), "render"));
+            state_.project.render = parseRenderSettings(*render);
         } catch (const std::exception& e) {
             state_.log.warning(std::string("re-open run: render settings kept as they are: ") + e.what());
         }
@@ -223,13 +222,19 @@ bool Workbench::reopenRun(int index) {
     return true;
 }
 
-bool Workbench::loadTrainRun(const Run& run) {
+bool Workbench::loadTrainRun(const Run& run, int index) {
     // A training run "opens" as its settings and its models: the Network panel shows what trained
-    // them, and the prediction view shows what they predict.
-    if (run.settings.contains("network") && run.settings.contains("trainer")) {
+    // them, and the prediction view shows what they predict. Its settings snapshot is read like the
+    // project's sections, so every message names /runs/<index>/settings/... in the project file.
+    const JsonReader settings(run.settings, state_.project.path, "/runs/" + std::to_string(index) + "/settings");
+    const auto network = settings.find("network");
+    const auto trainer = settings.find("trainer");
+    if (network && trainer) {
         try {
-            state_.project.network = NetworkSettings::fromJson(run.settings["network"], &run.settings["trainer"],
-                                                               state_.project.path + " (run '" + run.name + "')");
+            NetworkSettings restored = NetworkSettings::fromJson(*network);
+            const TrainerConfig restoredTrainer = TrainerConfig::fromJson(*trainer);
+            state_.project.network = std::move(restored);
+            state_.project.trainer = restoredTrainer;
             state_.markDirty();
         } catch (const std::exception& e) {
             state_.log.warning("run '" + run.name + "': its network settings were not restored: " + e.what());

@@ -4,22 +4,28 @@
 
 namespace rrf {
 
-SamplingSettings SamplingSettings::fromJson(const nlohmann::json& j, const std::string& file, const std::string& path) {
-    const JsonReader r(j, file, path);
-    r.checkKeys({"grid", "directions", "spp", "seed", "light", "estimator", "max_depth"});
-    SamplingSettings s;
+const std::vector<std::string>& SamplingSettings::keys() {
+    static const std::vector<std::string> k = {"grid", "directions", "spp", "seed", "light", "estimator", "max_depth"};
+    return k;
+}
+
+SamplingSettings SamplingSettings::fromJson(const JsonReader& r, const SamplingSettings& base) {
+    r.checkKeys(keys());
+    SamplingSettings s = base;
     if (const auto grid = r.find("grid")) {
         if (!grid->isArray() || grid->value().size() != 3)
             grid->fail("expected an array of 3 integers [nx, ny, nz], got " + JsonReader::describe(grid->value()));
         int* dims[] = {&s.nx, &s.ny, &s.nz};
-        for (size_t i = 0; i < 3; ++i) *dims[i] = int(grid->at(i).integer(1, 1000));
+        for (size_t i = 0; i < 3; ++i) *dims[i] = int(grid->at(i).integer(1, kMaxGridCells));
     }
-    s.directions = int(r.integerOr("directions", s.directions, 1, 10000000));
-    s.spp = int(r.integerOr("spp", s.spp, 1, 1000000));
-    s.maxDepth = int(r.integerOr("max_depth", s.maxDepth, 1, 1000));
+    s.directions = int(r.integerOr("directions", s.directions, 1, kMaxDirections));
+    s.spp = int(r.integerOr("spp", s.spp, 1, kMaxSamplesPerRecord));
+    s.maxDepth = int(r.integerOr("max_depth", s.maxDepth, 1, kMaxSamplingDepth));
     s.seed = r.unsignedOr("seed", s.seed);
-    s.fixedLight = r.choiceOr("light", "region", {"region", "fixed"}) == "fixed";
-    s.estimator = r.choiceOr("estimator", "nee", {"nee", "naive"}) == "nee" ? Estimator::NEE : Estimator::Naive;
+    s.fixedLight = r.choiceOr("light", s.fixedLight ? "fixed" : "region", {"region", "fixed"}) == "fixed";
+    s.estimator = r.choiceOr("estimator", s.estimator == Estimator::NEE ? "nee" : "naive", {"nee", "naive"}) == "nee"
+                      ? Estimator::NEE
+                      : Estimator::Naive;
     return s;
 }
 

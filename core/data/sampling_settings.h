@@ -4,12 +4,21 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "core/render/render_settings.h"
+#include "core/util/json_reader.h"
 
 namespace rrf {
+
+/// Valid ranges of the settings, one definition for the project reader, the CLI flags, sweep values,
+/// the Sampling panel and scripts (each is 1 … the bound).
+constexpr int kMaxGridCells = 1000;              ///< cells per axis of "grid"
+constexpr int kMaxDirections = 10000000;         ///< "directions"
+constexpr int kMaxSamplesPerRecord = 1000000;    ///< "spp" (paths per record)
+constexpr int kMaxSamplingDepth = 1000;          ///< "max_depth"
 
 struct SamplingSettings {
     int nx = 15, ny = 15, nz = 15;  ///< jitter grid over the scene bounds
@@ -21,10 +30,14 @@ struct SamplingSettings {
     int maxDepth = 64;
 
     int cellCount() const { return nx * ny * nz; }
-    /// Reads the "sampling" section; missing keys keep their defaults. Throws InputError naming
-    /// `file` and the JSON path for unknown keys, wrong types or out-of-range values.
-    static SamplingSettings fromJson(const nlohmann::json& j, const std::string& file,
-                                     const std::string& path = "/sampling");
+    /// Reads a "sampling" section over `base`: missing keys keep base's values (the defaults for a
+    /// project file, the current settings for a script step). Throws InputError naming the reader's
+    /// file and the JSON pointer for unknown keys, wrong types or out-of-range values.
+    static SamplingSettings fromJson(const JsonReader& section, const SamplingSettings& base);
+    /// fromJson over the defaults (a project file's section).
+    static SamplingSettings fromJson(const JsonReader& section) { return fromJson(section, SamplingSettings()); }
+    /// The section's keys ("grid", "directions", ...), e.g. for a script step that takes them.
+    static const std::vector<std::string>& keys();
     nlohmann::json toJson() const;
 };
 

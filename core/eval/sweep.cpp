@@ -41,10 +41,10 @@ struct SweepPoint {
 
 /// "4,4,4": the grid as --grid and the project's "grid": [4, 4, 4] spell it.
 void readGrid(const std::string& v, SamplingSettings& s) {
-    const std::string expected = "3 integers nx,ny,nz in 1..1000 (e.g. 4,4,4)";
+    const std::string expected = "3 integers nx,ny,nz in 1.." + std::to_string(kMaxGridCells) + " (e.g. 4,4,4)";
     std::vector<int> n;
     std::istringstream in(v);
-    for (std::string part; std::getline(in, part, ',');) n.push_back(positiveValue(part, v, 1000, expected));
+    for (std::string part; std::getline(in, part, ',');) n.push_back(positiveValue(part, v, kMaxGridCells, expected));
     if (n.size() != 3 || v.back() == ',') throw SettingError(kValuesSetting, "'" + v + "': expected " + expected);
     s.nx = n[0];
     s.ny = n[1];
@@ -60,7 +60,7 @@ std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
         } else if (o.what == "grid") {
             readGrid(v, p.sampling);
         } else if (o.what == "dirs") {
-            p.sampling.directions = positiveValue(v, v, 10000000, "one positive integer (directions per viewpoint)");
+            p.sampling.directions = positiveValue(v, v, kMaxDirections, "one positive integer (directions per viewpoint)");
         } else if (o.what == "hidden") {
             p.training.hidden = parseHiddenSizes(v, kValuesSetting);
         } else {

@@ -15,29 +15,34 @@ std::vector<int> parseHiddenSizes(const std::string& text, const std::string& se
         try {
             size_t used = 0;
             const int v = std::stoi(part, &used);
-            if (used != part.size() || v < 1 || v > 4096) throw std::invalid_argument(part);
+            if (used != part.size() || v < 1 || v > kMaxHiddenSize) throw std::invalid_argument(part);
             sizes.push_back(v);
         } catch (const std::exception&) {
-            throw SettingError(setting, "expected comma-separated layer sizes in 1..4096 (e.g. 20,10), got '" + text + "'");
+            throw SettingError(setting, "expected comma-separated layer sizes in 1.." + std::to_string(kMaxHiddenSize) +
+                                            " (e.g. 20,10), got '" + text + "'");
         }
     }
     if (sizes.empty()) throw SettingError(setting, "expected at least one hidden layer size, got '" + text + "'");
     return sizes;
 }
 
-NetworkSettings NetworkSettings::fromJson(const nlohmann::json& n, const nlohmann::json* trainer, const std::string& file) {
-    NetworkSettings s;
-    const JsonReader r(n, file, "/network");
-    r.checkKeys({"hidden", "activation", "targets"});
+const std::vector<std::string>& NetworkSettings::keys() {
+    static const std::vector<std::string> k = {"hidden", "activation", "targets"};
+    return k;
+}
+
+NetworkSettings NetworkSettings::fromJson(const JsonReader& r, const NetworkSettings& base) {
+    NetworkSettings s = base;
+    r.checkKeys(keys());
     if (const auto hidden = r.find("hidden")) {
         if (hidden->requireArray() == 0) hidden->fail("expected a non-empty array of layer sizes");
         s.options.hidden.clear();
-        for (size_t i = 0; i < hidden->value().size(); ++i) s.options.hidden.push_back(int(hidden->at(i).integer(1, 4096)));
+        for (size_t i = 0; i < hidden->value().size(); ++i)
+            s.options.hidden.push_back(int(hidden->at(i).integer(1, kMaxHiddenSize)));
     }
     s.options.activation = parseActivation(r.choiceOr("activation", activationName(s.options.activation), {"tanh", "relu"}));
     s.options.targets = parseTargetMode(r.choiceOr("targets", targetModeName(s.options.targets),
                                                    {"separate", "joint", "global", "direct", "indirect"}));
-    if (trainer) s.options.trainer = TrainerConfig::fromJson(*trainer, file, "/trainer");
     return s;
 }
 

@@ -10,27 +10,38 @@
 /// "global", "direct" or "indirect".
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "core/nn/object_training.h"
+#include "core/util/json_reader.h"
 
 namespace rrf {
+
+/// Largest hidden layer size (each size is 1 … this), one definition for the project reader, the
+/// CLI's --hidden, sweep values, the Network panel and scripts.
+constexpr int kMaxHiddenSize = 4096;
 
 struct NetworkSettings {
     ObjectTrainingOptions options;  ///< hidden sizes, activation, targets, trainer
 
     /// The project defaults: ObjectTrainingOptions' defaults with separate direct and indirect nets.
     NetworkSettings() { options.targets = TargetMode::Separate; }
-    /// Reads the "network" section and, when given, the "trainer" section (missing keys keep their
-    /// defaults). Throws InputError naming `file` and the JSON pointer for unknown keys or bad values.
-    static NetworkSettings fromJson(const nlohmann::json& network, const nlohmann::json* trainer, const std::string& file);
+    /// Reads a "network" section over `base`: missing keys keep base's values, and the trainer is
+    /// base's (it is the "trainer" section, read by TrainerConfig::fromJson). Throws InputError naming
+    /// the reader's file and the JSON pointer for unknown keys or bad values.
+    static NetworkSettings fromJson(const JsonReader& network, const NetworkSettings& base);
+    /// fromJson over the project defaults (a project file's section).
+    static NetworkSettings fromJson(const JsonReader& network) { return fromJson(network, NetworkSettings()); }
+    /// The "network" section's keys ("hidden", "activation", "targets").
+    static const std::vector<std::string>& keys();
     nlohmann::json networkJson() const;
     nlohmann::json trainerJson() const { return options.trainer.toJson(); }
 };
 
 /// Reads hidden sizes written as text, "20,10" (the spelling of `network.hidden` = [20, 10] outside a
-/// JSON file, e.g. a sweep value); throws SettingError naming `setting` if malformed or out of 1..4096.
+/// JSON file, e.g. a sweep value); throws SettingError naming `setting` if malformed or out of 1..kMaxHiddenSize.
 std::vector<int> parseHiddenSizes(const std::string& text, const std::string& setting);
 
 }  // namespace rrf

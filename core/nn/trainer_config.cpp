@@ -22,7 +22,10 @@ const char* TrainerConfig::typeName() const {
 }
 
 TrainerConfig TrainerConfig::fromJson(const json& j, const std::string& file, const std::string& where) {
-    const JsonReader r(j, file, where);
+    return fromJson(JsonReader(j, file, where));
+}
+
+TrainerConfig TrainerConfig::fromJson(const JsonReader& r) {
     r.requireObject();
     TrainerConfig c;
     const std::string type = r.choiceOr("type", "levenberg_marquardt", {"levenberg_marquardt", "lm", "adam"});
@@ -62,7 +65,7 @@ TrainerConfig TrainerConfig::fromJson(const json& j, const std::string& file, co
         l.goal = r.numberOr("goal", l.goal, 0.0, kInf);
         l.maxSamples = r.integerOr("max_samples", l.maxSamples, 0, INT64_MAX);
         l.seed = r.unsignedOr("seed", l.seed);
-        if (l.mu > l.muMax) throw InputError(file, JsonReader::child(where, "mu"), "initial mu exceeds mu_max");
+        if (l.mu > l.muMax) throw InputError(r.file(), JsonReader::child(r.pointer(), "mu"), "initial mu exceeds mu_max");
     }
     return c;
 }
@@ -104,15 +107,16 @@ json TrainerConfig::toJson() const {
                 {"seed", l.seed}};
 }
 
-TrainerConfig TrainerConfig::withType(const std::string& name) const {
-    if (name != "lm" && name != "levenberg_marquardt" && name != "adam")
-        throw std::invalid_argument("unknown trainer '" + name + "' (expected lm or adam)");
-    const TrainerType t = name == "adam" ? TrainerType::Adam : TrainerType::LevenbergMarquardt;
-    if (t == type) return *this;
-    TrainerConfig c;
+TrainerConfig TrainerConfig::withType(TrainerType t) const {
+    TrainerConfig c = *this;
     c.type = t;
-    c.lm.maxEpochs = c.adam.maxEpochs = maxEpochs();
     return c;
+}
+
+TrainerConfig TrainerConfig::withType(const std::string& name, const std::string& setting) const {
+    if (name != "lm" && name != "levenberg_marquardt" && name != "adam")
+        throw SettingError(setting, "unknown trainer '" + name + "' (expected lm or adam)");
+    return withType(name == "adam" ? TrainerType::Adam : TrainerType::LevenbergMarquardt);
 }
 
 }  // namespace rrf

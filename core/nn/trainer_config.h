@@ -14,6 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/util/json_reader.h"
+
 namespace rrf {
 
 /// Matlab trainlm semantics (see trainLevenbergMarquardt).
@@ -78,16 +80,26 @@ struct TrainerConfig {
     uint64_t seed() const { return type == TrainerType::Adam ? adam.seed : lm.seed; }
     int maxEpochs() const { return type == TrainerType::Adam ? adam.maxEpochs : lm.maxEpochs; }
 
-    /// Parses a trainer object. `file` and `where` (the JSON path of `j`) only label errors.
-    /// A missing "type" means levenberg_marquardt; "lm" is accepted as a short name.
+    /// Parses a trainer object (the project's "trainer" section, a run's or a model file's trainer).
+    /// A missing "type" means levenberg_marquardt; "lm" is accepted as a short name. Every error names
+    /// the reader's file and the JSON pointer of the offending key.
+    static TrainerConfig fromJson(const JsonReader& r);
+    /// The same for a bare JSON object; `file` and `where` (the JSON pointer of `j`) only label errors.
     static TrainerConfig fromJson(const nlohmann::json& j, const std::string& file = "",
                                   const std::string& where = "/trainer");
+    /// The same for an object written inline, fromJson({{"type", "adam"}}) (tests): without this
+    /// overload such a braced list could also build a JsonReader, and the call would be ambiguous.
+    static TrainerConfig fromJson(nlohmann::json::initializer_list_t object) { return fromJson(nlohmann::json(object)); }
     /// Full settings, every key written, so a model file records exactly what trained it.
     nlohmann::json toJson() const;
-    /// This config switched to trainer `name` ("lm", "levenberg_marquardt" or "adam"): unchanged if
-    /// it already is that trainer, otherwise that trainer's defaults with this config's epoch limit.
-    /// Throws std::invalid_argument for another name.
-    TrainerConfig withType(const std::string& name) const;
+    /// Switches the trainer, the one way every front end does it (CLI --trainer, sweeps, the Network
+    /// panel, scripts): only `type` changes. Both trainers' parameters are kept, so switching back
+    /// and forth loses no edit; the new trainer runs with its own parameters (its own epoch limit
+    /// included), which are its defaults unless they were set. Unchanged if it already is `t`.
+    TrainerConfig withType(TrainerType t) const;
+    /// withType by name: "lm", "levenberg_marquardt" or "adam"; throws SettingError naming
+    /// `setting` for another name.
+    TrainerConfig withType(const std::string& name, const std::string& setting = "trainer") const;
 };
 
 }  // namespace rrf

@@ -5,7 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "core/util/json_reader.h"
+#include "core/util/error.h"
 
 namespace rrf {
 
@@ -47,20 +47,6 @@ ObjectPlan planFor(const ObjectNetworks& o, bool exactDirect) {
     return p;
 }
 }  // namespace
-
-PredictionSettings PredictionSettings::fromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
-    const JsonReader r(j, file, where);
-    r.checkKeys({"direct", "direct_samples", "seed"});
-    PredictionSettings s;
-    s.direct = r.choiceOr("direct", s.directName(), {"network", "exact"}) == "exact" ? Direct::Exact : Direct::Network;
-    s.directSamples = int(r.integerOr("direct_samples", s.directSamples, 1, 65536));
-    s.seed = r.unsignedOr("seed", s.seed);
-    return s;
-}
-
-nlohmann::json PredictionSettings::toJson() const {
-    return {{"direct", directName()}, {"direct_samples", directSamples}, {"seed", seed}};
-}
 
 Predictor::Predictor(const Scene& scene, const ModelSet& models, const PredictionSettings& settings)
     : scene_(scene),

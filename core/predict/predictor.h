@@ -24,30 +24,14 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/predict/gbuffer.h"
+#include "core/predict/prediction_settings.h"
 #include "core/util/image.h"
 #include "core/nn/model_set.h"
 #include "core/render/term.h"
 #include "core/scene/scene.h"
 
 namespace rrf {
-
-/// The project's "prediction" section.
-struct PredictionSettings {
-    enum class Direct { Network, Exact };
-    Direct direct = Direct::Network;  ///< "direct": "network" | "exact"
-    int directSamples = 64;           ///< "direct_samples": NEE samples per pixel for exact direct light
-    uint64_t seed = 1;                ///< "seed": keys the exact direct light's samples
-
-    /// Reads the section (missing keys keep their defaults). Throws InputError naming `file` and the
-    /// JSON path for unknown keys or bad values.
-    static PredictionSettings fromJson(const nlohmann::json& j, const std::string& file,
-                                       const std::string& where = "/prediction");
-    nlohmann::json toJson() const;
-    const char* directName() const { return direct == Direct::Exact ? "exact" : "network"; }
-};
 
 struct Prediction {
     Image images[kTermCount];            ///< direct, indirect, global (index with int(Term))

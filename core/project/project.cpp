@@ -33,10 +33,8 @@ bool isKnownSection(const std::string& key) {
 void writeSections(const Project& p, json& doc) {
     doc["render"] = renderSettingsToJson(p.render);
     if (p.sampling) doc["sampling"] = p.sampling->toJson();
-    if (p.network) {
-        doc["network"] = p.network->networkJson();
-        doc["trainer"] = p.network->trainerJson();
-    }
+    if (p.network) doc["network"] = p.network->networkJson();
+    if (p.trainer) doc["trainer"] = p.trainer->toJson();
     doc["prediction"] = p.prediction.toJson();
     if (!p.runs.empty()) doc["runs"] = runsToJson(p.runs);
     doc["layout"] = p.layout.toJson();
@@ -68,16 +66,12 @@ void rebaseEmbeddedScene(json& scene, const std::string& oldDir, const std::stri
 
 /// Parses the sections after "scene" into `p` (the scene is loaded already).
 void readSections(const JsonReader& root, Project& p) {
-    const std::string& file = root.file();
     if (const auto name = root.find("name")) p.name = name->string();
-    if (root.has("render")) p.render = parseRenderSettings(root.value().at("render"), file);
-    if (root.has("sampling")) p.sampling = SamplingSettings::fromJson(root.value().at("sampling"), file);
-    if (root.has("network") || root.has("trainer")) {
-        const json empty = json::object();
-        const json& network = root.has("network") ? root.value().at("network") : empty;
-        p.network = NetworkSettings::fromJson(network, root.has("trainer") ? &root.value().at("trainer") : nullptr, file);
-    }
-    if (root.has("prediction")) p.prediction = PredictionSettings::fromJson(root.value().at("prediction"), file);
+    if (const auto render = root.find("render")) p.render = parseRenderSettings(*render);
+    if (const auto sampling = root.find("sampling")) p.sampling = SamplingSettings::fromJson(*sampling);
+    if (const auto network = root.find("network")) p.network = NetworkSettings::fromJson(*network);
+    if (const auto trainer = root.find("trainer")) p.trainer = TrainerConfig::fromJson(*trainer);
+    if (const auto prediction = root.find("prediction")) p.prediction = PredictionSettings::fromJson(*prediction);
     if (const auto runs = root.find("runs")) p.runs = readRuns(*runs, p.warnings);
     if (const auto layout = root.find("layout")) p.layout = PaneLayout::fromJson(*layout, p.warnings);
     if (const auto overrides = root.find("scene_overrides")) {

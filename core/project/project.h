@@ -13,7 +13,8 @@
 
 #include "core/data/sampling_settings.h"
 #include "core/nn/network_settings.h"
-#include "core/predict/predictor.h"
+#include "core/nn/trainer_config.h"
+#include "core/predict/prediction_settings.h"
 #include "core/project/pane_layout.h"
 #include "core/project/runs.h"
 #include "core/project/scene_overrides.h"
@@ -33,8 +34,13 @@ struct Project {
     /// "sampling"; empty when the file has none: front ends then pick their own defaults (rrf
     /// pipeline uses small quick sizes), and the section stays absent on save.
     std::optional<SamplingSettings> sampling;
-    /// "network" and "trainer"; empty when the file has neither (see `sampling`).
+    /// "network": hidden layers, activation and targets; empty when the file has none (see
+    /// `sampling`). Its options.trainer is not part of the section and is ignored here: the trainer
+    /// is `trainer`, and networkOrDefault() combines the two.
     std::optional<NetworkSettings> network;
+    /// "trainer"; empty when the file has none: rrf pipeline and sweeps then use their quick epoch
+    /// limit, and the section stays absent on save (as it does when only "network" was edited).
+    std::optional<TrainerConfig> trainer;
     PredictionSettings prediction;  ///< "prediction"
     std::vector<Run> runs;          ///< "runs"
     PaneLayout layout;              ///< "layout": the workbench's pane sizes
@@ -47,8 +53,12 @@ struct Project {
 
     /// The sampling settings in effect (the defaults when the file has none).
     SamplingSettings samplingOrDefault() const { return sampling.value_or(SamplingSettings()); }
-    /// The network and trainer settings in effect (the defaults when the file has none).
-    NetworkSettings networkOrDefault() const { return network.value_or(NetworkSettings()); }
+    /// The network and trainer settings in effect: each section's values, its defaults where absent.
+    NetworkSettings networkOrDefault() const {
+        NetworkSettings s = network.value_or(NetworkSettings());
+        s.options.trainer = trainer.value_or(TrainerConfig());
+        return s;
+    }
 };
 
 /// Loads a project file, or a bare scene file (a document with "shapes" and no "scene" key), in

@@ -4,8 +4,7 @@
 
 namespace rrf {
 
-RenderSettings parseRenderSettings(const nlohmann::json& section, const std::string& file, const std::string& where) {
-    const JsonReader r(section, file, where);
+RenderSettings parseRenderSettings(const JsonReader& r) {
     r.checkKeys({"spp", "width", "height", "mode", "seed", "max_depth", "exposure"});
     RenderSettings s;
     s.spp = int(r.integerOr("spp", s.spp, 1, 1 << 30));

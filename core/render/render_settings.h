@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/util/json_reader.h"
+
 namespace rrf {
 
 enum class Estimator { NEE, Naive };
@@ -23,9 +25,8 @@ struct RenderSettings {
 
 /// The "render" section for `s` (every key written).
 nlohmann::json renderSettingsToJson(const RenderSettings& s);
-/// Parses a "render" section (missing keys keep their defaults). Throws InputError naming `file`
-/// and the JSON path (`where` is the section's own path) for unknown keys or bad values.
-RenderSettings parseRenderSettings(const nlohmann::json& section, const std::string& file,
-                                   const std::string& where = "/render");
+/// Parses a "render" section (missing keys keep their defaults). Throws InputError naming the
+/// reader's file and the JSON pointer (below the section's own) for unknown keys or bad values.
+RenderSettings parseRenderSettings(const JsonReader& section);
 
 }  // namespace rrf

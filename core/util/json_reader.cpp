@@ -84,13 +84,17 @@ JsonReader JsonReader::at(size_t index) const {
 }
 
 void JsonReader::checkKeys(std::initializer_list<const char*> allowed) const {
+    checkKeys(std::vector<std::string>(allowed.begin(), allowed.end()));
+}
+
+void JsonReader::checkKeys(const std::vector<std::string>& allowed) const {
     requireObject();
     for (auto it = value_->begin(); it != value_->end(); ++it) {
         bool known = false;
-        for (const char* a : allowed) known = known || it.key() == a;
+        for (const std::string& a : allowed) known = known || it.key() == a;
         if (known) continue;
         std::string list;
-        for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
         throw InputError(file_, child(pointer_, it.key()),
                          "unknown key '" + it.key() + "' (allowed here: " + list + ")");
     }

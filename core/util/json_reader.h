@@ -7,6 +7,7 @@
 #include <initializer_list>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -46,6 +47,8 @@ public:
     /// Rejects members not in `allowed`, naming the offending key and listing the allowed ones
     /// (catches typos such as "albdo"). The value must be an object.
     void checkKeys(std::initializer_list<const char*> allowed) const;
+    /// checkKeys with a list known only at run time (e.g. a script step's keys).
+    void checkKeys(const std::vector<std::string>& allowed) const;
 
     // ---- scalars -------------------------------------------------------------------------------
     /// Finite number (integers accepted).

@@ -74,6 +74,7 @@ TEST_F(LearningPanelTest, NoCrashWithoutProjectOrData) {
     EXPECT_TRUE(s.requests.empty()) << "idle frames must not ask for anything";
     EXPECT_FALSE(s.dirty) << "idle frames must not edit the project";
     EXPECT_FALSE(s.project.network.has_value()) << "drawing must not write default sections";
+    EXPECT_FALSE(s.project.trainer.has_value()) << "drawing must not write default sections";
 }
 
 TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
@@ -97,7 +98,8 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     EXPECT_FALSE(setTrainerType(s, TrainerType::Adam)) << "no change, nothing stored";
     const NetworkSettings n = s.project.networkOrDefault();
     EXPECT_EQ(n.options.trainer.type, TrainerType::Adam);
-    EXPECT_EQ(s.project.network->trainerJson()["type"], "adam");
+    ASSERT_TRUE(s.project.trainer.has_value()) << "switching the trainer stores the trainer section";
+    EXPECT_EQ(s.project.trainer->toJson()["type"], "adam");
     EXPECT_EQ(n.options.trainer.adam.batchSize, AdamConfig().batchSize) << "Adam starts from its defaults";
     EXPECT_EQ(n.options.targets, TargetMode::Separate) << "the project default is kept by the edits";
 
@@ -239,6 +241,7 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     edited.options.trainer.adam.loss = AdamLoss::RelativeL2;
     edited.options.targets = TargetMode::Joint;
     s.project.network = edited;
+    s.project.trainer = edited.options.trainer;
 
     rrf::Run run;
     run.id = run.name = "train-1";

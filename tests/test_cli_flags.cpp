@@ -1,0 +1,63 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "app/cli/cli_flags.h"
+#include "core/project/project.h"
+
+using namespace rrf;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// The Cornell box project with `sections` added, written to a fresh file, loaded.
+Project cornellWith(const std::string& name, const json& sections) {
+    const fs::path dir = fs::path(::testing::TempDir()) / "rrf_cli_flags_tests";
+    fs::create_directories(dir);
+    json doc = {{"rrf_project", 1}, {"scene", std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/scene.json"}};
+    for (auto it = sections.begin(); it != sections.end(); ++it) doc[it.key()] = it.value();
+    const std::string path = (dir / name).string();
+    std::ofstream(path) << doc.dump(2);
+    return loadProjectOrScene(path);
+}
+
+struct Experiment {
+    SamplingSettings sampling;
+    ObjectTrainingOptions training;
+};
+
+/// experimentSettings with no flags given.
+Experiment settingsOf(const Project& p, bool quick) {
+    const cli::ExperimentFlags flags;
+    Experiment e;
+    cli::experimentSettings(p, flags, quick, e.sampling, e.training);
+    return e;
+}
+
+}  // namespace
+
+TEST(CliFlags, NetworkWithoutTrainerGetsTheQuickEpochLimit) {
+    const Project p = cornellWith("network_only.json", {{"network", {{"hidden", {8, 4}}}}});
+    const Experiment e = settingsOf(p, false);
+    EXPECT_EQ(e.training.hidden, (std::vector<int>{8, 4})) << "the project's network section is used";
+    EXPECT_EQ(e.training.trainer.maxEpochs(), 100) << "no trainer section: the pipeline's quick epoch limit";
+    EXPECT_EQ(settingsOf(p, true).training.trainer.maxEpochs(), 50);
+}
+
+TEST(CliFlags, TrainerSectionKeepsItsEpochLimit) {
+    const Project p = cornellWith("trainer.json", {{"trainer", {{"type", "lm"}, {"max_epochs", 7}}}});
+    EXPECT_EQ(settingsOf(p, false).training.trainer.maxEpochs(), 7);
+    EXPECT_EQ(settingsOf(p, true).training.trainer.maxEpochs(), 50) << "--quick overrides the project";
+}
+
+TEST(CliFlags, NeitherSectionGetsTheQuickSizes) {
+    const Project p = cornellWith("bare.json", json::object());
+    const Experiment e = settingsOf(p, false);
+    EXPECT_EQ(e.training.trainer.maxEpochs(), 100);
+    EXPECT_EQ(e.sampling.nx, 6);
+}
