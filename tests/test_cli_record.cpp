@@ -16,28 +16,15 @@
 #include "core/project/project.h"
 #include "core/project/run_recording.h"
 
+#include "tests/cli_runner.h"
+
 namespace fs = std::filesystem;
 
 namespace rrf::test {
 namespace {
 
-struct Result {
-    int code = -1;
-    std::string output;  ///< stdout and stderr together
-};
-
-Result runCli(const std::string& args) {
-    Result r;
-    const std::string cmd = std::string(RRF_CLI_PATH) + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using Result = rrf::test::CliResult;
+using rrf::test::runCli;
 
 const fs::path kCornellDir = fs::path(RRF_SOURCE_DIR) / "projects" / "cornell-box";
 

@@ -15,27 +15,14 @@
 
 #include "core/util/image_io.h"
 
+#include "tests/cli_runner.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int code = -1;
-    std::string output;  ///< stdout and stderr together
-};
-
-Result runCli(const std::string& args) {
-    Result r;
-    const std::string cmd = std::string(RRF_CLI_PATH) + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using Result = rrf::test::CliResult;
+using rrf::test::runCli;
 
 fs::path tempDir(const std::string& name) {
     const fs::path d = fs::temp_directory_path() / ("rrf_cli_render_" + name + "_" + std::to_string(::getpid()));

@@ -5,19 +5,12 @@
 #include <gtest/gtest.h>
 
 #include "core/eval/error_metrics.h"
+#include "tests/image_builders.h"
 
 using namespace rrf;
 
 namespace {
-Image make(int w, int h, std::initializer_list<Vec3> pixels) {
-    Image im(w, h);
-    int i = 0;
-    for (const Vec3& p : pixels) {
-        im.set(i % w, i / w, p);
-        ++i;
-    }
-    return im;
-}
+Image make(int w, int h, std::initializer_list<Vec3> pixels) { return test::imageOf(w, h, pixels); }
 }  // namespace
 
 TEST(ErrorMetrics, KnownAnswersOverAllPixels) {

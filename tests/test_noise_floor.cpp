@@ -26,21 +26,14 @@
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "scene_builders.h"
+#include "tests/image_builders.h"
 
 using namespace rrf;
 using namespace rrf::test;
 
 namespace {
 
-Image make(int w, int h, std::initializer_list<Vec3> pixels) {
-    Image im(w, h);
-    int i = 0;
-    for (const Vec3& p : pixels) {
-        im.set(i % w, i / w, p);
-        ++i;
-    }
-    return im;
-}
+Image make(int w, int h, std::initializer_list<Vec3> pixels) { return test::imageOf(w, h, pixels); }
 
 /// Q = mean((d² − v)·w) over `mask`, its standard error from the per-pixel terms (see the file
 /// comment) and, for the relative figure, the bound of its second-order bias (below).
