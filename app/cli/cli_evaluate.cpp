@@ -23,7 +23,8 @@ namespace {
 struct EvaluateArgs : PredictionArgs {
     std::string models, reference;
     std::optional<Vec3> lightPos;
-    int heldOut = 0, spp = -1;
+    int heldOut = 0, spp = -1, sppCap = -1;
+    double noise = -1;
     long long seed = 1;
     float exposure = 0.f;
     bool record = false;
@@ -74,7 +75,6 @@ int runEvaluate(EvaluateArgs a) {
     makeDirectories(a.out);
     std::printf("rrf evaluate: %s with %s (direct light: %s)\n", a.input.c_str(), a.models.c_str(), predictor.settings().directName());
     for (const std::string& l : predictor.describe()) std::printf("  %s\n", l.c_str());
-    const RenderOptions ro = referenceOptions(p, a.spp, a.width, a.height);
     if (!a.reference.empty()) {
         const Reference ref = loadReference(a.reference);
         std::printf("reference: %s (%d spp, light at %.3f,%.3f,%.3f; noise %s)\n", a.reference.c_str(), ref.spp,
@@ -82,20 +82,34 @@ int runEvaluate(EvaluateArgs a) {
                     ref.variance(Term::Global).empty() ? "unknown: no variance images, noise floors are not known"
                                                        : "known from its variance images");
         const Stopwatch clock;
-        const std::vector<Evaluation> evals = evaluateAll(p, predictor, {ref.lightPosition}, ro, &ref, a.out, a.exposure);
+        const ReferenceSource given = [&](size_t, const Vec3&) {
+            return ObtainedReference{ref, {{"directory", a.reference}}};
+        };
+        const std::vector<Evaluation> evals = evaluateAll(p, predictor, {ref.lightPosition}, given, a.out, a.exposure);
         if (a.record) recordEvaluations(a, p, evals, clock.seconds());
         return 0;
     }
     std::vector<Vec3> lights;
-    if (a.heldOut > 0) {
-        lights = heldOutLightPositions(p.scene.lightRange(), a.heldOut, uint64_t(a.seed));
-        std::printf("%d held-out light positions (seed %lld), references %dx%d at %d spp\n", a.heldOut, a.seed, ro.width,
-                    ro.height, ro.spp);
-    } else {
-        lights = {a.lightPos.value_or(p.scene.lightPosition())};
-    }
+    if (a.heldOut > 0) lights = heldOutLightPositions(p.scene.lightRange(), a.heldOut, uint64_t(a.seed));
+    else lights = {a.lightPos.value_or(p.scene.lightPosition())};
+    // --spp: a fixed number of samples, no noise target, not stored. Otherwise the project's store
+    // renders (or reuses) references converged to the noise target.
+    ReferenceStore store = projectStore(p);
+    const NoiseTarget target = noiseTargetFor(p, a.noise, a.sppCap);
+    const auto [width, height] = referenceSize(p, a.width, a.height);
+    const RenderOptions ro = referenceOptions(p, a.spp, a.width, a.height);
+    const ReferenceSource source = a.spp > 0 ? fixedSppSource(p, ro, lights.size())
+                                             : storeSource(store, p, predictor, width, height, target, lights.size());
+    if (a.spp > 0)
+        std::printf("%zu light position(s), references %dx%d at a fixed %d spp (no noise target, not stored)\n", lights.size(),
+                    ro.width, ro.height, ro.spp);
+    else
+        std::printf("%zu light position(s)%s, references %dx%d from %s: relative noise <= max(%g, %g x the error), at most "
+                    "%d spp\n",
+                    lights.size(), a.heldOut > 0 ? (" (held out, seed " + std::to_string(a.seed) + ")").c_str() : "", width,
+                    height, store.dir().c_str(), target.relativeRmse, target.errorFraction, target.sppCap);
     const Stopwatch clock;
-    const std::vector<Evaluation> evals = evaluateAll(p, predictor, lights, ro, nullptr, a.out, a.exposure);
+    const std::vector<Evaluation> evals = evaluateAll(p, predictor, lights, source, a.out, a.exposure);
     if (a.record) recordEvaluations(a, p, evals, clock.seconds());
     return 0;
 }
@@ -109,7 +123,18 @@ void addEvaluateCommand(CLI::App& app, int& exitCode) {
     CLI::Option* lp = addVec3Option(cmd, "--light-pos", a->lightPos, "light centre x,y,z (default: the scene's)");
     cmd->add_option("--held-out", a->heldOut, "evaluate at K held-out light positions")->check(positive())->excludes(lp);
     cmd->add_option("--reference", a->reference, "use this rrf render output instead of rendering")->excludes(lp);
-    cmd->add_option("--spp", a->spp, "reference samples per pixel (default: the project's)")->check(positive());
+    CLI::Option* spp = cmd->add_option("--spp", a->spp,
+                                       "render references at this fixed spp: no noise target, not stored (default: the "
+                                       "project's reference store, converged to the noise target)")
+                           ->check(positive());
+    cmd->add_option("--noise", a->noise,
+                    "relative RMSE noise the references must reach (default: the project's \"reference\" section, 0.01; "
+                    "or a quarter of the measured error when that is larger)")
+        ->check(CLI::Range(1e-6, 10.0))
+        ->excludes(spp);
+    cmd->add_option("--spp-cap", a->sppCap, "most samples per pixel of a stored reference (default: the project's, 4096)")
+        ->check(CLI::Range(2, 1 << 24))
+        ->excludes(spp);
     cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());
     cmd->add_option("--exposure", a->exposure, "exposure in stops for PNG output");
     cmd->get_option("--out")->required(false)->description("output directory (required unless --record)");

@@ -31,7 +31,8 @@ namespace rrf::cli {
 namespace {
 struct PipelineArgs : PredictionArgs {
     bool quick = false;
-    int spp = -1, heldOut = 0;
+    int spp = -1, heldOut = 0, sppCap = -1;
+    double noise = -1;
     long long seed = 1;
     ExperimentFlags experiment;
 };
@@ -47,9 +48,17 @@ int runPipeline(const PipelineArgs& a) {
     const RenderOptions ro = referenceOptions(p, a.spp > 0 ? a.spp : (a.quick ? 32 : 64), a.width > 0 ? a.width : (a.quick ? 128 : -1),
                                               a.height > 0 ? a.height : (a.quick ? 128 : -1));
     const int heldOut = a.heldOut > 0 ? a.heldOut : (a.quick ? 1 : 2);
+    // Held-out references come from the project's store, converged to the noise target (--quick caps
+    // them at 1024 spp unless --spp-cap says otherwise), at the ground truth's size.
+    ReferenceStore store = projectStore(p);
+    NoiseTarget target = noiseTargetFor(p, a.noise, a.sppCap);
+    if (a.quick && a.sppCap <= 0) target.sppCap = std::min(target.sppCap, 1024);
     makeDirectories(a.out);
-    std::printf("rrf pipeline%s: %s -> %s\n  ground truth %dx%d, %d spp; %s; %d held-out lights\n", a.quick ? " --quick" : "",
-                a.input.c_str(), a.out.c_str(), ro.width, ro.height, ro.spp, describeExperiment(s, t).c_str(), heldOut);
+    std::printf("rrf pipeline%s: %s -> %s\n  ground truth %dx%d, %d spp; %s; %d held-out lights (references from %s: "
+                "relative noise <= max(%g, %g x the error), at most %d spp)\n",
+                a.quick ? " --quick" : "", a.input.c_str(), a.out.c_str(), ro.width, ro.height, ro.spp,
+                describeExperiment(s, t).c_str(), heldOut, store.dir().c_str(), target.relativeRmse, target.errorFraction,
+                target.sppCap);
     std::vector<std::pair<std::string, double>> stages;
 
     // 1. Ground truth at the scene's light position.
@@ -107,10 +116,14 @@ int runPipeline(const PipelineArgs& a) {
     const Predictor predictor(scene, models, a.prediction.applied(p.prediction));
     Stopwatch evalClock;
     std::printf("[4/4] evaluate at the ground truth's light:");
-    evaluateAll(p, predictor, {gt.lightPosition}, ro, &gt, outputPath(a.out, "evaluation"), p.render.exposure);
-    std::printf("\nevaluate at %d held-out light positions:", heldOut);
-    evaluateAll(p, predictor, heldOutLightPositions(scene.lightRange(), heldOut, uint64_t(a.seed)), ro, nullptr,
-                outputPath(a.out, "held_out"), p.render.exposure);
+    const ReferenceSource groundTruth = [&](size_t, const Vec3&) {
+        return ObtainedReference{gt, {{"fixed_spp", gt.spp}, {"directory", outputPath(a.out, "ground_truth")}}};
+    };
+    evaluateAll(p, predictor, {gt.lightPosition}, groundTruth, outputPath(a.out, "evaluation"), p.render.exposure);
+    std::printf("\nevaluate at %d held-out light positions:\n", heldOut);
+    evaluateAll(p, predictor, heldOutLightPositions(scene.lightRange(), heldOut, uint64_t(a.seed)),
+                storeSource(store, p, predictor, ro.width, ro.height, target, size_t(heldOut)), outputPath(a.out, "held_out"),
+                p.render.exposure);
     stages.push_back({"evaluate", evalClock.seconds()});
     std::printf("\n%-14s %10s\n", "stage", "seconds");
     for (const auto& st : stages) std::printf("%-14s %10.2f\n", st.first.c_str(), st.second);
@@ -125,7 +138,17 @@ void addPipelineCommand(CLI::App& app, int& exitCode) {
     CLI::App* cmd = app.add_subcommand("pipeline", "Ground truth, data, training and evaluation in one run");
     addPredictionOptions(cmd, *a);
     cmd->add_flag("--quick", a->quick, "small grid, directions, spp and epochs (about a minute on 2 cores)");
-    cmd->add_option("--spp", a->spp, "ground-truth samples per pixel")->check(positive());
+    cmd->add_option("--spp", a->spp,
+                    "ground-truth samples per pixel (fixed; the held-out references come from the project's reference "
+                    "store, converged to the noise target)")
+        ->check(positive());
+    cmd->add_option("--noise", a->noise,
+                    "relative RMSE noise the held-out references must reach (default: the project's \"reference\" "
+                    "section, 0.01; or a quarter of the measured error when that is larger)")
+        ->check(CLI::Range(1e-6, 10.0));
+    cmd->add_option("--spp-cap", a->sppCap,
+                    "most samples per pixel of a held-out reference (default: the project's, 4096; 1024 with --quick)")
+        ->check(CLI::Range(2, 1 << 24));
     cmd->add_option("--held-out", a->heldOut, "held-out light positions to evaluate")->check(positive());
     addExperimentFlags(cmd, a->experiment);
     cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/cli_evaluation.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "core/eval/sweep.h"
@@ -20,7 +21,8 @@ namespace {
 struct SweepArgs : PredictionArgs {
     std::string what;
     std::vector<std::string> values;
-    int referenceSpp = -1;
+    int referenceSpp = -1, sppCap = -1;
+    double noise = -1;
     long long seed = 1;
     ExperimentFlags experiment;
 };
@@ -34,6 +36,10 @@ int runSweepCommand(const SweepArgs& a) {
     o.width = a.width > 0 ? a.width : 128;
     o.height = a.height > 0 ? a.height : 128;
     o.referenceSpp = a.referenceSpp > 0 ? a.referenceSpp : 0;
+    // Without --reference-spp, the reference comes from the project's store, converged to the target.
+    ReferenceStore store = projectStore(p);
+    if (a.referenceSpp <= 0) o.store = &store;
+    o.referenceTarget = noiseTargetFor(p, a.noise, a.sppCap);
     experimentSettings(p, a.experiment, true, o.sampling, o.training);
     o.prediction = a.prediction.applied(p.prediction);
     o.seed = uint64_t(a.seed);
@@ -75,7 +81,16 @@ void addSweepCommand(CLI::App& app, int& exitCode) {
                     "grid (as --grid): 2,2,2 4,4,4 6,6,3; dirs (as --dirs): 50 200; hidden (as --hidden): 5 10,5 20,10; "
                     "trainer: lm adam (default: a small series of each)")
         ->type_name("VALUE");
-    cmd->add_option("--reference-spp", a->referenceSpp, "reference spp (default 1024 for spp, 256 otherwise)")->check(positive());
+    CLI::Option* fixed = cmd->add_option("--reference-spp", a->referenceSpp,
+                                         "render the reference at this fixed spp: no noise target, not stored (default: "
+                                         "the project's reference store, converged to the noise target)")
+                             ->check(positive());
+    cmd->add_option("--noise", a->noise, "relative RMSE noise the reference must reach (default: the project's, 0.01)")
+        ->check(CLI::Range(1e-6, 10.0))
+        ->excludes(fixed);
+    cmd->add_option("--spp-cap", a->sppCap, "most samples per pixel of the reference (default: the project's, 4096)")
+        ->check(CLI::Range(2, 1 << 24))
+        ->excludes(fixed);
     addExperimentFlags(cmd, a->experiment);
     cmd->add_option("--seed", a->seed, "seed of the evaluation light and renders")->check(nonNegative());
     cmd->callback([a, &exitCode] { exitCode = runSweepCommand(*a); });

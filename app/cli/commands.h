@@ -15,5 +15,6 @@ void addEvaluateCommand(CLI::App& app, int& exitCode);
 void addPredictCommand(CLI::App& app, int& exitCode);
 void addSweepCommand(CLI::App& app, int& exitCode);
 void addPipelineCommand(CLI::App& app, int& exitCode);
+void addReferenceCommand(CLI::App& app, int& exitCode);
 
 }  // namespace rrf::cli

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     rrf::cli::addPredictCommand(app, exitCode);
     rrf::cli::addSweepCommand(app, exitCode);
     rrf::cli::addPipelineCommand(app, exitCode);
+    rrf::cli::addReferenceCommand(app, exitCode);
     // CLI11 would only say "A subcommand is required" for a typo; name the word and the choices.
     if (argc > 1 && argv[1][0] != '-') {
         std::string known;

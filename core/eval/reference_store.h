@@ -17,10 +17,14 @@
 /// partial entry and resumes the same way. The result is bit-identical to an uninterrupted render.
 ///
 /// On disk, one directory per key under the store's directory:
-///   <store>/<key id>/reference.json   key, spp, reached noise per term, seconds, complete/target flags
-///   <store>/<key id>/{direct,indirect,global}.exr and variance_<term>.exr   (readable by loadReference)
-///   <store>/<key id>/state.rrfs       the renderer's per-pixel sums (checksummed), for resuming
-/// An entry is written whole (a temporary directory renamed into place), never mixed.
+///   <store>/<key id>/reference.json   key, spp, reached noise per term, seconds, complete flag, the
+///                                      noise it was rendered to, the state file's checksum
+///   <store>/<key id>/{direct,indirect,global}.exr, variance_<term>.exr and render.json
+///                                      (a directory `rrf evaluate --reference` and loadReference read)
+///   <store>/<key id>/state.rrfs       the renderer's per-pixel sums (checksummed), for resuming; the
+///                                      pixels obtain() returns are computed from it
+/// An entry is written whole (a temporary directory renamed into place), never mixed. A damaged entry
+/// (unreadable JSON, a state file whose size or checksum is wrong) is an InputError naming the file.
 
 #include <atomic>
 #include <cstdint>
@@ -33,6 +37,7 @@
 
 #include "core/eval/evaluation.h"
 #include "core/eval/reference_noise.h"
+#include "core/eval/reference_settings.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
@@ -54,19 +59,12 @@ struct ReferenceKey {
                            const RenderSettings& render);
     /// A 16-hex-digit digest of every field: the entry's directory name.
     std::string id() const;
+    /// {"scene_hash", "camera_hash" (16 hex digits), "light_position", "width", "height", "estimator"
+    /// ("nee"|"naive"), "max_depth", "seed"}.
     nlohmann::json toJson() const;
+    /// The key written by toJson(); throws InputError naming `file` and the pointer below `pointer`.
+    static ReferenceKey fromJson(const nlohmann::json& j, const std::string& file, const std::string& pointer);
     bool operator==(const ReferenceKey& o) const;
-};
-
-/// How converged a reference must be (the project's "reference" section).
-struct NoiseTarget {
-    /// Relative RMSE noise floor of the global term over the footprint mask to reach.
-    double relativeRmse = 0.01;
-    /// When an error is being measured against the reference, this fraction of that error suffices
-    /// if it is larger than `relativeRmse` (a 0.2 error needs no 0.01 reference to be ranked).
-    double errorFraction = 0.25;
-    int sppCap = 4096;        ///< never more samples per pixel than this
-    int sppPerPass = 16;      ///< samples added between two checks of the noise (and progress reports)
 };
 
 /// A stored reference as listed by the store.
@@ -77,7 +75,11 @@ struct StoredReference {
     double seconds = 0;       ///< total render time over all sessions
     ReferenceNoise noise;
     bool complete = false;    ///< reached its target or its cap (false: cancelled, resumable)
+    double wantedNoise = 0;   ///< the global relative RMSE noise it was rendered towards
     bool stale = false;       ///< its scene hash differs from the one list() was asked about
+    /// Non-empty when the entry cannot be read (list() only; the InputError's message). pruneStale
+    /// removes such entries too.
+    std::string problem;
 };
 
 /// Progress of a reference render, for a progress line or a job bar (called on the rendering thread).
@@ -100,7 +102,8 @@ public:
     std::optional<StoredReference> find(const ReferenceKey& key) const;
     /// Every entry, marked stale when its scene hash differs from `currentSceneHash`.
     std::vector<StoredReference> list(uint64_t currentSceneHash) const;
-    /// Removes the stale entries; returns how many.
+    /// Removes the stale and the unreadable entries and left-over temporary directories of an
+    /// interrupted write; returns how many entries.
     int pruneStale(uint64_t currentSceneHash);
 
     /// The reference for `key`, with its variances: the stored one when it meets `target` (its noise

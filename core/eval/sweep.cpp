@@ -264,8 +264,15 @@ SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
     ro.spp = o.referenceSpp > 0 ? o.referenceSpp : (o.what == "spp" ? 1024 : 256);
     ro.samplesPerPass = std::max(1, ro.spp / 16);
     ro.seed = mix64(o.seed ^ 0x5245464552454E43ULL);  // never the seed of the renders it judges
-    c.log("reference: " + std::to_string(ro.spp) + " spp at " + std::to_string(ro.width) + "x" + std::to_string(ro.height));
-    c.reference = renderReference(scene, r.lightPosition, ro, o.cancel);
+    if (o.store) {
+        RenderSettings rs;
+        rs.seed = ro.seed;
+        const ReferenceKey key = ReferenceKey::of(scene, r.lightPosition, ro.width, ro.height, rs);
+        c.reference = o.store->obtain(scene, key, o.referenceTarget, o.cancel, {}, {}, o.log);
+    } else {
+        c.log("reference: " + std::to_string(ro.spp) + " spp at " + std::to_string(ro.width) + "x" + std::to_string(ro.height));
+        c.reference = renderReference(scene, r.lightPosition, ro, o.cancel);
+    }
     r.referenceSpp = c.reference.spp;
     r.referenceSeconds = c.reference.seconds;
     if (!c.cancelled()) {

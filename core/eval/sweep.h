@@ -31,6 +31,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/eval/error_metrics.h"
+#include "core/eval/reference_store.h"
 #include "core/nn/object_training.h"
 #include "core/predict/predictor.h"
 #include "core/data/sampling_settings.h"
@@ -45,7 +46,12 @@ struct SweepOptions {
     std::string what;                 ///< one of kSweepKinds
     std::vector<std::string> values;  ///< one setting each ("16", "4,4,4", "20,10", "lm"); empty = defaultSweepValues(what)
     int width = 128, height = 128;    ///< image size of references and predictions
-    int referenceSpp = 0;             ///< 0 = 1024 for spp, 256 otherwise
+    int referenceSpp = 0;             ///< without a store: 0 = 1024 for spp, 256 otherwise
+    /// When set, the one reference every point is measured against comes from this store, converged
+    /// to `referenceTarget` (reused by later sweeps of the same scene, light and size); otherwise it
+    /// is rendered at `referenceSpp`.
+    ReferenceStore* store = nullptr;
+    NoiseTarget referenceTarget;
     SamplingSettings sampling;        ///< data generation (grid sweeps replace nx/ny/nz, dirs sweeps directions)
     ObjectTrainingOptions training;   ///< networks and trainer (hidden/trainer sweeps replace theirs)
     PredictionSettings prediction;

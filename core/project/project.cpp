@@ -23,7 +23,7 @@ constexpr int kProjectVersion = 1;
 /// Top-level keys this build reads into typed fields; any other key is kept in otherSections.
 bool isKnownSection(const std::string& key) {
     for (const char* k : {"rrf_project", "name", "scene", "render", "sampling", "network", "trainer", "prediction",
-                          "runs", "layout", "scene_overrides"})
+                          "reference", "runs", "layout", "scene_overrides"})
         if (key == k) return true;
     return false;
 }
@@ -36,6 +36,7 @@ void writeSections(const Project& p, json& doc) {
     if (p.network) doc["network"] = p.network->networkJson();
     if (p.trainer) doc["trainer"] = p.trainer->toJson();
     doc["prediction"] = p.prediction.toJson();
+    if (p.reference.toJson() != ReferenceSettings().toJson()) doc["reference"] = p.reference.toJson();
     if (!p.runs.empty()) doc["runs"] = runsToJson(p.runs);
     doc["layout"] = p.layout.toJson();
     if (!p.overrides.empty()) doc["scene_overrides"] = p.overrides.toJson();
@@ -72,6 +73,7 @@ void readSections(const JsonReader& root, Project& p) {
     if (const auto network = root.find("network")) p.network = NetworkSettings::fromJson(*network);
     if (const auto trainer = root.find("trainer")) p.trainer = TrainerConfig::fromJson(*trainer);
     if (const auto prediction = root.find("prediction")) p.prediction = PredictionSettings::fromJson(*prediction);
+    if (const auto reference = root.find("reference")) p.reference = ReferenceSettings::fromJson(*reference);
     if (const auto runs = root.find("runs")) p.runs = readRuns(*runs, p.warnings);
     if (const auto layout = root.find("layout")) p.layout = PaneLayout::fromJson(*layout, p.warnings);
     if (const auto overrides = root.find("scene_overrides")) {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/data/sampling_settings.h"
+#include "core/eval/reference_settings.h"
 #include "core/nn/network_settings.h"
 #include "core/nn/trainer_config.h"
 #include "core/predict/prediction_settings.h"
@@ -42,6 +43,9 @@ struct Project {
     /// limit, and the section stays absent on save (as it does when only "network" was edited).
     std::optional<TrainerConfig> trainer;
     PredictionSettings prediction;  ///< "prediction"
+    /// "reference": how converged the references of the project's store must be and their size
+    /// (core/eval/reference_store.h); written when it differs from the defaults.
+    ReferenceSettings reference;
     std::vector<Run> runs;          ///< "runs"
     PaneLayout layout;              ///< "layout": the workbench's pane sizes
     /// Top-level sections this build does not know (an object), kept only for load/save round trips.

@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/combinable.h>
@@ -41,30 +43,36 @@ bool Renderer::runPass() {
     const auto start = std::chrono::steady_clock::now();
     struct Local {
         TraceCounters counters;
-        uint64_t nonFinite = 0;
+        uint64_t nonFinite = 0, accepted = 0;
     };
     tbb::combinable<Local> locals;
     const int ts = std::max(1, options_.tileSize);
-    pass_.assign(pixels_.size(), Pixel{});
+    // Only this thread writes pixels_, so it may be read here without the lock.
+    pass_ = pixels_;
     tbb::parallel_for(tbb::blocked_range2d<int>(0, options_.height, ts, 0, options_.width, ts),
                       [&](const tbb::blocked_range2d<int>& r) {
                           if (cancelled_) return;
                           Local& l = locals.local();
                           renderTile(r.cols().begin(), r.rows().begin(), r.cols().end(), r.rows().end(), samples,
-                                     l.counters, l.nonFinite);
+                                     l.counters, l.nonFinite, l.accepted);
                       });
-    // A cancelled pass is merged too: each pixel carries its own sample count, so the tiles that did
-    // finish stay unbiased.
-    mergePass();
     Local total;
     locals.combine_each([&](const Local& l) {
         total.counters.rays += l.counters.rays;
         total.counters.shadowRays += l.counters.shadowRays;
         total.nonFinite += l.nonFinite;
+        total.accepted += l.accepted;
     });
+    // A cancelled pass is merged too unless the options say otherwise: each pixel carries its own
+    // sample count, so the tiles that did finish stay unbiased.
+    const bool merge = !cancelled_ || options_.keepCancelledPass;
+    if (merge) {
+        mergePass();
+        samples_ += total.accepted;
+        nonFinite_ += total.nonFinite;
+    }
     rays_ += total.counters.rays;
     shadowRays_ += total.counters.shadowRays;
-    nonFinite_ += total.nonFinite;
     seconds_ = seconds_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (cancelled_) return false;
     sppDone_ += samples;
@@ -72,16 +80,14 @@ bool Renderer::runPass() {
     return true;
 }
 
-void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite) {
-    uint64_t accepted = 0;
+void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite,
+                          uint64_t& accepted) {
     for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
             const uint64_t index = uint64_t(y) * uint64_t(options_.width) + uint64_t(x);
-            // pixels_[index].next only changes in mergePass(), on this thread after the pass.
-            const uint32_t first = pixels_[index].next;
             Pixel& px = pass_[index];
             for (int s = 0; s < samples; ++s) {
-                Rng rng(options_.seed, index, first + px.next++);
+                Rng rng(options_.seed, index, px.next++);
                 const float jx = rng.uniform(), jy = rng.uniform();
                 const Radiance L = tracer_.trace(camera_.generate(x, y, jx, jy), rng, counters);
                 if (!L.direct.isFinite() || !L.indirect.isFinite()) {
@@ -102,31 +108,19 @@ void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCoun
             }
         }
     }
-    samples_ += accepted;
 }
 
 void Renderer::mergePass() {
     std::lock_guard<std::mutex> lock(mutex_);
-    for (size_t i = 0; i < pixels_.size(); ++i) {
-        Pixel& dst = pixels_[i];
-        const Pixel& src = pass_[i];
-        for (int c = 0; c < 3; ++c) {
-            dst.direct[c] += src.direct[c];
-            dst.indirect[c] += src.indirect[c];
-            for (int t = 0; t < kTermCount; ++t) dst.sq[t][c] += src.sq[t][c];
-        }
-        dst.accepted += src.accepted;
-        dst.next += src.next;
-    }
+    pixels_.swap(pass_);
 }
 
 double Renderer::progress() const {
     return options_.spp > 0 ? std::min(1.0, double(sppDone_) / double(options_.spp)) : 1.0;
 }
 
-RenderSnapshot Renderer::snapshot() const {
+RenderSnapshot Renderer::snapshotOfPixels(const std::vector<Pixel>& pixels, int w, int h) {
     RenderSnapshot s;
-    const int w = options_.width, h = options_.height;
     s.direct = Image(w, h);
     s.indirect = Image(w, h);
     s.global = Image(w, h);
@@ -134,40 +128,95 @@ RenderSnapshot Renderer::snapshot() const {
     s.directVariance = Image(w, h);
     s.indirectVariance = Image(w, h);
     double sumMean = 0, sumVar = 0;
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        const Pixel& p = pixels[i];
+        if (p.accepted == 0) continue;
+        const double inv = 1.0 / p.accepted;
+        // Variance of the mean: (E[x²] − E[x]²) / (n − 1), clamped against rounding.
+        auto varianceOfMean = [&](const double* sq, int c, double mean) {
+            return p.accepted > 1 ? std::max(0.0, sq[c] * inv - mean * mean) / (p.accepted - 1) : 0.0;
+        };
+        for (int c = 0; c < 3; ++c) {
+            const double d = p.direct[c] * inv, ind = p.indirect[c] * inv, g = d + ind;
+            s.direct.data[3 * i + size_t(c)] = float(d);
+            s.indirect.data[3 * i + size_t(c)] = float(ind);
+            // Sum the stored floats so that global == direct + indirect holds exactly in the images.
+            s.global.data[3 * i + size_t(c)] = float(d) + float(ind);
+            const double var = varianceOfMean(p.sq[int(Term::Global)], c, g);
+            s.variance.data[3 * i + size_t(c)] = float(var);
+            s.directVariance.data[3 * i + size_t(c)] = float(varianceOfMean(p.sq[int(Term::Direct)], c, d));
+            s.indirectVariance.data[3 * i + size_t(c)] = float(varianceOfMean(p.sq[int(Term::Indirect)], c, ind));
+            sumMean += g;
+            sumVar += var;
+        }
+    }
+    // Pixel errors are independent, so the variance of the image mean is Σvar / (3wh)².
+    const double count = 3.0 * w * h;
+    s.relativeError = sumMean > 0 ? std::sqrt(sumVar) / count / (sumMean / count) : 0.0;
+    return s;
+}
+
+RenderSnapshot Renderer::snapshot() const {
+    RenderSnapshot s;
     {
         std::lock_guard<std::mutex> lock(mutex_);
-        for (size_t i = 0; i < pixels_.size(); ++i) {
-            const Pixel& p = pixels_[i];
-            if (p.accepted == 0) continue;
-            const double inv = 1.0 / p.accepted;
-            // Variance of the mean: (E[x²] − E[x]²) / (n − 1), clamped against rounding.
-            auto varianceOfMean = [&](const double* sq, int c, double mean) {
-                return p.accepted > 1 ? std::max(0.0, sq[c] * inv - mean * mean) / (p.accepted - 1) : 0.0;
-            };
-            for (int c = 0; c < 3; ++c) {
-                const double d = p.direct[c] * inv, ind = p.indirect[c] * inv, g = d + ind;
-                s.direct.data[3 * i + size_t(c)] = float(d);
-                s.indirect.data[3 * i + size_t(c)] = float(ind);
-                // Sum the stored floats so that global == direct + indirect holds exactly in the images.
-                s.global.data[3 * i + size_t(c)] = float(d) + float(ind);
-                const double var = varianceOfMean(p.sq[int(Term::Global)], c, g);
-                s.variance.data[3 * i + size_t(c)] = float(var);
-                s.directVariance.data[3 * i + size_t(c)] = float(varianceOfMean(p.sq[int(Term::Direct)], c, d));
-                s.indirectVariance.data[3 * i + size_t(c)] = float(varianceOfMean(p.sq[int(Term::Indirect)], c, ind));
-                sumMean += g;
-                sumVar += var;
-            }
-        }
+        s = snapshotOfPixels(pixels_, options_.width, options_.height);
     }
     s.passes = passes_;
     s.samples = samples_;
     s.nonFinite = nonFinite_;
     s.sppCompleted = sppDone_;
     s.seconds = seconds_;
-    // Pixel errors are independent, so the variance of the image mean is Σvar / (3wh)².
-    const double count = 3.0 * w * h;
-    s.relativeError = sumMean > 0 ? std::sqrt(sumVar) / count / (sumMean / count) : 0.0;
     return s;
+}
+
+RenderSnapshot Renderer::snapshotOf(const RenderState& state) {
+    if (state.pixels.size() != size_t(state.width) * size_t(state.height))
+        throw std::invalid_argument("Renderer::snapshotOf: the state's pixel count is not width x height");
+    RenderSnapshot s = snapshotOfPixels(state.pixels, state.width, state.height);
+    s.passes = state.passes;
+    s.samples = state.samples;
+    s.nonFinite = state.nonFinite;
+    s.sppCompleted = state.sppDone;
+    s.seconds = state.seconds;
+    return s;
+}
+
+RenderState Renderer::exportState() const {
+    RenderState st;
+    st.width = options_.width;
+    st.height = options_.height;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        st.pixels = pixels_;
+    }
+    st.sppDone = sppDone_;
+    st.passes = passes_;
+    st.samples = samples_;
+    st.rays = rays_;
+    st.shadowRays = shadowRays_;
+    st.nonFinite = nonFinite_;
+    st.seconds = seconds_;
+    return st;
+}
+
+void Renderer::restoreState(const RenderState& st) {
+    if (st.width != options_.width || st.height != options_.height ||
+        st.pixels.size() != size_t(st.width) * size_t(st.height))
+        throw std::invalid_argument("Renderer::restoreState: the state is " + std::to_string(st.width) + "x" +
+                                    std::to_string(st.height) + ", the renderer " + std::to_string(options_.width) + "x" +
+                                    std::to_string(options_.height));
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        pixels_ = st.pixels;
+    }
+    sppDone_ = st.sppDone;
+    passes_ = st.passes;
+    samples_ = st.samples;
+    rays_ = st.rays;
+    shadowRays_ = st.shadowRays;
+    nonFinite_ = st.nonFinite;
+    seconds_ = st.seconds;
 }
 
 RenderStats Renderer::stats() const {

@@ -4,8 +4,9 @@
 /// Each pass adds `samplesPerPass` samples to every pixel. Sums are kept in double per pixel, together
 /// with the sums of squares of the direct, indirect and global radiance (each term's per-pixel variance
 /// of the mean: the noise floor of every error measured against this render). Sample k of pixel
-/// i always uses Rng(seed, i, k), so the image is bit-identical for any thread count and any pass
-/// split. A sample whose direct or indirect radiance is NaN/Inf is dropped and counted; the pixel
+/// i always uses Rng(seed, i, k) and a pass adds its samples onto the pixel's running sums in sample
+/// order, so the image is bit-identical for any thread count and any pass split — and for a render
+/// resumed from an exported RenderState (the reference store continues references this way). A sample whose direct or indirect radiance is NaN/Inf is dropped and counted; the pixel
 /// keeps its own sample count so the mean stays unbiased.
 ///
 /// Thread safety: run()/runPass() on one worker thread; snapshot(), cancel(), progress() and stats()
@@ -34,6 +35,30 @@ struct RenderOptions {
     int maxDepth = 64;
     int samplesPerPass = 1;
     int tileSize = 16;
+    /// What happens to a pass cut short by cancel(): true keeps the samples of the tiles it finished
+    /// (each pixel carries its own count, so the image stays unbiased); false drops the whole pass,
+    /// so the sums end on a pass boundary and an exported state resumes bit-identically.
+    bool keepCancelledPass = true;
+};
+
+/// Per-pixel sums of a render, in double: radiance per term and channel, squares for the variances.
+struct PixelSums {
+    double direct[3] = {0, 0, 0};
+    double indirect[3] = {0, 0, 0};
+    /// Sums of squares per term (index int(Term)) and channel, for the variances of the means.
+    double sq[kTermCount][3] = {};
+    uint32_t accepted = 0;     ///< finite samples accumulated
+    uint32_t next = 0;         ///< next sample index (counts dropped samples too)
+};
+
+/// Everything a render has accumulated after its last completed pass: restoring it into a renderer
+/// of the same scene, size, estimator, depth and seed continues exactly where it stopped.
+struct RenderState {
+    int width = 0, height = 0;
+    int sppDone = 0, passes = 0;
+    uint64_t samples = 0, rays = 0, shadowRays = 0, nonFinite = 0;
+    double seconds = 0.0;
+    std::vector<PixelSums> pixels;  ///< i = y·width + x
 };
 
 /// Options for rendering `scene` with a project's render settings: a size of 0 means the camera's,
@@ -89,29 +114,33 @@ public:
     RenderSnapshot snapshot() const;
     RenderStats stats() const;
 
+    /// The committed sums and counters (what snapshot() shows), for saving a resumable render.
+    RenderState exportState() const;
+    /// Replaces the sums and counters by `state`, e.g. one exported by an earlier session; options
+    /// keep this renderer's (a larger spp continues further). Throws std::invalid_argument if the
+    /// size differs. Call between passes only.
+    void restoreState(const RenderState& state);
+    /// The images and variances of `state` (what snapshot() would show after restoreState(state)).
+    static RenderSnapshot snapshotOf(const RenderState& state);
+
     const PathTracer& tracer() const { return tracer_; }
     const RenderOptions& options() const { return options_; }
 
 private:
-    struct Pixel {
-        double direct[3] = {0, 0, 0};
-        double indirect[3] = {0, 0, 0};
-        /// Sums of squares per term (index int(Term)) and channel, for the variances of the means.
-        double sq[kTermCount][3] = {};
-        uint32_t accepted = 0;     ///< finite samples accumulated
-        uint32_t next = 0;         ///< next sample index (counts dropped samples too)
-    };
-    void renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite);
+    using Pixel = PixelSums;
+    void renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite,
+                    uint64_t& accepted);
     void mergePass();
+    static RenderSnapshot snapshotOfPixels(const std::vector<Pixel>& pixels, int width, int height);
 
     const Scene& scene_;
     RenderOptions options_;
     PathTracer tracer_;
     CameraRays camera_;
     std::vector<Pixel> pixels_;  ///< committed sums: what snapshot() shows
-    /// Sums of the pass in progress. A pass writes only here (each pixel from one thread, without a
-    /// lock) and is merged into pixels_ under the mutex at its end, so snapshot() never waits for a
-    /// pass — only for the sub-millisecond merge.
+    /// The sums with the pass in progress: a copy of pixels_ that the pass adds its samples to (each
+    /// pixel from one thread, without a lock), swapped into pixels_ under the mutex at its end, so
+    /// snapshot() never waits for a pass and every pixel's sums run in sample order.
     std::vector<Pixel> pass_;
     mutable std::mutex mutex_;  ///< guards pixels_ between mergePass() and snapshot()
     std::atomic<bool> cancelled_{false};

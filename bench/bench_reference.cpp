@@ -1,0 +1,115 @@
+// Reference cost benchmark (issue 10): how long the reference store takes to render a reference of
+// the Cornell box to a relative RMSE noise of 0.01 (global term, over the footprint mask, the noise
+// figure of core/eval/reference_noise.h), and the noise on the way at 64, 256 and 1024 spp.
+//
+//   bench_reference [project.json] [--size 256] [--noise 0.01] [--spp-cap 65536] [--max-seconds S]
+//                   [--threads N]
+//
+// It renders into a fresh temporary store (removed afterwards), so every run measures the whole cost.
+// With --max-seconds the render is cancelled after S seconds and the spp and seconds to reach the
+// target are extrapolated from the last noise with noise ∝ 1/√spp (printed as "extrapolated").
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <thread>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <tbb/global_control.h>
+
+#include "bench/bench_args.h"
+#include "core/eval/reference_store.h"
+#include "core/eval/sweep.h"
+#include "core/project/project.h"
+
+using namespace rrf;
+namespace fs = std::filesystem;
+
+int main(int argc, char** argv) {
+    CLI::App app{"Reference store: seconds and spp to reach a relative noise target"};
+    std::string project;
+    int size = 256, cap = 65536, threads = 0;
+    double noise = 0.01, maxSeconds = 0;
+    app.add_option("project", project, bench::kProjectHelp);
+    app.add_option("--size", size, "image width and height")->check(bench::kPositive);
+    app.add_option("--noise", noise, "relative RMSE noise to reach (global term)")->check(CLI::Range(1e-6, 10.0));
+    app.add_option("--spp-cap", cap, "most samples per pixel")->check(CLI::Range(2, 1 << 24));
+    app.add_option("--max-seconds", maxSeconds, "cancel after this many seconds and extrapolate (0 = never)")
+        ->check(CLI::Range(0.0, 1e9));
+    app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
+    bench::parseArgs(app, argc, argv);
+    project = bench::projectOrDefault(project, "bench_reference");
+
+    std::unique_ptr<tbb::global_control> limit;
+    if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+    const Project p = loadProjectOrScene(project);
+    const fs::path dir = fs::temp_directory_path() / ("rrf_bench_reference_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    ReferenceStore store(dir.string());
+    const ReferenceKey key = ReferenceKey::of(p.scene, p.scene.lightPosition(), size, size, p.render);
+    NoiseTarget target;
+    target.relativeRmse = noise;
+    target.sppCap = cap;
+    target.sppPerPass = 16;
+    std::printf("bench_reference: %s at %dx%d, %s, target relative noise %g (global term, footprint mask), cap %d spp, "
+                "%d spp per pass, %d hardware threads\n",
+                project.c_str(), size, size, p.render.estimator == Estimator::NEE ? "NEE" : "naive", noise, cap, target.sppPerPass,
+                int(std::thread::hardware_concurrency()));
+
+    std::atomic<bool> cancel{false};
+    std::mutex m;
+    std::map<int, std::pair<double, double>> marks;  // spp -> (noise, seconds)
+    std::vector<double> sppSeen, noiseSeen;
+    ReferenceProgress last;
+    const auto wallStart = std::chrono::steady_clock::now();
+    const Reference r = store.obtain(
+        p.scene, key, target, &cancel,
+        [&](const ReferenceProgress& pr) {
+            std::lock_guard<std::mutex> lock(m);
+            last = pr;
+            if (std::isfinite(pr.noise)) {
+                sppSeen.push_back(pr.spp);
+                noiseSeen.push_back(pr.noise);
+            }
+            for (int mark : {64, 256, 1024, 4096, 16384})
+                if (pr.spp == mark) {
+                    marks[mark] = {pr.noise, pr.seconds};
+                    std::printf("  %6d spp: relative noise %.4f after %.1f s (ETA to %g: %.0f s)\n", mark, pr.noise, pr.seconds,
+                                noise, pr.etaSeconds);
+                    std::fflush(stdout);
+                }
+            if (maxSeconds > 0 && pr.seconds >= maxSeconds) cancel = true;
+        },
+        {}, [](const std::string& line) { std::printf("  %s\n", line.c_str()); });
+    // Wall time includes what the render time does not: the G-buffer, the noise checks and the save.
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    const std::optional<StoredReference> e = store.find(key);
+    fs::remove_all(dir);
+    if (!e) {
+        std::printf("nothing rendered\n");
+        return 1;
+    }
+    const double reached = e->noise.relativeRmse[int(Term::Global)];
+    const double slope = logLogSlope(sppSeen, noiseSeen);
+    std::printf("\nlog-log slope of noise vs spp over the passes: %.3f (noise ∝ 1/√spp: -0.5)\n", slope);
+    if (!r.cancelled && reached <= noise) {
+        std::printf("RESULT: relative noise %.4f (target %g) reached at %d spp in %.1f s of rendering, %.1f s wall (%dx%d, "
+                    "measured)\n",
+                    reached, noise, e->spp, e->seconds, wall, size, size);
+    } else {
+        // noise ∝ 1/√spp: spp_needed = spp · (noise / target)², time in proportion.
+        const double need = e->spp * (reached / noise) * (reached / noise);
+        std::printf("RESULT: stopped at %d spp, %.1f s, relative noise %.4f; EXTRAPOLATED with noise ∝ 1/√spp: %.0f spp and "
+                    "%.0f s to reach %g (%dx%d)\n",
+                    e->spp, e->seconds, reached, need, e->seconds * need / e->spp, noise, size, size);
+        std::printf("(wall time of the part rendered: %.1f s)\n", wall);
+    }
+    return 0;
+}
