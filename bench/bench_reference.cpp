@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -69,6 +70,9 @@ int main(int argc, char** argv) {
     std::vector<double> sppSeen, noiseSeen;
     ReferenceProgress last;
     const auto wallStart = std::chrono::steady_clock::now();
+    // Process CPU time too: on a shared machine the wall time depends on the other load, CPU time / threads
+    // is what the render costs on idle cores.
+    const std::clock_t cpuStart = std::clock();
     const Reference r = store.obtain(
         p.scene, key, target, &cancel,
         [&](const ReferenceProgress& pr) {
@@ -90,6 +94,10 @@ int main(int argc, char** argv) {
         {}, [](const std::string& line) { std::printf("  %s\n", line.c_str()); });
     // Wall time includes what the render time does not: the G-buffer, the noise checks and the save.
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    const double cpu = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
+    const int cores = threads > 0 ? threads : int(std::thread::hardware_concurrency());
+    std::printf("\nwall %.1f s, process CPU %.1f s = %.1f s on %d idle cores (load average decides which one applies)\n", wall,
+                cpu, cpu / cores, cores);
     const std::optional<StoredReference> e = store.find(key);
     fs::remove_all(dir);
     if (!e) {
@@ -100,16 +108,15 @@ int main(int argc, char** argv) {
     const double slope = logLogSlope(sppSeen, noiseSeen);
     std::printf("\nlog-log slope of noise vs spp over the passes: %.3f (noise ∝ 1/√spp: -0.5)\n", slope);
     if (!r.cancelled && reached <= noise) {
-        std::printf("RESULT: relative noise %.4f (target %g) reached at %d spp in %.1f s of rendering, %.1f s wall (%dx%d, "
-                    "measured)\n",
-                    reached, noise, e->spp, e->seconds, wall, size, size);
+        std::printf("RESULT: relative noise %.4f (target %g) reached at %d spp in %.1f s wall (%.1f s on %d idle cores), %dx%d, "
+                    "measured\n",
+                    reached, noise, e->spp, wall, cpu / cores, cores, size, size);
     } else {
         // noise ∝ 1/√spp: spp_needed = spp · (noise / target)², time in proportion.
         const double need = e->spp * (reached / noise) * (reached / noise);
         std::printf("RESULT: stopped at %d spp, %.1f s, relative noise %.4f; EXTRAPOLATED with noise ∝ 1/√spp: %.0f spp and "
-                    "%.0f s to reach %g (%dx%d)\n",
-                    e->spp, e->seconds, reached, need, e->seconds * need / e->spp, noise, size, size);
-        std::printf("(wall time of the part rendered: %.1f s)\n", wall);
+                    "%.0f s wall (%.0f s on %d idle cores) to reach %g (%dx%d)\n",
+                    e->spp, e->seconds, reached, need, wall * need / e->spp, cpu / cores * need / e->spp, cores, noise, size, size);
     }
     return 0;
 }

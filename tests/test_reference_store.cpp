@@ -19,6 +19,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -35,6 +36,7 @@
 #include "core/scene/accel.h"
 #include "core/util/error.h"
 #include "scene_builders.h"
+#include "tests/cli_runner.h"
 
 using namespace rrf;
 using namespace rrf::test;
@@ -383,5 +385,45 @@ TEST(ReferenceSettings, ProjectSectionIsParsedStrictlyAndRoundTrips) {
             EXPECT_NE(e.file().find("project.json"), std::string::npos) << e.what();
         }
     }
+    fs::remove_all(dir);
+}
+
+TEST(ReferenceCli, RendersReusesListsAndPrunes) {
+    // rrf reference on a copy of the Cornell box at 16x16: render, reuse, then an edited material
+    // makes the entry stale, --list says so and --prune removes it.
+    const fs::path dir = fs::temp_directory_path() / ("rrf_refcli_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path src = fs::path(RRF_SOURCE_DIR) / "projects" / "cornell-box";
+    fs::copy_file(src / "project.json", dir / "project.json");
+    fs::copy_file(src / "scene.json", dir / "scene.json");
+    const std::string project = (dir / "project.json").string();
+    const std::string args = "reference " + project + " --width 16 --height 16 --noise 0.2 --threads 2";
+    const test::CliResult first = test::runCli(args);
+    ASSERT_EQ(first.code, 0) << first.output;
+    EXPECT_NE(first.output.find("rendering 16x16"), std::string::npos) << first.output;
+    EXPECT_NE(first.output.find("relative noise direct"), std::string::npos) << "reached noise per term printed";
+    const test::CliResult second = test::runCli(args);
+    ASSERT_EQ(second.code, 0) << second.output;
+    EXPECT_NE(second.output.find("reusing the stored reference"), std::string::npos) << second.output;
+    EXPECT_EQ(second.output.find("rendering"), std::string::npos) << second.output;
+    // Edit the white material's albedo.
+    std::string scene;
+    {
+        std::ifstream in(dir / "scene.json");
+        scene.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    const size_t at = scene.find("0.885809");
+    ASSERT_NE(at, std::string::npos);
+    scene.replace(at, 8, "0.5");
+    std::ofstream(dir / "scene.json") << scene;
+    const test::CliResult listed = test::runCli("reference " + project + " --list");
+    ASSERT_EQ(listed.code, 0) << listed.output;
+    EXPECT_NE(listed.output.find("1 reference(s)"), std::string::npos) << listed.output;
+    EXPECT_NE(listed.output.find("stale"), std::string::npos) << listed.output;
+    const test::CliResult pruned = test::runCli("reference " + project + " --prune --list");
+    ASSERT_EQ(pruned.code, 0) << pruned.output;
+    EXPECT_NE(pruned.output.find("removed 1 stale"), std::string::npos) << pruned.output;
+    EXPECT_NE(pruned.output.find("0 reference(s)"), std::string::npos) << pruned.output;
     fs::remove_all(dir);
 }
