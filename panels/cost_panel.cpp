@@ -170,12 +170,13 @@ void drawCostPanel(WorkbenchState& state) {
     for (size_t i = 0; i < series.size(); ++i) {
         const CostSeries& s = *series[i];
         const ImU32 colour = seriesColour(s.name);
-        if (s.noiseFloor > 0) {
+        const CostSeries* pt = s.kind == CostKind::Models ? findSeries(series, s.pathTracer) : nullptr;
+        // One dashed line per reference: a model series shares its path tracer's.
+        if (s.noiseFloor > 0 && !pt) {
             const float fy = y.toPixel(s.noiseFloor);
             drawDashedLine(dl, ImVec2(pmin.x, fy), ImVec2(pmax.x, fy), seriesColour(s.name, 0.7f));
             dl->AddText(ImVec2(pmin.x + 4, fy - font - 1), seriesColour(s.name, 0.8f), "noise floor");
         }
-        const CostSeries* pt = s.kind == CostKind::Models ? findSeries(series, s.pathTracer) : nullptr;
         std::vector<ImVec2> line;
         for (size_t k = 0; k < s.points.size(); ++k) {
             const CostPoint& p = s.points[k];

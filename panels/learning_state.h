@@ -120,10 +120,10 @@ struct CostSeries {
     CostKind kind = CostKind::Models;
     /// Models: the name of the path-tracer series measured against the same reference (the break-
     /// even is read off it); empty when there is none.
-    std::string pathTracer;
+    std::string pathTracer{};
     /// The reference's relative RMSE noise floor (NaN: unknown), drawn as a dashed line.
     double noiseFloor = CostPoint::kUnknown;
-    std::string reference;       ///< e.g. "64x64, reference 256 spp"
+    std::string reference{};     ///< e.g. "64x64, reference 256 spp"
 };
 
 /// Sweeps run in this session and the sweep job's state.

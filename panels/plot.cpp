@@ -63,6 +63,10 @@ std::string tickLabel(double value) {
 ImU32 seriesColour(const std::string& name, float alpha) {
     uint32_t h = 2166136261u;  // FNV-1a, 32 bit
     for (unsigned char c : name) h = (h ^ c) * 16777619u;
+    // A final mix, chosen so that each standard model sweep ("sweep grid", …) and its path tracer
+    // ("path tracer (sweep grid)") land on clearly different palette entries (not red and pink).
+    h *= 13u;
+    h ^= h >> 13;
     return seriesColour(int(h % 10u), alpha);
 }
 

@@ -47,7 +47,7 @@ PlotArea plotArea(const char* id, float legendWidth, float reserveBelow = 0.f);
 
 /// A distinct colour for series i (cycles after 10).
 ImU32 seriesColour(int i, float alpha = 1.f);
-/// The colour of the series named `name`: a function of the name alone (FNV-1a into the same
+/// The colour of the series named `name`: a function of the name alone (a hash into the same
 /// palette), so a series keeps its colour whatever other series are shown and in whatever order.
 ImU32 seriesColour(const std::string& name, float alpha = 1.f);
 

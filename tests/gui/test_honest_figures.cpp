@@ -201,6 +201,8 @@ TEST_F(CostPanelTest, SeriesColoursFollowTheirNames) {
     const std::vector<CostSeries> two = twoSeries();
     const ImU32 pt = seriesColour(two[0].name), models = seriesColour(two[1].name);
     EXPECT_NE(pt, models) << "a sweep's models and its path tracer are told apart";
+    // Neither is the colour of a series index, so drawing by index would be caught below.
+    for (int i = 0; i < 2; ++i) EXPECT_TRUE(seriesColour(i) != pt && seriesColour(i) != models) << i;
     // Whatever the order of the series, the panel draws each in its name's colour.
     for (bool reversed : {false, true}) {
         WorkbenchState s;
