@@ -1,11 +1,19 @@
-// Cost panel: what accuracy costs in time. Each sweep of this session (core/eval/sweep.h, run as a job)
-// is one line of points (setting's wall time, relative RMSE of the global term), and the project's
-// evaluated training runs are one more series; both axes are log10 with decade grids, so the path
-// tracer's 1/sqrt(N) shows as a straight line. Hovering a point names its setting and values.
-// Every error is core's relative RMSE (core/eval/error_metrics.h: sweeps compute it in core, a run's
-// "relative_rmse" comes from rrf::evaluate), the figure `rrf evaluate` reports for the global term.
+// Cost panel: what accuracy costs in time, comparably. Each sweep of this session (core/eval/sweep.h,
+// run as a job) measures every point against one reference at one resolution, so its series compare:
+//   - the path tracer: error against render time (one circle per spp, labelled with its spp);
+//   - the models: error against the one-off cost (data + training; filled squares, connected) and
+//     against the per-frame prediction time (hollow squares: CPU, triangles: GLSL).
+// The error is the relative RMSE of the global term with the reference's noise subtracted
+// (comparableError, core/eval/break_even.h), the figure `rrf evaluate` reports as "corrected"; the
+// reference's noise floor is a dashed line. For each model point the break-even — the spp and seconds
+// the path tracer of the same sweep needs for the model's error — is a cross on the path tracer's
+// line, joined by a dotted line to the model's per-frame time, and a sentence under the plot. Both
+// axes are log10 with decade grids, so the path tracer's 1/sqrt(N) is a straight line. Colours come
+// from the series' names (seriesColour(name)), so a series keeps its colour. The project's evaluated
+// training runs can be shown too, marked as what they are: each against its own ground truth.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <imgui.h>
 
@@ -21,7 +29,8 @@ void drawToolbar(WorkbenchState& state) {
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6);
     ImGui::Combo("sweep", &v.what, kSweepKinds, kSweepKindCount);
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("spp: path tracer vs samples; grid: viewpoint grid; dirs: directions per viewpoint; hidden: network size; trainer: LM vs Adam");
+        ImGui::SetTooltip("spp: path tracer vs samples; grid: viewpoint grid; dirs: directions per viewpoint; hidden: network size; trainer: LM vs Adam\n"
+                          "model sweeps also render the path tracer against the same reference, for the break-even");
     ImGui::SameLine();
     if (!state.cost.running) {
         ImGui::BeginDisabled(!state.hasProject);
@@ -34,23 +43,77 @@ void drawToolbar(WorkbenchState& state) {
     }
     ImGui::SameLine();
     ImGui::Checkbox("project runs", &v.showRuns);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("the project's evaluated training runs: each against its own ground truth (raw error),\n"
+                          "so they do not compare with the sweeps' points");
     ImGui::SameLine();
     if (ImGui::Button("Clear sweeps")) state.cost.sweeps.clear();
+}
+
+const CostSeries* findSeries(const std::vector<const CostSeries*>& series, const std::string& name) {
+    for (const CostSeries* s : series)
+        if (s->name == name) return s;
+    return nullptr;
+}
+
+/// A triangle (GLSL frame time) or a square (CPU frame time, one-off cost) around q.
+void marker(ImDrawList* dl, const ImVec2& q, ImU32 colour, char shape, bool filled) {
+    const float r = 4.f;
+    if (shape == 't') {
+        const ImVec2 a(q.x, q.y - r), b(q.x + r, q.y + r * 0.8f), c(q.x - r, q.y + r * 0.8f);
+        if (filled) dl->AddTriangleFilled(a, b, c, colour);
+        else dl->AddTriangle(a, b, c, colour, 1.5f);
+    } else if (shape == 's') {
+        if (filled) dl->AddRectFilled(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), colour);
+        else dl->AddRect(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), colour, 0.f, 0, 1.5f);
+    } else if (shape == 'x') {
+        dl->AddLine(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), colour, 2.f);
+        dl->AddLine(ImVec2(q.x - r, q.y + r), ImVec2(q.x + r, q.y - r), colour, 2.f);
+    } else {
+        dl->AddCircleFilled(q, r * 0.9f, colour);
+    }
 }
 }  // namespace
 
 CostSeries runsCostSeries(const std::vector<Run>& runs) {
     CostSeries s;
     s.name = "project runs";
+    s.kind = CostKind::Runs;
     for (const Run& r : runs) {
         if (r.kind != "train") continue;
         const double error = r.metric("relative_rmse").value_or(NAN);
         // The cost of a training run is what it took to get there: data generation plus training.
         const double seconds = r.timing("train").value_or(NAN) + r.timing("generate").value_or(0.0);
         if (!(error > 0) || !(seconds > 0)) continue;
-        s.points.push_back({seconds, error, r.name});
+        CostPoint p{seconds, error, r.name};
+        p.corrected = false;  // a run records the raw figure against its own ground truth
+        p.rawError = error;
+        s.points.push_back(p);
     }
     return s;
+}
+
+BreakEven costBreakEven(const CostSeries& pathTracer, const CostPoint& model) {
+    std::vector<PathTracerPoint> points;
+    for (const CostPoint& p : pathTracer.points) points.push_back({p.spp, p.seconds, p.error});
+    return breakEven(points, model.error);
+}
+
+std::vector<std::string> costBreakEvenLines(const std::vector<const CostSeries*>& series) {
+    std::vector<std::string> lines;
+    for (const CostSeries* s : series) {
+        if (s->kind != CostKind::Models) continue;
+        const CostSeries* pt = findSeries(series, s->pathTracer);
+        for (const CostPoint& p : s->points) {
+            const std::string head = s->name + " " + p.label + ": ";
+            if (!pt) {
+                lines.push_back(head + "no path-tracer series against the same reference");
+                continue;
+            }
+            lines.push_back(head + breakEvenText(costBreakEven(*pt, p), p.error, p.corrected, p.frameSeconds, p.glslFrameSeconds));
+        }
+    }
+    return lines;
 }
 
 void drawCostPanel(WorkbenchState& state) {
@@ -60,64 +123,129 @@ void drawCostPanel(WorkbenchState& state) {
     for (const CostSeries& s : state.cost.sweeps) series.push_back(&s);
     const CostSeries runs = runsCostSeries(state.project.runs);
     if (v.showRuns && !runs.points.empty()) series.push_back(&runs);
+    v.breakEvenLines = costBreakEvenLines(series);
 
+    // Every position a point, a break-even or a floor takes, for the axes' ranges.
     double xlo = INFINITY, xhi = 0, ylo = INFINITY, yhi = 0;
-    for (const CostSeries* s : series)
-        for (const CostPoint& p : s->points)
-            if (p.seconds > 0 && p.error > 0) {
-                xlo = std::min(xlo, p.seconds), xhi = std::max(xhi, p.seconds);
-                ylo = std::min(ylo, p.error), yhi = std::max(yhi, p.error);
-            }
+    auto extend = [&](double x, double y) {
+        if (x > 0 && std::isfinite(x)) xlo = std::min(xlo, x), xhi = std::max(xhi, x);
+        if (y > 0 && std::isfinite(y)) ylo = std::min(ylo, y), yhi = std::max(yhi, y);
+    };
+    for (const CostSeries* s : series) {
+        extend(NAN, s->noiseFloor);
+        for (const CostPoint& p : s->points) {
+            extend(p.seconds, p.error);
+            extend(p.frameSeconds, p.error);
+            extend(p.glslFrameSeconds, p.error);
+        }
+    }
     const float font = ImGui::GetFontSize();
-    const float legendW = series.empty() ? 0.f : font * 12;
-    const PlotArea area = plotArea("##cost-plot", legendW);
+    const float line = ImGui::GetTextLineHeightWithSpacing();
+    const float legendW = series.empty() ? 0.f : font * 16;
+    const float below = line * float(std::min<size_t>(v.breakEvenLines.size(), 6) + (v.breakEvenLines.empty() ? 0 : 1));
+    const PlotArea area = plotArea("##cost-plot", legendW, below);
     const bool hovered = area.hovered;
     const ImVec2 pmin = area.min, pmax = area.max;
+    v.plotMinX = pmin.x, v.plotMinY = pmin.y, v.plotMaxX = pmax.x, v.plotMaxY = pmax.y;
     const PlotAxis x = logAxis(xlo, xhi, pmin.x, pmax.x);
     const PlotAxis y = logAxis(ylo, yhi, pmax.y, pmin.y);
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    drawAxes(dl, pmin, pmax, x, y, "wall time (s)", "relative RMSE (global term)");
+    drawAxes(dl, pmin, pmax, x, y, "time (s): path tracer render, model data + training or one frame",
+             "relative RMSE, corrected (noise subtracted), global term");
     v.hoverSeries = v.hoverPoint = -1;
     if (series.empty()) {
         dl->AddText(ImVec2(pmin.x + font, pmin.y + font * 1.5f), IM_COL32(170, 170, 170, 255),
-                    "No data yet: run a sweep, or train and evaluate (each evaluated run adds a point).");
+                    "No data yet: run a sweep (model sweeps include the path tracer against the same reference).");
         return;
     }
     float best = font * font;
     const ImVec2 m = ImGui::GetIO().MousePos;
+    auto hover = [&](const ImVec2& q, size_t i, size_t k) {
+        const float d = (q.x - m.x) * (q.x - m.x) + (q.y - m.y) * (q.y - m.y);
+        if (hovered && d < best) best = d, v.hoverSeries = int(i), v.hoverPoint = int(k);
+    };
+    auto at = [&](double seconds, double error) { return ImVec2(x.toPixel(seconds), y.toPixel(error)); };
+    auto finite = [](const ImVec2& q) { return std::isfinite(q.x) && std::isfinite(q.y); };
     dl->PushClipRect(pmin, pmax, true);
     for (size_t i = 0; i < series.size(); ++i) {
-        std::vector<ImVec2> pts;
-        for (size_t k = 0; k < series[i]->points.size(); ++k) {
-            const CostPoint& p = series[i]->points[k];
-            const ImVec2 q(x.toPixel(p.seconds), y.toPixel(p.error));
-            if (!std::isfinite(q.x) || !std::isfinite(q.y)) continue;
-            pts.push_back(q);
-            const float d = (q.x - m.x) * (q.x - m.x) + (q.y - m.y) * (q.y - m.y);
-            if (hovered && d < best) best = d, v.hoverSeries = int(i), v.hoverPoint = int(k);
+        const CostSeries& s = *series[i];
+        const ImU32 colour = seriesColour(s.name);
+        const CostSeries* pt = s.kind == CostKind::Models ? findSeries(series, s.pathTracer) : nullptr;
+        // One dashed line per reference: a model series shares its path tracer's.
+        if (s.noiseFloor > 0 && !pt) {
+            const float fy = y.toPixel(s.noiseFloor);
+            drawDashedLine(dl, ImVec2(pmin.x, fy), ImVec2(pmax.x, fy), seriesColour(s.name, 0.7f));
+            dl->AddText(ImVec2(pmin.x + 4, fy - font - 1), seriesColour(s.name, 0.8f), "noise floor");
         }
-        // Sweep settings are ordered (more samples, bigger grids), so a line shows the trend;
+        std::vector<ImVec2> line;
+        for (size_t k = 0; k < s.points.size(); ++k) {
+            const CostPoint& p = s.points[k];
+            const ImVec2 q = at(p.seconds, p.error);
+            if (finite(q)) {
+                line.push_back(q);
+                hover(q, i, k);
+                marker(dl, q, colour, s.kind == CostKind::Models ? 's' : 'o', true);
+                if (s.kind == CostKind::PathTracer) {
+                    char spp[32];
+                    std::snprintf(spp, sizeof spp, "%g spp", p.spp);
+                    dl->AddText(ImVec2(q.x + 5, q.y + 2), IM_COL32(190, 190, 190, 200), spp);
+                }
+            }
+            if (s.kind != CostKind::Models) continue;
+            const ImVec2 cpu = at(p.frameSeconds, p.error), glsl = at(p.glslFrameSeconds, p.error);
+            if (finite(cpu)) marker(dl, cpu, colour, 's', false), hover(cpu, i, k);
+            if (finite(glsl)) marker(dl, glsl, colour, 't', false), hover(glsl, i, k);
+            if (!pt) continue;
+            const BreakEven b = costBreakEven(*pt, p);
+            const ImVec2 e = at(b.seconds, p.error);
+            if (!b.known || !finite(e)) continue;
+            // The break-even: where the path tracer reaches this error, joined to the model's frame time.
+            marker(dl, e, seriesColour(pt->name), 'x', false);
+            const ImVec2 from = finite(glsl) ? glsl : finite(cpu) ? cpu : q;
+            if (finite(from)) drawDashedLine(dl, from, e, seriesColour(s.name, 0.6f), 2.f);
+        }
+        // Sweep settings are ordered (more samples, bigger networks), so a line shows the trend;
         // project runs are independent experiments and stay unconnected.
-        const bool line = series[i] != &runs;
-        if (line && pts.size() >= 2) dl->AddPolyline(pts.data(), int(pts.size()), seriesColour(int(i)), 0, 1.5f);
-        for (const ImVec2& q : pts) dl->AddCircleFilled(q, 3.5f, seriesColour(int(i)));
+        if (s.kind != CostKind::Runs && line.size() >= 2) dl->AddPolyline(line.data(), int(line.size()), colour, 0, 1.5f);
     }
     dl->PopClipRect();
     if (v.hoverSeries >= 0) {
         const CostSeries& s = *series[size_t(v.hoverSeries)];
         const CostPoint& p = s.points[size_t(v.hoverPoint)];
-        ImGui::SetTooltip("%s: %s\n%.3g s\nrelative RMSE %.4g", s.name.c_str(), p.label.c_str(), p.seconds, p.error);
+        const std::string err = noiseFigureText(p.error) + (p.corrected ? " (corrected)" : " (raw)");
+        if (s.kind == CostKind::PathTracer)
+            ImGui::SetTooltip("%s: %g spp\nrender %.3g s\nrelative RMSE %s, raw %s", s.name.c_str(), p.spp, p.seconds, err.c_str(),
+                              noiseFigureText(p.rawError).c_str());
+        else if (s.kind == CostKind::Models)
+            ImGui::SetTooltip("%s: %s\ndata + training %.3g s\nper frame: CPU %s ms, GLSL %s ms\nrelative RMSE %s, raw %s\n%s",
+                              s.name.c_str(), p.label.c_str(), p.seconds, noiseFigureText(1e3 * p.frameSeconds).c_str(),
+                              noiseFigureText(1e3 * p.glslFrameSeconds).c_str(), err.c_str(),
+                              noiseFigureText(p.rawError).c_str(), s.reference.c_str());
+        else
+            ImGui::SetTooltip("%s: %s\ndata + training %.3g s\nrelative RMSE %s against its own ground truth", s.name.c_str(),
+                              p.label.c_str(), p.seconds, err.c_str());
     }
     ImGui::SameLine();
     ImGui::BeginGroup();
-    for (size_t i = 0; i < series.size(); ++i) {
+    for (const CostSeries* s : series) {
         const ImVec2 p = ImGui::GetCursorScreenPos();
-        dl->AddRectFilled(ImVec2(p.x, p.y + font * 0.3f), ImVec2(p.x + font * 0.7f, p.y + font), seriesColour(int(i)));
+        dl->AddRectFilled(ImVec2(p.x, p.y + font * 0.3f), ImVec2(p.x + font * 0.7f, p.y + font), seriesColour(s->name));
         ImGui::Dummy(ImVec2(font * 0.8f, font));
         ImGui::SameLine();
-        ImGui::Text("%s (%zu)", series[i]->name.c_str(), series[i]->points.size());
+        ImGui::Text("%s (%zu)", s->name.c_str(), s->points.size());
+        if (!s->reference.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", s->reference.c_str());
     }
+    ImGui::Spacing();
+    ImGui::TextDisabled("o path tracer (render time)");
+    ImGui::TextDisabled("filled square: data + training");
+    ImGui::TextDisabled("hollow square: CPU frame");
+    ImGui::TextDisabled("triangle: GLSL frame");
+    ImGui::TextDisabled("x: break-even; - - noise floor");
     ImGui::EndGroup();
+    if (!v.breakEvenLines.empty()) {
+        ImGui::TextUnformatted("Break-even (the same reference and resolution for every point):");
+        for (const std::string& l : v.breakEvenLines) ImGui::TextUnformatted(l.c_str());
+    }
 }
 
 }  // namespace rrf::panels

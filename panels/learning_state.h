@@ -5,10 +5,13 @@
 /// panels only read them (and their own view options), so they draw in a bare ImGui context.
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "core/eval/break_even.h"
 #include "core/eval/error_metrics.h"
+#include "core/predict/footprint_mask.h"
 #include "core/render/term.h"
 #include "core/util/vec3.h"
 #include "core/project/runs.h"
@@ -53,32 +56,74 @@ struct EvaluationInfo {
     bool valid = false;
     Vec3 lightPosition{0.f};
     int referenceSpp = 0;
+    /// The ground truth carried its per-pixel variance of the mean: noise floors and corrected
+    /// figures are numbers (otherwise NaN, shown "unknown", never 0).
+    bool referenceNoiseKnown = false;
+    FootprintCounts footprint;   ///< object pixels left out of the statistics, per reason
     double seconds = 0.0;
-    /// Rows per term, indexed with int(Term). The statistics are core's (errorStats through
-    /// rrf::evaluate), the figures `rrf evaluate` reports.
+    /// Rows per term, indexed with int(Term). The statistics are core's (errorStatsWithNoise through
+    /// rrf::evaluate, each with the reference's noise floor and the corrected figure), the figures
+    /// `rrf evaluate` reports.
     std::vector<ObjectErrorRow> rows[kTermCount];
     ErrorStats overall[kTermCount];
     bool available[kTermCount] = {false, false, false};
 };
 
 /// Columns of the Objects table, also the sort keys.
-enum class ObjectColumn { Object, Rmse, RelativeRmse, Mae, Max, Pixels, Samples, TrainSeconds, Count };
+/// Each RMSE comes with the ground truth's noise floor and the corrected (noise subtracted) figure.
+enum class ObjectColumn {
+    Object,
+    Rmse,
+    RmseNoiseFloor,
+    RmseCorrected,
+    RelativeRmse,
+    RelativeNoiseFloor,
+    RelativeCorrected,
+    Mae,
+    Max,
+    Pixels,
+    Samples,
+    TrainSeconds,
+    Count
+};
 
 struct ObjectsView {
     ObjectColumn sortColumn = ObjectColumn::Object;
     bool ascending = true;
 };
 
-/// One point of an accuracy-versus-time curve.
+/// One point of the Cost panel. All points of one sweep are measured against one reference at one
+/// resolution (core/eval/sweep.h), so they compare; the error is comparableError() (the relative
+/// RMSE of the global term with the reference's noise subtracted; raw when that noise is unknown).
 struct CostPoint {
-    double seconds = 0.0;        ///< wall time the setting cost
-    double error = 0.0;          ///< relative RMSE (global term, all object pixels)
-    std::string label;           ///< the setting, e.g. "16 spp", "20,10"
+    static constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+    double seconds = 0.0;        ///< path tracer: render time; model: one-off cost (data + training)
+    double error = 0.0;          ///< comparableError(): what the plot and the break-even use
+    std::string label;           ///< the setting, e.g. "16", "20,10"
+    bool corrected = true;       ///< `error` is noise-corrected (false: raw, the noise being unknown)
+    double rawError = kUnknown;  ///< raw relative RMSE
+    double spp = 0.0;            ///< path tracer: samples per pixel
+    double frameSeconds = kUnknown;      ///< model: one CPU frame of prediction
+    double glslFrameSeconds = kUnknown;  ///< model: one GLSL frame (measured in the workbench)
+};
+
+/// What a series' points are.
+enum class CostKind {
+    Models,      ///< one trained model per point: one-off cost, per-frame times, a break-even
+    PathTracer,  ///< the path tracer at increasing spp: render time
+    Runs,        ///< the project's evaluated training runs (each against its own ground truth)
 };
 
 struct CostSeries {
-    std::string name;            ///< e.g. "sweep spp", "runs"
+    std::string name;            ///< e.g. "sweep hidden", "path tracer (sweep hidden)"; keys its colour
     std::vector<CostPoint> points;
+    CostKind kind = CostKind::Models;
+    /// Models: the name of the path-tracer series measured against the same reference (the break-
+    /// even is read off it); empty when there is none.
+    std::string pathTracer{};
+    /// The reference's relative RMSE noise floor (NaN: unknown), drawn as a dashed line.
+    double noiseFloor = CostPoint::kUnknown;
+    std::string reference{};     ///< e.g. "64x64, reference 256 spp"
 };
 
 /// Sweeps run in this session and the sweep job's state.
@@ -90,8 +135,13 @@ struct CostInfo {
 
 struct CostView {
     int what = 0;                ///< index into kSweepKinds (core/eval/sweep.h)
-    bool showRuns = true;
+    /// The project's runs are each evaluated against their own ground truth, so they do not compare
+    /// with the sweeps' points: shown only on request.
+    bool showRuns = false;
     int hoverSeries = -1, hoverPoint = -1;
+    // Filled by the panel each frame (read by tests):
+    std::vector<std::string> breakEvenLines;  ///< the break-even sentences shown under the plot
+    float plotMinX = 0, plotMinY = 0, plotMaxX = 0, plotMaxY = 0;  ///< plot rectangle on screen
 };
 
 }  // namespace rrf::panels

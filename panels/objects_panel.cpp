@@ -1,24 +1,36 @@
-// Objects panel: the last evaluation's error per object for the term the views show (RMSE, relative
-// RMSE, MAE, max, pixels, training samples and time), sortable by any column; clicking a row selects
-// the object, which the views highlight (ViewState::selectedObject, as the Scene panel does).
-// The figures are core's ErrorStats from rrf::evaluate (core/eval/error_metrics.h, per channel), the
-// same numbers `rrf evaluate` reports; the panel only sorts and shows them.
+// Objects panel: the last evaluation's error per object for the term the views show (RMSE and
+// relative RMSE, each with the ground truth's noise floor and the corrected (noise subtracted) figure,
+// MAE, max, pixels, training samples and time), sortable by any column; clicking a row selects the
+// object, which the views highlight (ViewState::selectedObject, as the Scene panel does).
+// The figures are core's ErrorStats from rrf::evaluate (core/eval/error_metrics.h, per channel, over
+// the footprint mask's pixels), the same numbers `rrf evaluate` reports; the panel only sorts and
+// shows them. An unknown noise floor (a ground truth without its variance) reads "unknown", never 0.
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
+#include <map>
 
 #include <imgui.h>
 
+#include "core/eval/evaluation.h"
 #include "panels/panels.h"
 
 namespace rrf::panels {
 
 namespace {
-const char* const kColumnNames[] = {"object", "RMSE", "rel. RMSE", "MAE", "max", "pixels", "samples", "train s"};
+const char* const kColumnNames[] = {"object",   "RMSE",     "RMSE noise floor", "RMSE corrected", "rel. RMSE",
+                                    "rel. noise floor", "rel. corrected", "MAE", "max", "pixels", "samples", "train s"};
+static_assert(sizeof kColumnNames / sizeof kColumnNames[0] == size_t(ObjectColumn::Count), "one name per column");
 
 double key(const ObjectErrorRow& r, ObjectColumn c) {
     switch (c) {
         case ObjectColumn::Rmse: return r.stats.rmse;
+        case ObjectColumn::RmseNoiseFloor: return r.stats.rmseNoiseFloor;
+        case ObjectColumn::RmseCorrected: return r.stats.rmseCorrected;
         case ObjectColumn::RelativeRmse: return r.stats.relativeRmse;
+        case ObjectColumn::RelativeNoiseFloor: return r.stats.relativeRmseNoiseFloor;
+        case ObjectColumn::RelativeCorrected: return r.stats.relativeRmseCorrected;
         case ObjectColumn::Mae: return r.stats.mae;
         case ObjectColumn::Max: return r.stats.maxError;
         case ObjectColumn::Pixels: return double(r.stats.pixels);
@@ -26,6 +38,19 @@ double key(const ObjectErrorRow& r, ObjectColumn c) {
         case ObjectColumn::TrainSeconds: return r.trainSeconds;
         default: return double(r.objectId);
     }
+}
+
+/// The six RMSE figures in column order.
+std::array<double, 6> rmseFigures(const ErrorStats& s) {
+    return {s.rmse, s.rmseNoiseFloor, s.rmseCorrected, s.relativeRmse, s.relativeRmseNoiseFloor, s.relativeRmseCorrected};
+}
+
+/// An optional figure in CSV: empty when unknown, so a reader sees a missing value, never 0.
+std::string csvNumber(double v) {
+    if (std::isnan(v)) return "";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
 }
 
 std::string csvQuote(const std::string& s) {
@@ -48,29 +73,74 @@ void drawHeader(WorkbenchState& state) {
     ImGui::SameLine();
     if (e.running) ImGui::TextUnformatted("evaluating...");
     else if (e.valid)
-        ImGui::Text("%s term, light (%.3g, %.3g, %.3g), ground truth %d spp", termName(state.view.term), e.lightPosition.x,
-                    e.lightPosition.y, e.lightPosition.z, e.referenceSpp);
+        ImGui::Text("%s term, light (%.3g, %.3g, %.3g), ground truth %d spp, noise %s", termName(state.view.term),
+                    e.lightPosition.x, e.lightPosition.y, e.lightPosition.z, e.referenceSpp,
+                    e.referenceNoiseKnown ? "known" : "unknown (no variance)");
     else ImGui::TextDisabled("No evaluation yet: train, then Evaluate.");
+    if (e.valid) {
+        ImGui::TextDisabled("noise floor: the error the ground truth's own noise gives; corrected (noise subtracted): "
+                            "the error against the noise-free truth");
+        ImGui::TextDisabled("%s", e.footprint.describe().c_str());
+    }
 }
 }  // namespace
+
+EvaluationInfo evaluationInfo(const Evaluation& e, const Scene& scene, const ModelSet& models) {
+    EvaluationInfo info;
+    info.valid = true;
+    info.lightPosition = e.lightPosition;
+    info.referenceSpp = e.referenceSpp;
+    info.referenceNoiseKnown = e.referenceNoiseKnown;
+    info.footprint = e.footprint.counts;
+    std::map<int, std::pair<uint64_t, double>> training;
+    for (const ObjectNetworks& o : models.objects)
+        for (const auto& [target, m] : o.byTarget) {
+            auto& t = training[o.objectId];
+            const TrainResult& r = m.training;
+            t.first = std::max<uint64_t>(t.first, uint64_t(r.trainSamples + r.validationSamples + r.testSamples));
+            t.second += r.seconds;
+        }
+    for (Term t : kTerms) {
+        const TermErrors& te = e.term(t);
+        info.available[int(t)] = te.available;
+        info.overall[int(t)] = te.overall;
+        for (size_t id = 0; id < te.perObject.size() && id < scene.objects.size(); ++id) {
+            if (te.perObject[id].pixels == 0 && !training.count(int(id))) continue;  // out of view, untrained
+            ObjectErrorRow row;
+            row.objectId = int(id);
+            row.name = scene.objects[id].name;
+            row.stats = te.perObject[id];
+            if (training.count(int(id))) row.samples = training[int(id)].first, row.trainSeconds = training[int(id)].second;
+            info.rows[int(t)].push_back(row);
+        }
+    }
+    return info;
+}
 
 std::vector<ObjectErrorRow> sortedObjectRows(const std::vector<ObjectErrorRow>& rows, ObjectColumn column, bool ascending) {
     std::vector<ObjectErrorRow> out = rows;
     std::stable_sort(out.begin(), out.end(), [&](const ObjectErrorRow& a, const ObjectErrorRow& b) {
         if (column == ObjectColumn::Object) return ascending ? a.name < b.name : b.name < a.name;
-        return ascending ? key(a, column) < key(b, column) : key(b, column) < key(a, column);
+        const double ka = key(a, column), kb = key(b, column);
+        // Unknown figures (NaN) go last in either direction, which keeps the order strict and weak.
+        if (std::isnan(ka) || std::isnan(kb)) return !std::isnan(ka) && std::isnan(kb);
+        return ascending ? ka < kb : kb < ka;
     });
     return out;
 }
 
 std::string objectRowsCsv(const std::vector<ObjectErrorRow>& rows, const char* term) {
-    std::string csv = "term,object_id,object,rmse,relative_rmse,mae,max,pixels,samples,train_seconds\n";
+    // The noise columns follow the older ones, so readers of the earlier layout keep their columns.
+    std::string csv = "term,object_id,object,rmse,relative_rmse,mae,max,pixels,samples,train_seconds,rmse_noise_floor,"
+                      "rmse_corrected,relative_rmse_noise_floor,relative_rmse_corrected\n";
     char buf[256];
     for (const ObjectErrorRow& r : rows) {
-        std::snprintf(buf, sizeof buf, ",%.9g,%.9g,%.9g,%.9g,%llu,%llu,%.6g\n", r.stats.rmse, r.stats.relativeRmse,
+        std::snprintf(buf, sizeof buf, ",%.9g,%.9g,%.9g,%.9g,%llu,%llu,%.6g", r.stats.rmse, r.stats.relativeRmse,
                       r.stats.mae, r.stats.maxError, (unsigned long long)r.stats.pixels, (unsigned long long)r.samples,
                       r.trainSeconds);
-        csv += std::string(term) + "," + std::to_string(r.objectId) + "," + csvQuote(r.name) + buf;
+        csv += std::string(term) + "," + std::to_string(r.objectId) + "," + csvQuote(r.name) + buf + "," +
+               csvNumber(r.stats.rmseNoiseFloor) + "," + csvNumber(r.stats.rmseCorrected) + "," +
+               csvNumber(r.stats.relativeRmseNoiseFloor) + "," + csvNumber(r.stats.relativeRmseCorrected) + "\n";
     }
     return csv;
 }
@@ -92,6 +162,14 @@ void drawObjectsPanel(WorkbenchState& state) {
     for (int c = 0; c < int(ObjectColumn::Count); ++c)
         ImGui::TableSetupColumn(kColumnNames[c], c == 0 ? ImGuiTableColumnFlags_DefaultSort : 0, 0.f, ImGuiID(c));
     ImGui::TableHeadersRow();
+    for (int c = 0; c < int(ObjectColumn::Count); ++c)
+        if (ImGui::TableGetColumnFlags(c) & ImGuiTableColumnFlags_IsHovered) {
+            const ObjectColumn col = ObjectColumn(c);
+            if (col == ObjectColumn::RmseNoiseFloor || col == ObjectColumn::RelativeNoiseFloor)
+                ImGui::SetTooltip("noise floor: the error the ground truth's own Monte Carlo noise gives\n(a perfect prediction's expected error); unknown without its variance");
+            else if (col == ObjectColumn::RmseCorrected || col == ObjectColumn::RelativeCorrected)
+                ImGui::SetTooltip("corrected (noise subtracted): sqrt(max(0, mean(d^2 - Var(ref))))\nan estimate of the error against the noise-free truth");
+        }
     ObjectsView& v = state.objectsView;
     if (ImGuiTableSortSpecs* specs = ImGui::TableGetSortSpecs()) {
         if (specs->SpecsDirty && specs->SpecsCount > 0) {
@@ -110,7 +188,11 @@ void drawObjectsPanel(WorkbenchState& state) {
         if (ImGui::Selectable(label, selected, ImGuiSelectableFlags_SpanAllColumns))
             state.view.selectedObject = selected ? -1 : r.objectId;  // click again to clear the highlight
         ImGui::PopID();
-        for (double value : {r.stats.rmse, r.stats.relativeRmse, r.stats.mae, r.stats.maxError}) {
+        for (double value : rmseFigures(r.stats)) {
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(noiseFigureText(value).c_str());
+        }
+        for (double value : {r.stats.mae, r.stats.maxError}) {
             ImGui::TableNextColumn();
             ImGui::Text("%.4g", value);
         }
@@ -125,7 +207,11 @@ void drawObjectsPanel(WorkbenchState& state) {
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
     ImGui::TextDisabled("all objects");
-    for (double value : {o.rmse, o.relativeRmse, o.mae, o.maxError}) {
+    for (double value : rmseFigures(o)) {
+        ImGui::TableNextColumn();
+        ImGui::TextDisabled("%s", noiseFigureText(value).c_str());
+    }
+    for (double value : {o.mae, o.maxError}) {
         ImGui::TableNextColumn();
         ImGui::TextDisabled("%.4g", value);
     }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/eval/evaluation.h"
 #include "core/nn/network_settings.h"
 #include "panels/workbench_state.h"
 
@@ -37,11 +38,23 @@ bool removeHiddenLayer(WorkbenchState& state, int index);
 bool resizeHiddenLayer(WorkbenchState& state, int index, int size);
 bool setTrainerType(WorkbenchState& state, TrainerType type);
 
+/// The Objects table of an evaluation: per term, one row per object in view or trained (errors with
+/// the reference's noise floor and corrected figure, as evaluate() computed them), with the samples
+/// and training time from the models' own training records; the reference's spp, whether its noise
+/// is known, and the footprint mask's counts.
+EvaluationInfo evaluationInfo(const Evaluation& e, const Scene& scene, const ModelSet& models);
 /// The rows of one term sorted by `column` (stable; ties keep object order).
 std::vector<ObjectErrorRow> sortedObjectRows(const std::vector<ObjectErrorRow>& rows, ObjectColumn column, bool ascending);
 /// The table as CSV: a header line, then one line per row (object names quoted).
 std::string objectRowsCsv(const std::vector<ObjectErrorRow>& rows, const char* term);
-/// Accuracy-versus-time points of the project's training runs that were evaluated.
+/// Accuracy-versus-time points of the project's training runs that were evaluated (raw errors, each
+/// against its own ground truth).
 CostSeries runsCostSeries(const std::vector<Run>& runs);
+/// Where the path tracer's series `pathTracer` reaches the model point's error (core's breakEven on
+/// its points: spp, render seconds, error).
+BreakEven costBreakEven(const CostSeries& pathTracer, const CostPoint& model);
+/// One sentence per model point of `series` (breakEvenText, prefixed with the series and setting),
+/// against the path-tracer series it names; what the Cost panel prints under its plot.
+std::vector<std::string> costBreakEvenLines(const std::vector<const CostSeries*>& series);
 
 }  // namespace rrf::panels

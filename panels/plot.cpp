@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 
@@ -57,6 +58,26 @@ std::string tickLabel(double value) {
         std::snprintf(buf, sizeof buf, "1e%d", int(std::lround(l)));
     else std::snprintf(buf, sizeof buf, "%.3g", value);
     return buf;
+}
+
+ImU32 seriesColour(const std::string& name, float alpha) {
+    uint32_t h = 2166136261u;  // FNV-1a, 32 bit
+    for (unsigned char c : name) h = (h ^ c) * 16777619u;
+    // A final mix, chosen so that each standard model sweep ("sweep grid", …) and its path tracer
+    // ("path tracer (sweep grid)") land on clearly different palette entries (not red and pink).
+    h *= 13u;
+    h ^= h >> 13;
+    return seriesColour(int(h % 10u), alpha);
+}
+
+void drawDashedLine(ImDrawList* dl, const ImVec2& a, const ImVec2& b, ImU32 colour, float dash, float thickness) {
+    const float dx = b.x - a.x, dy = b.y - a.y;
+    const float length = std::sqrt(dx * dx + dy * dy);
+    if (!(length > 0.f) || !(dash > 0.f)) return;
+    for (float t = 0.f; t < length; t += 2.f * dash) {
+        const float u = t / length, v = std::min(t + dash, length) / length;
+        dl->AddLine(ImVec2(a.x + u * dx, a.y + u * dy), ImVec2(a.x + v * dx, a.y + v * dy), colour, thickness);
+    }
 }
 
 ImU32 seriesColour(int i, float alpha) {
@@ -122,11 +143,11 @@ void drawAxes(ImDrawList* dl, const ImVec2& min, const ImVec2& max, const PlotAx
     if (yLabel) dl->AddText(ImVec2(min.x, min.y - ImGui::GetFontSize() - 2), text, yLabel);
 }
 
-PlotArea plotArea(const char* id, float legendWidth) {
+PlotArea plotArea(const char* id, float legendWidth, float reserveBelow) {
     const float font = ImGui::GetFontSize();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const ImVec2 size(std::max(avail.x - legendWidth, font * 10), std::max(avail.y, font * 6));
+    const ImVec2 size(std::max(avail.x - legendWidth, font * 10), std::max(avail.y - reserveBelow, font * 6));
     ImGui::InvisibleButton(id, size);
     PlotArea a;
     a.hovered = ImGui::IsItemHovered();

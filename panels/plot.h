@@ -42,10 +42,17 @@ struct PlotArea {
     ImVec2 min, max;       ///< the data rectangle (inside the margins)
     bool hovered = false;  ///< the mouse is over the plot item
 };
-PlotArea plotArea(const char* id, float legendWidth);
+/// `reserveBelow` pixels under the plot are left free (for text the caller adds there).
+PlotArea plotArea(const char* id, float legendWidth, float reserveBelow = 0.f);
 
 /// A distinct colour for series i (cycles after 10).
 ImU32 seriesColour(int i, float alpha = 1.f);
+/// The colour of the series named `name`: a function of the name alone (a hash into the same
+/// palette), so a series keeps its colour whatever other series are shown and in whatever order.
+ImU32 seriesColour(const std::string& name, float alpha = 1.f);
+
+/// A dashed line from a to b (dashes and gaps of `dash` pixels).
+void drawDashedLine(ImDrawList* dl, const ImVec2& a, const ImVec2& b, ImU32 colour, float dash = 6.f, float thickness = 1.f);
 
 /// "1e-3", "0.25", "40": a short tick label.
 std::string tickLabel(double value);

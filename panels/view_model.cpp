@@ -15,12 +15,39 @@ bool dimmed(const std::vector<int>* ids, int selected, size_t i) {
     return ids && selected >= 0 && i < ids->size() && (*ids)[i] != selected;
 }
 
-void falseColourRgba(const Image& error, float hi, const std::vector<int>* ids, int selected,
+void falseColourRgba(const Image& error, float hi, const std::vector<int>* ids, int selected, const FootprintMask* mask,
                      std::vector<uint8_t>& rgba) {
     const Image fc = falseColor(error, 0.f, std::max(hi, 1e-12f));
     toneMapRgba(fc, 0.f, ids, selected, rgba);
+    if (!mask || mask->width != error.width || mask->height != error.height) return;
+    for (int y = 0; y < error.height; ++y)
+        for (int x = 0; x < error.width; ++x) {
+            const size_t i = size_t(y) * size_t(error.width) + size_t(x);
+            if (!mask->isKept(i)) leftOutColour(mask->pixel[i], x, y, &rgba[4 * i]);
+        }
 }
 }  // namespace
+
+void leftOutColour(Footprint reason, int x, int y, uint8_t rgba[4]) {
+    const bool object = reason != Footprint::Background && reason != Footprint::Emitter;
+    const uint8_t v = object ? (((x + y) / 2) % 2 ? 150 : 90) : 40;
+    rgba[0] = rgba[1] = rgba[2] = v;
+    rgba[3] = 255;
+}
+
+ViewErrorStats viewErrorStats(const ImageSet& groundTruth, const ImageSet& compared, Term t) {
+    ViewErrorStats out;
+    const Image& ref = groundTruth.term(t);
+    const Image& cmp = compared.term(t);
+    const FootprintMask* mask = groundTruth.footprint.get();
+    if (!mask || ref.empty() || cmp.width != ref.width || cmp.height != ref.height || mask->width != ref.width ||
+        mask->height != ref.height)
+        return out;
+    out.valid = true;
+    out.stats = errorStatsWithNoise(cmp, ref, groundTruth.variance(t), mask->kept);
+    out.left = mask->counts;
+    return out;
+}
 
 Image viewErrorMap(const Image& groundTruth, const Image& compared, ErrorMapKind kind) {
     if (groundTruth.empty() || groundTruth.width != compared.width || groundTruth.height != compared.height) return {};
@@ -40,7 +67,7 @@ void toneMapRgba(const Image& image, float exposure, const std::vector<int>* ids
     }
 }
 
-void ViewModel::update(const WorkbenchState& s) {
+void ViewModel::update(WorkbenchState& s) {
     Key k;
     k.gt = s.groundTruth.revision;
     k.cmp = s.compared().revision;
@@ -51,7 +78,10 @@ void ViewModel::update(const WorkbenchState& s) {
     k.errorMax = s.view.errorMax;
     k.selected = s.view.highlight ? s.view.selectedObject : -1;
     k.ids = s.objectIds.size();
-    if (k == key_) return;
+    if (k == key_) {
+        s.view.errorStats = stats_;
+        return;
+    }
     const bool sourcesChanged = k.gt != key_.gt || k.cmp != key_.cmp || k.source != key_.source || k.term != key_.term;
     const bool errorChanged = sourcesChanged || k.metric != key_.metric;
     key_ = k;
@@ -67,10 +97,12 @@ void ViewModel::update(const WorkbenchState& s) {
         d.height = img.height;
         d.revision = ++counter_;
         if (img.empty()) d.rgba.clear();
-        else if (error) falseColourRgba(img, s.view.errorMax, idsFor(img), k.selected, d.rgba);
+        else if (error) falseColourRgba(img, s.view.errorMax, idsFor(img), k.selected, s.groundTruth.footprint.get(), d.rgba);
         else toneMapRgba(img, s.view.exposure, idsFor(img), k.selected, d.rgba);
     };
     if (errorChanged) error_ = viewErrorMap(ref, cmp, s.view.metric);
+    if (sourcesChanged) stats_ = viewErrorStats(s.groundTruth, s.compared(), s.view.term);
+    s.view.errorStats = stats_;
     fill(views_[kReference], ref, false);
     fill(views_[kCompared], cmp, false);
     fill(views_[kError], error_, true);

@@ -6,7 +6,11 @@
 ///
 /// The error map is core's errorMap(compared, groundTruth, kind) (core/eval/error_metrics.h: per
 /// channel, averaged over R, G, B), so a pixel of the Views error is the value `rrf evaluate` and the
-/// Objects table are built from.
+/// Objects table are built from. Object pixels the ground truth's footprint mask leaves out
+/// (core/predict/footprint_mask.h) are drawn hatched grey, background and emitter pixels dark: they
+/// are in no statistic. The figures under the map (viewErrorStats) are `rrf evaluate`'s "ALL
+/// OBJECTS" row for the term: errorStatsWithNoise over the mask's kept pixels, with the ground
+/// truth's noise floor and the corrected figure.
 
 #include <cstdint>
 #include <vector>
@@ -21,6 +25,12 @@ namespace rrf::panels {
 /// empty or their sizes differ (nothing to compare, which the view says instead of failing).
 Image viewErrorMap(const Image& groundTruth, const Image& compared, ErrorMapKind kind);
 
+/// The error statistics of `compared` against `groundTruth` for term `t` over the ground truth's
+/// footprint mask (kept pixels), with its variance as the noise (unknown without it): the figures of
+/// evaluate()'s overall row. `valid` is false (and the stats empty) without a mask or a compared
+/// image of the ground truth's size.
+ViewErrorStats viewErrorStats(const ImageSet& groundTruth, const ImageSet& compared, Term t);
+
 /// One displayable image.
 struct DisplayImage {
     int width = 0, height = 0;
@@ -28,6 +38,10 @@ struct DisplayImage {
     uint64_t revision = 0;      ///< changes whenever the pixels change
     bool empty() const { return width == 0 || height == 0; }
 };
+
+/// Colour of a pixel the statistics leave out in the error map: hatched grey (diagonal stripes two
+/// pixels wide) for an object pixel the footprint mask leaves out, dark for background and emitter.
+void leftOutColour(Footprint reason, int x, int y, uint8_t rgba[4]);
 
 /// Tone-maps linear radiance to sRGB RGBA8 (value · 2^exposure, clamped). When `ids` is given and
 /// `selected` ≥ 0, pixels of other objects are dimmed so the selected object stands out.
@@ -38,11 +52,14 @@ class ViewModel {
 public:
     static constexpr int kReference = 0, kCompared = 1, kError = 2;
 
-    /// Recomputes whatever the state's inputs invalidated.
-    void update(const WorkbenchState& state);
+    /// Recomputes whatever the state's inputs invalidated, and publishes the figures under the error
+    /// map to state.view.errorStats (the Views panel shows them without per-pixel work).
+    void update(WorkbenchState& state);
     const DisplayImage& image(int view) const { return views_[view]; }
     /// The error image of the last update (empty without a compared image of the same size).
     const Image& error() const { return error_; }
+    /// The figures under the error map for the last update's term and sources.
+    const ViewErrorStats& stats() const { return stats_; }
 
 private:
     struct Key {
@@ -61,6 +78,7 @@ private:
     Key key_;
     DisplayImage views_[3];
     Image error_;
+    ViewErrorStats stats_;
     uint64_t counter_ = 0;
 };
 

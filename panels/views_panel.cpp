@@ -1,5 +1,8 @@
 // Views panel: ground truth | compared image | error map side by side. The three views share one
-// zoom/pan (wheel zooms about the cursor, drag pans), one exposure and one hover read-out.
+// zoom/pan (wheel zooms about the cursor, drag pans), one exposure and one hover read-out. The error
+// map is what `rrf evaluate` reports: core's per-pixel metric, with the pixels the footprint mask
+// leaves out drawn hatched (panels/view_model.h), and under it the figures of evaluate()'s overall
+// row (raw, noise floor, corrected) with the counts of the pixels left out.
 #include <algorithm>
 #include <array>
 #include <iterator>
@@ -68,13 +71,15 @@ void drawToolbar(WorkbenchState& state) {
     }
     ImGui::SameLine();
     if (r.running || r.spp > 0) {
-        char overlay[96];
-        std::snprintf(overlay, sizeof overlay, "%d/%d spp  rel.err %.2f%%%s", r.spp, r.targetSpp, 100 * r.relativeError,
-                      r.running ? "" : "  done");
-        ImGui::ProgressBar(r.targetSpp > 0 ? float(r.spp) / float(r.targetSpp) : 0.f, ImVec2(ImGui::GetFontSize() * 16, 0),
+        char overlay[128];
+        std::snprintf(overlay, sizeof overlay, "%d/%d spp  noise (rel. RMSE of the mean) %s%s", r.spp, r.targetSpp,
+                      noiseFigureText(r.relativeNoise).c_str(), r.running ? "" : "  done");
+        ImGui::ProgressBar(r.targetSpp > 0 ? float(r.spp) / float(r.targetSpp) : 0.f, ImVec2(ImGui::GetFontSize() * 24, 0),
                            overlay);
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("%.2f s, %.3g samples/s%s\nrel.err: relative standard error of the image mean",
+            ImGui::SetTooltip("%.2f s, %.3g samples/s%s\nnoise (rel. RMSE of the mean): the image's relative RMSE noise floor,\n"
+                              "sqrt(mean Var(mean) / (|image| + 0.01)^2) over the footprint mask's pixels (global term):\n"
+                              "the error a perfect prediction would show against this image",
                               r.seconds, r.samplesPerSecond,
                               r.etaSeconds >= 0 ? (", ETA " + std::to_string(int(r.etaSeconds + 0.5)) + " s").c_str() : "");
         ImGui::SameLine();
@@ -170,6 +175,26 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
     return over;
 }
 
+/// The figures of the error map: `rrf evaluate`'s overall row for the term, and what it leaves out.
+void drawErrorFigures(const WorkbenchState& state) {
+    const ViewErrorStats& f = state.view.errorStats;
+    if (!f.valid) {
+        ImGui::TextDisabled(state.groundTruth.footprint ? "Error figures: need a compared image of the ground truth's size."
+                                                        : "Error figures: need the ground truth's footprint mask (render it).");
+        return;
+    }
+    const ErrorStats& e = f.stats;
+    ImGui::Text("%s term, %llu pixels: rel. RMSE %.4g (noise floor %s, corrected (noise subtracted) %s)  RMSE %.4g "
+                "(noise floor %s, corrected %s)  MAE %.4g",
+                termName(state.view.term), (unsigned long long)e.pixels, e.relativeRmse,
+                noiseFigureText(e.relativeRmseNoiseFloor).c_str(), noiseFigureText(e.relativeRmseCorrected).c_str(), e.rmse,
+                noiseFigureText(e.rmseNoiseFloor).c_str(), noiseFigureText(e.rmseCorrected).c_str(), e.mae);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("the figures rrf evaluate reports for all objects (per channel, footprint mask's pixels);\n"
+                          "noise floor: what the ground truth's own noise gives; corrected: that noise subtracted");
+    ImGui::TextDisabled("hatched: %s", f.left.describe().c_str());
+}
+
 void drawLegend(const ViewState& v, float width) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 p = ImGui::GetCursorScreenPos();
@@ -219,6 +244,12 @@ void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp
         if (cmp.width == ref.width && cmp.height == ref.height) {
             ImGui::SameLine();
             ImGui::Text("  error %.4g", pixelError(c, r, v.metric));
+            const FootprintMask* mask = state.groundTruth.footprint.get();
+            const size_t i = size_t(v.hoverY) * size_t(ref.width) + size_t(v.hoverX);
+            if (mask && mask->width == ref.width && mask->height == ref.height && !mask->isKept(i)) {
+                ImGui::SameLine();
+                ImGui::TextDisabled("  left out (%s)", footprintName(mask->pixel[i]));
+            }
         }
     }
 }
@@ -229,7 +260,7 @@ void drawViewsPanel(WorkbenchState& state) {
     const Image& ref = state.groundTruth.term(state.view.term);
     const Image& cmp = state.compared().term(state.view.term);
     const float spacing = ImGui::GetStyle().ItemSpacing.x;
-    const float footer = ImGui::GetTextLineHeightWithSpacing() * 4.5f;
+    const float footer = ImGui::GetTextLineHeightWithSpacing() * 6.5f;
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const float w = std::max(16.f, (avail.x - 2 * spacing) / 3.f);
     const float h = std::max(16.f, avail.y - footer - ImGui::GetTextLineHeightWithSpacing());
@@ -254,6 +285,7 @@ void drawViewsPanel(WorkbenchState& state) {
     state.view.hoverX = over ? int(hover.x) : -1;
     state.view.hoverY = over ? int(hover.y) : -1;
 
+    drawErrorFigures(state);
     drawReadout(state, ref, cmp);
     drawLegend(state.view, std::min(w, ImGui::GetFontSize() * 18));
 }

@@ -5,6 +5,7 @@
 /// testable in a bare ImGui context.
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <imgui.h>
 
 #include "core/eval/error_metrics.h"
+#include "core/predict/footprint_mask.h"
 #include "core/render/term.h"
 #include "core/scene/accel.h"
 #include "core/data/generator_stats.h"
@@ -63,6 +65,14 @@ struct Request {
 /// Direct, indirect and global images of one source (a render, a run, a prediction).
 struct ImageSet {
     Image direct, indirect, global;
+    /// Per-pixel, per-channel variance of the mean of each term (index int(Term)): a render's own
+    /// noise (the ground truth's snapshots carry it). Empty for sources without it (runs,
+    /// predictions): noise floors against them are unknown.
+    Image variances[kTermCount];
+    /// The footprint mask of the G-buffer these images were rendered for (their light position and
+    /// size; core/predict/footprint_mask.h): the pixels every error against them is measured over,
+    /// as `rrf evaluate` measures. Null when unknown (e.g. a re-opened run's images).
+    std::shared_ptr<const FootprintMask> footprint;
     std::string label;      ///< shown above the view, e.g. "ground truth, 64 spp"
     uint64_t revision = 0;  ///< new value whenever the images change (drives the view cache and uploads)
 
@@ -73,6 +83,15 @@ struct ImageSet {
     void touch();
     const Image& term(Term t) const { return t == Term::Direct ? direct : t == Term::Indirect ? indirect : global; }
     Image& term(Term t) { return t == Term::Direct ? direct : t == Term::Indirect ? indirect : global; }
+    const Image& variance(Term t) const { return variances[int(t)]; }
+};
+
+/// The figures under the Views error map: `rrf evaluate`'s overall row for the shown term (see
+/// viewErrorStats in panels/view_model.h, which fills it).
+struct ViewErrorStats {
+    bool valid = false;    ///< false without a footprint mask or a compared image of the same size
+    ErrorStats stats;      ///< over the footprint mask's kept pixels, with the ground truth's noise
+    FootprintCounts left;  ///< object pixels the mask leaves out, per reason
 };
 
 /// Display settings of the three side-by-side views.
@@ -89,13 +108,17 @@ struct ViewState {
     bool highlight = true;      ///< dim everything but the selected object
     int selectedObject = -1;
     int hoverX = -1, hoverY = -1;  ///< image pixel under the mouse, -1 when none
+    ViewErrorStats errorStats;  ///< published by the ViewModel each frame
 };
 
 /// Progress of the ground-truth render, as last published by its job.
 struct RenderProgress {
     bool running = false;
     int spp = 0, targetSpp = 0;
-    double relativeError = 0.0;
+    /// The image's relative noise: the relative RMSE noise floor of the global term over the
+    /// footprint mask (core/eval/reference_noise.h, the error a perfect prediction would show against
+    /// this image), computed on the render worker per pass. NaN while unknown (fewer than 2 spp).
+    double relativeNoise = std::numeric_limits<double>::quiet_NaN();
     double seconds = 0.0;
     double etaSeconds = -1.0;
     double samplesPerSecond = 0.0;

@@ -62,9 +62,9 @@ int runSweepCommand(const SweepArgs& a) {
     if (!curves.empty()) writeReported(base + "_curves.csv", curves);
     const std::string table = sweepTable(r);
     writeReported(base + ".txt", table);
-    std::printf("\nlight at (%.3f, %.3f, %.3f), reference %d spp (%.1f s); error of the global image%s\n%s",
-                r.lightPosition.x, r.lightPosition.y, r.lightPosition.z, r.referenceSpp, r.referenceSeconds,
-                a.what == "spp" ? " (all pixels)" : " (object pixels)", table.c_str());
+    std::printf("\nlight at (%.3f, %.3f, %.3f), reference %d spp (%.1f s); error of the global image (object pixels the "
+                "footprint mask keeps)\n%s",
+                r.lightPosition.x, r.lightPosition.y, r.lightPosition.z, r.referenceSpp, r.referenceSeconds, table.c_str());
     std::printf("sweep took %.1f s%s\n", clock.seconds(), r.cancelled ? " (interrupted)" : "");
     return r.cancelled ? 130 : 0;
 }

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
+
+#include "core/eval/reference_noise.h"
+#include "core/predict/gbuffer.h"
 
 namespace rrf {
 
@@ -23,6 +27,16 @@ void RenderSession::run(JobContext& ctx) {
     // job not yet taken), and cancel() touches only the renderer's own flag.
     ctx.onCancel([keep = std::shared_ptr<Renderer>(renderer_)] { keep->cancel(); });
     if (ctx.cancelled()) return;
+    ctx.setStatus("footprint mask");
+    {
+        // The G-buffer evaluate() builds for this image (one primary ray per pixel, with the scene's
+        // own light position), so the views, the render status and `rrf evaluate` use one mask.
+        const PathTracer tracer(scene_, *accel_, Estimator::NEE, 1);
+        auto mask = std::make_shared<const FootprintMask>(footprintMask(
+            buildGBuffer(tracer, RecordLayout::forScene(scene_), scene_.lightPosition(), options_.width, options_.height)));
+        std::lock_guard<std::mutex> lock(mutex_);
+        footprint_ = std::move(mask);
+    }
     ctx.setStatus("rendering");
     renderer->run([&](int sppDone) {
         publish();
@@ -38,15 +52,26 @@ void RenderSession::publish() {
     // Called on the worker between passes, when the renderer's own lock is free: the snapshot is a
     // consistent copy, and the UI thread never waits for a pass to finish.
     auto snap = std::make_shared<const RenderSnapshot>(renderer_->snapshot());
+    // The noise is a pass over every pixel: done here, on the worker, once per pass. Below 2 spp the
+    // renderer's variance is 0 (not estimable), which must not read as "no noise".
+    const double noise = footprint_ && snap->sppCompleted >= 2 ? relativeNoiseFloor(snap->global, snap->variance, footprint_->kept)
+                                    : std::numeric_limits<double>::quiet_NaN();
     std::lock_guard<std::mutex> lock(mutex_);
     latest_ = std::move(snap);
+    latestNoise_ = noise;
     ++revision_;
 }
 
-std::shared_ptr<const RenderSnapshot> RenderSession::latest(uint64_t* revision) const {
+std::shared_ptr<const RenderSnapshot> RenderSession::latest(uint64_t* revision, double* relativeNoise) const {
     std::lock_guard<std::mutex> lock(mutex_);
     if (revision) *revision = revision_.load();
+    if (relativeNoise) *relativeNoise = latestNoise_;
     return latest_;
+}
+
+std::shared_ptr<const FootprintMask> RenderSession::footprint() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return footprint_;
 }
 
 RenderStats RenderSession::stats() const {

@@ -3,6 +3,12 @@
 /// of the scene, its Embree BVH and the Renderer (built on the worker, so a large scene's BVH build
 /// never stalls the UI); after every pass the worker publishes a RenderSnapshot, which the UI thread
 /// picks up with latest(). A scene edit makes a new session: the old one is cancelled, never mutated.
+///
+/// Before the first pass the worker also builds the footprint mask of the image (its G-buffer at the
+/// session's light position and size, core/predict/footprint_mask.h): the pixels every error against
+/// this ground truth is measured over, as `rrf evaluate` does. With each snapshot it publishes the
+/// image's relative noise over that mask (relativeNoiseFloor of the global term,
+/// core/eval/reference_noise.h), so the UI thread does no per-pixel work for the render status.
 
 #include <atomic>
 #include <memory>
@@ -10,6 +16,7 @@
 #include <string>
 
 #include "app/gui/job_runner.h"
+#include "core/predict/footprint_mask.h"
 #include "core/scene/accel.h"
 #include "core/render/render_outputs.h"
 #include "core/render/renderer.h"
@@ -24,8 +31,11 @@ public:
     /// The job body: builds the BVH and renders until done or cancelled.
     void run(JobContext& context);
 
-    /// The most recent snapshot (null before the first pass) and its sequence number.
-    std::shared_ptr<const RenderSnapshot> latest(uint64_t* revision = nullptr) const;
+    /// The most recent snapshot (null before the first pass), its sequence number and its relative
+    /// noise (NaN while unknown).
+    std::shared_ptr<const RenderSnapshot> latest(uint64_t* revision = nullptr, double* relativeNoise = nullptr) const;
+    /// The footprint mask of the image (null until the worker has built it, before the first pass).
+    std::shared_ptr<const FootprintMask> footprint() const;
     RenderStats stats() const;
     const RenderOptions& options() const { return options_; }
     const Scene& scene() const { return scene_; }
@@ -44,6 +54,8 @@ private:
     /// Shared with the job's cancel hook, which may fire after the session is gone.
     std::shared_ptr<Renderer> renderer_;
     std::shared_ptr<const RenderSnapshot> latest_;
+    double latestNoise_ = 0;  ///< relative noise of latest_ (guarded by mutex_)
+    std::shared_ptr<const FootprintMask> footprint_;
     std::atomic<uint64_t> revision_{0};
 };
 

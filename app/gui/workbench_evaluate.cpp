@@ -4,7 +4,6 @@
 #include "app/gui/workbench.h"
 
 #include <filesystem>
-#include <map>
 
 #include "core/util/atomic_file.h"
 #include "core/util/stopwatch.h"
@@ -24,39 +23,6 @@ struct EvaluationOutcome {
     std::string modelsDir;     ///< the models that were judged
 };
 
-namespace {
-/// The Objects table of `e`: per term, one row per object in view or trained, with the samples and
-/// training time from the models' own training records.
-panels::EvaluationInfo objectsTable(const Evaluation& e, const Scene& scene, const ModelSet& models) {
-    panels::EvaluationInfo info;
-    info.valid = true;
-    info.lightPosition = e.lightPosition;
-    std::map<int, std::pair<uint64_t, double>> training;
-    for (const ObjectNetworks& o : models.objects)
-        for (const auto& [target, m] : o.byTarget) {
-            auto& t = training[o.objectId];
-            const TrainResult& r = m.training;
-            t.first = std::max<uint64_t>(t.first, uint64_t(r.trainSamples + r.validationSamples + r.testSamples));
-            t.second += r.seconds;
-        }
-    for (Term t : kTerms) {
-        const TermErrors& te = e.term(t);
-        info.available[int(t)] = te.available;
-        info.overall[int(t)] = te.overall;
-        for (size_t id = 0; id < te.perObject.size() && id < scene.objects.size(); ++id) {
-            if (te.perObject[id].pixels == 0 && !training.count(int(id))) continue;  // out of view, untrained
-            panels::ObjectErrorRow row;
-            row.objectId = int(id);
-            row.name = scene.objects[id].name;
-            row.stats = te.perObject[id];
-            if (training.count(int(id))) row.samples = training[int(id)].first, row.trainSeconds = training[int(id)].second;
-            info.rows[int(t)].push_back(row);
-        }
-    }
-    return info;
-}
-}  // namespace
-
 bool Workbench::evaluateRunning() const { return evaluateJob_.running(); }
 
 bool Workbench::startEvaluate() {
@@ -72,10 +38,16 @@ bool Workbench::startEvaluate() {
     auto scene = std::make_shared<const Scene>(state_.project.scene);
     const std::shared_ptr<const ModelSet> models = live_.models();
     const std::string modelsDir = live_.dir();
-    // The reference is the ground truth the views show, at the light position it was rendered at.
-    // Image copies share nothing with the views, so the worker reads them while the UI draws.
+    // The reference is the ground truth the views show, at the light position it was rendered at,
+    // with the render's per-term variance of the mean (empty for a re-opened run's images: the
+    // noise floors are then unknown, never 0). Image copies share nothing with the views, so the
+    // worker reads them while the UI draws.
     auto reference = std::make_shared<Reference>();
-    for (Term t : kTerms) reference->images[int(t)] = state_.groundTruth.term(t);
+    for (Term t : kTerms) {
+        reference->images[int(t)] = state_.groundTruth.term(t);
+        // A variance of fewer than 2 spp is 0 everywhere (not estimable): unknown, not noise-free.
+        if (state_.render.spp >= 2) reference->variances[int(t)] = state_.groundTruth.variance(t);
+    }
     reference->lightPosition = state_.project.scene.lightPosition();
     reference->spp = state_.render.spp;
     reference->seconds = state_.render.seconds;
@@ -86,7 +58,7 @@ bool Workbench::startEvaluate() {
         const Predictor predictor(*scene, *models, settings);
         const Evaluation e = evaluate(predictor, *reference);
         EvaluationOutcome out;
-        out.info = objectsTable(e, *scene, *models);
+        out.info = panels::evaluationInfo(e, *scene, *models);
         out.info.referenceSpp = reference->spp;
         out.info.seconds = clock.seconds();
         out.global = e.term(Term::Global).overall;
@@ -115,9 +87,12 @@ void Workbench::pollEvaluate() {
         record.lights = {light};
         record.seconds = seconds;
         if (recordEvaluation(state_.project.runs, projectDir(), out.modelsDir, record) > 0) state_.markDirty();
-        char line[160];
-        std::snprintf(line, sizeof line, "evaluated: global term relative RMSE %.4g, RMSE %.4g over %llu pixels (%.1f s)",
-                      g.relativeRmse, g.rmse, (unsigned long long)g.pixels, seconds);
+        char line[320];
+        std::snprintf(line, sizeof line,
+                      "evaluated: global term relative RMSE %.4g (noise floor %s, corrected (noise subtracted) %s), RMSE %.4g "
+                      "over %llu pixels (%.1f s)",
+                      g.relativeRmse, noiseFigureText(g.relativeRmseNoiseFloor).c_str(),
+                      noiseFigureText(g.relativeRmseCorrected).c_str(), g.rmse, (unsigned long long)g.pixels, seconds);
         state_.log.info(line);
     });
 }

@@ -38,17 +38,22 @@ void Workbench::pollRender() {
     renderJob_.poll();
     if (render_) {
         uint64_t revision = 0;
-        const auto snap = render_->latest(&revision);
+        double noise = 0;
+        const auto snap = render_->latest(&revision, &noise);
         if (snap && revision != renderRevision_) {
             renderRevision_ = revision;
             panels::ImageSet& gt = state_.groundTruth;
             gt.direct = snap->direct;
             gt.indirect = snap->indirect;
             gt.global = snap->global;
+            // The variances make the noise floors known (Objects, Views); the mask is the one
+            // `rrf evaluate` would use for this image. Both were made on the render worker.
+            for (Term t : kTerms) gt.variances[int(t)] = snap->varianceOf(t);
+            gt.footprint = render_->footprint();
             gt.label = "ground truth";
             gt.touch();
             state_.render.spp = snap->sppCompleted;
-            state_.render.relativeError = snap->relativeError;
+            state_.render.relativeNoise = noise;
             state_.render.seconds = snap->seconds;
             state_.render.samplesPerSecond = snap->seconds > 0 ? double(snap->samples) / snap->seconds : 0.0;
             const double left = double(render_->options().spp - snap->sppCompleted);

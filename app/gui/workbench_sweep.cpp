@@ -1,25 +1,97 @@
 // Workbench: the "Run sweep" job of the Cost panel (core/eval/sweep.h) with sizes small enough for an
-// interactive session; the rows become an accuracy-versus-time series and are written as CSV and
-// JSON under <project dir>/sweeps/, as `rrf sweep` writes them.
+// interactive session. Every point of a sweep is measured against one reference at one resolution;
+// model sweeps include the path tracer's series (1…256 spp) against that reference, so each model has
+// its break-even. When the job is done the UI thread — the one with the window's GL context — times
+// the GLSL predictor on each row's networks (core has no GL), then the rows become the Cost panel's
+// series and are written as CSV and JSON under <project dir>/sweeps/, as `rrf sweep` writes them.
 #include "app/gui/workbench.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 
-#include "core/util/atomic_file.h"
-#include "core/nn/network_settings.h"
+#include "app/gl/glsl_predictor.h"
 #include "core/data/sampling_settings.h"
 #include "core/eval/sweep.h"
+#include "core/nn/network_settings.h"
+#include "core/util/atomic_file.h"
+#include "core/util/stopwatch.h"
 
 namespace rrf {
 
 namespace fs = std::filesystem;
 
-/// A finished (not cancelled) sweep: its series for the Cost panel and where its files went.
+/// A finished (not cancelled) sweep: its rows (with their networks, for the GLSL timing) and where
+/// its files go.
 struct SweepOutcome {
-    panels::CostSeries series;
+    SweepResult result;
+    std::shared_ptr<const Scene> scene;
     std::string outBase;  ///< <project dir>/sweeps/<what>-<time>, + .csv / .json
 };
+
+namespace {
+
+/// Frames timed per network set after one warm-up frame (first upload, driver shader compilation).
+constexpr int kGlslTimedFrames = 5;
+
+/// Seconds of one GLSL prediction frame of `models` at width × height with the light at `light`:
+/// render plus read-back of the global term, as the live view needs it. Needs the current GL context.
+double glslFrameSeconds(const Scene& scene, const ModelSet& models, const Vec3& light, int width, int height) {
+    GlslPredictor gp(scene, models);
+    Camera camera = scene.camera;
+    camera.width = width;
+    camera.height = height;
+    gp.setCamera(camera);
+    gp.setLightPosition(light);
+    gp.render();
+    gp.read(Term::Global);
+    const Stopwatch clock;
+    for (int i = 0; i < kGlslTimedFrames; ++i) {
+        gp.render();
+        gp.read(Term::Global);
+    }
+    return clock.seconds() / kGlslTimedFrames;
+}
+
+panels::CostPoint costPoint(const SweepRow& row) {
+    panels::CostPoint p;
+    p.label = row.setting;
+    p.seconds = row.spp > 0 ? (row.stageSeconds.empty() ? 0.0 : row.stageSeconds.front().second) : row.oneOffSeconds;
+    p.error = comparableError(row.overall);
+    p.corrected = !std::isnan(row.overall.relativeRmseCorrected);
+    p.rawError = row.overall.relativeRmse;
+    p.spp = row.spp;
+    p.frameSeconds = row.frameSeconds;
+    p.glslFrameSeconds = row.glslFrameSeconds;
+    return p;
+}
+
+/// The Cost panel's series of `r`: the path tracer's (an spp sweep has only that) and the models'.
+/// `name` keys the colours, so a repeated sweep gets a name (and colour) of its own.
+std::vector<panels::CostSeries> costSeries(const SweepResult& r, const std::string& name) {
+    char reference[160];
+    std::snprintf(reference, sizeof reference, "%dx%d, one reference of %d spp (relative noise floor %s), light (%.3g, %.3g, %.3g)",
+                  r.width, r.height, r.referenceSpp, noiseFigureText(r.relativeNoiseFloor).c_str(), r.lightPosition.x,
+                  r.lightPosition.y, r.lightPosition.z);
+    panels::CostSeries pt;
+    pt.kind = panels::CostKind::PathTracer;
+    pt.name = r.what == "spp" ? name : "path tracer (" + name + ")";
+    pt.noiseFloor = r.relativeNoiseFloor;
+    pt.reference = reference;
+    for (const SweepRow& row : pathTracerRows(r)) pt.points.push_back(costPoint(row));
+    if (r.what == "spp") return {pt};
+    panels::CostSeries models;
+    models.kind = panels::CostKind::Models;
+    models.name = name;
+    models.pathTracer = pt.name;
+    models.noiseFloor = r.relativeNoiseFloor;
+    models.reference = reference;
+    for (const SweepRow& row : r.rows) models.points.push_back(costPoint(row));
+    return {pt, models};
+}
+
+}  // namespace
 
 bool Workbench::sweepRunning() const { return sweepJob_.running(); }
 
@@ -40,11 +112,14 @@ bool Workbench::startSweep(const std::string& what) {
         state_.log.error(std::string("sweep: ") + e.what());
         return false;
     }
-    // Interactive sizes: 64x64 images and a 64-spp reference; data, epochs and samples bounded so a
-    // whole series takes a minute or two on a laptop instead of the CLI defaults' much longer runs.
+    // Interactive sizes: 64x64 images; data, epochs and samples bounded so a whole series takes a
+    // minute or two on a laptop instead of the CLI defaults' much longer runs. Every point, path
+    // tracer and model, is judged against the one reference of the sweep.
     o.width = o.height = 64;
     o.referenceSpp = what == "spp" ? 256 : 64;
     if (what == "spp") o.values = {"1", "4", "16", "64"};
+    o.pathTracerSpp = {1, 4, 16, 64, 256};
+    o.keepModels = true;  // for the GLSL timing on the UI thread
     o.sampling.nx = std::min(o.sampling.nx, 4);
     o.sampling.ny = std::min(o.sampling.ny, 4);
     o.sampling.nz = std::min(o.sampling.nz, 4);
@@ -58,30 +133,22 @@ bool Workbench::startSweep(const std::string& what) {
         SweepOptions opt = o;
         opt.cancel = &ctx.cancelFlag();
         int lines = 0;
-        const double expected = double(opt.values.empty() ? defaultSweepValues(opt.what).size() : opt.values.size()) + 1;
+        const double expected = double(opt.values.empty() ? defaultSweepValues(opt.what).size() : opt.values.size()) + 2;
         opt.log = [&](const std::string& line) {
             ctx.setStatus(line);
             ctx.setProgress(std::min(0.99, ++lines / (2.0 * expected)));
             ctx.post(line);
         };
-        const SweepResult r = runSweep(*scene, opt);
-        if (r.cancelled) return std::nullopt;
-        fs::create_directories(fs::path(outBase).parent_path());
-        writeFileAtomically(outBase + ".csv", sweepCsv(*scene, r));
-        writeFileAtomically(outBase + ".json", sweepJson(*scene, r).dump(2));
         SweepOutcome out;
+        out.result = runSweep(*scene, opt);
+        if (out.result.cancelled) return std::nullopt;
+        out.scene = scene;
         out.outBase = outBase;
-        out.series.name = "sweep " + r.what;
-        for (const SweepRow& row : r.rows) {
-            double seconds = 0;
-            for (const auto& stage : row.stageSeconds) seconds += stage.second;
-            out.series.points.push_back({seconds, row.overall.relativeRmse, row.setting});
-        }
         return out;
     });
     if (!started) return false;
     state_.cost.running = true;
-    state_.log.info("sweep '" + what + "' started (64x64 images, small data and epochs)");
+    state_.log.info("sweep '" + what + "' started (64x64 images, small data and epochs; the path tracer against the same reference)");
     return true;
 }
 
@@ -89,8 +156,33 @@ void Workbench::pollSweep() {
     state_.cost.running = sweepRunning();
     if (state_.cost.running) state_.cost.progress = sweepJob_.progress();
     sweepJob_.poll([&](SweepOutcome& out) {
-        state_.cost.sweeps.push_back(std::move(out.series));
+        SweepResult& r = out.result;
+        // GLSL frame times: this thread has the window's GL context (a failure leaves them unknown).
+        for (SweepRow& row : r.rows) {
+            if (!row.models) continue;
+            try {
+                row.glslFrameSeconds = glslFrameSeconds(*out.scene, *row.models, r.lightPosition, r.width, r.height);
+            } catch (const std::exception& e) {
+                state_.log.warning(std::string("sweep: GLSL frame time not measured: ") + e.what());
+                break;
+            }
+            row.models.reset();
+        }
+        int earlier = 0;
+        for (const panels::CostSeries& s : state_.cost.sweeps)
+            if (s.kind != panels::CostKind::PathTracer || r.what == "spp")
+                earlier += s.name == "sweep " + r.what || s.name.rfind("sweep " + r.what + " #", 0) == 0;
+        const std::string name = "sweep " + r.what + (earlier ? " #" + std::to_string(earlier + 1) : "");
+        for (panels::CostSeries& s : costSeries(r, name)) state_.cost.sweeps.push_back(std::move(s));
         state_.focusTab = "Cost";
+        try {
+            fs::create_directories(fs::path(out.outBase).parent_path());
+            writeFileAtomically(out.outBase + ".csv", sweepCsv(*out.scene, r));
+            writeFileAtomically(out.outBase + ".json", sweepJson(*out.scene, r).dump(2));
+        } catch (const std::exception& e) {
+            state_.log.error(std::string("sweep: writing the results failed: ") + e.what());
+            return;
+        }
         state_.log.info("sweep written to " + out.outBase + ".csv and .json");
     });
 }

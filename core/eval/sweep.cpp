@@ -10,6 +10,7 @@
 #include "core/eval/evaluation.h"
 #include "core/eval/experiment.h"
 #include "core/eval/held_out.h"
+#include "core/eval/reference_noise.h"
 #include "core/nn/network_settings.h"
 #include "core/nn/training_run.h"
 
@@ -78,6 +79,10 @@ struct Context {
     std::vector<SweepPoint> points;
     RecordLayout layout;
     Reference reference;
+    /// The pixels every error of the sweep is measured over (the reference's G-buffer).
+    FootprintMask footprint;
+    /// The path tracer's series against `reference`, once rendered (the break-even of model rows).
+    std::vector<PathTracerPoint> pathTracer;
     void log(const std::string& m) const {
         if (o.log) o.log(m);
     }
@@ -87,7 +92,7 @@ struct Context {
 /// Trains on `samples`, predicts at the reference's light and fills the row's errors and stages.
 /// Returns the training run (its curves feed the trainer sweep).
 TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& t,
-                             SweepRow& row) {
+                             double generateSeconds, SweepRow& row) {
     ObjectTrainingObserver observer;
     observer.cancel = c.o.cancel;
     TrainingRun run = trainNetworks(samples, t, observer);
@@ -100,6 +105,11 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
     row.stageSeconds.push_back({"predict", e.prediction.inferenceSeconds + e.prediction.directSeconds});
     row.overall = e.term(Term::Global).overall;
     row.perObject = e.term(Term::Global).perObject;
+    // What the model costs: once, its data and training; per frame, a G-buffer and the networks.
+    row.oneOffSeconds = generateSeconds + run.seconds;
+    row.frameSeconds = e.gbufferSeconds + e.prediction.inferenceSeconds + e.prediction.directSeconds;
+    row.breakEven = breakEven(c.pathTracer, comparableError(row.overall));
+    if (c.o.keepModels) row.models = std::make_shared<const ModelSet>(models);
     int64_t params = 0;
     for (const ObjectModel& m : trained)
         if (!m.skipped) params += int64_t(m.model.arch.numParams());
@@ -116,45 +126,89 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
     return run;
 }
 
-void sweepSpp(Context& c, SweepResult& r) {
-    std::vector<SweepPoint> points = c.points;
-    std::stable_sort(points.begin(), points.end(), [](const SweepPoint& a, const SweepPoint& b) { return a.spp < b.spp; });
+/// The path tracer's error at each of `spps` (ascending; labels `settings`) from one progressive
+/// render with the sweep's seed (never the reference's), against the reference over the footprint
+/// mask's pixels, with the render time to reach each. Stops early when cancelled.
+std::vector<SweepRow> pathTracerSeries(const Context& c, const std::vector<int>& spps, const std::vector<std::string>& settings) {
+    std::vector<SweepRow> rows;
+    if (spps.empty()) return rows;
     Scene moved = c.scene;
     moved.setLightPosition(c.reference.lightPosition);
     const Accel accel(moved);
     RenderOptions ro;
     ro.width = c.o.width;
     ro.height = c.o.height;
-    ro.spp = points.back().spp;
+    ro.spp = spps.back();
     ro.seed = c.o.seed;
     Renderer renderer(moved, accel, ro);
-    const PathTracer tracer(moved, accel, Estimator::NEE, 1);
-    const GBuffer gb = buildGBuffer(tracer, c.layout, c.reference.lightPosition, ro.width, ro.height);
-    std::vector<double> xs, ys, ysCorrected;
     const Image& reference = c.reference.image(Term::Global);
     const Image& variance = c.reference.variance(Term::Global);  // the reference's own noise
     int done = 0;  // one sample per pixel per pass (RenderOptions default)
-    for (const SweepPoint& point : points) {
-        const int target = point.spp;
+    for (size_t i = 0; i < spps.size(); ++i) {
+        const int target = spps[i];
         while (done < target && !c.cancelled() && renderer.runPass()) ++done;
         if (c.cancelled()) break;
         const RenderSnapshot s = renderer.snapshot();
         SweepRow row;
-        row.setting = point.setting;
+        row.setting = settings[i];
+        row.spp = target;
         row.stageSeconds.push_back({"render", s.seconds});
-        row.overall = errorStatsWithNoise(s.global, reference, variance);
-        for (const auto& px : gb.pixelsByObject) row.perObject.push_back(errorStatsWithNoise(s.global, reference, variance, px));
+        row.overall = errorStatsWithNoise(s.global, reference, variance, c.footprint.kept);
+        for (const auto& px : c.footprint.keptByObject) row.perObject.push_back(errorStatsWithNoise(s.global, reference, variance, px));
         row.extra["non_finite_samples_dropped"] = s.nonFinite;
-        xs.push_back(double(target));
+        rows.push_back(std::move(row));
+    }
+    return rows;
+}
+
+std::vector<PathTracerPoint> pointsOf(const std::vector<SweepRow>& rows) {
+    std::vector<PathTracerPoint> points;
+    for (const SweepRow& row : rows)
+        points.push_back({double(row.spp), row.stageSeconds.empty() ? 0.0 : row.stageSeconds.front().second,
+                          comparableError(row.overall)});
+    return points;
+}
+
+void sweepSpp(Context& c, SweepResult& r) {
+    std::vector<SweepPoint> points = c.points;
+    std::stable_sort(points.begin(), points.end(), [](const SweepPoint& a, const SweepPoint& b) { return a.spp < b.spp; });
+    std::vector<int> spps;
+    std::vector<std::string> settings;
+    for (const SweepPoint& p : points) spps.push_back(p.spp), settings.push_back(p.setting);
+    r.rows = pathTracerSeries(c, spps, settings);
+    std::vector<double> xs, ys, ysCorrected;
+    for (const SweepRow& row : r.rows) {
+        xs.push_back(double(row.spp));
         ys.push_back(row.overall.rmse);
         ysCorrected.push_back(row.overall.rmseCorrected);
         c.log("spp " + row.setting + ": RMSE " + std::to_string(row.overall.rmse) + " (reference noise floor " +
               noiseFigureText(row.overall.rmseNoiseFloor) + ", corrected " + noiseFigureText(row.overall.rmseCorrected) + ")");
-        r.rows.push_back(std::move(row));
     }
     r.extra["loglog_slope_rmse"] = logLogSlope(xs, ys);
     // Without the reference's noise the curve flattens towards its floor; the corrected slope does not.
     r.extra["loglog_slope_rmse_corrected"] = noiseFigureJson(logLogSlope(xs, ysCorrected));
+}
+
+/// Model sweeps: the path tracer's series against the same reference, first, so every model row
+/// gets its break-even as it is measured.
+void sweepPathTracer(Context& c, SweepResult& r) {
+    std::vector<int> spps = c.o.pathTracerSpp;
+    std::sort(spps.begin(), spps.end());
+    spps.erase(std::unique(spps.begin(), spps.end()), spps.end());
+    spps.erase(std::remove_if(spps.begin(), spps.end(), [](int v) { return v <= 0; }), spps.end());
+    std::vector<std::string> settings;
+    for (int v : spps) settings.push_back(std::to_string(v));
+    r.pathTracer = pathTracerSeries(c, spps, settings);
+    c.pathTracer = pointsOf(r.pathTracer);
+    if (!r.pathTracer.empty())
+        c.log("path tracer: relative RMSE " + noiseFigureText(comparableError(r.pathTracer.front().overall)) + " at " +
+              r.pathTracer.front().setting + " spp, " + noiseFigureText(comparableError(r.pathTracer.back().overall)) + " at " +
+              r.pathTracer.back().setting + " spp (corrected)");
+}
+
+std::string rowBreakEvenText(const SweepRow& row) {
+    return breakEvenText(row.breakEven, comparableError(row.overall), !std::isnan(row.overall.relativeRmseCorrected),
+                         row.frameSeconds, row.glslFrameSeconds);
 }
 
 /// grid and dirs: new data for each point, then the same networks on each.
@@ -168,10 +222,10 @@ void sweepData(Context& c, SweepResult& r) {
         uint64_t records = 0;
         for (const auto& o : data.perObject) records += o.size() / size_t(c.layout.floatsPerRecord());
         row.extra["records"] = records;
-        trainAndEvaluate(c, samplesFromGenerated(data, c.scene, c.layout), c.o.training, row);
+        trainAndEvaluate(c, samplesFromGenerated(data, c.scene, c.layout), c.o.training, data.seconds, row);
         c.log(r.what + " " + p.setting + ": " + std::to_string(records) + " records, relative RMSE " +
               std::to_string(row.overall.relativeRmse) + " (noise floor " + noiseFigureText(row.overall.relativeRmseNoiseFloor) +
-              ", corrected " + noiseFigureText(row.overall.relativeRmseCorrected) + ")");
+              ", corrected " + noiseFigureText(row.overall.relativeRmseCorrected) + "); " + rowBreakEvenText(row));
         r.rows.push_back(std::move(row));
     }
 }
@@ -184,7 +238,7 @@ void sweepNetworks(Context& c, SweepResult& r, bool trainers) {
         if (c.cancelled()) return;
         SweepRow row;
         row.setting = p.setting;
-        const TrainingRun run = trainAndEvaluate(c, samples, p.training, row);
+        const TrainingRun run = trainAndEvaluate(c, samples, p.training, data.seconds, row);
         if (trainers) {
             // Each network's loss against time, networks in (object, target) order, epochs in order.
             nlohmann::json curve = nlohmann::json::array();
@@ -196,28 +250,10 @@ void sweepNetworks(Context& c, SweepResult& r, bool trainers) {
         }
         c.log(r.what + " " + p.setting + ": relative RMSE " + std::to_string(row.overall.relativeRmse) + " (noise floor " +
               noiseFigureText(row.overall.relativeRmseNoiseFloor) + ", corrected " +
-              noiseFigureText(row.overall.relativeRmseCorrected) + ")");
+              noiseFigureText(row.overall.relativeRmseCorrected) + "); " + rowBreakEvenText(row));
         r.rows.push_back(std::move(row));
     }
 }
-
-/// A CSV field: quoted when it holds a comma (grid "4,4,4", hidden "20,10") or a quote (RFC 4180).
-std::string csvField(const std::string& text) {
-    if (text.find_first_of(",\"\n") == std::string::npos) return text;
-    std::string quoted = "\"";
-    for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-    return quoted + "\"";
-}
-
-std::string num(double v) {
-    if (!std::isfinite(v)) return "nan";
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", v);
-    return buf;
-}
-
-/// A noise figure in CSV: empty when unknown (NaN), so a reader sees a missing value, never 0.
-std::string noiseField(double v) { return std::isnan(v) ? std::string() : num(v); }
 
 }  // namespace
 
@@ -256,7 +292,7 @@ SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
     if (scene.lights.empty()) throw InputError(scene.sourcePath, "/lights", "a sweep needs a light");
     SweepResult r;
     r.what = o.what;
-    Context c{scene, o, sweepPoints(o), RecordLayout::forScene(scene), {}};
+    Context c{scene, o, sweepPoints(o), RecordLayout::forScene(scene), {}, {}, {}};
     r.lightPosition = heldOutLightPositions(scene.lightRange(), 1, o.seed).front();
     RenderOptions ro;
     ro.width = o.width;
@@ -275,127 +311,30 @@ SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
     }
     r.referenceSpp = c.reference.spp;
     r.referenceSeconds = c.reference.seconds;
+    r.width = o.width;
+    r.height = o.height;
+    // Every error of the sweep is measured over the pixels of this one mask (the reference's G-buffer,
+    // as evaluate() builds it), and the reference's floor over the same pixels is the sweep's floor.
+    {
+        const Accel accel(scene);
+        const PathTracer tracer(scene, accel, Estimator::NEE, 1);
+        c.footprint = footprintMask(buildGBuffer(tracer, c.layout, r.lightPosition, o.width, o.height));
+    }
+    r.relativeNoiseFloor = referenceNoise(c.reference, c.footprint).relativeRmse[int(Term::Global)];
     if (!c.cancelled()) {
         if (o.what == "spp") sweepSpp(c, r);
-        else if (o.what == "grid" || o.what == "dirs") sweepData(c, r);
-        else sweepNetworks(c, r, o.what == "trainer");
+        else {
+            sweepPathTracer(c, r);
+            if (o.what == "grid" || o.what == "dirs") sweepData(c, r);
+            else sweepNetworks(c, r, o.what == "trainer");
+        }
     }
     r.cancelled = c.cancelled();
     return r;
 }
 
-std::string sweepCsv(const Scene& scene, const SweepResult& r) {
-    std::ostringstream out;
-    std::vector<std::string> stages;
-    for (const SweepRow& row : r.rows)
-        for (const auto& s : row.stageSeconds)
-            if (std::find(stages.begin(), stages.end(), s.first) == stages.end()) stages.push_back(s.first);
-    out << "what,setting";
-    for (const std::string& s : stages) out << "," << s << "_seconds";
-    out << ",pixels,rmse,rmse_noise_floor,rmse_corrected,relative_rmse,relative_rmse_noise_floor,relative_rmse_corrected,"
-           "mae,max_error";
-    for (const Object& o : scene.objects)
-        out << "," << o.name << "_rmse," << o.name << "_relative_rmse," << o.name << "_relative_rmse_noise_floor," << o.name
-            << "_relative_rmse_corrected";
-    out << "\n";
-    for (const SweepRow& row : r.rows) {
-        out << r.what << "," << csvField(row.setting);
-        for (const std::string& s : stages) {
-            double v = std::numeric_limits<double>::quiet_NaN();
-            for (const auto& kv : row.stageSeconds)
-                if (kv.first == s) v = kv.second;
-            out << "," << num(v);
-        }
-        const ErrorStats& e = row.overall;
-        out << "," << e.pixels << "," << num(e.rmse) << "," << noiseField(e.rmseNoiseFloor) << "," << noiseField(e.rmseCorrected)
-            << "," << num(e.relativeRmse) << "," << noiseField(e.relativeRmseNoiseFloor) << ","
-            << noiseField(e.relativeRmseCorrected) << "," << num(e.mae) << "," << num(e.maxError);
-        for (size_t id = 0; id < scene.objects.size(); ++id) {
-            const bool seen = id < row.perObject.size() && row.perObject[id].pixels > 0;
-            const ErrorStats& o = seen ? row.perObject[id] : ErrorStats{};
-            out << "," << (seen ? num(o.rmse) : "") << "," << (seen ? num(o.relativeRmse) : "") << ","
-                << noiseField(o.relativeRmseNoiseFloor) << "," << noiseField(o.relativeRmseCorrected);
-        }
-        out << "\n";
-    }
-    return out.str();
-}
+const std::vector<SweepRow>& pathTracerRows(const SweepResult& r) { return r.what == "spp" ? r.rows : r.pathTracer; }
 
-std::string sweepCurveCsv(const SweepResult& r) {
-    std::ostringstream out;
-    bool any = false;
-    for (const SweepRow& row : r.rows) {
-        if (!row.extra.contains("curve")) continue;
-        if (!any) out << "trainer,object,target,epoch,seconds,train_loss,validation_loss\n";
-        any = true;
-        for (const nlohmann::json& p : row.extra["curve"]) {
-            const double val = p["validation_loss"].is_number() ? p["validation_loss"].get<double>() : std::nan("");
-            out << csvField(row.setting) << "," << p["object"].get<int>() << "," << p["target"].get<std::string>() << ","
-                << p["epoch"].get<int>() << "," << num(p["seconds"].get<double>()) << ","
-                << num(p["train_loss"].get<double>()) << "," << num(val) << "\n";
-        }
-    }
-    return out.str();
-}
-
-nlohmann::json sweepJson(const Scene& scene, const SweepResult& r) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (const SweepRow& row : r.rows) {
-        nlohmann::json stages = nlohmann::json::object(), objects = nlohmann::json::array();
-        for (const auto& kv : row.stageSeconds) stages[kv.first] = kv.second;
-        for (size_t id = 0; id < row.perObject.size(); ++id) {
-            nlohmann::json o = row.perObject[id].toJson();
-            o["id"] = int(id);
-            o["name"] = id < scene.objects.size() ? scene.objects[id].name : "";
-            objects.push_back(o);
-        }
-        rows.push_back({{"setting", row.setting}, {"stage_seconds", stages}, {"error", row.overall.toJson()},
-                        {"objects", objects}, {"extra", row.extra}});
-    }
-    return {{"what", r.what},
-            {"light_position", {r.lightPosition.x, r.lightPosition.y, r.lightPosition.z}},
-            {"reference", {{"spp", r.referenceSpp}, {"seconds", r.referenceSeconds}}},
-            {"error_term", "global"},
-            {"metric", "per channel averaged over RGB; relative error |d|/(|ref|+0.01); *_noise_floor = the figure the "
-                       "reference's own noise gives, *_corrected = the figure with the reference's per-pixel variance of the "
-                       "mean subtracted from the squared error (clamped at 0); null when unknown"},
-            {"cancelled", r.cancelled},
-            {"extra", r.extra},
-            {"rows", rows}};
-}
-
-std::string sweepTable(const SweepResult& r) {
-    std::ostringstream out;
-    char line[640];
-    for (const SweepRow& row : r.rows) {
-        std::string stages;
-        for (const auto& kv : row.stageSeconds) {
-            std::snprintf(line, sizeof line, "%s %.3f s  ", kv.first.c_str(), kv.second);
-            stages += line;
-        }
-        const ErrorStats& e = row.overall;
-        std::snprintf(line, sizeof line, "| %-10s | %-58s | %10.4g | %11s | %10s | %10.4g | %11s | %10s | %10.4g |\n",
-                      row.setting.c_str(), stages.c_str(), e.rmse, noiseFigureText(e.rmseNoiseFloor).c_str(),
-                      noiseFigureText(e.rmseCorrected).c_str(), e.relativeRmse, noiseFigureText(e.relativeRmseNoiseFloor).c_str(),
-                      noiseFigureText(e.relativeRmseCorrected).c_str(), e.mae);
-        out << line;
-    }
-    const std::string rule10(12, '-'), rule11(13, '-');
-    std::snprintf(line, sizeof line, "| %-10s | %-58s | %10s | %11s | %10s | %10s | %11s | %10s | %10s |\n|%s|%s|%s|%s|%s|%s|%s|%s|%s|\n",
-                  r.what.c_str(), "wall time per stage", "RMSE", "noise floor", "corrected", "rel.RMSE", "noise floor",
-                  "corrected", "MAE", rule10.c_str(), std::string(60, '-').c_str(), rule10.c_str(), rule11.c_str(),
-                  rule10.c_str(), rule10.c_str(), rule11.c_str(), rule10.c_str(), rule10.c_str());
-    std::string s = line + out.str();
-    s += "noise floor: the error the reference's own noise gives; corrected: the error with that noise subtracted\n";
-    if (r.extra.contains("loglog_slope_rmse")) {
-        const auto slope = [&](const char* key) {
-            return r.extra.contains(key) && r.extra[key].is_number() ? r.extra[key].get<double>() : std::nan("");
-        };
-        std::snprintf(line, sizeof line, "log-log slope of RMSE vs spp: %.3f raw, %s corrected (Monte Carlo: -0.5)\n",
-                      slope("loglog_slope_rmse"), noiseFigureText(slope("loglog_slope_rmse_corrected")).c_str());
-        s += line;
-    }
-    return s;
-}
+std::vector<PathTracerPoint> pathTracerPoints(const SweepResult& r) { return pointsOf(pathTracerRows(r)); }
 
 }  // namespace rrf

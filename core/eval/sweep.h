@@ -19,19 +19,29 @@
 /// separated lists); every value is read before anything runs, and a bad one throws SettingError
 /// naming "sweep values" (an unknown kind: "sweep dimension").
 ///
-/// Prediction errors are measured at one held-out light position (heldOutLightPositions(region, 1,
-/// seed)) on the global term over all object pixels; spp errors over the whole image. Everything is
-/// deterministic except the recorded times.
+/// Comparable by construction: every point — path tracer and model alike — is measured against the
+/// same reference at the same resolution and held-out light position (heldOutLightPositions(region,
+/// 1, seed)), on the global term over the object pixels the footprint mask keeps
+/// (core/predict/footprint_mask.h), each error with the reference's noise floor and the corrected
+/// figure. Model sweeps also render the path tracer's series (SweepOptions::pathTracerSpp, another
+/// seed than the reference) so that every model row has its break-even (core/eval/break_even.h):
+/// the spp and seconds the path tracer needs for the model's corrected error, beside the model's
+/// one-off cost (data + training) and its per-frame prediction time. Everything is deterministic
+/// except the recorded times.
 
 #include <atomic>
 #include <functional>
+#include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "core/eval/break_even.h"
 #include "core/eval/error_metrics.h"
 #include "core/eval/reference_store.h"
+#include "core/nn/model_set.h"
 #include "core/nn/object_training.h"
 #include "core/predict/predictor.h"
 #include "core/data/sampling_settings.h"
@@ -55,25 +65,53 @@ struct SweepOptions {
     SamplingSettings sampling;        ///< data generation (grid sweeps replace nx/ny/nz, dirs sweeps directions)
     ObjectTrainingOptions training;   ///< networks and trainer (hidden/trainer sweeps replace theirs)
     PredictionSettings prediction;
-    uint64_t seed = 1;                ///< held-out light position and the spp sweep's render seed
+    uint64_t seed = 1;                ///< held-out light position and the path tracer's render seed
+    /// The path tracer's series rendered for the break-even of model sweeps (grid, dirs, hidden,
+    /// trainer), against the same reference; empty = none. An spp sweep's own rows are its series.
+    std::vector<int> pathTracerSpp = {1, 2, 4, 8, 16, 32, 64, 128, 256};
+    /// Keep each model row's trained networks (SweepRow::models), e.g. to time the GLSL predictor on
+    /// them where a GL context exists (the workbench does).
+    bool keepModels = false;
     const std::atomic<bool>* cancel = nullptr;
     std::function<void(const std::string&)> log;  ///< progress lines (may be empty)
 };
 
 struct SweepRow {
+    static constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
     std::string setting;
     std::vector<std::pair<std::string, double>> stageSeconds;  ///< in stage order
-    ErrorStats overall;                                        ///< global term
+    ErrorStats overall;                                        ///< global term, footprint-mask pixels
     std::vector<ErrorStats> perObject;                         ///< global term, index = object id
+    /// Path-tracer rows: samples per pixel (0 for model rows).
+    int spp = 0;
+    /// Model rows: the one-off cost, data generation + training (seconds); NaN for path-tracer rows.
+    double oneOffSeconds = kUnknown;
+    /// Model rows: one frame of CPU prediction at the sweep's resolution (G-buffer + networks + exact
+    /// direct light where chosen), seconds; NaN for path-tracer rows.
+    double frameSeconds = kUnknown;
+    /// Model rows: one frame of GLSL prediction (render + read-back), seconds; NaN unless a front end
+    /// with a GL context measured it (core has no GL).
+    double glslFrameSeconds = kUnknown;
+    /// Model rows: where the path tracer of the same sweep reaches this row's comparableError().
+    BreakEven breakEven;
+    /// Model rows with SweepOptions::keepModels: the networks that were evaluated.
+    std::shared_ptr<const ModelSet> models;
     nlohmann::json extra = nlohmann::json::object();           ///< records, parameters, curves, …
 };
 
 struct SweepResult {
     std::string what;
     Vec3 lightPosition{0.f};
+    int width = 0, height = 0;   ///< resolution of the reference and of every point
     int referenceSpp = 0;
     double referenceSeconds = 0;
+    /// The reference's relative RMSE noise floor (global term, footprint mask; core/eval/reference_noise.h):
+    /// the dashed line below which no error against it is measurable. NaN when unknown.
+    double relativeNoiseFloor = SweepRow::kUnknown;
     std::vector<SweepRow> rows;
+    /// Model sweeps: the path tracer's series against the same reference (spp order). For an spp
+    /// sweep it is empty: the rows are the series (pathTracerRows()).
+    std::vector<SweepRow> pathTracer;
     nlohmann::json extra = nlohmann::json::object();  ///< e.g. "loglog_slope_rmse" for spp
     bool cancelled = false;
 };
@@ -85,16 +123,25 @@ std::vector<std::string> defaultSweepValues(const std::string& what);
 /// Runs the sweep. Throws SettingError for an unknown kind or a malformed value (before rendering).
 SweepResult runSweep(const Scene& scene, const SweepOptions& options);
 
+/// The path tracer's series of `r`: its rows for an spp sweep, else r.pathTracer.
+const std::vector<SweepRow>& pathTracerRows(const SweepResult& r);
+/// The points of that series for breakEven() (spp, render seconds, comparableError()).
+std::vector<PathTracerPoint> pathTracerPoints(const SweepResult& r);
+
 /// Least-squares slope of log(y) against log(x) over the pairs with x, y > 0 (NaN if fewer than 2).
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
 
-/// One line per row: setting (quoted when it holds commas), each stage's seconds, overall RMSE / relative RMSE / MAE / max, then
-/// RMSE and relative RMSE of every object.
+/// One line per row: what, setting (quoted when it holds commas), each stage's seconds, overall RMSE /
+/// relative RMSE (each with noise floor and corrected) / MAE / max, RMSE and relative RMSE of every
+/// object, then the cost columns: spp, one_off_seconds, frame_seconds, glsl_frame_seconds,
+/// breakeven_spp, breakeven_seconds, breakeven_extrapolated (empty where unknown). A model sweep's
+/// path-tracer series follows as rows whose `what` is "path_tracer".
 std::string sweepCsv(const Scene& scene, const SweepResult& r);
 /// Training curves of a trainer sweep (trainer, object, target, epoch, seconds, losses); empty otherwise.
 std::string sweepCurveCsv(const SweepResult& r);
 nlohmann::json sweepJson(const Scene& scene, const SweepResult& r);
-/// Readable table of the rows (and the fitted slope for spp).
+/// Readable table of the rows (and the fitted slope for spp); for model sweeps the path tracer's
+/// series and one break-even sentence per row (breakEvenText).
 std::string sweepTable(const SweepResult& r);
 
 }  // namespace rrf

@@ -187,7 +187,9 @@ TEST_F(LearningPanelTest, ObjectsTableSortsAndExports) {
     EXPECT_EQ(ids(sortedObjectRows(rows, ObjectColumn::Samples, false)), (std::vector<int>{2, 1, 0}));
 
     const std::string csv = objectRowsCsv(sortedObjectRows(rows, ObjectColumn::Rmse, true), "global");
-    EXPECT_EQ(csv.substr(0, csv.find('\n')), "term,object_id,object,rmse,relative_rmse,mae,max,pixels,samples,train_seconds");
+    EXPECT_EQ(csv.substr(0, csv.find('\n')),
+              "term,object_id,object,rmse,relative_rmse,mae,max,pixels,samples,train_seconds,rmse_noise_floor,rmse_corrected,"
+              "relative_rmse_noise_floor,relative_rmse_corrected");
     EXPECT_NE(csv.find("\nglobal,1,\"floor\",0.05,0.1,"), std::string::npos) << csv;
     EXPECT_LT(csv.find("floor"), csv.find("tall box")) << "rows in the table's order";
 

@@ -1,0 +1,218 @@
+// The workbench's error figures are `rrf evaluate`'s: the Views figures (panels/view_model.h) and the
+// Objects table (evaluationInfo) equal evaluate()'s for the same prediction and reference, with the
+// reference's noise floor and the corrected figure, over the same footprint mask (left-out pixels
+// hatched in the error map); the Objects CSV carries the noise columns, empty when unknown; the Cost
+// panel draws a path tracer and a model series with the break-even sentence, in colours that follow
+// the series' names.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "core/eval/evaluation.h"
+#include "core/scene/scene_json.h"
+#include "panels/panels.h"
+#include "panels/plot.h"
+#include "panels/view_model.h"
+#include "tests/gui/imgui_fixture.h"
+
+namespace rrf::test {
+
+using namespace rrf::panels;
+
+namespace {
+
+constexpr int kSize = 24;
+
+Scene cornellBox() { return loadScene(RRF_SOURCE_DIR "/projects/cornell-box/scene.json"); }
+
+/// A small noisy reference with its variances, and an evaluation of the exact direct light against
+/// it (no networks needed: the direct term is computed with shadow rays).
+struct Fixture {
+    Scene scene = cornellBox();
+    ModelSet models;
+    PredictionSettings settings;
+    Reference reference;
+    Evaluation evaluation;
+    std::shared_ptr<const FootprintMask> mask;
+    Fixture() {
+        settings.direct = PredictionSettings::Direct::Exact;
+        settings.directSamples = 4;
+        RenderOptions o;
+        o.width = o.height = kSize;
+        o.spp = 8;
+        reference = renderReference(scene, scene.lightPosition(), o);
+        const Predictor predictor(scene, models, settings);
+        evaluation = evaluate(predictor, reference);
+        // The mask as the workbench's render worker makes it: the G-buffer at the reference's light.
+        mask = std::make_shared<const FootprintMask>(footprintMask(predictor.gbuffer(reference.lightPosition, kSize, kSize)));
+    }
+    /// The workbench state showing this reference as the ground truth and the prediction beside it.
+    void fill(WorkbenchState& s) const {
+        for (Term t : kTerms) {
+            s.groundTruth.term(t) = reference.image(t);
+            s.groundTruth.variances[int(t)] = reference.variance(t);
+            s.prediction.term(t) = evaluation.prediction.image(t);
+        }
+        s.groundTruth.footprint = mask;
+        s.groundTruth.touch();
+        s.prediction.touch();
+        s.view.compareSource = CompareSource::Prediction;
+        s.view.term = Term::Direct;
+    }
+};
+
+void expectSameStats(const ErrorStats& a, const ErrorStats& b) {
+    EXPECT_EQ(a.pixels, b.pixels);
+    EXPECT_EQ(a.nonFinite, b.nonFinite);
+    EXPECT_DOUBLE_EQ(a.rmse, b.rmse);
+    EXPECT_DOUBLE_EQ(a.relativeRmse, b.relativeRmse);
+    EXPECT_DOUBLE_EQ(a.mae, b.mae);
+    EXPECT_DOUBLE_EQ(a.maxError, b.maxError);
+    EXPECT_EQ(a.noiseKnown, b.noiseKnown);
+    EXPECT_DOUBLE_EQ(a.rmseNoiseFloor, b.rmseNoiseFloor);
+    EXPECT_DOUBLE_EQ(a.rmseCorrected, b.rmseCorrected);
+    EXPECT_DOUBLE_EQ(a.relativeRmseNoiseFloor, b.relativeRmseNoiseFloor);
+    EXPECT_DOUBLE_EQ(a.relativeRmseCorrected, b.relativeRmseCorrected);
+}
+
+/// A path tracer with error = 0.8/√spp at 10 ms per spp, and two models.
+std::vector<CostSeries> twoSeries() {
+    CostSeries pt;
+    pt.name = "path tracer (sweep hidden)";
+    pt.kind = CostKind::PathTracer;
+    pt.noiseFloor = 0.02;
+    for (int spp = 1; spp <= 256; spp *= 4) {
+        CostPoint p{0.01 * spp, 0.8 / std::sqrt(double(spp)), std::to_string(spp)};
+        p.spp = spp;
+        pt.points.push_back(p);
+    }
+    CostSeries models;
+    models.name = "sweep hidden";
+    models.kind = CostKind::Models;
+    models.pathTracer = pt.name;
+    models.noiseFloor = 0.02;
+    CostPoint a{20.0, 0.1, "20,10"};
+    a.frameSeconds = 2.5e-3;
+    a.glslFrameSeconds = 4e-4;
+    CostPoint b{8.0, 0.2, "5"};
+    b.frameSeconds = 1e-3;
+    models.points = {a, b};
+    return {pt, models};
+}
+
+bool drawListsHoldColour(ImU32 colour) {
+    const ImDrawData* d = ImGui::GetDrawData();
+    for (int l = 0; d && l < d->CmdListsCount; ++l)
+        for (const ImDrawVert& v : d->CmdLists[l]->VtxBuffer)
+            if (v.col == colour) return true;
+    return false;
+}
+
+}  // namespace
+
+using CostPanelTest = ImGuiFixture;
+
+TEST(HonestFigures, ViewsFiguresAreThoseOfEvaluate) {
+    const Fixture f;
+    ASSERT_FALSE(f.reference.variance(Term::Direct).empty());
+    WorkbenchState s;
+    f.fill(s);
+    ViewModel vm;
+    vm.update(s);
+    const ViewErrorStats& v = s.view.errorStats;
+    ASSERT_TRUE(v.valid);
+    expectSameStats(v.stats, f.evaluation.term(Term::Direct).overall);
+    EXPECT_TRUE(v.stats.noiseKnown) << "the ground truth's variance makes the floor known";
+    EXPECT_EQ(v.left.total(), f.evaluation.footprint.counts.total());
+    ASSERT_GT(v.left.total(), 0u) << "the box has edges the mask leaves out";
+
+    // Every pixel the mask leaves out is drawn as such in the error map, every kept one in false colour.
+    const DisplayImage& map = vm.image(ViewModel::kError);
+    ASSERT_EQ(map.width, kSize);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const size_t i = size_t(y) * kSize + size_t(x);
+            uint8_t expected[4];
+            leftOutColour(f.mask->pixel[i], x, y, expected);
+            const bool hatched = std::equal(expected, expected + 4, &map.rgba[4 * i]);
+            // Viridis never gives a grey, so a kept pixel cannot look left out.
+            EXPECT_EQ(hatched, !f.mask->isKept(i)) << x << "," << y << " " << footprintName(f.mask->pixel[i]);
+        }
+
+    // Without the variance (e.g. a re-opened run) the floor is unknown, never 0.
+    for (Term t : kTerms) s.groundTruth.variances[int(t)] = Image();
+    s.groundTruth.touch();
+    vm.update(s);
+    EXPECT_FALSE(s.view.errorStats.stats.noiseKnown);
+    EXPECT_TRUE(std::isnan(s.view.errorStats.stats.relativeRmseNoiseFloor));
+    EXPECT_EQ(noiseFigureText(s.view.errorStats.stats.relativeRmseNoiseFloor), "unknown");
+}
+
+TEST(HonestFigures, ObjectsTableIsEvaluatesWithNoiseColumns) {
+    const Fixture f;
+    const EvaluationInfo info = evaluationInfo(f.evaluation, f.scene, f.models);
+    EXPECT_TRUE(info.referenceNoiseKnown);
+    EXPECT_EQ(info.referenceSpp, 8);
+    const int t = int(Term::Direct);
+    expectSameStats(info.overall[t], f.evaluation.term(Term::Direct).overall);
+    ASSERT_FALSE(info.rows[t].empty());
+    for (const ObjectErrorRow& r : info.rows[t]) expectSameStats(r.stats, f.evaluation.term(Term::Direct).perObject[size_t(r.objectId)]);
+
+    const std::string csv = objectRowsCsv(info.rows[t], "direct");
+    const std::string header = csv.substr(0, csv.find('\n'));
+    EXPECT_NE(header.find(",rmse_noise_floor,rmse_corrected,relative_rmse_noise_floor,relative_rmse_corrected"), std::string::npos);
+    const ErrorStats& first = info.rows[t].front().stats;
+    char floor[32];
+    std::snprintf(floor, sizeof floor, ",%.9g,", first.relativeRmseNoiseFloor);
+    const std::string firstLine = csv.substr(header.size() + 1, csv.find('\n', header.size() + 1) - header.size() - 1);
+    EXPECT_NE(firstLine.find(floor), std::string::npos) << firstLine;
+
+    ObjectErrorRow unknown;
+    unknown.objectId = 0;
+    unknown.name = "wall";
+    unknown.stats.rmse = 0.1;
+    const std::string u = objectRowsCsv({unknown}, "global");
+    EXPECT_EQ(u.substr(u.size() - 5), ",,,,\n") << "unknown noise columns are empty, never 0: " << u;
+}
+
+TEST_F(CostPanelTest, CostPanelDrawsTwoSeriesAndTheBreakEven) {
+    WorkbenchState s;
+    s.hasProject = true;
+    s.cost.sweeps = twoSeries();
+    for (int i = 0; i < 2; ++i) frame([&] { drawCostPanel(s); });
+    EXPECT_TRUE(s.requests.empty());
+    const std::vector<std::string>& lines = s.costView.breakEvenLines;
+    ASSERT_EQ(lines.size(), 2u);
+    // 0.1 = 0.8/√N  ⇒  N = 64 spp, 0.64 s; 0.2 ⇒ N = 16 spp, 0.16 s.
+    EXPECT_EQ(lines[0], "sweep hidden 20,10: the path tracer needs 64 spp / 0.64 s to reach this model's error (0.1, corrected); "
+                        "the model needs 2.5 ms per frame (CPU), 0.4 ms (GLSL)");
+    EXPECT_NE(lines[1].find("needs 16 spp / 0.16 s"), std::string::npos) << lines[1];
+    EXPECT_LT(s.costView.plotMinX, s.costView.plotMaxX);
+
+    // A model series whose path tracer is not shown has no break-even, and says so.
+    s.cost.sweeps.erase(s.cost.sweeps.begin());
+    frame([&] { drawCostPanel(s); });
+    ASSERT_EQ(s.costView.breakEvenLines.size(), 2u);
+    EXPECT_NE(s.costView.breakEvenLines[0].find("no path-tracer series"), std::string::npos);
+}
+
+TEST_F(CostPanelTest, SeriesColoursFollowTheirNames) {
+    const std::vector<CostSeries> two = twoSeries();
+    const ImU32 pt = seriesColour(two[0].name), models = seriesColour(two[1].name);
+    EXPECT_NE(pt, models) << "a sweep's models and its path tracer are told apart";
+    // Neither is the colour of a series index, so drawing by index would be caught below.
+    for (int i = 0; i < 2; ++i) EXPECT_TRUE(seriesColour(i) != pt && seriesColour(i) != models) << i;
+    // Whatever the order of the series, the panel draws each in its name's colour.
+    for (bool reversed : {false, true}) {
+        WorkbenchState s;
+        s.cost.sweeps = two;
+        if (reversed) std::swap(s.cost.sweeps[0], s.cost.sweeps[1]);
+        frame([&] { drawCostPanel(s); });
+        EXPECT_TRUE(drawListsHoldColour(pt)) << reversed;
+        EXPECT_TRUE(drawListsHoldColour(models)) << reversed;
+        EXPECT_EQ(seriesColour(two[0].name), pt) << "a function of the name alone";
+    }
+}
+
+}  // namespace rrf::test
