@@ -142,7 +142,12 @@ void drawCostPanel(WorkbenchState& state) {
     const float font = ImGui::GetFontSize();
     const float line = ImGui::GetTextLineHeightWithSpacing();
     const float legendW = series.empty() ? 0.f : font * 16;
-    const float below = line * float(std::min<size_t>(v.breakEvenLines.size(), 6) + (v.breakEvenLines.empty() ? 0 : 1));
+    // Room under the plot for the break-even sentences, wrapped to the pane's width (at most 8 lines).
+    const float wrap = ImGui::GetContentRegionAvail().x;
+    float below = v.breakEvenLines.empty() ? 0.f : line;
+    for (const std::string& l : v.breakEvenLines)
+        below += ImGui::CalcTextSize(l.c_str(), nullptr, false, wrap).y + ImGui::GetStyle().ItemSpacing.y;
+    below = std::min(below, line * 8.f);
     const PlotArea area = plotArea("##cost-plot", legendW, below);
     const bool hovered = area.hovered;
     const ImVec2 pmin = area.min, pmax = area.max;
@@ -244,7 +249,7 @@ void drawCostPanel(WorkbenchState& state) {
     ImGui::EndGroup();
     if (!v.breakEvenLines.empty()) {
         ImGui::TextUnformatted("Break-even (the same reference and resolution for every point):");
-        for (const std::string& l : v.breakEvenLines) ImGui::TextUnformatted(l.c_str());
+        for (const std::string& l : v.breakEvenLines) ImGui::TextWrapped("%s", l.c_str());
     }
 }
 

@@ -203,12 +203,8 @@ void sweepPathTracer(Context& c, SweepResult& r) {
     if (!r.pathTracer.empty())
         c.log("path tracer: relative RMSE " + noiseFigureText(comparableError(r.pathTracer.front().overall)) + " at " +
               r.pathTracer.front().setting + " spp, " + noiseFigureText(comparableError(r.pathTracer.back().overall)) + " at " +
-              r.pathTracer.back().setting + " spp (corrected)");
-}
-
-std::string rowBreakEvenText(const SweepRow& row) {
-    return breakEvenText(row.breakEven, comparableError(row.overall), !std::isnan(row.overall.relativeRmseCorrected),
-                         row.frameSeconds, row.glslFrameSeconds);
+              r.pathTracer.back().setting + " spp" +
+              (std::isnan(r.pathTracer.back().overall.relativeRmseCorrected) ? " (raw: reference noise unknown)" : " (corrected)"));
 }
 
 /// grid and dirs: new data for each point, then the same networks on each.
@@ -225,7 +221,7 @@ void sweepData(Context& c, SweepResult& r) {
         trainAndEvaluate(c, samplesFromGenerated(data, c.scene, c.layout), c.o.training, data.seconds, row);
         c.log(r.what + " " + p.setting + ": " + std::to_string(records) + " records, relative RMSE " +
               std::to_string(row.overall.relativeRmse) + " (noise floor " + noiseFigureText(row.overall.relativeRmseNoiseFloor) +
-              ", corrected " + noiseFigureText(row.overall.relativeRmseCorrected) + "); " + rowBreakEvenText(row));
+              ", corrected " + noiseFigureText(row.overall.relativeRmseCorrected) + "); " + sweepBreakEvenText(row));
         r.rows.push_back(std::move(row));
     }
 }
@@ -250,7 +246,7 @@ void sweepNetworks(Context& c, SweepResult& r, bool trainers) {
         }
         c.log(r.what + " " + p.setting + ": relative RMSE " + std::to_string(row.overall.relativeRmse) + " (noise floor " +
               noiseFigureText(row.overall.relativeRmseNoiseFloor) + ", corrected " +
-              noiseFigureText(row.overall.relativeRmseCorrected) + "); " + rowBreakEvenText(row));
+              noiseFigureText(row.overall.relativeRmseCorrected) + "); " + sweepBreakEvenText(row));
         r.rows.push_back(std::move(row));
     }
 }

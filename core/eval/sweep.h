@@ -128,6 +128,9 @@ const std::vector<SweepRow>& pathTracerRows(const SweepResult& r);
 /// The points of that series for breakEven() (spp, render seconds, comparableError()).
 std::vector<PathTracerPoint> pathTracerPoints(const SweepResult& r);
 
+/// A model row's break-even sentence (breakEvenText with its error, frame times and break-even).
+std::string sweepBreakEvenText(const SweepRow& row);
+
 /// Least-squares slope of log(y) against log(x) over the pairs with x, y > 0 (NaN if fewer than 2).
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
 

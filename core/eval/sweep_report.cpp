@@ -47,12 +47,12 @@ nlohmann::json breakEvenJson(const SweepRow& row) {
             {"extrapolated", b.extrapolated}};
 }
 
-std::string breakEvenSentence(const SweepRow& row) {
+}  // namespace
+
+std::string sweepBreakEvenText(const SweepRow& row) {
     return breakEvenText(row.breakEven, comparableError(row.overall), !std::isnan(row.overall.relativeRmseCorrected),
                          row.frameSeconds, row.glslFrameSeconds);
 }
-
-}  // namespace
 
 std::string sweepCsv(const Scene& scene, const SweepResult& r) {
     std::ostringstream out;
@@ -210,7 +210,7 @@ std::string sweepTable(const SweepResult& r) {
         header = true;
         std::snprintf(line, sizeof line, "  %s %s: one-off %.3g s (data + training); ", r.what.c_str(), row.setting.c_str(),
                       row.oneOffSeconds);
-        out << line << breakEvenSentence(row) << "\n";
+        out << line << sweepBreakEvenText(row) << "\n";
     }
     return out.str();
 }
