@@ -8,7 +8,10 @@
 // per object) with Nguyen–Widrow initial weights: inference costs the same for any weights, so no
 // training is needed. Prediction figures are the fastest of several frames (the machine is shared);
 // the path tracer is timed once per thread count (seconds, not milliseconds, of work). Also shown:
-// exact direct light (prediction "direct": "exact") at 16 shadow-ray samples per pixel.
+// exact direct light (prediction "direct": "exact", core/predict/exact_direct.h) at 16 samples per
+// pixel, and a second table at 128x128 with 16 and 64 samples: time per frame and the error of the
+// direct image against a converged path-traced direct image (max depth 1, 1024 spp; --quick 256),
+// relative RMSE over the footprint-kept pixels, raw and with the reference's own noise removed.
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -57,7 +60,9 @@ struct FrameTimes {
 
 FrameTimes timePrediction(const Scene& scene, const ModelSet& models, const Vec3& light, int frames) {
     FrameTimes t;
-    const Predictor pred(scene, models);
+    PredictionSettings networkSettings;
+    networkSettings.direct = PredictionSettings::Direct::Network;
+    const Predictor pred(scene, models, networkSettings);
     PredictionSettings exactSettings;
     exactSettings.direct = PredictionSettings::Direct::Exact;
     exactSettings.directSamples = 16;
@@ -70,6 +75,37 @@ FrameTimes timePrediction(const Scene& scene, const ModelSet& models, const Vec3
         if (f < 3) t.exact = std::min(t.exact, exact.predict(gb).directSeconds);
     }
     return t;
+}
+
+/// Exact direct light at 128x128 against a converged direct image: ms per frame (best of `frames`) and
+/// relative RMSE, for each sample count.
+void exactDirectTable(const Scene& scene, const ModelSet& models, const Vec3& light, int refSpp, int frames) {
+    RenderOptions ro;
+    ro.width = ro.height = 128;
+    ro.spp = refSpp;
+    ro.samplesPerPass = refSpp;
+    ro.maxDepth = 1;  // direct light only
+    ro.seed = 77;
+    const Reference ref = renderReference(scene, light, ro);
+    std::printf("\nexact direct light, 128x128, against a %d-spp path-traced direct image (%.1f s to render):\n\n",
+                refSpp, ref.seconds);
+    std::printf("| samples | ms/frame | shadow rays/pixel | direct relative RMSE | reference noise | corrected |\n");
+    std::printf("|---|---|---|---|---|---|\n");
+    for (int samples : {16, 64, 256}) {
+        PredictionSettings s;
+        s.directSamples = samples;
+        const Predictor pred(scene, models, s);
+        double best = 1e30;
+        for (int f = 0; f < frames; ++f) {
+            const GBuffer gb = pred.gbuffer(light, 128, 128);
+            best = std::min(best, pred.predict(gb).directSeconds);
+        }
+        const Evaluation e = evaluate(pred, ref);
+        const ErrorStats& d = e.term(Term::Direct).overall;
+        std::printf("| %d | %.1f | %d | %.4f | %.4f | %.4f |\n", samples, 1e3 * best, samples, d.relativeRmse,
+                    d.relativeRmseNoiseFloor, d.relativeRmseCorrected);
+        std::fflush(stdout);
+    }
 }
 
 }  // namespace
@@ -114,5 +150,6 @@ int main(int argc, char** argv) {
     }
     std::printf("\nprediction = G-buffer + networks (best of %d frames); speed-up = path tracer time / prediction time.\n",
                 frames);
+    exactDirectTable(scene, models, light, quick ? 256 : 1024, quick ? 2 : 5);
     return 0;
 }

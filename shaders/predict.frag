@@ -11,6 +11,9 @@
 // layers with tanh/ReLU, linear output layer, y / scale + offset. evaluateTerms() in
 // core/predict/network_texture.cpp mirrors this shader step by step.
 //
+// shaders/direct_light.glsl is inserted before this file: with uDirectMode != 0 the direct term is
+// rrfDirectLight() (exact direct light) instead of the networks'.
+//
 // Outputs (RGBA32F), one per term at location RRF_TERM_<term>; alpha 1 where an object or a light
 // was hit.
 
@@ -125,9 +128,14 @@ void main() {
         direct = finiteOrZero(direct);
         indirect = finiteOrZero(indirect);
     }
-    if (off.x >= 0.0) { predictNetwork(int(off.x), direct, unused); direct = finiteOrZero(direct); }
+    if (off.x >= 0.0 && uDirectMode == 0) { predictNetwork(int(off.x), direct, unused); direct = finiteOrZero(direct); }
     if (off.y >= 0.0) { predictNetwork(int(off.y), indirect, unused); indirect = finiteOrZero(indirect); }
-    bool both = (off.x >= 0.0 || off.w >= 0.0) && (off.y >= 0.0 || off.w >= 0.0);
+    bool hasDirect = off.x >= 0.0 || off.w >= 0.0;
+    if (uDirectMode != 0) {  // direct light computed, not learned (direct_light.glsl, as core/predict/predictor.cpp)
+        direct = finiteOrZero(rrfDirectLight(px, textureSize(uGPosition, 0), p, n, v, id));
+        hasDirect = true;
+    }
+    bool both = hasDirect && (off.y >= 0.0 || off.w >= 0.0);
     if (!both && off.z >= 0.0) {
         predictNetwork(int(off.z), global, unused);
         global = finiteOrZero(global);

@@ -103,7 +103,9 @@ RunResult run(const Scene& scene, const GeneratedData& data, const std::vector<R
     o.targets = TargetMode::Separate;
     o.trainer.lm.maxEpochs = 60;
     const ModelSet models = modelSetFromTrained(trainObjects(samples, o), scene, layout);
-    const Predictor predictor(scene, models);
+    PredictionSettings learned;  // both terms learned: the bounds below were measured so
+    learned.direct = PredictionSettings::Direct::Network;
+    const Predictor predictor(scene, models, learned);
     RunResult r;
     for (const Reference& ref : refs) r.meanRelativeRmse += evaluate(predictor, ref).term(Term::Global).overall.relativeRmse;
     r.meanRelativeRmse /= double(refs.size());

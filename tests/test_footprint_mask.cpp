@@ -184,11 +184,12 @@ TEST(FootprintMask, DepthStepWithinOneObjectIsLeftOut) {
 }
 
 TEST(FootprintMask, ExactDirectLightOfTheShortBoxMatchesItsReferenceWithinNoise) {
-    // Exact direct light (NEE at the pixel centre, S samples) against a direct-light reference of the
+    // Exact direct light (at the pixel centre, S samples) against a direct-light reference of the
     // same light (NEE with the box pixel filter, S spp). Where the footprint shows one smooth surface
     // both estimate the same value, so on the kept pixels the expected squared error is the two
-    // images' variances of the mean, Var_ref + Var_pred ≈ 2 Var_ref (same estimator and sample
-    // count). Var_ref is the renderer's per-pixel variance of the mean (max depth 1: the global image
+    // images' variances of the mean, Var_ref + Var_pred ≤ 2 Var_ref (exact direct light has no noise
+    // where the light is unoccluded and less than NEE in penumbra, core/predict/exact_direct.h; the
+    // bound 2 Var_ref was made for NEE, when the two were the same estimator). Var_ref is the renderer's per-pixel variance of the mean (max depth 1: the global image
     // is the direct term). With the 4-neighbour object-id mask the box's creases stay in and the
     // error is tens of times larger (measured 0.11 against 0.002 here).
     const Project p = loadProjectOrScene(kCornell);

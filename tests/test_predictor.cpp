@@ -69,13 +69,16 @@ PredictionSettings readPrediction(const nlohmann::json& section) {
     return PredictionSettings::fromJson(JsonReader(section, "p.json", "/prediction"));
 }
 
+/// Direct light from the networks (the default is exact direct light): for the tests of the term rules.
+PredictionSettings networkDirect() { return readPrediction({{"direct", "network"}}); }
+
 }  // namespace
 
 TEST(Predictor, CopyNetworksReproduceTheirInputsExactly) {
     const Project p = loadProjectOrScene(kCornell);
     const Scene& s = p.scene;
     const ModelSet models = lightAndAlbedoModels(s);
-    const Predictor pred(s, models);
+    const Predictor pred(s, models, networkDirect());
     const GBuffer g = pred.gbuffer(kLight, 64, 64);
     const Prediction out = pred.predict(g);
     EXPECT_TRUE(out.available[0] && out.available[1] && out.available[2]);
@@ -113,7 +116,7 @@ TEST(Predictor, JointGlobalAndMissingNetworks) {
         if (id == 1) m["global"] = copyInputNet(15, {3, 4, 5});
         return m;
     });
-    const Predictor pred(s, models);
+    const Predictor pred(s, models, networkDirect());
     const GBuffer g = pred.gbuffer(kLight, 48, 48);
     const Prediction out = pred.predict(g);
     EXPECT_TRUE(out.available[int(Term::Global)]);
@@ -202,7 +205,7 @@ TEST(Predictor, SettingsAreValidated) {
     EXPECT_THROW(readPrediction({{"direct_samples", 0}}), InputError);
     EXPECT_THROW(readPrediction({{"typo", 1}}), InputError);
     const Project p = loadProjectOrScene(kCornell);
-    EXPECT_EQ(p.prediction.direct, PredictionSettings::Direct::Network);
+    EXPECT_EQ(p.prediction.direct, PredictionSettings::Direct::Exact) << "exact direct light by default (issue 11)";
     // A network with the wrong number of inputs is refused up front, not at the first frame.
     const ModelSet bad = modelsFor(p.scene, [](int) {
         return std::map<std::string, NetworkModel>{{"global", copyInputNet(14, {0, 1, 2})}};
@@ -219,7 +222,7 @@ TEST(Evaluation, FootprintPixelsAreLeftOutAndCounted) {
     const Project p = loadProjectOrScene(kCornell);
     const Scene& s = p.scene;
     const ModelSet models = lightAndAlbedoModels(s);
-    const Predictor pred(s, models);
+    const Predictor pred(s, models, networkDirect());
     const int w = 48, h = 48;
     const GBuffer g = pred.gbuffer(kLight, w, h);
     const FootprintMask mask = footprintMask(g);

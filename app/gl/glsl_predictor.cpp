@@ -8,6 +8,9 @@
 
 #include <glad/gl.h>
 
+#include <tbb/parallel_for.h>
+
+#include "core/predict/exact_direct.h"
 #include "core/util/data_dir.h"
 
 namespace rrf {
@@ -155,6 +158,7 @@ int log2Exact(int v) {
 GlslPredictor::GlslPredictor(const Scene& scene, const ModelSet& models, const std::string& shaderDir) : scene_(scene) {
     // Resolved before any GL work, so a missing data directory is reported as such (with the places
     // looked in) rather than as a shader file that cannot be read.
+    prediction_.direct = PredictionSettings::Direct::Network;  // until setPrediction()
     const std::string dirName = shaderDir.empty() ? rrf::shaderDir().string() : shaderDir;
     const std::string dir = dirName.back() == '/' ? dirName : dirName + "/";
     GlStateGuard guard;
@@ -178,6 +182,9 @@ GlslPredictor::GlslPredictor(const Scene& scene, const ModelSet& models, const s
         std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::toupper(c)); });
         defines += "#define RRF_TERM_" + name + " " + std::to_string(int(t)) + "\n";
     }
+    // Exact direct light (shaders/direct_light.glsl) goes in front of predict.frag, which calls it;
+    // #line keeps the driver's messages pointing at predict.frag's own lines.
+    defines += "#line 1 1\n" + readShaderFile(dir + "direct_light.glsl") + "\n#line 2 0\n";
     predictProgram_ = GlProgram::fromFiles(dir + "fullscreen.vert", dir + "predict.frag", defines);
 
     glUseProgram(predictProgram_.id());
@@ -185,6 +192,8 @@ GlslPredictor::GlslPredictor(const Scene& scene, const ModelSet& models, const s
     glUniform1i(predictProgram_.uniform("uGNormal"), 1);
     glUniform1i(predictProgram_.uniform("uGEmission"), 2);
     glUniform1i(predictProgram_.uniform("uNetworks"), 3);
+    glUniform1i(predictProgram_.uniform("uDirectScene"), 4);
+    glUniform1i(predictProgram_.uniform("uDirectHost"), 5);
 
     networkTex_ = makeFloatTexture(networks_.width, networks_.height, networks_.texels.data());
     checkGl("uploading the network texture");
@@ -201,6 +210,9 @@ GlslPredictor::GlslPredictor(const Scene& scene, const ModelSet& models, const s
 GlslPredictor::~GlslPredictor() {
     releaseTargets();
     if (networkTex_) glDeleteTextures(1, &networkTex_);
+    const GLuint directTextures[2] = {directBufferTex_, directHostTex_};
+    glDeleteTextures(2, directTextures);
+    glDeleteBuffers(1, &directBuffer_);
     const GLuint buffers[2] = {objectVbo_, lightVbo_};
     glDeleteBuffers(2, buffers);
     const GLuint vaos[2] = {vao_, emptyVao_};
@@ -312,7 +324,9 @@ void GlslPredictor::allocateTargets() {
 void GlslPredictor::render() {
     GlStateGuard guard;
     checkGl("state before GlslPredictor::render");
-    if (lightsDirty_) uploadLights();
+    const bool lightMoved = lightsDirty_;
+    if (lightMoved) uploadLights();
+    if (lightMoved && directMode_ == 1) uploadDirectScene();
     const Camera& cam = scene_.camera;
     const int w = cam.width, h = cam.height;
 
@@ -394,9 +408,147 @@ void GlslPredictor::render() {
     }
     glActiveTexture(GL_TEXTURE3);
     glBindTexture(GL_TEXTURE_2D, networkTex_);
+    if (directMode_ != 0) {
+        // Units 4 and 5 are the predictor's own (GlStateGuard restores units 0-3 only).
+        if (directMode_ == 2) computeHostDirect();
+        glUseProgram(predictProgram_.id());
+        glBindFramebuffer(GL_FRAMEBUFFER, outputFbo_);
+        const uint64_t key = mix64(exactDirectSeed(prediction_.seed) + Rng::kGamma);  // Rng's first step
+        const SampleGrid grid(prediction_.directSamples);
+        glUniform2ui(predictProgram_.uniform("uDirectKey"), GLuint(key & 0xFFFFFFFFu), GLuint(key >> 32));
+        glUniform3i(predictProgram_.uniform("uDirectGrid"), prediction_.directSamples, grid.cols, grid.rows);
+        glUniform1f(predictProgram_.uniform("uSceneScale"), scene_.scale());
+        glActiveTexture(GL_TEXTURE4);
+        glBindTexture(GL_TEXTURE_BUFFER, directBufferTex_);
+        glActiveTexture(GL_TEXTURE5);
+        glBindTexture(GL_TEXTURE_2D, directHostTex_);
+    }
+    glUniform1i(predictProgram_.uniform("uDirectMode"), directMode_);
     glBindVertexArray(emptyVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     checkGl("network pass");
+}
+
+void GlslPredictor::setPrediction(const PredictionSettings& prediction) {
+    const bool same = prediction.direct == prediction_.direct && prediction.directSamples == prediction_.directSamples &&
+                      prediction.seed == prediction_.seed;
+    prediction_ = prediction;
+    if (same) return;
+    directMode_ = 0;
+    directNote_.clear();
+    if (prediction.direct != PredictionSettings::Direct::Exact) return;
+    size_t triangles = 0, rects = 0;
+    for (const Object& o : scene_.objects)
+        if (o.kind != Object::Kind::Sphere) triangles += o.primitiveCount() * (o.kind == Object::Kind::Quads ? 2 : 1);
+    for (const Light& l : scene_.lights) rects += l.type == Light::Type::Rect;
+    if (triangles <= size_t(kMaxShaderDirectTriangles) && rects <= size_t(kMaxShaderDirectRectLights)) {
+        directMode_ = 1;
+        uploadDirectScene();
+        return;
+    }
+    directMode_ = 2;
+    directNote_ = "exact direct light on the CPU: the scene has " + std::to_string(triangles) + " triangles and " +
+                  std::to_string(rects) + " rect lights, the shader's brute-force shadow rays take at most " +
+                  std::to_string(kMaxShaderDirectTriangles) + " and " + std::to_string(kMaxShaderDirectRectLights);
+    std::fprintf(stderr, "GLSL predictor: %s\n", directNote_.c_str());
+    if (!hostTracer_) {
+        hostAccel_ = std::make_unique<Accel>(scene_);
+        hostTracer_ = std::make_unique<PathTracer>(scene_, *hostAccel_, Estimator::NEE, 1);
+    }
+    if (!directHostTex_) {
+        GlStateGuard guard;
+        directHostTex_ = makeFloatTexture(1, 1, nullptr);
+    }
+}
+
+void GlslPredictor::uploadDirectScene() {
+    // Layout: shaders/direct_light.glsl's header comment.
+    std::vector<float> rects, points, materials, triangles, spheres;
+    auto put = [](std::vector<float>& v, const Vec3& a, float w) { v.insert(v.end(), {a.x, a.y, a.z, w}); };
+    for (const Light& l : scene_.lights) {
+        if (l.type == Light::Type::Rect) {
+            put(rects, l.corner, l.oneSided ? 1.f : 0.f);
+            put(rects, l.edge1, l.area());
+            put(rects, l.edge2, 0.f);
+            put(rects, l.radiance, 0.f);
+        } else {
+            put(points, l.position, 0.f);
+            put(points, l.intensity, 0.f);
+        }
+    }
+    for (const Object& o : scene_.objects) {
+        const Brdf b = o.material >= 0 ? Brdf(scene_.materials[size_t(o.material)]) : Brdf();
+        put(materials, b.kd, b.n);
+        put(materials, b.ks, 0.f);
+        if (o.kind == Object::Kind::Sphere) {
+            put(spheres, o.center, o.radius);
+            continue;
+        }
+        const size_t nv = size_t(o.verticesPerPrimitive());
+        for (size_t p = 0; p < o.primitiveCount(); ++p) {
+            Vec3 q[4];
+            for (size_t k = 0; k < nv; ++k) q[k] = o.positions[o.indices[p * nv + k]];
+            // Embree's split of a quad v0 v1 v2 v3: (v0, v1, v3) and (v2, v3, v1), as addQuad.
+            const int tris[2][3] = {{0, 1, 3}, {2, 3, 1}};
+            if (nv == 4) {
+                for (const auto& t : tris)
+                    for (int k : t) put(triangles, q[k], 0.f);
+            } else {
+                for (int k = 0; k < 3; ++k) put(triangles, q[k], 0.f);
+            }
+        }
+    }
+    const float header = 3.f;
+    const float nRect = float(rects.size() / 16), nPoint = float(points.size() / 8), nTri = float(triangles.size() / 12),
+                nSphere = float(spheres.size() / 4);
+    const float firstRect = header, firstPoint = firstRect + 4 * nRect, firstMaterial = firstPoint + 2 * nPoint,
+                firstTri = firstMaterial + float(materials.size() / 4), firstSphere = firstTri + 3 * nTri;
+    std::vector<float> data = {nRect, nPoint, nTri, nSphere, firstRect, firstPoint, firstTri, firstSphere,
+                               firstMaterial, 0.f, 0.f, 0.f};
+    for (const auto* part : {&rects, &points, &materials, &triangles, &spheres}) data.insert(data.end(), part->begin(), part->end());
+    if (!directBuffer_) glGenBuffers(1, &directBuffer_);
+    glBindBuffer(GL_TEXTURE_BUFFER, directBuffer_);
+    glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(data.size() * sizeof(float)), data.data(), GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    if (!directBufferTex_) {
+        GLint active = 0, bound = 0;
+        glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+        glActiveTexture(GL_TEXTURE4);
+        glGetIntegerv(GL_TEXTURE_BINDING_BUFFER, &bound);
+        glGenTextures(1, &directBufferTex_);
+        glBindTexture(GL_TEXTURE_BUFFER, directBufferTex_);
+        glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, directBuffer_);
+        glBindTexture(GL_TEXTURE_BUFFER, GLuint(bound));
+        glActiveTexture(GLenum(active));
+    }
+    checkGl("uploading the scene for exact direct light");
+}
+
+void GlslPredictor::computeHostDirect() {
+    const GlGBuffer g = readGBuffer();
+    const int w = g.width, h = g.height;
+    const ExactDirect direct(*hostTracer_, prediction_.directSamples, prediction_.seed);
+    const Light movable = hostTracer_->movableLightAt(scene_.lightPosition());
+    const Vec3 eye = scene_.camera.eye;
+    std::vector<float> rgba(4 * g.pixelCount(), 0.f);
+    tbb::parallel_for(0, h, [&](int y) {
+        TraceCounters counters;
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            if (g.objectId[i] < 0) continue;
+            const Vec3 p(g.position[3 * i], g.position[3 * i + 1], g.position[3 * i + 2]);
+            const Vec3 n(g.normal[3 * i], g.normal[3 * i + 1], g.normal[3 * i + 2]);
+            Vec3 L = direct.radiance(p, n, normalize(eye - p), g.objectId[i], movable, i, counters);
+            if (!L.isFinite()) L = Vec3(0.f);
+            float* out = &rgba[4 * (size_t(h - 1 - y) * size_t(w) + size_t(x))];  // GL rows: bottom first
+            for (int c = 0; c < 3; ++c) out[c] = L[c];
+        }
+    });
+    glActiveTexture(GL_TEXTURE5);
+    glBindTexture(GL_TEXTURE_2D, directHostTex_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, rgba.data());
+    checkGl("uploading CPU-computed direct light");
 }
 
 std::vector<float> GlslPredictor::readAttachment(unsigned fbo, int attachment) const {

@@ -14,6 +14,14 @@
 ///      locations to the shader as RRF_TERM_DIRECT/INDIRECT/GLOBAL).
 /// The prediction equals NetworkModel::predict on the same inputs to float rounding.
 ///
+/// Direct light: a new predictor takes it from the networks. setPrediction() with "direct": "exact"
+/// (the project default, which the live view passes) computes it instead, as core/predict/predictor
+/// does: shaders/direct_light.glsl runs core/predict/exact_direct.h's estimator with the same random
+/// numbers and shadow rays cast by brute force against the scene's triangles, spheres and rect lights
+/// (uploaded to a texture buffer on texture unit 4). Scenes above kMaxShaderDirectTriangles triangles
+/// or kMaxShaderDirectRectLights rect lights get the CPU estimator (Embree) on the read-back
+/// G-buffer each frame instead, uploaded on unit 5; directLightNote() says so.
+///
 /// Usage for live relighting (all calls on the thread whose GL 3.3 core context is current):
 ///
 ///     GlslPredictor gp(scene, models);      // once per scene + model set: compiles, uploads
@@ -26,6 +34,7 @@
 /// in the middle of a GUI frame.
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -33,6 +42,8 @@
 #include "core/util/image.h"
 #include "core/nn/model_set.h"
 #include "core/predict/network_texture.h"
+#include "core/predict/prediction_settings.h"
+#include "core/render/path_tracer.h"
 #include "core/render/term.h"
 #include "core/scene/scene.h"
 
@@ -68,6 +79,16 @@ public:
     /// and the light's visible quad. Takes effect at the next render().
     void setLightPosition(const Vec3& p);
     Vec3 lightPosition() const { return scene_.lightPosition(); }
+    /// Chooses where the direct term comes from ("direct": "network" | "exact", with
+    /// "direct_samples" and "seed" as in the CPU predictor). Cheap when nothing changes.
+    void setPrediction(const PredictionSettings& prediction);
+    /// Empty, or one line saying that exact direct light is computed on the CPU and why.
+    const std::string& directLightNote() const { return directNote_; }
+    /// Brute-force shadow rays in the shader cost triangles × samples per pixel; above these sizes
+    /// the CPU computes exact direct light.
+    static constexpr int kMaxShaderDirectTriangles = 2048;
+    static constexpr int kMaxShaderDirectRectLights = 8;  ///< shaders/direct_light.glsl's arrays
+
     /// Replaces the camera; the output size is camera.width × camera.height (textures are
     /// reallocated when it changes). Throws std::invalid_argument for a non-positive size or one
     /// above GL_MAX_TEXTURE_SIZE / GL_MAX_VIEWPORT_DIMS.
@@ -94,6 +115,8 @@ public:
 private:
     void buildStaticGeometry();
     void uploadLights();
+    void uploadDirectScene();
+    void computeHostDirect();
     void allocateTargets();
     void releaseTargets();
     std::vector<float> readAttachment(unsigned fbo, int attachment) const;
@@ -110,6 +133,13 @@ private:
     std::array<unsigned, kTermCount> outputTex_{};  ///< index int(Term), attachment int(Term)
     int targetWidth_ = 0, targetHeight_ = 0;
     int maxTextureSize_ = 0;
+    // Direct light (setPrediction): mode 0 networks, 1 shader, 2 CPU-computed and uploaded.
+    PredictionSettings prediction_;
+    int directMode_ = 0;
+    std::string directNote_;
+    unsigned directBuffer_ = 0, directBufferTex_ = 0, directHostTex_ = 0;
+    std::unique_ptr<Accel> hostAccel_;         ///< mode 2 only
+    std::unique_ptr<PathTracer> hostTracer_;   ///< mode 2 only
 };
 
 }  // namespace rrf

@@ -31,12 +31,14 @@ void LivePrediction::reset() {
     sceneHash_ = 0;
 }
 
-void LivePrediction::renderGlsl(const Camera& camera, const Vec3& lightPos, Image out[kTermCount]) {
+void LivePrediction::renderGlsl(const Camera& camera, const Vec3& lightPos, const PredictionSettings& prediction,
+                                Image out[kTermCount]) {
     const Camera& current = glsl_->camera();
     if (current.width != camera.width || current.height != camera.height || !(current.eye == camera.eye) ||
         !(current.target == camera.target) || !(current.up == camera.up) || current.fovYDegrees != camera.fovYDegrees)
         glsl_->setCamera(camera);
     glsl_->setLightPosition(lightPos);
+    glsl_->setPrediction(prediction);
     glsl_->render();
     for (Term t : kTerms) out[int(t)] = glsl_->read(t);
 }

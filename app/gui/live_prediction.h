@@ -14,6 +14,7 @@
 
 #include "core/util/image.h"
 #include "core/nn/model_set.h"
+#include "core/predict/prediction_settings.h"
 #include "core/render/term.h"
 #include "core/scene/scene.h"
 
@@ -42,9 +43,11 @@ public:
     uint64_t sceneHash() const { return sceneHash_; }
     std::shared_ptr<const ModelSet> models() const { return models_; }
 
-    /// GLSL path only: renders with `camera` (its width × height) and the light at `lightPos`, and
-    /// returns the images of every term, out[int(Term)] (top row first). Throws GlError on GL failure.
-    void renderGlsl(const Camera& camera, const Vec3& lightPos, Image out[kTermCount]);
+    /// GLSL path only: renders with `camera` (its width × height), the light at `lightPos` and the
+    /// project's `prediction` settings (exact or learned direct light), and returns the images of
+    /// every term, out[int(Term)] (top row first). Throws GlError on GL failure.
+    void renderGlsl(const Camera& camera, const Vec3& lightPos, const PredictionSettings& prediction,
+                    Image out[kTermCount]);
 
 private:
     std::shared_ptr<const ModelSet> models_;

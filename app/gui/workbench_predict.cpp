@@ -57,7 +57,7 @@ void Workbench::refreshPrediction() {
     if (live_.usesGlsl()) {
         Image images[kTermCount];
         try {
-            live_.renderGlsl(camera, scene.lightPosition(), images);
+            live_.renderGlsl(camera, scene.lightPosition(), state_.project.prediction, images);
         } catch (const std::exception& e) {
             state_.log.error(std::string("GLSL prediction failed: ") + e.what());
             return;

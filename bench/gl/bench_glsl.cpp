@@ -13,6 +13,9 @@
 // Every frame moves the light (as dragging it in the GUI does), renders, and waits with glFinish; the
 // time is the mean over the frames after two warm-up frames. "read back" adds glReadPixels of the
 // global term into an rrf::Image, which the GUI needs if it tone-maps on the CPU.
+// The last rows add exact direct light in the shader (prediction "direct": "exact",
+// shaders/direct_light.glsl) at 16 and 64 light samples per pixel, the project default's cost.
+// Under llvmpipe these are CPU times of a software rasteriser, not GPU times.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -180,14 +183,19 @@ int main(int argc, char** argv) {
         std::printf("bench_glsl: %s | %s\n%s, %dx%d, mean of %d frames (light moved every frame)\n\n",
                     ctx.renderer().c_str(), ctx.version().c_str(), project.c_str(), size, size, frames);
         std::printf("%-26s %8s %12s %16s%s\n", "networks", "weights", "ms/frame", "+read back ms", models.empty() ? "" : "  max rel GLSL-CPU (CPU float-double)");
-        auto row = [&](const std::string& name, const ModelSet& set) {
+        auto row = [&](const std::string& name, const ModelSet& set, int directSamples = 0) {
             GlslPredictor gp(scene, set);
+            if (directSamples > 0) {
+                PredictionSettings exact;
+                exact.directSamples = directSamples;
+                gp.setPrediction(exact);
+            }
             size_t weights = 0;
             for (const ObjectNetworks& on : set.objects)
                 for (const auto& kv : on.byTarget) weights += size_t(kv.second.params.size());
             const Timing t = timeFrames(gp, scene, frames);
             std::printf("%-26s %8zu %12.2f %16.2f", name.c_str(), weights, t.renderMs, t.readMs);
-            if (!models.empty()) {
+            if (!models.empty() && directSamples == 0) {
                 const auto [vsCpu, floor] = maxRelativeVsCpu(gp, scene, set);
                 std::printf("  %.3g (%.3g)", vsCpu, floor);
             }
@@ -196,12 +204,14 @@ int main(int argc, char** argv) {
         if (!models.empty()) {
             const ModelSet set = loadModelSet(models, scene.contentHash());
             row("trained (" + models + ")", set);
+            for (int n : {16, 64}) row("trained, exact direct " + std::to_string(n), set, n);
         } else {
             row("none (G-buffer only)", ModelSet{});
             for (const auto& hidden : std::vector<std::vector<int>>{{20, 10}, {32, 16}, {64, 32}}) {
                 row(join(hidden) + " tanh, global", untrainedSet(scene, hidden, {"global"}));
                 row(join(hidden) + " tanh, direct+indirect", untrainedSet(scene, hidden, {"direct", "indirect"}));
             }
+            for (int n : {16, 64}) row("20-10 indirect, exact direct " + std::to_string(n), untrainedSet(scene, {20, 10}, {"indirect"}), n);
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_glsl: %s\n", e.what());

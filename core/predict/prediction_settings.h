@@ -1,9 +1,11 @@
 #pragma once
 /// Settings of CPU prediction (the project's "prediction" section), shared by the CLI and the GUI:
 ///
-///     "prediction": {"direct": "network", "direct_samples": 64, "seed": 1}
+///     "prediction": {"direct": "exact", "direct_samples": 64, "seed": 1}
 ///
-/// "direct": "exact" computes direct light with shadow rays instead of the networks (see predictor.h).
+/// "direct": "exact" (the default) computes direct light per pixel (core/predict/exact_direct.h) and
+/// uses the networks for indirect light only, as Ren et al. 2013; "network" takes the direct term from
+/// the networks too (the seed report's variant).
 
 #include <cstdint>
 
@@ -19,8 +21,8 @@ constexpr int kMaxDirectSamples = 65536;
 /// The project's "prediction" section.
 struct PredictionSettings {
     enum class Direct { Network, Exact };
-    Direct direct = Direct::Network;  ///< "direct": "network" | "exact"
-    int directSamples = 64;           ///< "direct_samples": NEE samples per pixel for exact direct light
+    Direct direct = Direct::Exact;    ///< "direct": "exact" | "network"
+    int directSamples = 64;           ///< "direct_samples": light samples (shadow rays) per pixel and rect light
     uint64_t seed = 1;                ///< "seed": keys the exact direct light's samples
 
     /// Reads the section (missing keys keep their defaults). Throws InputError naming the reader's

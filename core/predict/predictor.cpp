@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/predict/exact_direct.h"
 #include "core/util/error.h"
 
 namespace rrf {
@@ -176,8 +177,7 @@ Prediction Predictor::predict(const GBuffer& gb) const {
     if (exact) {
         t0 = std::chrono::steady_clock::now();
         const Light movable = tracer_.movableLightAt(gb.lightPosition);
-        const uint64_t seed = mix64(settings_.seed ^ 0x4558414354444952ULL);  // own stream: "EXACTDIR"
-        const int spp = settings_.directSamples;
+        const ExactDirect direct(tracer_, settings_.directSamples, settings_.seed);
         std::vector<char> hasGlobalNet(scene_.objects.size(), 0);
         for (const Job& job : jobs) hasGlobalNet[job.object] = job.plan.global.ok();
         std::vector<uint64_t> rowBad(size_t(gb.height), 0);
@@ -188,25 +188,12 @@ Prediction Predictor::predict(const GBuffer& gb) const {
                 const int id = gb.object[i];
                 if (id < 0) continue;
                 const float* r = gb.input(i);
-                Hit hit;
-                hit.p = Vec3(r[0], r[1], r[2]);
-                hit.ng = Vec3(r[9], r[10], r[11]);
-                hit.object = id;
-                const Vec3 wo(r[3], r[4], r[5]);
-                double sum[3] = {0, 0, 0};
-                int accepted = 0;
-                for (int s = 0; s < spp; ++s) {
-                    Rng rng(seed, i, uint64_t(s));
-                    const Vec3 L = tracer_.shade(hit, wo, movable, rng, counters).direct;
-                    if (!L.isFinite()) {
-                        ++rowBad[size_t(y)];
-                        continue;
-                    }
-                    for (int c = 0; c < 3; ++c) sum[c] += double(L[c]);
-                    ++accepted;
+                Vec3 d = direct.radiance(Vec3(r[0], r[1], r[2]), Vec3(r[9], r[10], r[11]), Vec3(r[3], r[4], r[5]), id,
+                                         movable, i, counters);
+                if (!d.isFinite()) {
+                    ++rowBad[size_t(y)];
+                    d = Vec3(0.f);
                 }
-                const double w = accepted ? 1.0 / accepted : 0.0;
-                const Vec3 d(float(sum[0] * w), float(sum[1] * w), float(sum[2] * w));
                 pr.images[int(Term::Direct)].set(x, y, d);
                 // A global net already holds the direct light; add exact direct light only where none did.
                 if (!hasGlobalNet[size_t(id)])

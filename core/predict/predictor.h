@@ -8,9 +8,10 @@
 ///   joint     one 6-output net         → outputs 0–2 direct, 3–5 indirect, global = sum
 ///   global    one net                  → global only; direct and indirect are unavailable
 ///   direct / indirect only             → that term only
-/// With the project option "prediction": {"direct": "exact"} the direct term is computed with shadow
-/// rays instead (next-event estimation with `direct_samples` light samples per pixel, the ground
-/// truth's own estimator) and the networks supply only indirect light, as in Ren et al. 2013.
+/// With "prediction": {"direct": "exact"} (the default) the direct term is computed instead
+/// (core/predict/exact_direct.h: closed-form unshadowed light times a visibility ratio from
+/// `direct_samples` shadow rays per light) and the networks supply only indirect light, as in Ren et
+/// al. 2013.
 ///
 /// Emitter pixels show the emitted radiance (direct term), as the ground truth does; background pixels
 /// are black. Pixels of objects without a network are black and counted; a term that some covered
@@ -39,8 +40,8 @@ struct Prediction {
     std::vector<std::string> unavailableWhy;  ///< one line per unavailable term
     std::vector<int> objectsWithoutNetwork;    ///< visible objects with no network at all (shown black)
     uint64_t pixelsWithoutNetwork = 0;
-    /// Non-finite values kept out of the images: network outputs (replaced by 0) and exact direct
-    /// light samples (dropped from their pixel's mean).
+    /// Non-finite values kept out of the images (replaced by 0): network outputs and exact direct
+    /// light of a pixel.
     uint64_t nonFinite = 0;
     uint64_t pixelsPredicted = 0;        ///< pixels evaluated by at least one network
     double inferenceSeconds = 0.0;       ///< network evaluation

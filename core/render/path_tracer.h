@@ -62,6 +62,9 @@ public:
     /// Closest hit against the static BVH and the movable light (if it is a rect light).
     bool intersect(const Ray& ray, const Light& movable, Hit& hit) const;
     bool intersect(const Ray& ray, Hit& hit) const { return intersect(ray, movableDefault_, hit); }
+    /// True if anything (static geometry or the movable rect light) lies along `ray` in
+    /// [tmin, tmax]: the shadow-ray test of NEE, also used by exact direct light in prediction.
+    bool occluded(const Ray& ray, const Light& movable) const;
     /// Copy of the movable light with its centre at `p` (shape and emission unchanged).
     Light movableLightAt(const Vec3& p) const;
 
@@ -76,7 +79,6 @@ private:
     template <bool kGlossy>
     Vec3 sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, const Frame& frame, const Vec3& woLocal,
                       const Brdf& brdf, const Light& movable, Rng& rng, TraceCounters& counters) const;
-    bool occluded(const Ray& ray, const Light& movable) const;
     const Light& light(int index, const Light& movable) const {
         return index == movable_ ? movable : scene_.lights[size_t(index)];
     }

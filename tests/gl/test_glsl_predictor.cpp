@@ -478,7 +478,7 @@ TEST(GlslPredictor, ShaderErrorsNameTheFile) {
     namespace fs = std::filesystem;
     const fs::path dir = fs::temp_directory_path() / ("rrf_gl_shaders_" + std::to_string(::getpid()));
     fs::create_directories(dir);
-    for (const char* f : {"gbuffer.vert", "gbuffer.frag", "fullscreen.vert", "predict.frag"})
+    for (const char* f : {"gbuffer.vert", "gbuffer.frag", "fullscreen.vert", "predict.frag", "direct_light.glsl"})
         fs::copy_file(fs::path(RRF_SOURCE_DIR) / "shaders" / f, dir / f, fs::copy_options::overwrite_existing);
     {
         std::ofstream bad(dir / "predict.frag", std::ios::app);
@@ -518,7 +518,9 @@ TEST(GlslPredictor, AgreesWithCorePredictorImages) {
     // (where rasteriser and ray tracer may pick different objects) are left out.
     const Scene scene = test::cornellBox();
     const ModelSet set = test::mixedModelSet(scene);
-    const Predictor cpu(scene, set);
+    PredictionSettings learned;  // a new GlslPredictor takes direct light from the networks
+    learned.direct = PredictionSettings::Direct::Network;
+    const Predictor cpu(scene, set, learned);
     GlslPredictor gp(scene, set);
     const Vec3 light(0.2f, 0.8f, -0.1f);
     gp.setLightPosition(light);

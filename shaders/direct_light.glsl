@@ -1,0 +1,250 @@
+// Exact direct light for the GLSL predictor: the estimator of core/predict/exact_direct.h, step by
+// step, so that the GLSL image matches the CPU's to float rounding except where a shadow ray grazes
+// an edge (tests/gl/test_glsl_direct.cpp states the bound). The host (app/gl/glsl_predictor.cpp)
+// inserts this file into predict.frag after the #version line; predict.frag calls rrfDirectLight().
+//
+// uDirectMode: 0 = the networks' direct light (this file unused), 1 = computed here with shadow rays
+// against the scene held in uDirectScene, 2 = computed on the CPU by the host (too many triangles for
+// a brute-force shader loop) and read from uDirectHost.
+//
+// uDirectScene: RGBA32F texels (a texture buffer), written by the host:
+//   0                 (rect lights, point lights, triangles, spheres)
+//   1                 first texel of (rect lights, point lights, triangles, spheres)
+//   2                 (first texel of materials, 0, 0, 0)
+//   rect light        (corner, one-sided), (edge1, area), (edge2, 0), (radiance, 0)
+//   point light       (position, 0), (intensity, 0)
+//   material          per object: (kd, exponent), (ks, 0)   (ks = 0 for Lambert, as rrf::Brdf)
+//   triangle          (v0, 0), (v1, 0), (v2, 0)            (a quad is Embree's two triangles)
+//   sphere            (centre, radius)
+
+uniform int uDirectMode;
+uniform samplerBuffer uDirectScene;
+uniform sampler2D uDirectHost;
+uniform uvec2 uDirectKey;    // mix64(seed' + γ) of rrf::Rng, as (low, high) 32-bit words
+uniform ivec3 uDirectGrid;   // samples, columns, rows (rrf::SampleGrid)
+uniform float uSceneScale;   // rrf::Scene::scale(): the ray offset's scene term (rrf::Accel::offset)
+
+const float kInvPiD = 0.318309886183790671538;
+const float kInv2PiD = 0.159154943091895335769;
+
+// ---- rrf::Rng with 64-bit words as uvec2(low, high) (GLSL 3.30 has no 64-bit integers)
+uvec2 add64(uvec2 a, uvec2 b) {
+    uint lo = a.x + b.x;
+    return uvec2(lo, a.y + b.y + (lo < a.x ? 1u : 0u));
+}
+uvec2 mulWide(uint a, uint b) {  // full 64-bit product of two 32-bit words, from 16-bit halves
+    uint a0 = a & 0xFFFFu, a1 = a >> 16, b0 = b & 0xFFFFu, b1 = b >> 16;
+    uint p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+    uint mid = (p00 >> 16) + (p01 & 0xFFFFu) + (p10 & 0xFFFFu);
+    return uvec2((p00 & 0xFFFFu) | (mid << 16), p11 + (p01 >> 16) + (p10 >> 16) + (mid >> 16));
+}
+uvec2 mul64(uvec2 a, uvec2 b) {  // product modulo 2^64
+    uvec2 r = mulWide(a.x, b.x);
+    r.y += a.x * b.y + a.y * b.x;
+    return r;
+}
+uvec2 xorShift(uvec2 z, int s) {  // z ^ (z >> s), 0 < s < 32
+    return z ^ uvec2((z.x >> s) | (z.y << (32 - s)), z.y >> s);
+}
+uvec2 mix64(uvec2 z) {
+    z = mul64(xorShift(z, 30), uvec2(0x1CE4E5B9u, 0xBF58476Du));
+    z = mul64(xorShift(z, 27), uvec2(0x133111EBu, 0x94D049BBu));
+    return xorShift(z, 31);
+}
+const uvec2 kGamma = uvec2(0x7F4A7C15u, 0x9E3779B9u);
+uvec2 rngState;
+void rngStart(uvec2 pixelKey, uint sampleIndex) {  // Rng(seed', pixel, sample); pixelKey from rngPixelKey
+    rngState = mix64(pixelKey ^ add64(uvec2(sampleIndex, 0u), uvec2(0x2F3D8DD7u, 0x8CB92BA7u)));
+}
+uvec2 rngPixelKey(uint pixel) { return mix64(uDirectKey ^ add64(uvec2(pixel, 0u), uvec2(0xD9B4E019u, 0x632BE59Bu))); }
+float rngUniform() {
+    rngState = add64(rngState, kGamma);
+    return float(mix64(rngState).y >> 8) * (1.0 / 16777216.0);
+}
+
+// ---- scene access
+vec4 dsTexel(int i) { return texelFetch(uDirectScene, i); }
+
+// ---- shadow rays: brute force over every occluder (rrf::PathTracer::occluded's answer)
+bool hitsTriangle(vec3 o, vec3 d, float tmax, vec3 v0, vec3 v1, vec3 v2) {
+    vec3 e1 = v1 - v0, e2 = v2 - v0, pv = cross(d, e2);
+    float det = dot(e1, pv);
+    if (det == 0.0) return false;
+    float inv = 1.0 / det;
+    vec3 tv = o - v0;
+    float u = dot(tv, pv) * inv;
+    if (u < 0.0 || u > 1.0) return false;
+    vec3 qv = cross(tv, e1);
+    float v = dot(d, qv) * inv;
+    if (v < 0.0 || u + v > 1.0) return false;
+    float t = dot(e2, qv) * inv;
+    // t = 0 counts, as in Embree (ray interval [tnear = 0, tfar]): a ray starting exactly on another
+    // surface, as at a crease between two walls, is occluded on both paths.
+    return t >= 0.0 && t < tmax;
+}
+bool hitsParallelogram(vec3 o, vec3 d, float tmax, vec3 c, vec3 e1, vec3 e2) {
+    vec3 n = cross(e1, e2);
+    float denom = dot(d, n);
+    if (denom == 0.0) return false;
+    float t = dot(c - o, n) / denom;
+    if (!(t > 0.0 && t < tmax)) return false;
+    vec3 q = o + d * t - c;
+    float nn = dot(n, n);
+    float a = dot(cross(q, e2), n) / nn, b = dot(cross(e1, q), n) / nn;
+    return a >= 0.0 && a <= 1.0 && b >= 0.0 && b <= 1.0;
+}
+bool hitsSphere(vec3 o, vec3 d, float tmax, vec3 c, float r) {
+    vec3 oc = o - c;
+    float b = dot(oc, d), cc = dot(oc, oc) - r * r, disc = b * b - cc;
+    if (disc < 0.0) return false;
+    float s = sqrt(disc), t0 = -b - s, t1 = -b + s;
+    return (t0 > 0.0 && t0 < tmax) || (t1 > 0.0 && t1 < tmax);
+}
+float rayOffset(vec3 p) { return 2e-5 * (max(abs(p.x), max(abs(p.y), abs(p.z))) + uSceneScale); }
+
+// Visibility of `target` from p (normal n, target on n's side), as rrf::ExactDirect::visible.
+bool dsVisible(vec3 p, vec3 n, vec3 target) {
+    vec3 o = p + n * rayOffset(p);
+    vec3 d = target - o;
+    float dist = length(d);
+    float tmax = dist * (1.0 - 1e-4) - rayOffset(target);
+    if (!(tmax > 0.0)) return true;
+    d /= dist;
+    vec4 counts = dsTexel(0), first = dsTexel(1);
+    for (int k = 0; k < int(counts.z); ++k) {
+        int t = int(first.z) + 3 * k;
+        if (hitsTriangle(o, d, tmax, dsTexel(t).xyz, dsTexel(t + 1).xyz, dsTexel(t + 2).xyz)) return false;
+    }
+    for (int k = 0; k < int(counts.x); ++k) {
+        int t = int(first.x) + 4 * k;
+        if (hitsParallelogram(o, d, tmax, dsTexel(t).xyz, dsTexel(t + 1).xyz, dsTexel(t + 2).xyz)) return false;
+    }
+    for (int k = 0; k < int(counts.w); ++k) {
+        vec4 s = dsTexel(int(first.w) + k);
+        if (hitsSphere(o, d, tmax, s.xyz, s.w)) return false;
+    }
+    return true;
+}
+
+// rrf::projectedSolidAngle in float: Lambert's formula over the light clipped to n's hemisphere.
+// Returns the clipped polygon's vertex mean in `clippedCentre`.
+float dsProjectedSolidAngle(vec3 c, vec3 e1, vec3 e2, bool oneSided, vec3 p, vec3 n, out vec3 clippedCentre) {
+    clippedCentre = p;
+    if (oneSided && dot(p - c, cross(e1, e2)) <= 0.0) return 0.0;
+    vec3 quad[4] = vec3[4](c - p, c + e1 - p, c + e1 + e2 - p, c + e2 - p);
+    vec3 poly[5];
+    int m = 0;
+    for (int k = 0; k < 4; ++k) {
+        vec3 a = quad[k], b = quad[(k + 1) & 3];
+        float ha = dot(a, n), hb = dot(b, n);
+        if (ha >= 0.0) poly[m++] = a;
+        if ((ha >= 0.0) != (hb >= 0.0)) poly[m++] = a + (b - a) * (ha / (ha - hb));
+    }
+    if (m < 3) return 0.0;
+    vec3 mean = vec3(0.0);
+    float sum = 0.0;
+    for (int k = 0; k < m; ++k) {
+        vec3 a = poly[k], b = poly[k + 1 < m ? k + 1 : 0];
+        mean += a;
+        float la = length(a), lb = length(b);
+        if (!(la > 0.0) || !(lb > 0.0)) return 0.0;
+        vec3 axb = cross(a, b);
+        float s = length(axb);
+        if (s == 0.0) continue;
+        sum += atan(s, dot(a, b)) * dot(n, axb) / s;
+    }
+    clippedCentre = p + mean / float(m);
+    return 0.5 * abs(sum);
+}
+
+float dsPowCos(float c, float e) { return c <= 0.0 ? 0.0 : (e == 0.0 ? 1.0 : exp(e * log(c))); }
+
+const int kMaxDirectRectLights = 8;
+
+// Direct radiance leaving p (normal n facing wo) of `object` towards wo; `pixel` = y·width + x with
+// y counted from the top, the CPU predictor's pixel index.
+vec3 rrfExactDirect(vec3 p, vec3 n, vec3 wo, int object, uint pixel) {
+    vec4 counts = dsTexel(0), first = dsTexel(1);
+    int rects = min(int(counts.x), kMaxDirectRectLights);
+    vec4 m0 = dsTexel(int(dsTexel(2).x) + 2 * object), m1 = dsTexel(int(dsTexel(2).x) + 2 * object + 1);
+    vec3 kd = m0.xyz, ks = m1.xyz;
+    float e = m0.w;
+    bool glossy = any(notEqual(ks, vec3(0.0)));
+    vec3 mirror = 2.0 * dot(wo, n) * n - wo;
+
+    uvec2 key = rngPixelKey(pixel);
+    vec2 shift[kMaxDirectRectLights];
+    float sumF[kMaxDirectRectLights], sumFV[kMaxDirectRectLights];
+    vec3 gsum[kMaxDirectRectLights];
+    rngStart(key, 0xFFFFFFFFu);  // rrf::kShiftSample
+    for (int r = 0; r < rects; ++r) {
+        float su = rngUniform();
+        shift[r] = vec2(su, rngUniform());
+        sumF[r] = 0.0;
+        sumFV[r] = 0.0;
+        gsum[r] = vec3(0.0);
+    }
+    int samples = uDirectGrid.x, cols = uDirectGrid.y, rows = uDirectGrid.z;
+    for (int s = 0; s < samples; ++s) {
+        rngStart(key, uint(s));
+        float cellU = float(s % cols), cellV = float(s / cols);
+        for (int r = 0; r < rects; ++r) {
+            int t = int(first.x) + 4 * r;
+            vec4 c = dsTexel(t), a1 = dsTexel(t + 1), a2 = dsTexel(t + 2);
+            float j1 = rngUniform();
+            float j2 = rngUniform();
+            float u = (cellU + j1) / float(cols) + shift[r].x;
+            float v = (cellV + j2) / float(rows) + shift[r].y;
+            if (u >= 1.0) u -= 1.0;
+            if (v >= 1.0) v -= 1.0;
+            vec3 x = c.xyz + a1.xyz * u + a2.xyz * v;
+            vec3 d = x - p;
+            float dist2 = dot(d, d);
+            if (!(dist2 > 0.0)) continue;
+            vec3 wi = d / sqrt(dist2);
+            float cosTheta = dot(wi, n);
+            if (cosTheta <= 0.0) continue;
+            float cosL = -dot(wi, normalize(cross(a1.xyz, a2.xyz)));
+            if (c.w < 0.5) cosL = abs(cosL);
+            if (cosL <= 0.0) continue;
+            float f = cosTheta * cosL / dist2;
+            bool vis = dsVisible(p, n, x);
+            sumF[r] += f;
+            if (vis) {
+                sumFV[r] += f;
+                if (glossy) gsum[r] += ks * ((e + 2.0) * kInv2PiD * dsPowCos(dot(mirror, wi), e)) * f;
+            }
+        }
+    }
+
+    vec3 L = vec3(0.0);
+    for (int r = 0; r < rects; ++r) {
+        int t = int(first.x) + 4 * r;
+        vec4 c = dsTexel(t), a1 = dsTexel(t + 1), a2 = dsTexel(t + 2), le = dsTexel(t + 3);
+        vec3 clippedCentre;
+        float omega = dsProjectedSolidAngle(c.xyz, a1.xyz, a2.xyz, c.w > 0.5, p, n, clippedCentre);
+        if (omega > 0.0 && any(notEqual(kd, vec3(0.0)))) {
+            float ratio = sumF[r] > 0.0 ? sumFV[r] / sumF[r] : (dsVisible(p, n, clippedCentre) ? 1.0 : 0.0);
+            L += kd * le.rgb * (omega * kInvPiD * ratio);
+        }
+        if (glossy) L += le.rgb * gsum[r] * (a1.w / float(samples));
+    }
+    for (int k = 0; k < int(counts.y); ++k) {
+        int t = int(first.y) + 2 * k;
+        vec3 lp = dsTexel(t).xyz, intensity = dsTexel(t + 1).xyz;
+        vec3 d = lp - p;
+        float dist2 = dot(d, d);
+        if (!(dist2 > 0.0)) continue;
+        vec3 wi = d / sqrt(dist2);
+        float cosTheta = dot(wi, n);
+        if (cosTheta <= 0.0 || !dsVisible(p, n, lp)) continue;
+        L += intensity * (kd * kInvPiD + ks * ((e + 2.0) * kInv2PiD * dsPowCos(dot(mirror, wi), e))) * (cosTheta / dist2);
+    }
+    return L;
+}
+
+// The direct term of pixel px (gl_FragCoord) in modes 1 and 2.
+vec3 rrfDirectLight(ivec2 px, ivec2 size, vec3 p, vec3 n, vec3 wo, int object) {
+    if (uDirectMode == 2) return texelFetch(uDirectHost, px, 0).rgb;
+    return rrfExactDirect(p, n, wo, object, uint((size.y - 1 - px.y) * size.x + px.x));
+}
