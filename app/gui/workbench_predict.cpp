@@ -7,6 +7,7 @@
 
 #include "core/eval/evaluation.h"
 #include "core/predict/predictor.h"
+#include "panels/panels.h"
 
 namespace rrf {
 
