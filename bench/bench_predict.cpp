@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
     const Vec3 light = scene.lightPosition();
     const int frames = quick ? 5 : 20, spp = quick ? 16 : 64;
     std::printf("bench_predict: %s, 256x256, networks %s (2 per object, %zu objects), ground truth %d spp\n\n",
-                project.c_str(), models.objects.front().byTarget.begin()->second.arch.describe().c_str(),
+                project.c_str(), models.objects.front().byTarget.begin()->second.arch().describe().c_str(),
                 models.objects.size(), spp);
     std::printf("| threads | G-buffer ms | networks ms | prediction ms/frame | exact direct (16 spp) ms | path tracer %d spp ms | speed-up |\n",
                 spp);

@@ -43,6 +43,7 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_job_runner.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_learning_panels.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_honest_figures.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_leaves_panel.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp)
   target_link_libraries(rrf_gui_tests PRIVATE rrf_panels GTest::gtest GTest::gtest_main rrf_warnings)

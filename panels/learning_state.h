@@ -31,6 +31,24 @@ struct TrainingInfo {
     std::string modelsDir;       ///< models of the last finished training (absolute path)
 };
 
+/// One leaf of a loaded model's kd-tree (core/nn/partition_tree.h), a row of the Leaves panel.
+struct LeafRow {
+    int objectId = -1;
+    std::string object, target;
+    int leaf = 0, leafCount = 1, depth = 0;
+    int64_t records = 0;  ///< training records in the leaf
+    double error = 0;     ///< validation relative RMSE of the leaf's network (NaN: no validation set)
+};
+
+/// The loaded models' trees, and the leaf of every view pixel for the Views "leaf" overlay.
+struct LeavesInfo {
+    std::vector<LeafRow> rows;     ///< by object, target, leaf
+    std::vector<int> pixelLeaf;    ///< per view pixel: leaf number in its object's tree, −1 none
+    int width = 0, height = 0;     ///< size of pixelLeaf's image
+    uint64_t forPrediction = 0;    ///< ImageSet revision of the prediction pixelLeaf was made for
+    uint64_t revision = 0;         ///< changes whenever pixelLeaf changes
+};
+
 /// Display options of the loss plot.
 struct TrainingView {
     bool aggregate = false;      ///< one mean curve instead of one per network

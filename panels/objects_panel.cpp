@@ -96,9 +96,13 @@ EvaluationInfo evaluationInfo(const Evaluation& e, const Scene& scene, const Mod
     for (const ObjectNetworks& o : models.objects)
         for (const auto& [target, m] : o.byTarget) {
             auto& t = training[o.objectId];
-            const TrainResult& r = m.training;
-            t.first = std::max<uint64_t>(t.first, uint64_t(r.trainSamples + r.validationSamples + r.testSamples));
-            t.second += r.seconds;
+            uint64_t records = 0;  // a partitioned model's leaves share out the object's records
+            for (const NetworkModel& leaf : m.leaves) {
+                const TrainResult& r = leaf.training;
+                records += uint64_t(r.trainSamples + r.validationSamples + r.testSamples);
+                t.second += r.seconds;
+            }
+            t.first = std::max<uint64_t>(t.first, records);
         }
     for (Term t : kTerms) {
         const TermErrors& te = e.term(t);

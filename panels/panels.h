@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/eval/evaluation.h"
+#include "core/nn/model_set.h"
 #include "core/nn/network_settings.h"
 #include "panels/workbench_state.h"
 
@@ -30,6 +31,10 @@ void drawTrainingPanel(WorkbenchState& state);
 void drawObjectsPanel(WorkbenchState& state);
 /// Cost: accuracy versus time from sweeps and from the project's runs.
 void drawCostPanel(WorkbenchState& state);
+/// Leaves: the loaded models' kd-tree leaves per object, each leaf's records and validation error.
+void drawLeavesPanel(WorkbenchState& state);
+/// The Leaves panel's rows for a model set (pixelLeaf left empty).
+LeavesInfo leavesOf(const ModelSet& models);
 
 // Network panel edits (the panel's buttons call these; each stores the edited settings in
 // Project::network and marks the project dirty, and returns false when nothing changed).

@@ -67,6 +67,19 @@ void toneMapRgba(const Image& image, float exposure, const std::vector<int>* ids
     }
 }
 
+void tintByLeaf(const std::vector<int>& ids, const std::vector<int>& leaf, std::vector<uint8_t>& rgba) {
+    if (leaf.size() != ids.size() || 4 * leaf.size() != rgba.size()) return;
+    for (size_t i = 0; i < leaf.size(); ++i) {
+        if (leaf[i] < 0 || ids[i] < 0) continue;
+        // Consecutive leaves of one object take consecutive palette entries, so neighbours differ.
+        static const uint8_t palette[12][3] = {{230, 25, 75},  {60, 180, 75},   {255, 225, 25}, {0, 130, 200},
+                                               {245, 130, 48}, {145, 30, 180},  {70, 240, 240}, {240, 50, 230},
+                                               {210, 245, 60}, {250, 190, 212}, {0, 128, 128},  {170, 110, 40}};
+        const uint8_t* c = palette[size_t(ids[i] * 5 + leaf[i]) % 12];
+        for (int k = 0; k < 3; ++k) rgba[4 * i + size_t(k)] = uint8_t((int(rgba[4 * i + size_t(k)]) + int(c[k])) / 2);
+    }
+}
+
 void ViewModel::update(WorkbenchState& s) {
     Key k;
     k.gt = s.groundTruth.revision;
@@ -78,6 +91,7 @@ void ViewModel::update(WorkbenchState& s) {
     k.errorMax = s.view.errorMax;
     k.selected = s.view.highlight ? s.view.selectedObject : -1;
     k.ids = s.objectIds.size();
+    k.leaves = s.view.leafOverlay ? s.leaves.revision : 0;
     if (k == key_) {
         s.view.errorStats = stats_;
         return;
@@ -105,6 +119,8 @@ void ViewModel::update(WorkbenchState& s) {
     s.view.errorStats = stats_;
     fill(views_[kReference], ref, false);
     fill(views_[kCompared], cmp, false);
+    if (k.leaves && cmp.width == s.leaves.width && cmp.height == s.leaves.height && idsFor(cmp))
+        tintByLeaf(s.objectIds, s.leaves.pixelLeaf, views_[kCompared].rgba);
     fill(views_[kError], error_, true);
 }
 

@@ -31,6 +31,10 @@ Image viewErrorMap(const Image& groundTruth, const Image& compared, ErrorMapKind
 /// image of the ground truth's size.
 ViewErrorStats viewErrorStats(const ImageSet& groundTruth, const ImageSet& compared, Term t);
 
+/// Tints `rgba` (the compared view) half-way towards a colour per (object, leaf), so the kd-tree
+/// cells show; pixels with leaf −1 stay as they are. Sizes must agree (else nothing changes).
+void tintByLeaf(const std::vector<int>& objectIds, const std::vector<int>& pixelLeaf, std::vector<uint8_t>& rgba);
+
 /// One displayable image.
 struct DisplayImage {
     int width = 0, height = 0;
@@ -70,9 +74,10 @@ private:
         float exposure = 0.f, errorMax = 0.f;
         int selected = -2;
         size_t ids = 0;
+        uint64_t leaves = 0;  ///< LeavesInfo::revision when the leaf overlay is on, else 0
         bool operator==(const Key& o) const {
             return gt == o.gt && cmp == o.cmp && source == o.source && term == o.term && metric == o.metric && exposure == o.exposure &&
-                   errorMax == o.errorMax && selected == o.selected && ids == o.ids;
+                   errorMax == o.errorMax && selected == o.selected && ids == o.ids && leaves == o.leaves;
         }
     };
     Key key_;

@@ -109,6 +109,8 @@ void drawToolbar(WorkbenchState& state) {
     ImGui::SameLine();
     ImGui::Checkbox("highlight", &v.highlight);
     ImGui::SameLine();
+    ImGui::Checkbox("leaves", &v.leafOverlay);  // tint the compared view by kd-tree leaf
+    ImGui::SameLine();
     int source = int(v.compareSource);
     ImGui::SetNextItemWidth(w * 1.3f);
     if (ImGui::Combo("middle view", &source, "prediction\0compared run\0")) v.compareSource = CompareSource(source);

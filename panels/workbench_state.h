@@ -106,6 +106,7 @@ struct ViewState {
     float panX = 0.f, panY = 0.f;  ///< image-space centre offset in image pixels
     CompareSource compareSource = CompareSource::Prediction;
     bool highlight = true;      ///< dim everything but the selected object
+    bool leafOverlay = false;   ///< tint the compared view by kd-tree leaf (Leaves panel)
     int selectedObject = -1;
     int hoverX = -1, hoverY = -1;  ///< image pixel under the mouse, -1 when none
     ViewErrorStats errorStats;  ///< published by the ViewModel each frame
@@ -157,6 +158,7 @@ struct WorkbenchState {
     TrainingInfo training;
     TrainingView trainingView;
     EvaluationInfo evaluation;
+    LeavesInfo leaves;  ///< the loaded models' kd-tree leaves (Leaves panel, leaf overlay)
     ObjectsView objectsView;
     CostInfo cost;
     CostView costView;

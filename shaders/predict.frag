@@ -1,7 +1,7 @@
 #version 330 core
 // Network pass: one full-screen triangle; each pixel reads its G-buffer entry and evaluates its
-// object's radiance regression networks, whose weights and mapminmax scalers come from the float
-// texture uNetworks (layout documented in core/predict/network_texture.h). The host prepends
+// object's radiance regression networks — the leaf of each model's kd-tree that holds the pixel —
+// whose weights and mapminmax scalers come from the float texture uNetworks (layout documented in core/predict/network_texture.h). The host prepends
 //   #define RRF_MAX_VEC4 n        vec4s in the widest layer (inputs included)
 //   #define RRF_NET_WIDTH_LOG2 k  log2 of the network texture's width in texels
 //   #define RRF_TERM_DIRECT 0, RRF_TERM_INDIRECT 1, RRF_TERM_GLOBAL 2
@@ -56,6 +56,22 @@ float tanhEigen(float a) {
     q = x2 * q + 2.26843463243900e-03;
     q = x2 * q + 4.89352518554385e-03;
     return abs(a) < 0.0004 ? a : p / q;
+}
+
+// Walks the kd-tree block at texel `tree` (core/predict/network_texture.h) with the raw inputs and
+// returns the texel index of the leaf's network block: x goes left when x[axis] < split. The split
+// axes are geometric inputs that reach this shader bit-identical to the CPU's (position from the
+// G-buffer, light from a uniform), so every pixel finds the CPU's leaf.
+int findLeafNetwork(int tree) {
+    int count = int(texel(tree).x);
+    int node = 0;
+    for (int step = 0; step < count; ++step) {
+        vec4 n = texel(tree + 1 + node);
+        if (n.x < 0.0) return int(n.y);
+        int a = int(n.x);
+        node = rawIn[a >> 2][a & 3] < n.y ? int(n.z) : int(n.w);
+    }
+    return int(texel(tree + 1).y);  // not reached for a valid tree (packNetworkTexture checks it)
 }
 
 // A non-finite network output is replaced by 0, as the CPU predictor does.
@@ -124,12 +140,12 @@ void main() {
     vec4 off = texel(entry);
     vec3 direct = vec3(0.0), indirect = vec3(0.0), global, unused;
     if (off.w >= 0.0) {
-        predictNetwork(int(off.w), direct, indirect);
+        predictNetwork(findLeafNetwork(int(off.w)), direct, indirect);
         direct = finiteOrZero(direct);
         indirect = finiteOrZero(indirect);
     }
-    if (off.x >= 0.0 && uDirectMode == 0) { predictNetwork(int(off.x), direct, unused); direct = finiteOrZero(direct); }
-    if (off.y >= 0.0) { predictNetwork(int(off.y), indirect, unused); indirect = finiteOrZero(indirect); }
+    if (off.x >= 0.0 && uDirectMode == 0) { predictNetwork(findLeafNetwork(int(off.x)), direct, unused); direct = finiteOrZero(direct); }
+    if (off.y >= 0.0) { predictNetwork(findLeafNetwork(int(off.y)), indirect, unused); indirect = finiteOrZero(indirect); }
     bool hasDirect = off.x >= 0.0 || off.w >= 0.0;
     if (uDirectMode != 0) {  // direct light computed, not learned (direct_light.glsl, as core/predict/predictor.cpp)
         direct = finiteOrZero(rrfDirectLight(px, textureSize(uGPosition, 0), p, n, v, id));
@@ -137,7 +153,7 @@ void main() {
     }
     bool both = hasDirect && (off.y >= 0.0 || off.w >= 0.0);
     if (!both && off.z >= 0.0) {
-        predictNetwork(int(off.z), global, unused);
+        predictNetwork(findLeafNetwork(int(off.z)), global, unused);
         global = finiteOrZero(global);
     } else {
         global = direct + indirect;

@@ -63,14 +63,14 @@ TEST(ObjectTraining, SkipsEmptyAndUnknownObjectsAndTrainsSingleSample) {
     EXPECT_TRUE(sawEmpty);
 
     // The single-sample object: trained, finite, reproduces its one target.
-    const NetworkModel& one = r[2].model;
+    const NetworkModel& one = r[2].model.leaves[0];
     EXPECT_EQ(one.training.trainSamples, 1);
     EXPECT_TRUE(one.params.allFinite());
     const MatX<float> p = one.predict(objs[2].inputMatrix());
     const MatX<float> t = objs[2].directMatrix() + objs[2].indirectMatrix();
     EXPECT_LT((p - t).cwiseAbs().maxCoeff(), 1e-4f);
-    EXPECT_EQ(r[0].model.objectId, 0);
-    EXPECT_EQ(r[0].model.arch.inputs, 14);
+    EXPECT_EQ(r[0].model.objectId(), 0);
+    EXPECT_EQ(r[0].model.arch().inputs, 14);
     EXPECT_TRUE(r[0].model.predict(objs[0].inputMatrix()).allFinite());
 }
 
@@ -83,12 +83,12 @@ TEST(ObjectTraining, TargetModes) {
     ASSERT_EQ(r.size(), 2u);
     EXPECT_EQ(r[0].target, "direct");
     EXPECT_EQ(r[1].target, "indirect");
-    EXPECT_EQ(r[1].model.arch.outputs, 3);
+    EXPECT_EQ(r[1].model.arch().outputs, 3);
     o.targets = TargetMode::Joint;
     r = trainObjects(objs, o);
     ASSERT_EQ(r.size(), 1u);
-    EXPECT_EQ(r[0].model.arch.outputs, 6);
-    EXPECT_EQ(r[0].model.target, "joint");
+    EXPECT_EQ(r[0].model.arch().outputs, 6);
+    EXPECT_EQ(r[0].model.target(), "joint");
     EXPECT_EQ(parseTargetMode("indirect"), TargetMode::Indirect);
     EXPECT_THROW(parseTargetMode("both"), std::invalid_argument);
     EXPECT_EQ(modelFileName(3, "joint"), "object_3_joint.rrfm");
@@ -106,9 +106,9 @@ TEST(ObjectTraining, BitIdenticalForAnyThreadCountAndSelection) {
     };
     const auto a = run(1, {}), b = run(2, {}), c = run(2, {2});
     ASSERT_EQ(a.size(), 3u);
-    for (size_t i = 0; i < 3; ++i) EXPECT_EQ(a[i].model.params, b[i].model.params);
-    EXPECT_EQ(c[0].model.params, a[2].model.params);
-    EXPECT_NE(a[0].model.params.head(5), a[1].model.params.head(5));
+    for (size_t i = 0; i < 3; ++i) EXPECT_EQ(a[i].model.leaves[0].params, b[i].model.leaves[0].params);
+    EXPECT_EQ(c[0].model.leaves[0].params, a[2].model.leaves[0].params);
+    EXPECT_NE(a[0].model.leaves[0].params.head(5), a[1].model.leaves[0].params.head(5));
 }
 
 TEST(ObjectTraining, CancelledBeforeStartIsSkipped) {

@@ -48,7 +48,7 @@ ModelSet modelsFor(const Scene& s, F make) {
         ObjectNetworks n;
         n.objectId = o.id;
         n.name = o.name;
-        n.byTarget = make(o.id);
+        for (auto& [target, net] : make(o.id)) n.byTarget.emplace(target, std::move(net));
         if (!n.byTarget.empty()) set.objects.push_back(std::move(n));
     }
     return set;

@@ -25,7 +25,7 @@ TEST(TrainingRun, SameNetworksAsTrainObjectsWithOrderedCurves) {
     for (size_t i = 0; i < direct.size(); ++i) {
         EXPECT_EQ(run.models[i].skipped, direct[i].skipped);
         if (direct[i].skipped) continue;
-        EXPECT_TRUE(run.models[i].model.params == direct[i].model.params) << "network " << i << " differs";
+        EXPECT_TRUE(run.models[i].model.leaves[0].params == direct[i].model.leaves[0].params) << "network " << i << " differs";
     }
     EXPECT_EQ(run.networks, 4);
     EXPECT_EQ(run.skipped, 2) << "object 1 has no samples: both of its targets are skipped";

@@ -106,11 +106,16 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
             std::printf("%-4d %-12s %-9s skipped: %s\n", m.objectId, m.objectName.c_str(), m.target.c_str(), m.message.c_str());
             continue;
         }
-        const TrainResult& t = m.model.training;
-        std::printf("%-4d %-12s %-9s %9lld %7lld %7d %-11s %-11s %-11s %8.2f\n", m.objectId, m.objectName.c_str(),
-                    m.target.c_str(), (long long)(t.trainSamples + t.validationSamples + t.testSamples),
-                    (long long)m.model.arch.numParams(), t.epochs, fmt(m.model.errors.train).c_str(),
-                    fmt(m.model.errors.validation).c_str(), fmt(m.model.errors.test).c_str(), t.seconds);
+        // One row per network: a partitioned model's leaves are listed as target#leaf.
+        for (int l = 0; l < m.model.leafCount(); ++l) {
+            const NetworkModel& net = m.model.leaves[size_t(l)];
+            const TrainResult& t = net.training;
+            const std::string target = m.model.leafCount() == 1 ? m.target : m.target + "#" + std::to_string(l);
+            std::printf("%-4d %-12s %-9s %9lld %7lld %7d %-11s %-11s %-11s %8.2f\n", m.objectId, m.objectName.c_str(),
+                        target.c_str(), (long long)(t.trainSamples + t.validationSamples + t.testSamples),
+                        (long long)net.arch.numParams(), t.epochs, fmt(net.errors.train).c_str(),
+                        fmt(net.errors.validation).c_str(), fmt(net.errors.test).c_str(), t.seconds);
+        }
     }
     std::printf("trained in %.2f s%s; wrote %s/models.json\n", seconds, run.cancelled ? " (stopped early by Ctrl-C)" : "",
                 a.out.c_str());

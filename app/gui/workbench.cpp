@@ -134,6 +134,7 @@ void Workbench::drawHost() {
                 tab("Training", panels::drawTrainingPanel);
                 tab("Objects", panels::drawObjectsPanel);
                 tab("Cost", panels::drawCostPanel);
+                tab("Leaves", panels::drawLeavesPanel);
                 tab("Log", panels::drawLogPanel);
                 ImGui::EndTabBar();
             }

@@ -72,6 +72,8 @@ public:
     bool trainRunning() const;
     /// Loads a model directory for the live prediction (GLSL, else CPU).
     bool loadModels(const std::string& dir);
+    /// Recomputes the Views leaf overlay (leaf per pixel) when it is on and the prediction changed.
+    void updateLeafOverlay();
     /// Compares the prediction with the ground truth per object and term (fills the Objects panel).
     bool startEvaluate();
     bool evaluateRunning() const;

@@ -7,6 +7,7 @@
 
 #include "core/eval/evaluation.h"
 #include "core/predict/predictor.h"
+#include "panels/panels.h"
 
 namespace rrf {
 
@@ -35,6 +36,7 @@ bool Workbench::loadModels(const std::string& dir) {
     if (!glslError.empty())
         state_.log.warning("GLSL prediction unavailable, using the CPU predictor (slower): " + glslError);
     state_.training.modelsDir = dir;
+    state_.leaves = panels::leavesOf(*live_.models());
     state_.view.compareSource = panels::CompareSource::Prediction;
     state_.log.info("models loaded from " + dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)"));
     refreshPrediction();
@@ -49,6 +51,7 @@ void Workbench::refreshPrediction() {
         state_.log.warning("the scene changed since the models were trained; train again for a prediction");
         live_.reset();
         state_.training.modelsDir.clear();
+        state_.leaves = panels::LeavesInfo{};
         state_.prediction = panels::ImageSet{};
         state_.prediction.touch();
         return;
@@ -103,6 +106,26 @@ void Workbench::pollPredict() {
         p.touch();
     });
     if (predictPending_ && !predictRunning() && !trainRunning()) refreshPrediction();
+    updateLeafOverlay();
+}
+
+void Workbench::updateLeafOverlay() {
+    panels::LeavesInfo& l = state_.leaves;
+    if (!state_.view.leafOverlay || !live_.loaded() || l.forPrediction == state_.prediction.revision) return;
+    // Leaf lookup only (no network runs): a G-buffer of the view camera at the current light.
+    const Camera camera = viewCamera(state_.project);
+    try {
+        const Predictor predictor(state_.project.scene, *live_.models(), state_.project.prediction);
+        l.pixelLeaf = predictor.leaves(predictor.gbuffer(state_.project.scene.lightPosition(), camera.width, camera.height));
+    } catch (const std::exception& e) {
+        state_.log.error(std::string("leaf overlay: ") + e.what());
+        state_.view.leafOverlay = false;
+        return;
+    }
+    l.width = camera.width;
+    l.height = camera.height;
+    l.forPrediction = state_.prediction.revision;
+    ++l.revision;
 }
 
 bool Workbench::exportPrediction(const std::string& dir) {

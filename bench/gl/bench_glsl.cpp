@@ -192,7 +192,7 @@ int main(int argc, char** argv) {
             }
             size_t weights = 0;
             for (const ObjectNetworks& on : set.objects)
-                for (const auto& kv : on.byTarget) weights += size_t(kv.second.params.size());
+                for (const auto& kv : on.byTarget) weights += size_t(kv.second.numParams());
             const Timing t = timeFrames(gp, scene, frames);
             std::printf("%-26s %8zu %12.2f %16.2f", name.c_str(), weights, t.renderMs, t.readMs);
             if (!models.empty() && directSamples == 0) {

@@ -112,7 +112,7 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
     if (c.o.keepModels) row.models = std::make_shared<const ModelSet>(models);
     int64_t params = 0;
     for (const ObjectModel& m : trained)
-        if (!m.skipped) params += int64_t(m.model.arch.numParams());
+        if (!m.skipped) params += m.model.numParams();
     row.extra["parameters"] = params;
     row.extra["pixels_without_network"] = e.prediction.pixelsWithoutNetwork;
     row.extra["non_finite_prediction_values"] = e.prediction.nonFinite;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 namespace rrf {
 
@@ -72,6 +73,117 @@ void NetworkModel::validate() const {
     };
     checkScaler(inputScaler, "input");
     checkScaler(outputScaler, "output");
+}
+
+PartitionedNetwork::PartitionedNetwork(NetworkModel single)
+    : tree(PartitionTree::singleLeaf(single.training.trainSamples + single.training.validationSamples +
+                                     single.training.testSamples)) {
+    leaves.push_back(std::move(single));
+}
+
+int64_t PartitionedNetwork::numParams() const {
+    int64_t n = 0;
+    for (const NetworkModel& m : leaves) n += int64_t(m.arch.numParams());
+    return n;
+}
+
+std::vector<int> PartitionedNetwork::findLeaves(const Eigen::Ref<const MatX<float>>& raw) const {
+    std::vector<int> leaf(size_t(raw.cols()), 0);
+    if (tree.nodes.size() <= 1) return leaf;
+    VecX<float> col(raw.rows());
+    for (Eigen::Index c = 0; c < raw.cols(); ++c) {
+        col = raw.col(c);
+        leaf[size_t(c)] = tree.findLeaf(col.data());
+    }
+    return leaf;
+}
+
+namespace {
+
+/// Columns of `raw` grouped by leaf (ascending within each leaf), predicted leaf by leaf.
+template <typename S>
+MatX<S> predictPartitioned(const PartitionedNetwork& p, const Eigen::Ref<const MatX<S>>& raw,
+                           const std::vector<int>& leafOf) {
+    const MlpArch& a = p.arch();
+    MatX<S> out(a.outputs, raw.cols());
+    std::vector<std::vector<Eigen::Index>> cols(p.leaves.size());
+    for (Eigen::Index c = 0; c < raw.cols(); ++c) cols[size_t(leafOf[size_t(c)])].push_back(c);
+    for (size_t l = 0; l < cols.size(); ++l) {
+        if (cols[l].empty()) continue;
+        MatX<S> x(raw.rows(), Eigen::Index(cols[l].size()));
+        for (size_t k = 0; k < cols[l].size(); ++k) x.col(Eigen::Index(k)) = raw.col(cols[l][k]);
+        MatX<S> y;
+        if constexpr (std::is_same_v<S, float>) y = p.leaves[l].predict(x);
+        else y = p.leaves[l].predictDouble(x);
+        for (size_t k = 0; k < cols[l].size(); ++k) out.col(cols[l][k]) = y.col(Eigen::Index(k));
+    }
+    return out;
+}
+
+}  // namespace
+
+MatX<float> PartitionedNetwork::predict(const Eigen::Ref<const MatX<float>>& raw) const {
+    if (leaves.size() == 1) return leaves.front().predict(raw);
+    if (raw.rows() != arch().inputs) return leaves.front().predict(raw);  // throws the size message
+    return predictPartitioned<float>(*this, raw, findLeaves(raw));
+}
+
+MatX<double> PartitionedNetwork::predictDouble(const Eigen::Ref<const MatX<double>>& raw) const {
+    if (leaves.size() == 1) return leaves.front().predictDouble(raw);
+    if (raw.rows() != arch().inputs) return leaves.front().predictDouble(raw);
+    const MatX<float> asFloat = raw.cast<float>();
+    return predictPartitioned<double>(*this, raw, findLeaves(asFloat));
+}
+
+void PartitionedNetwork::validate() const {
+    if (leaves.empty()) throw std::invalid_argument("partitioned network has no leaf networks");
+    tree.validate(leaves.front().arch.inputs);
+    if (int(leaves.size()) != tree.leafCount())
+        throw std::invalid_argument("partition tree has " + std::to_string(tree.leafCount()) + " leaves but " +
+                                    std::to_string(leaves.size()) + " networks");
+    for (size_t l = 0; l < leaves.size(); ++l) {
+        const NetworkModel& m = leaves[l];
+        m.validate();
+        if (!(m.arch == leaves.front().arch) || m.objectId != leaves.front().objectId ||
+            m.target != leaves.front().target)
+            throw std::invalid_argument("leaf " + std::to_string(l) + " differs from leaf 0 in architecture, object or target");
+    }
+}
+
+double seamJump(const PartitionedNetwork& model, const Eigen::Ref<const MatX<float>>& raw) {
+    const PartitionTree& t = model.tree;
+    std::vector<Eigen::Index> column;
+    std::vector<std::pair<int, float>> plane;  // (axis, split) per projected point
+    for (Eigen::Index c = 0; c < raw.cols(); ++c) {
+        VecX<float> x = raw.col(c);
+        int i = 0;
+        while (!t.nodes[size_t(i)].isLeaf()) {
+            const PartitionNode& n = t.nodes[size_t(i)];
+            column.push_back(c);
+            plane.emplace_back(n.axis, n.split);
+            i = x[n.axis] < n.split ? n.left : n.right;
+        }
+    }
+    if (column.empty()) return 0.0;
+    MatX<float> below(raw.rows(), Eigen::Index(column.size())), on(raw.rows(), Eigen::Index(column.size()));
+    for (size_t k = 0; k < column.size(); ++k) {
+        below.col(Eigen::Index(k)) = raw.col(column[k]);
+        on.col(Eigen::Index(k)) = raw.col(column[k]);
+        below(plane[k].first, Eigen::Index(k)) = std::nextafter(plane[k].second, -INFINITY);
+        on(plane[k].first, Eigen::Index(k)) = plane[k].second;
+    }
+    return relativeRmse(model.predict(below), model.predict(on));
+}
+
+double relativeRmse(const Eigen::Ref<const MatX<float>>& p, const Eigen::Ref<const MatX<float>>& t) {
+    if (p.size() == 0) return std::numeric_limits<double>::quiet_NaN();
+    double sum = 0;
+    for (Eigen::Index c = 0; c < p.cols(); ++c)
+        for (Eigen::Index r = 0; r < p.rows(); ++r) {
+            const double d = (double(p(r, c)) - double(t(r, c))) / (std::fabs(double(t(r, c))) + 0.01);
+            sum += d * d;
+        }
+    return std::sqrt(sum / double(p.size()));
 }
 
 NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eigen::Ref<const MatX<float>>& inputs,

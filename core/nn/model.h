@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/nn/mlp.h"
+#include "core/nn/partition_tree.h"
 #include "core/nn/trainer.h"
 #include "core/nn/trainer_config.h"
 
@@ -50,6 +51,49 @@ struct NetworkModel {
     /// Throws std::invalid_argument unless sizes agree and every number is finite.
     void validate() const;
 };
+
+/// A partitioned radiance regression function (Ren et al. 2013): a kd-tree over the record inputs
+/// (nn/partition_tree.h) whose leaf k is predicted by `leaves[k]`. A tree of one leaf is a plain
+/// network, which is what older model sets load as. All leaves share architecture, object and target.
+struct PartitionedNetwork {
+    PartitionTree tree;
+    std::vector<NetworkModel> leaves;  ///< index = leaf number
+
+    PartitionedNetwork() = default;
+    /// One network as a single-leaf tree (an unpartitioned model; implicit, so a plain network can
+    /// stand wherever a partitioned one is expected).
+    PartitionedNetwork(NetworkModel single);
+
+    /// The leaves' common architecture (the first leaf's; validate() checks the others).
+    const MlpArch& arch() const { return leaves.front().arch; }
+    int objectId() const { return leaves.front().objectId; }
+    const std::string& target() const { return leaves.front().target; }
+    int leafCount() const { return int(leaves.size()); }
+    /// Weights and biases of all leaves together.
+    int64_t numParams() const;
+    /// Leaf number of every column of `rawInputs` (inputs × N).
+    std::vector<int> findLeaves(const Eigen::Ref<const MatX<float>>& rawInputs) const;
+    /// Raw outputs (outputs × N) for raw inputs (inputs × N): every column is predicted by its leaf's
+    /// network (NetworkModel::predict on the columns of that leaf, in ascending order), so a single
+    /// leaf gives exactly NetworkModel::predict.
+    MatX<float> predict(const Eigen::Ref<const MatX<float>>& rawInputs) const;
+    /// The same in double; the leaf of a column is looked up on its float value, as predict does.
+    MatX<double> predictDouble(const Eigen::Ref<const MatX<double>>& rawInputs) const;
+    /// Throws std::invalid_argument unless the tree is valid for the inputs, there is one valid
+    /// network per leaf and all share architecture, object and target.
+    void validate() const;
+};
+
+/// How far a partitioned model jumps across its split planes, measured at the records `rawInputs`
+/// (inputs × N): every record is projected onto each plane on its root-to-leaf path and predicted
+/// just below the plane (the largest float under the split) and on it, i.e. by the leaves on either
+/// side at one point; the result is the RMS of |a − b| / (|b| + 0.01) over all entries (the relative
+/// figure of §14), 0 for a single leaf. The seam test bounds it by the error goal.
+double seamJump(const PartitionedNetwork& model, const Eigen::Ref<const MatX<float>>& rawInputs);
+
+/// The relative RMSE of docs/design.md §14 over every entry: sqrt(mean ((p − t) / (|t| + 0.01))²),
+/// NaN for no columns. The partitioning's error goal is stated in it.
+double relativeRmse(const Eigen::Ref<const MatX<float>>& predicted, const Eigen::Ref<const MatX<float>>& target);
 
 /// Fits one network on raw data (inputs × N, targets × N, samples as columns):
 /// 70/15/15 split (splitSamples(N, cfg.seed(), stream)), mapminmax scalers fitted on all N samples

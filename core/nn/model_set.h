@@ -1,8 +1,13 @@
 #pragma once
-/// A directory of trained networks for one scene: one model file per object and target
-/// (nn/object_training.h's modelFileName) plus `models.json`, the index that records the scene hash, the
-/// dataset, the record layout and which file holds which network. Prediction loads the set and
-/// refuses models made for another scene or another input layout.
+/// A directory of trained networks for one scene: per object and target one model file
+/// (nn/object_training.h's modelFileName), or one per leaf when the model is partitioned
+/// (leafModelFileName), plus `models.json`, the index that records the scene hash, the dataset, the
+/// record layout, each model's kd-tree and which file holds which network. Prediction loads the set
+/// and refuses models made for another scene or another input layout.
+///
+/// Index version 2 (this build) stores per model "tree": {"nodes": [...]} (nn/partition_tree.h's
+/// nodes: axis, split, left, right, leaf, records, error) and "leaves": [{"file", "records",
+/// "error"}, ...]. Version 1 indexes (one "file" per model) load as single-leaf trees.
 
 #include <map>
 #include <string>
@@ -16,11 +21,12 @@
 
 namespace rrf {
 
-/// Networks of one object: either a joint 6-output net, a global net, or direct and/or indirect nets.
+/// Networks of one object: either a joint 6-output net, a global net, or direct and/or indirect nets,
+/// each a kd-tree of networks (a single leaf when not partitioned).
 struct ObjectNetworks {
     int objectId = -1;
     std::string name;
-    std::map<std::string, NetworkModel> byTarget;  ///< "direct", "indirect", "global" or "joint"
+    std::map<std::string, PartitionedNetwork> byTarget;  ///< "direct", "indirect", "global" or "joint"
     bool has(const std::string& t) const { return byTarget.count(t) != 0; }
 };
 
@@ -32,6 +38,9 @@ struct ModelSet {
     nlohmann::json index;                 ///< models.json as read
     const ObjectNetworks* find(int objectId) const;
 };
+
+/// Version of models.json written by saveModelSet (1: one network per model; 2: kd-trees).
+constexpr int kModelSetVersion = 2;
 
 /// Writes every non-skipped model of `trained` into `dir` (created if missing) and the index.
 /// `extra` is merged into models.json (dataset path, settings, timings). Returns the index.

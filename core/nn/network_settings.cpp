@@ -27,7 +27,7 @@ std::vector<int> parseHiddenSizes(const std::string& text, const std::string& se
 }
 
 const std::vector<std::string>& NetworkSettings::keys() {
-    static const std::vector<std::string> k = {"hidden", "activation", "targets"};
+    static const std::vector<std::string> k = {"hidden", "activation", "targets", "partition"};
     return k;
 }
 
@@ -43,13 +43,47 @@ NetworkSettings NetworkSettings::fromJson(const JsonReader& r, const NetworkSett
     s.options.activation = parseActivation(r.choiceOr("activation", activationName(s.options.activation), {"tanh", "relu"}));
     s.options.targets = parseTargetMode(r.choiceOr("targets", targetModeName(s.options.targets),
                                                    {"separate", "joint", "global", "direct", "indirect"}));
+    if (const auto partition = r.find("partition")) s.options.partition = partitionFromJson(*partition, s.options.partition);
     return s;
 }
 
 nlohmann::json NetworkSettings::networkJson() const {
     return {{"hidden", options.hidden},
             {"activation", activationName(options.activation)},
-            {"targets", targetModeName(options.targets)}};
+            {"targets", targetModeName(options.targets)},
+            {"partition", partitionJson(options.partition)}};
+}
+
+PartitionSettings partitionFromJson(const JsonReader& r, const PartitionSettings& base) {
+    PartitionSettings p = base;
+    r.requireObject();
+    r.checkKeys({"goal", "max_depth", "max_leaves", "min_records_per_weight", "split_axes"});
+    p.goal = r.numberOr("goal", p.goal, 0.0, 10.0, true);
+    p.maxDepth = int(r.integerOr("max_depth", p.maxDepth, 0, 20));
+    p.maxLeaves = int(r.integerOr("max_leaves", p.maxLeaves, 1, 4096));
+    p.minRecordsPerWeight = r.numberOr("min_records_per_weight", p.minRecordsPerWeight, 1.0, 1000.0);
+    if (const auto axes = r.find("split_axes")) {
+        const size_t n = axes->requireArray();
+        if (n == 0) axes->fail("expected a non-empty array of \"position\" and/or \"light\"");
+        p.axes = PartitionAxes{false, false};
+        for (size_t i = 0; i < n; ++i) {
+            const JsonReader a = axes->at(i);
+            try {
+                PartitionAxes::enable(p.axes, a.string());
+            } catch (const std::invalid_argument& e) {
+                a.fail(e.what());
+            }
+        }
+    }
+    return p;
+}
+
+nlohmann::json partitionJson(const PartitionSettings& p) {
+    return {{"goal", p.goal},
+            {"max_depth", p.maxDepth},
+            {"max_leaves", p.maxLeaves},
+            {"min_records_per_weight", p.minRecordsPerWeight},
+            {"split_axes", p.axes.names()}};
 }
 
 }  // namespace rrf

@@ -2,9 +2,14 @@
 /// Network and trainer settings of a project ("network" and "trainer" sections), shared by the CLI
 /// and the GUI:
 ///
-///     "network": {"hidden": [20, 10], "activation": "tanh", "targets": "separate"},
+///     "network": {"hidden": [20, 10], "activation": "tanh", "targets": "separate",
+///                 "partition": {"goal": 0.05, "max_depth": 8, "max_leaves": 16,
+///                               "min_records_per_weight": 8, "split_axes": ["position", "light"]}},
 ///     "trainer": {"type": "levenberg_marquardt", ...}   (see nn/trainer_config.h)
 ///
+/// "partition" sets the kd-tree of networks per object and target (PartitionSettings in
+/// nn/object_training.h); every key is optional, unknown keys are errors, and "max_leaves": 1 (or
+/// "max_depth": 0) trains one network per object.
 /// "targets": "separate" (default: one direct and one indirect net per object, so direct light can
 /// also be computed exactly while the networks predict indirect light), "joint" (one 6-output net),
 /// "global", "direct" or "indirect".
@@ -26,15 +31,21 @@ constexpr int kMaxHiddenSize = 4096;
 struct NetworkSettings {
     ObjectTrainingOptions options;  ///< hidden sizes, activation, targets, trainer
 
-    /// The project defaults: ObjectTrainingOptions' defaults with separate direct and indirect nets.
-    NetworkSettings() { options.targets = TargetMode::Separate; }
+    /// The project defaults: ObjectTrainingOptions' defaults with separate direct and indirect nets,
+    /// each partitioned into at most kDefaultMaxLeaves leaves.
+    NetworkSettings() {
+        options.targets = TargetMode::Separate;
+        options.partition.maxLeaves = kDefaultMaxLeaves;
+    }
+    /// The project's default leaf budget per object and target.
+    static constexpr int kDefaultMaxLeaves = 16;
     /// Reads a "network" section over `base`: missing keys keep base's values, and the trainer is
     /// base's (it is the "trainer" section, read by TrainerConfig::fromJson). Throws InputError naming
     /// the reader's file and the JSON pointer for unknown keys or bad values.
     static NetworkSettings fromJson(const JsonReader& network, const NetworkSettings& base);
     /// fromJson over the project defaults (a project file's section).
     static NetworkSettings fromJson(const JsonReader& network) { return fromJson(network, NetworkSettings()); }
-    /// The "network" section's keys ("hidden", "activation", "targets").
+    /// The "network" section's keys ("hidden", "activation", "targets", "partition").
     static const std::vector<std::string>& keys();
     nlohmann::json networkJson() const;
     nlohmann::json trainerJson() const { return options.trainer.toJson(); }
@@ -43,5 +54,10 @@ struct NetworkSettings {
 /// Reads hidden sizes written as text, "20,10" (the spelling of `network.hidden` = [20, 10] outside a
 /// JSON file, e.g. a sweep value); throws SettingError naming `setting` if malformed or out of 1..kMaxHiddenSize.
 std::vector<int> parseHiddenSizes(const std::string& text, const std::string& setting);
+
+/// Reads a "partition" object over `base` (missing keys keep base's values); InputError names the
+/// file and JSON pointer of an unknown key, a wrong type or an out-of-range value.
+PartitionSettings partitionFromJson(const JsonReader& r, const PartitionSettings& base);
+nlohmann::json partitionJson(const PartitionSettings& p);
 
 }  // namespace rrf

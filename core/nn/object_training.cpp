@@ -1,6 +1,9 @@
 #include "core/nn/object_training.h"
 
+#include <cmath>
+#include <cstdio>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
@@ -56,6 +59,10 @@ std::string modelFileName(int objectId, const std::string& target) {
     return "object_" + std::to_string(objectId) + "_" + target + ".rrfm";
 }
 
+std::string leafModelFileName(int objectId, const std::string& target, int leaf) {
+    return "object_" + std::to_string(objectId) + "_" + target + "_leaf" + std::to_string(leaf) + ".rrfm";
+}
+
 namespace {
 
 struct Job {
@@ -74,6 +81,62 @@ MatX<float> targetMatrix(const ObjectSamples& s, const std::string& target) {
         return t;
     }
     return s.directMatrix() + s.indirectMatrix();
+}
+
+/// A tree node whose network is to be trained: its records (indices into the object's samples).
+struct NodeTask {
+    size_t job = 0;
+    int node = 0;
+    int depth = 0;
+    std::vector<uint32_t> records;
+};
+
+/// A tree being grown: nodes and the network trained for each node (internal ones are dropped at the end).
+struct TreeBuild {
+    PartitionTree tree;
+    std::vector<NetworkModel> nets;   // index = node
+    std::vector<char> trained;        // index = node
+    std::vector<int> parent;          // index = node, −1 for the root
+    int leaves = 1;
+};
+
+/// Split and initial weights of node k of object `id`: the root keeps the unpartitioned network's
+/// stream, so a tree that never splits is exactly the network trainObjects made before partitioning.
+uint64_t nodeStream(int id, int node) { return uint64_t(uint32_t(id)) | (uint64_t(uint32_t(node)) << 32); }
+
+MatX<float> gatherColumns(const Eigen::Ref<const MatX<float>>& m, const std::vector<uint32_t>& idx) {
+    MatX<float> out(m.rows(), Eigen::Index(idx.size()));
+    for (size_t j = 0; j < idx.size(); ++j) out.col(Eigen::Index(j)) = m.col(idx[j]);
+    return out;
+}
+
+/// The tree with only the nodes reachable from the root, in pre-order, leaves numbered left to
+/// right, and each leaf's network moved into place.
+PartitionedNetwork finishTree(TreeBuild& b) {
+    PartitionedNetwork out;
+    std::vector<int> stack = {0};
+    std::vector<int> newIndex(b.tree.nodes.size(), -1);
+    while (!stack.empty()) {
+        const int old = stack.back();
+        stack.pop_back();
+        newIndex[size_t(old)] = int(out.tree.nodes.size());
+        PartitionNode n = b.tree.nodes[size_t(old)];
+        if (n.isLeaf()) {
+            n.leaf = int(out.leaves.size());
+            out.leaves.push_back(std::move(b.nets[size_t(old)]));
+        } else {
+            n.leaf = -1;
+            stack.push_back(n.right);
+            stack.push_back(n.left);
+        }
+        out.tree.nodes.push_back(n);
+    }
+    for (PartitionNode& n : out.tree.nodes)
+        if (!n.isLeaf()) {
+            n.left = newIndex[size_t(n.left)];
+            n.right = newIndex[size_t(n.right)];
+        }
+    return out;
 }
 
 }  // namespace
@@ -123,43 +186,156 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
         }
     }
 
-    auto run = [&](size_t j) {
-        const Job& job = jobs[j];
-        ObjectModel& om = result[job.slot];
-        const ObjectSamples& s = *job.samples;
-        if (observer.cancel && observer.cancel->load()) {
-            om.skipped = true;
-            om.message = "object " + std::to_string(s.objectId) + " (" + job.target + "): cancelled before training";
-            return;
-        }
+    const PartitionSettings& part = options.partition;
+    auto cancelled = [&] { return observer.cancel && observer.cancel->load(); };
+    auto archFor = [&](const Job& job) {
         MlpArch arch;
-        arch.inputs = s.numInputs;
+        arch.inputs = job.samples->numInputs;
         arch.hidden = options.hidden;
         arch.activation = options.activation;
         arch.outputs = job.target == "joint" ? 6 : 3;
-        TrainObserver obs;
-        obs.cancel = observer.cancel;
-        const int id = s.objectId;
-        const std::string target = job.target;
-        if (observer.onEpoch) obs.onEpoch = [&, id, target](const EpochRecord& r) { observer.onEpoch(id, target, r); };
-        if (observer.onMessage)
-            obs.onMessage = [&, id, target](const std::string& m) {
-                observer.onMessage("object " + std::to_string(id) + " (" + target + "): " + m);
-            };
-        if (s.size() < 7)
-            message("object " + std::to_string(id) + " (" + target + "): only " + std::to_string(s.size()) +
-                    " samples, trained without validation and test sets");
-        // The object id keys split and initial weights, so adding or removing other objects, or
-        // choosing other objects to train, never changes this object's network.
-        om.model = fitNetwork(arch, options.trainer, s.inputMatrix(), targetMatrix(s, target), obs, uint64_t(uint32_t(id)));
-        om.model.objectId = id;
-        om.model.objectName = s.name;
-        om.model.target = target;
+        return arch;
     };
-    if (options.parallel)
-        tbb::parallel_for(size_t(0), jobs.size(), run);
-    else
-        for (size_t j = 0; j < jobs.size(); ++j) run(j);
+    std::vector<MatX<float>> targetsOf(jobs.size());
+    std::vector<TreeBuild> builds(jobs.size());
+    std::vector<NodeTask> level;
+    for (size_t j = 0; j < jobs.size(); ++j) {
+        const ObjectSamples& s = *jobs[j].samples;
+        targetsOf[j] = targetMatrix(s, jobs[j].target);
+        builds[j].tree = PartitionTree::singleLeaf(int64_t(s.size()));
+        builds[j].nets.resize(1);
+        builds[j].trained.assign(1, 0);
+        builds[j].parent.assign(1, -1);
+        NodeTask root;
+        root.job = j;
+        root.records.resize(s.size());
+        for (size_t i = 0; i < s.size(); ++i) root.records[i] = uint32_t(i);
+        level.push_back(std::move(root));
+        if (s.size() < 7)
+            message("object " + std::to_string(s.objectId) + " (" + jobs[j].target + "): only " + std::to_string(s.size()) +
+                    " samples, trained without validation and test sets");
+    }
+
+    // Level by level: train every node of the level (all objects and targets) in parallel, then decide
+    // sequentially, in a fixed order, which nodes split. Each network is a pure function of its
+    // records and its stream, so the result does not depend on the thread count.
+    while (!level.empty()) {
+        std::vector<double> error(level.size(), std::numeric_limits<double>::quiet_NaN());
+        auto train = [&](size_t k) {
+            const NodeTask& task = level[k];
+            const Job& job = jobs[task.job];
+            const ObjectSamples& s = *job.samples;
+            TreeBuild& b = builds[task.job];
+            if (cancelled()) return;
+            const int id = s.objectId;
+            const std::string target = job.target;
+            const std::string who = "object " + std::to_string(id) + " (" + target + ")" +
+                                    (task.node ? " node " + std::to_string(task.node) : "");
+            TrainObserver obs;
+            obs.cancel = observer.cancel;
+            if (observer.onEpoch && task.node == 0)
+                obs.onEpoch = [&, id, target](const EpochRecord& r) { observer.onEpoch(id, target, r); };
+            if (observer.onMessage) obs.onMessage = [&, who](const std::string& m) { observer.onMessage(who + ": " + m); };
+            const uint64_t stream = nodeStream(id, task.node);
+            const bool all = task.records.size() == s.size();
+            const MatX<float> x = all ? MatX<float>() : gatherColumns(s.inputMatrix(), task.records);
+            const MatX<float> y = all ? MatX<float>() : gatherColumns(targetsOf[task.job], task.records);
+            const Eigen::Index n = Eigen::Index(task.records.size());
+            const Eigen::Map<const MatX<float>> xin(all ? s.inputs.data() : x.data(), s.numInputs, n);
+            const Eigen::Map<const MatX<float>> yin(all ? targetsOf[task.job].data() : y.data(), targetsOf[task.job].rows(), n);
+            NetworkModel net = fitNetwork(archFor(job), options.trainer, xin, yin, obs, stream);
+            net.objectId = id;
+            net.objectName = s.name;
+            net.target = target;
+            // Validation split exactly as fitNetwork drew it (same n, seed and stream).
+            const DataSplit split = splitSamples(size_t(xin.cols()), options.trainer.seed(), stream);
+            if (!split.validation.empty())
+                error[k] = relativeRmse(net.predict(gatherColumns(xin, split.validation)), gatherColumns(yin, split.validation));
+            b.nets[size_t(task.node)] = std::move(net);
+            b.trained[size_t(task.node)] = 1;
+        };
+        if (options.parallel)
+            tbb::parallel_for(size_t(0), level.size(), train);
+        else
+            for (size_t k = 0; k < level.size(); ++k) train(k);
+
+        // Worst nodes first within each tree, so max_leaves goes where the error is.
+        std::vector<size_t> order(level.size());
+        for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+        auto key = [&](size_t k) { return std::isnan(error[k]) ? -1.0 : error[k]; };
+        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+            if (level[a].job != level[b].job) return level[a].job < level[b].job;
+            if (key(a) != key(b)) return key(a) > key(b);
+            return level[a].node < level[b].node;
+        });
+        std::vector<NodeTask> next;
+        for (size_t k : order) {
+            NodeTask& task = level[k];
+            TreeBuild& b = builds[task.job];
+            const Job& job = jobs[task.job];
+            if (!b.trained[size_t(task.node)]) {
+                // Cancelled before this node started: its parent keeps its own network as a leaf.
+                const int p = b.parent[size_t(task.node)];
+                if (p >= 0 && !b.tree.nodes[size_t(p)].isLeaf()) {
+                    b.tree.nodes[size_t(p)].axis = -1;
+                    b.leaves -= 1;
+                }
+                continue;
+            }
+            PartitionNode& node = b.tree.nodes[size_t(task.node)];
+            node.records = int64_t(task.records.size());
+            node.error = error[k];
+            const double minRecords = std::ceil(part.minRecordsPerWeight * double(archFor(job).numParams()));
+            if (!part.enabled() || cancelled() || task.depth >= part.maxDepth || b.leaves >= part.maxLeaves ||
+                !(error[k] > part.goal) || double(task.records.size()) < 2 * minRecords)
+                continue;
+            const ObjectSamples& s = *job.samples;
+            const std::optional<SplitPlane> plane = splitNode(s.inputs.data(), s.numInputs, task.records, part.axes);
+            if (!plane) continue;
+            NodeTask left, right;
+            for (uint32_t r : task.records)
+                (s.inputs[size_t(r) * size_t(s.numInputs) + size_t(plane->axis)] < plane->split ? left : right)
+                    .records.push_back(r);
+            if (double(left.records.size()) < minRecords || double(right.records.size()) < minRecords) continue;
+            const int li = int(b.tree.nodes.size()), ri = li + 1;
+            node.axis = plane->axis;
+            node.split = plane->split;
+            node.left = li;
+            node.right = ri;
+            for (NodeTask* c : {&left, &right}) {
+                PartitionNode leaf;
+                leaf.records = int64_t(c->records.size());
+                b.tree.nodes.push_back(leaf);
+                b.nets.emplace_back();
+                b.trained.push_back(0);
+                b.parent.push_back(task.node);
+                c->job = task.job;
+                c->depth = task.depth + 1;
+            }
+            left.node = li;
+            right.node = ri;
+            b.leaves += 1;
+            char line[200];
+            std::snprintf(line, sizeof line, ": node %d (%lld records) has validation relative error %.4f > goal %.4g: split at %s < %.6g",
+                          task.node, (long long)task.records.size(), error[k], part.goal, splitAxisName(plane->axis),
+                          double(plane->split));
+            message("object " + std::to_string(s.objectId) + " (" + job.target + ")" + line);
+            next.push_back(std::move(left));
+            next.push_back(std::move(right));
+        }
+        level = std::move(next);
+    }
+
+    for (size_t j = 0; j < jobs.size(); ++j) {
+        ObjectModel& om = result[jobs[j].slot];
+        if (!builds[j].trained[0]) {
+            om.skipped = true;
+            om.message = "object " + std::to_string(jobs[j].samples->objectId) + " (" + jobs[j].target +
+                         "): cancelled before training";
+            continue;
+        }
+        om.model = finishTree(builds[j]);
+    }
     return result;
 }
 

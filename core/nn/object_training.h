@@ -3,7 +3,7 @@
 /// from in-memory samples, objects in parallel.
 ///
 /// The dataset reader fills one ObjectSamples per object and calls trainObjects(); the result holds a
-/// NetworkModel per trained network (save each with saveModel) and an entry, marked skipped, with a
+/// PartitionedNetwork per trained object and target (saved by nn/model_set.h) and an entry, marked skipped, with a
 /// message for every object that could not be trained.
 
 #include <atomic>
@@ -56,18 +56,44 @@ enum class TargetMode {
 const char* targetModeName(TargetMode m);
 TargetMode parseTargetMode(const std::string& s);
 
+/// How each object's input space is partitioned (Ren et al. 2013; nn/partition_tree.h). The tree
+/// grows level by level: a node's network is trained on the node's records, and the node is split
+/// (median of the widest allowed axis) while
+///   its network's validation relative RMSE (relativeRmse, ε = 0.01) is above `goal`,
+///   both children would hold at least `minRecordsPerWeight` × P records (P: the network's weights),
+///   the node is shallower than `maxDepth` and the tree has fewer than `maxLeaves` leaves;
+/// within a level the worst nodes split first when `maxLeaves` runs out. Every node trains on its
+/// own records from scratch, nodes of a level (of all objects and targets) in parallel.
+struct PartitionSettings {
+    double goal = 0.05;               ///< "goal": validation relative RMSE a leaf must reach (0, 10]
+    int maxDepth = 8;                 ///< "max_depth": 0 … 20; 0 = one network per object
+    int maxLeaves = 1;                ///< "max_leaves": 1 … 4096; 1 = one network per object
+    double minRecordsPerWeight = 8;   ///< "min_records_per_weight": 1 … 1000 (Ren et al.: 8–10)
+    PartitionAxes axes;               ///< "split_axes": any of "position", "light"
+
+    /// True when a tree can grow beyond its root.
+    bool enabled() const { return maxDepth > 0 && maxLeaves > 1; }
+    bool operator==(const PartitionSettings& o) const {
+        return goal == o.goal && maxDepth == o.maxDepth && maxLeaves == o.maxLeaves &&
+               minRecordsPerWeight == o.minRecordsPerWeight && axes == o.axes;
+    }
+};
+
 struct ObjectTrainingOptions {
     std::vector<int> hidden{20, 10};
     Activation activation = Activation::Tanh;
     TargetMode targets = TargetMode::Global;
     TrainerConfig trainer;
+    PartitionSettings partition;  ///< default: one network per object and target
     std::vector<int> objects;  ///< object ids to train; empty = all
     bool parallel = true;      ///< train objects concurrently (TBB); results are identical either way
 };
 
 /// Progress of all networks. Called concurrently from worker threads: must be thread-safe.
 struct ObjectTrainingObserver {
-    /// (object id, target: "global" | "direct" | "indirect" | "joint", record)
+    /// (object id, target: "global" | "direct" | "indirect" | "joint", record) for the epochs of each
+    /// tree's root network (the object's network when it is not partitioned); the networks of deeper
+    /// nodes report through onMessage when they finish.
     std::function<void(int, const std::string&, const EpochRecord&)> onEpoch;
     std::function<void(const std::string&)> onMessage;
     const std::atomic<bool>* cancel = nullptr;
@@ -79,10 +105,11 @@ struct ObjectModel {
     std::string target;        ///< as NetworkModel::target
     bool skipped = false;      ///< no network (no samples, unknown object id, cancelled before start)
     std::string message;       ///< why it was skipped
-    NetworkModel model;        ///< valid unless skipped
+    PartitionedNetwork model;  ///< valid unless skipped (a single-leaf tree when not partitioned)
 };
 
-/// Trains the selected objects. The result is in the order of `objects` (then direct before indirect)
+/// Trains the selected objects, each network a kd-tree of networks when `options.partition` is
+/// enabled (PartitionSettings). The result is in the order of `objects` (then direct before indirect)
 /// and is bit-identical for any thread count. An object with no samples is skipped with a message;
 /// a single-sample object trains (on that one sample, without validation or test sets).
 /// Throws std::invalid_argument for malformed ObjectSamples or a network the trainer cannot handle.
@@ -91,5 +118,7 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
 
 /// File name of an object's model inside a models/ directory: "object_<id>_<target>.rrfm".
 std::string modelFileName(int objectId, const std::string& target);
+/// File name of leaf `leaf` of a partitioned model: "object_<id>_<target>_leaf<leaf>.rrfm".
+std::string leafModelFileName(int objectId, const std::string& target, int leaf);
 
 }  // namespace rrf

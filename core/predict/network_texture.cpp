@@ -112,6 +112,19 @@ void evaluateNetwork(const TexelReader& r, int base, const float* raw, float* ou
     for (int k = 0; k < outs; ++k) out[k] = a[size_t(k)] / r.at(outScale + k / 4, k % 4) + r.at(outOff + k / 4, k % 4);
 }
 
+/// Same steps as findLeafNetwork() in shaders/predict.frag: walks the tree block at `tree` with the
+/// raw inputs and returns the texel offset of the leaf's network block.
+int findLeafNetwork(const TexelReader& r, int tree, const float* raw) {
+    const int count = int(r.at(tree, 0));
+    int node = 0;
+    for (int step = 0; step < count; ++step) {
+        const float* n = r.texel(tree + 1 + node);
+        if (n[0] < 0.f) return int(n[1]);
+        node = raw[int(n[0])] < n[1] ? int(n[2]) : int(n[3]);
+    }
+    throw std::out_of_range("network texture: tree walk did not reach a leaf");
+}
+
 }  // namespace
 
 NetworkTexture packNetworkTexture(const Scene& scene, const ModelSet& models, int maxLayerWidth, int maxRows) {
@@ -133,14 +146,21 @@ NetworkTexture packNetworkTexture(const Scene& scene, const ModelSet& models, in
             const int slot = slotOf(target);
             const std::string who = "network '" + target + "' of object " + std::to_string(on.objectId);
             m.validate();
-            if (m.arch.inputs != tex.inputCount)
-                throw std::invalid_argument(who + " has " + std::to_string(m.arch.inputs) + " inputs, the scene's records " +
+            const MlpArch& arch = m.arch();
+            if (arch.inputs != tex.inputCount)
+                throw std::invalid_argument(who + " has " + std::to_string(arch.inputs) + " inputs, the scene's records " +
                                             std::to_string(tex.inputCount));
             const int wantOut = slot == kSlotJoint ? 6 : 3;
-            if (m.arch.outputs != wantOut)
-                throw std::invalid_argument(who + " has " + std::to_string(m.arch.outputs) + " outputs, expected " +
+            if (arch.outputs != wantOut)
+                throw std::invalid_argument(who + " has " + std::to_string(arch.outputs) + " outputs, expected " +
                                             std::to_string(wantOut));
-            for (int l = 0; l < m.arch.numLayers(); ++l) widest = std::max(widest, m.arch.layerOutputs(l));
+            for (int l = 0; l < arch.numLayers(); ++l) widest = std::max(widest, arch.layerOutputs(l));
+            // The shader indexes its 20 raw inputs (5 vec4s) with the split axis.
+            for (const PartitionNode& n : m.tree.nodes)
+                if (!n.isLeaf() && n.axis >= 12)
+                    throw std::invalid_argument(who + " splits on input " + std::to_string(n.axis) +
+                                                ", the GLSL predictor looks leaves up on the 12 geometric inputs only");
+            tex.maxTreeDepth = std::max(tex.maxTreeDepth, m.tree.depth());
         }
     }
     if (widest > maxLayerWidth)
@@ -162,11 +182,23 @@ NetworkTexture packNetworkTexture(const Scene& scene, const ModelSet& models, in
     for (const ObjectNetworks& on : models.objects) {
         for (const auto& [target, m] : on.byTarget) {
             const size_t at = w.texel();
-            if (at >= kMaxExactInteger) throw std::invalid_argument("network texture: too many weights for float offsets");
             tex.offsets[size_t(on.objectId)][size_t(slotOf(target))] = int(at);
             w.data()[4 * (1 + 3 * size_t(on.objectId)) + size_t(slotOf(target))] = float(at);
-            writeNetwork(w, m);
-            ++tex.networkCount;
+            // Tree block (node texels patched with the leaves' network offsets), then the leaves' networks.
+            const size_t nodes = m.tree.nodes.size();
+            w.texel4(float(nodes), float(m.leafCount()), 0.f, 0.f);
+            for (const PartitionNode& n : m.tree.nodes) {
+                if (n.isLeaf()) w.texel4(-1.f, 0.f, 0.f, 0.f);
+                else w.texel4(float(n.axis), n.split, float(n.left), float(n.right));
+            }
+            for (int l = 0; l < m.leafCount(); ++l) {
+                const size_t net = w.texel();
+                if (net >= kMaxExactInteger) throw std::invalid_argument("network texture: too many weights for float offsets");
+                for (size_t k = 0; k < nodes; ++k)
+                    if (m.tree.nodes[k].isLeaf() && m.tree.nodes[k].leaf == l) w.data()[4 * (at + 1 + k) + 1] = float(net);
+                writeNetwork(w, m.leaves[size_t(l)]);
+                ++tex.networkCount;
+            }
         }
     }
     tex.provides.assign(tex.offsets.size(), {false, false, false});
@@ -209,23 +241,23 @@ std::array<Vec3, 3> evaluateTerms(const NetworkTexture& tex, int objectId, const
     auto finite = [](const Vec3& v) { return v.isFinite() ? v : Vec3(0.f); };
     bool haveDirect = false, haveIndirect = false;
     if (off[kSlotJoint] >= 0.f) {
-        evaluateNetwork(r, int(off[kSlotJoint]), raw, y);
+        evaluateNetwork(r, findLeafNetwork(r, int(off[kSlotJoint]), raw), raw, y);
         terms[0] = finite(Vec3(y[0], y[1], y[2]));
         terms[1] = finite(Vec3(y[3], y[4], y[5]));
         haveDirect = haveIndirect = true;
     }
     if (off[kSlotDirect] >= 0.f) {
-        evaluateNetwork(r, int(off[kSlotDirect]), raw, y);
+        evaluateNetwork(r, findLeafNetwork(r, int(off[kSlotDirect]), raw), raw, y);
         terms[0] = finite(Vec3(y[0], y[1], y[2]));
         haveDirect = true;
     }
     if (off[kSlotIndirect] >= 0.f) {
-        evaluateNetwork(r, int(off[kSlotIndirect]), raw, y);
+        evaluateNetwork(r, findLeafNetwork(r, int(off[kSlotIndirect]), raw), raw, y);
         terms[1] = finite(Vec3(y[0], y[1], y[2]));
         haveIndirect = true;
     }
     if (!(haveDirect && haveIndirect) && off[kSlotGlobal] >= 0.f) {
-        evaluateNetwork(r, int(off[kSlotGlobal]), raw, y);
+        evaluateNetwork(r, findLeafNetwork(r, int(off[kSlotGlobal]), raw), raw, y);
         terms[2] = finite(Vec3(y[0], y[1], y[2]));
     } else {
         terms[2] = terms[0] + terms[1];

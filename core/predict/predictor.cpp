@@ -21,7 +21,7 @@ double since(std::chrono::steady_clock::time_point t0) {
 
 /// Where one object's terms come from: a network and the first of its output rows, or nothing.
 struct Source {
-    const NetworkModel* net = nullptr;
+    const PartitionedNetwork* net = nullptr;
     int row = 0;
     bool ok() const { return net != nullptr; }
 };
@@ -34,20 +34,37 @@ struct ObjectPlan {
 ObjectPlan planFor(const ObjectNetworks& o, bool exactDirect) {
     ObjectPlan p;
     auto get = [&](const char* t) { return o.has(t) ? &o.byTarget.at(t) : nullptr; };
-    if (const NetworkModel* j = get("joint")) {
+    if (const PartitionedNetwork* j = get("joint")) {
         p.direct = {j, 0};
         p.indirect = {j, 3};
     }
-    if (const NetworkModel* d = get("direct")) p.direct = {d, 0};
-    if (const NetworkModel* i = get("indirect")) p.indirect = {i, 0};
+    if (const PartitionedNetwork* d = get("direct")) p.direct = {d, 0};
+    if (const PartitionedNetwork* i = get("indirect")) p.indirect = {i, 0};
     p.exactDirect = exactDirect;
     if (exactDirect) p.direct = {};
     const bool directOk = exactDirect || p.direct.ok();
     if (!(directOk && p.indirect.ok()))
-        if (const NetworkModel* g = get("global")) p.global = {g, 0};
+        if (const PartitionedNetwork* g = get("global")) p.global = {g, 0};
     return p;
 }
+/// The tree the leaf overlay shows: the model that supplies indirect light, else global, else direct.
+const PartitionedNetwork* overlayTree(const ObjectPlan& p) {
+    return p.indirect.ok() ? p.indirect.net : p.global.ok() ? p.global.net : p.direct.net;
+}
 }  // namespace
+
+std::vector<int> Predictor::leaves(const GBuffer& gb) const {
+    std::vector<int> leaf(size_t(gb.width) * size_t(gb.height), -1);
+    const bool exact = settings_.direct == PredictionSettings::Direct::Exact;
+    for (size_t id = 0; id < gb.pixelsByObject.size(); ++id) {
+        const ObjectNetworks* o = models_.find(int(id));
+        if (!o || o->byTarget.empty()) continue;
+        const PartitionedNetwork* t = overlayTree(planFor(*o, exact));
+        if (!t) continue;
+        for (uint32_t i : gb.pixelsByObject[id]) leaf[i] = t->tree.findLeaf(gb.input(i));
+    }
+    return leaf;
+}
 
 Predictor::Predictor(const Scene& scene, const ModelSet& models, const PredictionSettings& settings)
     : scene_(scene),
@@ -59,15 +76,16 @@ Predictor::Predictor(const Scene& scene, const ModelSet& models, const Predictio
     if (!models.inputLayout.empty() && models.inputLayout != layout_.inputs)
         throw InputError(models.dir, "/input_layout", "the networks' input layout differs from this scene's record layout");
     for (const ObjectNetworks& o : models.objects)
-        for (const auto& [target, net] : o.byTarget) {
-            if (net.arch.inputs != layout_.inputCount())
+        for (const auto& [target, tree] : o.byTarget) {
+            const MlpArch& net = tree.arch();
+            if (net.inputs != layout_.inputCount())
                 throw std::invalid_argument("network " + target + " of object " + std::to_string(o.objectId) + " has " +
-                                            std::to_string(net.arch.inputs) + " inputs, the scene's records have " +
+                                            std::to_string(net.inputs) + " inputs, the scene's records have " +
                                             std::to_string(layout_.inputCount()));
             const int want = target == "joint" ? 6 : 3;
-            if (net.arch.outputs != want)
+            if (net.outputs != want)
                 throw std::invalid_argument("network " + target + " of object " + std::to_string(o.objectId) + " has " +
-                                            std::to_string(net.arch.outputs) + " outputs, expected " + std::to_string(want));
+                                            std::to_string(net.outputs) + " outputs, expected " + std::to_string(want));
         }
 }
 
@@ -81,7 +99,9 @@ std::vector<std::string> Predictor::describe() const {
         const ObjectNetworks* o = models_.find(obj.id);
         std::string nets;
         if (o)
-            for (const auto& kv : o->byTarget) nets += (nets.empty() ? "" : " + ") + kv.first + " " + kv.second.arch.describe();
+            for (const auto& kv : o->byTarget)
+                nets += (nets.empty() ? "" : " + ") + kv.first + " " + kv.second.arch().describe() +
+                        (kv.second.leafCount() > 1 ? " × " + std::to_string(kv.second.leafCount()) + " leaves" : "");
         lines.push_back(std::to_string(obj.id) + " " + obj.name + ": " + (nets.empty() ? "no network" : nets));
     }
     return lines;
@@ -90,6 +110,7 @@ std::vector<std::string> Predictor::describe() const {
 Prediction Predictor::predict(const GBuffer& gb) const {
     Prediction pr;
     for (Image& im : pr.images) im = Image(gb.width, gb.height);
+    pr.leaf.assign(size_t(gb.width) * size_t(gb.height), -1);
     const bool exact = settings_.direct == PredictionSettings::Direct::Exact;
 
     // Emitters show their emission in the direct and global terms, as in the ground truth.
@@ -139,7 +160,7 @@ Prediction Predictor::predict(const GBuffer& gb) const {
         for (Eigen::Index k = 0; k < n; ++k)
             x.col(k) = Eigen::Map<const VecX<float>>(gb.input(px[job.begin + size_t(k)]), gb.numInputs);
         // Each distinct network runs once per batch even when it feeds two terms (joint).
-        const NetworkModel* nets[3] = {job.plan.direct.net, job.plan.indirect.net, job.plan.global.net};
+        const PartitionedNetwork* nets[3] = {job.plan.direct.net, job.plan.indirect.net, job.plan.global.net};
         MatX<float> outs[3];
         for (int a = 0; a < 3; ++a) {
             if (!nets[a]) continue;
@@ -149,6 +170,9 @@ Prediction Predictor::predict(const GBuffer& gb) const {
             outs[a] = same >= 0 ? outs[same] : nets[a]->predict(x);
         }
         const int rows[3] = {job.plan.direct.row, job.plan.indirect.row, job.plan.global.row};
+        const PartitionedNetwork* shown = overlayTree(job.plan);
+        const std::vector<int> leaves = shown ? shown->findLeaves(x) : std::vector<int>(size_t(n), -1);
+        for (Eigen::Index k = 0; k < n; ++k) pr.leaf[px[job.begin + size_t(k)]] = leaves[size_t(k)];
         uint64_t bad = 0;
         auto value = [&](int a, Eigen::Index k) {
             Vec3 v(outs[a](rows[a], k), outs[a](rows[a] + 1, k), outs[a](rows[a] + 2, k));

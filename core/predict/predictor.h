@@ -1,6 +1,7 @@
 #pragma once
 /// CPU prediction (docs/design.md §13): every covered pixel of a G-buffer is
-/// evaluated with its object's networks, batched per object (NetworkModel::predict, Eigen GEMMs),
+/// evaluated with its object's networks, batched per object (PartitionedNetwork::predict: each
+/// pixel's kd-tree leaf is looked up and its network evaluated, Eigen GEMMs per leaf),
 /// giving the direct, indirect and global images.
 ///
 /// What each term comes from depends on the networks an object has (network "targets"):
@@ -44,6 +45,10 @@ struct Prediction {
     /// light of a pixel.
     uint64_t nonFinite = 0;
     uint64_t pixelsPredicted = 0;        ///< pixels evaluated by at least one network
+    /// Per pixel (row-major, top row first): the kd-tree leaf that predicted it, in the tree of the
+    /// object's indirect network (else global, else direct); −1 where no network ran. The view's
+    /// "leaf" overlay colours pixels by (object, leaf).
+    std::vector<int> leaf;
     double inferenceSeconds = 0.0;       ///< network evaluation
     double directSeconds = 0.0;          ///< exact direct light (0 in network mode)
 
@@ -61,6 +66,9 @@ public:
     GBuffer gbuffer(const Vec3& lightPos, int width, int height) const;
     /// Evaluates the networks (and the exact direct light if chosen) over `gb`.
     Prediction predict(const GBuffer& gb) const;
+    /// Prediction::leaf without evaluating any network: per pixel of `gb` the kd-tree leaf of its
+    /// object's indirect model (else global, else direct), −1 where no network would run.
+    std::vector<int> leaves(const GBuffer& gb) const;
 
     const PredictionSettings& settings() const { return settings_; }
     const RecordLayout& layout() const { return layout_; }

@@ -282,6 +282,43 @@ TEST(GlslPredictor, MatchesCpuPredictionCornellBox) {
     }
 }
 
+TEST(GlslPredictor, MatchesCpuPredictionOfPartitionedModels) {
+    RRF_REQUIRE_GL();
+    // Every model a kd-tree of three leaves. The first plane is put exactly on the hit x of the
+    // image's centre pixel, so pixels lie on it: the shader's x < split must decide as the CPU's does.
+    Scene scene = test::cornellBox();
+    float splitX = 0.f;
+    {
+        GlslPredictor probe(scene, test::mixedModelSet(scene));
+        probe.render();
+        const GlGBuffer g = probe.readGBuffer();
+        splitX = g.position[3 * (size_t(g.height / 2) * size_t(g.width) + size_t(g.width / 2))];
+    }
+    const float splitLight = 0.05f;
+    const ModelSet set = test::partitionedModelSet(scene, splitX, splitLight);
+    GlslPredictor gp(scene, set);
+    EXPECT_EQ(gp.networks().networkCount, 33);  // 11 models × 3 leaves
+    EXPECT_EQ(gp.networks().maxTreeDepth, 2);
+    int leavesSeen[3] = {0, 0, 0};
+    size_t onPlane = 0;
+    for (const Vec3& p : {Vec3(-0.1f, 0.9f, 0.05f), Vec3(0.2f, 0.9f, -0.1f)}) {
+        gp.setLightPosition(p);
+        gp.render();
+        expectEquivalent(scene, set, gp, 0.9);
+        const GlGBuffer g = gp.readGBuffer();
+        for (size_t i = 0; i < g.pixelCount(); ++i) {
+            if (g.objectId[i] < 0) continue;
+            const float x = g.position[3 * i];
+            onPlane += x == splitX;
+            ++leavesSeen[x < splitX ? 0 : p.x < splitLight ? 1 : 2];
+        }
+    }
+    std::printf("  pixels per leaf %d %d %d, %zu exactly on the first plane\n", leavesSeen[0], leavesSeen[1], leavesSeen[2],
+                onPlane);
+    for (int n : leavesSeen) EXPECT_GT(n, 1000);
+    EXPECT_GT(onPlane, 0u);
+}
+
 TEST(GlslPredictor, MatchesCpuPredictionReluOddWidthsCornellBox) {
     RRF_REQUIRE_GL();
     const Scene scene = test::cornellBox();

@@ -97,15 +97,38 @@ inline ModelSet mixedModelSet(const Scene& scene, Activation act = Activation::T
     return set;
 }
 
+/// mixedModelSet with every model a kd-tree of three leaves (nn/partition_tree.h): hit_x < splitX
+/// → leaf 0, else light_x < splitLightX → leaf 1, else leaf 2; each leaf a different random network.
+inline ModelSet partitionedModelSet(const Scene& scene, float splitX, float splitLightX, uint64_t seed = 11) {
+    ModelSet set = mixedModelSet(scene);
+    for (ObjectNetworks& on : set.objects)
+        for (auto& [target, model] : on.byTarget) {
+            PartitionedNetwork t;
+            t.tree.nodes.resize(5);
+            t.tree.nodes[0] = {0, splitX, 1, 2};
+            t.tree.nodes[1].leaf = 0;
+            t.tree.nodes[2] = {6, splitLightX, 3, 4};
+            t.tree.nodes[3].leaf = 1;
+            t.tree.nodes[4].leaf = 2;
+            for (uint64_t l = 0; l < 3; ++l)
+                t.leaves.push_back(randomNetwork(scene, on.objectId, target, model.arch().hidden, Activation::Tanh,
+                                                 seed + 17 * l));
+            t.validate();
+            model = std::move(t);
+        }
+    return set;
+}
+
 /// CPU reference: direct, indirect, global of one object for raw inputs (inputs × N), combined by the
-/// rules of core/predict/network_texture.h but computed with NetworkModel::predict (S = float) or
-/// NetworkModel::predictDouble (S = double, to measure how far float itself is from exact).
+/// rules of core/predict/network_texture.h but computed with PartitionedNetwork::predict (S = float)
+/// or PartitionedNetwork::predictDouble (S = double, to measure how far float itself is from exact);
+/// both look the leaf up on the float inputs.
 template <typename S> struct CpuTermsT {
     MatX<S> direct, indirect, global;
 };
 using CpuTerms = CpuTermsT<float>;
 
-template <typename S> MatX<S> predictAs(const NetworkModel& m, const MatX<S>& raw) {
+template <typename S> MatX<S> predictAs(const PartitionedNetwork& m, const MatX<S>& raw) {
     if constexpr (std::is_same_v<S, float>)
         return m.predict(raw);
     else

@@ -70,8 +70,13 @@ TEST(NetworkTexture, HeaderObjectTableAndOffsets) {
             EXPECT_EQ(int(entry[s]), tex.offsets[size_t(on.objectId)][size_t(s)]);
             if (entry[s] < 0.f) continue;
             ++networks;
-            const NetworkModel& m = on.byTarget.at(names[s]);
-            const float* h = &tex.texels[4 * size_t(entry[s])];
+            // The entry points at the model's tree block: one node, a leaf naming its network block.
+            const NetworkModel& m = on.byTarget.at(names[s]).leaves[0];
+            const float* tree = &tex.texels[4 * size_t(entry[s])];
+            EXPECT_EQ(tree[0], 1.f);
+            EXPECT_EQ(tree[1], 1.f);
+            EXPECT_EQ(tree[4], -1.f);
+            const float* h = &tex.texels[4 * size_t(tree[5])];
             EXPECT_EQ(h[0], float(m.arch.inputs));
             EXPECT_EQ(h[1], float(m.arch.outputs));
             EXPECT_EQ(h[2], float(m.arch.numLayers()));
@@ -90,6 +95,15 @@ TEST(NetworkTexture, HeaderObjectTableAndOffsets) {
 TEST(NetworkTexture, MirrorOfShaderMatchesPredictTanh) {
     const Scene scene = test::cornellBox();
     expectMirrorMatchesPredict(scene, test::mixedModelSet(scene));
+}
+
+TEST(NetworkTexture, MirrorOfShaderMatchesPredictPartitioned) {
+    // Three-leaf kd-trees: the mirror walks the tree block as the shader does (hit x splits at 0; the
+    // light sits just below the light-x plane, so leaves 0 and 1 are used).
+    const Scene scene = test::cornellBox();
+    const ModelSet set = test::partitionedModelSet(scene, 0.f, scene.lightPosition().x + 0.01f);
+    EXPECT_EQ(packNetworkTexture(scene, set).networkCount, 33);
+    expectMirrorMatchesPredict(scene, set);
 }
 
 TEST(NetworkTexture, MirrorOfShaderMatchesPredictReluOddWidths) {
@@ -144,7 +158,7 @@ TEST(NetworkTexture, RejectsModelsThatDoNotFitTheScene) {
     expectThrow(wide, "wider than");
 
     ModelSet nonFinite = base;
-    nonFinite.objects[2].byTarget.begin()->second.params[0] = NAN;
+    nonFinite.objects[2].byTarget.begin()->second.leaves[0].params[0] = NAN;
     expectThrow(nonFinite, "non-finite");
 
     EXPECT_THROW(packNetworkTexture(scene, base, 256, 1), std::invalid_argument);  // one row is too few
