@@ -423,13 +423,13 @@ TEST(DataGenerator, LambertSceneRecordsCarryAlbedoOnly) {
     s.spp = 2;
     const DataGenerator gen(scene, s);
     ASSERT_EQ(gen.layout().inputCount(), 15);
-    ASSERT_EQ(gen.layout().floatsPerRecord(), 21);
+    ASSERT_EQ(gen.layout().floatsPerRecord(), 27) << "15 inputs, 6 targets, 6 target variances";
     const GeneratedData d = gen.run();
     EXPECT_EQ(d.header.at("input_layout").size(), 15u);
     EXPECT_EQ(d.header.at("input_layout")[12], "kd_r");
-    EXPECT_EQ(d.header.at("floats_per_record"), 21);
+    EXPECT_EQ(d.header.at("floats_per_record"), 27);
     uint64_t n = 0;
-    forEachRecord(d, 21, [&](size_t obj, const float* r) {
+    forEachRecord(d, 27, [&](size_t obj, const float* r) {
         const Vec3 kd = scene.materials[size_t(scene.objects[obj].material)].kd;
         EXPECT_TRUE(r[12] == kd.x && r[13] == kd.y && r[14] == kd.z) << scene.objects[obj].name;
         ++n;

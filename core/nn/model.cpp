@@ -76,7 +76,15 @@ void NetworkModel::validate() const {
 
 NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eigen::Ref<const MatX<float>>& inputs,
                         const Eigen::Ref<const MatX<float>>& targets, const TrainObserver& observer, uint64_t stream) {
+    return fitNetwork(arch, cfg, inputs, targets, MatX<float>(), observer, stream);
+}
+
+NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eigen::Ref<const MatX<float>>& inputs,
+                        const Eigen::Ref<const MatX<float>>& targets, const MatX<float>& targetVariance,
+                        const TrainObserver& observer, uint64_t stream) {
     arch.validate();
+    if (targetVariance.size() > 0 && (targetVariance.rows() != targets.rows() || targetVariance.cols() != targets.cols()))
+        throw std::invalid_argument("fitNetwork: the target variance's shape differs from the targets'");
     if (inputs.rows() != arch.inputs || targets.rows() != arch.outputs)
         throw std::invalid_argument("fitNetwork: data has " + std::to_string(inputs.rows()) + " inputs and " +
                                     std::to_string(targets.rows()) + " targets, the network " + arch.describe());
@@ -101,6 +109,7 @@ NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eig
     d.yTest = gather(targets, split.test);
     for (MatX<float>* x : {&d.xTrain, &d.xValidation, &d.xTest}) model.inputScaler.apply(*x);
     for (MatX<float>* y : {&d.yTrain, &d.yValidation, &d.yTest}) model.outputScaler.apply(*y);
+    if (targetVariance.size() > 0) d.vValidation = gather(targetVariance, split.validation);
 
     model.params = initialParams(arch, cfg.seed(), stream);
     model.training = trainNetwork(arch, cfg, d, model.outputScaler, model.params, observer);

@@ -31,6 +31,9 @@ void ObjectSamples::validate() const {
         throw std::invalid_argument(who + ": " + std::to_string(n) + " input records but " +
                                     std::to_string(direct.size() / 3) + " direct and " +
                                     std::to_string(indirect.size() / 3) + " indirect targets");
+    const bool noVariance = directVariance.empty() && indirectVariance.empty();
+    if (!noVariance && (directVariance.size() != 3 * n || indirectVariance.size() != 3 * n))
+        throw std::invalid_argument(who + ": target variances must be given for every record or not at all");
 }
 
 const char* targetModeName(TargetMode m) {
@@ -74,6 +77,24 @@ MatX<float> targetMatrix(const ObjectSamples& s, const std::string& target) {
         return t;
     }
     return s.directMatrix() + s.indirectMatrix();
+}
+
+/// Variance of the target's Monte Carlo mean (empty when unknown). The global target's is the sum:
+/// under NEE the first vertex's light sample and the path's continuation use independent random
+/// numbers, so direct and indirect estimates of one record are uncorrelated.
+MatX<float> targetVariance(const ObjectSamples& s, const std::string& target) {
+    if (s.directVariance.empty()) return {};
+    const Eigen::Map<const MatX<float>> d(s.directVariance.data(), 3, Eigen::Index(s.size()));
+    const Eigen::Map<const MatX<float>> i(s.indirectVariance.data(), 3, Eigen::Index(s.size()));
+    if (target == "direct") return d;
+    if (target == "indirect") return i;
+    if (target == "joint") {
+        MatX<float> t(6, Eigen::Index(s.size()));
+        t.topRows(3) = d;
+        t.bottomRows(3) = i;
+        return t;
+    }
+    return d + i;
 }
 
 }  // namespace
@@ -151,7 +172,8 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
                     " samples, trained without validation and test sets");
         // The object id keys split and initial weights, so adding or removing other objects, or
         // choosing other objects to train, never changes this object's network.
-        om.model = fitNetwork(arch, options.trainer, s.inputMatrix(), targetMatrix(s, target), obs, uint64_t(uint32_t(id)));
+        om.model = fitNetwork(arch, options.trainer, s.inputMatrix(), targetMatrix(s, target),
+                              targetVariance(s, target), obs, uint64_t(uint32_t(id)));
         om.model.objectId = id;
         om.model.objectName = s.name;
         om.model.target = target;
