@@ -128,7 +128,7 @@ TEST(LevenbergMarquardt, SingularJtJStaysFinite) {
         yd(1, c) = 2.0f;
         yd(2, c) = xd(1, c) * xd(3, c);
     }
-    const NetworkModel m = fitNetwork(a, lmConfig({{"max_epochs", 60}}), xd, yd);
+    const NetworkModel m = fitNetwork(a, lmConfig({{"max_epochs", 60}, {"error_goal", 0}}), xd, yd);
     EXPECT_TRUE(finiteModel(m));
     const MatX<float> pred = m.predict(xd);
     EXPECT_TRUE(pred.allFinite());
