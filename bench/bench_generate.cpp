@@ -87,6 +87,10 @@ int main(int argc, char** argv) {
     input = bench::projectOrDefault(input, "bench_generate");
     gen.nx = genGrid[0], gen.ny = genGrid[1], gen.nz = genGrid[2];
     mem.nx = memGrid[0], mem.ny = memGrid[1], mem.nz = memGrid[2];
+    // Fixed paths per record (no adaptive sampling), so records/s is measured at exactly --spp paths
+    // and the memory run's 1 path stays 1.
+    gen.maxSpp = gen.spp;
+    mem.maxSpp = mem.spp;
     const bool memory = !noMemory;
 
     const Project project = loadProjectOrScene(input);

@@ -1,5 +1,6 @@
 // Sampling panel: the data generator's settings (Project::sampling), what a run will
 // cost before it starts, and how many records each object got after it ran.
+#include <algorithm>
 #include <cstdio>
 
 #include <imgui.h>
@@ -17,10 +18,14 @@ void drawEstimate(const WorkbenchState& state, const SamplingSettings& s) {
     const int floats = RecordLayout::forScene(state.project.scene).floatsPerRecord();
     const double bytes = records * floats * 4.0;
     ImGui::Text("at most %.3g records, %.3g MB (%d floats per record)", records, bytes / 1e6, floats);
-    // Each record traces spp paths; the last render's speed is the best guide this machine has.
+    // Each record traces spp to max_spp paths; the last render's speed is the best guide this machine has.
     if (state.render.samplesPerSecond > 0) {
         const double seconds = records * double(s.spp) / state.render.samplesPerSecond;
-        ImGui::Text("about %.0f s at the last render's %.3g samples/s", seconds, state.render.samplesPerSecond);
+        if (s.adaptive())
+            ImGui::Text("%.0f to %.0f s at the last render's %.3g samples/s (adaptive paths per record)", seconds,
+                        seconds * double(s.maxSpp) / double(s.spp), state.render.samplesPerSecond);
+        else
+            ImGui::Text("about %.0f s at the last render's %.3g samples/s", seconds, state.render.samplesPerSecond);
     } else {
         ImGui::TextDisabled("render the ground truth once for a time estimate");
     }
@@ -33,15 +38,24 @@ void drawCoverage(const DatasetInfo& d) {
     }
     const GeneratorStats& g = d.generator;
     ImGui::TextWrapped("%s (%.1f s)", d.path.c_str(), d.seconds);
-    ImGui::Text("%llu records from %llu of %llu viewpoints (%llu inside objects, %llu outside the scene)",
+    ImGui::Text("%llu records from %llu of %llu viewpoints (%llu inside objects, %llu outside the scene, %llu behind a "
+                "surface)",
                 (unsigned long long)g.records, (unsigned long long)g.keptCells(), (unsigned long long)g.cells(),
-                (unsigned long long)g.cellsDroppedInsideObject, (unsigned long long)g.cellsDroppedOutsideScene);
+                (unsigned long long)g.cellsDroppedInsideObject, (unsigned long long)g.cellsDroppedOutsideScene,
+                (unsigned long long)g.cellsDroppedBehindSurface);
     ImGui::Text("rays without a record: %llu escaped, %llu hit a light, %llu without a finite sample",
                 (unsigned long long)g.raysEscaped, (unsigned long long)g.raysHitEmitter,
                 (unsigned long long)g.recordsWithoutFiniteSample);
-    if (!ImGui::BeginTable("##coverage", 2, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
+    ImGui::Text("paths: %llu (%.1f per record); records at the path cap with noise above the target: %llu",
+                (unsigned long long)g.paths, g.records ? double(g.paths) / double(g.records) : 0.0,
+                (unsigned long long)g.recordsAtSppCap);
+    if (!ImGui::BeginTable("##coverage", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
     ImGui::TableSetupColumn("object");
     ImGui::TableSetupColumn("records");
+    // Relative standard error of the targets (core/data/record_noise.h): what the trainers' goal
+    // competes with.
+    ImGui::TableSetupColumn("noise median");
+    ImGui::TableSetupColumn("noise p90");
     ImGui::TableHeadersRow();
     for (size_t i = 0; i < g.recordsPerObject.size(); ++i) {
         const uint64_t count = g.recordsPerObject[i];
@@ -50,6 +64,13 @@ void drawCoverage(const DatasetInfo& d) {
         ImGui::TextUnformatted(i < d.objectNames.size() ? d.objectNames[i].c_str() : "?");
         ImGui::TableNextColumn();
         ImGui::Text("%llu%s", (unsigned long long)count, count == 0 ? "  (no data: cannot train)" : "");
+        const NoiseSummary* n = i < g.noisePerObject.size() ? &g.noisePerObject[i] : nullptr;
+        ImGui::TableNextColumn();
+        if (n && n->known > 0) ImGui::Text("%.2f %%", 100.0 * n->median);
+        else ImGui::TextDisabled("unknown");
+        ImGui::TableNextColumn();
+        if (n && n->known > 0) ImGui::Text("%.2f %%", 100.0 * n->p90);
+        else ImGui::TextDisabled("unknown");
     }
     ImGui::EndTable();
 }
@@ -75,7 +96,18 @@ void drawSamplingPanel(WorkbenchState& state) {
     ImGui::SetNextItemWidth(w);
     changed |= ImGui::DragInt("directions (N_dir)", &s.directions, 10.f, 1, kMaxDirections);
     ImGui::SetNextItemWidth(w);
-    changed |= ImGui::DragInt("paths per record", &s.spp, 1.f, 1, kMaxSamplesPerRecord);
+    changed |= ImGui::DragInt("paths per record (first round)", &s.spp, 1.f, 1, kMaxSamplesPerRecord);
+    ImGui::SetNextItemWidth(w);
+    changed |= ImGui::DragInt("max paths per record", &s.maxSpp, 4.f, 1, kMaxSamplesPerRecord);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("adaptive sampling: a record doubles its paths until its relative noise is at most the\n"
+                          "noise target or it has this many paths; at most the first round = fixed paths per record");
+    ImGui::SetNextItemWidth(w);
+    float target = float(s.noiseTarget * 100.0);
+    if (ImGui::DragFloat("noise target (%)", &target, 0.05f, 0.1f, 100.f, "%.2f")) {
+        s.noiseTarget = double(std::max(target, 0.1f)) / 100.0;
+        changed = true;
+    }
     int seed = int(s.seed & 0x7fffffff);
     ImGui::SetNextItemWidth(w);
     if (ImGui::InputInt("seed##sampling", &seed)) {

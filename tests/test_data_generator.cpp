@@ -314,6 +314,7 @@ void compareRecordsWithPixel(const Vec3& lightPos) {
 
     SamplingSettings s;
     s.spp = 4;
+    s.maxSpp = 4;  // fixed 4-path records: the bounds below are derived for them
     s.seed = 3;
     const DataGenerator gen(original, s);
     const Ray centre = CameraRays(scene.camera, 1, 1).generate(0, 0, 0.5f, 0.5f);
@@ -423,13 +424,13 @@ TEST(DataGenerator, LambertSceneRecordsCarryAlbedoOnly) {
     s.spp = 2;
     const DataGenerator gen(scene, s);
     ASSERT_EQ(gen.layout().inputCount(), 15);
-    ASSERT_EQ(gen.layout().floatsPerRecord(), 21);
+    ASSERT_EQ(gen.layout().floatsPerRecord(), 27) << "15 inputs, 6 targets, 6 target variances";
     const GeneratedData d = gen.run();
     EXPECT_EQ(d.header.at("input_layout").size(), 15u);
     EXPECT_EQ(d.header.at("input_layout")[12], "kd_r");
-    EXPECT_EQ(d.header.at("floats_per_record"), 21);
+    EXPECT_EQ(d.header.at("floats_per_record"), 27);
     uint64_t n = 0;
-    forEachRecord(d, 21, [&](size_t obj, const float* r) {
+    forEachRecord(d, 27, [&](size_t obj, const float* r) {
         const Vec3 kd = scene.materials[size_t(scene.objects[obj].material)].kd;
         EXPECT_TRUE(r[12] == kd.x && r[13] == kd.y && r[14] == kd.z) << scene.objects[obj].name;
         ++n;
@@ -465,7 +466,7 @@ TEST(DataGenerator, PhongMaterialAddsSpecularParameters) {
     EXPECT_EQ(names[15], "ks_r");
     EXPECT_EQ(names[18], "log10_exponent_plus_1");
     ASSERT_GT(d.perObject[size_t(tall)].size(), 0u);
-    forEachRecord(d, 25, [&](size_t obj, const float* r) {
+    forEachRecord(d, 31, [&](size_t obj, const float* r) {  // 19 inputs, 6 targets, 6 variances
         const Material& m = scene.materials[size_t(scene.objects[obj].material)];
         EXPECT_TRUE(r[12] == m.kd.x && r[13] == m.kd.y && r[14] == m.kd.z) << scene.objects[obj].name;
         if (int(obj) == tall) {

@@ -22,6 +22,7 @@ SamplingSettings tinySettings() {
     s.nx = s.ny = s.nz = 3;
     s.directions = 12;
     s.spp = 2;
+    s.maxSpp = 2;  // fixed paths per record: paths = records · spp below
     s.seed = 7;
     return s;
 }

@@ -26,6 +26,7 @@ const char* statusName(ViewpointStatus s) {
         case ViewpointStatus::Kept: return "Kept";
         case ViewpointStatus::InsideObject: return "InsideObject";
         case ViewpointStatus::OutsideScene: return "OutsideScene";
+        case ViewpointStatus::BehindSurface: return "BehindSurface";
     }
     return "?";
 }

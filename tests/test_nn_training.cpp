@@ -107,7 +107,7 @@ TEST(LevenbergMarquardt, RecoversTeacherNetwork) {
     const MlpArch a = makeArch(3, {6, 4}, 3);
     const MatX<float> x = uniformInputs(3, 400, 1);
     const MatX<float> y = teacherOutputs(a, x, 5);
-    const NetworkModel m = fitNetwork(a, lmConfig({{"goal", 1e-14}, {"max_fail", 50}, {"max_epochs", 400}}), x, y);
+    const NetworkModel m = fitNetwork(a, lmConfig({{"goal", 1e-14}, {"error_goal", 0}, {"max_fail", 50}, {"max_epochs", 400}}), x, y);
     EXPECT_LT(m.training.testLoss, 1e-6) << m.training.stopReason << " after " << m.training.epochs;
     EXPECT_LT(m.training.trainLoss, 1e-6);
     // Matlab semantics: μ was adapted, losses recorded from epoch 0.
@@ -128,7 +128,7 @@ TEST(LevenbergMarquardt, SingularJtJStaysFinite) {
         yd(1, c) = 2.0f;
         yd(2, c) = xd(1, c) * xd(3, c);
     }
-    const NetworkModel m = fitNetwork(a, lmConfig({{"max_epochs", 60}}), xd, yd);
+    const NetworkModel m = fitNetwork(a, lmConfig({{"max_epochs", 60}, {"error_goal", 0}}), xd, yd);
     EXPECT_TRUE(finiteModel(m));
     const MatX<float> pred = m.predict(xd);
     EXPECT_TRUE(pred.allFinite());
@@ -245,7 +245,7 @@ TEST(Adam, CancelAndEarlyStop) {
 
     // A learning rate that cannot improve validation stops after `patience` epochs.
     const NetworkModel s = fitNetwork(a, adamConfig({{"patience", 3}, {"learning_rate", 1e-12},
-                                                     {"schedule", "constant"}}), x, y);
+                                                     {"schedule", "constant"}, {"patience_lr_fraction", 1}}), x, y);
     EXPECT_EQ(s.training.stopReason, "validation stop");
     EXPECT_LT(s.training.epochs, 10);
 }

@@ -33,6 +33,9 @@ int runGenerate(const GenerateArgs& a) {
     DataGenerator gen(project.scene, s);
     std::printf("rrf generate: %s, grid %dx%dx%d, %d directions, %d spp, seed %llu, shard %d/%d\n", a.input.c_str(), s.nx,
                 s.ny, s.nz, s.directions, s.spp, (unsigned long long)s.seed, k, n);
+    if (s.adaptive())
+        std::printf("adaptive paths per record: %d, doubling up to %d until the relative noise is <= %g\n", s.spp,
+                    s.maxSpp, s.noiseTarget);
     std::printf("inputs (%d): ", gen.layout().inputCount());
     for (const std::string& name : gen.layout().inputs) std::printf("%s ", name.c_str());
     std::printf("\n");
@@ -54,15 +57,21 @@ int runGenerate(const GenerateArgs& a) {
                 data.seconds, humanCount(double(st.records) / data.seconds).c_str(),
                 humanCount(double(st.paths) / data.seconds).c_str(),
                 humanCount(double(st.rays + st.shadowRays) / data.seconds).c_str());
-    std::printf("cells: %llu in shard, %llu dropped inside objects, %llu dropped outside the scene\n",
+    std::printf("cells: %llu in shard, %llu dropped inside objects, %llu dropped outside the scene, %llu dropped behind "
+                "a surface\n",
                 (unsigned long long)st.cells(), (unsigned long long)st.cellsDroppedInsideObject,
-                (unsigned long long)st.cellsDroppedOutsideScene);
+                (unsigned long long)st.cellsDroppedOutsideScene, (unsigned long long)st.cellsDroppedBehindSurface);
+    std::printf("paths: %.1f per record; %llu records at max_spp with noise above the target\n",
+                st.records ? double(st.paths) / double(st.records) : 0.0, (unsigned long long)st.recordsAtSppCap);
     std::printf("rays escaped: %llu, rays hitting an emitter: %llu, NaN/Inf samples dropped: %llu\n",
                 (unsigned long long)st.raysEscaped, (unsigned long long)st.raysHitEmitter,
                 (unsigned long long)st.nonFiniteSamplesDropped);
-    for (size_t i = 0; i < st.recordsPerObject.size(); ++i)
-        std::printf("  object %zu %-12s %10llu records\n", i, project.scene.objects[i].name.c_str(),
-                    (unsigned long long)st.recordsPerObject[i]);
+    for (size_t i = 0; i < st.recordsPerObject.size(); ++i) {
+        const NoiseSummary& noise = st.noisePerObject[i];
+        std::printf("  object %zu %-12s %10llu records, relative noise median %.4g, p90 %.4g\n", i,
+                    project.scene.objects[i].name.c_str(), (unsigned long long)st.recordsPerObject[i], noise.median,
+                    noise.p90);
+    }
     std::printf("wrote %s\n", a.out.c_str());
     return 0;
 }
@@ -76,6 +85,12 @@ void addGenerateCommand(CLI::App& app, int& exitCode) {
     addSamplingFlags(cmd, a->sampling, "--spp");
     a->sampling.add<long long>(cmd, "--seed", "random seed", [](SamplingSettings& s, const long long& seed) { s.seed = uint64_t(seed); })
         ->check(nonNegative());
+    a->sampling.add<int>(cmd, "--max-spp", "adaptive sampling: most paths per record (<= --spp: fixed paths per record)",
+                         [](SamplingSettings& s, const int& n) { s.maxSpp = n; })
+        ->check(CLI::Range(1, kMaxSamplesPerRecord));
+    a->sampling.add<double>(cmd, "--noise-target", "adaptive sampling: relative noise a record is sampled down to",
+                            [](SamplingSettings& s, const double& t) { s.noiseTarget = t; })
+        ->check(CLI::PositiveNumber);
     cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(nonNegative());
     addCheckedOption<std::vector<int>>(
         cmd, "--shard", "generate part k of n (e.g. 0/4); merge the parts with `rrf merge`",

@@ -1,11 +1,14 @@
 #include "core/data/data_generator.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include <tbb/parallel_for.h>
 
 #include "core/util/error.h"
 #include "core/data/jitter_grid.h"
+#include "core/data/record_noise.h"
 #include "core/util/warp.h"
 #include "core/util/text_format.h"
 
@@ -20,7 +23,7 @@ uint64_t pathSeed(uint64_t seed) { return mix64(seed ^ 0x5041544853414D50ULL); }
 struct CellOutput {
     std::vector<float> records;
     std::vector<int32_t> objects;
-    uint64_t escaped = 0, emitterHits = 0, nonFinite = 0, emptyRecords = 0;
+    uint64_t escaped = 0, emitterHits = 0, nonFinite = 0, emptyRecords = 0, paths = 0, atCap = 0;
     uint8_t status = 0;  ///< ViewpointStatus
 };
 }  // namespace
@@ -44,7 +47,7 @@ Bounds3 DataGenerator::lightRegion() const {
 
 bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const Vec3& lightPos, uint64_t recordIndex,
                                    float* record, int& objectId, TraceCounters& counters, uint64_t& nonFinite,
-                                   RecordOutcome* outcome) const {
+                                   RecordOutcome* outcome, int* paths, bool* atCap) const {
     RecordOutcome unused;
     RecordOutcome& result = outcome ? *outcome : unused;
     const Light movable = tracer_.movableLightAt(lightPos);
@@ -62,33 +65,56 @@ bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const
         return false;
     }
     const Vec3 wo = -dir;
-    double direct[3] = {0, 0, 0}, indirect[3] = {0, 0, 0};
-    int accepted = 0;
+    // Adaptive sampling (docs/design.md §8): rounds of spp, 2·spp, 4·spp … paths until the relative
+    // noise is at most noise_target or max_spp paths were traced. Sample s is always keyed by
+    // (seed, record, s), so a fixed-spp run gives the targets of earlier versions bit for bit.
+    TargetAccumulator acc;
+    const int cap = std::max(settings_.spp, settings_.maxSpp);
     const uint64_t ps = pathSeed(settings_.seed);
-    for (int s = 0; s < settings_.spp; ++s) {
-        Rng rng(ps, recordIndex, uint64_t(s));
-        const Radiance L = tracer_.shade(hit, wo, movable, rng, counters);
-        if (!L.direct.isFinite() || !L.indirect.isFinite()) {
-            ++nonFinite;
-            continue;
+    int traced = 0, round = settings_.spp;
+    float mean[6], var[6];
+    auto summarise = [&] {
+        for (int c = 0; c < 6; ++c) {
+            mean[c] = float(acc.mean[c]);
+            var[c] = float(acc.varianceOfMean(c));
         }
-        for (int c = 0; c < 3; ++c) {
-            direct[c] += L.direct[c];
-            indirect[c] += L.indirect[c];
+    };
+    bool capped = false;
+    for (;;) {
+        for (; traced < round; ++traced) {
+            Rng rng(ps, recordIndex, uint64_t(traced));
+            const Radiance L = tracer_.shade(hit, wo, movable, rng, counters);
+            if (!L.direct.isFinite() || !L.indirect.isFinite()) {
+                ++nonFinite;
+                continue;
+            }
+            const double sample[6] = {L.direct[0], L.direct[1], L.direct[2], L.indirect[0], L.indirect[1], L.indirect[2]};
+            acc.add(sample);
         }
-        ++accepted;
+        if (!settings_.adaptive() || acc.n == 0) break;
+        summarise();
+        const double r = relativeNoise(mean, var);
+        if (std::isfinite(r) && r <= settings_.noiseTarget) break;
+        if (round >= cap) {
+            capped = true;
+            break;
+        }
+        round = int(std::min<int64_t>(int64_t(round) * 2, cap));
     }
-    if (accepted == 0) {
+    if (paths) *paths = traced;
+    if (acc.n == 0) {
         result = RecordOutcome::NoFiniteSample;
         return false;
     }
+    if (atCap) *atCap = capped;
+    summarise();
     result = RecordOutcome::Stored;
     const Object& obj = scene_.objects[size_t(hit.object)];
     layout_.writeInputs(hit.p, wo, lightPos, hit.ng, scene_.materials[size_t(obj.material)], record);
     float* t = record + layout_.inputCount();
-    for (int c = 0; c < 3; ++c) {
-        t[c] = float(direct[c] / accepted);
-        t[3 + c] = float(indirect[c] / accepted);
+    for (int c = 0; c < 6; ++c) {
+        t[c] = mean[c];
+        t[6 + c] = var[c];
     }
     objectId = hit.object;
     return true;
@@ -133,11 +159,16 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
                 const Vec3 dir = sampleUniformSphere(u1, u2);
                 const Vec3 lp(region.lo.x + regionExtent.x * rng.uniform(), region.lo.y + regionExtent.y * rng.uniform(),
                               region.lo.z + regionExtent.z * rng.uniform());
-                int objectId = -1;
+                int objectId = -1, paths = 0;
+                bool capped = false;
                 RecordOutcome outcome;
-                if (estimateRecord(vp, dir, lp, r, rec.data(), objectId, counters, co.nonFinite, &outcome)) {
+                const bool stored =
+                    estimateRecord(vp, dir, lp, r, rec.data(), objectId, counters, co.nonFinite, &outcome, &paths, &capped);
+                co.paths += uint64_t(paths);
+                if (stored) {
                     co.records.insert(co.records.end(), rec.begin(), rec.end());
                     co.objects.push_back(objectId);
+                    co.atCap += capped;
                 } else if (outcome == RecordOutcome::Escaped) {
                     ++co.escaped;
                 } else if (outcome == RecordOutcome::HitEmitter) {
@@ -150,7 +181,7 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
             shadowRays += counters.shadowRays;
             if (progress) {
                 progress->records += co.objects.size();
-                progress->paths += uint64_t(co.objects.size()) * uint64_t(settings_.spp);
+                progress->paths += co.paths;
             }
         }
         if (progress) ++progress->cellsDone;
@@ -181,11 +212,17 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
         st.records += co.objects.size();
         st.cellsDroppedInsideObject += co.status == uint8_t(ViewpointStatus::InsideObject);
         st.cellsDroppedOutsideScene += co.status == uint8_t(ViewpointStatus::OutsideScene);
+        st.cellsDroppedBehindSurface += co.status == uint8_t(ViewpointStatus::BehindSurface);
+        st.recordsAtSppCap += co.atCap;
+        st.paths += co.paths;
         st.recordsPerCell.push_back(uint64_t(co.objects.size()));
     }
-    for (const std::vector<float>& records : data.perObject) st.recordsPerObject.push_back(records.size() / size_t(fpr));
+    for (const std::vector<float>& records : data.perObject) {
+        st.recordsPerObject.push_back(records.size() / size_t(fpr));
+        st.noisePerObject.push_back(summarizeNoise(records.data(), records.size() / size_t(fpr), fpr,
+                                                   layout_.inputCount(), layout_.inputCount() + layout_.targetCount()));
+    }
     data.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    st.paths = st.records * uint64_t(settings_.spp);  // every stored record took spp paths
     st.rays = rays;
     st.shadowRays = shadowRays;
 
@@ -200,6 +237,7 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
                          {"max", {grid.bounds().hi.x, grid.bounds().hi.y, grid.bounds().hi.z}}}},
         {"input_layout", layout_.inputs},
         {"target_layout", layout_.targets},
+        {"noise_layout", layout_.noise},
         {"floats_per_record", fpr},
         {"effects", tracer_.effects().toJson()},
         {"shard", {{"index", shardIndex}, {"count", shardCount}, {"cell_begin", begin}, {"cell_end", end}, {"cells_total", cells}}},

@@ -3,8 +3,9 @@
 ///
 /// For every kept viewpoint of the jitter grid, N_dir uniformly random directions are traced; the
 /// first hit of each makes one record: inputs (hit point, view direction, light position, normal,
-/// BRDF parameters) and targets (direct and indirect RGB, each the mean of `spp` paths of the same
-/// estimators as the renderer). Each record draws its own light position uniformly from the light
+/// BRDF parameters), targets (direct and indirect RGB, each the mean of `spp` paths of the same
+/// estimators as the renderer, more where adaptive sampling asks for them) and the variance of each
+/// target's mean. Each record draws its own light position uniformly from the light
 /// region (the light keeps its shape, orientation and radiance). Rays that escape or hit an emitter
 /// are counted, not stored; samples that are NaN/Inf are dropped and counted.
 ///
@@ -62,13 +63,15 @@ public:
     /// Why a ray did or did not make a record.
     enum class RecordOutcome { Stored, Escaped, HitEmitter, NoFiniteSample };
 
-    /// Estimates the record of one ray (viewpoint, dir) with the light centre at `lightPos`;
-    /// returns false if the ray escapes, hits an emitter or has no finite sample (`outcome`, if
-    /// given, says which). `recordIndex` keys the random numbers. Exposed for tests that compare
-    /// records with rendered pixels.
+    /// Estimates the record of one ray (viewpoint, dir) with the light centre at `lightPos`
+    /// (layout().floatsPerRecord() floats: inputs, target means, variances of the means); returns
+    /// false if the ray escapes, hits an emitter or has no finite sample (`outcome`, if given, says
+    /// which). `recordIndex` keys the random numbers. `paths` receives the paths traced, `atCap`
+    /// whether adaptive sampling stopped at max_spp with the noise still above its target. Exposed
+    /// for tests that compare records with rendered pixels.
     bool estimateRecord(const Vec3& viewpoint, const Vec3& dir, const Vec3& lightPos, uint64_t recordIndex,
                         float* record, int& objectId, TraceCounters& counters, uint64_t& nonFinite,
-                        RecordOutcome* outcome = nullptr) const;
+                        RecordOutcome* outcome = nullptr, int* paths = nullptr, bool* atCap = nullptr) const;
 
     const RecordLayout& layout() const { return layout_; }
     const PathTracer& tracer() const { return tracer_; }

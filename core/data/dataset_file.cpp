@@ -129,9 +129,10 @@ Dataset::Dataset(const std::string& path, bool verifyPayload, uint64_t expectedS
         FixedHeader fh;
         std::memcpy(&fh, base, sizeof fh);
         if (std::memcmp(fh.magic, kMagic, 8) != 0) fail(path, "not an RRF dataset (wrong magic bytes)");
-        if (fh.version != kDatasetVersion)
-            fail(path, "dataset format version " + std::to_string(fh.version) + " is not supported (this build reads version " +
-                           std::to_string(kDatasetVersion) + ")");
+        if (fh.version < kOldestDatasetVersion || fh.version > kDatasetVersion)
+            fail(path, "dataset format version " + std::to_string(fh.version) + " is not supported (this build reads versions " +
+                           std::to_string(kOldestDatasetVersion) + " to " + std::to_string(kDatasetVersion) + ")");
+        version_ = fh.version;
         if (fh.jsonBytes > mapSize_ - kFixedHeader || fh.payloadOffset < kFixedHeader + fh.jsonBytes ||
             fh.payloadOffset > mapSize_)
             fail(path, "truncated or corrupt header");
@@ -152,7 +153,10 @@ Dataset::Dataset(const std::string& path, bool verifyPayload, uint64_t expectedS
         floatsPerRecord_ = header_.at("floats_per_record").get<int>();
         inputLayout_ = header_.at("input_layout").get<std::vector<std::string>>();
         inputCount_ = int(inputLayout_.size());
-        if (floatsPerRecord_ <= 0 || inputCount_ >= floatsPerRecord_) fail(path, "inconsistent record layout in header");
+        if (version_ >= 2 && header_.contains("noise_layout"))
+            noiseLayout_ = header_.at("noise_layout").get<std::vector<std::string>>();
+        if (floatsPerRecord_ <= 0 || inputCount_ + int(noiseLayout_.size()) >= floatsPerRecord_)
+            fail(path, "inconsistent record layout in header");
         uint64_t expected = 0;
         for (const nlohmann::json& o : header_.at("objects")) {
             DatasetObject d;

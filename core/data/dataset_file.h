@@ -7,7 +7,12 @@
 ///   then         the JSON header (generator settings, record layout, shard, per-object counts and
 ///                byte offsets into the payload, generation statistics)
 ///   then         zero padding to a 64-byte boundary, then the payload: per object, its records
-///                back to back, each `floats_per_record` little-endian float32 (inputs, then targets).
+///                back to back, each `floats_per_record` little-endian float32 (inputs, then targets,
+///                then — version 2 — the targets' noise: the "noise_layout" columns).
+///
+/// Version 2 added the per-record noise columns (the variance of each target's Monte Carlo mean)
+/// and the stats counters for viewpoints behind surfaces and records at the spp cap. Version 1
+/// files still load: they have no "noise_layout", so their targets' noise is unknown.
 ///
 /// The magic's CR-LF and ^Z bytes catch text-mode transfers (as PNG's do). The file contains no
 /// timestamps, host names or thread counts, so the same settings give the same bytes, and merging
@@ -22,7 +27,10 @@
 
 namespace rrf {
 
-constexpr uint32_t kDatasetVersion = 1;
+/// Version written by this build.
+constexpr uint32_t kDatasetVersion = 2;
+/// Oldest version this build reads.
+constexpr uint32_t kOldestDatasetVersion = 1;
 
 /// 64-bit checksum of a byte range (word-wise SplitMix-style mixing; detects corruption, not attacks).
 uint64_t checksum64(const void* data, size_t bytes);
@@ -73,6 +81,13 @@ public:
     /// Names of the input columns of every record ("input_layout"), in column order; a model set
     /// trained on this dataset stores them so prediction builds its inputs the same way.
     const std::vector<std::string>& inputLayout() const { return inputLayout_; }
+    /// Names of the noise columns after the targets ("noise_layout"); empty when the file stores no
+    /// noise (version 1, or a file written by another tool): its targets' noise is unknown.
+    const std::vector<std::string>& noiseLayout() const { return noiseLayout_; }
+    /// Columns of the targets (floats per record − inputs − noise columns).
+    int targetCount() const { return floatsPerRecord_ - inputCount_ - int(noiseLayout_.size()); }
+    /// Format version of the file (kOldestDatasetVersion … kDatasetVersion).
+    uint32_t version() const { return version_; }
     const std::vector<DatasetObject>& objects() const { return objects_; }
     uint64_t totalRecords() const;
     /// Records of objects()[i]: count × floatsPerRecord floats.
@@ -83,8 +98,9 @@ private:
     nlohmann::json header_;
     uint64_t sceneHash_ = 0;
     int floatsPerRecord_ = 0, inputCount_ = 0;
-    std::vector<std::string> inputLayout_;
+    std::vector<std::string> inputLayout_, noiseLayout_;
     std::vector<DatasetObject> objects_;
+    uint32_t version_ = 0;
     void* map_ = nullptr;
     size_t mapSize_ = 0;
     const unsigned char* payload_ = nullptr;

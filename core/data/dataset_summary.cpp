@@ -31,6 +31,8 @@ std::vector<ObjectSummary> summarizeDataset(const Dataset& data) {
             }
             s.columns[c] = {lo, hi, sum / double(o.count)};
         }
+        if (data.noiseLayout().size() == 6 && data.targetCount() == 6)
+            s.noise = summarizeNoise(r, size_t(o.count), int(fpr), data.inputCount(), data.inputCount() + 6);
         out.push_back(std::move(s));
     }
     return out;
@@ -45,8 +47,11 @@ std::string formatDatasetReport(const Dataset& data, const std::vector<ObjectSum
     os << "shard: " << h.at("shard").dump() << "\n";
     os << "records: " << data.totalRecords() << " (" << data.floatsPerRecord() << " floats each)\n";
     const GeneratorStats typed = GeneratorStats::fromHeader(h, data.path());
+    char line[256];
+    os << "format version: " << data.version() << "\n";
     os << "generator: " << typed.records << " records; viewpoint cells dropped: " << typed.cellsDroppedInsideObject
-       << " inside an object, " << typed.cellsDroppedOutsideScene << " outside the scene; rays escaped "
+       << " inside an object, " << typed.cellsDroppedOutsideScene << " outside the scene, "
+       << typed.cellsDroppedBehindSurface << " behind a surface (under the floor, behind a wall); rays escaped "
        << typed.raysEscaped << ", hit an emitter " << typed.raysHitEmitter << "; records without a finite sample "
        << typed.recordsWithoutFiniteSample << "; non-finite samples dropped " << typed.nonFiniteSamplesDropped << "\n";
     if (!typed.recordsPerCell.empty()) {
@@ -55,9 +60,24 @@ std::string formatDatasetReport(const Dataset& data, const std::vector<ObjectSum
         os << "records per cell: min " << *lo << ", max " << *hi << ", cells without records " << zero << " of "
            << typed.cells() << "\n";
     }
+    if (data.noiseLayout().empty()) {
+        os << "target noise: unknown (the file stores no per-record variance; dataset version " << data.version()
+           << ")\n";
+    } else {
+        os << "target noise: relative standard error per record, max over direct and indirect of "
+              "sqrt(mean_c var_c / (|target_c| + 0.01)^2); records at the spp cap with noise above the target: "
+           << typed.recordsAtSppCap << "\n";
+        std::snprintf(line, sizeof line, "  %-24s %10s %10s %10s\n", "object", "median", "p90", "known");
+        os << line;
+        for (const ObjectSummary& s : summary) {
+            std::snprintf(line, sizeof line, "  %-24s %10.4g %10.4g %10llu\n", s.name.c_str(), s.noise.median,
+                          s.noise.p90, (unsigned long long)s.noise.known);
+            os << line;
+        }
+    }
     std::vector<std::string> names = data.inputLayout();
     for (const auto& t : h.at("target_layout")) names.push_back(t.get<std::string>());
-    char line[256];
+    for (const std::string& n : data.noiseLayout()) names.push_back(n);
     for (const ObjectSummary& s : summary) {
         os << "\nobject " << s.id << " '" << s.name << "': " << s.count << " records\n";
         if (s.count == 0) continue;

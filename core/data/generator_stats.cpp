@@ -8,6 +8,8 @@ nlohmann::json GeneratorStats::toJson() const {
     return {{"records", records},
             {"cells_dropped_inside_object", cellsDroppedInsideObject},
             {"cells_dropped_outside_scene", cellsDroppedOutsideScene},
+            {"cells_dropped_behind_surface", cellsDroppedBehindSurface},
+            {"records_at_spp_cap", recordsAtSppCap},
             {"rays_escaped", raysEscaped},
             {"rays_hit_emitter", raysHitEmitter},
             {"records_without_finite_sample", recordsWithoutFiniteSample},
@@ -19,6 +21,8 @@ GeneratorStats& GeneratorStats::operator+=(const GeneratorStats& other) {
     records += other.records;
     cellsDroppedInsideObject += other.cellsDroppedInsideObject;
     cellsDroppedOutsideScene += other.cellsDroppedOutsideScene;
+    cellsDroppedBehindSurface += other.cellsDroppedBehindSurface;
+    recordsAtSppCap += other.recordsAtSppCap;
     raysEscaped += other.raysEscaped;
     raysHitEmitter += other.raysHitEmitter;
     recordsWithoutFiniteSample += other.recordsWithoutFiniteSample;
@@ -29,6 +33,7 @@ GeneratorStats& GeneratorStats::operator+=(const GeneratorStats& other) {
     paths += other.paths;
     rays += other.rays;
     shadowRays += other.shadowRays;
+    noisePerObject.clear();
     return *this;
 }
 
@@ -42,6 +47,8 @@ GeneratorStats GeneratorStats::fromHeader(const nlohmann::json& header, const st
     auto counter = [&](const char* key) { return st.has(key) ? st.at(key).unsignedInteger() : uint64_t(0); };
     s.cellsDroppedInsideObject = counter("cells_dropped_inside_object");
     s.cellsDroppedOutsideScene = counter("cells_dropped_outside_scene");
+    s.cellsDroppedBehindSurface = counter("cells_dropped_behind_surface");
+    s.recordsAtSppCap = counter("records_at_spp_cap");
     s.raysEscaped = counter("rays_escaped");
     s.raysHitEmitter = counter("rays_hit_emitter");
     s.recordsWithoutFiniteSample = counter("records_without_finite_sample");

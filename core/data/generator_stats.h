@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/data/record_noise.h"
+
 namespace rrf {
 
 struct GeneratorStats {
@@ -17,6 +19,11 @@ struct GeneratorStats {
     uint64_t records = 0;
     uint64_t cellsDroppedInsideObject = 0;   ///< viewpoints inside a closed object
     uint64_t cellsDroppedOutsideScene = 0;   ///< viewpoints outside the scene's walls
+    /// Viewpoints behind open surfaces (under the floor, behind a wall): their records would lie on
+    /// faces no camera inside the scene sees (core/data/jitter_grid.h).
+    uint64_t cellsDroppedBehindSurface = 0;
+    /// Records whose relative noise was still above noise_target when max_spp paths were traced.
+    uint64_t recordsAtSppCap = 0;
     uint64_t raysEscaped = 0;                ///< directions that left the scene
     uint64_t raysHitEmitter = 0;             ///< directions whose first hit is a light
     uint64_t recordsWithoutFiniteSample = 0; ///< hits where every path sample was NaN/Inf
@@ -26,12 +33,16 @@ struct GeneratorStats {
     // ---- stored elsewhere in the header ("objects"/"count"), or not at all -------------------------
     std::vector<uint64_t> recordsPerObject;  ///< index = scene object id
     uint64_t paths = 0, rays = 0, shadowRays = 0;  ///< work done, for records/s and samples/s (not stored)
+    /// Relative noise of the records' targets per object (median, 90th percentile; index = object
+    /// id), computed from the run's records; not stored (`rrf inspect` recomputes it from the
+    /// file's records) and not summed by += (quantiles do not add).
+    std::vector<NoiseSummary> noisePerObject;
 
     /// Viewpoint cells of the run (the length of recordsPerCell).
     uint64_t cells() const { return recordsPerCell.size(); }
-    /// Cells that were traced (not dropped inside an object or outside the scene).
+    /// Cells that were traced (not dropped inside an object, outside the scene or behind a surface).
     uint64_t keptCells() const {
-        const uint64_t dropped = cellsDroppedInsideObject + cellsDroppedOutsideScene;
+        const uint64_t dropped = cellsDroppedInsideObject + cellsDroppedOutsideScene + cellsDroppedBehindSurface;
         return cells() > dropped ? cells() - dropped : 0;
     }
 

@@ -29,7 +29,7 @@ ViewpointStatus ViewpointClassifier::classify(const Vec3& p) const {
     };
     const Scene& scene = tracer_.scene();
     const Accel& accel = tracer_.accel();
-    int insideVotes = 0, escapes = 0;
+    int insideVotes = 0, escapes = 0, objectHits = 0, backHits = 0;
     std::vector<int> crossings(scene.objects.size());
     for (const Vec3& dir : kProbes) {
         std::fill(crossings.begin(), crossings.end(), 0);
@@ -40,6 +40,12 @@ ViewpointStatus ViewpointClassifier::classify(const Vec3& p) const {
         bool first = true;
         // Walk along the probe; 256 surfaces is far more than any scene layer count.
         for (int step = 0; step < 256 && accel.intersect(ray, hit); ++step) {
+            if (first && hit.object >= 0) {
+                // The first surface this probe sees, and from which side (an open surface's front
+                // normal is its authored orientation; closed ones are seen from outside anyway).
+                ++objectHits;
+                if (!scene.objects[size_t(hit.object)].closed && dot(dir, hit.ng) > 0.f) ++backHits;
+            }
             first = false;
             if (hit.object >= 0 && scene.objects[size_t(hit.object)].closed) ++crossings[size_t(hit.object)];
             ray.tmin = hit.t + accel.offset(hit.p);
@@ -53,6 +59,7 @@ ViewpointStatus ViewpointClassifier::classify(const Vec3& p) const {
     }
     if (2 * insideVotes > 14) return ViewpointStatus::InsideObject;
     if (4 * escapes > 3 * 14) return ViewpointStatus::OutsideScene;
+    if (2 * backHits > objectHits) return ViewpointStatus::BehindSurface;
     return ViewpointStatus::Kept;
 }
 

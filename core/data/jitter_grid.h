@@ -10,7 +10,14 @@
 ///    not depend on how the mesh is wound, and the majority vote survives a probe grazing an edge;
 ///  - outside the scene: more than 3/4 of the probes escape without hitting anything (the point sees
 ///    almost nothing of the scene, e.g. beyond an open side). A point in an open room corner or above
-///    a ground plane sees geometry in at least half the directions and is kept.
+///    a ground plane sees geometry in at least half the directions and is kept;
+///  - behind a surface: more than half of the probes that hit an object hit the BACK of an open
+///    surface (a quad or mesh not flagged closed, seen against its front normal, docs/file-formats.md).
+///    Such a point lies behind the scene's walls or under its floor, where no camera of the scene
+///    stands: in the Cornell box the tall block reaches 1 cm below the floor, so the grid has a slab
+///    of viewpoints under it whose records would be the floor's underside and the blocks' bottom
+///    faces. A free-standing card seen from behind inside a room is a minority of the probes and
+///    does not drop the point.
 
 #include <cstdint>
 
@@ -38,7 +45,7 @@ private:
     int nx_, ny_, nz_;
 };
 
-enum class ViewpointStatus { Kept, InsideObject, OutsideScene };
+enum class ViewpointStatus { Kept, InsideObject, OutsideScene, BehindSurface };
 
 /// Decides whether a viewpoint is kept (see the file comment). Thread-safe.
 class ViewpointClassifier {

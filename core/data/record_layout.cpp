@@ -19,7 +19,14 @@ RecordLayout RecordLayout::forScene(const Scene& scene) {
         for (const char* n : {"ks_r", "ks_g", "ks_b", "log10_exponent_plus_1"}) l.inputs.push_back(n);
     }
     l.targets = {"direct_r", "direct_g", "direct_b", "indirect_r", "indirect_g", "indirect_b"};
+    l.noise = noiseNames();
     return l;
+}
+
+const std::vector<std::string>& RecordLayout::noiseNames() {
+    static const std::vector<std::string> names = {"direct_var_r",   "direct_var_g",   "direct_var_b",
+                                                   "indirect_var_r", "indirect_var_g", "indirect_var_b"};
+    return names;
 }
 
 void RecordLayout::writeInputs(const Vec3& p, const Vec3& wo, const Vec3& lightPos, const Vec3& ng,

@@ -1,7 +1,10 @@
 #pragma once
 /// Layout of one training record: the network inputs
 ///   hit point (3), view direction (3), light position (3), normal (3), BRDF parameters (n)
-/// followed by the targets direct RGB (3) and indirect RGB (3). n depends on the materials present:
+/// followed by the targets direct RGB (3) and indirect RGB (3), then the targets' noise: the
+/// variance of each target's Monte Carlo mean, direct RGB (3) and indirect RGB (3), in radiance²
+/// (−1 when a record had fewer than two finite path samples, so no variance could be estimated).
+/// n depends on the materials present:
 /// Lambert-only scenes carry the albedo (3); scenes with Phong materials carry kd (3), ks (3) and
 /// log10(1 + exponent) (1), the logarithm because exponents span 1 … 1e6. The names are written into
 /// dataset and model files so readers never guess.
@@ -16,12 +19,17 @@ namespace rrf {
 struct RecordLayout {
     std::vector<std::string> inputs;   ///< input names, in order
     std::vector<std::string> targets;  ///< "direct_r", ..., "indirect_b"
+    /// "direct_var_r", ..., "indirect_var_b": variance of each target's mean, in target order.
+    std::vector<std::string> noise;
     bool phong = false;
 
     static RecordLayout forScene(const Scene& scene);
+    /// The noise column names every generator since dataset version 2 writes.
+    static const std::vector<std::string>& noiseNames();
     int inputCount() const { return int(inputs.size()); }
     int targetCount() const { return int(targets.size()); }
-    int floatsPerRecord() const { return inputCount() + targetCount(); }
+    int noiseCount() const { return int(noise.size()); }
+    int floatsPerRecord() const { return inputCount() + targetCount() + noiseCount(); }
     /// Writes the BRDF parameters of `m` (inputCount() − 12 floats) to `out`.
     void brdfParameters(const Material& m, float* out) const;
     /// Writes all inputCount() inputs of a surface point `p` with geometric normal `ng` and material

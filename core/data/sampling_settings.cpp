@@ -5,7 +5,8 @@
 namespace rrf {
 
 const std::vector<std::string>& SamplingSettings::keys() {
-    static const std::vector<std::string> k = {"grid", "directions", "spp", "seed", "light", "estimator", "max_depth"};
+    static const std::vector<std::string> k = {"grid",  "directions", "spp",      "max_spp",
+                                               "noise_target", "seed", "light", "estimator", "max_depth"};
     return k;
 }
 
@@ -20,6 +21,8 @@ SamplingSettings SamplingSettings::fromJson(const JsonReader& r, const SamplingS
     }
     s.directions = int(r.integerOr("directions", s.directions, 1, kMaxDirections));
     s.spp = int(r.integerOr("spp", s.spp, 1, kMaxSamplesPerRecord));
+    s.maxSpp = int(r.integerOr("max_spp", s.maxSpp, 1, kMaxSamplesPerRecord));
+    s.noiseTarget = r.numberOr("noise_target", s.noiseTarget, 0.0, 1e6, true);
     s.maxDepth = int(r.integerOr("max_depth", s.maxDepth, 1, kMaxSamplingDepth));
     s.seed = r.unsignedOr("seed", s.seed);
     s.fixedLight = r.choiceOr("light", s.fixedLight ? "fixed" : "region", {"region", "fixed"}) == "fixed";
@@ -33,6 +36,8 @@ nlohmann::json SamplingSettings::toJson() const {
     return {{"grid", {nx, ny, nz}},
             {"directions", directions},
             {"spp", spp},
+            {"max_spp", maxSpp},
+            {"noise_target", noiseTarget},
             {"seed", seed},
             {"light", fixedLight ? "fixed" : "region"},
             {"estimator", estimator == Estimator::NEE ? "nee" : "naive"},

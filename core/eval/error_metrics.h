@@ -39,11 +39,12 @@
 #include <nlohmann/json.hpp>
 
 #include "core/util/image.h"
+#include "core/util/relative_error.h"
 
 namespace rrf {
 
-/// Denominator offset of the relative error, as in Ren et al. (docs/design.md §14).
-constexpr double kRelativeEpsilon = 0.01;
+// kRelativeEpsilon, the denominator offset of the relative error, is defined once in
+// core/util/relative_error.h (the trainers and the data generator use it too).
 
 enum class ErrorMapKind { Absolute, Relative, Squared };
 /// Every kind, in the order the workbench offers them.

@@ -10,7 +10,8 @@ std::vector<ObjectSamples> samplesFromGenerated(const GeneratedData& data, const
     uint64_t dropped = 0;  // the generator writes finite records only, so this stays 0
     for (size_t id = 0; id < data.perObject.size() && id < scene.objects.size(); ++id) {
         const std::vector<float>& r = data.perObject[id];
-        out.push_back(objectSamples(int(id), scene.objects[id].name, r.data(), r.size() / size_t(fpr), in, dropped));
+        out.push_back(objectSamples(int(id), scene.objects[id].name, r.data(), r.size() / size_t(fpr), in,
+                                    layout.noiseCount() > 0, dropped));
     }
     return out;
 }

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/nn/trainer.h"
+#include "core/nn/training_loss.h"
 #include "core/util/rng.h"
 
 namespace rrf {
@@ -14,52 +15,10 @@ namespace {
 constexpr uint64_t kShuffleStream = 0x5348554646000000ULL;  // "SHUFF"
 constexpr Eigen::Index kEvalChunk = 4096;
 constexpr Eigen::Index kPrefetch = 8;
-constexpr double kPi = 3.14159265358979323846;
-
-double learningRate(const AdamConfig& c, int epoch /* 1-based */) {
-    switch (c.schedule) {
-        case LrSchedule::Constant: return c.learningRate;
-        case LrSchedule::Step: return c.learningRate * std::pow(c.stepGamma, double((epoch - 1) / c.stepEpochs));
-        case LrSchedule::Cosine:
-        default: {
-            const double t = c.maxEpochs > 1 ? double(epoch - 1) / double(c.maxEpochs - 1) : 0.0;
-            return c.minLearningRate + 0.5 * (c.learningRate - c.minLearningRate) * (1.0 + std::cos(kPi * t));
-        }
-    }
-}
-
-/// Loss and ∂loss/∂pred of one batch (normalised units in, `dOut` scaled by 1/count so the summed
-/// gradient of mlpBackward is the gradient of the mean).
-class Loss {
-public:
-    Loss(AdamLoss kind, const MinMaxScaler& out) : kind_(kind) {
-        invScale_ = (1.0 / out.scale.array()).cast<float>();
-        offset_ = out.offset.cast<float>().array();
-    }
-
-    /// Returns the SUM of per-entry losses; fills dOut with the gradient of sum / `count`.
-    double evaluate(const MatX<float>& pred, const Eigen::Ref<const MatX<float>>& y, MatX<float>* dOut,
-                    double count) const {
-        if (kind_ == AdamLoss::Mse) {
-            const MatX<float> d = pred - y;
-            if (dOut) *dOut = d * float(2.0 / count);
-            return double(d.cast<double>().squaredNorm());
-        }
-        // Relative L2 in raw units: e = (p − y)/s, denominator uses the raw prediction as a constant.
-        const Eigen::ArrayXXf diff = (pred - y).array().colwise() * invScale_;
-        const Eigen::ArrayXXf raw = pred.array().colwise() * invScale_ + offset_.replicate(1, pred.cols());
-        const Eigen::ArrayXXf denom = raw.square() + 0.01f;
-        if (dOut) *dOut = ((diff / denom).colwise() * invScale_ * float(2.0 / count)).matrix();
-        return (diff.square() / denom).cast<double>().sum();
-    }
-
-private:
-    AdamLoss kind_;
-    Eigen::ArrayXf invScale_, offset_;
-};
+constexpr double kPiDouble = 3.14159265358979323846;  // vec3.h's kPi is a float
 
 /// Mean loss over a whole (validation or test) set, chunked to bound memory.
-double meanLoss(const MlpArch& arch, const VecX<float>& w, const Loss& loss, const Eigen::Ref<const MatX<float>>& x,
+double meanLoss(const MlpArch& arch, const VecX<float>& w, const TrainingLoss<float>& loss, const Eigen::Ref<const MatX<float>>& x,
                 const Eigen::Ref<const MatX<float>>& y, std::vector<MatX<float>>& acts) {
     if (x.cols() == 0) return std::numeric_limits<double>::quiet_NaN();
     double sum = 0;
@@ -71,7 +30,31 @@ double meanLoss(const MlpArch& arch, const VecX<float>& w, const Loss& loss, con
     return sum / (double(x.cols()) * double(y.rows()));
 }
 
+/// Network outputs (normalised) on `x`, in double for the validation monitor.
+MatX<double> predictions(const MlpArch& arch, const VecX<float>& w, const MatX<float>& x,
+                         std::vector<MatX<float>>& acts) {
+    MatX<double> out(arch.outputs, x.cols());
+    for (Eigen::Index c = 0; c < x.cols(); c += kEvalChunk) {
+        const Eigen::Index nc = std::min(kEvalChunk, x.cols() - c);
+        mlpForward<float>(arch, w.data(), x.middleCols(c, nc), acts);
+        out.middleCols(c, nc) = acts.back().cast<double>();
+    }
+    return out;
+}
+
 }  // namespace
+
+double adamLearningRate(const AdamConfig& c, int epoch) {
+    switch (c.schedule) {
+        case LrSchedule::Constant: return c.learningRate;
+        case LrSchedule::Step: return c.learningRate * std::pow(c.stepGamma, double((epoch - 1) / c.stepEpochs));
+        case LrSchedule::Cosine:
+        default: {
+            const double t = c.maxEpochs > 1 ? double(epoch - 1) / double(c.maxEpochs - 1) : 0.0;
+            return c.minLearningRate + 0.5 * (c.learningRate - c.minLearningRate) * (1.0 + std::cos(kPiDouble * t));
+        }
+    }
+}
 
 TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const TrainingData& data,
                       const MinMaxScaler& outputScaler, VecX<double>& params, const TrainObserver& observer) {
@@ -97,8 +80,15 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
     }
     res.trainSamplesUsed = n;
 
-    const Loss loss(cfg.loss, outputScaler);
+    res.errorGoal = cfg.errorGoal;
+    const TrainingLoss<float> loss(cfg.loss, outputScaler);
     const bool hasVal = data.xValidation.cols() > 0;
+    ValidationMonitor monitor(cfg.loss, outputScaler, data.yValidation, data.vValidation, cfg.errorGoal);
+    // Patience counts only once the rate has decayed (the rate bound is relative to the peak rate).
+    FailureCounter patience(cfg.patience, /*countUnchanged=*/true, cfg.patienceLrFraction * cfg.learningRate);
+    auto figure = [](const ValidationEpoch& v) {
+        return std::isnan(v.relativeRmseCorrected) ? v.relativeRmse : v.relativeRmseCorrected;
+    };
     VecX<float> w = params.cast<float>(), best = w, grad(P), m = VecX<float>::Zero(P), v = VecX<float>::Zero(P);
     // Decoupled weight decay applies to weight matrices only; shrinking biases would shift outputs.
     VecX<float> decayMask = VecX<float>::Zero(P);
@@ -111,27 +101,30 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
     std::vector<uint32_t> order(static_cast<size_t>(n));
     std::iota(order.begin(), order.end(), 0u);
 
-    double bestVal = std::numeric_limits<double>::infinity();
+    bool goalReached = false;
     {
         const double tl = meanLoss(arch, w, loss, data.xTrain.leftCols(n), data.yTrain.leftCols(n), acts);
-        const double vl = meanLoss(arch, w, loss, data.xValidation, data.yValidation, acts);
-        if (hasVal) bestVal = vl;
-        res.history.push_back({0, tl, vl, learningRate(cfg, 1), elapsed()});
+        ValidationEpoch v;
+        if (hasVal) v = monitor.observe(predictions(arch, w, data.xValidation, acts));
+        goalReached = v.goalReached;
+        EpochRecord r{0, tl, v.loss, adamLearningRate(cfg, 1), elapsed()};
+        r.validationRelativeRmse = figure(v);
+        res.history.push_back(r);
         if (observer.onEpoch) observer.onEpoch(res.history.back());
     }
 
     int64_t step = 0;
-    int sinceBest = 0;
     const float b1 = float(cfg.beta1), b2 = float(cfg.beta2);
     for (int epoch = 1;; ++epoch) {
+        if (goalReached) { res.stopReason = "error goal reached"; break; }
         if (epoch > cfg.maxEpochs) { res.stopReason = "maximum epoch reached"; break; }
-        if (hasVal && cfg.patience > 0 && sinceBest >= cfg.patience) { res.stopReason = "validation stop"; break; }
+        if (hasVal && patience.reached()) { res.stopReason = "validation stop"; break; }
         if (observer.cancelled()) {
             res.stopReason = "cancelled";
             res.cancelled = true;
             break;
         }
-        const double lr = learningRate(cfg, epoch);
+        const double lr = adamLearningRate(cfg, epoch);
         // A fresh permutation per epoch, keyed by (seed, epoch): independent of everything else.
         Rng rng(cfg.seed, kShuffleStream, uint64_t(epoch));
         for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.uniformInt(uint32_t(i))]);
@@ -166,7 +159,6 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
                                 float(cfg.weightDecay) * decayMask.array() * w.array());
         }
         const double trainLoss = epochLoss / (double(n) * arch.outputs);
-        const double vl = meanLoss(arch, w, loss, data.xValidation, data.yValidation, acts);
         if (!w.allFinite()) {
             // Divergence (e.g. a learning rate far too high): keep the best finite weights.
             res.stopReason = "diverged (non-finite weights)";
@@ -174,18 +166,27 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
             res.epochs = epoch;
             break;
         }
+        ValidationEpoch v;
         if (hasVal) {
-            if (vl < bestVal) {
-                bestVal = vl;
+            v = monitor.observe(predictions(arch, w, data.xValidation, acts));
+            if (v.outcome == ValidationOutcome::Improved) {
                 best = w;
                 res.bestEpoch = epoch;
-                sinceBest = 0;
-            } else {
-                ++sinceBest;
+            }
+            patience.update(v.outcome, lr);
+            if (v.goalReached) {
+                // Weights that meet the goal are kept even if another epoch had a lower loss.
+                goalReached = true;
+                monitor.acceptLastAsBest();
+                best = w;
+                res.bestEpoch = epoch;
             }
         }
         res.epochs = epoch;
-        res.history.push_back({epoch, trainLoss, vl, lr, elapsed()});
+        EpochRecord r{epoch, trainLoss, v.loss, lr, elapsed()};
+        r.validationRelativeRmse = figure(v);
+        r.failureWithinNoise = v.outcome == ValidationOutcome::FailedWithinNoise;
+        res.history.push_back(r);
         if (observer.onEpoch) observer.onEpoch(res.history.back());
     }
 
@@ -195,6 +196,14 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
     res.trainLoss = meanLoss(arch, w, loss, data.xTrain, data.yTrain, acts);
     res.validationLoss = meanLoss(arch, w, loss, data.xValidation, data.yValidation, acts);
     res.testLoss = meanLoss(arch, w, loss, data.xTest, data.yTest, acts);
+    if (hasVal) {
+        ValidationMonitor final(cfg.loss, outputScaler, data.yValidation, data.vValidation, cfg.errorGoal);
+        const ValidationEpoch v = final.observe(predictions(arch, w, data.xValidation, acts));
+        res.validationRelativeRmse = v.relativeRmse;
+        res.validationRelativeRmseCorrected = v.relativeRmseCorrected;
+        res.validationRelativeNoise = final.relativeNoiseFloor();
+        res.goalReached = v.goalReached;
+    }
     res.seconds = elapsed();
     return res;
 }

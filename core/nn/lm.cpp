@@ -106,6 +106,12 @@ private:
 
 TrainResult trainLevenbergMarquardt(const MlpArch& arch, const LevenbergMarquardtConfig& cfg,
                                     const TrainingData& data, VecX<double>& params, const TrainObserver& observer) {
+    return trainLevenbergMarquardt(arch, cfg, data, MinMaxScaler::identity(arch.outputs), params, observer);
+}
+
+TrainResult trainLevenbergMarquardt(const MlpArch& arch, const LevenbergMarquardtConfig& cfg,
+                                    const TrainingData& data, const MinMaxScaler& outputScaler, VecX<double>& params,
+                                    const TrainObserver& observer) {
     arch.validate();
     const Eigen::Index P = arch.numParams();
     if (P > kMaxParams)
@@ -114,6 +120,8 @@ TrainResult trainLevenbergMarquardt(const MlpArch& arch, const LevenbergMarquard
                                     std::to_string(P * P * 8 / 1000000) + " MB per copy (limit " +
                                     std::to_string(kMaxParams) + " parameters): use the adam trainer");
     if (params.size() != P) throw std::invalid_argument("levenberg_marquardt: parameter vector has the wrong size");
+    if (outputScaler.size() != arch.outputs)
+        throw std::invalid_argument("levenberg_marquardt: output scaler size mismatch");
     const auto t0 = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
 
@@ -121,46 +129,59 @@ TrainResult trainLevenbergMarquardt(const MlpArch& arch, const LevenbergMarquard
     res.trainSamples = data.xTrain.cols();
     res.validationSamples = data.xValidation.cols();
     res.testSamples = data.xTest.cols();
+    res.errorGoal = cfg.errorGoal;
     auto note = [&](const std::string& m) {
         res.messages.push_back(m);
         if (observer.onMessage) observer.onMessage(m);
     };
     if (data.xTrain.cols() == 0) throw std::invalid_argument("levenberg_marquardt: no training samples");
 
-    // The split is a random permutation, so its first max_samples training columns are a random subset.
-    Eigen::Index n = data.xTrain.cols();
-    if (cfg.maxSamples > 0 && n > cfg.maxSamples) {
-        n = Eigen::Index(cfg.maxSamples);
-        note("levenberg_marquardt: training on a random subsample of " + std::to_string(n) + " of " +
-             std::to_string(data.xTrain.cols()) + " training samples (max_samples; an epoch costs about 3*N*P^2 = " +
-             std::to_string(3.0 * double(n) * double(P) * double(P) / 1e9) + " GFLOP)");
-    }
+    // The split is a random permutation, so its first n training columns are a random subset.
+    std::string bound;
+    const Eigen::Index n = Eigen::Index(lmSampleCount(cfg, data.xTrain.cols(), P, &bound));
+    if (!bound.empty()) note(bound);
     res.trainSamplesUsed = n;
     LmProblem problem(arch, data.xTrain.leftCols(n).cast<double>(), data.yTrain.leftCols(n).cast<double>());
     const double count = double(n) * arch.outputs;
     const bool hasVal = data.xValidation.cols() > 0;
+    // The validation loss is the normalised MSE (what trainlm compares); the goal is the raw relative RMSE.
+    ValidationMonitor monitor(AdamLoss::Mse, outputScaler, data.yValidation, data.vValidation, cfg.errorGoal);
+    FailureCounter failures(cfg.maxFail, /*countUnchanged=*/false);
+    std::vector<MatX<double>> acts;
+    const MatX<double> xVal = data.xValidation.cast<double>();
+    auto validate = [&](const VecX<double>& w) {
+        if (!hasVal) return ValidationEpoch{};
+        mlpForward<double>(arch, w.data(), xVal, acts);
+        return monitor.observe(acts.back());
+    };
+    auto figure = [](const ValidationEpoch& v) {
+        return std::isnan(v.relativeRmseCorrected) ? v.relativeRmse : v.relativeRmseCorrected;
+    };
 
     MatX<double> jtj, A;
     VecX<double> jte, dx, trial;
     VecX<double> best = params;
-    double mu = cfg.mu, bestVal = std::numeric_limits<double>::infinity();
-    int valFail = 0;
-    bool ldltNoted = false;
+    double mu = cfg.mu;
+    bool ldltNoted = false, goalReached = false;
 
     double sse = problem.sse(params);
     {
-        const double vperf = networkMse(arch, params, data.xValidation, data.yValidation);
-        if (hasVal) bestVal = vperf;
-        res.history.push_back({0, sse / count, vperf, mu, elapsed()});
+        const ValidationEpoch v = validate(params);
+        goalReached = v.goalReached;
+        EpochRecord r{0, sse / count, v.loss, mu, elapsed()};
+        r.validationRelativeRmse = figure(v);
+        res.history.push_back(r);
         if (observer.onEpoch) observer.onEpoch(res.history.back());
     }
     for (int epoch = 0;; ++epoch) {
-        // Stop tests in trainlm's order; the gradient test needs Jᵀe, so JᵀJ is only built when needed.
+        // Stop tests in trainlm's order (the error goal beside trainlm's goal); the gradient test
+        // needs Jᵀe, so JᵀJ is only built when needed.
         const double perf = sse / count;
         if (perf <= cfg.goal) res.stopReason = "performance goal met";
+        else if (goalReached) res.stopReason = "error goal reached";
         else if (epoch >= cfg.maxEpochs) res.stopReason = "maximum epoch reached";
         else if (mu > cfg.muMax) res.stopReason = "maximum mu reached";
-        else if (hasVal && valFail >= cfg.maxFail) res.stopReason = "validation stop";
+        else if (hasVal && failures.reached()) res.stopReason = "validation stop";
         else if (observer.cancelled()) {
             res.stopReason = "cancelled";
             res.cancelled = true;
@@ -202,19 +223,26 @@ TrainResult trainLevenbergMarquardt(const MlpArch& arch, const LevenbergMarquard
             stepMu = mu;
         }
 
-        const double vperf = networkMse(arch, params, data.xValidation, data.yValidation);
+        const ValidationEpoch v = validate(params);
         if (hasVal) {
-            if (vperf < bestVal) {
-                bestVal = vperf;
+            if (v.outcome == ValidationOutcome::Improved) {
                 best = params;
                 res.bestEpoch = epoch + 1;
-                valFail = 0;
-            } else if (vperf > bestVal) {
-                ++valFail;
+            }
+            failures.update(v.outcome, 0.0);
+            if (v.goalReached) {
+                // Weights that meet the goal are kept even if another epoch had a lower MSE.
+                goalReached = true;
+                monitor.acceptLastAsBest();
+                best = params;
+                res.bestEpoch = epoch + 1;
             }
         }
         res.epochs = epoch + 1;
-        res.history.push_back({epoch + 1, sse / count, vperf, stepMu, elapsed()});
+        EpochRecord r{epoch + 1, sse / count, v.loss, stepMu, elapsed()};
+        r.validationRelativeRmse = figure(v);
+        r.failureWithinNoise = v.outcome == ValidationOutcome::FailedWithinNoise;
+        res.history.push_back(r);
         if (observer.onEpoch) observer.onEpoch(res.history.back());
     }
 
@@ -223,6 +251,15 @@ TrainResult trainLevenbergMarquardt(const MlpArch& arch, const LevenbergMarquard
     res.trainLoss = networkMse(arch, params, data.xTrain, data.yTrain);
     res.validationLoss = networkMse(arch, params, data.xValidation, data.yValidation);
     res.testLoss = networkMse(arch, params, data.xTest, data.yTest);
+    if (hasVal) {
+        ValidationMonitor final(AdamLoss::Mse, outputScaler, data.yValidation, data.vValidation, cfg.errorGoal);
+        mlpForward<double>(arch, params.data(), xVal, acts);
+        const ValidationEpoch v = final.observe(acts.back());
+        res.validationRelativeRmse = v.relativeRmse;
+        res.validationRelativeRmseCorrected = v.relativeRmseCorrected;
+        res.validationRelativeNoise = final.relativeNoiseFloor();
+        res.goalReached = v.goalReached;
+    }
     res.seconds = elapsed();
     return res;
 }

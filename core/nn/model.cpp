@@ -1,5 +1,7 @@
 #include "core/nn/model.h"
 
+#include "core/util/relative_error.h"
+
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
@@ -180,7 +182,7 @@ double relativeRmse(const Eigen::Ref<const MatX<float>>& p, const Eigen::Ref<con
     double sum = 0;
     for (Eigen::Index c = 0; c < p.cols(); ++c)
         for (Eigen::Index r = 0; r < p.rows(); ++r) {
-            const double d = (double(p(r, c)) - double(t(r, c))) / (std::fabs(double(t(r, c))) + 0.01);
+            const double d = (double(p(r, c)) - double(t(r, c))) / (std::fabs(double(t(r, c))) + kRelativeEpsilon);
             sum += d * d;
         }
     return std::sqrt(sum / double(p.size()));
@@ -188,7 +190,15 @@ double relativeRmse(const Eigen::Ref<const MatX<float>>& p, const Eigen::Ref<con
 
 NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eigen::Ref<const MatX<float>>& inputs,
                         const Eigen::Ref<const MatX<float>>& targets, const TrainObserver& observer, uint64_t stream) {
+    return fitNetwork(arch, cfg, inputs, targets, MatX<float>(), observer, stream);
+}
+
+NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eigen::Ref<const MatX<float>>& inputs,
+                        const Eigen::Ref<const MatX<float>>& targets, const MatX<float>& targetVariance,
+                        const TrainObserver& observer, uint64_t stream) {
     arch.validate();
+    if (targetVariance.size() > 0 && (targetVariance.rows() != targets.rows() || targetVariance.cols() != targets.cols()))
+        throw std::invalid_argument("fitNetwork: the target variance's shape differs from the targets'");
     if (inputs.rows() != arch.inputs || targets.rows() != arch.outputs)
         throw std::invalid_argument("fitNetwork: data has " + std::to_string(inputs.rows()) + " inputs and " +
                                     std::to_string(targets.rows()) + " targets, the network " + arch.describe());
@@ -213,6 +223,7 @@ NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eig
     d.yTest = gather(targets, split.test);
     for (MatX<float>* x : {&d.xTrain, &d.xValidation, &d.xTest}) model.inputScaler.apply(*x);
     for (MatX<float>* y : {&d.yTrain, &d.yValidation, &d.yTest}) model.outputScaler.apply(*y);
+    if (targetVariance.size() > 0) d.vValidation = gather(targetVariance, split.validation);
 
     model.params = initialParams(arch, cfg.seed(), stream);
     model.training = trainNetwork(arch, cfg, d, model.outputScaler, model.params, observer);

@@ -102,6 +102,12 @@ double relativeRmse(const Eigen::Ref<const MatX<float>>& predicted, const Eigen:
 NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eigen::Ref<const MatX<float>>& inputs,
                         const Eigen::Ref<const MatX<float>>& targets, const TrainObserver& observer = {},
                         uint64_t stream = 0);
+/// The same with the variance of each target's Monte Carlo mean (raw units, the shape of `targets`;
+/// empty = unknown), which makes the error goal and the validation-failure count noise-aware
+/// (nn/validation_monitor.h).
+NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eigen::Ref<const MatX<float>>& inputs,
+                        const Eigen::Ref<const MatX<float>>& targets, const MatX<float>& targetVariance,
+                        const TrainObserver& observer = {}, uint64_t stream = 0);
 
 /// Writes `model` to `path` atomically. Throws std::runtime_error on I/O failure and
 /// std::invalid_argument if the model holds non-finite numbers.

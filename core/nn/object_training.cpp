@@ -34,6 +34,9 @@ void ObjectSamples::validate() const {
         throw std::invalid_argument(who + ": " + std::to_string(n) + " input records but " +
                                     std::to_string(direct.size() / 3) + " direct and " +
                                     std::to_string(indirect.size() / 3) + " indirect targets");
+    const bool noVariance = directVariance.empty() && indirectVariance.empty();
+    if (!noVariance && (directVariance.size() != 3 * n || indirectVariance.size() != 3 * n))
+        throw std::invalid_argument(who + ": target variances must be given for every record or not at all");
 }
 
 const char* targetModeName(TargetMode m) {
@@ -139,6 +142,24 @@ PartitionedNetwork finishTree(TreeBuild& b) {
     return out;
 }
 
+/// Variance of the target's Monte Carlo mean (empty when unknown). The global target's is the sum:
+/// under NEE the first vertex's light sample and the path's continuation use independent random
+/// numbers, so direct and indirect estimates of one record are uncorrelated.
+MatX<float> targetVariance(const ObjectSamples& s, const std::string& target) {
+    if (s.directVariance.empty()) return {};
+    const Eigen::Map<const MatX<float>> d(s.directVariance.data(), 3, Eigen::Index(s.size()));
+    const Eigen::Map<const MatX<float>> i(s.indirectVariance.data(), 3, Eigen::Index(s.size()));
+    if (target == "direct") return d;
+    if (target == "indirect") return i;
+    if (target == "joint") {
+        MatX<float> t(6, Eigen::Index(s.size()));
+        t.topRows(3) = d;
+        t.bottomRows(3) = i;
+        return t;
+    }
+    return d + i;
+}
+
 }  // namespace
 
 std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects, const ObjectTrainingOptions& options,
@@ -197,11 +218,13 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
         return arch;
     };
     std::vector<MatX<float>> targetsOf(jobs.size());
+    std::vector<MatX<float>> variancesOf(jobs.size());  // empty = the targets' noise is unknown
     std::vector<TreeBuild> builds(jobs.size());
     std::vector<NodeTask> level;
     for (size_t j = 0; j < jobs.size(); ++j) {
         const ObjectSamples& s = *jobs[j].samples;
         targetsOf[j] = targetMatrix(s, jobs[j].target);
+        variancesOf[j] = targetVariance(s, jobs[j].target);
         builds[j].tree = PartitionTree::singleLeaf(int64_t(s.size()));
         builds[j].nets.resize(1);
         builds[j].trained.assign(1, 0);
@@ -243,13 +266,20 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
             const Eigen::Index n = Eigen::Index(task.records.size());
             const Eigen::Map<const MatX<float>> xin(all ? s.inputs.data() : x.data(), s.numInputs, n);
             const Eigen::Map<const MatX<float>> yin(all ? targetsOf[task.job].data() : y.data(), targetsOf[task.job].rows(), n);
-            NetworkModel net = fitNetwork(archFor(job), options.trainer, xin, yin, obs, stream);
+            const MatX<float>& vAll = variancesOf[task.job];
+            const MatX<float> v = vAll.size() == 0 || all ? vAll : gatherColumns(vAll, task.records);
+            NetworkModel net = fitNetwork(archFor(job), options.trainer, xin, yin, v, obs, stream);
             net.objectId = id;
             net.objectName = s.name;
             net.target = target;
             // Validation split exactly as fitNetwork drew it (same n, seed and stream).
             const DataSplit split = splitSamples(size_t(xin.cols()), options.trainer.seed(), stream);
-            if (!split.validation.empty())
+            // The split decision uses the noise-corrected validation error when the targets' noise is
+            // known: a node whose remaining error is the records' own Monte Carlo noise gains nothing
+            // from splitting (smaller leaves only fit the noise).
+            if (std::isfinite(net.training.validationRelativeRmseCorrected))
+                error[k] = net.training.validationRelativeRmseCorrected;
+            else if (!split.validation.empty())
                 error[k] = relativeRmse(net.predict(gatherColumns(xin, split.validation)), gatherColumns(yin, split.validation));
             b.nets[size_t(task.node)] = std::move(net);
             b.trained[size_t(task.node)] = 1;

@@ -30,6 +30,9 @@ struct ObjectSamples {
     std::vector<float> inputs;  ///< size() · numInputs
     std::vector<float> direct;  ///< size() · 3
     std::vector<float> indirect;///< size() · 3
+    /// Variance of each target's Monte Carlo mean (raw units, size() · 3 each, as direct/indirect),
+    /// or both empty when the dataset does not store it: the error goal then ignores target noise.
+    std::vector<float> directVariance, indirectVariance;
 
     /// Number of records.
     size_t size() const { return numInputs > 0 ? inputs.size() / size_t(numInputs) : 0; }

@@ -44,7 +44,32 @@ double networkMse(const MlpArch& arch, const VecX<double>& params, const MatX<fl
 TrainResult trainNetwork(const MlpArch& arch, const TrainerConfig& cfg, const TrainingData& data,
                          const MinMaxScaler& outputScaler, VecX<double>& params, const TrainObserver& observer) {
     if (cfg.type == TrainerType::Adam) return trainAdam(arch, cfg.adam, data, outputScaler, params, observer);
-    return trainLevenbergMarquardt(arch, cfg.lm, data, params, observer);
+    return trainLevenbergMarquardt(arch, cfg.lm, data, outputScaler, params, observer);
+}
+
+int64_t lmSampleCount(const LevenbergMarquardtConfig& cfg, int64_t available, int64_t params, std::string* reason) {
+    if (reason) reason->clear();
+    int64_t n = available;
+    const double flopsPerSample = 3.0 * double(params) * double(params);
+    if (cfg.maxEpochGflop > 0) {
+        const int64_t budget = std::max<int64_t>(1, int64_t(std::floor(cfg.maxEpochGflop * 1e9 / flopsPerSample)));
+        if (budget < n) {
+            n = budget;
+            if (reason)
+                *reason = "levenberg_marquardt: training on a random subsample of " + std::to_string(n) + " of " +
+                          std::to_string(available) + " training samples: all of them would cost " +
+                          std::to_string(flopsPerSample * double(available) / 1e9) + " GFLOP per epoch (3*N*P^2, P = " +
+                          std::to_string(params) + "), above max_epoch_gflop = " + std::to_string(cfg.maxEpochGflop);
+        }
+    }
+    if (cfg.maxSamples > 0 && cfg.maxSamples < n) {
+        n = cfg.maxSamples;
+        if (reason)
+            *reason = "levenberg_marquardt: training on a random subsample of " + std::to_string(n) + " of " +
+                      std::to_string(available) + " training samples (max_samples; an epoch costs about 3*N*P^2 = " +
+                      std::to_string(flopsPerSample * double(n) / 1e9) + " GFLOP)";
+    }
+    return n;
 }
 
 }  // namespace rrf

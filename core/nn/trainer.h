@@ -6,7 +6,9 @@
 ///
 /// Losses reported here are in NORMALISED units (targets mapped to [-1, 1] by mapminmax): the MSE for
 /// levenberg_marquardt and adam/mse, the relative L2 loss for adam/relative_l2. Errors in raw units are
-/// computed by fitNetwork (nn/model.h).
+/// computed by fitNetwork (nn/model.h). Every epoch also reports the validation relative RMSE (raw
+/// units, noise-corrected when the targets' variance is known), the figure the error goal is stated in
+/// (nn/validation_monitor.h).
 
 #include <atomic>
 #include <cstdint>
@@ -17,6 +19,7 @@
 
 #include "core/nn/mlp.h"
 #include "core/nn/trainer_config.h"
+#include "core/nn/validation_monitor.h"
 
 namespace rrf {
 
@@ -28,6 +31,11 @@ struct EpochRecord {
     double validationLoss = std::numeric_limits<double>::quiet_NaN();
     double step = 0;       ///< μ (levenberg_marquardt) or learning rate (adam) used in this epoch
     double seconds = 0;    ///< wall time since training started
+    /// Validation relative RMSE in raw units, noise-corrected when the targets' variance is known
+    /// (the figure compared with the error goal); NaN for an empty validation set.
+    double validationRelativeRmse = std::numeric_limits<double>::quiet_NaN();
+    /// True when this epoch's validation loss rose, but within the targets' noise (not a failure).
+    bool failureWithinNoise = false;
 };
 
 /// What a training run did.
@@ -42,6 +50,16 @@ struct TrainResult {
     int64_t trainSamplesUsed = 0;      ///< < trainSamples when the trainer subsampled (max_samples)
     double seconds = 0;
     std::vector<std::string> messages; ///< notes for the user (subsampling, solver fallbacks)
+    /// The error goal (validation relative RMSE; 0 = none) and whether the kept weights met it
+    /// (stopReason "error goal reached").
+    double errorGoal = 0;
+    bool goalReached = false;
+    /// The kept weights' validation relative RMSE against the (noisy) targets, its noise-corrected
+    /// value and the targets' relative noise floor (both NaN when the variance is unknown); see
+    /// nn/validation_monitor.h. NaN for an empty validation set.
+    double validationRelativeRmse = std::numeric_limits<double>::quiet_NaN();
+    double validationRelativeRmseCorrected = std::numeric_limits<double>::quiet_NaN();
+    double validationRelativeNoise = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Hooks into a running trainer. Both callbacks may be empty; they are called on the training thread,
@@ -68,21 +86,42 @@ DataSplit splitSamples(size_t n, uint64_t seed, uint64_t stream = 0);
 /// Normalised data of one network, samples as columns (features × N).
 struct TrainingData {
     MatX<float> xTrain, yTrain, xValidation, yValidation, xTest, yTest;
+    /// Variance of each validation target's Monte Carlo mean in RAW units (outputs × N, as
+    /// yValidation), or empty when unknown: the error goal and the failure count then ignore noise.
+    MatX<float> vValidation;
 };
 
 /// Trains `params` (in: initial, out: the weights of the best validation epoch) with Matlab trainlm
 /// semantics: per epoch JᵀJ and Jᵀe are accumulated in double over fixed chunks of the training set
 /// (in parallel, reduced in a fixed order, so the result does not depend on the thread count), then
 /// Δw = −(JᵀJ + μI)⁻¹Jᵀe is tried with μ raised ×mu_inc until the training SSE decreases (μ then
-/// ×mu_dec). Stops on max_epochs, goal, ‖Jᵀe‖ < min_grad, μ > mu_max, max_fail validation failures
-/// or cancel. Throws std::invalid_argument when JᵀJ would not fit in memory (use adam).
+/// ×mu_dec). Stops on max_epochs, goal, error_goal (validation relative RMSE, computed in raw units
+/// through `outputScaler`), ‖Jᵀe‖ < min_grad, μ > mu_max, max_fail validation failures (beyond the
+/// targets' noise) or cancel. Trains on every training sample unless max_samples or max_epoch_gflop
+/// bounds them, which the log then says. Throws std::invalid_argument when JᵀJ would not fit in
+/// memory (use adam).
+TrainResult trainLevenbergMarquardt(const MlpArch& arch, const LevenbergMarquardtConfig& cfg,
+                                    const TrainingData& data, const MinMaxScaler& outputScaler,
+                                    VecX<double>& params, const TrainObserver& observer = {});
+/// The same with raw = normalised targets (identity output scaler).
 TrainResult trainLevenbergMarquardt(const MlpArch& arch, const LevenbergMarquardtConfig& cfg,
                                     const TrainingData& data, VecX<double>& params,
                                     const TrainObserver& observer = {});
 
+/// Training samples LM uses out of `available`: all, unless max_samples or the max_epoch_gflop
+/// budget (3·N·P² flops per epoch for P parameters) is smaller. `reason` (if given) receives the
+/// sentence the log prints when a bound applies, and stays empty otherwise.
+int64_t lmSampleCount(const LevenbergMarquardtConfig& cfg, int64_t available, int64_t params,
+                      std::string* reason = nullptr);
+
+/// Learning rate of Adam's epoch `epoch` (1-based) under cfg's schedule (docs/design.md §12).
+double adamLearningRate(const AdamConfig& cfg, int epoch);
+
 /// Trains `params` with Adam on shuffled mini-batches in float. `outputScaler` converts normalised
-/// outputs back to raw units for the relative L2 loss. Single-threaded and deterministic; objects are
-/// parallelised one level up.
+/// outputs back to raw units for the relative L2 loss and the error goal. Stops on max_epochs,
+/// error_goal, patience (counted only while the rate is ≤ patience_lr_fraction × learning_rate, and
+/// not for rises within the targets' noise), divergence or cancel. Single-threaded and
+/// deterministic; objects are parallelised one level up.
 TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const TrainingData& data,
                       const MinMaxScaler& outputScaler, VecX<double>& params,
                       const TrainObserver& observer = {});

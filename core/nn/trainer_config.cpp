@@ -31,7 +31,8 @@ TrainerConfig TrainerConfig::fromJson(const JsonReader& r) {
     const std::string type = r.choiceOr("type", "levenberg_marquardt", {"levenberg_marquardt", "lm", "adam"});
     if (type == "adam") {
         r.checkKeys({"type", "max_epochs", "batch_size", "learning_rate", "min_learning_rate", "schedule", "step_epochs",
-                     "step_gamma", "beta1", "beta2", "epsilon", "weight_decay", "loss", "patience", "max_samples", "seed"});
+                     "step_gamma", "beta1", "beta2", "epsilon", "weight_decay", "loss", "patience", "patience_lr_fraction",
+                     "error_goal", "max_samples", "seed"});
         c.type = TrainerType::Adam;
         AdamConfig& a = c.adam;
         a.maxEpochs = int(r.integerOr("max_epochs", a.maxEpochs, 0, kMaxEpochs));
@@ -48,11 +49,13 @@ TrainerConfig TrainerConfig::fromJson(const JsonReader& r) {
         a.weightDecay = r.numberOr("weight_decay", a.weightDecay, 0.0, 1.0);
         a.loss = r.choiceOr("loss", "mse", {"mse", "relative_l2"}) == "relative_l2" ? AdamLoss::RelativeL2 : AdamLoss::Mse;
         a.patience = int(r.integerOr("patience", a.patience, 0, kMaxEpochs));
+        a.patienceLrFraction = r.numberOr("patience_lr_fraction", a.patienceLrFraction, 0.0, 1.0, true);
+        a.errorGoal = r.numberOr("error_goal", a.errorGoal, 0.0, kInf);
         a.maxSamples = r.integerOr("max_samples", a.maxSamples, 0, INT64_MAX);
         a.seed = r.unsignedOr("seed", a.seed);
     } else {
         r.checkKeys({"type", "max_epochs", "mu", "mu_dec", "mu_inc", "mu_max", "min_grad", "max_fail", "goal",
-                     "max_samples", "seed"});
+                     "error_goal", "max_samples", "max_epoch_gflop", "seed"});
         c.type = TrainerType::LevenbergMarquardt;
         LevenbergMarquardtConfig& l = c.lm;
         l.maxEpochs = int(r.integerOr("max_epochs", l.maxEpochs, 0, kMaxEpochs));
@@ -63,7 +66,9 @@ TrainerConfig TrainerConfig::fromJson(const JsonReader& r) {
         l.minGrad = r.numberOr("min_grad", l.minGrad, 0.0, kInf);
         l.maxFail = int(r.integerOr("max_fail", l.maxFail, 1, kMaxEpochs));
         l.goal = r.numberOr("goal", l.goal, 0.0, kInf);
+        l.errorGoal = r.numberOr("error_goal", l.errorGoal, 0.0, kInf);
         l.maxSamples = r.integerOr("max_samples", l.maxSamples, 0, INT64_MAX);
+        l.maxEpochGflop = r.numberOr("max_epoch_gflop", l.maxEpochGflop, 0.0, kInf);
         l.seed = r.unsignedOr("seed", l.seed);
         if (l.mu > l.muMax) throw InputError(r.file(), JsonReader::child(r.pointer(), "mu"), "initial mu exceeds mu_max");
     }
@@ -90,6 +95,8 @@ json TrainerConfig::toJson() const {
                     {"weight_decay", a.weightDecay},
                     {"loss", a.loss == AdamLoss::RelativeL2 ? "relative_l2" : "mse"},
                     {"patience", a.patience},
+                    {"patience_lr_fraction", a.patienceLrFraction},
+                    {"error_goal", a.errorGoal},
                     {"max_samples", a.maxSamples},
                     {"seed", a.seed}};
     }
@@ -103,7 +110,9 @@ json TrainerConfig::toJson() const {
                 {"min_grad", l.minGrad},
                 {"max_fail", l.maxFail},
                 {"goal", l.goal},
+                {"error_goal", l.errorGoal},
                 {"max_samples", l.maxSamples},
+                {"max_epoch_gflop", l.maxEpochGflop},
                 {"seed", l.seed}};
 }
 

@@ -1,0 +1,71 @@
+#pragma once
+/// The losses the trainers minimise and compare on the validation set, with their gradient with
+/// respect to the network's (normalised) outputs. One definition for Adam's mini-batches, the
+/// validation monitor (nn/validation_monitor.h) and the finite-difference test.
+///
+///   mse          (ŷ − ŷ_ref)²                         normalised [-1, 1] units
+///   relative_l2  (p − y)² / (|y| + ε)²,  ε = 0.01       raw units: p, y the raw prediction and target
+///
+/// The relative L2 loss is the squared per-channel term of the error metric's relative RMSE
+/// (core/eval/error_metrics.h, ε = kRelativeEpsilon), with the target in the denominator as there:
+/// minimising it minimises exactly the figure the goal is stated in. (Noise2Noise and Neural Radiance
+/// Caching put the prediction in the denominator instead, because their targets are single noisy
+/// samples; here a target is a mean of many paths and its noise is measured, so the metric's own
+/// weighting is used.) Its weight 1/(|y| + ε)² is a constant per entry, so the loss is an ordinary
+/// weighted least-squares problem.
+
+#include <Eigen/Dense>
+
+#include "core/nn/mlp.h"
+#include "core/nn/trainer_config.h"
+#include "core/util/relative_error.h"
+
+namespace rrf {
+
+/// A loss bound to an output scaler (normalised ↔ raw). Scalar type S is float for training and
+/// double for tests.
+template <typename S>
+class TrainingLoss {
+public:
+    TrainingLoss(AdamLoss kind, const MinMaxScaler& out) : kind_(kind) {
+        invScale_ = (1.0 / out.scale.array()).template cast<S>();
+        offset_ = out.offset.template cast<S>().array();
+    }
+
+    AdamLoss kind() const { return kind_; }
+
+    /// Per-entry weight w of the loss in RAW units, loss entry = w · (p − y)² (p, y raw): for mse
+    /// w = scale_k² (the normalisation), for relative_l2 w = 1 / (|y| + ε)². `yNormalised` is one
+    /// target column's entry k.
+    S rawWeight(Eigen::Index k, S yNormalised) const {
+        if (kind_ == AdamLoss::Mse) return S(1) / (invScale_[k] * invScale_[k]);
+        const S y = yNormalised * invScale_[k] + offset_[k];
+        const S d = std::abs(y) + S(kRelativeEpsilon);
+        return S(1) / (d * d);
+    }
+
+    /// Sum of the per-entry losses of `pred` against `y` (both normalised, outputs × N). When `dOut`
+    /// is given it receives ∂(sum / count)/∂pred, so mlpBackward's summed gradient is the gradient
+    /// of the mean over `count` entries.
+    double evaluate(const MatX<S>& pred, const Eigen::Ref<const MatX<S>>& y, MatX<S>* dOut, double count) const {
+        if (kind_ == AdamLoss::Mse) {
+            const MatX<S> d = pred - y;
+            if (dOut) *dOut = d * S(2.0 / count);
+            return double(d.template cast<double>().squaredNorm());
+        }
+        // Raw difference (p − y) = (ŷ − ŷ_ref)/scale; raw target y = ŷ_ref/scale + offset.
+        using ArrayS = Eigen::Array<S, Eigen::Dynamic, Eigen::Dynamic>;
+        const ArrayS diff = (pred - y).array().colwise() * invScale_;
+        const ArrayS yRaw = y.array().colwise() * invScale_ + offset_.replicate(1, y.cols());
+        const ArrayS denom = (yRaw.abs() + S(kRelativeEpsilon)).square();
+        // ∂/∂ŷ of diff²/denom = 2 diff/denom · ∂diff/∂ŷ = 2 diff/denom · (1/scale).
+        if (dOut) *dOut = ((diff / denom).colwise() * invScale_ * S(2.0 / count)).matrix();
+        return (diff.square() / denom).template cast<double>().sum();
+    }
+
+private:
+    AdamLoss kind_;
+    Eigen::Array<S, Eigen::Dynamic, 1> invScale_, offset_;
+};
+
+}  // namespace rrf
