@@ -217,6 +217,14 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
         arch.outputs = job.target == "joint" ? 6 : 3;
         return arch;
     };
+    // Seams: two neighbouring leaves that each stop at the error goal e can differ by up to ~2e across
+    // their plane. A partitioned model's networks therefore train to half the partition goal, so the
+    // jump across a plane stays below the goal (PartitionedTraining.JumpAcrossSplitPlanesStaysBelowTheGoal).
+    TrainerConfig leafTrainer = options.trainer;
+    if (part.enabled()) {
+        const double goal = std::min(leafTrainer.errorGoal(), part.goal / 2);
+        leafTrainer.lm.errorGoal = leafTrainer.adam.errorGoal = goal;
+    }
     std::vector<MatX<float>> targetsOf(jobs.size());
     std::vector<MatX<float>> variancesOf(jobs.size());  // empty = the targets' noise is unknown
     std::vector<TreeBuild> builds(jobs.size());
@@ -268,7 +276,7 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
             const Eigen::Map<const MatX<float>> yin(all ? targetsOf[task.job].data() : y.data(), targetsOf[task.job].rows(), n);
             const MatX<float>& vAll = variancesOf[task.job];
             const MatX<float> v = vAll.size() == 0 || all ? vAll : gatherColumns(vAll, task.records);
-            NetworkModel net = fitNetwork(archFor(job), options.trainer, xin, yin, v, obs, stream);
+            NetworkModel net = fitNetwork(archFor(job), leafTrainer, xin, yin, v, obs, stream);
             net.objectId = id;
             net.objectName = s.name;
             net.target = target;
