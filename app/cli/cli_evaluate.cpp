@@ -94,7 +94,7 @@ int runEvaluate(EvaluateArgs a) {
     else lights = {a.lightPos.value_or(p.scene.lightPosition())};
     // --spp: a fixed number of samples, no noise target, not stored. Otherwise the project's store
     // renders (or reuses) references converged to the noise target.
-    ReferenceStore store = projectStore(p);
+    ReferenceStore store = projectReferenceStore(p);
     const NoiseTarget target = noiseTargetFor(p, a.noise, a.sppCap);
     const auto [width, height] = referenceSize(p, a.width, a.height);
     const RenderOptions ro = referenceOptions(p, a.spp, a.width, a.height);

@@ -45,8 +45,6 @@ Reference renderWithProgress(const Scene& scene, const Vec3& lp, const RenderOpt
     return r;
 }
 
-ReferenceStore projectStore(const Project& p) { return ReferenceStore(outputPath(projectDirectory(p), "references")); }
-
 NoiseTarget noiseTargetFor(const Project& p, double noise, int sppCap) {
     NoiseTarget t = p.reference.target;
     if (noise > 0) t.relativeRmse = noise;

@@ -27,8 +27,6 @@ RenderOptions referenceOptions(const Project& p, int spp, int width, int height)
 /// interrupted.
 Reference renderWithProgress(const Scene& scene, const Vec3& lp, const RenderOptions& o, const std::string& label);
 
-/// The project's reference store: <project dir>/references.
-ReferenceStore projectStore(const Project& p);
 
 /// The project's noise target ("reference" section) with --noise and --spp-cap applied where > 0.
 NoiseTarget noiseTargetFor(const Project& p, double noise, int sppCap);

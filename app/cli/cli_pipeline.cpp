@@ -12,6 +12,7 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_evaluation.h"
+#include "core/project/run_recording.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "core/data/data_generator.h"
@@ -50,7 +51,7 @@ int runPipeline(const PipelineArgs& a) {
     const int heldOut = a.heldOut > 0 ? a.heldOut : (a.quick ? 1 : 2);
     // Held-out references come from the project's store, converged to the noise target (--quick caps
     // them at 1024 spp unless --spp-cap says otherwise), at the ground truth's size.
-    ReferenceStore store = projectStore(p);
+    ReferenceStore store = projectReferenceStore(p);
     NoiseTarget target = noiseTargetFor(p, a.noise, a.sppCap);
     if (a.quick && a.sppCap <= 0) target.sppCap = std::min(target.sppCap, 1024);
     makeDirectories(a.out);

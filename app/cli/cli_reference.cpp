@@ -10,6 +10,7 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_evaluation.h"
+#include "core/project/run_recording.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "core/eval/held_out.h"
@@ -60,7 +61,7 @@ void listEntries(const ReferenceStore& store, uint64_t sceneHash) {
 int runReference(const ReferenceArgs& a) {
     const Project p = loadProjectOrScene(a.input);
     auto threads = limitThreads(a.threads);
-    ReferenceStore store = projectStore(p);
+    ReferenceStore store = projectReferenceStore(p);
     const uint64_t hash = p.scene.contentHash();
     if (a.prune) {
         const int removed = store.pruneStale(hash);

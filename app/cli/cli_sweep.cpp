@@ -8,6 +8,7 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_evaluation.h"
+#include "core/project/run_recording.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "core/eval/sweep.h"
@@ -37,7 +38,7 @@ int runSweepCommand(const SweepArgs& a) {
     o.height = a.height > 0 ? a.height : 128;
     o.referenceSpp = a.referenceSpp > 0 ? a.referenceSpp : 0;
     // Without --reference-spp, the reference comes from the project's store, converged to the target.
-    ReferenceStore store = projectStore(p);
+    ReferenceStore store = projectReferenceStore(p);
     if (a.referenceSpp <= 0) o.store = &store;
     o.referenceTarget = noiseTargetFor(p, a.noise, a.sppCap);
     experimentSettings(p, a.experiment, true, o.sampling, o.training);

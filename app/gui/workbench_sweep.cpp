@@ -15,6 +15,7 @@
 #include "core/data/sampling_settings.h"
 #include "core/eval/sweep.h"
 #include "core/nn/network_settings.h"
+#include "core/project/run_recording.h"
 #include "core/util/atomic_file.h"
 #include "core/util/stopwatch.h"
 
@@ -116,7 +117,10 @@ bool Workbench::startSweep(const std::string& what) {
     // minute or two on a laptop instead of the CLI defaults' much longer runs. Every point, path
     // tracer and model, is judged against the one reference of the sweep.
     o.width = o.height = 64;
-    o.referenceSpp = what == "spp" ? 256 : 64;
+    // The one reference comes from the project's store, converged to the project's noise target (at
+    // 64² a few seconds to a minute, once: later sweeps of the same scene and light reuse it).
+    o.referenceTarget = state_.project.reference.target;
+    const std::string storeDir = projectReferenceStore(state_.project).dir();
     if (what == "spp") o.values = {"1", "4", "16", "64"};
     o.pathTracerSpp = {1, 4, 16, 64, 256};
     o.keepModels = true;  // for the GLSL timing on the UI thread
@@ -129,8 +133,10 @@ bool Workbench::startSweep(const std::string& what) {
     o.training.trainer.adam.maxEpochs = std::min(o.training.trainer.adam.maxEpochs, 50);
     std::string outBase = (fs::path(projectDir()) / "sweeps" / (what + "-" + localTimestamp())).string();
     std::replace(outBase.end() - 8, outBase.end(), ':', '-');  // no ':' in file names
-    const bool started = sweepJob_.start("sweep " + what, [scene, o, outBase](JobContext& ctx) -> std::optional<SweepOutcome> {
+    const bool started = sweepJob_.start("sweep " + what, [scene, o, outBase, storeDir](JobContext& ctx) -> std::optional<SweepOutcome> {
         SweepOptions opt = o;
+        ReferenceStore store(storeDir);
+        opt.store = &store;
         opt.cancel = &ctx.cancelFlag();
         int lines = 0;
         const double expected = double(opt.values.empty() ? defaultSweepValues(opt.what).size() : opt.values.size()) + 2;
@@ -148,7 +154,7 @@ bool Workbench::startSweep(const std::string& what) {
     });
     if (!started) return false;
     state_.cost.running = true;
-    state_.log.info("sweep '" + what + "' started (64x64 images, small data and epochs; the path tracer against the same reference)");
+    state_.log.info("sweep '" + what + "' started (64x64 images, small data and epochs; the path tracer and every model against one converged reference from " + storeDir + ")");
     return true;
 }
 

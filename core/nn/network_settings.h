@@ -31,10 +31,12 @@ constexpr int kMaxHiddenSize = 4096;
 struct NetworkSettings {
     ObjectTrainingOptions options;  ///< hidden sizes, activation, targets, trainer
 
-    /// The project defaults: ObjectTrainingOptions' defaults with separate direct and indirect nets,
-    /// each partitioned into at most kDefaultMaxLeaves leaves.
+    /// The project defaults: ObjectTrainingOptions' defaults with networks for the indirect light only
+    /// (direct light is computed exactly by default, as in Ren et al.; Project::networkOrDefault
+    /// learns direct light too when the project predicts it with networks), each partitioned into at
+    /// most kDefaultMaxLeaves leaves.
     NetworkSettings() {
-        options.targets = TargetMode::Separate;
+        options.targets = TargetMode::Indirect;
         options.partition.maxLeaves = kDefaultMaxLeaves;
     }
     /// The project's default leaf budget per object and target.

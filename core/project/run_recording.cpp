@@ -30,6 +30,10 @@ std::string projectDirectory(const Project& project) {
     return fs::absolute(fs::path(project.path)).parent_path().string();
 }
 
+ReferenceStore projectReferenceStore(const Project& project) {
+    return ReferenceStore((std::filesystem::path(projectDirectory(project)) / "references").string());
+}
+
 bool isBareScene(const Project& project) {
     // A bare scene is wrapped in a project that references the scene file itself.
     return !project.sceneRef.empty() && !project.path.empty() &&

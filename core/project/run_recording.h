@@ -12,6 +12,7 @@
 
 #include "core/eval/error_metrics.h"
 #include "core/nn/network_settings.h"
+#include "core/eval/reference_store.h"
 #include "core/nn/training_run.h"
 #include "core/project/project.h"
 #include "core/project/runs.h"
@@ -23,6 +24,9 @@ namespace rrf {
 
 /// The directory runs of `project` are stored under: the project file's directory (absolute).
 std::string projectDirectory(const Project& project);
+/// The project's reference store, <project dir>/references (core/eval/reference_store.h): the one
+/// place the CLI and the workbench keep and find its converged references.
+ReferenceStore projectReferenceStore(const Project& project);
 /// True when `project` was loaded from a bare scene file: there is no project file to record into.
 bool isBareScene(const Project& project);
 /// `file` relative to `projectDir`, '/'-separated, as Run::artifacts stores it.
