@@ -142,16 +142,15 @@ TEST(ReferenceStore, ResumeAfterCancelEqualsAnUninterruptedRender) {
     const NoiseTarget target = toCap(1024, 8);
     TempStore interrupted("cancel"), straight("straight");
     ReferenceStore store = interrupted.store();
-    // Cancelled from another thread at an arbitrary moment, usually inside a pass.
+    // Cancelled once 64 spp are done (from the progress report, so the test does not depend on the
+    // machine's speed): the next pass is cut or never started.
     std::atomic<bool> cancel{false};
-    std::thread canceller([&] {
-        std::this_thread::sleep_for(std::chrono::milliseconds(80));
-        cancel = true;
-    });
+    const auto progress = [&](const ReferenceProgress& p) {
+        if (p.spp >= 64) cancel = true;
+    };
     Log log;
-    const Reference partial = store.obtain(s, key, target, &cancel, {}, {}, log.fn());
-    canceller.join();
-    ASSERT_TRUE(partial.cancelled) << "the render of 1024 spp outlasts 80 ms";
+    const Reference partial = store.obtain(s, key, target, &cancel, progress, {}, log.fn());
+    ASSERT_TRUE(partial.cancelled) << "cancelled at 64 of 1024 spp";
     const std::optional<StoredReference> saved = store.find(key);
     ASSERT_TRUE(saved.has_value()) << "a cancelled render is saved";
     EXPECT_FALSE(saved->complete);

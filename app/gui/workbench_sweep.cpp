@@ -29,6 +29,7 @@ struct SweepOutcome {
     SweepResult result;
     std::shared_ptr<const Scene> scene;
     std::string outBase;  ///< <project dir>/sweeps/<what>-<time>, + .csv / .json
+    PredictionSettings prediction;  ///< as the CPU rows were predicted (direct light), for the GLSL timing
 };
 
 namespace {
@@ -38,8 +39,11 @@ constexpr int kGlslTimedFrames = 5;
 
 /// Seconds of one GLSL prediction frame of `models` at width × height with the light at `light`:
 /// render plus read-back of the global term, as the live view needs it. Needs the current GL context.
-double glslFrameSeconds(const Scene& scene, const ModelSet& models, const Vec3& light, int width, int height) {
+/// Direct light as `prediction` says, like the CPU frame time of the same row.
+double glslFrameSeconds(const Scene& scene, const ModelSet& models, const PredictionSettings& prediction,
+                        const Vec3& light, int width, int height) {
     GlslPredictor gp(scene, models);
+    gp.setPrediction(prediction);
     Camera camera = scene.camera;
     camera.width = width;
     camera.height = height;
@@ -150,6 +154,7 @@ bool Workbench::startSweep(const std::string& what) {
         if (out.result.cancelled) return std::nullopt;
         out.scene = scene;
         out.outBase = outBase;
+        out.prediction = opt.prediction;
         return out;
     });
     if (!started) return false;
@@ -167,7 +172,7 @@ void Workbench::pollSweep() {
         for (SweepRow& row : r.rows) {
             if (!row.models) continue;
             try {
-                row.glslFrameSeconds = glslFrameSeconds(*out.scene, *row.models, r.lightPosition, r.width, r.height);
+                row.glslFrameSeconds = glslFrameSeconds(*out.scene, *row.models, out.prediction, r.lightPosition, r.width, r.height);
             } catch (const std::exception& e) {
                 state_.log.warning(std::string("sweep: GLSL frame time not measured: ") + e.what());
                 break;

@@ -245,8 +245,15 @@ void writeEntry(const fs::path& storeDir, const ReferenceKey& key, const RenderS
     const fs::path final = storeDir / key.id();
     const fs::path old = storeDir / ("." + key.id() + ".old-" + suffix);
     std::error_code ec;
-    if (fs::exists(final)) fs::rename(final, old);
-    fs::rename(tmp, final);
+    const bool replacing = fs::exists(final);
+    if (replacing) fs::rename(final, old);
+    fs::rename(tmp, final, ec);
+    if (ec) {  // e.g. another writer recreated the entry meanwhile: put the old one back, say which
+        std::error_code ignore;
+        if (replacing) fs::rename(old, final, ignore);
+        fs::remove_all(tmp, ignore);
+        throw InputError(final.string(), "", "could not store the reference entry: " + ec.message());
+    }
     fs::remove_all(old, ec);
 }
 

@@ -218,7 +218,8 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
         return arch;
     };
     // Seams: two neighbouring leaves that each stop at the error goal e can differ by up to ~2e across
-    // their plane. A partitioned model's networks therefore train to half the partition goal, so the
+    // their plane. The networks of split nodes (depth > 0) therefore train to half the partition goal
+    // (the root keeps the trainer's goal, so a tree that never splits is the plain network), so the
     // jump across a plane stays below the goal (PartitionedTraining.JumpAcrossSplitPlanesStaysBelowTheGoal).
     TrainerConfig leafTrainer = options.trainer;
     if (part.enabled()) {
@@ -276,7 +277,7 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
             const Eigen::Map<const MatX<float>> yin(all ? targetsOf[task.job].data() : y.data(), targetsOf[task.job].rows(), n);
             const MatX<float>& vAll = variancesOf[task.job];
             const MatX<float> v = vAll.size() == 0 || all ? vAll : gatherColumns(vAll, task.records);
-            NetworkModel net = fitNetwork(archFor(job), leafTrainer, xin, yin, v, obs, stream);
+            NetworkModel net = fitNetwork(archFor(job), task.depth == 0 ? options.trainer : leafTrainer, xin, yin, v, obs, stream);
             net.objectId = id;
             net.objectName = s.name;
             net.target = target;

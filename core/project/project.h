@@ -58,11 +58,14 @@ struct Project {
     /// The sampling settings in effect (the defaults when the file has none).
     SamplingSettings samplingOrDefault() const { return sampling.value_or(SamplingSettings()); }
     /// The network and trainer settings in effect: each section's values, its defaults where absent.
-    /// Without a "network" section the targets follow the prediction: indirect networks beside exact
-    /// direct light (the default), separate direct and indirect ones when direct light is learned.
+    /// The targets follow the prediction: indirect networks beside exact direct light (the default),
+    /// separate direct and indirect ones when direct light is learned.
     NetworkSettings networkOrDefault() const {
         NetworkSettings s = network.value_or(NetworkSettings());
-        if (!network && prediction.direct == PredictionSettings::Direct::Network) s.options.targets = TargetMode::Separate;
+        // Learned direct light needs direct networks: indirect-only targets (the default, or written by
+        // the Network panel while direct light was exact) become separate direct and indirect ones.
+        if (prediction.direct == PredictionSettings::Direct::Network && s.options.targets == TargetMode::Indirect)
+            s.options.targets = TargetMode::Separate;
         s.options.trainer = trainer.value_or(TrainerConfig());
         return s;
     }
