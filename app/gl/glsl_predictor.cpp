@@ -1,5 +1,7 @@
 #include "app/gl/glsl_predictor.h"
 
+#include "app/gl/gl_state.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -73,78 +75,6 @@ void addSphereProxy(std::vector<float>& out, const Vec3& c, float r, float id) {
             for (int i : tri)
                 out.insert(out.end(), {v[i].x, v[i].y, v[i].z, c.x, c.y, c.z, r, 0.f, 0.f, 0.f, id, kKindSphere, 0.f, 0.f, 0.f});
     }
-}
-
-/// Saves the GL state that render() and the read-backs change and restores it on scope exit, so the
-/// predictor can run inside another renderer's frame (the GUI's ImGui pass).
-class GlStateGuard {
-public:
-    GlStateGuard() {
-        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFbo_);
-        glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFbo_);
-        glGetIntegerv(GL_VIEWPORT, viewport_);
-        glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
-        glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
-        glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &arrayBuffer_);
-        glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
-        for (int i = 0; i < 4; ++i) {
-            glActiveTexture(GLenum(GL_TEXTURE0 + i));
-            glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[i]);
-        }
-        glGetIntegerv(GL_DEPTH_FUNC, &depthFunc_);
-        glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask_);
-        glGetIntegerv(GL_PACK_ALIGNMENT, &packAlignment_);
-        glGetIntegerv(GL_UNPACK_ALIGNMENT, &unpackAlignment_);
-        for (int i = 0; i < 4; ++i) enabled_[i] = glIsEnabled(kCaps[i]);
-    }
-    ~GlStateGuard() {
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(drawFbo_));
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readFbo_));
-        glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
-        glUseProgram(GLuint(program_));
-        glBindVertexArray(GLuint(vao_));
-        glBindBuffer(GL_ARRAY_BUFFER, GLuint(arrayBuffer_));
-        for (int i = 0; i < 4; ++i) {
-            glActiveTexture(GLenum(GL_TEXTURE0 + i));
-            glBindTexture(GL_TEXTURE_2D, GLuint(textures_[i]));
-        }
-        glActiveTexture(GLenum(activeTexture_));
-        glDepthFunc(GLenum(depthFunc_));
-        glDepthMask(depthMask_);
-        glPixelStorei(GL_PACK_ALIGNMENT, packAlignment_);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, unpackAlignment_);
-        for (int i = 0; i < 4; ++i) (enabled_[i] ? glEnable : glDisable)(kCaps[i]);
-    }
-
-private:
-    static constexpr GLenum kCaps[4] = {GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_SCISSOR_TEST};
-    GLint drawFbo_ = 0, readFbo_ = 0, viewport_[4] = {0, 0, 0, 0}, program_ = 0, vao_ = 0, arrayBuffer_ = 0;
-    GLint activeTexture_ = GL_TEXTURE0, textures_[4] = {0, 0, 0, 0}, depthFunc_ = GL_LESS;
-    GLint packAlignment_ = 4, unpackAlignment_ = 4;
-    GLboolean depthMask_ = GL_TRUE, enabled_[4] = {GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE};
-};
-
-GLuint makeFloatTexture(int w, int h, const float* data) {
-    GLuint t = 0;
-    glGenTextures(1, &t);
-    glBindTexture(GL_TEXTURE_2D, t);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, data);
-    return t;
-}
-
-void checkFramebuffer(const char* what) {
-    const GLenum s = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (s != GL_FRAMEBUFFER_COMPLETE)
-        throw GlError(std::string(what) + " framebuffer incomplete (status 0x" + [&] {
-                          char b[16];
-                          std::snprintf(b, sizeof b, "%x", unsigned(s));
-                          return std::string(b);
-                      }() + "): RGBA32F render targets are required");
 }
 
 int log2Exact(int v) {
@@ -427,128 +357,6 @@ void GlslPredictor::render() {
     glBindVertexArray(emptyVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     checkGl("network pass");
-}
-
-void GlslPredictor::setPrediction(const PredictionSettings& prediction) {
-    const bool same = prediction.direct == prediction_.direct && prediction.directSamples == prediction_.directSamples &&
-                      prediction.seed == prediction_.seed;
-    prediction_ = prediction;
-    if (same) return;
-    directMode_ = 0;
-    directNote_.clear();
-    if (prediction.direct != PredictionSettings::Direct::Exact) return;
-    size_t triangles = 0, rects = 0;
-    for (const Object& o : scene_.objects)
-        if (o.kind != Object::Kind::Sphere) triangles += o.primitiveCount() * (o.kind == Object::Kind::Quads ? 2 : 1);
-    for (const Light& l : scene_.lights) rects += l.type == Light::Type::Rect;
-    if (triangles <= size_t(kMaxShaderDirectTriangles) && rects <= size_t(kMaxShaderDirectRectLights)) {
-        directMode_ = 1;
-        uploadDirectScene();
-        return;
-    }
-    directMode_ = 2;
-    directNote_ = "exact direct light on the CPU: the scene has " + std::to_string(triangles) + " triangles and " +
-                  std::to_string(rects) + " rect lights, the shader's brute-force shadow rays take at most " +
-                  std::to_string(kMaxShaderDirectTriangles) + " and " + std::to_string(kMaxShaderDirectRectLights);
-    std::fprintf(stderr, "GLSL predictor: %s\n", directNote_.c_str());
-    if (!hostTracer_) {
-        hostAccel_ = std::make_unique<Accel>(scene_);
-        hostTracer_ = std::make_unique<PathTracer>(scene_, *hostAccel_, Estimator::NEE, 1);
-    }
-    if (!directHostTex_) {
-        GlStateGuard guard;
-        directHostTex_ = makeFloatTexture(1, 1, nullptr);
-    }
-}
-
-void GlslPredictor::uploadDirectScene() {
-    // Layout: shaders/direct_light.glsl's header comment.
-    std::vector<float> rects, points, materials, triangles, spheres;
-    auto put = [](std::vector<float>& v, const Vec3& a, float w) { v.insert(v.end(), {a.x, a.y, a.z, w}); };
-    for (const Light& l : scene_.lights) {
-        if (l.type == Light::Type::Rect) {
-            put(rects, l.corner, l.oneSided ? 1.f : 0.f);
-            put(rects, l.edge1, l.area());
-            put(rects, l.edge2, 0.f);
-            put(rects, l.radiance, 0.f);
-        } else {
-            put(points, l.position, 0.f);
-            put(points, l.intensity, 0.f);
-        }
-    }
-    for (const Object& o : scene_.objects) {
-        const Brdf b = o.material >= 0 ? Brdf(scene_.materials[size_t(o.material)]) : Brdf();
-        put(materials, b.kd, b.n);
-        put(materials, b.ks, 0.f);
-        if (o.kind == Object::Kind::Sphere) {
-            put(spheres, o.center, o.radius);
-            continue;
-        }
-        const size_t nv = size_t(o.verticesPerPrimitive());
-        for (size_t p = 0; p < o.primitiveCount(); ++p) {
-            Vec3 q[4];
-            for (size_t k = 0; k < nv; ++k) q[k] = o.positions[o.indices[p * nv + k]];
-            // Embree's split of a quad v0 v1 v2 v3: (v0, v1, v3) and (v2, v3, v1), as addQuad.
-            const int tris[2][3] = {{0, 1, 3}, {2, 3, 1}};
-            if (nv == 4) {
-                for (const auto& t : tris)
-                    for (int k : t) put(triangles, q[k], 0.f);
-            } else {
-                for (int k = 0; k < 3; ++k) put(triangles, q[k], 0.f);
-            }
-        }
-    }
-    const float header = 3.f;
-    const float nRect = float(rects.size() / 16), nPoint = float(points.size() / 8), nTri = float(triangles.size() / 12),
-                nSphere = float(spheres.size() / 4);
-    const float firstRect = header, firstPoint = firstRect + 4 * nRect, firstMaterial = firstPoint + 2 * nPoint,
-                firstTri = firstMaterial + float(materials.size() / 4), firstSphere = firstTri + 3 * nTri;
-    std::vector<float> data = {nRect, nPoint, nTri, nSphere, firstRect, firstPoint, firstTri, firstSphere,
-                               firstMaterial, 0.f, 0.f, 0.f};
-    for (const auto* part : {&rects, &points, &materials, &triangles, &spheres}) data.insert(data.end(), part->begin(), part->end());
-    if (!directBuffer_) glGenBuffers(1, &directBuffer_);
-    glBindBuffer(GL_TEXTURE_BUFFER, directBuffer_);
-    glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(data.size() * sizeof(float)), data.data(), GL_DYNAMIC_DRAW);
-    glBindBuffer(GL_TEXTURE_BUFFER, 0);
-    if (!directBufferTex_) {
-        GLint active = 0, bound = 0;
-        glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
-        glActiveTexture(GL_TEXTURE4);
-        glGetIntegerv(GL_TEXTURE_BINDING_BUFFER, &bound);
-        glGenTextures(1, &directBufferTex_);
-        glBindTexture(GL_TEXTURE_BUFFER, directBufferTex_);
-        glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, directBuffer_);
-        glBindTexture(GL_TEXTURE_BUFFER, GLuint(bound));
-        glActiveTexture(GLenum(active));
-    }
-    checkGl("uploading the scene for exact direct light");
-}
-
-void GlslPredictor::computeHostDirect() {
-    const GlGBuffer g = readGBuffer();
-    const int w = g.width, h = g.height;
-    const ExactDirect direct(*hostTracer_, prediction_.directSamples, prediction_.seed);
-    const Light movable = hostTracer_->movableLightAt(scene_.lightPosition());
-    const Vec3 eye = scene_.camera.eye;
-    std::vector<float> rgba(4 * g.pixelCount(), 0.f);
-    tbb::parallel_for(0, h, [&](int y) {
-        TraceCounters counters;
-        for (int x = 0; x < w; ++x) {
-            const size_t i = size_t(y) * size_t(w) + size_t(x);
-            if (g.objectId[i] < 0) continue;
-            const Vec3 p(g.position[3 * i], g.position[3 * i + 1], g.position[3 * i + 2]);
-            const Vec3 n(g.normal[3 * i], g.normal[3 * i + 1], g.normal[3 * i + 2]);
-            Vec3 L = direct.radiance(p, n, normalize(eye - p), g.objectId[i], movable, i, counters);
-            if (!L.isFinite()) L = Vec3(0.f);
-            float* out = &rgba[4 * (size_t(h - 1 - y) * size_t(w) + size_t(x))];  // GL rows: bottom first
-            for (int c = 0; c < 3; ++c) out[c] = L[c];
-        }
-    });
-    glActiveTexture(GL_TEXTURE5);
-    glBindTexture(GL_TEXTURE_2D, directHostTex_);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, rgba.data());
-    checkGl("uploading CPU-computed direct light");
 }
 
 std::vector<float> GlslPredictor::readAttachment(unsigned fbo, int attachment) const {
