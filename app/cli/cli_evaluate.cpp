@@ -127,14 +127,7 @@ void addEvaluateCommand(CLI::App& app, int& exitCode) {
                                        "render references at this fixed spp: no noise target, not stored (default: the "
                                        "project's reference store, converged to the noise target)")
                            ->check(positive());
-    cmd->add_option("--noise", a->noise,
-                    "relative RMSE noise the references must reach (default: the project's \"reference\" section, 0.01; "
-                    "or a quarter of the measured error when that is larger)")
-        ->check(CLI::Range(1e-6, 10.0))
-        ->excludes(spp);
-    cmd->add_option("--spp-cap", a->sppCap, "most samples per pixel of a stored reference (default: the project's, 4096)")
-        ->check(CLI::Range(2, 1 << 24))
-        ->excludes(spp);
+    addNoiseTargetFlags(cmd, a->noise, a->sppCap, "the references", "the project's, 4096", true, spp);
     cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());
     cmd->add_option("--exposure", a->exposure, "exposure in stops for PNG output");
     cmd->get_option("--out")->required(false)->description("output directory (required unless --record)");

@@ -123,6 +123,21 @@ void experimentSettings(const Project& p, const ExperimentFlags& flags, bool qui
     flags.network.applyTo(t);
 }
 
+void addNoiseTargetFlags(CLI::App* cmd, double& noise, int& sppCap, const std::string& which,
+                         const std::string& capDefault, bool relaxedByError, CLI::Option* fixedSpp) {
+    CLI::Option* n = cmd->add_option("--noise", noise,
+                                     "relative RMSE noise (global term) " + which + " must reach (default: the project's "
+                                     "\"reference\" section, 0.01" +
+                                         std::string(relaxedByError ? "; or a quarter of the measured error when that is larger)" : ")"))
+                         ->check(CLI::Range(1e-6, 10.0));
+    CLI::Option* c = cmd->add_option("--spp-cap", sppCap, "most samples per pixel of " + which + " (default: " + capDefault + ")")
+                         ->check(CLI::Range(2, 1 << 24));
+    if (fixedSpp) {
+        n->excludes(fixedSpp);
+        c->excludes(fixedSpp);
+    }
+}
+
 std::string describeExperiment(const SamplingSettings& s, const ObjectTrainingOptions& t) {
     char buf[256];
     std::snprintf(buf, sizeof buf, "grid %dx%dx%d, %d directions, %d spp per record; network %s, targets %s, %s, %d epochs",

@@ -119,6 +119,14 @@ struct ExperimentFlags {
 
 void addExperimentFlags(CLI::App* cmd, ExperimentFlags& flags);
 
+/// --noise and --spp-cap, the noise target of references from the project's store (one spelling and
+/// range for every command): `noise` and `sppCap` stay ≤ 0 when not given (noiseTargetFor then keeps
+/// the project's). `which` names the references in the help ("the held-out references"), `capDefault`
+/// the cap's default as the command applies it; `relaxedByError`: the command measures an error and
+/// relaxes the target to a quarter of it. When `fixedSpp` is given, both exclude it.
+void addNoiseTargetFlags(CLI::App* cmd, double& noise, int& sppCap, const std::string& which,
+                         const std::string& capDefault, bool relaxedByError, CLI::Option* fixedSpp = nullptr);
+
 /// Data and network settings of the pipeline and of sweeps: the project's sections where present,
 /// sizes that finish in minutes where not (or all of them when `quick`), then the flags. Without a
 /// "sampling" section the data sizes are small; without a "trainer" section (whether or not there

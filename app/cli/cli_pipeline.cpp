@@ -143,13 +143,7 @@ void addPipelineCommand(CLI::App& app, int& exitCode) {
                     "ground-truth samples per pixel (fixed; the held-out references come from the project's reference "
                     "store, converged to the noise target)")
         ->check(positive());
-    cmd->add_option("--noise", a->noise,
-                    "relative RMSE noise the held-out references must reach (default: the project's \"reference\" "
-                    "section, 0.01; or a quarter of the measured error when that is larger)")
-        ->check(CLI::Range(1e-6, 10.0));
-    cmd->add_option("--spp-cap", a->sppCap,
-                    "most samples per pixel of a held-out reference (default: the project's, 4096; 1024 with --quick)")
-        ->check(CLI::Range(2, 1 << 24));
+    addNoiseTargetFlags(cmd, a->noise, a->sppCap, "the held-out references", "the project's, 4096; 1024 with --quick", true);
     cmd->add_option("--held-out", a->heldOut, "held-out light positions to evaluate")->check(positive());
     addExperimentFlags(cmd, a->experiment);
     cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());

@@ -96,10 +96,7 @@ void addReferenceCommand(CLI::App& app, int& exitCode) {
         ->check(positive())
         ->excludes(lp);
     cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());
-    cmd->add_option("--noise", a->noise,
-                    "relative RMSE noise of the global term to reach (default: the project's \"reference\" section, 0.01)")
-        ->check(CLI::Range(1e-6, 10.0));
-    cmd->add_option("--spp-cap", a->sppCap, "most samples per pixel (default: the project's, 4096)")->check(CLI::Range(2, 1 << 24));
+    addNoiseTargetFlags(cmd, a->noise, a->sppCap, "each reference", "the project's, 4096", false);
     cmd->add_option("--width", a->width, "image width (default: the project's)")->check(CLI::Range(1, 16384));
     cmd->add_option("--height", a->height, "image height (default: the project's)")->check(CLI::Range(1, 16384));
     cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(nonNegative());

@@ -86,12 +86,7 @@ void addSweepCommand(CLI::App& app, int& exitCode) {
                                          "render the reference at this fixed spp: no noise target, not stored (default: "
                                          "the project's reference store, converged to the noise target)")
                              ->check(positive());
-    cmd->add_option("--noise", a->noise, "relative RMSE noise the reference must reach (default: the project's, 0.01)")
-        ->check(CLI::Range(1e-6, 10.0))
-        ->excludes(fixed);
-    cmd->add_option("--spp-cap", a->sppCap, "most samples per pixel of the reference (default: the project's, 4096)")
-        ->check(CLI::Range(2, 1 << 24))
-        ->excludes(fixed);
+    addNoiseTargetFlags(cmd, a->noise, a->sppCap, "the reference", "the project's, 4096", false, fixed);
     addExperimentFlags(cmd, a->experiment);
     cmd->add_option("--seed", a->seed, "seed of the evaluation light and renders")->check(nonNegative());
     cmd->callback([a, &exitCode] { exitCode = runSweepCommand(*a); });

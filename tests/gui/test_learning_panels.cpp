@@ -101,7 +101,8 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     ASSERT_TRUE(s.project.trainer.has_value()) << "switching the trainer stores the trainer section";
     EXPECT_EQ(s.project.trainer->toJson()["type"], "adam");
     EXPECT_EQ(n.options.trainer.adam.batchSize, AdamConfig().batchSize) << "Adam starts from its defaults";
-    EXPECT_EQ(n.options.targets, TargetMode::Separate) << "the project default is kept by the edits";
+    // The project default (exact direct light, networks for the indirect light) is kept by the edits.
+    EXPECT_EQ(n.options.targets, TargetMode::Indirect) << "the project default is kept by the edits";
 
     // The panel draws the edited settings (Adam parameters, one layer) without asking for anything.
     for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(s); });
