@@ -54,7 +54,7 @@ void RenderSession::publish() {
     auto snap = std::make_shared<const RenderSnapshot>(renderer_->snapshot());
     // The noise is a pass over every pixel: done here, on the worker, once per pass. Below 2 spp the
     // renderer's variance is 0 (not estimable), which must not read as "no noise".
-    const double noise = footprint_ && snap->sppCompleted >= 2 ? relativeNoiseFloor(snap->global, snap->variance, footprint_->kept)
+    const double noise = footprint_ && snap->varianceKnown() ? relativeNoiseFloor(snap->global, snap->variance, footprint_->kept)
                                     : std::numeric_limits<double>::quiet_NaN();
     std::lock_guard<std::mutex> lock(mutex_);
     latest_ = std::move(snap);

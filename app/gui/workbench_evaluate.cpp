@@ -45,8 +45,8 @@ bool Workbench::startEvaluate() {
     auto reference = std::make_shared<Reference>();
     for (Term t : kTerms) {
         reference->images[int(t)] = state_.groundTruth.term(t);
-        // A variance of fewer than 2 spp is 0 everywhere (not estimable): unknown, not noise-free.
-        if (state_.render.spp >= 2) reference->variances[int(t)] = state_.groundTruth.variance(t);
+        // Empty below 2 spp (pollRender keeps only a known variance): the floor is then unknown.
+        reference->variances[int(t)] = state_.groundTruth.variance(t);
     }
     reference->lightPosition = state_.project.scene.lightPosition();
     reference->spp = state_.render.spp;

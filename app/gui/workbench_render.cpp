@@ -48,8 +48,8 @@ void Workbench::pollRender() {
             gt.global = snap->global;
             // The variances make the noise floors known (Objects, Views); the mask is the one
             // `rrf evaluate` would use for this image. Both were made on the render worker.
-            // Below 2 spp the renderer's variance is 0, not known: leave it empty ("unknown", never 0).
-            for (Term t : kTerms) gt.variances[int(t)] = snap->sppCompleted >= 2 ? snap->varianceOf(t) : Image();
+            // Below 2 spp the renderer's variance is 0, not known: left empty ("unknown", never 0).
+            for (Term t : kTerms) gt.variances[int(t)] = snap->varianceKnown() ? snap->varianceOf(t) : Image();
             gt.footprint = render_->footprint();
             gt.label = "ground truth";
             gt.touch();

@@ -44,13 +44,19 @@ Reference renderReference(const Scene& scene, const Vec3& lightPos, const Render
         if (!renderer.runPass()) break;
         if (progress) *progress = renderer.progress();
     }
-    const RenderSnapshot s = renderer.snapshot();
-    r.images[int(Term::Direct)] = s.direct;
-    r.images[int(Term::Indirect)] = s.indirect;
-    r.images[int(Term::Global)] = s.global;
-    // With one sample a pixel's variance cannot be estimated (the renderer stores 0): unknown, not 0.
-    if (s.sppCompleted >= 2)
-        for (Term t : kTerms) r.variances[int(t)] = s.varianceOf(t);
+    const bool cancelled = r.cancelled;
+    r = referenceOf(renderer.snapshot(), moved.lightPosition());
+    r.cancelled = cancelled;
+    return r;
+}
+
+Reference referenceOf(const RenderSnapshot& s, const Vec3& lightPosition) {
+    Reference r;
+    for (Term t : kTerms) {
+        r.images[int(t)] = s.image(t);
+        if (s.varianceKnown()) r.variances[int(t)] = s.varianceOf(t);
+    }
+    r.lightPosition = lightPosition;
     r.spp = s.sppCompleted;
     r.seconds = s.seconds;
     r.nonFinite = s.nonFinite;

@@ -35,6 +35,10 @@ struct Reference {
     const Image& variance(Term t) const { return variances[int(t)]; }
 };
 
+/// The reference a render snapshot holds, with the movable light at `lightPosition`: images, spp,
+/// seconds, NaN/Inf count, and the variances when the snapshot's are known (empty = unknown).
+Reference referenceOf(const RenderSnapshot& s, const Vec3& lightPosition);
+
 /// Renders the reference of `scene` with the movable light centred at `lightPos` (the scene itself is
 /// not modified). `options.seed` keys the noise; stops early when `cancel` becomes true. `progress`
 /// (optional) receives the fraction done after every pass, for a progress line on another thread.

@@ -183,18 +183,7 @@ bool isTemporary(const fs::path& p) { return !p.filename().empty() && p.filename
 
 /// The pixels of a state, with the variances once there are 2 samples per pixel (unknown before).
 Reference referenceOf(const RenderState& st, const Vec3& lightPosition) {
-    const RenderSnapshot s = Renderer::snapshotOf(st);
-    Reference r;
-    r.images[int(Term::Direct)] = s.direct;
-    r.images[int(Term::Indirect)] = s.indirect;
-    r.images[int(Term::Global)] = s.global;
-    if (s.sppCompleted >= 2)
-        for (Term t : kTerms) r.variances[int(t)] = s.varianceOf(t);
-    r.lightPosition = lightPosition;
-    r.spp = s.sppCompleted;
-    r.seconds = s.seconds;
-    r.nonFinite = s.nonFinite;
-    return r;
+    return referenceOf(Renderer::snapshotOf(st), lightPosition);
 }
 
 /// The global term's relative noise (NaN while unknown).

@@ -79,7 +79,7 @@ RenderOutputs writeRenderOutputs(const std::string& dir, const Scene& scene, con
     nlohmann::json meta = renderMetadata(scene, renderer, snapshot);
     // With fewer than 2 samples per pixel the variance cannot be estimated (the snapshot holds 0):
     // no files, so a reader sees "unknown" instead of a floor of 0.
-    if (snapshot.sppCompleted >= 2)
+    if (snapshot.varianceKnown())
         meta["variance_images"] = writeVarianceImages(
         dir, {&snapshot.varianceOf(Term::Direct), &snapshot.varianceOf(Term::Indirect), &snapshot.varianceOf(Term::Global)},
         format, out.variances);

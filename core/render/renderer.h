@@ -87,6 +87,9 @@ struct RenderSnapshot {
     const Image& varianceOf(Term t) const {
         return t == Term::Direct ? directVariance : t == Term::Indirect ? indirectVariance : variance;
     }
+    /// True once every pixel may have 2 samples: below that the variance images hold 0, which is not
+    /// an estimate, so every reader treats the noise as unknown (never as a floor of 0).
+    bool varianceKnown() const { return sppCompleted >= 2; }
 };
 
 struct RenderStats {
