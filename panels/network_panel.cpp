@@ -1,8 +1,10 @@
-// Network panel: hidden layers, activation, what the networks predict, the trainer and its
-// parameters, and the parameter count of each network. Project::network and Project::trainer are the
+// Network panel: hidden layers, activation, what the networks predict, the kd-tree partition
+// (Ren et al.'s leaves: goal, depth, leaf budget, records per weight, split axes), the trainer and its
+// parameters (error goal included), and the parameter count of each network. Project::network and Project::trainer are the
 // only copies of these settings: every edit goes through storeNetwork() or storeTrainer(), so editing
 // the layers does not add a "trainer" section to the project (nor the trainer a "network" one).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -74,7 +76,11 @@ bool drawLevenbergMarquardt(LevenbergMarquardtConfig& c) {
     changed |= inputDouble("min gradient", c.minGrad, 0.0, 1e6);
     changed |= inputInt("max validation fails", c.maxFail, 0, 1000000);
     changed |= inputInt64("max samples (0 = all)", c.maxSamples, 0, int64_t(1) << 40);
-    ImGui::TextDisabled("LM costs ~3 N P^2 flops per epoch: it trains on at most max samples.");
+    changed |= inputDouble("max GFLOP per epoch", c.maxEpochGflop, 0.0, 1e9);
+    changed |= inputDouble("error goal", c.errorGoal, 0.0, 10.0);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("stop when the validation relative RMSE (noise-corrected) is below this; 0 = none");
+    ImGui::TextDisabled("LM costs ~3 N P^2 flops per epoch: it trains on at most max samples (and the GFLOP bound).");
     return changed;
 }
 
@@ -101,6 +107,34 @@ bool drawAdam(AdamConfig& c) {
     }
     changed |= inputDouble("weight decay", c.weightDecay, 0.0, 10.0);
     changed |= inputInt("patience (0 = none)", c.patience, 0, 1000000);
+    changed |= inputDouble("patience below rate fraction", c.patienceLrFraction, 0.0, 1.0);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("epochs count toward patience only once the rate is at most this fraction of the learning rate");
+    changed |= inputDouble("error goal", c.errorGoal, 0.0, 10.0);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("stop when the validation relative RMSE (noise-corrected) is below this; 0 = none");
+    return changed;
+}
+
+/// The kd-tree settings; returns true when one changed.
+bool drawPartition(PartitionSettings& p, long long paramsPerNetwork) {
+    bool changed = inputInt("max leaves (1 = none)", p.maxLeaves, 1, kMaxPartitionLeaves);
+    changed |= inputInt("max depth", p.maxDepth, 0, 20);
+    changed |= inputDouble("split above error", p.goal, 1e-6, 10.0);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("a node splits while its validation relative RMSE (noise-corrected) is above this");
+    changed |= inputDouble("min records per weight", p.minRecordsPerWeight, 1.0, 1000.0, "%.3g");
+    changed |= inputDouble("min split gain", p.minSplitGain, 0.0, 0.99, "%.3g");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("a split is kept only if its halves lower the node's validation error by this fraction (0 = keep all)");
+    changed |= ImGui::Checkbox("split on position", &p.axes.position);
+    ImGui::SameLine();
+    changed |= ImGui::Checkbox("split on light", &p.axes.light);
+    if (!p.axes.any()) ImGui::TextColored(ImVec4(1.f, .6f, .3f, 1.f), "no split axis: the trees will not grow");
+    if (p.enabled())
+        ImGui::TextDisabled("a node splits only if each half keeps >= %.0f records (%.3g x %lld weights)",
+                            std::ceil(p.minRecordsPerWeight * double(paramsPerNetwork)), p.minRecordsPerWeight,
+                            paramsPerNetwork);
     return changed;
 }
 
@@ -159,6 +193,14 @@ bool setTrainerType(WorkbenchState& state, TrainerType type) {
     return true;
 }
 
+bool setPartition(WorkbenchState& state, const PartitionSettings& partition) {
+    NetworkSettings s = current(state);
+    if (s.options.partition == partition) return false;
+    s.options.partition = partition;
+    storeNetwork(state, s);
+    return true;
+}
+
 void drawNetworkPanel(WorkbenchState& state) {
     if (!state.hasProject) {
         ImGui::TextDisabled("No project is open.");
@@ -202,6 +244,18 @@ void drawNetworkPanel(WorkbenchState& state) {
     }
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("per object: one global net, one net per term (separate), or one 6-output net (joint)");
+
+    ImGui::Separator();
+    ImGui::TextUnformatted("Partition (kd-tree of networks per object)");
+    {
+        MlpArch arch;
+        arch.inputs = inputCount(state);
+        arch.hidden = s.options.hidden;
+        arch.outputs = s.options.targets == TargetMode::Joint ? 6 : 3;
+        PartitionSettings p = s.options.partition;
+        if (drawPartition(p, (long long)arch.numParams())) setPartition(state, p);
+        s = current(state);
+    }
 
     ImGui::Separator();
     int trainer = int(s.options.trainer.type);

@@ -42,6 +42,8 @@ bool addHiddenLayer(WorkbenchState& state);
 bool removeHiddenLayer(WorkbenchState& state, int index);
 bool resizeHiddenLayer(WorkbenchState& state, int index, int size);
 bool setTrainerType(WorkbenchState& state, TrainerType type);
+/// Replaces the kd-tree settings (Project::network's "partition" section).
+bool setPartition(WorkbenchState& state, const PartitionSettings& partition);
 
 /// The Objects table of an evaluation: per term, one row per object in view or trained (errors with
 /// the reference's noise floor and corrected figure, as evaluate() computed them), with the samples

@@ -41,12 +41,16 @@ Experiment settingsOf(const Project& p, bool quick) {
 
 }  // namespace
 
-TEST(CliFlags, NetworkWithoutTrainerGetsTheQuickEpochLimit) {
+TEST(CliFlags, NetworkWithoutTrainerGetsTheDefaultTrainer) {
     const Project p = cornellWith("network_only.json", {{"network", {{"hidden", {8, 4}}}}});
     const Experiment e = settingsOf(p, false);
     EXPECT_EQ(e.training.hidden, (std::vector<int>{8, 4})) << "the project's network section is used";
-    EXPECT_EQ(e.training.trainer.maxEpochs(), 100) << "no trainer section: the pipeline's quick epoch limit";
-    EXPECT_EQ(settingsOf(p, true).training.trainer.maxEpochs(), 50);
+    // No trainer section: the project default (Adam, relative L2, error goal 0.02, 600 epochs).
+    EXPECT_EQ(e.training.trainer.type, TrainerType::Adam);
+    EXPECT_EQ(e.training.trainer.adam.loss, AdamLoss::RelativeL2);
+    EXPECT_EQ(e.training.trainer.maxEpochs(), 600);
+    EXPECT_DOUBLE_EQ(e.training.trainer.errorGoal(), 0.02);
+    EXPECT_EQ(settingsOf(p, true).training.trainer.maxEpochs(), 50) << "--quick's epoch limit";
 }
 
 TEST(CliFlags, TrainerSectionKeepsItsEpochLimit) {
@@ -55,9 +59,17 @@ TEST(CliFlags, TrainerSectionKeepsItsEpochLimit) {
     EXPECT_EQ(settingsOf(p, true).training.trainer.maxEpochs(), 50) << "--quick overrides the project";
 }
 
-TEST(CliFlags, NeitherSectionGetsTheQuickSizes) {
+TEST(CliFlags, NeitherSectionGetsTheProjectDefaults) {
     const Project p = cornellWith("bare.json", json::object());
     const Experiment e = settingsOf(p, false);
-    EXPECT_EQ(e.training.trainer.maxEpochs(), 100);
-    EXPECT_EQ(e.sampling.nx, 6);
+    EXPECT_EQ(e.training.trainer.maxEpochs(), 600);
+    EXPECT_EQ(e.sampling.nx, 8);
+    EXPECT_EQ(e.sampling.directions, 300);
+    const Experiment q = settingsOf(p, true);
+    EXPECT_EQ(q.sampling.nx, 5) << "--quick's sizes";
+    EXPECT_EQ(q.sampling.directions, 150);
+    // A partial section keeps the project defaults for what it does not say.
+    const Project partial = cornellWith("partial.json", {{"sampling", {{"grid", {4, 4, 4}}}}});
+    EXPECT_EQ(settingsOf(partial, false).sampling.nx, 4);
+    EXPECT_EQ(settingsOf(partial, false).sampling.directions, 300);
 }

@@ -15,6 +15,7 @@
 #include "core/nn/network_settings.h"
 #include "core/nn/object_training.h"
 #include "core/nn/partition_tree.h"
+#include "core/nn/training_run.h"
 #include "core/predict/predictor.h"
 #include "core/project/project.h"
 #include "core/util/error.h"
@@ -281,6 +282,66 @@ TEST(PartitionedTraining, UnpartitionedTreeIsTheSingleNetworkAndLimitsHold) {
     ASSERT_EQ(again[0].model.tree.nodes.size(), t.tree.nodes.size());
     for (size_t k = 0; k < t.tree.nodes.size(); ++k) EXPECT_EQ(again[0].model.tree.nodes[k].split, t.tree.nodes[k].split);
     for (int l = 0; l < t.leafCount(); ++l) EXPECT_EQ(again[0].model.leaves[size_t(l)].params, t.leaves[size_t(l)].params);
+}
+
+TEST(PartitionedTraining, ProgressCountsEveryNetworkOfTheTreesAndEndsAtOne) {
+    // Two objects, trees grown to 3 leaves each (5 networks per tree): the budget starts at the two
+    // roots' max_epochs, grows by two networks' max_epochs per split, and the work done (epochs run
+    // plus the epochs of early stops) reaches it exactly at the end.
+    const std::vector<ObjectSamples> objs = {samplesOf(discontinuous, 1500, 2, 1), samplesOf(smooth, 1500, 3, 2)};
+    ObjectTrainingOptions o = options(3, 0.001);
+    o.partition.minRecordsPerWeight = 2;
+    TrainingProgress progress;
+    ObjectTrainingObserver observer;
+    observer.onEpoch = [&](int, const std::string&, const EpochRecord&) {};
+    const TrainingRun run = trainNetworks(objs, o, observer, &progress);
+    int64_t networks = 0, epochs = 0;
+    for (const ObjectModel& m : run.models) {
+        ASSERT_FALSE(m.skipped);
+        EXPECT_EQ(m.model.leafCount(), 3);
+        networks += int64_t(m.model.tree.nodes.size());  // every node trained a network
+        for (const NetworkModel& leaf : m.model.leaves) epochs += leaf.training.epochs;
+    }
+    EXPECT_EQ(networks, 10);
+    EXPECT_DOUBLE_EQ(progress.epochBudget.load(), double(networks * o.trainer.maxEpochs()));
+    EXPECT_EQ(progress.epochs.load(), networks * o.trainer.maxEpochs());
+    EXPECT_DOUBLE_EQ(progress.fraction(), 1.0);
+    EXPECT_GT(epochs, 0);
+}
+
+TEST(PartitionedTraining, SplitsThatDoNotLowerTheErrorAreUndone) {
+    // Targets that no input explains (independent noise): halves of the input space are as hard as
+    // the whole, so with a 10 % gain required every split is undone and the tree stays one network —
+    // exactly the unpartitioned one. The discontinuity, which a plane does explain, still splits.
+    ObjectSamples noise;
+    noise.objectId = 3;
+    noise.name = "noise";
+    noise.numInputs = kInputs;
+    for (int i = 0; i < 1500; ++i) {
+        const std::vector<float> in = randomInputs(11, i);
+        Rng rng(99, uint64_t(i));
+        const float v = 1.f + rng.uniform();
+        const float direct[3] = {0.f, 0.f, 0.f}, indirect[3] = {v, v, v};
+        noise.add(in.data(), direct, indirect);
+    }
+    ObjectTrainingOptions o = options(4, 1e-6);  // a goal nothing reaches: only the gain rule stops the tree
+    o.partition.minRecordsPerWeight = 2;
+    ASSERT_EQ(trainObjects({noise}, o)[0].model.leafCount(), 4) << "without the rule the tree grows";
+    o.partition.minSplitGain = 0.1;
+    std::vector<std::string> messages;
+    ObjectTrainingObserver observer;
+    observer.onMessage = [&](const std::string& m) { messages.push_back(m); };
+    const PartitionedNetwork kept = trainObjects({noise}, o, observer)[0].model;
+    EXPECT_EQ(kept.leafCount(), 1);
+    o.partition.maxLeaves = 1;
+    EXPECT_EQ(kept.leaves[0].params, trainObjects({noise}, o)[0].model.leaves[0].params) << "the root's own network";
+    bool said = false;
+    for (const std::string& m : messages) said |= m.find("kept as a leaf") != std::string::npos;
+    EXPECT_TRUE(said);
+
+    ObjectTrainingOptions d = options(16, 0.05);
+    d.partition.minSplitGain = 0.1;
+    EXPECT_GE(trainObjects({samplesOf(discontinuous, 5000, 1)}, d)[0].model.leafCount(), 3);
 }
 
 TEST(PartitionedTraining, JumpAcrossSplitPlanesStaysBelowTheGoal) {

@@ -99,8 +99,10 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
 
     saveTrainingRun(a.out, run, settings, project.scene.contentHash(), data.inputLayout(), {a.data, a.input});
 
-    std::printf("\n%-4s %-12s %-9s %9s %7s %7s %-11s %-11s %-11s %8s\n", "id", "object", "target", "samples", "params",
-                "epochs", "train RMSE", "valid RMSE", "test RMSE", "time s");
+    // "valid rel" is the figure the error goal and the kd-tree's splits are stated in (noise-corrected
+    // validation relative RMSE where the targets' noise is known); "stop" says why each network ended.
+    std::printf("\n%-4s %-12s %-9s %9s %7s %7s %-11s %-11s %-11s %-10s %8s  %s\n", "id", "object", "target", "samples",
+                "params", "epochs", "train RMSE", "valid RMSE", "test RMSE", "valid rel", "time s", "stop");
     for (const ObjectModel& m : trained) {
         if (m.skipped) {
             std::printf("%-4d %-12s %-9s skipped: %s\n", m.objectId, m.objectName.c_str(), m.target.c_str(), m.message.c_str());
@@ -111,10 +113,13 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
             const NetworkModel& net = m.model.leaves[size_t(l)];
             const TrainResult& t = net.training;
             const std::string target = m.model.leafCount() == 1 ? m.target : m.target + "#" + std::to_string(l);
-            std::printf("%-4d %-12s %-9s %9lld %7lld %7d %-11s %-11s %-11s %8.2f\n", m.objectId, m.objectName.c_str(),
+            const double rel = std::isfinite(t.validationRelativeRmseCorrected) ? t.validationRelativeRmseCorrected
+                                                                                 : t.validationRelativeRmse;
+            std::printf("%-4d %-12s %-9s %9lld %7lld %7d %-11s %-11s %-11s %-10s %8.2f  %s\n", m.objectId, m.objectName.c_str(),
                         target.c_str(), (long long)(t.trainSamples + t.validationSamples + t.testSamples),
                         (long long)net.arch.numParams(), t.epochs, fmt(net.errors.train).c_str(),
-                        fmt(net.errors.validation).c_str(), fmt(net.errors.test).c_str(), t.seconds);
+                        fmt(net.errors.validation).c_str(), fmt(net.errors.test).c_str(), fmt(rel).c_str(), t.seconds,
+                        t.stopReason.c_str());
         }
     }
     std::printf("trained in %.2f s%s; wrote %s/models.json\n", seconds, run.cancelled ? " (stopped early by Ctrl-C)" : "",

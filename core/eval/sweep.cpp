@@ -31,13 +31,24 @@ int positiveValue(const std::string& text, const std::string& value, int max, co
     throw SettingError(kValuesSetting, "'" + value + "': expected " + expected);
 }
 
+/// A number in (0, max], the whole text.
+double positiveNumber(const std::string& text, double max, const std::string& expected) {
+    try {
+        size_t used = 0;
+        const double v = std::stod(text, &used);
+        if (used == text.size() && v > 0 && v <= max) return v;
+    } catch (const std::exception&) {
+    }
+    throw SettingError(kValuesSetting, "'" + text + "': expected " + expected);
+}
+
 /// One setting of the series, read from its value before anything runs, so a bad value costs no
 /// reference render.
 struct SweepPoint {
     std::string setting;             ///< the value as given: the row's label
     int spp = 0;                     ///< spp
-    SamplingSettings sampling;       ///< grid, dirs
-    ObjectTrainingOptions training;  ///< hidden, trainer
+    SamplingSettings sampling;       ///< grid, dirs, record_spp
+    ObjectTrainingOptions training;  ///< hidden, trainer, goal, leaves
 };
 
 /// "4,4,4": the grid as --grid and the project's "grid": [4, 4, 4] spell it.
@@ -64,6 +75,19 @@ std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
             p.sampling.directions = positiveValue(v, v, kMaxDirections, "one positive integer (directions per viewpoint)");
         } else if (o.what == "hidden") {
             p.training.hidden = parseHiddenSizes(v, kValuesSetting);
+        } else if (o.what == "goal") {
+            // One figure for both: the trainer stops at it and the kd-tree splits nodes above it.
+            const double goal = positiveNumber(v, 10.0, "an error goal in (0, 10] (validation relative RMSE, e.g. 0.05)");
+            p.training.trainer.lm.errorGoal = p.training.trainer.adam.errorGoal = goal;
+            p.training.partition.goal = goal;
+        } else if (o.what == "leaves") {
+            p.training.partition.maxLeaves = positiveValue(v, v, kMaxPartitionLeaves, "the most leaves per network, 1.." +
+                                                                                        std::to_string(kMaxPartitionLeaves));
+            if (p.training.partition.maxLeaves > 1 && p.training.partition.maxDepth == 0)
+                p.training.partition.maxDepth = PartitionSettings{}.maxDepth;
+        } else if (o.what == "record_spp") {
+            p.sampling.maxSpp = positiveValue(v, v, kMaxSamplesPerRecord, "the most paths per record, 1.." + std::to_string(kMaxSamplesPerRecord));
+            p.sampling.spp = std::min(p.sampling.spp, p.sampling.maxSpp);
         } else {
             if (v != "lm" && v != "adam") throw SettingError(kValuesSetting, "'" + v + "': expected lm or adam");
             p.training.trainer = p.training.trainer.withType(v);
@@ -110,10 +134,17 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
     row.frameSeconds = e.gbufferSeconds + e.prediction.inferenceSeconds + e.prediction.directSeconds;
     row.breakEven = breakEven(c.pathTracer, comparableError(row.overall));
     if (c.o.keepModels) row.models = std::make_shared<const ModelSet>(models);
-    int64_t params = 0;
-    for (const ObjectModel& m : trained)
-        if (!m.skipped) params += m.model.numParams();
+    int64_t params = 0, leaves = 0, leafEpochs = 0;
+    for (const ObjectModel& m : trained) {
+        if (m.skipped) continue;
+        params += m.model.numParams();
+        leaves += m.model.leafCount();
+        for (const NetworkModel& leaf : m.model.leaves) leafEpochs += leaf.training.epochs;
+    }
     row.extra["parameters"] = params;
+    // What the goal and leaves sweeps change: how far the trees grew and how long their leaves trained.
+    row.extra["leaves"] = leaves;
+    row.extra["leaf_epochs"] = leafEpochs;
     row.extra["pixels_without_network"] = e.prediction.pixelsWithoutNetwork;
     row.extra["non_finite_prediction_values"] = e.prediction.nonFinite;
     for (Term term : {Term::Direct, Term::Indirect})
@@ -218,6 +249,8 @@ void sweepData(Context& c, SweepResult& r) {
         uint64_t records = 0;
         for (const auto& o : data.perObject) records += o.size() / size_t(c.layout.floatsPerRecord());
         row.extra["records"] = records;
+        row.extra["mean_record_spp"] = records ? double(data.stats.paths) / double(records) : 0.0;
+        row.extra["records_at_spp_cap"] = data.stats.recordsAtSppCap;
         trainAndEvaluate(c, samplesFromGenerated(data, c.scene, c.layout), c.o.training, data.seconds, row);
         c.log(r.what + " " + p.setting + ": " + std::to_string(records) + " records, relative RMSE " +
               std::to_string(row.overall.relativeRmse) + " (noise floor " + noiseFigureText(row.overall.relativeRmseNoiseFloor) +
@@ -259,6 +292,9 @@ std::vector<std::string> defaultSweepValues(const std::string& what) {
     if (what == "dirs") return {"50", "100", "200"};
     if (what == "hidden") return {"5", "10,5", "20,10"};
     if (what == "trainer") return {"lm", "adam"};
+    if (what == "goal") return {"0.1", "0.05", "0.03"};
+    if (what == "leaves") return {"1", "4", "16"};
+    if (what == "record_spp") return {"64", "256", "1024"};
     std::string kinds;
     for (const char* k : kSweepKinds) kinds += std::string(kinds.empty() ? "" : ", ") + k;
     throw SettingError("sweep dimension", "expected one of " + kinds + ", got '" + what + "'");
@@ -321,7 +357,7 @@ SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
         if (o.what == "spp") sweepSpp(c, r);
         else {
             sweepPathTracer(c, r);
-            if (o.what == "grid" || o.what == "dirs") sweepData(c, r);
+            if (o.what == "grid" || o.what == "dirs" || o.what == "record_spp") sweepData(c, r);
             else sweepNetworks(c, r, o.what == "trainer");
         }
     }

@@ -14,6 +14,12 @@
 ///            "20,10" as the project's "hidden": [20, 10]
 ///   trainer  "lm" vs "adam": error and training time, plus each network's loss-vs-time curve recorded
 ///            by the epoch callback
+///   goal     the error goal (validation relative RMSE, e.g. "0.05"): the trainer's error_goal and the
+///            kd-tree's partition goal together (one dataset)
+///   leaves   the most kd-tree leaves per network (e.g. "4"; "1" = one network per object), with the
+///            project's partition depth, goal and min records per weight (one dataset)
+///   record_spp  the most paths per training record (the adaptive sampler's max_spp, e.g. "256"; a
+///            value below the sampling's spp also lowers spp: fixed paths), new data for each point
 ///
 /// Each value is one setting, spelled as outside a JSON file everywhere else (integers, comma-
 /// separated lists); every value is read before anything runs, and a bad one throws SettingError
@@ -49,12 +55,12 @@
 namespace rrf {
 
 /// The kinds of sweep (SweepOptions::what), the one list the CLI's --what and the Cost panel offer.
-constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer"};
+constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer", "goal", "leaves", "record_spp"};
 constexpr int kSweepKindCount = int(sizeof kSweepKinds / sizeof kSweepKinds[0]);
 
 struct SweepOptions {
     std::string what;                 ///< one of kSweepKinds
-    std::vector<std::string> values;  ///< one setting each ("16", "4,4,4", "20,10", "lm"); empty = defaultSweepValues(what)
+    std::vector<std::string> values;  ///< one setting each ("16", "4,4,4", "20,10", "lm", "0.05"); empty = defaultSweepValues(what)
     int width = 128, height = 128;    ///< image size of references and predictions
     int referenceSpp = 0;             ///< without a store: 0 = 1024 for spp, 256 otherwise
     /// When set, the one reference every point is measured against comes from this store, converged
@@ -62,12 +68,11 @@ struct SweepOptions {
     /// is rendered at `referenceSpp`.
     ReferenceStore* store = nullptr;
     NoiseTarget referenceTarget;
-    SamplingSettings sampling;        ///< data generation (grid sweeps replace nx/ny/nz, dirs sweeps directions)
-    ObjectTrainingOptions training;   ///< networks and trainer (hidden/trainer sweeps replace theirs)
+    SamplingSettings sampling;        ///< data generation (grid sweeps replace nx/ny/nz, dirs directions, record_spp max_spp)
+    ObjectTrainingOptions training;   ///< networks, trainer and partition (hidden/trainer/goal/leaves sweeps replace theirs)
     PredictionSettings prediction;
     uint64_t seed = 1;                ///< held-out light position and the path tracer's render seed
-    /// The path tracer's series rendered for the break-even of model sweeps (grid, dirs, hidden,
-    /// trainer), against the same reference; empty = none. An spp sweep's own rows are its series.
+    /// The path tracer's series rendered for the break-even of model sweeps (every kind but spp), against the same reference; empty = none. An spp sweep's own rows are its series.
     std::vector<int> pathTracerSpp = {1, 2, 4, 8, 16, 32, 64, 128, 256};
     /// Keep each model row's trained networks (SweepRow::models), e.g. to time the GLSL predictor on
     /// them where a GL context exists (the workbench does).

@@ -57,11 +57,12 @@ nlohmann::json NetworkSettings::networkJson() const {
 PartitionSettings partitionFromJson(const JsonReader& r, const PartitionSettings& base) {
     PartitionSettings p = base;
     r.requireObject();
-    r.checkKeys({"goal", "max_depth", "max_leaves", "min_records_per_weight", "split_axes"});
+    r.checkKeys({"goal", "max_depth", "max_leaves", "min_records_per_weight", "min_split_gain", "split_axes"});
     p.goal = r.numberOr("goal", p.goal, 0.0, 10.0, true);
     p.maxDepth = int(r.integerOr("max_depth", p.maxDepth, 0, 20));
-    p.maxLeaves = int(r.integerOr("max_leaves", p.maxLeaves, 1, 4096));
+    p.maxLeaves = int(r.integerOr("max_leaves", p.maxLeaves, 1, kMaxPartitionLeaves));
     p.minRecordsPerWeight = r.numberOr("min_records_per_weight", p.minRecordsPerWeight, 1.0, 1000.0);
+    p.minSplitGain = r.numberOr("min_split_gain", p.minSplitGain, 0.0, 0.99);
     if (const auto axes = r.find("split_axes")) {
         const size_t n = axes->requireArray();
         if (n == 0) axes->fail("expected a non-empty array of \"position\" and/or \"light\"");
@@ -83,6 +84,7 @@ nlohmann::json partitionJson(const PartitionSettings& p) {
             {"max_depth", p.maxDepth},
             {"max_leaves", p.maxLeaves},
             {"min_records_per_weight", p.minRecordsPerWeight},
+            {"min_split_gain", p.minSplitGain},
             {"split_axes", p.axes.names()}};
 }
 

@@ -265,8 +265,12 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
                                     (task.node ? " node " + std::to_string(task.node) : "");
             TrainObserver obs;
             obs.cancel = observer.cancel;
-            if (observer.onEpoch && task.node == 0)
-                obs.onEpoch = [&, id, target](const EpochRecord& r) { observer.onEpoch(id, target, r); };
+            const bool root = task.node == 0;
+            if ((observer.onEpoch && root) || observer.onWork)
+                obs.onEpoch = [&, id, target, root](const EpochRecord& r) {
+                    if (observer.onEpoch && root) observer.onEpoch(id, target, r);
+                    if (observer.onWork && r.epoch > 0) observer.onWork(1, 0);  // epoch 0 is the initial network
+                };
             if (observer.onMessage) obs.onMessage = [&, who](const std::string& m) { observer.onMessage(who + ": " + m); };
             const uint64_t stream = nodeStream(id, task.node);
             const bool all = task.records.size() == s.size();
@@ -277,7 +281,11 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
             const Eigen::Map<const MatX<float>> yin(all ? targetsOf[task.job].data() : y.data(), targetsOf[task.job].rows(), n);
             const MatX<float>& vAll = variancesOf[task.job];
             const MatX<float> v = vAll.size() == 0 || all ? vAll : gatherColumns(vAll, task.records);
-            NetworkModel net = fitNetwork(archFor(job), task.depth == 0 ? options.trainer : leafTrainer, xin, yin, v, obs, stream);
+            const TrainerConfig& trainer = task.depth == 0 ? options.trainer : leafTrainer;
+            NetworkModel net = fitNetwork(archFor(job), trainer, xin, yin, v, obs, stream);
+            // The epochs this network was budgeted but did not need count as done.
+            if (observer.onWork && net.training.epochs < trainer.maxEpochs())
+                observer.onWork(int64_t(trainer.maxEpochs() - net.training.epochs), 0);
             net.objectId = id;
             net.objectName = s.name;
             net.target = target;
@@ -298,6 +306,33 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
         else
             for (size_t k = 0; k < level.size(); ++k) train(k);
 
+        // Splits that did not help are undone: siblings are consecutive in `level` (pushed in pairs).
+        std::vector<char> undone(level.size(), 0);
+        for (size_t k = 0; k + 1 < level.size(); ++k) {
+            const NodeTask& l = level[k];
+            const NodeTask& r = level[k + 1];
+            TreeBuild& b = builds[l.job];
+            const int p = l.node > 0 ? b.parent[size_t(l.node)] : -1;
+            if (p < 0 || r.job != l.job || b.parent[size_t(r.node)] != p || part.minSplitGain <= 0) continue;
+            if (!b.trained[size_t(l.node)] || !b.trained[size_t(r.node)]) continue;  // cancelled: handled below
+            const double nl = double(b.nets[size_t(l.node)].training.validationSamples);
+            const double nr = double(b.nets[size_t(r.node)].training.validationSamples);
+            const double parentError = b.tree.nodes[size_t(p)].error;
+            if (!(nl + nr > 0) || std::isnan(error[k]) || std::isnan(error[k + 1]) || std::isnan(parentError)) continue;
+            const double children = std::sqrt((nl * error[k] * error[k] + nr * error[k + 1] * error[k + 1]) / (nl + nr));
+            ++k;  // the pair is decided
+            if (children <= (1 - part.minSplitGain) * parentError) continue;
+            PartitionNode& node = b.tree.nodes[size_t(p)];
+            node.axis = -1;  // a leaf again, predicted by its own network (b.nets[p])
+            node.left = node.right = -1;
+            b.leaves -= 1;
+            undone[k - 1] = undone[k] = 1;
+            char line[200];
+            std::snprintf(line, sizeof line, ": node %d kept as a leaf: its halves reach %.4f, not below %.4f (%.0f %% under its %.4f)",
+                          p, children, (1 - part.minSplitGain) * parentError, 100 * part.minSplitGain, parentError);
+            message("object " + std::to_string(jobs[l.job].samples->objectId) + " (" + jobs[l.job].target + ")" + line);
+        }
+
         // Worst nodes first within each tree, so max_leaves goes where the error is.
         std::vector<size_t> order(level.size());
         for (size_t k = 0; k < order.size(); ++k) order[k] = k;
@@ -309,6 +344,7 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
         });
         std::vector<NodeTask> next;
         for (size_t k : order) {
+            if (undone[k]) continue;
             NodeTask& task = level[k];
             TreeBuild& b = builds[task.job];
             const Job& job = jobs[task.job];
@@ -354,6 +390,7 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
             left.node = li;
             right.node = ri;
             b.leaves += 1;
+            if (observer.onWork) observer.onWork(0, 2 * int64_t(leafTrainer.maxEpochs()));
             char line[200];
             std::snprintf(line, sizeof line, ": node %d (%lld records) has validation relative error %.4f > goal %.4g: split at %s < %.6g",
                           task.node, (long long)task.records.size(), error[k], part.goal, splitAxisName(plane->axis),

@@ -66,19 +66,26 @@ TargetMode parseTargetMode(const std::string& s);
 ///   both children would hold at least `minRecordsPerWeight` × P records (P: the network's weights),
 ///   the node is shallower than `maxDepth` and the tree has fewer than `maxLeaves` leaves;
 /// within a level the worst nodes split first when `maxLeaves` runs out. Every node trains on its
-/// own records from scratch, nodes of a level (of all objects and targets) in parallel.
+/// own records from scratch, nodes of a level (of all objects and targets) in parallel. Once both
+/// children are trained, the split is kept only if they help: their combined validation error (RMS
+/// over both children's validation records) must be at most (1 − minSplitGain) × the node's;
+/// otherwise the node stays a leaf with its own network (a plane through the feature that caused
+/// the error — e.g. a shadow that moves with the light — leaves each half as hard as the whole).
 struct PartitionSettings {
     double goal = 0.05;               ///< "goal": validation relative RMSE a leaf must reach (0, 10]
     int maxDepth = 8;                 ///< "max_depth": 0 … 20; 0 = one network per object
     int maxLeaves = 1;                ///< "max_leaves": 1 … 4096; 1 = one network per object
     double minRecordsPerWeight = 8;   ///< "min_records_per_weight": 1 … 1000 (Ren et al.: 8–10)
+    /// "min_split_gain": 0 … 0.99, the relative error reduction a split must bring to be kept
+    /// (0 = keep every split; the project default is NetworkSettings::kDefaultMinSplitGain).
+    double minSplitGain = 0;
     PartitionAxes axes;               ///< "split_axes": any of "position", "light"
 
     /// True when a tree can grow beyond its root.
     bool enabled() const { return maxDepth > 0 && maxLeaves > 1; }
     bool operator==(const PartitionSettings& o) const {
         return goal == o.goal && maxDepth == o.maxDepth && maxLeaves == o.maxLeaves &&
-               minRecordsPerWeight == o.minRecordsPerWeight && axes == o.axes;
+               minRecordsPerWeight == o.minRecordsPerWeight && minSplitGain == o.minSplitGain && axes == o.axes;
     }
 };
 
@@ -99,6 +106,12 @@ struct ObjectTrainingObserver {
     /// nodes report through onMessage when they finish.
     std::function<void(int, const std::string&, const EpochRecord&)> onEpoch;
     std::function<void(const std::string&)> onMessage;
+    /// Work accounting for progress bars, over every network of every tree (roots and split nodes):
+    /// (epochs done, epochs added to the budget). Each network is budgeted its trainer's max_epochs
+    /// when it is scheduled (roots before training starts, two children when a node splits); every
+    /// epoch it runs reports (1, 0), and when it stops early the epochs it did not need are reported
+    /// as done, so done reaches the budget exactly when the last network ends.
+    std::function<void(int64_t, int64_t)> onWork;
     const std::atomic<bool>* cancel = nullptr;
 };
 

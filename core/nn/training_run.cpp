@@ -48,8 +48,14 @@ TrainingRun trainNetworks(const std::vector<ObjectSamples>& samples, const Objec
             }
             c.epochs.push_back(r);
         }
-        if (progress) ++progress->epochs;
         if (observer.onEpoch) observer.onEpoch(object, target, r);
+    };
+    inner.onWork = [&](int64_t done, int64_t budget) {
+        if (progress) {
+            progress->epochs += done;
+            progress->epochBudget = progress->epochBudget.load() + double(budget);  // one writer: the splitting thread
+        }
+        if (observer.onWork) observer.onWork(done, budget);
     };
 
     TrainingRun run;

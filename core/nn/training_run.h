@@ -19,8 +19,12 @@ namespace rrf {
 /// Live counters of a training run, readable from another thread while it runs (the data
 /// generator's GeneratorProgress pattern): the UI thread or the CLI's progress line polls fraction().
 struct TrainingProgress {
-    std::atomic<int64_t> epochs{0};          ///< network epochs finished, over all networks
-    std::atomic<double> epochBudget{0.0};    ///< most epochs the run can take (set when it starts)
+    /// Network epochs finished over all networks (kd-tree nodes included), plus the epochs of
+    /// networks that stopped before max_epochs (ObjectTrainingObserver::onWork).
+    std::atomic<int64_t> epochs{0};
+    /// Most epochs the networks scheduled so far can take: the roots' when the run starts, growing by
+    /// two networks' max_epochs whenever a kd-tree node splits.
+    std::atomic<double> epochBudget{0.0};
     double fraction() const;
 };
 

@@ -32,15 +32,15 @@ struct Project {
     Scene scene;                ///< the loaded scene with `overrides` applied
     SceneOverrides overrides;   ///< "scene_overrides": the workbench's edits of the scene
     RenderSettings render;      ///< "render"
-    /// "sampling"; empty when the file has none: front ends then pick their own defaults (rrf
-    /// pipeline uses small quick sizes), and the section stays absent on save.
+    /// "sampling"; empty when the file has none: SamplingSettings::projectDefault() then applies
+    /// (rrf pipeline --quick uses smaller sizes), and the section stays absent on save.
     std::optional<SamplingSettings> sampling;
     /// "network": hidden layers, activation and targets; empty when the file has none (see
     /// `sampling`). Its options.trainer is not part of the section and is ignored here: the trainer
     /// is `trainer`, and networkOrDefault() combines the two.
     std::optional<NetworkSettings> network;
-    /// "trainer"; empty when the file has none: rrf pipeline and sweeps then use their quick epoch
-    /// limit, and the section stays absent on save (as it does when only "network" was edited).
+    /// "trainer"; empty when the file has none: NetworkSettings::defaultTrainer() then applies, and
+    /// the section stays absent on save (as it does when only "network" was edited).
     std::optional<TrainerConfig> trainer;
     PredictionSettings prediction;  ///< "prediction"
     /// "reference": how converged the references of the project's store must be and their size
@@ -55,8 +55,8 @@ struct Project {
     /// are in scene.warnings.
     std::vector<std::string> warnings;
 
-    /// The sampling settings in effect (the defaults when the file has none).
-    SamplingSettings samplingOrDefault() const { return sampling.value_or(SamplingSettings()); }
+    /// The sampling settings in effect (SamplingSettings::projectDefault() when the file has none).
+    SamplingSettings samplingOrDefault() const { return sampling.value_or(SamplingSettings::projectDefault()); }
     /// The network and trainer settings in effect: each section's values, its defaults where absent.
     /// The targets follow the prediction: indirect networks beside exact direct light (the default),
     /// separate direct and indirect ones when direct light is learned.
@@ -66,7 +66,7 @@ struct Project {
         // the Network panel while direct light was exact) become separate direct and indirect ones.
         if (prediction.direct == PredictionSettings::Direct::Network && s.options.targets == TargetMode::Indirect)
             s.options.targets = TargetMode::Separate;
-        s.options.trainer = trainer.value_or(TrainerConfig());
+        s.options.trainer = trainer.value_or(NetworkSettings::defaultTrainer());
         return s;
     }
 };

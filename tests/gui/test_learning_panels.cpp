@@ -93,12 +93,14 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     ASSERT_TRUE(removeHiddenLayer(s, 1));
     EXPECT_FALSE(removeHiddenLayer(s, 0)) << "a network keeps at least one hidden layer";
 
-    EXPECT_EQ(s.project.networkOrDefault().options.trainer.type, TrainerType::LevenbergMarquardt);
+    EXPECT_EQ(s.project.networkOrDefault().options.trainer.type, TrainerType::Adam) << "the project default";
+    ASSERT_TRUE(setTrainerType(s, TrainerType::LevenbergMarquardt));
+    EXPECT_FALSE(setTrainerType(s, TrainerType::LevenbergMarquardt)) << "no change, nothing stored";
+    ASSERT_TRUE(s.project.trainer.has_value()) << "switching the trainer stores the trainer section";
+    EXPECT_EQ(s.project.trainer->toJson()["type"], "levenberg_marquardt");
     ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
-    EXPECT_FALSE(setTrainerType(s, TrainerType::Adam)) << "no change, nothing stored";
     const NetworkSettings n = s.project.networkOrDefault();
     EXPECT_EQ(n.options.trainer.type, TrainerType::Adam);
-    ASSERT_TRUE(s.project.trainer.has_value()) << "switching the trainer stores the trainer section";
     EXPECT_EQ(s.project.trainer->toJson()["type"], "adam");
     EXPECT_EQ(n.options.trainer.adam.batchSize, AdamConfig().batchSize) << "Adam starts from its defaults";
     // The project default (exact direct light, networks for the indirect light) is kept by the edits.

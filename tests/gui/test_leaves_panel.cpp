@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "panels/panels.h"
+#include "panels/project_io.h"
 #include "panels/view_model.h"
 #include "tests/gui/imgui_fixture.h"
 
@@ -92,6 +93,33 @@ TEST(LeafOverlay, TintsOnlyPixelsWithALeaf) {
     std::vector<uint8_t> wrong(8, 100);
     tintByLeaf(ids, leaf, wrong);  // size mismatch: nothing changes
     EXPECT_EQ(wrong, std::vector<uint8_t>(8, 100));
+}
+
+TEST_F(LeavesPanelTest, PartitionEditsAreStoredInTheNetworkSection) {
+    WorkbenchState s;
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-box/project.json", error)) << error;
+    for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(s); });
+    EXPECT_FALSE(s.dirty) << "drawing the partition controls must not edit the project";
+
+    PartitionSettings p = s.project.networkOrDefault().options.partition;
+    EXPECT_FALSE(setPartition(s, p)) << "no change, nothing stored";
+    p.maxLeaves = 7;
+    p.goal = 0.02;
+    p.axes.light = false;
+    ASSERT_TRUE(setPartition(s, p));
+    EXPECT_TRUE(s.dirty);
+    const NetworkSettings n = s.project.networkOrDefault();
+    EXPECT_EQ(n.options.partition.maxLeaves, 7);
+    EXPECT_DOUBLE_EQ(n.options.partition.goal, 0.02);
+    EXPECT_FALSE(n.options.partition.axes.light);
+    EXPECT_EQ(n.options.targets, TargetMode::Indirect) << "the other network settings are kept";
+    // What the project file will say: the section written and read back gives the same partition.
+    const nlohmann::json section = n.networkJson();
+    EXPECT_EQ(section.at("partition").at("max_leaves"), 7);
+    EXPECT_EQ(section.at("partition").at("split_axes"), nlohmann::json::array({"position"}));
+    frame([&] { drawNetworkPanel(s); });
+    EXPECT_TRUE(s.requests.empty());
 }
 
 }  // namespace rrf::test
