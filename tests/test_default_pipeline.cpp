@@ -17,16 +17,17 @@ using namespace rrf;
 namespace {
 
 struct Quick {
-    double corrected = 0;  ///< global relative RMSE with the reference's noise subtracted
-    double floor = 0;      ///< the reference's own relative noise
+    double global = 0;    ///< global relative RMSE with the reference's noise subtracted
+    double indirect = 0;  ///< the same for the indirect term, the one the networks learn
+    double floor = 0;     ///< the reference's own relative noise (global)
 };
 
 Quick runQuick(const Project& p, bool decorrelateLight) {
     const Scene& scene = p.scene;
     SamplingSettings s = p.samplingOrDefault();
-    s.nx = s.ny = s.nz = 4;
-    s.directions = 100;
-    s.spp = s.maxSpp = 16;  // fixed paths per record, so the measured bound does not move with the sampler
+    s.nx = s.ny = s.nz = 5;  // rrf pipeline --quick's grid and directions
+    s.directions = 150;
+    s.spp = s.maxSpp = 128;  // fixed, clean-enough targets: the bound does not move with the adaptive sampler
     ObjectTrainingOptions o = p.networkOrDefault().options;
     o.trainer.adam.maxEpochs = 150;
     const RecordLayout layout = RecordLayout::forScene(scene);
@@ -41,11 +42,12 @@ Quick runQuick(const Project& p, bool decorrelateLight) {
     const Predictor predictor(scene, models, p.prediction);
     RenderOptions ro;
     ro.width = ro.height = 48;
-    ro.spp = 256;
+    ro.spp = 1024;
     ro.seed = 77;
     const Vec3 light = heldOutLightPositions(scene.lightRange(), 1, 3).front();
-    const ErrorStats e = evaluate(predictor, renderReference(scene, light, ro)).term(Term::Global).overall;
-    return {e.relativeRmseCorrected, e.relativeRmseNoiseFloor};
+    const Evaluation ev = evaluate(predictor, renderReference(scene, light, ro));
+    const ErrorStats& g = ev.term(Term::Global).overall;
+    return {g.relativeRmseCorrected, ev.term(Term::Indirect).overall.relativeRmseCorrected, g.relativeRmseNoiseFloor};
 }
 
 }  // namespace
@@ -56,10 +58,14 @@ TEST(DefaultPipeline, QuickRunOfTheProjectDefaultsStaysWithinItsMeasuredBound) {
     ASSERT_EQ(p.networkOrDefault().options.targets, TargetMode::Indirect);
     const Quick good = runQuick(p, false);
     const Quick broken = runQuick(p, true);
-    std::printf("quick defaults: global relative RMSE %.4f corrected (reference noise %.4f); light input decorrelated %.4f\n",
-                good.corrected, good.floor, broken.corrected);
-    ASSERT_TRUE(std::isfinite(good.corrected));
-    const double bound = 0.2;
-    EXPECT_LT(good.corrected, bound);
-    EXPECT_GT(broken.corrected, good.corrected);
+    std::printf("quick defaults: relative RMSE corrected global %.4f, indirect %.4f (reference noise %.4f); "
+                "light input decorrelated: indirect %.4f\n",
+                good.global, good.indirect, good.floor, broken.indirect);
+    ASSERT_TRUE(std::isfinite(good.global) && std::isfinite(good.indirect));
+    // Measured (deterministic): global 0.137, indirect 0.159; decorrelated indirect 0.201. At these
+    // sizes (15 000 records, 150 epochs) the indirect term is far from the full defaults' 0.044; the
+    // bounds keep ~25 % margin and the decorrelated run must be clearly worse.
+    EXPECT_LT(good.global, 0.17);
+    EXPECT_LT(good.indirect, 0.2);
+    EXPECT_GT(broken.indirect, 1.15 * good.indirect);
 }

@@ -273,8 +273,9 @@ TEST(PartitionedTraining, UnpartitionedTreeIsTheSingleNetworkAndLimitsHold) {
         EXPECT_GT(t.tree.nodes[size_t(node)].error, 0.001);
     }
     EXPECT_EQ(total, 1500);
-    for (const PartitionNode& n : t.tree.nodes)
+    for (const PartitionNode& n : t.tree.nodes) {
         if (!n.isLeaf()) EXPECT_TRUE(n.axis <= 2 || (n.axis >= 6 && n.axis <= 8)) << n.axis;
+    }
 
     // Same tree and weights on one thread.
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
