@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
+#include <set>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -425,4 +427,40 @@ TEST(AtomicSets, CliRenderKilledBeforeOrAfterTheSwapLeavesOneWholeRender) {
     EXPECT_EQ(state(), first) << "killed before the swap: the old render must be intact";
     EXPECT_NE(render("2", "replace r: after swap"), 0);
     EXPECT_EQ(state(), second) << "killed after the swap: the new render must be complete";
+}
+
+TEST(AtomicSets, CliTrainKilledBeforeOrAfterTheSwapLeavesOneWholeSet) {
+    TempDir tmp;
+    const std::string project = std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json";
+    const std::string data = (tmp.path / "d.rrfd").string();
+    const fs::path models = tmp.path / "m";
+    auto rrf = [](const std::string& env, const std::string& args) {
+        return std::system((env + RRF_CLI_PATH + " " + args + " >/dev/null 2>&1").c_str());
+    };
+    ASSERT_EQ(rrf("", "generate " + project + " --grid 2,2,2 --dirs 4 --spp 2 --threads 2 --out " + data), 0);
+    auto train = [&](int hidden, const std::string& killAt) {
+        return rrf(killAt.empty() ? "" : "RRF_KILL_AT='" + killAt + "' ",
+                   "train " + project + " --data " + data + " --hidden " + std::to_string(hidden) +
+                       " --epochs 1 --threads 2 --log-every 0 --out " + models.string());
+    };
+    auto bytesOf = [&] {
+        std::map<std::string, std::string> files;
+        for (const auto& e : fs::directory_iterator(models)) files[e.path().filename().string()] = readFile(e.path().string());
+        return files;
+    };
+    auto hiddenOfEveryNetwork = [&] {
+        std::set<int> widths;
+        for (const ObjectNetworks& o : loadModelSet(models.string()).objects)
+            for (const auto& [target, net] : o.byTarget)
+                for (const NetworkModel& leaf : net.leaves) widths.insert(leaf.arch.hidden.at(0));
+        return widths;
+    };
+    ASSERT_EQ(train(4, ""), 0);
+    const auto old = bytesOf();
+    EXPECT_NE(train(5, "commit models.json"), 0);
+    EXPECT_EQ(bytesOf(), old) << "killed while writing the new set: the old set must be intact";
+    EXPECT_NE(train(5, "replace m: before swap"), 0);
+    EXPECT_EQ(bytesOf(), old);
+    EXPECT_NE(train(5, "replace m: after swap"), 0);
+    EXPECT_EQ(hiddenOfEveryNetwork(), std::set<int>{5}) << "killed after the swap: the new set must be complete";
 }

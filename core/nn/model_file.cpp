@@ -25,7 +25,9 @@ constexpr size_t kPreambleV1 = 16;  // magic + version + header length
 constexpr size_t kPreamble = 24;    // ... + checksum64 of the header
 constexpr uint32_t kMaxHeader = 64u << 20;
 constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
-constexpr int64_t kMaxCount = std::numeric_limits<int64_t>::max();
+/// Record counts: 2^62 is far above any dataset and, unlike INT64_MAX, exactly a double, so a float
+/// field at the bound still converts to int64 without overflow.
+constexpr int64_t kMaxCount = int64_t(1) << 62;
 
 uint64_t fnv1a64(const char* p, size_t n) {
     uint64_t h = 0xCBF29CE484222325ULL;

@@ -58,7 +58,7 @@ PartitionTree treeFromJson(const JsonReader& j) {
     for (size_t i = 0, count = nodes.requireArray(); i < count; ++i) {
         const JsonReader n = nodes.at(i);
         PartitionNode x;
-        x.records = n.at("records").integer(0, std::numeric_limits<int64_t>::max());
+        x.records = n.at("records").integer(0, int64_t(1) << 62);  // 2^62: exact as a double, unlike INT64_MAX
         x.error = num(n.at("error").value());
         if (n.has("leaf")) {
             x.leaf = int(n.at("leaf").integer(0, kMaxInt));

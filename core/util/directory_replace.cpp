@@ -129,12 +129,18 @@ void replaceDirectory(const std::string& targetPath, const std::function<bool(co
     }
     crashPoint("replace " + name + ": before swap");
     if (!replacing) {
-        if (std::rename(staging.c_str(), target.c_str()) != 0) {
+        if (std::rename(staging.c_str(), target.c_str()) == 0) {
+            syncDirectory(parent);
+            return;
+        }
+        // A target that another writer created meanwhile (ENOTEMPTY) is exchanged like an old set.
+        if (errno != ENOTEMPTY && errno != EEXIST) {
             const std::string err = std::strerror(errno);
             fs::remove_all(staging, ec);
             fail(targetPath, "cannot move the new set into place: " + err);
         }
-    } else if (exchange(staging, target)) {
+    }
+    if (exchange(staging, target)) {
         crashPoint("replace " + name + ": after swap");
     } else if (errno == EINVAL || errno == ENOSYS || errno == ENOTSUP) {
         // No atomic exchange here: old aside, new into place, old back if that fails. A kill between
