@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include "core/data/dataset_file.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/nn/model.h"
@@ -67,23 +68,33 @@ uint64_t fnv1a64(const char* p, size_t n) {
     return h;
 }
 
-/// Rewrites a model file with `edit` applied to its payload and a matching checksum, so that the
-/// loader's own validation (not the checksum) must catch the defect.
-void editPayload(const std::string& path, const std::function<void(std::string&)>& edit) {
+/// Rewrites a model file (version 2: 24-byte preamble with the header's checksum64) with `editHeader`
+/// applied to its JSON header and `edit` to its payload, and matching checksums, so that the
+/// loader's own validation (not a checksum) must catch the defect.
+void rewrite(const std::string& path, const std::function<void(std::string&)>& editHeader,
+             const std::function<void(std::string&)>& edit) {
     std::string bytes = readFile(path);
     uint32_t hlen = 0;
     std::memcpy(&hlen, bytes.data() + 12, 4);
-    nlohmann::json h = nlohmann::json::parse(bytes.substr(16, hlen));
-    std::string payload = bytes.substr(16 + hlen);
+    std::string hs = bytes.substr(24, hlen);
+    std::string payload = bytes.substr(24 + hlen);
     edit(payload);
+    nlohmann::json h = nlohmann::json::parse(hs);
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(payload.data(), payload.size())));
     h["payload"]["fnv1a64"] = hex;
-    const std::string hs = h.dump();
+    hs = h.dump();
+    editHeader(hs);
     hlen = uint32_t(hs.size());
+    const uint64_t sum = checksum64(hs.data(), hs.size());
     std::string out = bytes.substr(0, 12);
     out.append(reinterpret_cast<const char*>(&hlen), 4);
+    out.append(reinterpret_cast<const char*>(&sum), 8);
     writeFileAtomically(path, out + hs + payload);
+}
+
+void editPayload(const std::string& path, const std::function<void(std::string&)>& edit) {
+    rewrite(path, [](std::string&) {}, edit);
 }
 
 }  // namespace
@@ -194,12 +205,12 @@ TEST(ModelFile, DamagedFilesNameTheFile) {
     EXPECT_NE(errorOf(p).find("normalisation"), std::string::npos);
 
     // Header claiming a different architecture than the payload holds.
-    std::string wrongSize = bytes;
-    const size_t at = wrongSize.find("\"hidden\"");
-    ASSERT_NE(at, std::string::npos);
-    const size_t seven = wrongSize.find('7', at);
-    wrongSize[seven] = '8';
-    p = variant("arch.rrfm", wrongSize);
+    p = variant("arch.rrfm", bytes);
+    rewrite(p, [](std::string& h) {
+        const size_t at = h.find("\"hidden\"");
+        ASSERT_NE(at, std::string::npos);
+        h[h.find('7', at)] = '8';
+    }, [](std::string&) {});
     EXPECT_NE(errorOf(p).find("needs"), std::string::npos);
 
     EXPECT_NO_THROW(loadModel(good));

@@ -19,6 +19,7 @@ std::atomic<bool> g_interrupted{false};
 
 extern "C" void onSignal(int sig) {
     if (g_interrupted.exchange(true)) {
+        removeInFlightTemporaryFiles();  // the second signal kills at once: no half-written *.tmp left behind
         std::signal(sig, SIG_DFL);
         std::raise(sig);
     }

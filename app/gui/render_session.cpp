@@ -79,10 +79,11 @@ RenderStats RenderSession::stats() const {
     return renderer_ ? renderer_->stats() : RenderStats{};
 }
 
-RenderOutputs RenderSession::write(const std::string& dir, ImageFormat format, float exposure) const {
+RenderOutputs RenderSession::write(const std::string& dir, ImageFormat format, float exposure,
+                                   const std::vector<std::pair<ImageFormat, float>>& moreFormats) const {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!renderer_ || !latest_) throw std::runtime_error(dir + ": nothing rendered yet");
-    return writeRenderOutputs(dir, scene_, *renderer_, *latest_, format, exposure);
+    return writeRenderOutputs(dir, scene_, *renderer_, *latest_, format, exposure, moreFormats);
 }
 
 }  // namespace rrf

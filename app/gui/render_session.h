@@ -40,9 +40,11 @@ public:
     const RenderOptions& options() const { return options_; }
     const Scene& scene() const { return scene_; }
 
-    /// Writes the images and render.json of the latest snapshot into `dir`. Only after the job has
+    /// Writes the images and render.json of the latest snapshot into `dir` as one set
+    /// (writeRenderOutputs), with the images also in each of `moreFormats`. Only after the job has
     /// finished (the renderer must be idle). Throws std::runtime_error naming the file on failure.
-    RenderOutputs write(const std::string& dir, ImageFormat format, float exposure) const;
+    RenderOutputs write(const std::string& dir, ImageFormat format, float exposure,
+                        const std::vector<std::pair<ImageFormat, float>>& moreFormats = {}) const;
 
 private:
     void publish();

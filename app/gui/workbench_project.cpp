@@ -257,8 +257,8 @@ bool Workbench::exportImages(const std::string& dir) {
         return false;
     }
     try {
-        render_->write(dir, ImageFormat::EXR, 0.f);
-        render_->write(dir, ImageFormat::PNG, state_.view.exposure);
+        // One set: a second write would replace the first (core/render/render_outputs.h).
+        render_->write(dir, ImageFormat::EXR, 0.f, {{ImageFormat::PNG, state_.view.exposure}});
         const Image& err = viewModel_.error();
         if (!err.empty()) {
             writeImage((fs::path(dir) / "error.exr").string(), err, ImageFormat::EXR);

@@ -1,8 +1,5 @@
 #include "core/eval/reference_store.h"
 
-#include <sys/types.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -19,6 +16,7 @@
 #include "core/render/render_outputs.h"
 #include "core/scene/accel.h"
 #include "core/util/atomic_file.h"
+#include "core/util/directory_replace.h"
 #include "core/util/error.h"
 #include "core/util/image_io.h"
 #include "core/util/json_reader.h"
@@ -191,59 +189,51 @@ double globalNoise(const ReferenceNoise& n) { return n.relativeRmse[int(Term::Gl
 
 bool meets(double noise, int spp, double wanted, int cap) { return spp >= cap || (std::isfinite(noise) && noise <= wanted); }
 
-/// Writes the entry into a temporary directory beside it and renames that into place.
+/// Writes the entry as a whole (core/util/directory_replace.h): the id's directory is always one
+/// whole entry or absent, never a mixture of an old and a new one.
 void writeEntry(const fs::path& storeDir, const ReferenceKey& key, const RenderState& st, const Reference& ref,
                 const ReferenceNoise& noise, bool complete, double wanted) {
-    makeDirectories(storeDir.string());
-    static std::atomic<int> counter{0};
-    const std::string suffix = std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    const fs::path tmp = storeDir / ("." + key.id() + ".tmp-" + suffix);
-    fs::remove_all(tmp);
-    makeDirectories(tmp.string());
-    const std::string state = encodeState(st);
-    writeFileAtomically((tmp / kStateFile).string(), state);
-    for (Term t : kTerms)
-        writeImage((tmp / (std::string(termName(t)) + ".exr")).string(), ref.image(t), ImageFormat::EXR);
-    json render{{"light_position", {ref.lightPosition.x, ref.lightPosition.y, ref.lightPosition.z}},
-                {"spp_completed", ref.spp},
-                {"seconds", ref.seconds},
-                {"non_finite_samples_dropped", ref.nonFinite},
-                {"width", key.width},
-                {"height", key.height},
-                {"written_by", "reference store"}};
-    if (!ref.variance(Term::Global).empty()) {
-        std::vector<std::string> written;
-        render["variance_images"] = writeVarianceImages(
-            tmp.string(), {&ref.variance(Term::Direct), &ref.variance(Term::Indirect), &ref.variance(Term::Global)},
-            ImageFormat::EXR, written);
-    }
-    writeFileAtomically((tmp / "render.json").string(), render.dump(2) + "\n");
-    const json meta{{"format", kFormat},
-                    {"key", key.toJson()},
-                    {"spp", st.sppDone},
-                    {"seconds", st.seconds},
-                    {"noise", noise.toJson()},
-                    {"noise_metric", "relative RMSE noise floor over the footprint mask (docs/design.md §14)"},
-                    {"complete", complete},
-                    {"wanted_noise", noiseFigureJson(wanted)},
-                    {"non_finite_samples_dropped", st.nonFinite},
-                    {"state", {{"file", kStateFile}, {"checksum64", hex64(checksum64(state.data(), state.size()))}}}};
-    writeFileAtomically((tmp / kMetaFile).string(), meta.dump(2) + "\n");
-    // Swap into place: the old entry (if any) moves aside first, so the id's directory is always one
-    // whole entry or absent, never a mixture.
     const fs::path final = storeDir / key.id();
-    const fs::path old = storeDir / ("." + key.id() + ".old-" + suffix);
-    std::error_code ec;
-    const bool replacing = fs::exists(final);
-    if (replacing) fs::rename(final, old);
-    fs::rename(tmp, final, ec);
-    if (ec) {  // e.g. another writer recreated the entry meanwhile: put the old one back, say which
-        std::error_code ignore;
-        if (replacing) fs::rename(old, final, ignore);
-        fs::remove_all(tmp, ignore);
-        throw InputError(final.string(), "", "could not store the reference entry: " + ec.message());
+    // Every file of an entry is the store's own: nothing in the old directory is kept.
+    const auto member = [](const std::string&) { return true; };
+    try {
+        replaceDirectory(final.string(), member, [&](const std::string& dir) {
+            const fs::path tmp(dir);
+            const std::string state = encodeState(st);
+            writeFileAtomically((tmp / kStateFile).string(), state);
+            for (Term t : kTerms)
+                writeImage((tmp / (std::string(termName(t)) + ".exr")).string(), ref.image(t), ImageFormat::EXR);
+            json render{{"light_position", {ref.lightPosition.x, ref.lightPosition.y, ref.lightPosition.z}},
+                        {"spp_completed", ref.spp},
+                        {"seconds", ref.seconds},
+                        {"non_finite_samples_dropped", ref.nonFinite},
+                        {"width", key.width},
+                        {"height", key.height},
+                        {"written_by", "reference store"}};
+            if (!ref.variance(Term::Global).empty()) {
+                std::vector<std::string> written;
+                render["variance_images"] =
+                    writeVarianceImages(dir, {&ref.variance(Term::Direct), &ref.variance(Term::Indirect), &ref.variance(Term::Global)},
+                                        ImageFormat::EXR, written);
+            }
+            writeFileAtomically((tmp / "render.json").string(), render.dump(2) + "\n");
+            const json meta{{"format", kFormat},
+                            {"key", key.toJson()},
+                            {"spp", st.sppDone},
+                            {"seconds", st.seconds},
+                            {"noise", noise.toJson()},
+                            {"noise_metric", "relative RMSE noise floor over the footprint mask (docs/design.md §14)"},
+                            {"complete", complete},
+                            {"wanted_noise", noiseFigureJson(wanted)},
+                            {"non_finite_samples_dropped", st.nonFinite},
+                            {"state", {{"file", kStateFile}, {"checksum64", hex64(checksum64(state.data(), state.size()))}}}};
+            writeFileAtomically((tmp / kMetaFile).string(), meta.dump(2) + "\n");
+        });
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::runtime_error& e) {
+        throw InputError(final.string(), "", std::string("could not store the reference entry: ") + e.what());
     }
-    fs::remove_all(old, ec);
 }
 
 }  // namespace

@@ -5,13 +5,17 @@
 /// Model file (".rrfm"), little-endian:
 ///
 ///     offset 0   8 bytes   magic "RRFMODEL"
-///     offset 8   u32       format version (1)
+///     offset 8   u32       format version (2)
 ///     offset 12  u32       header length H in bytes
-///     offset 16  H bytes   JSON header (UTF-8): architecture, object, target, trainer settings,
+///     offset 16  u64       checksum64 (core/data/dataset_file.h) of the H header bytes
+///     offset 24  H bytes   JSON header (UTF-8): architecture, object, target, trainer settings,
 ///                          training record (history, stop reason, errors), payload description
 ///                          with the payload's byte count and FNV-1a 64 checksum
-///     offset 16+H          payload: IEEE-754 float64 values, in this order:
+///     offset 24+H          payload: IEEE-754 float64 values, in this order:
 ///                          params[P], input_offset[in], input_scale[in], output_offset[out], output_scale[out]
+///
+/// Version 1 files (no header checksum: the header starts at offset 16) still load; the header's
+/// integrity is then unchecked (a model set of version 3 checksums its files as a whole).
 ///
 /// Weights are stored as raw doubles, so a loaded model holds the very same bits and predicts
 /// bit-identically. Files are written atomically (temporary file + rename).
@@ -114,9 +118,12 @@ NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eig
 void saveModel(const NetworkModel& model, const std::string& path);
 
 /// Reads a model file. Any defect (missing file, wrong magic or version, truncation, trailing bytes,
-/// bad header, sizes that disagree with the architecture, checksum mismatch, NaN/Inf weights) is an
+/// header checksum mismatch, bad header or an integer field out of range, sizes that disagree with the architecture, checksum mismatch, NaN/Inf weights) is an
 /// InputError naming the file.
 NetworkModel loadModel(const std::string& path);
+
+/// Parses the bytes of a model file read from `path` (named in errors), as loadModel does.
+NetworkModel parseModel(const std::string& bytes, const std::string& path);
 
 /// Header of a model (everything but the payload) as JSON; what saveModel writes.
 nlohmann::json modelHeader(const NetworkModel& model);

@@ -4,9 +4,11 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "core/data/dataset_file.h"
+#include "core/nn/model.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
-#include "core/nn/model.h"
+#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -17,9 +19,15 @@ namespace {
 using nlohmann::json;
 
 constexpr char kMagic[8] = {'R', 'R', 'F', 'M', 'O', 'D', 'E', 'L'};
-constexpr uint32_t kVersion = 1;
-constexpr size_t kPreamble = 16;  // magic + version + header length
+/// Version 2 adds the header's checksum to the preamble; version 1 files (no header checksum) still load.
+constexpr uint32_t kVersion = 2;
+constexpr size_t kPreambleV1 = 16;  // magic + version + header length
+constexpr size_t kPreamble = 24;    // ... + checksum64 of the header
 constexpr uint32_t kMaxHeader = 64u << 20;
+constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
+/// Record counts: 2^62 is far above any dataset and, unlike INT64_MAX, exactly a double, so a float
+/// field at the bound still converts to int64 without overflow.
+constexpr int64_t kMaxCount = int64_t(1) << 62;
 
 uint64_t fnv1a64(const char* p, size_t n) {
     uint64_t h = 0xCBF29CE484222325ULL;
@@ -92,11 +100,13 @@ void saveModel(const NetworkModel& model, const std::string& path) {
                          {"fnv1a64", hex64(fnv1a64(payload.data(), payload.size()))}};
     const std::string h = header.dump(1);
     const uint32_t version = kVersion, hlen = uint32_t(h.size());
+    const uint64_t headerChecksum = checksum64(h.data(), h.size());
 
     AtomicFile f(path);
     f.write(kMagic, sizeof kMagic);
     f.write(&version, 4);
     f.write(&hlen, 4);
+    f.write(&headerChecksum, 8);
     f.write(h);
     f.write(payload);
     f.commit();
@@ -109,72 +119,98 @@ NetworkModel loadModel(const std::string& path) {
     } catch (const std::exception& e) {
         throw InputError(path, "", std::string("cannot read model file: ") + e.what());
     }
+    return parseModel(bytes, path);
+}
+
+NetworkModel parseModel(const std::string& bytes, const std::string& path) {
     auto fail = [&](const std::string& where, const std::string& what) -> void { throw InputError(path, where, what); };
 
-    if (bytes.size() < kPreamble) fail("", "truncated model file (" + std::to_string(bytes.size()) + " bytes)");
+    if (bytes.size() < kPreambleV1) fail("", "truncated model file (" + std::to_string(bytes.size()) + " bytes)");
     if (std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) fail("", "not an RRF model file (bad magic)");
     uint32_t version = 0, hlen = 0;
     std::memcpy(&version, bytes.data() + 8, 4);
     std::memcpy(&hlen, bytes.data() + 12, 4);
-    if (version != kVersion) fail("", "unsupported model file version " + std::to_string(version));
-    if (hlen > kMaxHeader || kPreamble + hlen > bytes.size())
+    if (version < 1 || version > kVersion)
+        fail("", "unsupported model file version " + std::to_string(version) + " (this build reads 1 … " +
+                     std::to_string(kVersion) + ")");
+    const size_t preamble = version == 1 ? kPreambleV1 : kPreamble;
+    if (bytes.size() < preamble) fail("", "truncated model file (" + std::to_string(bytes.size()) + " bytes)");
+    if (hlen > kMaxHeader || preamble + hlen > bytes.size())
         fail("header", "truncated model file (header of " + std::to_string(hlen) + " bytes does not fit)");
+    if (version >= 2) {
+        uint64_t stored = 0;
+        std::memcpy(&stored, bytes.data() + 16, 8);
+        if (stored != checksum64(bytes.data() + preamble, hlen))
+            fail("header", "checksum mismatch: the header was changed or damaged after it was written");
+    }
 
     json h;
     try {
-        h = json::parse(bytes.begin() + long(kPreamble), bytes.begin() + long(kPreamble + hlen));
+        h = json::parse(bytes.begin() + long(preamble), bytes.begin() + long(preamble + hlen));
     } catch (const json::exception& e) {
         fail("header", std::string("malformed JSON header: ") + e.what());
     }
 
+    // Typed reads (core/util/json_reader.h): an integer field holding 1e300 or "3" is an InputError
+    // naming the field, never a float-to-int conversion out of range.
+    const JsonReader header(h, path, "header");
     NetworkModel m;
     try {
-        const json& a = h.at("architecture");
-        m.arch.inputs = a.at("inputs").get<int>();
-        m.arch.hidden = a.at("hidden").get<std::vector<int>>();
-        m.arch.outputs = a.at("outputs").get<int>();
-        m.arch.activation = parseActivation(a.at("activation").get<std::string>());
+        const JsonReader a = header.at("architecture");
+        m.arch.inputs = int(a.at("inputs").integer(1, kMaxInt));
+        const JsonReader hidden = a.at("hidden");
+        const size_t layers = hidden.requireArray();
+        m.arch.hidden.clear();  // MlpArch's default layers are not the file's
+        for (size_t i = 0; i < layers; ++i) m.arch.hidden.push_back(int(hidden.at(i).integer(1, kMaxInt)));
+        m.arch.outputs = int(a.at("outputs").integer(1, kMaxInt));
+        m.arch.activation = parseActivation(a.at("activation").string());
         m.arch.validate();
-        m.objectId = h.at("object").get<int>();
-        m.objectName = h.at("object_name").get<std::string>();
-        m.target = h.at("target").get<std::string>();
+        m.objectId = int(header.at("object").integer(-1, kMaxInt));
+        m.objectName = header.at("object_name").string();
+        m.target = header.at("target").string();
+    } catch (const InputError&) {
+        throw;
     } catch (const std::exception& e) {
         fail("header/architecture", std::string("bad architecture: ") + e.what());
     }
     try {
-        m.trainer = TrainerConfig::fromJson(h.at("trainer"), path, "header/trainer");
+        m.trainer = TrainerConfig::fromJson(header.at("trainer"));
     } catch (const InputError&) {
         throw;
     } catch (const std::exception& e) {
         fail("header/trainer", e.what());
     }
     try {
-        const json& t = h.at("training");
+        const JsonReader t = header.at("training");
         TrainResult& r = m.training;
-        r.epochs = t.at("epochs").get<int>();
-        r.bestEpoch = t.at("best_epoch").get<int>();
-        r.stopReason = t.at("stop_reason").get<std::string>();
-        r.cancelled = t.at("cancelled").get<bool>();
-        r.seconds = num(t.at("seconds"));
-        const json& s = t.at("samples");
-        r.trainSamples = s.at("train").get<int64_t>();
-        r.validationSamples = s.at("validation").get<int64_t>();
-        r.testSamples = s.at("test").get<int64_t>();
-        r.trainSamplesUsed = s.at("train_used").get<int64_t>();
-        r.trainLoss = num(t.at("loss").at("train"));
-        r.validationLoss = num(t.at("loss").at("validation"));
-        r.testLoss = num(t.at("loss").at("test"));
-        m.errors.train = num(t.at("rmse").at("train"));
-        m.errors.validation = num(t.at("rmse").at("validation"));
-        m.errors.test = num(t.at("rmse").at("test"));
-        r.messages = t.at("messages").get<std::vector<std::string>>();
-        const json& hist = t.at("history");
-        const size_t n = hist.at("epoch").size();
+        r.epochs = int(t.at("epochs").integer(0, kMaxInt));
+        r.bestEpoch = int(t.at("best_epoch").integer(-1, kMaxInt));
+        r.stopReason = t.at("stop_reason").string();
+        r.cancelled = t.at("cancelled").boolean();
+        r.seconds = num(t.value().at("seconds"));
+        const JsonReader s = t.at("samples");
+        r.trainSamples = s.at("train").integer(0, kMaxCount);
+        r.validationSamples = s.at("validation").integer(0, kMaxCount);
+        r.testSamples = s.at("test").integer(0, kMaxCount);
+        r.trainSamplesUsed = s.at("train_used").integer(0, kMaxCount);
+        const json& tj = t.value();
+        r.trainLoss = num(tj.at("loss").at("train"));
+        r.validationLoss = num(tj.at("loss").at("validation"));
+        r.testLoss = num(tj.at("loss").at("test"));
+        m.errors.train = num(tj.at("rmse").at("train"));
+        m.errors.validation = num(tj.at("rmse").at("validation"));
+        m.errors.test = num(tj.at("rmse").at("test"));
+        const JsonReader messages = t.at("messages");
+        for (size_t i = 0, n = messages.requireArray(); i < n; ++i) r.messages.push_back(messages.at(i).string());
+        const JsonReader hist = t.at("history");
+        const JsonReader epochs = hist.at("epoch");
+        const size_t n = epochs.requireArray();
         for (const char* k : {"train", "validation", "step", "seconds"})
-            if (hist.at(k).size() != n) fail("header/training/history", "history columns differ in length");
+            if (hist.at(k).requireArray() != n) fail("header/training/history", "history columns differ in length");
+        const json& hj = hist.value();
         for (size_t i = 0; i < n; ++i)
-            r.history.push_back({hist["epoch"][i].get<int>(), num(hist["train"][i]), num(hist["validation"][i]),
-                                 num(hist["step"][i]), num(hist["seconds"][i])});
+            r.history.push_back({int(epochs.at(i).integer(0, kMaxInt)), num(hj["train"][i]), num(hj["validation"][i]),
+                                 num(hj["step"][i]), num(hj["seconds"][i])});
     } catch (const InputError&) {
         throw;
     } catch (const std::exception& e) {
@@ -183,15 +219,10 @@ NetworkModel loadModel(const std::string& path) {
 
     const size_t P = size_t(m.arch.numParams()), in = size_t(m.arch.inputs), out = size_t(m.arch.outputs);
     const size_t expected = (P + 2 * in + 2 * out) * sizeof(double);
-    const size_t have = bytes.size() - kPreamble - hlen;
-    uint64_t declared = 0;
-    std::string checksum;
-    try {
-        declared = h.at("payload").at("bytes").get<uint64_t>();
-        checksum = h.at("payload").at("fnv1a64").get<std::string>();
-    } catch (const std::exception& e) {
-        fail("header/payload", e.what());
-    }
+    const size_t have = bytes.size() - preamble - hlen;
+    const JsonReader payload = header.at("payload");
+    const uint64_t declared = payload.at("bytes").unsignedInteger();
+    const std::string checksum = payload.at("fnv1a64").string();
     if (declared != expected)
         fail("header/payload/bytes", "payload of " + std::to_string(declared) + " bytes declared, the " +
                                          m.arch.describe() + " network needs " + std::to_string(expected));
@@ -199,7 +230,7 @@ NetworkModel loadModel(const std::string& path) {
         fail("payload", "truncated model file: payload has " + std::to_string(have) + " of " +
                             std::to_string(expected) + " bytes");
     if (have > expected) fail("payload", std::to_string(have - expected) + " unexpected bytes after the payload");
-    const char* p = bytes.data() + kPreamble + hlen;
+    const char* p = bytes.data() + preamble + hlen;
     if (hex64(fnv1a64(p, expected)) != checksum) fail("payload", "checksum mismatch: the file is corrupted");
 
     auto readVec = [&](size_t n) {

@@ -1,13 +1,16 @@
 #include "core/nn/model_set.h"
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
 
+#include "core/data/dataset_file.h"
 #include "core/util/atomic_file.h"
+#include "core/util/directory_replace.h"
 #include "core/util/error.h"
-#include "core/render/render_outputs.h"
+#include "core/util/json_reader.h"
 #include "core/util/text_format.h"
 
 namespace rrf {
@@ -46,77 +49,129 @@ json treeJson(const PartitionTree& t) {
     return {{"nodes", nodes}};
 }
 
-PartitionTree treeFromJson(const json& j) {
+constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
+
+/// Typed reads (core/util/json_reader.h): 1e300 in an integer field is an InputError naming it.
+PartitionTree treeFromJson(const JsonReader& j) {
     PartitionTree t;
-    for (const json& n : j.at("nodes")) {
+    const JsonReader nodes = j.at("nodes");
+    for (size_t i = 0, count = nodes.requireArray(); i < count; ++i) {
+        const JsonReader n = nodes.at(i);
         PartitionNode x;
-        x.records = n.at("records").get<int64_t>();
-        x.error = num(n.at("error"));
-        if (n.contains("leaf")) {
-            x.leaf = n.at("leaf").get<int>();
+        x.records = n.at("records").integer(0, int64_t(1) << 62);  // 2^62: exact as a double, unlike INT64_MAX
+        x.error = num(n.at("error").value());
+        if (n.has("leaf")) {
+            x.leaf = int(n.at("leaf").integer(0, kMaxInt));
         } else {
-            x.axis = n.at("axis").get<int>();
-            if (x.axis < 0) throw std::invalid_argument("negative split axis");
-            x.split = float(n.at("split").get<double>());
-            x.left = n.at("left").get<int>();
-            x.right = n.at("right").get<int>();
+            x.axis = int(n.at("axis").integer(0, kMaxInt));
+            x.split = n.at("split").floatValue();
+            x.left = int(n.at("left").integer(0, kMaxInt));
+            x.right = int(n.at("right").integer(0, kMaxInt));
         }
         t.nodes.push_back(x);
     }
     return t;
 }
 
+/// models.json's own checksum: checksum64 of the file's text with the field's 16 hex digits read
+/// as zeros. Being computed over the exact bytes, it also covers formatting the parser would ignore.
+constexpr const char* kIndexChecksumKey = "\"index_checksum64\": \"";
+constexpr size_t kHexDigits = 16;
+
+/// Where the checksum's digits start in `text`, or npos if the field is absent.
+size_t indexChecksumAt(const std::string& text) {
+    const size_t at = text.find(kIndexChecksumKey);
+    if (at == std::string::npos) return at;
+    const size_t digits = at + std::strlen(kIndexChecksumKey);
+    return digits + kHexDigits <= text.size() ? digits : std::string::npos;
+}
+
+/// 16 hex digits (hexString drops leading zeros; the checksum field has a fixed width).
+std::string hex16(uint64_t v) {
+    const std::string h = hexString(v);
+    return std::string(kHexDigits - h.size(), '0') + h;
+}
+
+uint64_t indexChecksum(std::string text, size_t digits) {
+    text.replace(digits, kHexDigits, kHexDigits, '0');
+    return checksum64(text.data(), text.size());
+}
+
+/// Members of a model set's directory (replaced with it); anything else there is kept.
+bool isModelSetEntry(const std::string& name) {
+    auto endsWith = [&](const std::string& tail) {
+        return name.size() >= tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+    };
+    return name == "models.json" || endsWith(".rrfm");
+}
+
 }  // namespace
 
 nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectModel>& trained, uint64_t sceneHash,
                             const std::vector<std::string>& inputLayout, const nlohmann::json& extra) {
-    makeDirectories(dir);
     nlohmann::json index = extra.is_object() ? extra : nlohmann::json::object();
-    index["format"] = "rrf-models";
-    index["version"] = kModelSetVersion;
-    index["scene_hash"] = hexString(sceneHash);
-    index["input_layout"] = inputLayout;
-    nlohmann::json models = nlohmann::json::array();
-    for (const ObjectModel& m : trained) {
-        if (m.skipped) {
-            models.push_back({{"object", m.objectId}, {"name", m.objectName}, {"target", m.target}, {"skipped", m.message}});
-            continue;
+    for (const ObjectModel& m : trained)
+        if (!m.skipped) m.model.validate();
+    // The whole set goes into a new directory that replaces the old one in one rename
+    // (core/util/directory_replace.h): a kill or a full disk leaves the old set or the new one.
+    replaceDirectory(dir, isModelSetEntry, [&](const std::string& staging) {
+        index["format"] = "rrf-models";
+        index["version"] = kModelSetVersion;
+        index["scene_hash"] = hexString(sceneHash);
+        index["input_layout"] = inputLayout;
+        nlohmann::json models = nlohmann::json::array();
+        for (const ObjectModel& m : trained) {
+            if (m.skipped) {
+                models.push_back({{"object", m.objectId}, {"name", m.objectName}, {"target", m.target}, {"skipped", m.message}});
+                continue;
+            }
+            const PartitionedNetwork& p = m.model;
+            const std::vector<int> leafNodes = p.tree.leafNodes();
+            nlohmann::json leaves = nlohmann::json::array();
+            int epochs = 0;
+            double seconds = 0;
+            for (int l = 0; l < p.leafCount(); ++l) {
+                const NetworkModel& net = p.leaves[size_t(l)];
+                const std::string file = p.leafCount() == 1 ? modelFileName(m.objectId, m.target)
+                                                            : leafModelFileName(m.objectId, m.target, l);
+                const std::string path = (fs::path(staging) / file).string();
+                saveModel(net, path);
+                // The file's size and checksum tie it to this index: a file changed afterwards, or
+                // copied in from another set, no longer matches.
+                const std::string bytes = readFile(path);
+                const PartitionNode& n = p.tree.nodes[size_t(leafNodes[size_t(l)])];
+                leaves.push_back({{"file", file},
+                                  {"bytes", bytes.size()},
+                                  {"checksum64", hex16(checksum64(bytes.data(), bytes.size()))},
+                                  {"records", n.records},
+                                  {"error", num(n.error)},
+                                  {"rmse", {{"train", num(net.errors.train)}, {"validation", num(net.errors.validation)},
+                                            {"test", num(net.errors.test)}}}});
+                epochs += net.training.epochs;
+                seconds += net.training.seconds;
+            }
+            models.push_back({{"object", m.objectId},
+                              {"name", m.objectName},
+                              {"target", m.target},
+                              {"architecture", p.arch().describe()},
+                              {"parameters", p.numParams()},
+                              {"leaf_count", p.leafCount()},
+                              {"depth", p.tree.depth()},
+                              {"epochs", epochs},
+                              {"seconds", seconds},
+                              {"tree", treeJson(p.tree)},
+                              {"leaves", leaves}});
         }
-        m.model.validate();
-        const PartitionedNetwork& p = m.model;
-        const std::vector<int> leafNodes = p.tree.leafNodes();
-        nlohmann::json leaves = nlohmann::json::array();
-        int epochs = 0;
-        double seconds = 0;
-        for (int l = 0; l < p.leafCount(); ++l) {
-            const NetworkModel& net = p.leaves[size_t(l)];
-            const std::string file = p.leafCount() == 1 ? modelFileName(m.objectId, m.target)
-                                                        : leafModelFileName(m.objectId, m.target, l);
-            saveModel(net, (fs::path(dir) / file).string());
-            const PartitionNode& n = p.tree.nodes[size_t(leafNodes[size_t(l)])];
-            leaves.push_back({{"file", file},
-                              {"records", n.records},
-                              {"error", num(n.error)},
-                              {"rmse", {{"train", num(net.errors.train)}, {"validation", num(net.errors.validation)},
-                                        {"test", num(net.errors.test)}}}});
-            epochs += net.training.epochs;
-            seconds += net.training.seconds;
-        }
-        models.push_back({{"object", m.objectId},
-                          {"name", m.objectName},
-                          {"target", m.target},
-                          {"architecture", p.arch().describe()},
-                          {"parameters", p.numParams()},
-                          {"leaf_count", p.leafCount()},
-                          {"depth", p.tree.depth()},
-                          {"epochs", epochs},
-                          {"seconds", seconds},
-                          {"tree", treeJson(p.tree)},
-                          {"leaves", leaves}});
-    }
-    index["models"] = models;
-    // NaN errors (empty validation sets) are not valid JSON numbers: nlohmann writes null for them.
-    writeFileAtomically((fs::path(dir) / "models.json").string(), index.dump(2) + "\n");
+        index["models"] = models;
+        index["index_checksum64"] = std::string(kHexDigits, '0');
+        // NaN errors (empty validation sets) are not valid JSON numbers: nlohmann writes null for them.
+        std::string text = index.dump(2) + "\n";
+        const size_t digits = indexChecksumAt(text);
+        const std::string sum = hex16(indexChecksum(text, digits));
+        text.replace(digits, kHexDigits, sum);
+        index["index_checksum64"] = sum;
+        writeFileAtomically((fs::path(staging) / "models.json").string(), text);
+    });
     return index;
 }
 
@@ -130,67 +185,98 @@ ModelSet loadModelSet(const std::string& dir, uint64_t expectedSceneHash) {
     } catch (const std::exception&) {
         throw InputError(indexPath, "", "no model index here: train models first (rrf train ... --out " + dir + ")");
     }
+    // The checksum goes first: a changed byte is reported as such, not as whatever it broke.
+    const size_t digits = indexChecksumAt(text);
+    if (digits != std::string::npos && text.compare(digits, kHexDigits, hex16(indexChecksum(text, digits))) != 0)
+        throw InputError(indexPath, "/index_checksum64",
+                         "checksum mismatch: the index was changed or damaged after it was written (train the models again)");
     try {
         set.index = nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
         throw InputError(indexPath, "", std::string("malformed JSON: ") + e.what());
     }
-    std::string where;  // JSON pointer of the model entry being read, for messages
-    try {
-        const int version = set.index.contains("version") ? set.index.at("version").get<int>() : 1;
-        if (version < 1 || version > kModelSetVersion)
-            throw InputError(indexPath, "/version", "model index version " + std::to_string(version) +
-                                                        " is not supported (this build reads 1 … " +
-                                                        std::to_string(kModelSetVersion) + ")");
-        set.sceneHash = std::stoull(set.index.at("scene_hash").get<std::string>(), nullptr, 16);
-        set.inputLayout = set.index.at("input_layout").get<std::vector<std::string>>();
-        if (expectedSceneHash != 0 && set.sceneHash != expectedSceneHash)
-            throw InputError(indexPath, "/scene_hash", "these models were trained for a different scene: retrain them for this project");
-        const nlohmann::json& models = set.index.at("models");
-        for (size_t i = 0; i < models.size(); ++i) {
-            const nlohmann::json& m = models[i];
-            where = "/models/" + std::to_string(i);
-            if (m.contains("skipped")) continue;
-            // Version 1: one network per model ("file"); version 2: a tree and its leaves' files.
-            std::vector<std::string> files;
-            PartitionTree tree;
-            if (m.contains("tree")) {
-                tree = treeFromJson(m.at("tree"));
-                for (const nlohmann::json& l : m.at("leaves")) files.push_back(l.at("file").get<std::string>());
-            } else {
-                files.push_back(m.at("file").get<std::string>());
-            }
-            PartitionedNetwork model;
-            for (const std::string& f : files) {
-                const std::string file = (fs::path(dir) / f).string();
-                NetworkModel net = loadModel(file);
-                if (net.arch.inputs != int(set.inputLayout.size()))
-                    throw InputError(file, "", "network has " + std::to_string(net.arch.inputs) + " inputs but the index lists " +
-                                                   std::to_string(set.inputLayout.size()));
-                model.leaves.push_back(std::move(net));
-            }
-            model.tree = m.contains("tree") ? std::move(tree) : PartitionedNetwork(model.leaves.front()).tree;
-            try {
-                model.validate();
-            } catch (const std::invalid_argument& e) {
-                throw InputError(indexPath, where + "/tree", e.what());
-            }
-            const int id = m.at("object").get<int>();
-            ObjectNetworks* o = nullptr;
-            for (ObjectNetworks& x : set.objects)
-                if (x.objectId == id) o = &x;
-            if (!o) {
-                set.objects.push_back({});
-                o = &set.objects.back();
-                o->objectId = id;
-                o->name = m.value("name", "");
-            }
-            o->byTarget[m.at("target").get<std::string>()] = std::move(model);
+    const JsonReader index(set.index, indexPath);
+    index.requireObject();
+    const int version = index.has("version") ? int(index.at("version").integer(1, kMaxInt)) : 1;
+    if (version > kModelSetVersion)
+        throw InputError(indexPath, "/version", "model index version " + std::to_string(version) +
+                                                    " is not supported (this build reads 1 … " +
+                                                    std::to_string(kModelSetVersion) + ")");
+    // From version 3 every index carries its checksum and every file's; older ones load unverified.
+    const bool verified = version >= 3;
+    if (verified && digits == std::string::npos)
+        throw InputError(indexPath, "/index_checksum64", "missing: a version 3 index carries its own checksum");
+    const std::string hash = index.at("scene_hash").string();
+    if (hash.empty() || hash.size() > kHexDigits || hash.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos)
+        throw InputError(indexPath, "/scene_hash", "expected up to 16 hex digits, got \"" + hash + "\"");
+    set.sceneHash = std::stoull(hash, nullptr, 16);
+    const JsonReader layout = index.at("input_layout");
+    for (size_t i = 0, n = layout.requireArray(); i < n; ++i) set.inputLayout.push_back(layout.at(i).string());
+    if (expectedSceneHash != 0 && set.sceneHash != expectedSceneHash)
+        throw InputError(indexPath, "/scene_hash", "these models were trained for a different scene: retrain them for this project");
+    const JsonReader models = index.at("models");
+    for (size_t i = 0, count = models.requireArray(); i < count; ++i) {
+        const JsonReader m = models.at(i);
+        if (m.has("skipped")) continue;
+        const int id = int(m.at("object").integer(0, kMaxInt));
+        const std::string target = m.at("target").string();
+        // Version 1: one network per model ("file"); version 2 on: a tree and its leaves' files.
+        std::vector<std::pair<std::string, JsonReader>> files;
+        PartitionTree tree;
+        if (m.has("tree")) {
+            tree = treeFromJson(m.at("tree"));
+            const JsonReader leaves = m.at("leaves");
+            for (size_t l = 0, n = leaves.requireArray(); l < n; ++l)
+                files.emplace_back(leaves.at(l).at("file").string(), leaves.at(l));
+        } else {
+            files.emplace_back(m.at("file").string(), m);
         }
-    } catch (const nlohmann::json::exception& e) {
-        throw InputError(indexPath, where, std::string("malformed model index: ") + e.what());
-    } catch (const std::invalid_argument& e) {
-        throw InputError(indexPath, where, std::string("malformed model index: ") + e.what());
+        PartitionedNetwork model;
+        for (const auto& [name, entry] : files) {
+            // A bare file name: an index must not reach outside its own directory.
+            if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..")
+                throw InputError(indexPath, entry.pointer() + "/file", "expected a file name in the model directory, got \"" + name + "\"");
+            const std::string file = (fs::path(dir) / name).string();
+            std::string bytes;
+            try {
+                bytes = readFile(file);
+            } catch (const std::exception&) {
+                throw InputError(file, "", "missing: listed in " + indexPath + " at " + entry.pointer() + "/file");
+            }
+            if (verified) {
+                const uint64_t size = entry.at("bytes").unsignedInteger();
+                const std::string sum = entry.at("checksum64").string();
+                if (size != bytes.size() || sum != hex16(checksum64(bytes.data(), bytes.size())))
+                    throw InputError(file, "", "does not match " + indexPath + " (" + entry.pointer() +
+                                                   "/checksum64): the file was changed or belongs to another model set");
+            }
+            NetworkModel net = parseModel(bytes, file);
+            if (net.arch.inputs != int(set.inputLayout.size()))
+                throw InputError(file, "", "network has " + std::to_string(net.arch.inputs) + " inputs but the index lists " +
+                                               std::to_string(set.inputLayout.size()));
+            if (net.objectId != id || net.target != target)
+                throw InputError(file, "", "holds the " + net.target + " network of object " + std::to_string(net.objectId) +
+                                               ", but " + indexPath + " lists it at " + m.pointer() + " for the " + target +
+                                               " network of object " + std::to_string(id));
+            model.leaves.push_back(std::move(net));
+        }
+        if (model.leaves.empty()) throw InputError(indexPath, m.pointer() + "/leaves", "expected at least one network");
+        model.tree = m.has("tree") ? std::move(tree) : PartitionedNetwork(model.leaves.front()).tree;
+        try {
+            model.validate();
+        } catch (const std::invalid_argument& e) {
+            throw InputError(indexPath, m.pointer() + "/tree", e.what());
+        }
+        ObjectNetworks* o = nullptr;
+        for (ObjectNetworks& x : set.objects)
+            if (x.objectId == id) o = &x;
+        if (!o) {
+            set.objects.push_back({});
+            o = &set.objects.back();
+            o->objectId = id;
+            o->name = m.stringOr("name", "");
+        }
+        o->byTarget[target] = std::move(model);
     }
     return set;
 }

@@ -5,9 +5,13 @@
 /// record layout, each model's kd-tree and which file holds which network. Prediction loads the set
 /// and refuses models made for another scene or another input layout.
 ///
-/// Index version 2 (this build) stores per model "tree": {"nodes": [...]} (nn/partition_tree.h's
-/// nodes: axis, split, left, right, leaf, records, error) and "leaves": [{"file", "records",
-/// "error"}, ...]. Version 1 indexes (one "file" per model) load as single-leaf trees.
+/// Index version 3 (this build) stores per model "tree": {"nodes": [...]} (nn/partition_tree.h's
+/// nodes: axis, split, left, right, leaf, records, error) and "leaves": [{"file", "bytes",
+/// "checksum64", "records", "error"}, ...], plus "index_checksum64", the checksum of models.json
+/// itself. The set is written as a whole (core/util/directory_replace.h) and the loader refuses a
+/// changed index and any file that is missing, changed or from another set, naming it. Version 2
+/// indexes (no checksums) and version 1 (one "file" per model, loading as single-leaf trees) still
+/// load, unverified.
 
 #include <map>
 #include <string>
@@ -39,11 +43,14 @@ struct ModelSet {
     const ObjectNetworks* find(int objectId) const;
 };
 
-/// Version of models.json written by saveModelSet (1: one network per model; 2: kd-trees).
-constexpr int kModelSetVersion = 2;
+/// Version of models.json written by saveModelSet (1: one network per model; 2: kd-trees;
+/// 3: checksums of the index and of every model file).
+constexpr int kModelSetVersion = 3;
 
-/// Writes every non-skipped model of `trained` into `dir` (created if missing) and the index.
-/// `extra` is merged into models.json (dataset path, settings, timings). Returns the index.
+/// Replaces directory `dir` (created if missing) with a set holding every non-skipped model of
+/// `trained` and the index, as a whole: the previous set's models.json and *.rrfm files go, other
+/// files in `dir` are kept. `extra` is merged into models.json (dataset path, settings, timings).
+/// Returns the index.
 nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectModel>& trained, uint64_t sceneHash,
                             const std::vector<std::string>& inputLayout, const nlohmann::json& extra = {});
 

@@ -5,6 +5,7 @@
 
 #include "core/render/term.h"
 #include "core/util/atomic_file.h"
+#include "core/util/directory_replace.h"
 #include "core/util/text_format.h"
 
 namespace rrf {
@@ -62,29 +63,46 @@ nlohmann::json writeVarianceImages(const std::string& dir, const std::array<cons
     return files;
 }
 
+bool isRenderOutputEntry(const std::string& name) {
+    if (name == "render.json") return true;
+    const std::string stem = fs::path(name).stem().string();
+    for (Term t : kTerms)
+        if (stem == termName(t) || stem == std::string("variance_") + termName(t)) return true;
+    return false;
+}
+
 RenderOutputs writeRenderOutputs(const std::string& dir, const Scene& scene, const Renderer& renderer,
-                                 const RenderSnapshot& snapshot, ImageFormat format, float exposureStops) {
-    makeDirectories(dir);
+                                 const RenderSnapshot& snapshot, ImageFormat format, float exposureStops,
+                                 const std::vector<std::pair<ImageFormat, float>>& moreFormats) {
     RenderOutputs out;
-    const std::string ext = imageFormatName(format);
-    // File names are the terms' names, which loadReference (core/eval) reads back.
-    const std::pair<const char*, const Image*> images[] = {{termName(Term::Global), &snapshot.global},
-                                                           {termName(Term::Direct), &snapshot.direct},
-                                                           {termName(Term::Indirect), &snapshot.indirect}};
-    for (const auto& [name, image] : images) {
-        const std::string path = (fs::path(dir) / (std::string(name) + "." + ext)).string();
-        writeImage(path, *image, format, exposureStops);
-        out.images.push_back(path);
-    }
-    nlohmann::json meta = renderMetadata(scene, renderer, snapshot);
-    // With fewer than 2 samples per pixel the variance cannot be estimated (the snapshot holds 0):
-    // no files, so a reader sees "unknown" instead of a floor of 0.
-    if (snapshot.varianceKnown())
-        meta["variance_images"] = writeVarianceImages(
-        dir, {&snapshot.varianceOf(Term::Direct), &snapshot.varianceOf(Term::Indirect), &snapshot.varianceOf(Term::Global)},
-        format, out.variances);
+    std::vector<std::pair<ImageFormat, float>> formats = {{format, exposureStops}};
+    formats.insert(formats.end(), moreFormats.begin(), moreFormats.end());
+    // The images, variances and render.json go into a new directory that replaces the old set in
+    // one rename (core/util/directory_replace.h): never a new global beside an old direct.
+    replaceDirectory(dir, isRenderOutputEntry, [&](const std::string& staging) {
+        // File names are the terms' names, which loadReference (core/eval) reads back.
+        const std::pair<const char*, const Image*> images[] = {{termName(Term::Global), &snapshot.global},
+                                                               {termName(Term::Direct), &snapshot.direct},
+                                                               {termName(Term::Indirect), &snapshot.indirect}};
+        for (const auto& [f, exposure] : formats)
+            for (const auto& [name, image] : images) {
+                const std::string file = std::string(name) + "." + imageFormatName(f);
+                writeImage((fs::path(staging) / file).string(), *image, f, exposure);
+                out.images.push_back((fs::path(dir) / file).string());
+            }
+        nlohmann::json meta = renderMetadata(scene, renderer, snapshot);
+        // With fewer than 2 samples per pixel the variance cannot be estimated (the snapshot holds 0):
+        // no files, so a reader sees "unknown" instead of a floor of 0.
+        if (snapshot.varianceKnown()) {
+            std::vector<std::string> written;
+            meta["variance_images"] = writeVarianceImages(
+                staging, {&snapshot.varianceOf(Term::Direct), &snapshot.varianceOf(Term::Indirect), &snapshot.varianceOf(Term::Global)},
+                format, written);
+            for (const std::string& w : written) out.variances.push_back((fs::path(dir) / fs::path(w).filename()).string());
+        }
+        writeFileAtomically((fs::path(staging) / "render.json").string(), meta.dump(2) + "\n");
+    });
     out.metadata = (fs::path(dir) / "render.json").string();
-    writeFileAtomically(out.metadata, meta.dump(2) + "\n");
     return out;
 }
 

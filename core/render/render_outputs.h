@@ -7,6 +7,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -32,12 +33,19 @@ nlohmann::json renderMetadata(const Scene& scene, const Renderer& renderer, cons
 nlohmann::json writeVarianceImages(const std::string& dir, const std::array<const Image*, kTermCount>& variances,
                                    ImageFormat format, std::vector<std::string>& written);
 
-/// Writes global/direct/indirect.<ext>, variance_<term>.<exr|pfm> and render.json (with
-/// "variance_images"; both left out below 2 spp, where the variance is unknown) into `dir` (created
-/// if missing), each file atomically. Throws std::runtime_error
-/// naming the file on failure.
+/// Replaces directory `dir` (created if missing) as a whole (core/util/directory_replace.h) with
+/// global/direct/indirect.<ext> in `format` at `exposureStops` and in each of `moreFormats` (format,
+/// exposure: e.g. PNG previews beside the EXRs), variance_<term>.<exr|pfm> and render.json (with
+/// "variance_images"; both left out below 2 spp, where the variance is unknown). The previous
+/// render's files (isRenderOutputEntry) go, other files in `dir` are kept; a kill at any step leaves
+/// the old render or the new one. Throws std::runtime_error naming the file or directory on failure.
 RenderOutputs writeRenderOutputs(const std::string& dir, const Scene& scene, const Renderer& renderer,
-                                 const RenderSnapshot& snapshot, ImageFormat format, float exposureStops);
+                                 const RenderSnapshot& snapshot, ImageFormat format, float exposureStops,
+                                 const std::vector<std::pair<ImageFormat, float>>& moreFormats = {});
+
+/// True for the names a render output directory's set consists of: render.json and
+/// <term>.<any extension> or variance_<term>.<any extension>.
+bool isRenderOutputEntry(const std::string& name);
 
 /// Creates `dir` and its parents; throws std::runtime_error naming it if that is impossible.
 void makeDirectories(const std::string& dir);

@@ -1,8 +1,8 @@
 #include "core/util/atomic_file.h"
 
-#include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -12,20 +12,22 @@
 namespace rrf {
 
 namespace {
-std::atomic<unsigned> g_counter{0};
-
 std::string errnoText() { return std::strerror(errno); }
 }  // namespace
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
-    temp_ = path_ + "." + std::to_string(::getpid()) + "." + std::to_string(g_counter++) + ".tmp";
+    // Leftovers of killed writers of the same target go first, so kills do not pile up copies.
+    removeStaleTemporaryFiles(path_);
+    temp_ = temporaryFileFor(path_);
     file_ = std::fopen(temp_.c_str(), "wb");
     if (!file_) throw std::runtime_error(path_ + ": cannot create temporary file '" + temp_ + "': " + errnoText());
+    slot_ = registerTemporaryFile(temp_);
 }
 
 AtomicFile::~AtomicFile() {
     if (file_) std::fclose(file_);
     if (!committed_) std::remove(temp_.c_str());
+    unregisterTemporaryFile(slot_);
 }
 
 void AtomicFile::write(const void* data, size_t bytes) {
@@ -41,6 +43,7 @@ void AtomicFile::commit() {
     ok = (std::fclose(file_) == 0) && ok;
     file_ = nullptr;
     if (!ok) throw std::runtime_error(path_ + ": flushing '" + temp_ + "' failed: " + err);
+    crashPoint("commit " + std::filesystem::path(path_).filename().string());
     if (std::rename(temp_.c_str(), path_.c_str()) != 0)
         throw std::runtime_error(path_ + ": rename from '" + temp_ + "' failed: " + errnoText());
     committed_ = true;

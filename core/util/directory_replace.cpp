@@ -1,0 +1,174 @@
+#include "core/util/directory_replace.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+#include <fcntl.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include "core/util/temp_files.h"
+
+#ifndef RENAME_EXCHANGE
+#define RENAME_EXCHANGE (1 << 1)  // linux/fs.h; older C libraries do not declare it
+#endif
+
+namespace rrf {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Makes a rename inside `dir` durable (best effort: not every file system supports it).
+void syncDirectory(const fs::path& dir) {
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
+
+/// Exchanges two paths atomically; false with errno set where the kernel or file system cannot.
+bool exchange(const fs::path& a, const fs::path& b) {
+#ifdef SYS_renameat2
+    return ::syscall(SYS_renameat2, AT_FDCWD, a.c_str(), AT_FDCWD, b.c_str(), RENAME_EXCHANGE) == 0;
+#else
+    errno = ENOSYS;
+    return false;
+#endif
+}
+
+[[noreturn]] void fail(const fs::path& target, const std::string& what) {
+    throw std::runtime_error(target.string() + ": " + what);
+}
+
+/// True if `inner` is `outer` or lies below it (both canonical).
+bool within(const fs::path& inner, const fs::path& outer) {
+    const fs::path rel = inner.lexically_relative(outer);
+    return !rel.empty() && *rel.begin() != "..";
+}
+
+/// Hard-links (copies where linking fails) the entries of `from` that are not members into `to`.
+void carryOver(const fs::path& from, const fs::path& to, const std::function<bool(const std::string&)>& isMember) {
+    std::error_code ec;
+    for (fs::directory_iterator it(from, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        // Members, and temporary files of members that a killed writer left, go with the old set.
+        const std::string temporaryOf = temporaryFileTarget(name);
+        if (isMember(name) || (!temporaryOf.empty() && isMember(temporaryOf))) continue;
+        std::error_code linkError;
+        fs::copy(it->path(), to / name,
+                 fs::copy_options::recursive | fs::copy_options::create_hard_links | fs::copy_options::copy_symlinks,
+                 linkError);
+        if (!linkError) continue;
+        std::error_code copyError;
+        fs::remove_all(to / name, copyError);
+        fs::copy(it->path(), to / name, fs::copy_options::recursive | fs::copy_options::copy_symlinks, copyError);
+        if (copyError) fail(from, "cannot keep '" + name + "' (not part of the set) in the new directory: " + copyError.message());
+    }
+    if (ec) fail(from, "cannot list the directory: " + ec.message());
+}
+
+}  // namespace
+
+int removeStaleDirectoryTemporaries(const std::string& targetPath) {
+    const fs::path target(targetPath);
+    const std::string name = target.filename().string();
+    int count = 0;
+    std::error_code ec;
+    for (fs::directory_iterator it(target.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string entry = it->path().filename().string();
+        if (entry.empty() || entry[0] != '.') continue;
+        const long pid = temporaryOwnerPid(entry, name, {"tmp", "old"});
+        if (pid < 0 || processAlive(pid)) continue;
+        std::error_code e;
+        const bool old = entry.size() > 4 && entry.compare(entry.size() - 4, 4, ".old") == 0;
+        // A writer killed between the fallback's two renames left the old set aside and no target.
+        if (old && !fs::exists(target, e)) {
+            fs::rename(it->path(), target, e);
+            if (!e) ++count;
+        } else if (fs::remove_all(it->path(), e) > 0 && !e) {
+            ++count;
+        }
+    }
+    return count;
+}
+
+void replaceDirectory(const std::string& targetPath, const std::function<bool(const std::string& name)>& isMember,
+                      const std::function<void(const std::string& staging)>& fill) {
+    std::error_code ec;
+    // The real directory (not a symbolic link to it, not "dir/"), so the swap replaces what readers open.
+    fs::path target = fs::weakly_canonical(fs::absolute(targetPath), ec);
+    if (ec) fail(targetPath, "cannot resolve the output directory: " + ec.message());
+    if (target.filename().empty()) target = target.parent_path();
+    const fs::path parent = target.parent_path();
+    const std::string name = target.filename().string();
+    if (name.empty() || target == parent) fail(targetPath, "cannot replace the root directory as a whole");
+    const fs::path cwd = fs::weakly_canonical(fs::current_path(ec), ec);
+    if (!ec && within(cwd, target))
+        fail(targetPath, "is the current directory or contains it: write the set into a directory of its own (e.g. " +
+                             targetPath + "/out)");
+    fs::create_directories(parent, ec);
+    if (ec || !fs::is_directory(parent)) fail(parent, "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+    const bool replacing = fs::exists(target);
+    if (replacing && !fs::is_directory(target)) fail(targetPath, "exists and is not a directory");
+
+    removeStaleDirectoryTemporaries(target.string());
+    const fs::path staging = temporaryDirectoryFor(target.string(), "tmp");
+    fs::create_directory(staging, ec);
+    if (ec) fail(targetPath, "cannot create the temporary directory '" + staging.string() + "': " + ec.message());
+    try {
+        fill(staging.string());
+        if (replacing) carryOver(target, staging, isMember);
+        syncDirectory(staging);
+    } catch (...) {
+        fs::remove_all(staging, ec);
+        throw;
+    }
+    crashPoint("replace " + name + ": before swap");
+    if (!replacing) {
+        if (std::rename(staging.c_str(), target.c_str()) == 0) {
+            syncDirectory(parent);
+            return;
+        }
+        // A target that another writer created meanwhile (ENOTEMPTY) is exchanged like an old set.
+        if (errno != ENOTEMPTY && errno != EEXIST) {
+            const std::string err = std::strerror(errno);
+            fs::remove_all(staging, ec);
+            fail(targetPath, "cannot move the new set into place: " + err);
+        }
+    }
+    if (exchange(staging, target)) {
+        crashPoint("replace " + name + ": after swap");
+    } else if (errno == EINVAL || errno == ENOSYS || errno == ENOTSUP) {
+        // No atomic exchange here: old aside, new into place, old back if that fails. A kill between
+        // the renames leaves the old set at `aside`, which the next write puts back.
+        const fs::path aside = temporaryDirectoryFor(target.string(), "old");
+        if (std::rename(target.c_str(), aside.c_str()) != 0) {
+            const std::string err = std::strerror(errno);
+            fs::remove_all(staging, ec);
+            fail(targetPath, "cannot move the old set aside: " + err);
+        }
+        crashPoint("replace " + name + ": between renames");
+        if (std::rename(staging.c_str(), target.c_str()) != 0) {
+            const std::string err = std::strerror(errno);
+            std::rename(aside.c_str(), target.c_str());
+            fs::remove_all(staging, ec);
+            fail(targetPath, "cannot move the new set into place (the old one is kept): " + err);
+        }
+        fs::remove_all(aside, ec);
+        syncDirectory(parent);
+        return;
+    } else {
+        const std::string err = std::strerror(errno);
+        fs::remove_all(staging, ec);
+        fail(targetPath, "cannot swap the new set into place (the old one is kept): " + err);
+    }
+    syncDirectory(parent);
+    // After an exchange `staging` holds the old set.
+    fs::remove_all(staging, ec);
+}
+
+}  // namespace rrf
