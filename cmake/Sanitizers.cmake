@@ -39,3 +39,12 @@ if(RRF_BUILD_FUZZ)
   add_compile_options(-fsanitize=fuzzer-no-link)
   add_link_options(-fsanitize=fuzzer-no-link)
 endif()
+
+# scripts/sanitize.sh builds with CMAKE_UNITY_BUILD (several sources per compiler run: instrumented
+# template code is generated once per batch instead of once per file, which halves the build). These
+# sources define file-local helpers under names that other sources use too, so they are compiled
+# on their own.
+set_source_files_properties(
+  core/eval/reference_store.cpp core/nn/model_file.cpp core/nn/model_set.cpp core/project/scene_overrides.cpp
+  app/cli/cli_reference.cpp
+  PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)

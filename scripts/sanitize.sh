@@ -40,9 +40,11 @@ configure() {  # configure <build dir> <cmake args...>
   local dir=$1
   shift
   # -O1: the speed of the tests matters as much as that of the compiler; NDEBUG stays off, so the
-  # asserts of the code and of Eigen are checked too.
+  # asserts of the code and of Eigen are checked too. Unity batches of 16 sources halve the compile
+  # time (cmake/Sanitizers.cmake lists the sources that must stay on their own).
   cmake -S "$root" -B "$dir" -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
         -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE=-O1 -DCMAKE_C_FLAGS_SANITIZE=-O1 \
+        -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 \
         -DRRF_BUILD_GUI=OFF -DRRF_BUILD_BENCH=OFF "$@" >/dev/null
 }
 
@@ -64,7 +66,8 @@ fuzz_one() {  # fuzz_one <target>: mutates tests/fuzz/corpus/<target> for $fuzz_
   mkdir -p "$out" "$work"
   # New inputs go to the scratch corpus (first directory), never into the source tree.
   if "$asan_build/fuzz_$t" "$work" "$root/tests/fuzz/corpus/$t" -max_total_time="$fuzz_seconds" \
-       -timeout=10 -rss_limit_mb=2048 -max_len=16384 -artifact_prefix="$out/" -print_final_stats=1 \
+       -dict="$root/tests/fuzz/json.dict" -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
+       -artifact_prefix="$out/" -print_final_stats=1 \
        >"$out/log.txt" 2>&1; then
     echo "sanitize: fuzz $t: $(grep -m1 -o 'stat::number_of_executed_units: *[0-9]*' "$out/log.txt" | grep -o '[0-9]*$') runs in ${fuzz_seconds}s, no finding"
   else
@@ -95,8 +98,15 @@ run_tsan() {
   stamp "tsan: building core + rrf_threaded_tests (clang, thread)"
   configure "$tsan_build" -DRRF_SANITIZE=thread -DRRF_BUILD_TESTS=ON
   cmake --build "$tsan_build" -j "$jobs" --target rrf_threaded_tests
+  # libtbb is not built with TSan: the happens-before its scheduler gives between a parallel_for and
+  # its tasks is invisible, so every access made inside a TBB task looks racy (reports inside
+  # oneapi/tbb/partitioner.h and the like). Reports with a libtbb frame are suppressed; what TSan checks
+  # is the synchronisation of our own threads (std::thread, mutexes, atomics): job runner and job
+  # sessions, cancel flags, progress and snapshots handed between a worker and the thread that waits.
+  printf 'race:libtbb.so\n' >"$tsan_build/tsan.supp"
   stamp "tsan: running rrf_threaded_tests ($tsan_filter)"
-  "$tsan_build/rrf_threaded_tests" --gtest_filter="$tsan_filter" --gtest_brief=1
+  TSAN_OPTIONS="$TSAN_OPTIONS:suppressions=$tsan_build/tsan.supp" \
+    "$tsan_build/rrf_threaded_tests" --gtest_filter="$tsan_filter" --gtest_brief=1
   stamp "tsan: passed"
 }
 
