@@ -48,3 +48,7 @@ set_source_files_properties(
   core/eval/reference_store.cpp core/nn/model_file.cpp core/nn/model_set.cpp core/project/scene_overrides.cpp
   app/cli/cli_reference.cpp
   PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
+# The test sources share helper names (TempDir, toD, ...) in anonymous namespaces: each is compiled
+# on its own.
+file(GLOB rrf_unity_skipped_tests CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/*.cpp)
+set_source_files_properties(${rrf_unity_skipped_tests} PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)

@@ -9,7 +9,7 @@
 #   fuzz   each fuzz target of that build mutates its seeds for RRF_FUZZ_SECONDS (default 20),
 #          two targets at a time; a crashing input is kept under <asan build>/fuzz-findings/
 #   tsan   clang, -O1, ThreadSanitizer: core + rrf_threaded_tests (renderer, generator, training,
-#          job runner; cmake/ThreadedTests.cmake)
+#          job runner; cmake/ThreadedTests.cmake), the tests in $tsan_filter
 #
 # Usage: scripts/sanitize.sh [asan|fuzz|tsan]...   (no argument: all three, in that order)
 # Build directories: RRF_ASAN_BUILD_DIR (default build-asan), RRF_TSAN_BUILD_DIR (default build-tsan).
@@ -26,8 +26,13 @@ jobs_to_run=("$@")
 # take minutes while exercising nothing the faster tests do not: whole pipelines and convergence
 # studies built from the same renderer, generator and trainer code that the other tests run.
 asan_skip='EndToEnd\.SmallRunLearnsAndBrokenPipelinesFail|EndToEnd\.SppSweepShowsTheMonteCarloSlope'
-# Threaded tests whose subject is the rrf program (a separate process), not threads in this one.
-tsan_filter='-DataGenerator.Cli*:DataGenerator.InterruptedCli*'
+# The threaded tests whose subject is threads: results for any thread count or pass split, cancel
+# from another thread, training runs, the job runner and job sessions. The other tests of
+# rrf_threaded_tests (convergence and statistics of the same code) take minutes under TSan and add
+# no other synchronisation; the generator's CLI tests check another process.
+tsan_filter='Renderer.BitIdentical*:Renderer.Cancel*:DataGenerator.SameSeed*:DataGenerator.Cancelled*'
+tsan_filter+=':LevenbergMarquardt.BitIdentical*:LevenbergMarquardt.Cancel*:Adam.BitIdentical*:Adam.Cancel*'
+tsan_filter+=':ObjectTraining.BitIdentical*:ObjectTraining.Cancelled*:TrainingRun.*:JobRunner.*:JobSession.*'
 
 "$root/scripts/install-deps.sh" --no-gui --sanitizers
 # llvm-symbolizer turns sanitizer stacks into file:line; Debian keeps it in LLVM's own bin directory.
