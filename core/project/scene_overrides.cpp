@@ -77,7 +77,7 @@ void applySceneOverrides(const SceneOverrides& o, Scene& scene, std::vector<std:
     for (const auto& [name, mo] : o.materials) {
         const std::string at = JsonReader::child(JsonReader::child(where, "materials"), name);
         auto m = std::find_if(scene.materials.begin(), scene.materials.end(),
-                              [&](const Material& mat) { return mat.name == name; });
+                              [&wanted = name](const Material& mat) { return mat.name == wanted; });
         if (m == scene.materials.end()) {
             problems.push_back(at + ": no such material in the scene; ignored");
             continue;

@@ -45,7 +45,7 @@ ObjMesh loadObj(const std::string& objPath, const std::string& sceneFile, const 
     const size_t vertexCount = v.size() / 3;
     mesh.positions.reserve(vertexCount);
     for (size_t i = 0; i < vertexCount; ++i) {
-        const Vec3 p(float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2]));
+        const Vec3 p{float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2])};
         if (!p.isFinite())
             throw InputError(sceneFile, where,
                              "OBJ file '" + objPath + "': vertex " + std::to_string(i + 1) + " is not finite");
