@@ -135,10 +135,13 @@ TEST(HostileInput, CoordinatesBeyondTheRayRangeAreRefusedNamingTheField) {
          }},
         {"box scale 1e30", "/shapes/5",
          [](json& s) { s["shapes"].push_back({{"type", "box"}, {"material", "white"}, {"transform", {{"scale", 1e30}}}}); }},
-        {"floor 2e19 wide", "/shapes/0", [](json& s) { s["shapes"][0]["edge1"] = {0, 0, 2e19}; }},
+        {"floor 2e19 wide", "/shapes/0", [](json& s) {
+             s["shapes"][0]["edge1"] = {0, 0, 2e19};
+             s["shapes"][0]["edge2"] = {2e19, 0, 0};
+         }},
         {"point light at 1e30", "/lights/0", [](json& s) { s["lights"][0]["position"] = {1e30, 0, 0}; }},
-        {"light region up to 1e17", "/light_region",
-         [](json& s) { s["light_region"] = {{"min", {0, 0, 0}}, {"max", {0, 1e17, 0}}}; }},
+        {"light region up to 1e10", "/light_region",
+         [](json& s) { s["light_region"] = {{"min", {0, 0, 0}}, {"max", {0, 1e10, 0}}}; }},
     };
     for (const Case& c : cases) {
         json scene = openRoom(1, 1);
@@ -146,7 +149,7 @@ TEST(HostileInput, CoordinatesBeyondTheRayRangeAreRefusedNamingTheField) {
         const std::string msg = sceneError(scene);
         EXPECT_TRUE(contains(msg, "scene.json: " + c.pointer)) << c.name << ": " << msg;
         // The accepted range, from the one definition.
-        EXPECT_TRUE(contains(msg, "[-1e+16, 1e+16]")) << c.name << ": " << msg;
+        EXPECT_TRUE(contains(msg, "[-1e+09, 1e+09]")) << c.name << ": " << msg;
     }
     // The largest coordinate itself is accepted.
     json edge = openRoom(1, 1);
@@ -154,37 +157,42 @@ TEST(HostileInput, CoordinatesBeyondTheRayRangeAreRefusedNamingTheField) {
     EXPECT_EQ(sceneError(edge), "");
 }
 
-TEST(HostileInput, SceneAtTheEdgeOfTheCoordinateRangeRendersFiniteRadiance) {
-    // The room scaled up to the coordinate bound: Embree accepts every ray (no abort) and the radiance
-    // stays finite. The light at the centre, 0.5e16 above the floor, gives the floor below it the
-    // irradiance I / d² = 1e32 / 2.5e31 = 4 (a pixel of the floor has radiance 0.8/π · 4 ≈ 1).
-    const double h = kMaxCoordinate / 2;
-    json j = openRoom(h, 1e32);
-    j["camera"]["eye"] = {0, 0, 2 * h};
-    const Scene scene = parseScene(j, "scene.json", "");
-    const Accel accel(scene);
-    RenderOptions o;
-    o.width = o.height = 8;
-    o.spp = 4;
-    o.samplesPerPass = 4;
-    Renderer r(scene, accel, o);
-    r.run();
-    const RenderSnapshot snap = r.snapshot();
-    EXPECT_EQ(snap.nonFinite, 0u);
-    float largest = 0.f;
-    for (float v : snap.global.data) {
-        ASSERT_TRUE(std::isfinite(v));
-        largest = std::max(largest, v);
+TEST(HostileInput, RoomScaledToTheCoordinateBoundRendersAsAtScaleOne) {
+    // Radiance does not depend on the scale of a scene lit by an area light, so the open room with a
+    // ceiling panel, scaled up until the camera's eye sits on the coordinate bound, must render the
+    // image of the room at scale 1 (the same random numbers drive both): no abort inside Embree, no
+    // normals or light areas lost to float overflow.
+    auto render = [](double h) {
+        json j = openRoom(h, 1);
+        j["camera"]["eye"] = {0, 0, 2 * h};
+        j["lights"] = {{{"type", "rect"}, {"name", "panel"}, {"corner", {-h / 2, 0.99 * h, -h / 2}}, {"edge1", {h, 0, 0}},
+                        {"edge2", {0, 0, h}}, {"radiance", {1, 1, 1}}}};
+        const Scene scene = parseScene(j, "scene.json", "");
+        const Accel accel(scene);
+        RenderOptions o;
+        o.width = o.height = 8;
+        o.spp = o.samplesPerPass = 8;
+        Renderer r(scene, accel, o);
+        r.run();
+        return r.snapshot();
+    };
+    const RenderSnapshot unit = render(1), edge = render(double(kMaxCoordinate) / 2);
+    EXPECT_EQ(edge.nonFinite, 0u);
+    double sumUnit = 0, sumEdge = 0;
+    for (size_t i = 0; i < unit.global.data.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(edge.global.data[i]));
+        sumUnit += unit.global.data[i];
+        sumEdge += edge.global.data[i];
     }
-    EXPECT_GT(largest, 0.1f);
-    EXPECT_LT(largest, 100.f);
+    EXPECT_GT(sumUnit, 0.0);
+    EXPECT_NEAR(sumEdge / sumUnit, 1.0, 1e-2);
 }
 
 TEST(HostileInput, LightPositionsOutsideTheRangeNeverReachTheScene) {
     Scene scene = parseScene(openRoom(1, 1), "scene.json", "");  // a fixed light: no light region
     const Vec3 before = scene.lightPosition();
     EXPECT_FALSE(lightPlacementProblem(scene.lights[0], Vec3(1e30f, 0, 0)).empty());
-    EXPECT_TRUE(lightPlacementProblem(scene.lights[0], Vec3(1e15f, 0, 0)).empty());
+    EXPECT_TRUE(lightPlacementProblem(scene.lights[0], Vec3(1e8f, 0, 0)).empty());
     // The workbench and scripts move lights through clampToLightRegion.
     const Vec3 kept = clampToLightRegion(scene, Vec3(1e30f, 0, 0));
     EXPECT_EQ(kept.x, before.x);
@@ -195,7 +203,7 @@ TEST(HostileInput, LightPositionsOutsideTheRangeNeverReachTheScene) {
     applySceneOverrides(o, scene, problems);
     ASSERT_EQ(problems.size(), 1u);
     EXPECT_TRUE(contains(problems[0], "/scene_overrides/light_position")) << problems[0];
-    EXPECT_TRUE(contains(problems[0], "[-1e+16, 1e+16]")) << problems[0];
+    EXPECT_TRUE(contains(problems[0], "[-1e+09, 1e+09]")) << problems[0];
     EXPECT_EQ(scene.lightPosition().x, before.x);
 }
 
@@ -233,16 +241,16 @@ TEST(HostileInput, MalformedDatasetHeadersNameTheFileAndField) {
         std::function<void(json&)> edit;
     };
     const std::vector<Case> cases = {
-        {"17-digit scene hash", "/scene_hash: malformed dataset header: expected a hexadecimal number of 1 to 16 digits",
+        {"17-digit scene hash", ": /scene_hash: malformed dataset header: expected a hexadecimal number of 1 to 16 digits",
          [](json& h) { h["scene_hash"] = "12345678901234567"; }},
         {"no settings", ": malformed dataset header: missing required field 'settings'", [](json& h) { h.erase("settings"); }},
-        {"string in records_per_cell", "/stats/records_per_cell/0: malformed dataset header: expected non-negative integer",
+        {"string in records_per_cell", ": /stats/records_per_cell/0: malformed dataset header: expected non-negative integer",
          [](json& h) { h["stats"]["records_per_cell"] = {"many"}; }},
-        {"floats_per_record 2e9", "/floats_per_record: inconsistent record layout in header: floats_per_record is 2000000000",
+        {"floats_per_record 2e9", ": /floats_per_record: inconsistent record layout in header: floats_per_record is 2000000000",
          [](json& h) { h["floats_per_record"] = 2000000000; }},
-        {"floats_per_record 1e300", "/floats_per_record: malformed dataset header: integer 1e+300 out of range",
+        {"floats_per_record 1e300", ": /floats_per_record: malformed dataset header: integer 1e+300 out of range",
          [](json& h) { h["floats_per_record"] = 1e300; }},
-        {"shard cell 1e300", "/shard/cell_end: malformed dataset header: integer 1e+300 out of range",
+        {"shard cell 1e300", ": /shard/cell_end: malformed dataset header: integer 1e+300 out of range",
          [](json& h) { h["shard"]["cell_end"] = 1e300; }},
     };
     for (const Case& c : cases) {

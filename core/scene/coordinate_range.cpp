@@ -1,6 +1,5 @@
 #include "core/scene/coordinate_range.h"
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -9,7 +8,7 @@ namespace rrf {
 namespace {
 std::string rangeText() {
     std::ostringstream s;
-    s << "[-" << kMaxCoordinate << ", " << kMaxCoordinate << "]";
+    s << "[-" << double(kMaxCoordinate) << ", " << double(kMaxCoordinate) << "]";
     return s.str();
 }
 }  // namespace
@@ -19,7 +18,7 @@ bool withinCoordinateRange(const Vec3& p) { return coordinateRangeProblem(p).emp
 std::string coordinateRangeProblem(const Vec3& p) {
     for (int i = 0; i < 3; ++i) {
         const double v = p[i];
-        if (std::isfinite(v) && std::fabs(v) <= kMaxCoordinate) continue;
+        if (std::isfinite(v) && std::fabs(v) <= double(kMaxCoordinate)) continue;
         std::ostringstream s;
         s << "xyz"[i] << " = " << v << " is outside " << rangeText() << ", the coordinate range in which rays stay valid";
         return s.str();
@@ -36,12 +35,6 @@ std::string lightPlacementProblem(const Light& l, const Vec3& centre) {
     for (const Vec3& c : corners)
         if (std::string why = coordinateRangeProblem(c); !why.empty()) return "a corner of light '" + l.name + "' has " + why;
     return "";
-}
-
-Vec3 clampToCoordinateRange(const Vec3& p) {
-    const float m = float(kMaxCoordinate);
-    auto clamp = [m](float v) { return std::isnan(v) ? 0.f : std::clamp(v, -m, m); };
-    return Vec3(clamp(p.x), clamp(p.y), clamp(p.z));
 }
 
 }  // namespace rrf

@@ -275,7 +275,7 @@ struct SceneBuilder {
             for (int i = 0; i < 3; ++i) {
                 // In double: centre ± radius may overflow float (radius 3e38).
                 const double far = std::fabs(double(o.center[i])) + double(o.radius);
-                if (far > kMaxCoordinate)
+                if (far > double(kMaxCoordinate))
                     r.fail("sphere '" + o.name + "' reaches |" + "xyz"[i] + "| = " + formatNumber(far) +
                            ", outside [-" + formatNumber(kMaxCoordinate) + ", " + formatNumber(kMaxCoordinate) +
                            "], the coordinate range in which rays stay valid");
