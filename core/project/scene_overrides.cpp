@@ -87,8 +87,10 @@ void applySceneOverrides(const SceneOverrides& o, Scene& scene, std::vector<std:
     }
     for (const auto& [name, mo] : o.materials) {
         const std::string at = JsonReader::child(JsonReader::child(where, "materials"), name);
+        // Captured by name: C++17 lambdas cannot capture a structured binding (clang rejects it).
+        const std::string& wanted = name;
         auto m = std::find_if(scene.materials.begin(), scene.materials.end(),
-                              [&](const Material& mat) { return mat.name == name; });
+                              [&wanted](const Material& mat) { return mat.name == wanted; });
         if (m == scene.materials.end()) {
             problems.push_back(at + ": no such material in the scene; ignored");
             continue;
