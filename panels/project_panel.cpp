@@ -43,8 +43,8 @@ void drawRenderSettings(WorkbenchState& state) {
     int size[2] = {r.width, r.height};
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
     if (ImGui::InputInt2("size (0 = camera)", size)) {
-        r.width = std::max(0, std::min(size[0], 16384));
-        r.height = std::max(0, std::min(size[1], 16384));
+        r.width = std::max(0, std::min(size[0], kMaxImageSide));
+        r.height = std::max(0, std::min(size[1], kMaxImageSide));
         changed = true;
     }
     if (changed) state.markDirty();

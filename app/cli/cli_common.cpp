@@ -9,6 +9,9 @@
 
 #include <unistd.h>
 
+#include "core/scene/coordinate_range.h"
+#include "core/scene/scene_parse.h"
+#include "core/project/project.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 
@@ -45,6 +48,28 @@ std::unique_ptr<tbb::global_control> limitThreads(int threads) {
     return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(threads));
 }
 
+void checkLightPosition(const Scene& scene, const Vec3& p, const std::string& flag) {
+    if (scene.lights.empty()) throw InputError("command line", flag, "the scene has no light to move");
+    if (const std::string why = lightPlacementProblem(scene.lights[size_t(scene.movableLight)], p); !why.empty())
+        throw InputError("command line", flag, why);
+}
+
+void refuseOverwritingInputs(const std::string& output, const std::vector<std::string>& inputs, const std::string& flag) {
+    if (output.empty()) return;
+    for (const std::string& in : inputs) {
+        std::error_code ec;
+        if (in.empty() || !std::filesystem::equivalent(output, in, ec) || ec) continue;
+        throw InputError("command line", flag,
+                         "'" + output + "' is the input '" + in + "' (the same file): an output must not replace an input");
+    }
+}
+
+std::vector<std::string> projectInputs(const Project& project) {
+    std::vector<std::string> files{project.path};
+    if (!project.sceneRef.empty()) files.push_back(resolvePath(directoryOf(project.path), project.sceneRef));
+    return files;
+}
+
 std::string outputPath(const std::string& dir, const std::string& name) {
     return (std::filesystem::path(dir) / name).string();
 }
@@ -62,6 +87,8 @@ std::string errorMessage(const std::exception& e) {
         {"shard", "--shard"},
         {"sweep values", "--values"},
         {"sweep dimension", "--what"},
+        {"grid and directions", "--grid/--dirs"},
+        {"image size", "--width/--height"},
     };
     for (const auto& [name, flag] : kFlags)
         if (setting->setting() == name) return std::string("command line: ") + flag + ": " + setting->detail();

@@ -7,10 +7,16 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <tbb/global_control.h>
 
+#include "core/scene/scene.h"
 #include "core/util/text_format.h"
+
+namespace rrf {
+struct Project;
+}
 
 namespace rrf::cli {
 
@@ -19,6 +25,20 @@ std::atomic<bool>& installInterruptHandler();
 
 /// Limits oneTBB to `threads` worker threads for the lifetime of the returned object (0 = all cores).
 std::unique_ptr<tbb::global_control> limitThreads(int threads);
+
+/// Throws InputError("command line", `flag`, ...) unless the movable light of `scene` placed with its
+/// centre at `p` stays in the coordinate range where rays are valid (core/scene/coordinate_range.h).
+void checkLightPosition(const Scene& scene, const Vec3& p, const std::string& flag = "--light-pos");
+
+/// Throws InputError("command line", `flag`, ...) when `output` is the same file or directory as
+/// one of `inputs` (compared by device and inode, so another spelling or a link of the same file
+/// counts): a command must never replace the file it reads. Paths that do not exist yet cannot be.
+void refuseOverwritingInputs(const std::string& output, const std::vector<std::string>& inputs,
+                             const std::string& flag = "--out");
+
+/// The files a loaded project was read from: its own file and, when it names a separate scene file,
+/// that file (an output must not replace either).
+std::vector<std::string> projectInputs(const Project& project);
 
 /// `dir`/`name` as a path string.
 std::string outputPath(const std::string& dir, const std::string& name);

@@ -68,6 +68,10 @@ void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vecto
 
 int runEvaluate(EvaluateArgs a) {
     const Project p = loadProjectOrScene(a.input);
+    std::vector<std::string> inputs = projectInputs(p);
+    inputs.push_back(a.models);
+    inputs.push_back(a.reference);
+    refuseOverwritingInputs(a.out, inputs);
     prepareRecording(p, a);
     auto threads = limitThreads(a.threads);
     const ModelSet models = loadModelSet(a.models, p.scene.contentHash());
@@ -92,6 +96,7 @@ int runEvaluate(EvaluateArgs a) {
     std::vector<Vec3> lights;
     if (a.heldOut > 0) lights = heldOutLightPositions(p.scene.lightRange(), a.heldOut, uint64_t(a.seed));
     else lights = {a.lightPos.value_or(p.scene.lightPosition())};
+    if (a.lightPos) checkLightPosition(p.scene, *a.lightPos);
     // --spp: a fixed number of samples, no noise target, not stored. Otherwise the project's store
     // renders (or reuses) references converged to the noise target.
     ReferenceStore store = projectReferenceStore(p);

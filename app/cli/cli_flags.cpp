@@ -93,8 +93,8 @@ void addPredictionOptions(CLI::App* cmd, PredictionArgs& a) {
     cmd->add_option("input", a.input, "project or scene JSON file")->required();
     cmd->add_option("--out", a.out, "output directory")->required();
     cmd->add_option("--threads", a.threads, "worker threads (0 = all cores)")->check(nonNegative());
-    cmd->add_option("--width", a.width, "image width (default: the project's)")->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", a.height, "image height (default: the project's)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--width", a.width, "image width (default: the project's)")->check(CLI::Range(1, kMaxImageSide));
+    cmd->add_option("--height", a.height, "image height (default: the project's)")->check(CLI::Range(1, kMaxImageSide));
     a.prediction
         .add<std::string>(cmd, "--direct", "direct light from the networks or exact shadow rays (default: the project's)",
                           [](PredictionSettings& s, const std::string& d) {

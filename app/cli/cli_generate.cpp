@@ -25,6 +25,7 @@ struct GenerateArgs {
 
 int runGenerate(const GenerateArgs& a) {
     const Project project = loadProjectOrScene(a.input);
+    refuseOverwritingInputs(a.out, projectInputs(project));
     const SamplingSettings s = a.sampling.applied(project.samplingOrDefault());
     const int k = a.shard[0], n = a.shard[1];
     checkShard(k, n);

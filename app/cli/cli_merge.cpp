@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "core/data/dataset_file.h"
 
@@ -17,6 +18,7 @@ void addMergeCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("inputs", *inputs, "shard files")->required();
     cmd->add_option("--out", *out, "merged dataset file")->required();
     cmd->callback([inputs, out, &exitCode] {
+        refuseOverwritingInputs(*out, *inputs);
         mergeDatasets(*inputs, *out);
         std::printf("merged %zu shards into %s\n", inputs->size(), out->c_str());
         exitCode = 0;

@@ -41,6 +41,7 @@ struct PipelineArgs : PredictionArgs {
 int runPipeline(const PipelineArgs& a) {
     Stopwatch total;
     const Project p = loadProjectOrScene(a.input);
+    refuseOverwritingInputs(a.out, projectInputs(p));
     const Scene& scene = p.scene;
     auto threads = limitThreads(a.threads);
     SamplingSettings s;

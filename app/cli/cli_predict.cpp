@@ -13,6 +13,7 @@
 #include "core/eval/evaluation.h"
 #include "core/nn/model_set.h"
 #include "core/project/project.h"
+#include "core/render/render_settings.h"
 #include "core/util/stopwatch.h"
 
 namespace rrf::cli {
@@ -27,11 +28,17 @@ struct PredictArgs : PredictionArgs {
 
 int runPredict(const PredictArgs& a) {
     const Project p = loadProjectOrScene(a.input);
+    std::vector<std::string> inputs = projectInputs(p);
+    inputs.push_back(a.models);
+    refuseOverwritingInputs(a.out, inputs);
     auto threads = limitThreads(a.threads);
     const ModelSet models = loadModelSet(a.models, p.scene.contentHash());
     const Predictor predictor(p.scene, models, a.prediction.applied(p.prediction));
     const RenderOptions ro = referenceOptions(p, 1, a.width, a.height);
     const Vec3 lp = a.lightPos.value_or(p.scene.lightPosition());
+    if (a.lightPos) checkLightPosition(p.scene, lp);
+    // The G-buffer and prediction images need less per pixel than a render; its estimate bounds them.
+    requireRenderMemory(ro.width, ro.height);
     // Best of N frames: the first pays for page faults and thread start-up.
     double bestG = 1e30, bestN = 1e30, bestD = 1e30;
     Prediction pr;

@@ -97,8 +97,8 @@ void addReferenceCommand(CLI::App& app, int& exitCode) {
         ->excludes(lp);
     cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());
     addNoiseTargetFlags(cmd, a->noise, a->sppCap, "each reference", "the project's, 4096", false);
-    cmd->add_option("--width", a->width, "image width (default: the project's)")->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", a->height, "image height (default: the project's)")->check(CLI::Range(1, 16384));
+    cmd->add_option("--width", a->width, "image width (default: the project's)")->check(CLI::Range(1, kMaxImageSide));
+    cmd->add_option("--height", a->height, "image height (default: the project's)")->check(CLI::Range(1, kMaxImageSide));
     cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(nonNegative());
     cmd->add_flag("--list", a->list, "list the stored references (with --light-pos or --held-out: also render)");
     cmd->add_flag("--prune", a->prune, "remove the references of older versions of the scene and damaged entries");

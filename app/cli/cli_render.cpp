@@ -33,6 +33,7 @@ int runRender(RenderArgs a) {
                          "a recorded run stores EXR images, as the workbench does (it re-opens and compares those); got " + a.format);
     std::optional<Run> run = beginRecording(a.record, a.input, "render", a.out, "");
     Project project = loadProjectOrScene(a.input);
+    refuseOverwritingInputs(a.out, projectInputs(project));
     Scene& scene = project.scene;
     const RenderSettings settings = a.render.applied(project.render);
     // Enough passes for a live progress line, few enough that pass overhead stays negligible.
@@ -40,6 +41,7 @@ int runRender(RenderArgs a) {
     const ImageFormat format = imageFormatFromName(a.format);
     if (a.lightPos) {
         if (scene.lights.empty()) throw InputError(a.input, "/lights", "--light-pos given but the scene has no light");
+        checkLightPosition(scene, *a.lightPos);
         scene.setLightPosition(*a.lightPos);
     }
     auto threads = limitThreads(a.threads);
@@ -63,6 +65,11 @@ int runRender(RenderArgs a) {
 
     const RenderSnapshot snap = renderer.snapshot();
     const RenderStats st = renderer.stats();
+    if (snap.samples == 0 && snap.nonFinite > 0)
+        throw InputError(a.input, "",
+                         "every sample was NaN or infinite (" + std::to_string(snap.nonFinite) +
+                             " dropped, no image written): the scene's radiance must stay finite in single precision "
+                             "(check light radiance/intensity, light size and material values)");
     const RenderOutputs out = writeRenderOutputs(a.out, scene, renderer, snap, format, settings.exposure);
     std::printf("%s %d/%d spp in %.2f s: %ssamples/s, %srays/s (%llu rays + %llu shadow rays)\n",
                 renderer.cancelled() ? "cancelled after" : "rendered", snap.sppCompleted, o.spp, st.seconds,
@@ -89,8 +96,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     SettingFlags<RenderSettings>& r = a->render;
     r.add<int>(cmd, "--spp", "samples per pixel (default: the project's)", [](RenderSettings& s, const int& n) { s.spp = n; })
         ->check(positive());
-    r.add<int>(cmd, "--width", "image width", [](RenderSettings& s, const int& n) { s.width = n; })->check(CLI::Range(1, 16384));
-    r.add<int>(cmd, "--height", "image height", [](RenderSettings& s, const int& n) { s.height = n; })->check(CLI::Range(1, 16384));
+    r.add<int>(cmd, "--width", "image width", [](RenderSettings& s, const int& n) { s.width = n; })->check(CLI::Range(1, kMaxImageSide));
+    r.add<int>(cmd, "--height", "image height", [](RenderSettings& s, const int& n) { s.height = n; })->check(CLI::Range(1, kMaxImageSide));
     r.add<std::string>(cmd, "--mode", "estimator",
                        [](RenderSettings& s, const std::string& m) { s.estimator = m == "naive" ? Estimator::Naive : Estimator::NEE; })
         ->check(CLI::IsMember({"nee", "naive"}));

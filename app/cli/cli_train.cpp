@@ -58,6 +58,9 @@ std::string fmt(double v) {
 
 int runTrain(const TrainArgs& a, std::optional<Run> record) {
     const Project project = loadProjectOrScene(a.input);
+    std::vector<std::string> inputs = projectInputs(project);
+    inputs.push_back(a.data);
+    refuseOverwritingInputs(a.out, inputs);
     NetworkSettings settings = project.networkOrDefault();
     ObjectTrainingOptions& o = settings.options;
     a.network.applyTo(o);

@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/util/error.h"
+#include "core/util/memory_budget.h"
 #include "core/data/jitter_grid.h"
 #include "core/data/record_noise.h"
 #include "core/util/warp.h"
@@ -120,6 +121,13 @@ bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const
     return true;
 }
 
+uint64_t DataGenerator::memoryEstimate(uint64_t cells) const {
+    const uint64_t recordBytes = saturatingProduct(uint64_t(settings_.directions), uint64_t(layout_.floatsPerRecord()),
+                                                   sizeof(float));
+    const uint64_t perCell = recordBytes + sizeof(CellOutput) + uint64_t(settings_.directions) * sizeof(int32_t);
+    return saturatingProduct(cells, perCell);
+}
+
 void checkShard(int shardIndex, int shardCount) {
     if (shardCount < 1 || shardIndex < 0 || shardIndex >= shardCount)
         throw SettingError("shard", "expected part k of n with 0 <= k < n, got k = " + std::to_string(shardIndex) +
@@ -141,10 +149,19 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
     const int fpr = layout_.floatsPerRecord();
     const uint64_t rs = recordSeed(settings_.seed);
 
+    if (const std::string why = memoryShortfall(memoryEstimate(uint64_t(end - begin)), availableMemoryBytes(),
+                                                std::to_string(end - begin) + " cells x " + std::to_string(settings_.directions) +
+                                                    " directions x " + std::to_string(fpr) +
+                                                    " floats per record, if every ray makes a record");
+        !why.empty())
+        throw SettingError("grid and directions", "the run " + why + "; choose a smaller grid (1 ... " +
+                                                      std::to_string(kMaxGridCells) + " per axis) or fewer directions (1 ... " +
+                                                      std::to_string(kMaxDirections) + "), or generate in shards");
     std::vector<CellOutput> out(size_t(end - begin));
     std::atomic<uint64_t> rays{0}, shadowRays{0};
+    auto cancelled = [cancel] { return cancel && cancel->load(std::memory_order_relaxed); };
     tbb::parallel_for(begin, end, [&](int cell) {
-        if (cancel && *cancel) return;
+        if (cancelled()) return;
         CellOutput& co = out[size_t(cell - begin)];
         const Vec3 vp = grid.viewpoint(cell, settings_.seed);
         const ViewpointStatus status = classifier.classify(vp);
@@ -152,7 +169,8 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
         if (status == ViewpointStatus::Kept) {
             TraceCounters counters;
             std::vector<float> rec(static_cast<size_t>(fpr));
-            for (int j = 0; j < settings_.directions; ++j) {
+            // Cancel is checked per record, not per cell: one cell may hold millions of directions.
+            for (int j = 0; j < settings_.directions && !cancelled(); ++j) {
                 const uint64_t r = uint64_t(cell) * uint64_t(settings_.directions) + uint64_t(j);
                 Rng rng(rs, r);
                 const float u1 = rng.uniform(), u2 = rng.uniform();
@@ -188,8 +206,10 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
     });
 
     GeneratedData data;
-    data.cancelled = cancel && *cancel;
+    data.cancelled = cancelled();
     data.sceneHash = scene_.contentHash();
+    // A cancelled run is never written: free the cells at once instead of regrouping them.
+    if (data.cancelled) return data;
     data.perObject.resize(scene_.objects.size());
     GeneratorStats& st = data.stats;
     st.recordsPerCell.reserve(out.size());
@@ -222,6 +242,11 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
         st.noisePerObject.push_back(summarizeNoise(records.data(), records.size() / size_t(fpr), fpr,
                                                    layout_.inputCount(), layout_.inputCount() + layout_.targetCount()));
     }
+    if (st.records == 0 && st.recordsWithoutFiniteSample > 0)
+        throw InputError(scene_.sourcePath, "",
+                         "every sample of every record was NaN or infinite (" + std::to_string(st.nonFiniteSamplesDropped) +
+                             " samples dropped, no record stored): the scene's radiance must stay finite in single "
+                             "precision (check light radiance/intensity, light size and material values)");
     data.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     st.rays = rays;
     st.shadowRays = shadowRays;

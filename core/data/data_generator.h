@@ -55,8 +55,10 @@ public:
     DataGenerator(const Scene& scene, const SamplingSettings& settings);
 
     /// Generates shard `shardIndex` of `shardCount` (cells [k·C/n, (k+1)·C/n)). Stops early when
-    /// `cancel` becomes true (then `cancelled` is set and the data must not be written). Throws
-    /// SettingError naming the setting "shard" unless 0 <= shardIndex < shardCount.
+    /// `cancel` becomes true, within one record of each worker (then `cancelled` is set, the data is
+    /// empty and must not be written). Throws SettingError naming the setting "shard" unless
+    /// 0 <= shardIndex < shardCount, SettingError "grid and directions" when memoryEstimate exceeds
+    /// the available memory, and InputError naming the scene when every sample was NaN or infinite.
     GeneratedData run(int shardIndex = 0, int shardCount = 1, const std::atomic<bool>* cancel = nullptr,
                       GeneratorProgress* progress = nullptr) const;
 
@@ -72,6 +74,11 @@ public:
     bool estimateRecord(const Vec3& viewpoint, const Vec3& dir, const Vec3& lightPos, uint64_t recordIndex,
                         float* record, int& objectId, TraceCounters& counters, uint64_t& nonFinite,
                         RecordOutcome* outcome = nullptr, int* paths = nullptr, bool* atCap = nullptr) const;
+
+    /// Upper bound on the bytes a run over `cells` cells holds: every direction of every cell storing
+    /// a record (its floats and object id) plus the per-cell bookkeeping. run() refuses with a
+    /// SettingError naming "grid and directions" when it exceeds the memory available.
+    uint64_t memoryEstimate(uint64_t cells) const;
 
     const RecordLayout& layout() const { return layout_; }
     const PathTracer& tracer() const { return tracer_; }

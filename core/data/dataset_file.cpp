@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 
@@ -12,6 +13,8 @@
 
 #include "core/data/generator_stats.h"
 #include "core/util/atomic_file.h"
+#include "core/util/error.h"
+#include "core/util/json_reader.h"
 #include "core/util/rng.h"
 
 namespace rrf {
@@ -51,7 +54,8 @@ void Checksum64::update(const void* data, size_t bytes) {
         }
     }
     for (; bytes >= 8; p += 8, bytes -= 8) word(p);
-    std::memcpy(pending_ + pendingBytes_, p, bytes);
+    // An empty range may come with a null pointer (an object without records): memcpy must not see it.
+    if (bytes > 0) std::memcpy(pending_ + pendingBytes_, p, bytes);
     pendingBytes_ += bytes;
 }
 
@@ -83,7 +87,7 @@ void writeDataset(const std::string& path, nlohmann::json header, uint64_t scene
         if (v.size() % size_t(fpr) != 0) throw std::logic_error("writeDataset: partial record");
         objs[i]["count"] = v.size() / size_t(fpr);
         objs[i]["offset"] = offset;
-        sum.update(v.data(), v.size() * sizeof(float));
+        if (!v.empty()) sum.update(v.data(), v.size() * sizeof(float));
         offset += v.size() * sizeof(float);
     }
     const std::string json = header.dump(1);
@@ -101,7 +105,8 @@ void writeDataset(const std::string& path, nlohmann::json header, uint64_t scene
     f.write(json);
     const std::string pad(fh.payloadOffset - kFixedHeader - json.size(), '\0');
     f.write(pad);
-    for (const auto& v : perObject) f.write(v.data(), v.size() * sizeof(float));
+    for (const auto& v : perObject)
+        if (!v.empty()) f.write(v.data(), v.size() * sizeof(float));
     f.commit();
 }
 
@@ -141,29 +146,13 @@ Dataset::Dataset(const std::string& path, bool verifyPayload, uint64_t expectedS
                            std::to_string(mapSize_ - fh.payloadOffset));
         const char* json = reinterpret_cast<const char*>(base + kFixedHeader);
         if (checksum64(json, fh.jsonBytes) != fh.jsonChecksum) fail(path, "header checksum mismatch (file corrupted)");
-        header_ = nlohmann::json::parse(json, json + fh.jsonBytes);
         sceneHash_ = fh.sceneHash;
-        // The fixed header's hash is not under a checksum; the JSON's copy is, so they must agree.
-        if (header_.contains("scene_hash") &&
-            std::stoull(header_.at("scene_hash").get<std::string>(), nullptr, 16) != sceneHash_)
-            fail(path, "scene hash in the fixed header disagrees with the JSON header (file corrupted)");
         payload_ = base + fh.payloadOffset;
+        readHeader(std::string(json, fh.jsonBytes));
         if (expectedSceneHash != 0 && expectedSceneHash != sceneHash_)
             fail(path, "dataset was generated for a different scene (scene hash mismatch): regenerate it for this project");
-        floatsPerRecord_ = header_.at("floats_per_record").get<int>();
-        inputLayout_ = header_.at("input_layout").get<std::vector<std::string>>();
-        inputCount_ = int(inputLayout_.size());
-        if (version_ >= 2 && header_.contains("noise_layout"))
-            noiseLayout_ = header_.at("noise_layout").get<std::vector<std::string>>();
-        if (floatsPerRecord_ <= 0 || inputCount_ + int(noiseLayout_.size()) >= floatsPerRecord_)
-            fail(path, "inconsistent record layout in header");
         uint64_t expected = 0;
-        for (const nlohmann::json& o : header_.at("objects")) {
-            DatasetObject d;
-            d.id = o.at("id").get<int>();
-            d.name = o.at("name").get<std::string>();
-            d.count = o.at("count").get<uint64_t>();
-            d.offset = o.at("offset").get<uint64_t>();
+        for (DatasetObject d : objects_) {
             // Compare counts before multiplying: a crafted count must not wrap the byte size around.
             const uint64_t recordBytes = uint64_t(floatsPerRecord_) * 4;
             if (d.offset != expected || d.offset > fh.payloadBytes || d.count > (fh.payloadBytes - d.offset) / recordBytes)
@@ -172,23 +161,83 @@ Dataset::Dataset(const std::string& path, bool verifyPayload, uint64_t expectedS
             if (bytes > fh.payloadBytes - d.offset)
                 fail(path, "object '" + d.name + "' lies outside the payload (corrupt header)");
             expected += bytes;
-            objects_.push_back(d);
         }
         if (expected != fh.payloadBytes) fail(path, "payload size does not match the per-object counts");
         if (verifyPayload && checksum64(payload_, fh.payloadBytes) != fh.payloadChecksum)
             fail(path, "payload checksum mismatch (file corrupted)");
-    } catch (const nlohmann::json::exception& e) {
-        ::munmap(map_, mapSize_);
-        map_ = nullptr;
-        fail(path, std::string("malformed dataset header: ") + e.what());
-    } catch (const std::invalid_argument&) {  // stoull on a malformed scene_hash
-        ::munmap(map_, mapSize_);
-        map_ = nullptr;
-        fail(path, "malformed dataset header: scene_hash is not a hexadecimal number");
     } catch (...) {
         ::munmap(map_, mapSize_);
         map_ = nullptr;
         throw;
+    }
+}
+
+namespace {
+/// The value of a hexadecimal string of 1 to 16 digits (a scene hash); false for anything else.
+bool parseHex64(const std::string& text, uint64_t& value) {
+    if (text.empty() || text.size() > 16) return false;
+    value = 0;
+    for (char c : text) {
+        const int digit = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+        if (digit < 0) return false;
+        value = value << 4 | uint64_t(digit);
+    }
+    return true;
+}
+
+std::vector<std::string> stringList(const JsonReader& r) {
+    std::vector<std::string> out(r.requireArray());
+    for (size_t i = 0; i < out.size(); ++i) out[i] = r.at(i).string();
+    return out;
+}
+}  // namespace
+
+void Dataset::readHeader(const std::string& text) {
+    try {
+        header_ = parseJsonText(text, path_);
+        // Every field a reader of the dataset uses is checked here, so that later readers (inspect,
+        // merge, training) may access the header directly.
+        const JsonReader h(header_, path_);
+        h.requireObject();
+        if (const auto hash = h.find("scene_hash")) {
+            // The fixed header's hash is not under a checksum; the JSON's copy is, so they must agree.
+            uint64_t v = 0;
+            if (!parseHex64(hash->string(), v))
+                hash->fail("expected a hexadecimal number of 1 to 16 digits, got \"" + hash->string() + "\"");
+            if (v != sceneHash_) fail(path_, "scene hash in the fixed header disagrees with the JSON header (file corrupted)");
+        }
+        h.at("settings").requireObject();
+        const JsonReader shard = h.at("shard");
+        for (const char* key : {"index", "count", "cell_begin", "cell_end", "cells_total"})
+            shard.at(key).integer(0, std::numeric_limits<int>::max());
+        const std::vector<std::string> targets = stringList(h.at("target_layout"));
+        inputLayout_ = stringList(h.at("input_layout"));
+        if (version_ >= 2 && h.has("noise_layout")) noiseLayout_ = stringList(h.at("noise_layout"));
+        const JsonReader fpr = h.at("floats_per_record");
+        floatsPerRecord_ = int(fpr.integer(1, std::numeric_limits<int>::max()));
+        inputCount_ = int(inputLayout_.size());
+        // Every column is named, so the record size is bounded by the header's own size.
+        const size_t named = inputLayout_.size() + targets.size() + noiseLayout_.size();
+        if (targets.empty() || size_t(floatsPerRecord_) != named)
+            fpr.fail("inconsistent record layout in header: floats_per_record is " + std::to_string(floatsPerRecord_) +
+                     ", but the layouts name " + std::to_string(inputLayout_.size()) + " inputs, " +
+                     std::to_string(targets.size()) + " targets and " + std::to_string(noiseLayout_.size()) +
+                     " noise columns (at least one target)");
+        GeneratorStats::fromHeader(header_, path_);  // checks "stats" (counters, records_per_cell)
+        const JsonReader objects = h.at("objects");
+        const size_t n = objects.requireArray();
+        for (size_t i = 0; i < n; ++i) {
+            const JsonReader o = objects.at(i);
+            DatasetObject d;
+            d.id = int(o.at("id").integer(0, std::numeric_limits<int>::max()));
+            d.name = o.at("name").string();
+            d.count = o.at("count").unsignedInteger();
+            d.offset = o.at("offset").unsignedInteger();
+            objects_.push_back(d);
+        }
+    } catch (const InputError& e) {
+        const std::string detail = e.detail();
+        throw InputError(path_, e.where(), detail.rfind("inconsistent", 0) == 0 ? detail : "malformed dataset header: " + detail);
     }
 }
 

@@ -94,6 +94,11 @@ public:
     const float* records(size_t i) const;
 
 private:
+    /// Parses the JSON header `text` and checks every field readers use (types, integer ranges, the
+    /// record layout against floats_per_record, the scene hash against the fixed header's); a bad
+    /// field throws InputError naming the file and its JSON pointer ("malformed dataset header: ...").
+    void readHeader(const std::string& text);
+
     std::string path_;
     nlohmann::json header_;
     uint64_t sceneHash_ = 0;

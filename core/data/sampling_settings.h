@@ -19,6 +19,8 @@ constexpr int kMaxGridCells = 1000;              ///< cells per axis of "grid"
 constexpr int kMaxDirections = 10000000;         ///< "directions"
 constexpr int kMaxSamplesPerRecord = 1000000;    ///< "spp" (paths per record)
 constexpr int kMaxSamplingDepth = 1000;          ///< "max_depth"
+// Cell indices are int: the largest grid must not overflow it (1000³ = 1e9 < 2^31 − 1).
+static_assert(int64_t(kMaxGridCells) * kMaxGridCells * kMaxGridCells <= INT32_MAX, "grid cell count must fit an int");
 
 struct SamplingSettings {
     int nx = 15, ny = 15, nz = 15;  ///< jitter grid over the scene bounds

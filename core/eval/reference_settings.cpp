@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/scene/scene.h"
+
 namespace rrf {
 
 double NoiseTarget::wanted(double measuredError) const {
@@ -22,8 +24,8 @@ ReferenceSettings ReferenceSettings::fromJson(const JsonReader& r) {
     s.target.errorFraction = r.numberOr("error_fraction", s.target.errorFraction, 0.0, 1.0);
     s.target.sppCap = int(r.integerOr("spp_cap", s.target.sppCap, 2, 1 << 24));
     s.target.sppPerPass = int(r.integerOr("spp_per_pass", s.target.sppPerPass, 1, 1 << 16));
-    s.width = int(r.integerOr("width", s.width, 0, 16384));
-    s.height = int(r.integerOr("height", s.height, 0, 16384));
+    s.width = int(r.integerOr("width", s.width, 0, kMaxImageSide));
+    s.height = int(r.integerOr("height", s.height, 0, kMaxImageSide));
     return s;
 }
 

@@ -300,8 +300,8 @@ ReferenceKey ReferenceKey::fromJson(const json& j, const std::string& file, cons
     k.sceneHash = hash("scene_hash");
     k.cameraHash = hash("camera_hash");
     k.lightPosition = r.at("light_position").vec3();
-    k.width = int(r.at("width").integer(1, 16384));
-    k.height = int(r.at("height").integer(1, 16384));
+    k.width = int(r.at("width").integer(1, kMaxImageSide));
+    k.height = int(r.at("height").integer(1, kMaxImageSide));
     const std::string e = r.choiceOr("estimator", "", {"nee", "naive"});
     if (e.empty()) r.fail("missing required field 'estimator'");
     k.estimator = e == "nee" ? Estimator::NEE : Estimator::Naive;

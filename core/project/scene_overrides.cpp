@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/scene/coordinate_range.h"
+
 namespace rrf {
 
 using nlohmann::json;
@@ -10,8 +12,14 @@ using nlohmann::json;
 namespace {
 json vec3Json(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
 
-MaterialOverride readMaterialOverride(const JsonReader& r) {
-    r.checkKeys({"kd", "ks", "exponent"});
+MaterialOverride readMaterialOverride(const JsonReader& r, std::vector<std::string>& warnings) {
+    // An unknown key (a typo such as "albedo") is reported like anywhere else; the known keys still apply.
+    try {
+        r.checkKeys({"kd", "ks", "exponent"});
+    } catch (const InputError& e) {
+        if (!r.isObject()) throw;
+        warnings.push_back(std::string(e.what()) + "; ignored");
+    }
     MaterialOverride m;
     if (const auto kd = r.find("kd")) m.kd = kd->vec3();
     if (const auto ks = r.find("ks")) m.ks = ks->vec3();
@@ -54,7 +62,7 @@ SceneOverrides SceneOverrides::fromJson(const JsonReader& section, std::vector<s
         if (!mats->isObject()) return o;
         for (auto it = mats->value().begin(); it != mats->value().end(); ++it) {
             const JsonReader entry = mats->at(it.key());
-            lenient([&] { o.materials[it.key()] = readMaterialOverride(entry); });
+            lenient([&] { o.materials[it.key()] = readMaterialOverride(entry, warnings); });
         }
     }
     return o;
@@ -69,15 +77,20 @@ void applySceneOverrides(const SceneOverrides& o, Scene& scene, std::vector<std:
             problems.push_back(at + ": the scene has no light; ignored");
         } else {
             const Vec3 c = clampToLightRegion(scene, p);
-            if (c.x != p.x || c.y != p.y || c.z != p.z)
+            const std::string outOfRange = lightPlacementProblem(scene.lights[size_t(scene.movableLight)], p);
+            if (scene.lightRegion.empty() && !outOfRange.empty())
+                problems.push_back(at + ": " + outOfRange + "; ignored");
+            else if (c.x != p.x || c.y != p.y || c.z != p.z)
                 problems.push_back(at + ": outside the light region; clamped into it");
             scene.setLightPosition(c);
         }
     }
     for (const auto& [name, mo] : o.materials) {
         const std::string at = JsonReader::child(JsonReader::child(where, "materials"), name);
+        // Captured by name: C++17 lambdas cannot capture a structured binding (clang rejects it).
+        const std::string& wanted = name;
         auto m = std::find_if(scene.materials.begin(), scene.materials.end(),
-                              [&wanted = name](const Material& mat) { return mat.name == wanted; });
+                              [&wanted](const Material& mat) { return mat.name == wanted; });
         if (m == scene.materials.end()) {
             problems.push_back(at + ": no such material in the scene; ignored");
             continue;
@@ -116,7 +129,12 @@ bool enforceEnergyConservation(Material& m, bool kdEdited) {
 
 Vec3 clampToLightRegion(const Scene& scene, const Vec3& p) {
     const Bounds3& b = scene.lightRegion;
-    if (b.empty()) return p;
+    if (b.empty()) {
+        // A fixed light may go anywhere rays stay valid; beyond that it stays where the scene put it.
+        const bool valid = scene.lights.empty() ||
+                           lightPlacementProblem(scene.lights[size_t(scene.movableLight)], p).empty();
+        return valid ? p : scene.lightPosition();
+    }
     return Vec3(std::clamp(p.x, b.lo.x, b.hi.x), std::clamp(p.y, b.lo.y, b.hi.y), std::clamp(p.z, b.lo.z, b.hi.z));
 }
 

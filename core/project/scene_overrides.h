@@ -53,7 +53,9 @@ void applySceneOverrides(const SceneOverrides& overrides, Scene& scene, std::vec
 /// changed.
 bool enforceEnergyConservation(Material& m, bool kdEdited);
 
-/// Clamps `p` into the scene's light region (unchanged when the region is empty).
+/// Clamps `p` into the scene's light region. When the region is empty `p` is kept as it is, unless
+/// the light placed there would leave the coordinate range (core/scene/coordinate_range.h): then the
+/// light's current position is returned.
 Vec3 clampToLightRegion(const Scene& scene, const Vec3& p);
 
 }  // namespace rrf

@@ -1,6 +1,11 @@
 #include "core/render/render_settings.h"
 
+#include <algorithm>
+
+#include "core/render/renderer.h"
+#include "core/util/error.h"
 #include "core/util/json_reader.h"
+#include "core/util/memory_budget.h"
 
 namespace rrf {
 
@@ -8,8 +13,8 @@ RenderSettings parseRenderSettings(const JsonReader& r) {
     r.checkKeys({"spp", "width", "height", "mode", "seed", "max_depth", "exposure"});
     RenderSettings s;
     s.spp = int(r.integerOr("spp", s.spp, 1, 1 << 30));
-    s.width = int(r.integerOr("width", s.width, 0, 16384));
-    s.height = int(r.integerOr("height", s.height, 0, 16384));
+    s.width = int(r.integerOr("width", s.width, 0, kMaxImageSide));
+    s.height = int(r.integerOr("height", s.height, 0, kMaxImageSide));
     if (auto mode = r.find("mode")) {
         const std::string m = mode->string();
         if (m == "nee") s.estimator = Estimator::NEE;
@@ -20,6 +25,23 @@ RenderSettings parseRenderSettings(const JsonReader& r) {
     s.maxDepth = int(r.integerOr("max_depth", s.maxDepth, 1, 1 << 16));
     s.exposure = r.floatOr("exposure", s.exposure);
     return s;
+}
+
+uint64_t renderMemoryBytes(int width, int height) {
+    const uint64_t perPixel = 2 * sizeof(PixelSums) + 2 * 6 * 3 * sizeof(float);
+    return saturatingProduct(uint64_t(std::max(width, 0)), uint64_t(std::max(height, 0)), perPixel);
+}
+
+void requireRenderMemory(int width, int height) {
+    const uint64_t perPixel = renderMemoryBytes(1, 1);
+    const std::string why =
+        memoryShortfall(renderMemoryBytes(width, height), availableMemoryBytes(),
+                        std::to_string(width) + " x " + std::to_string(height) + " pixels x " + std::to_string(perPixel) +
+                            " bytes of sums and images");
+    if (!why.empty())
+        throw SettingError("image size", "a " + std::to_string(width) + " x " + std::to_string(height) + " render " + why +
+                                             "; choose a smaller width and height (each 1 ... " +
+                                             std::to_string(kMaxImageSide) + ")");
 }
 
 nlohmann::json renderSettingsToJson(const RenderSettings& s) {

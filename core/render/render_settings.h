@@ -7,11 +7,21 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/scene/scene.h"
 #include "core/util/json_reader.h"
 
 namespace rrf {
 
 enum class Estimator { NEE, Naive };
+
+/// Bytes a width × height render holds at its peak: the per-pixel sums twice (committed and the pass
+/// being added, core/render/renderer.h) and two snapshots of six float RGB images (means and
+/// variances of the three terms: the renderer's and the one being written out).
+uint64_t renderMemoryBytes(int width, int height);
+
+/// Throws SettingError("image size", ...) with the estimate when renderMemoryBytes(width, height)
+/// exceeds the memory available to the process (core/util/memory_budget.h).
+void requireRenderMemory(int width, int height);
 
 /// Ground-truth render settings ("render" section).
 struct RenderSettings {

@@ -28,7 +28,7 @@ Renderer::Renderer(const Scene& scene, const Accel& accel, const RenderOptions& 
       options_(options),
       tracer_(scene, accel, options.estimator, options.maxDepth),
       camera_(scene.camera, options.width, options.height),
-      pixels_(size_t(options.width) * size_t(options.height)) {}
+      pixels_((requireRenderMemory(options.width, options.height), size_t(options.width) * size_t(options.height))) {}
 
 void Renderer::run(const std::function<void(int)>& onPass) {
     while (sppDone_ < options_.spp && !cancelled_) {

@@ -1,12 +1,14 @@
 #include "core/scene/obj_loader.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include <tiny_obj_loader.h>
 
 #include "core/util/error.h"
+#include "core/util/memory_budget.h"
 
 namespace rrf {
 
@@ -26,6 +28,14 @@ ObjMesh loadObj(const std::string& objPath, const std::string& sceneFile, const 
         std::ifstream probe(objPath);
         if (!probe) throw InputError(sceneFile, where, "cannot open OBJ file '" + objPath + "'");
     }
+    std::error_code ec;
+    // A device or pipe (/dev/zero) would be read until memory runs out.
+    if (!std::filesystem::is_regular_file(objPath, ec))
+        throw InputError(sceneFile, where, "OBJ file '" + objPath + "' is not a regular file");
+    // tinyobjloader keeps every vertex and index of the text, and the mesh is copied once more: about
+    // as many bytes as the text has, twice (a "v x y z" line of ~30 bytes becomes 12-24 bytes).
+    const uint64_t fileBytes = uint64_t(std::filesystem::file_size(objPath, ec));
+    requireMemory(2 * fileBytes, "twice the OBJ file's " + formatBytes(fileBytes), sceneFile, where);
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
@@ -45,7 +55,7 @@ ObjMesh loadObj(const std::string& objPath, const std::string& sceneFile, const 
     const size_t vertexCount = v.size() / 3;
     mesh.positions.reserve(vertexCount);
     for (size_t i = 0; i < vertexCount; ++i) {
-        const Vec3 p{float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2])};
+        const Vec3 p{static_cast<float>(v[3 * i]), static_cast<float>(v[3 * i + 1]), static_cast<float>(v[3 * i + 2])};
         if (!p.isFinite())
             throw InputError(sceneFile, where,
                              "OBJ file '" + objPath + "': vertex " + std::to_string(i + 1) + " is not finite");

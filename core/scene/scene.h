@@ -12,6 +12,11 @@
 
 namespace rrf {
 
+/// Largest image width or height, one definition for the scene's camera, the project's "render" and
+/// "reference" sections, the CLI's --width/--height and the workbench. Whether a size within it fits
+/// is decided by the memory it needs (requireRenderMemory, core/render/render_settings.h).
+constexpr int kMaxImageSide = 16384;
+
 /// Pinhole camera. Image x grows to the camera's right, image y downwards.
 struct Camera {
     Vec3 eye{0, 0, 1};

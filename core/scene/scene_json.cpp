@@ -9,6 +9,7 @@
 
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
+#include "core/scene/coordinate_range.h"
 #include "core/scene/obj_loader.h"
 #include "core/scene/scene_parse.h"
 #include "core/scene/transform.h"
@@ -53,6 +54,9 @@ Camera parseCamera(const JsonReader& r) {
     Camera cam;
     cam.eye = r.at("eye").vec3();
     cam.target = r.at("target").vec3();
+    for (const char* key : {"eye", "target"})
+        if (const std::string why = coordinateRangeProblem(key[0] == 'e' ? cam.eye : cam.target); !why.empty())
+            r.at(key).fail("camera " + std::string(key) + ": " + why);
     cam.up = r.vec3Or("up", Vec3(0, 1, 0));
     const DVec dir = DVec(cam.target) - DVec(cam.eye);
     if (!(dir.norm() > 0)) r.at("target").fail("camera target must differ from the eye");
@@ -62,8 +66,8 @@ Camera parseCamera(const JsonReader& r) {
     const JsonReader fov = r.at("fov_y");
     cam.fovYDegrees = fov.floatValue();
     if (!(cam.fovYDegrees > 0 && cam.fovYDegrees < 180)) fov.fail("fov_y must be in (0, 180) degrees");
-    cam.width = int(r.integerOr("width", 256, 1, 16384));
-    cam.height = int(r.integerOr("height", 256, 1, 16384));
+    cam.width = int(r.integerOr("width", 256, 1, kMaxImageSide));
+    cam.height = int(r.integerOr("height", 256, 1, kMaxImageSide));
     return cam;
 }
 
@@ -265,7 +269,17 @@ struct SceneBuilder {
         }
         if (auto t = r.find("transform")) applyTransform(parseTransform(*t), o);
         for (const Vec3& p : o.positions)
-            if (!p.isFinite()) r.fail("shape '" + o.name + "' has non-finite coordinates after its transform");
+            if (const std::string why = coordinateRangeProblem(p); !why.empty())
+                r.fail("shape '" + o.name + "' has a point outside the scene's coordinate range after its transform: " + why);
+        if (o.kind == Object::Kind::Sphere)
+            for (int i = 0; i < 3; ++i) {
+                // In double: centre ± radius may overflow float (radius 3e38).
+                const double far = std::fabs(double(o.center[i])) + double(o.radius);
+                if (far > double(kMaxCoordinate))
+                    r.fail("sphere '" + o.name + "' reaches |" + "xyz"[i] + "| = " + formatNumber(far) +
+                           ", outside [-" + formatNumber(kMaxCoordinate) + ", " + formatNumber(kMaxCoordinate) +
+                           "], the coordinate range in which rays stay valid");
+            }
         if (type == "box") {
             // A near-zero scale factor flattens faces just like a degenerate declared quad.
             for (size_t q = 0; q < 6; ++q) {
@@ -313,6 +327,7 @@ struct SceneBuilder {
         } else {
             r.at("type").fail("unknown light type '" + type + "' (known: rect, point)");
         }
+        if (const std::string why = lightPlacementProblem(l, l.center()); !why.empty()) r.fail(why);
         return l;
     }
 
@@ -326,6 +341,11 @@ struct SceneBuilder {
         if (scene.lights.empty()) r.fail("a light_region needs a light to move, but the scene has no lights");
         scene.lightRegion.lo = lo;
         scene.lightRegion.hi = hi;
+        // The light moves anywhere in the region; its extremes are at the region's corners lo and hi.
+        const Light& movable = scene.lights[size_t(scene.movableLight)];
+        for (const Vec3& c : {lo, hi})
+            if (const std::string why = lightPlacementProblem(movable, c); !why.empty())
+                r.fail("the light moved to the region's corner: " + why);
         // Tolerance: the centre is computed in float from corner + edges.
         const Vec3 c = scene.lightPosition();
         const float tol = 1e-5f * std::max(1.f, scene.scale());

@@ -1,5 +1,7 @@
 #include "core/util/json_reader.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -128,7 +130,9 @@ int64_t JsonReader::integer(int64_t lo, int64_t hi) const {
     if (value_->is_number_float()) {
         const double d = value_->get<double>();
         if (!std::isfinite(d) || d != std::floor(d)) expected("integer");
-        if (d >= double(lo) && d <= double(hi)) return int64_t(d);
+        // Convert only values inside int64's range (2^63 itself is not): a cast of 1e300 is undefined.
+        constexpr double kTwo63 = 9223372036854775808.0;
+        if (d >= -kTwo63 && d < kTwo63 && int64_t(d) >= lo && int64_t(d) <= hi) return int64_t(d);
     } else if (value_->is_number_unsigned()) {
         const uint64_t u = value_->get<uint64_t>();
         if (u <= uint64_t(std::numeric_limits<int64_t>::max()) && int64_t(u) >= lo && int64_t(u) <= hi)
@@ -217,24 +221,49 @@ std::string formatNumber(double v) {
     return out.str();
 }
 
+namespace {
+/// "line 3, column 5 (byte 41)" of the 1-based byte offset `byte` in `text`, for editors.
+std::string positionOf(const std::string& text, size_t byte) {
+    byte = std::min(byte, text.size() + 1);
+    size_t line = 1, column = 1;
+    for (size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
+        if (text[i] == '\n') { ++line; column = 1; }
+        else ++column;
+    }
+    return "line " + std::to_string(line) + ", column " + std::to_string(column) + " (byte " + std::to_string(byte) + ")";
+}
+
+/// 1-based byte offset of the first number literal `token` in `text` (0 if none): the parser names
+/// the literal that overflowed, not where it is.
+size_t findNumberLiteral(const std::string& text, const std::string& token) {
+    auto numberChar = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-'; };
+    for (size_t at = text.find(token); at != std::string::npos; at = text.find(token, at + 1)) {
+        const size_t end = at + token.size();
+        if ((at == 0 || !numberChar(text[at - 1])) && (end == text.size() || !numberChar(text[end]))) return at + 1;
+    }
+    return 0;
+}
+}  // namespace
+
 json parseJsonText(const std::string& text, const std::string& file) {
     try {
         return json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
     } catch (const json::parse_error& e) {
-        // nlohmann reports a 1-based byte count; turn it into line and column for editors.
-        const size_t byte = std::min(e.byte, text.size() + 1);
-        size_t line = 1, column = 1;
-        for (size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
-            if (text[i] == '\n') { ++line; column = 1; }
-            else ++column;
-        }
         std::string detail = e.what();
         // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 3, column 5: " prefix.
         const size_t colon = detail.find(": ");
         if (colon != std::string::npos) detail = detail.substr(colon + 2);
+        throw InputError(file, "", "malformed JSON at " + positionOf(text, e.byte) + ": " + detail);
+    } catch (const json::exception& e) {
+        // The one other error of the parser: a number literal beyond double's range (out_of_range.406,
+        // "number overflow parsing '1e400'"), which has no position of its own.
+        const std::string what = e.what();
+        const size_t open = what.find('\''), close = what.rfind('\'');
+        const std::string token = open != std::string::npos && close > open ? what.substr(open + 1, close - open - 1) : "";
+        const size_t byte = token.empty() ? 0 : findNumberLiteral(text, token);
         throw InputError(file, "",
-                         "malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
-                             " (byte " + std::to_string(e.byte) + "): " + detail);
+                         "number " + (token.empty() ? std::string("literal") : token) + (byte ? " at " + positionOf(text, byte) : "") +
+                             " is out of range: numbers must lie within ±1.8e308 (double precision)");
     }
 }
 

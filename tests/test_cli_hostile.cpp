@@ -1,0 +1,181 @@
+// Hostile input through the real `rrf` executable (issue 12): each case exits with status 1 and one
+// message naming the file or option, the field and the accepted range — never a signal (Embree's
+// ray assertion, std::bad_alloc), raw library text, an overwritten input or a run that keeps going
+// after Ctrl-C.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <fcntl.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "tests/cli_runner.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using rrf::test::runCli;
+
+namespace {
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+fs::path testDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const fs::path dir = fs::temp_directory_path() / ("rrf_cli_hostile_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::string readText(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// A small open room with a point light and the camera at `eye`, written to `dir`/`name`.
+std::string writeScene(const fs::path& dir, const std::string& name, const std::string& eye = "[0, 0, 3]") {
+    const std::string text = R"({
+  "camera": { "eye": )" + eye + R"(, "target": [0, 0, 0], "fov_y": 60, "width": 8, "height": 8 },
+  "materials": { "white": { "type": "lambert", "albedo": [0.8, 0.8, 0.8] } },
+  "shapes": [
+    { "type": "quad", "name": "floor", "material": "white", "corner": [-1, -1, -1], "edge1": [0, 0, 2], "edge2": [2, 0, 0] },
+    { "type": "quad", "name": "back", "material": "white", "corner": [-1, -1, -1], "edge1": [2, 0, 0], "edge2": [0, 2, 0] },
+    { "type": "quad", "name": "left", "material": "white", "corner": [-1, -1, -1], "edge1": [0, 2, 0], "edge2": [0, 0, 2] }
+  ],
+  "lights": [ { "type": "point", "name": "bulb", "position": [0, 0.5, 0], "intensity": [2, 2, 2] } ]
+})";
+    const fs::path p = dir / name;
+    std::ofstream(p) << text;
+    return p.string();
+}
+
+/// `rrf args` with the address space limited to 4 GiB (`ulimit -v`): the memory the process may
+/// use is then known whatever machine runs the test.
+rrf::test::CliResult runCliWithin4GiB(const std::string& args) {
+    rrf::test::CliResult r;
+    const std::string cmd = "ulimit -v 4194304; exec " + std::string(RRF_CLI_PATH) + " " + args + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) return r;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
+    const int status = pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+}  // namespace
+
+TEST(CliHostile, CoordinatesBeyondTheRayRangeExitWithTheFieldAndRange) {
+    const fs::path dir = testDir();
+    const std::string far = writeScene(dir, "far.json", "[0, 1, 1e19]");
+    const auto eye = runCli("render " + far + " --spp 1 --out " + (dir / "o1").string());
+    EXPECT_EQ(eye.code, 1) << eye.output;
+    EXPECT_TRUE(contains(eye.output, far + ": /camera/eye: camera eye: z = 1e+19 is outside [-1e+09, 1e+09]")) << eye.output;
+
+    const std::string ok = writeScene(dir, "ok.json");
+    const auto light = runCli("render " + ok + " --spp 1 --light-pos 1e30,0,0 --out " + (dir / "o2").string());
+    EXPECT_EQ(light.code, 1) << light.output;
+    EXPECT_TRUE(contains(light.output, "command line: --light-pos: x = 1e+30 is outside [-1e+09, 1e+09]")) << light.output;
+    EXPECT_FALSE(fs::exists(dir / "o2"));
+    fs::remove_all(dir);
+}
+
+TEST(CliHostile, NumberBeyondDoubleNamesFileAndLine) {
+    const fs::path dir = testDir();
+    const std::string huge = writeScene(dir, "huge.json", "[0, 1, 1e400]");
+    const auto r = runCli("generate " + huge + " --out " + (dir / "d.rrfd").string());
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_TRUE(contains(r.output, huge + ": number 1e400 at line 2, column 29")) << r.output;
+    EXPECT_FALSE(contains(r.output, "json.exception")) << r.output;
+    fs::remove_all(dir);
+}
+
+TEST(CliHostile, OutputThatIsAnInputIsRefusedForEveryCommand) {
+    const fs::path dir = testDir();
+    const std::string scene = writeScene(dir, "scene.json");
+    const std::string before = readText(scene);
+    const fs::path data = dir / "data.rrfd";
+    std::ofstream(data) << "not read: the output check comes first";
+    // The same file under another spelling counts too.
+    const std::string sameScene = (dir / "." / "scene.json").string();
+    const struct {
+        std::string args, out;
+    } cases[] = {
+        {"generate " + scene + " --grid 1,1,1 --dirs 1 --out " + sameScene, sameScene},
+        {"render " + scene + " --spp 1 --out " + scene, scene},
+        {"train " + scene + " --data " + data.string() + " --out " + data.string(), data.string()},
+        {"merge " + data.string() + " --out " + data.string(), data.string()},
+        {"predict " + scene + " --models " + (dir).string() + " --out " + dir.string(), dir.string()},
+    };
+    for (const auto& c : cases) {
+        const auto r = runCli(c.args);
+        EXPECT_EQ(r.code, 1) << c.args << "\n" << r.output;
+        EXPECT_TRUE(contains(r.output, "command line: --out: '" + c.out + "' is the input")) << c.args << "\n" << r.output;
+    }
+    EXPECT_EQ(readText(scene), before);
+    fs::remove_all(dir);
+}
+
+TEST(CliHostile, RequestsBeyondMemoryAreRefusedWithTheEstimate) {
+    const fs::path dir = testDir();
+    const std::string scene = writeScene(dir, "scene.json");
+    const auto image = runCliWithin4GiB("render " + scene + " --spp 1 --width 16384 --height 16384 --out " + (dir / "o").string());
+    EXPECT_EQ(image.code, 1) << image.output;
+    EXPECT_TRUE(contains(image.output, "command line: --width/--height: a 16384 x 16384 render needs about 100 GiB of memory"))
+        << image.output;
+    EXPECT_TRUE(contains(image.output, "each 1 ... 16384")) << image.output;
+    const auto grid = runCliWithin4GiB("generate " + scene + " --grid 1000,1000,1000 --dirs 1 --out " + (dir / "d.rrfd").string());
+    EXPECT_EQ(grid.code, 1) << grid.output;
+    EXPECT_TRUE(contains(grid.output, "command line: --grid/--dirs: the run needs about")) << grid.output;
+    EXPECT_TRUE(contains(grid.output, "1000000000 cells x 1 directions")) << grid.output;
+    EXPECT_FALSE(fs::exists(dir / "d.rrfd"));
+    fs::remove_all(dir);
+}
+
+TEST(CliHostile, CtrlCStopsOneHugeCellWithinASecond) {
+    // One viewpoint with ten million directions: Ctrl-C must not wait for the cell to finish.
+    const fs::path dir = testDir();
+    const std::string scene = writeScene(dir, "scene.json");
+    const std::string out = (dir / "d.rrfd").string();
+    int fds[2];
+    ASSERT_EQ(::pipe(fds), 0);
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        ::dup2(fds[1], 2);
+        ::close(fds[0]);
+        const int devNull = ::open("/dev/null", O_WRONLY);
+        ::dup2(devNull, 1);
+        ::execl(RRF_CLI_PATH, "rrf", "generate", scene.c_str(), "--grid", "1,1,1", "--dirs", "10000000", "--spp", "1",
+                "--max-spp", "1", "--out", out.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    ::close(fds[1]);
+    std::string err;
+    char buf[256];
+    ssize_t n;
+    // The progress line shows the interrupt handler is installed and the cell is being worked on.
+    while (!contains(err, "generate:") && (n = ::read(fds[0], buf, sizeof buf)) > 0) err.append(buf, size_t(n));
+    const auto signalled = std::chrono::steady_clock::now();
+    ::kill(pid, SIGINT);
+    while ((n = ::read(fds[0], buf, sizeof buf)) > 0) err.append(buf, size_t(n));
+    ::close(fds[0]);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+    ASSERT_TRUE(WIFEXITED(status)) << err;
+    EXPECT_EQ(WEXITSTATUS(status), 130) << err;
+    EXPECT_LT(seconds, 1.0) << err;
+    EXPECT_FALSE(fs::exists(out));
+    fs::remove_all(dir);
+}
