@@ -14,6 +14,7 @@
 
 #include "core/scene/camera_rays.h"
 #include "panels/panels.h"
+#include "panels/status_text.h"
 #include "panels/view_model.h"
 
 namespace rrf::panels {
@@ -72,8 +73,8 @@ void drawToolbar(WorkbenchState& state) {
     ImGui::SameLine();
     if (r.running || r.spp > 0) {
         char overlay[128];
-        std::snprintf(overlay, sizeof overlay, "%d/%d spp  noise (rel. RMSE of the mean) %s%s", r.spp, r.targetSpp,
-                      noiseFigureText(r.relativeNoise).c_str(), r.running ? "" : "  done");
+        std::snprintf(overlay, sizeof overlay, "%s  noise (rel. RMSE of the mean) %s", renderProgressText(r).c_str(),
+                      noiseFigureText(r.relativeNoise).c_str());
         ImGui::ProgressBar(r.targetSpp > 0 ? float(r.spp) / float(r.targetSpp) : 0.f, ImVec2(ImGui::GetFontSize() * 24, 0),
                            overlay);
         if (ImGui::IsItemHovered())
@@ -180,6 +181,10 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
 /// The figures of the error map: `rrf evaluate`'s overall row for the term, and what it leaves out.
 void drawErrorFigures(const WorkbenchState& state) {
     const ViewErrorStats& f = state.view.errorStats;
+    if (!f.valid && state.view.compareSource == CompareSource::RunPair) {
+        ImGui::TextDisabled("Run pair: the error map is |B - A|, prediction against prediction (no noise floor).");
+        return;
+    }
     if (!f.valid) {
         ImGui::TextDisabled(state.groundTruth.footprint ? "Error figures: need a compared image of the ground truth's size."
                                                         : "Error figures: need the ground truth's footprint mask (render it).");
@@ -259,8 +264,16 @@ void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp
 
 void drawViewsPanel(WorkbenchState& state) {
     drawToolbar(state);
-    const Image& ref = state.groundTruth.term(state.view.term);
+    if (state.notice && state.notice->panel == "Views") drawNotice(state);
+    const Image& ref = state.reference().term(state.view.term);
     const Image& cmp = state.compared().term(state.view.term);
+    const bool pair = state.view.compareSource == CompareSource::RunPair;
+    if (pair) {
+        ImGui::TextColored(ImVec4(0.5f, 0.8f, 1.f, 1.f), "Comparing run A '%s' | run B '%s' | difference B - A",
+                           state.runPair.nameA.c_str(), state.runPair.nameB.c_str());
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Back to the ground truth")) state.view.compareSource = CompareSource::Prediction;
+    }
     const float spacing = ImGui::GetStyle().ItemSpacing.x;
     const float footer = ImGui::GetTextLineHeightWithSpacing() * 6.5f;
     const ImVec2 avail = ImGui::GetContentRegionAvail();
@@ -269,8 +282,9 @@ void drawViewsPanel(WorkbenchState& state) {
     const float side = std::min(w, h);
     const ImVec2 size(w, side);
 
-    char gtTitle[96];
-    std::snprintf(gtTitle, sizeof gtTitle, "Ground truth (%s, %d spp)", termName(state.view.term), state.render.spp);
+    char gtTitle[160];
+    if (pair) std::snprintf(gtTitle, sizeof gtTitle, "A: %s", state.runPair.imagesA.label.c_str());
+    else std::snprintf(gtTitle, sizeof gtTitle, "Ground truth (%s, %d spp)", termName(state.view.term), state.render.spp);
     const ImageSet& compared = state.compared();
     const std::string cmpTitle = compared.empty() ? std::string(state.view.compareSource == CompareSource::Run ? "Compared run" : "Prediction")
                                                   : compared.label;
@@ -288,6 +302,8 @@ void drawViewsPanel(WorkbenchState& state) {
     state.view.hoverY = over ? int(hover.y) : -1;
 
     drawErrorFigures(state);
+    const std::string partial = withoutNetworkText(compared, state.project.scene);
+    if (!partial.empty()) ImGui::TextColored(ImVec4(1.f, 0.3f, 1.f, 1.f), "%s", partial.c_str());
     drawReadout(state, ref, cmp);
     drawLegend(state.view, std::min(w, ImGui::GetFontSize() * 18));
 }

@@ -1,7 +1,8 @@
 // rrf-workbench [project.json] [--frames N] [--screenshot out.png] [--script steps.json]
 //
-// Opens the workbench on a project (by default the bundled Cornell box of the data directory, see
-// core/util/data_dir.h, which also holds the shaders). --frames N draws N frames
+// Opens the workbench on a project (by default the user's workspace copy of the bundled Cornell box
+// of the data directory, see app/gui/user_workspace.h and core/util/data_dir.h, which also holds
+// the shaders). --frames N draws N frames
 // (after the script, if any) and exits; --screenshot writes the last frame to a PNG. The exit status
 // is non-zero if the project cannot be opened, the script fails or the screenshot cannot be written
 // in these automated modes.
@@ -13,6 +14,7 @@
 
 #include "app/gui/script.h"
 #include "app/gui/user_config.h"
+#include "app/gui/user_workspace.h"
 #include "app/gui/window.h"
 #include "app/gui/workbench.h"
 #include "core/util/data_dir.h"
@@ -79,7 +81,14 @@ int main(int argc, char** argv) {
     std::string dataDir;
     try {
         dataDir = rrf::dataDir().string();
-        if (args.project.empty()) args.project = rrf::bundledProject(rrf::kDefaultProject).string();
+        if (args.project.empty()) {
+            // The bundled project is read-only data: work happens in the user's workspace copy.
+            bool created = false;
+            args.project = rrf::userWorkspaceProject(
+                rrf::bundledProject(rrf::kDefaultProject).string(), created);
+            std::printf("rrf-workbench: %s the workspace copy of the bundled project: %s\n",
+                        created ? "created" : "opening", args.project.c_str());
+        }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "rrf-workbench: %s\n", e.what());
         return 1;
