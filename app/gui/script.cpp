@@ -40,6 +40,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"request_open", {"path"}},
             {"answer_unsaved", {"choice"}},
             {"stop", {"job"}},
+            {"compare_runs", {"a", "b"}},
             {"save", {"path"}},
             {"export_images", {"dir"}},
             {"screenshot", {"path"}},
@@ -47,7 +48,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"tab", {"name"}},
             {"check", {"runs", "ground_truth_spp_min", "errors", "compare", "dataset", "prediction", "evaluated",
                        "train_runs", "sweeps", "unsaved_prompt", "dirty", "stopped_runs", "prediction_partial",
-                       "render_cancelled", "notice"}},
+                       "render_cancelled", "notice", "pair"}},
         };
     }();
     return keys;
@@ -215,6 +216,11 @@ bool Script::execute(Workbench& wb, const json& s) {
         wb.answerUnsavedPrompt(c == "save"      ? Workbench::UnsavedChoice::Save
                                : c == "discard" ? Workbench::UnsavedChoice::Discard
                                                 : Workbench::UnsavedChoice::Cancel);
+    } else if (what == "compare_runs") {
+        // As ticking A and B in the runs table.
+        st.runPair.a = intOr(r, "a", 0);
+        st.runPair.b = intOr(r, "b", 1);
+        require(wb.compareRunPair(), "could not compare the runs (see the log)");
     } else if (what == "stop") {
         // As the Stop buttons: the job stops at its next check and delivers what it has.
         const std::string job = r.choiceOr("job", "", {"render", "generate", "train"});
@@ -274,6 +280,11 @@ bool Script::execute(Workbench& wb, const json& s) {
         flag("prediction_partial", !st.prediction.withoutNetwork.empty(), "partial prediction state");
         flag("render_cancelled", st.render.cancelled, "render cancelled state");
         flag("notice", st.notice.has_value(), "notice state");
+        // pair: the Views show two runs (both predictions) and the Objects panel both error columns.
+        flag("pair",
+             st.view.compareSource == panels::CompareSource::RunPair && !st.runPair.imagesA.empty() &&
+                 !st.runPair.imagesB.empty() && st.runPair.errorsA.valid && st.runPair.errorsB.valid,
+             "run pair state");
     } else {
         throw std::runtime_error("unknown step '" + what + "'");
     }

@@ -12,11 +12,12 @@
 /// sweep {what: spp|grid|dirs|hidden|trainer},
 /// wait {for: render|jobs|train_epoch, timeout_s}, save_run, compare_run {index},
 /// reopen_run {index}, request_open {path?: as File > Open, asking about unsaved changes},
-/// answer_unsaved {choice: save|discard|cancel}, stop {job: render|generate|train}, set_light {position}, select_object {id}, view {term, metric, exposure,
+/// answer_unsaved {choice: save|discard|cancel}, stop {job: render|generate|train}, compare_runs {a, b:
+/// run indices, as ticking A and B}, set_light {position}, select_object {id}, view {term, metric, exposure,
 /// error_max, zoom}, open {path?: default re-opens the current file}, save {path?}, export_images {dir}, screenshot {path},
 /// frames {count}, tab {name: bring a panel tab to the front}, check {runs, ground_truth_spp_min, errors,
 /// compare, dataset, prediction, evaluated, train_runs, sweeps, unsaved_prompt, dirty, stopped_runs,
-/// prediction_partial, render_cancelled, notice}. An unknown step or key fails the
+/// prediction_partial, render_cancelled, notice, pair}. An unknown step or key fails the
 /// script when it is loaded (it never skips silently), naming the file and the step's JSON pointer.
 
 #include <chrono>
