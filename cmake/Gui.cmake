@@ -48,6 +48,7 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_project_carry.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_runs_compared.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_user_workspace.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_views_layout.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/user_workspace.cpp)
@@ -76,8 +77,11 @@ if(RRF_BUILD_TESTS)
   # carries the runs so that they re-open from the new place.
   add_test(NAME gui_stop_and_switch
            COMMAND ${RRF_GUI_RUNNER} $<TARGET_FILE:rrf-workbench> $<TARGET_FILE:rrf_gui_shotcheck>
-                   ${CMAKE_SOURCE_DIR}/projects/cornell-box ${CMAKE_BINARY_DIR}/gui_test_stop_and_switch 1
+                   ${CMAKE_SOURCE_DIR}/projects/cornell-box ${CMAKE_BINARY_DIR}/gui_test_stop_and_switch 3
                    ${CMAKE_SOURCE_DIR}/tests/gui/session_stop_and_switch.json)
+  # ... at 1280x720, the smallest size the panels are laid out for: its screenshot must show
+  # prediction A | prediction B | difference filled.
+  set_tests_properties(gui_stop_and_switch PROPERTIES ENVIRONMENT RRF_GUI_SIZE=1280x720)
   # A first start without a project works in the per-user workspace; the bundled project stays clean.
   add_test(NAME gui_first_start_workspace
            COMMAND ${CMAKE_SOURCE_DIR}/tests/gui/run_first_start.sh $<TARGET_FILE:rrf-workbench>

@@ -49,14 +49,19 @@ std::string withoutNetworkText(const ImageSet& set, const Scene& scene) {
     return t + "): a partial model set";
 }
 
-void drawNotice(WorkbenchState& state) {
+void drawNotice(WorkbenchState& state, bool wrap) {
     if (!state.notice) return;
     const Notice& n = *state.notice;
     const ImVec4 colour = n.level == LogLevel::Error ? ImVec4(1.f, 0.45f, 0.4f, 1.f) : ImVec4(1.f, 0.8f, 0.3f, 1.f);
     ImGui::PushID("##notice");
     const bool dismiss = ImGui::SmallButton("Dismiss");
     ImGui::SameLine();
+    // In a panel the text wraps at the pane's edge; on the one-line status bar it runs on, and
+    // hovering shows it whole.
+    if (wrap) ImGui::PushTextWrapPos(0.f);
     ImGui::TextColored(colour, "%s", n.text.c_str());
+    if (wrap) ImGui::PopTextWrapPos();
+    else if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", n.text.c_str());
     ImGui::PopID();
     if (dismiss) state.notice.reset();
 }

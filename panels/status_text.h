@@ -29,7 +29,8 @@ std::string withoutNetworkText(const ImageSet& set, const Scene& scene);
 
 /// Draws the state's notice (the newest problem the user has not dismissed) as a coloured line with
 /// a Dismiss button; nothing when there is none. The status bar and the panel the notice concerns
-/// both draw it, so an error shows where the user is looking and not only in the Log.
-void drawNotice(WorkbenchState& state);
+/// both draw it, so an error shows where the user is looking and not only in the Log. `wrap`: wrap
+/// the text at the window's edge (panels); else one line with the whole text on hover (status bar).
+void drawNotice(WorkbenchState& state, bool wrap = true);
 
 }  // namespace rrf::panels

@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include "panels/panels.h"
+#include "panels/layout.h"
 #include "panels/plot.h"
 #include "panels/status_text.h"
 
@@ -43,21 +44,24 @@ void drawToolbar(WorkbenchState& state) {
     ImGui::BeginDisabled(t.running || t.modelsDir.empty());
     if (ImGui::Button("Evaluate")) state.request(Command::Evaluate);
     ImGui::EndDisabled();
-    ImGui::SameLine();
     if (t.running || t.epoch > 0) {
         const std::string overlay = trainingProgressText(t);
-        ImGui::ProgressBar(float(t.progress), ImVec2(std::max(ImGui::GetFontSize() * 8, ImGui::CalcTextSize(overlay.c_str()).x +
-                                                                                          ImGui::GetFontSize()), 0),
-                           overlay.c_str());
-        ImGui::SameLine();
+        const float barW = std::max(ImGui::GetFontSize() * 8, ImGui::CalcTextSize(overlay.c_str()).x + ImGui::GetFontSize());
+        sameLineIfFits(barW);
+        ImGui::ProgressBar(float(t.progress), ImVec2(barW, 0), overlay.c_str());
         const bool lm = t.trainer != "adam";
-        ImGui::Text("epoch %d  %.1f s  %s %.3g", t.epoch, t.seconds, lm ? "mu" : "learning rate", t.step);
-        ImGui::SameLine();
+        char line[96];
+        std::snprintf(line, sizeof line, "epoch %d  %.1f s  %s %.3g", t.epoch, t.seconds, lm ? "mu" : "learning rate", t.step);
+        sameLineIfFits(ImGui::CalcTextSize(line).x);
+        ImGui::TextUnformatted(line);
     }
+    // The toolbar wraps in a narrow pane instead of cutting the checkboxes off.
+    const float box = ImGui::GetFrameHeight();
+    sameLineIfFits(labelledWidth(box, "mean of all networks"));
     ImGui::Checkbox("mean of all networks", &state.trainingView.aggregate);
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(box, "train"));
     ImGui::Checkbox("train", &state.trainingView.showTrain);
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(box, "validation"));
     ImGui::Checkbox("validation", &state.trainingView.showValidation);
 }
 

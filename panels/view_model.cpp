@@ -113,6 +113,23 @@ void hatchWithoutNetwork(const std::vector<int>& ids, const std::vector<int>& wi
     }
 }
 
+ViewsLayout viewsLayout(ImVec2 avail, ImVec2 spacing, float line, const Image& image) {
+    const float aspect = image.empty() ? 1.f : float(image.width) / float(image.height);
+    // Row: three views side by side, the figures (about 6.5 lines) below them.
+    const float rowW = std::max(16.f, (avail.x - 2 * spacing.x) / 3.f);
+    const float rowH = std::max(16.f, avail.y - 6.5f * line - line);
+    // Grid: two views over two, the figures in the fourth cell; each cell has its title line.
+    const float gridW = std::max(16.f, (avail.x - spacing.x) / 2.f);
+    const float gridH = std::max(16.f, (avail.y - spacing.y) / 2.f - line);
+    // The image is fitted inside the view keeping its aspect: compare the image heights shown.
+    auto shown = [&](float w, float h) { return std::min(h, w / aspect); };
+    ViewsLayout l;
+    l.grid = shown(gridW, gridH) > shown(rowW, rowH);
+    const float w = l.grid ? gridW : rowW, h = l.grid ? gridH : rowH;
+    l.view = ImVec2(w, shown(w, h));
+    return l;
+}
+
 void ViewModel::update(WorkbenchState& s) {
     Key k;
     k.gt = s.reference().revision;

@@ -49,6 +49,16 @@ void hatchWithoutNetwork(const std::vector<int>& ids, const std::vector<int>& wi
 std::vector<int> objectsWithoutNetwork(const std::vector<int>& objectIds, const ModelSet& models,
                                        const PredictionSettings& prediction);
 
+/// Where the Views panel puts its three views: in a row with the figures below, or two over two
+/// with the figures in the fourth cell, whichever shows the image larger in the space there is.
+struct ViewsLayout {
+    bool grid = false;
+    ImVec2 view;  ///< the size of each view (the image is fitted inside, keeping its aspect)
+};
+/// The layout for `avail` (the panel's free content region), ImGui's item spacing, one text line's
+/// height with spacing, and the image shown (its aspect; empty: square).
+ViewsLayout viewsLayout(ImVec2 avail, ImVec2 spacing, float line, const Image& image);
+
 /// One displayable image.
 struct DisplayImage {
     int width = 0, height = 0;

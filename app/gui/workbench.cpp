@@ -229,7 +229,7 @@ void Workbench::drawMenuBar() {
 
 void Workbench::drawStatusBar() {
     if (state_.notice) {
-        panels::drawNotice(state_);
+        panels::drawNotice(state_, false);
         ImGui::SameLine();
     }
     const std::vector<JobInfo> running = jobs_.jobs();
