@@ -34,7 +34,9 @@ void drawRenderSettings(WorkbenchState& state) {
     changed |= ImGui::InputInt("samples per pixel", &r.spp, 16, 256);
     if (r.spp < 1) r.spp = 1;
     int est = r.estimator == Estimator::NEE ? 0 : 1;
-    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    // As wide as its longest entry, so the choice reads in full.
+    ImGui::SetNextItemWidth(ImGui::CalcTextSize("naive (BRDF sampling only)").x + ImGui::GetFrameHeight() +
+                            2 * ImGui::GetStyle().FramePadding.x);
     if (ImGui::Combo("estimator", &est, "next-event estimation\0naive (BRDF sampling only)\0")) {
         r.estimator = est == 0 ? Estimator::NEE : Estimator::Naive;
         changed = true;
@@ -71,7 +73,7 @@ void drawRuns(WorkbenchState& state) {
     const int columns = 1 + int(sizeof headers / sizeof headers[0]);
     if (!ImGui::BeginTable("##runs", columns, flags, ImVec2(0, ImGui::GetFontSize() * 14))) return;
     ImGui::TableSetupScrollFreeze(1, 1);
-    ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFontSize() * 12);
+    ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFontSize() * 9);
     for (const char* h : headers) ImGui::TableSetupColumn(h);
     ImGui::TableHeadersRow();
     for (size_t i = 0; i < state.project.runs.size(); ++i) {
@@ -131,7 +133,9 @@ void drawRuns(WorkbenchState& state) {
         ImGui::PopID();
     }
     ImGui::EndTable();
+    ImGui::PushTextWrapPos(0.f);
     ImGui::TextDisabled("Tick A and B on two training runs to see their predictions side by side.");
+    ImGui::PopTextWrapPos();
 }
 }  // namespace
 
