@@ -44,8 +44,14 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_learning_panels.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_honest_figures.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_leaves_panel.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_workbench_status.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_project_carry.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_runs_compared.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_user_workspace.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_views_layout.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
-    ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp)
+    ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp
+    ${CMAKE_SOURCE_DIR}/app/gui/user_workspace.cpp)
   target_link_libraries(rrf_gui_tests PRIVATE rrf_panels GTest::gtest GTest::gtest_main rrf_warnings)
   target_compile_definitions(rrf_gui_tests PRIVATE RRF_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
   include(GoogleTest)
@@ -66,5 +72,21 @@ if(RRF_BUILD_TESTS)
            COMMAND ${RRF_GUI_RUNNER} $<TARGET_FILE:rrf-workbench> $<TARGET_FILE:rrf_gui_shotcheck>
                    ${CMAKE_SOURCE_DIR}/projects/cornell-box ${CMAKE_BINARY_DIR}/gui_test_session 3
                    ${CMAKE_SOURCE_DIR}/tests/gui/session.json)
-  set_tests_properties(gui_screenshot gui_scripted_session PROPERTIES TIMEOUT 600)
+  # Stop and switch (issue 14): a cancelled render and a stopped training are called what they are,
+  # the prediction keeps the last complete models, Open with unsaved changes asks first, and Save As
+  # carries the runs so that they re-open from the new place.
+  add_test(NAME gui_stop_and_switch
+           COMMAND ${RRF_GUI_RUNNER} $<TARGET_FILE:rrf-workbench> $<TARGET_FILE:rrf_gui_shotcheck>
+                   ${CMAKE_SOURCE_DIR}/projects/cornell-box ${CMAKE_BINARY_DIR}/gui_test_stop_and_switch 3
+                   ${CMAKE_SOURCE_DIR}/tests/gui/session_stop_and_switch.json)
+  # ... at 1280x720, the smallest size the panels are laid out for: its screenshot must show
+  # prediction A | prediction B | difference filled.
+  set_tests_properties(gui_stop_and_switch PROPERTIES ENVIRONMENT RRF_GUI_SIZE=1280x720)
+  # A first start without a project works in the per-user workspace; the bundled project stays clean.
+  add_test(NAME gui_first_start_workspace
+           COMMAND ${CMAKE_SOURCE_DIR}/tests/gui/run_first_start.sh $<TARGET_FILE:rrf-workbench>
+                   ${CMAKE_SOURCE_DIR}/projects/cornell-box ${CMAKE_BINARY_DIR}/share/rrf-workbench/projects/cornell-box
+                   ${CMAKE_BINARY_DIR}/gui_test_first_start ${CMAKE_SOURCE_DIR}/tests/gui/session_first_start.json)
+  set_tests_properties(gui_screenshot gui_scripted_session gui_stop_and_switch gui_first_start_workspace
+                       PROPERTIES TIMEOUT 600)
 endif()

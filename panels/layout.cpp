@@ -61,4 +61,14 @@ void drawWorkspace(PaneLayout& layout, const std::function<void()>& left, const 
     ImGui::EndChild();
 }
 
+void sameLineIfFits(float width) {
+    const float right = ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + width;
+    if (right <= ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
+}
+
+float labelledWidth(float frameWidth, const char* label) {
+    const float text = ImGui::CalcTextSize(label, nullptr, true).x;
+    return text > 0.f ? frameWidth + ImGui::GetStyle().ItemInnerSpacing.x + text : frameWidth;
+}
+
 }  // namespace rrf::panels

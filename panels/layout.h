@@ -16,4 +16,11 @@ namespace rrf::panels {
 void drawWorkspace(PaneLayout& layout, const std::function<void()>& left, const std::function<void()>& centre,
                    const std::function<void()>& bottom);
 
+/// Puts the next item on the current line when `width` pixels still fit in the window's content
+/// region, else starts a new line: toolbars wrap instead of cutting items off in a narrow pane.
+void sameLineIfFits(float width);
+/// The width a widget with frame width `frameWidth` and `label` after it takes (the label's "##"
+/// part is not shown and not counted).
+float labelledWidth(float frameWidth, const char* label);
+
 }  // namespace rrf::panels

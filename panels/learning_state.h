@@ -29,6 +29,12 @@ struct TrainingInfo {
     std::vector<LossCurve> curves;  ///< one per network, in the order they first reported
     std::string runId;           ///< the run the job records (also its directory under runs/)
     std::string modelsDir;       ///< models of the last finished training (absolute path)
+    /// The user stopped the last training: its `networks` of `plannedNetworks` form a partial
+    /// model set, recorded as run `partialRun` (index into project.runs, -1 none) but not shown
+    /// unless the user chooses it; the prediction keeps the last complete set.
+    bool stopped = false;
+    int networks = 0, plannedNetworks = 0;
+    int partialRun = -1;
 };
 
 /// One leaf of a loaded model's kd-tree (core/nn/partition_tree.h), a row of the Leaves panel.
@@ -72,6 +78,7 @@ struct ObjectErrorRow {
 struct EvaluationInfo {
     bool running = false;
     bool valid = false;
+    std::string modelsDir;       ///< the models it judged (absolute), to tell whether they are the ones shown
     Vec3 lightPosition{0.f};
     int referenceSpp = 0;
     /// The ground truth carried its per-pixel variance of the mean: noise floors and corrected
@@ -85,6 +92,15 @@ struct EvaluationInfo {
     std::vector<ObjectErrorRow> rows[kTermCount];
     ErrorStats overall[kTermCount];
     bool available[kTermCount] = {false, false, false};
+};
+
+/// One object of two runs compared side by side (Objects panel while the Views show a run pair):
+/// each run's relative RMSE against the ground truth (NaN when that run has no row for it).
+struct PairedObjectRow {
+    int objectId = -1;
+    std::string name;
+    double a = std::numeric_limits<double>::quiet_NaN(), b = std::numeric_limits<double>::quiet_NaN();
+    double noiseFloor = std::numeric_limits<double>::quiet_NaN();  ///< the ground truth's, the same for both
 };
 
 /// Columns of the Objects table, also the sort keys.

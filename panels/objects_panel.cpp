@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 
 #include <imgui.h>
@@ -149,8 +150,86 @@ std::string objectRowsCsv(const std::vector<ObjectErrorRow>& rows, const char* t
     return csv;
 }
 
+std::vector<PairedObjectRow> pairedObjectRows(const EvaluationInfo& a, const EvaluationInfo& b, Term t) {
+    std::map<int, PairedObjectRow> rows;
+    auto add = [&](const EvaluationInfo& e, bool first) {
+        if (!e.valid) return;
+        for (const ObjectErrorRow& r : e.rows[int(t)]) {
+            PairedObjectRow& p = rows[r.objectId];
+            p.objectId = r.objectId;
+            p.name = r.name;
+            (first ? p.a : p.b) = r.stats.relativeRmse;
+            p.noiseFloor = r.stats.relativeRmseNoiseFloor;
+        }
+    };
+    add(a, true);
+    add(b, false);
+    std::vector<PairedObjectRow> out;
+    for (auto& kv : rows) out.push_back(std::move(kv.second));
+    return out;
+}
+
+std::string objectsTableMismatch(const WorkbenchState& state) {
+    const EvaluationInfo& e = state.evaluation;
+    if (state.view.compareSource == CompareSource::RunPair)
+        return "The Views show two runs: their per-object errors are in the table below.";
+    if (!e.valid) return {};
+    // "runs/x/models/" and "runs/x/models" are one directory.
+    auto normal = [](const std::string& dir) {
+        std::filesystem::path p = std::filesystem::path(dir).lexically_normal();
+        return p.has_filename() ? p : p.parent_path();
+    };
+    // Models live in runs/<run id>/models: the run id names them.
+    auto runOf = [&](const std::string& modelsDir) { return normal(modelsDir).parent_path().filename().string(); };
+    if (state.training.modelsDir.empty())
+        return "This table judged the models of " + runOf(e.modelsDir) + "; no models are loaded now.";
+    if (!e.modelsDir.empty() && normal(e.modelsDir) != normal(state.training.modelsDir))
+        return "This table judged the models of " + runOf(e.modelsDir) + "; the prediction shows " +
+               runOf(state.training.modelsDir) + ". Press Evaluate for the models shown.";
+    if (state.view.compareSource == CompareSource::Run)
+        return "This table judged the prediction; the Views compare a saved run instead.";
+    return {};
+}
+
+namespace {
+void drawPairTable(WorkbenchState& state) {
+    const RunPair& p = state.runPair;
+    if (!p.errorsA.valid && !p.errorsB.valid) {
+        ImGui::TextDisabled("No per-object errors: render a ground truth, then compare the runs again.");
+        return;
+    }
+    const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
+                                  ImGuiTableFlags_Resizable | ImGuiTableFlags_SizingStretchProp;
+    if (!ImGui::BeginTable("##pair", 5, flags)) return;
+    ImGui::TableSetupScrollFreeze(0, 1);
+    const std::string a = "A " + p.nameA + " rel. RMSE", b = "B " + p.nameB + " rel. RMSE";
+    ImGui::TableSetupColumn("object");
+    ImGui::TableSetupColumn(a.c_str());
+    ImGui::TableSetupColumn(b.c_str());
+    ImGui::TableSetupColumn("B - A");
+    ImGui::TableSetupColumn("noise floor");
+    ImGui::TableHeadersRow();
+    for (const PairedObjectRow& r : pairedObjectRows(p.errorsA, p.errorsB, state.view.term)) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::Text("#%d %s", r.objectId, r.name.c_str());
+        for (double v : {r.a, r.b, r.b - r.a, r.noiseFloor}) {
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(noiseFigureText(v).c_str());
+        }
+    }
+    ImGui::EndTable();
+}
+}  // namespace
+
 void drawObjectsPanel(WorkbenchState& state) {
     drawHeader(state);
+    const std::string mismatch = objectsTableMismatch(state);
+    if (!mismatch.empty()) ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", mismatch.c_str());
+    if (state.view.compareSource == CompareSource::RunPair) {
+        drawPairTable(state);
+        return;
+    }
     const EvaluationInfo& e = state.evaluation;
     const int t = int(state.view.term);
     if (!e.valid) return;

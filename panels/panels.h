@@ -52,6 +52,13 @@ bool setPartition(WorkbenchState& state, const PartitionSettings& partition);
 EvaluationInfo evaluationInfo(const Evaluation& e, const Scene& scene, const ModelSet& models);
 /// The rows of one term sorted by `column` (stable; ties keep object order).
 std::vector<ObjectErrorRow> sortedObjectRows(const std::vector<ObjectErrorRow>& rows, ObjectColumn column, bool ascending);
+/// The per-object rows of two evaluations of term `t` merged by object id (ascending): run A's and run
+/// B's relative RMSE side by side, with the ground truth's noise floor.
+std::vector<PairedObjectRow> pairedObjectRows(const EvaluationInfo& a, const EvaluationInfo& b, Term t);
+/// Why the Objects table does not describe the models the Views show, or empty when it does: it
+/// judged other models than the loaded ones (a later training, a re-opened run), or the Views show
+/// a run pair or a render run instead of the prediction.
+std::string objectsTableMismatch(const WorkbenchState& state);
 /// The table as CSV: a header line, then one line per row (object names quoted).
 std::string objectRowsCsv(const std::vector<ObjectErrorRow>& rows, const char* term);
 /// Accuracy-versus-time points of the project's training runs that were evaluated (raw errors, each

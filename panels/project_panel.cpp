@@ -7,7 +7,9 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "core/project/run_summary.h"
 #include "panels/panels.h"
+#include "panels/status_text.h"
 
 namespace rrf::panels {
 
@@ -19,6 +21,12 @@ std::string numberText(std::optional<double> v, const char* fmt) {
     return buf;
 }
 
+/// "0.0123 (0.0040)": the held-out error with its noise floor; "-" parts when unknown.
+std::string errorWithFloorText(const RunSummary& r) {
+    if (!r.error && !r.noiseFloor) return "-";
+    return numberText(r.error, "%.3g") + " (" + numberText(r.noiseFloor, "%.2g") + ")";
+}
+
 void drawRenderSettings(WorkbenchState& state) {
     RenderSettings& r = state.project.render;
     bool changed = false;
@@ -26,7 +34,9 @@ void drawRenderSettings(WorkbenchState& state) {
     changed |= ImGui::InputInt("samples per pixel", &r.spp, 16, 256);
     if (r.spp < 1) r.spp = 1;
     int est = r.estimator == Estimator::NEE ? 0 : 1;
-    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    // As wide as its longest entry, so the choice reads in full.
+    ImGui::SetNextItemWidth(ImGui::CalcTextSize("naive (BRDF sampling only)").x + ImGui::GetFrameHeight() +
+                            2 * ImGui::GetStyle().FramePadding.x);
     if (ImGui::Combo("estimator", &est, "next-event estimation\0naive (BRDF sampling only)\0")) {
         r.estimator = est == 0 ? Estimator::NEE : Estimator::Naive;
         changed = true;
@@ -58,43 +68,74 @@ void drawRuns(WorkbenchState& state) {
     // Horizontal scrolling keeps the name column readable in a narrow left pane.
     const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_Resizable |
                                   ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit;
-    if (!ImGui::BeginTable("##runs", 6, flags, ImVec2(0, ImGui::GetFontSize() * 14))) return;
-    ImGui::TableSetupScrollFreeze(0, 1);
-    ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFontSize() * 12);
-    ImGui::TableSetupColumn("kind");
-    ImGui::TableSetupColumn("spp");
-    ImGui::TableSetupColumn("rel. err");
-    ImGui::TableSetupColumn("time (s)");
-    ImGui::TableSetupColumn("");
+    const char* headers[] = {"A", "B", "kind", "state", "trainer", "hidden", "leaves", "records", "spp", "time (s)",
+                             "rel. RMSE (noise floor)", "frame (ms)", ""};
+    const int columns = 1 + int(sizeof headers / sizeof headers[0]);
+    if (!ImGui::BeginTable("##runs", columns, flags, ImVec2(0, ImGui::GetFontSize() * 14))) return;
+    ImGui::TableSetupScrollFreeze(1, 1);
+    ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFontSize() * 9);
+    for (const char* h : headers) ImGui::TableSetupColumn(h);
     ImGui::TableHeadersRow();
     for (size_t i = 0; i < state.project.runs.size(); ++i) {
         Run& run = state.project.runs[i];
+        const RunSummary r = summarizeRun(run);
         ImGui::PushID(run.id.c_str());
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::SetNextItemWidth(-1);
         if (ImGui::InputText("##name", &run.name)) state.markDirty();
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\ncreated %s", run.id.c_str(), run.created.c_str());
+        // A and B: the two training runs the Views show side by side (prediction A | B | difference).
+        for (int* pick : {&state.runPair.a, &state.runPair.b}) {
+            ImGui::TableNextColumn();
+            if (run.kind != "train") continue;
+            bool on = *pick == int(i);
+            if (ImGui::Checkbox(pick == &state.runPair.a ? "##a" : "##b", &on)) {
+                *pick = on ? int(i) : -1;
+                if (state.runPair.a >= 0 && state.runPair.b >= 0 && state.runPair.a != state.runPair.b)
+                    state.request(Command::CompareRunPair);
+            }
+        }
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(run.kind.c_str());
+        ImGui::TextUnformatted(r.kind.c_str());
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(numberText(run.metric("spp"), "%.0f").c_str());
+        if (r.stopped) ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", r.status.c_str());
+        else ImGui::TextUnformatted(r.status.c_str());
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(numberText(run.metric("relative_error"), "%.2e").c_str());
+        ImGui::TextUnformatted(r.trainer.empty() ? "-" : r.trainer.c_str());
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(numberText(run.timing("render"), "%.2f").c_str());
+        ImGui::TextUnformatted(hiddenText(r.hidden).c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(numberText(r.leaves ? std::optional<double>(*r.leaves) : std::nullopt, "%.0f").c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(numberText(r.records, "%.0f").c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(numberText(r.spp, "%.0f").c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(numberText(r.seconds, "%.2f").c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(errorWithFloorText(r).c_str());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(numberText(r.frameSeconds ? std::optional<double>(*r.frameSeconds * 1e3) : std::nullopt,
+                                          r.frameGlsl ? "%.2f GLSL" : "%.1f CPU")
+                                   .c_str());
         ImGui::TableNextColumn();
         if (ImGui::SmallButton("Re-open")) state.request(Command::ReopenRun, {}, int(i));
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Restore this run's settings and show its images");
         ImGui::SameLine();
         const bool comparing = state.compareRun == int(i);
         if (ImGui::SmallButton(comparing ? "Comparing" : "Compare")) state.request(Command::CompareRun, {}, int(i));
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show this run next to the ground truth, with the error map");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(run.kind == "train" ? "Show this run's models' prediction next to the ground truth"
+                                                  : "Show this run next to the ground truth, with the error map");
         ImGui::SameLine();
         if (ImGui::SmallButton("Delete")) state.request(Command::DeleteRun, {}, int(i));
         ImGui::PopID();
     }
     ImGui::EndTable();
+    ImGui::PushTextWrapPos(0.f);
+    ImGui::TextDisabled("Tick A and B on two training runs to see their predictions side by side.");
+    ImGui::PopTextWrapPos();
 }
 }  // namespace
 
@@ -107,6 +148,7 @@ void drawProjectPanel(WorkbenchState& state) {
     ImGui::SameLine();
     if (ImGui::Button("Save as...")) state.request(Command::SaveProjectAs);
 
+    if (state.notice && state.notice->panel == "Project") drawNotice(state);
     if (!state.hasProject) {
         ImGui::TextDisabled("No project is open.");
         return;

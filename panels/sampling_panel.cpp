@@ -8,6 +8,7 @@
 #include "core/data/record_layout.h"
 #include "core/data/sampling_settings.h"
 #include "panels/panels.h"
+#include "panels/status_text.h"
 
 namespace rrf::panels {
 
@@ -132,7 +133,12 @@ void drawSamplingPanel(WorkbenchState& state) {
         ImGui::SameLine();
         ImGui::ProgressBar(float(state.dataset.progress), ImVec2(ImGui::GetFontSize() * 10, 0));
     }
-    if (ImGui::CollapsingHeader("Coverage per object", ImGuiTreeNodeFlags_DefaultOpen)) drawCoverage(state.dataset);
+    if (state.notice && state.notice->panel == "Sampling") drawNotice(state);
+    if (ImGui::CollapsingHeader("Coverage per object", ImGuiTreeNodeFlags_DefaultOpen)) {
+        const std::string stale = datasetStaleReason(state.dataset, state.project);
+        if (!stale.empty()) ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", stale.c_str());
+        drawCoverage(state.dataset);
+    }
 }
 
 }  // namespace rrf::panels

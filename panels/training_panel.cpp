@@ -9,7 +9,9 @@
 #include <imgui.h>
 
 #include "panels/panels.h"
+#include "panels/layout.h"
 #include "panels/plot.h"
+#include "panels/status_text.h"
 
 namespace rrf::panels {
 
@@ -42,20 +44,24 @@ void drawToolbar(WorkbenchState& state) {
     ImGui::BeginDisabled(t.running || t.modelsDir.empty());
     if (ImGui::Button("Evaluate")) state.request(Command::Evaluate);
     ImGui::EndDisabled();
-    ImGui::SameLine();
     if (t.running || t.epoch > 0) {
-        char overlay[64];
-        std::snprintf(overlay, sizeof overlay, "%.0f%%%s", 100 * t.progress, t.running ? "" : "  done");
-        ImGui::ProgressBar(float(t.progress), ImVec2(ImGui::GetFontSize() * 8, 0), overlay);
-        ImGui::SameLine();
+        const std::string overlay = trainingProgressText(t);
+        const float barW = std::max(ImGui::GetFontSize() * 8, ImGui::CalcTextSize(overlay.c_str()).x + ImGui::GetFontSize());
+        sameLineIfFits(barW);
+        ImGui::ProgressBar(float(t.progress), ImVec2(barW, 0), overlay.c_str());
         const bool lm = t.trainer != "adam";
-        ImGui::Text("epoch %d  %.1f s  %s %.3g", t.epoch, t.seconds, lm ? "mu" : "learning rate", t.step);
-        ImGui::SameLine();
+        char line[96];
+        std::snprintf(line, sizeof line, "epoch %d  %.1f s  %s %.3g", t.epoch, t.seconds, lm ? "mu" : "learning rate", t.step);
+        sameLineIfFits(ImGui::CalcTextSize(line).x);
+        ImGui::TextUnformatted(line);
     }
+    // The toolbar wraps in a narrow pane instead of cutting the checkboxes off.
+    const float box = ImGui::GetFrameHeight();
+    sameLineIfFits(labelledWidth(box, "mean of all networks"));
     ImGui::Checkbox("mean of all networks", &state.trainingView.aggregate);
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(box, "train"));
     ImGui::Checkbox("train", &state.trainingView.showTrain);
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(box, "validation"));
     ImGui::Checkbox("validation", &state.trainingView.showValidation);
 }
 
@@ -101,10 +107,21 @@ void drawCurve(ImDrawList* dl, const std::vector<LossPoint>& pts, bool validatio
     }
     flush();
 }
-}  // namespace
 
-void drawTrainingPanel(WorkbenchState& state) {
-    drawToolbar(state);
+/// After a stop: what the prediction shows, and the choice of the partial models.
+void drawStoppedChoice(WorkbenchState& state) {
+    const TrainingInfo& t = state.training;
+    if (t.running || !t.stopped || t.partialRun < 0 || t.partialRun >= int(state.project.runs.size())) return;
+    ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "Training %s.", trainingProgressText(t).c_str());
+    ImGui::SameLine();
+    ImGui::TextDisabled(t.modelsDir.empty() ? "No prediction is shown." : "The prediction keeps the last complete models.");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Use the partial models")) state.request(Command::CompareRun, {}, t.partialRun);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("show the stopped run's networks; objects without one are drawn hatched magenta");
+}
+
+void drawTrainingBody(WorkbenchState& state) {
     TrainingView& v = state.trainingView;
     v.hoverCurve = v.hoverEpoch = -1;
     const Shown shown = shownCurves(state);
@@ -171,6 +188,14 @@ void drawTrainingPanel(WorkbenchState& state) {
         else ImGui::TextUnformatted(curves[c].label().c_str());
     }
     ImGui::EndGroup();
+}
+}  // namespace
+
+void drawTrainingPanel(WorkbenchState& state) {
+    drawToolbar(state);
+    if (state.notice && state.notice->panel == "Training") drawNotice(state);
+    drawStoppedChoice(state);
+    drawTrainingBody(state);
 }
 
 }  // namespace rrf::panels

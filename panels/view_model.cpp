@@ -80,9 +80,59 @@ void tintByLeaf(const std::vector<int>& ids, const std::vector<int>& leaf, std::
     }
 }
 
+std::vector<int> objectsWithoutNetwork(const std::vector<int>& objectIds, const ModelSet& models,
+                                       const PredictionSettings& prediction) {
+    std::vector<bool> seen;
+    for (int id : objectIds) {
+        if (id < 0) continue;
+        if (size_t(id) >= seen.size()) seen.resize(size_t(id) + 1, false);
+        seen[size_t(id)] = true;
+    }
+    const bool learnedDirect = prediction.direct == PredictionSettings::Direct::Network;
+    std::vector<int> out;
+    for (int id = 0; id < int(seen.size()); ++id) {
+        if (!seen[size_t(id)]) continue;
+        const ObjectNetworks* n = models.find(id);
+        const bool whole = n && (n->has("global") || n->has("joint"));
+        const bool predicted = whole || (n && n->has("indirect") && (!learnedDirect || n->has("direct")));
+        if (!predicted) out.push_back(id);
+    }
+    return out;
+}
+
+void hatchWithoutNetwork(const std::vector<int>& ids, const std::vector<int>& without, int width, std::vector<uint8_t>& rgba) {
+    if (without.empty() || width <= 0 || 4 * ids.size() != rgba.size()) return;
+    for (size_t i = 0; i < ids.size(); ++i) {
+        if (ids[i] < 0 || std::find(without.begin(), without.end(), ids[i]) == without.end()) continue;
+        const int x = int(i % size_t(width)), y = int(i / size_t(width));
+        if ((x + y) % 4 >= 2) continue;
+        rgba[4 * i] = 255;
+        rgba[4 * i + 1] = 0;
+        rgba[4 * i + 2] = 255;
+        rgba[4 * i + 3] = 255;
+    }
+}
+
+ViewsLayout viewsLayout(ImVec2 avail, ImVec2 spacing, float line, const Image& image) {
+    const float aspect = image.empty() ? 1.f : float(image.width) / float(image.height);
+    // Row: three views side by side, the figures (about 6.5 lines) below them.
+    const float rowW = std::max(16.f, (avail.x - 2 * spacing.x) / 3.f);
+    const float rowH = std::max(16.f, avail.y - 6.5f * line - line);
+    // Grid: two views over two, the figures in the fourth cell; each cell has its title line.
+    const float gridW = std::max(16.f, (avail.x - spacing.x) / 2.f);
+    const float gridH = std::max(16.f, (avail.y - spacing.y) / 2.f - line);
+    // The image is fitted inside the view keeping its aspect: compare the image heights shown.
+    auto shown = [&](float w, float h) { return std::min(h, w / aspect); };
+    ViewsLayout l;
+    l.grid = shown(gridW, gridH) > shown(rowW, rowH);
+    const float w = l.grid ? gridW : rowW, h = l.grid ? gridH : rowH;
+    l.view = ImVec2(w, shown(w, h));
+    return l;
+}
+
 void ViewModel::update(WorkbenchState& s) {
     Key k;
-    k.gt = s.groundTruth.revision;
+    k.gt = s.reference().revision;
     k.cmp = s.compared().revision;
     k.source = s.view.compareSource;
     k.term = s.view.term;
@@ -100,7 +150,7 @@ void ViewModel::update(WorkbenchState& s) {
     const bool errorChanged = sourcesChanged || k.metric != key_.metric;
     key_ = k;
 
-    const Image& ref = s.groundTruth.term(s.view.term);
+    const Image& ref = s.reference().term(s.view.term);
     const Image& cmp = s.compared().term(s.view.term);
     // Highlighting needs the id buffer to match the image; a render at another size is shown undimmed.
     auto idsFor = [&](const Image& img) -> const std::vector<int>* {
@@ -111,16 +161,17 @@ void ViewModel::update(WorkbenchState& s) {
         d.height = img.height;
         d.revision = ++counter_;
         if (img.empty()) d.rgba.clear();
-        else if (error) falseColourRgba(img, s.view.errorMax, idsFor(img), k.selected, s.groundTruth.footprint.get(), d.rgba);
+        else if (error) falseColourRgba(img, s.view.errorMax, idsFor(img), k.selected, s.reference().footprint.get(), d.rgba);
         else toneMapRgba(img, s.view.exposure, idsFor(img), k.selected, d.rgba);
     };
     if (errorChanged) error_ = viewErrorMap(ref, cmp, s.view.metric);
-    if (sourcesChanged) stats_ = viewErrorStats(s.groundTruth, s.compared(), s.view.term);
+    if (sourcesChanged) stats_ = viewErrorStats(s.reference(), s.compared(), s.view.term);
     s.view.errorStats = stats_;
     fill(views_[kReference], ref, false);
     fill(views_[kCompared], cmp, false);
     if (k.leaves && cmp.width == s.leaves.width && cmp.height == s.leaves.height && idsFor(cmp))
         tintByLeaf(s.objectIds, s.leaves.pixelLeaf, views_[kCompared].rgba);
+    if (idsFor(cmp)) hatchWithoutNetwork(s.objectIds, s.compared().withoutNetwork, cmp.width, views_[kCompared].rgba);
     fill(views_[kError], error_, true);
 }
 

@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "core/eval/error_metrics.h"
+#include "core/nn/model_set.h"
+#include "core/predict/prediction_settings.h"
 #include "core/util/image.h"
 #include "panels/workbench_state.h"
 
@@ -34,6 +36,28 @@ ViewErrorStats viewErrorStats(const ImageSet& groundTruth, const ImageSet& compa
 /// Tints `rgba` (the compared view) half-way towards a colour per (object, leaf), so the kd-tree
 /// cells show; pixels with leaf −1 stay as they are. Sizes must agree (else nothing changes).
 void tintByLeaf(const std::vector<int>& objectIds, const std::vector<int>& pixelLeaf, std::vector<uint8_t>& rgba);
+
+/// Marks the pixels of objects in `without` (ImageSet::withoutNetwork: no network predicts them) in
+/// `rgba` with magenta diagonal stripes (two pixels of every four), so a partial model set never
+/// shows those objects as plain black or as if predicted; the other pixels keep the image. `ids`
+/// is the object-id buffer (width `width`); sizes must agree (else nothing changes).
+void hatchWithoutNetwork(const std::vector<int>& ids, const std::vector<int>& without, int width, std::vector<uint8_t>& rgba);
+
+/// The objects seen in `objectIds` (the view's id buffer) that `models` cannot predict with
+/// `prediction`: without an indirect (or global / joint) network, and with learned direct light also
+/// without a direct one. Sorted ids; what ImageSet::withoutNetwork holds for a prediction.
+std::vector<int> objectsWithoutNetwork(const std::vector<int>& objectIds, const ModelSet& models,
+                                       const PredictionSettings& prediction);
+
+/// Where the Views panel puts its three views: in a row with the figures below, or two over two
+/// with the figures in the fourth cell, whichever shows the image larger in the space there is.
+struct ViewsLayout {
+    bool grid = false;
+    ImVec2 view;  ///< the size of each view (the image is fitted inside, keeping its aspect)
+};
+/// The layout for `avail` (the panel's free content region), ImGui's item spacing, one text line's
+/// height with spacing, and the image shown (its aspect; empty: square).
+ViewsLayout viewsLayout(ImVec2 avail, ImVec2 spacing, float line, const Image& image);
 
 /// One displayable image.
 struct DisplayImage {

@@ -13,7 +13,10 @@
 #include <imgui.h>
 
 #include "core/scene/camera_rays.h"
+#include "panels/layout.h"
 #include "panels/panels.h"
+#include "panels/status_text.h"
+#include "panels/view_model.h"
 #include "panels/view_model.h"
 
 namespace rrf::panels {
@@ -72,8 +75,8 @@ void drawToolbar(WorkbenchState& state) {
     ImGui::SameLine();
     if (r.running || r.spp > 0) {
         char overlay[128];
-        std::snprintf(overlay, sizeof overlay, "%d/%d spp  noise (rel. RMSE of the mean) %s%s", r.spp, r.targetSpp,
-                      noiseFigureText(r.relativeNoise).c_str(), r.running ? "" : "  done");
+        std::snprintf(overlay, sizeof overlay, "%s  noise (rel. RMSE of the mean) %s", renderProgressText(r).c_str(),
+                      noiseFigureText(r.relativeNoise).c_str());
         ImGui::ProgressBar(r.targetSpp > 0 ? float(r.spp) / float(r.targetSpp) : 0.f, ImVec2(ImGui::GetFontSize() * 24, 0),
                            overlay);
         if (ImGui::IsItemHovered())
@@ -92,28 +95,33 @@ void drawToolbar(WorkbenchState& state) {
     }
 
     const float w = ImGui::GetFontSize() * 7;
+    const float box = ImGui::GetFrameHeight();  // a checkbox's square
+    // Each item goes on the line when it fits, else the toolbar wraps (nothing is cut off).
     ImGui::SetNextItemWidth(w);
     enumCombo("term", v.term, kTermMenu, termName);
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(w, "exposure"));
     ImGui::SetNextItemWidth(w);
     ImGui::SliderFloat("exposure", &v.exposure, -8.f, 8.f, "%+.1f EV");
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(w * 2.4f);
+    // The error combo is as wide as its longest entry's preview needs, so the metric is readable.
+    const float metricW = ImGui::CalcTextSize(errorMapLabel(v.metric)).x + ImGui::GetFrameHeight() +
+                          2 * ImGui::GetStyle().FramePadding.x;
+    sameLineIfFits(labelledWidth(metricW, "error"));
+    ImGui::SetNextItemWidth(metricW);
     enumCombo("error", v.metric, kErrorMapKinds, errorMapLabel);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("per channel, averaged over R, G, B (d = compared - ground truth):\nthe metric rrf evaluate and the Objects table report");
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(w, "scale max"));
     ImGui::SetNextItemWidth(w);
     ImGui::DragFloat("scale max", &v.errorMax, v.errorMax * 0.01f + 1e-6f, 1e-6f, 1e6f, "%.3g",
                      ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(box, "highlight"));
     ImGui::Checkbox("highlight", &v.highlight);
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(box, "leaves"));
     ImGui::Checkbox("leaves", &v.leafOverlay);  // tint the compared view by kd-tree leaf
-    ImGui::SameLine();
     int source = int(v.compareSource);
+    sameLineIfFits(labelledWidth(w * 1.3f, "middle view"));
     ImGui::SetNextItemWidth(w * 1.3f);
-    if (ImGui::Combo("middle view", &source, "prediction\0compared run\0")) v.compareSource = CompareSource(source);
+    if (ImGui::Combo("middle view", &source, "prediction\0compared run\0run pair (A | B)\0")) v.compareSource = CompareSource(source);
 }
 
 /// Draws one view and handles zoom/pan on it; returns true while the mouse is over it.
@@ -121,7 +129,10 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
     ViewState& v = state.view;
     ImGui::PushID(index);
     ImGui::BeginGroup();
+    // A long title wraps within its view rather than running under the next one.
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + size.x);
     ImGui::TextUnformatted(title);
+    ImGui::PopTextWrapPos();
     const ImVec2 pos = ImGui::GetCursorScreenPos();
     ImGui::InvisibleButton("##canvas", size);
     const bool hovered = ImGui::IsItemHovered();
@@ -180,6 +191,10 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
 /// The figures of the error map: `rrf evaluate`'s overall row for the term, and what it leaves out.
 void drawErrorFigures(const WorkbenchState& state) {
     const ViewErrorStats& f = state.view.errorStats;
+    if (!f.valid && state.view.compareSource == CompareSource::RunPair) {
+        ImGui::TextDisabled("Run pair: the error map is |B - A|, prediction against prediction (no noise floor).");
+        return;
+    }
     if (!f.valid) {
         ImGui::TextDisabled(state.groundTruth.footprint ? "Error figures: need a compared image of the ground truth's size."
                                                         : "Error figures: need the ground truth's footprint mask (render it).");
@@ -238,7 +253,7 @@ void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp
     }
     const Vec3 r = ref.at(v.hoverX, v.hoverY);
     ImGui::Text("pixel (%d, %d)  %s", v.hoverX, v.hoverY, objectUnder(state, v.hoverX, v.hoverY, ref.width, ref.height).c_str());
-    ImGui::Text("ground truth (%.4g, %.4g, %.4g)", r.x, r.y, r.z);
+    ImGui::Text("%s (%.4g, %.4g, %.4g)", v.compareSource == CompareSource::RunPair ? "A" : "ground truth", r.x, r.y, r.z);
     if (!cmp.empty() && v.hoverX < cmp.width && v.hoverY < cmp.height) {
         const Vec3 c = cmp.at(v.hoverX, v.hoverY);
         ImGui::SameLine();
@@ -259,37 +274,54 @@ void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp
 
 void drawViewsPanel(WorkbenchState& state) {
     drawToolbar(state);
-    const Image& ref = state.groundTruth.term(state.view.term);
+    if (state.notice && state.notice->panel == "Views") drawNotice(state);
+    const Image& ref = state.reference().term(state.view.term);
     const Image& cmp = state.compared().term(state.view.term);
-    const float spacing = ImGui::GetStyle().ItemSpacing.x;
-    const float footer = ImGui::GetTextLineHeightWithSpacing() * 6.5f;
-    const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const float w = std::max(16.f, (avail.x - 2 * spacing) / 3.f);
-    const float h = std::max(16.f, avail.y - footer - ImGui::GetTextLineHeightWithSpacing());
-    const float side = std::min(w, h);
-    const ImVec2 size(w, side);
-
-    char gtTitle[96];
-    std::snprintf(gtTitle, sizeof gtTitle, "Ground truth (%s, %d spp)", termName(state.view.term), state.render.spp);
+    const bool pair = state.view.compareSource == CompareSource::RunPair;
+    if (pair) {
+        ImGui::TextColored(ImVec4(0.5f, 0.8f, 1.f, 1.f), "Comparing run A '%s' | run B '%s' | difference B - A",
+                           state.runPair.nameA.c_str(), state.runPair.nameB.c_str());
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Back to the ground truth")) state.view.compareSource = CompareSource::Prediction;
+    }
     const ImageSet& compared = state.compared();
+    const ViewsLayout layout = viewsLayout(ImGui::GetContentRegionAvail(), ImGui::GetStyle().ItemSpacing,
+                                           ImGui::GetTextLineHeightWithSpacing(), ref.empty() ? cmp : ref);
+    const ImVec2 size = layout.view;
+
+    char gtTitle[160];
+    if (pair) std::snprintf(gtTitle, sizeof gtTitle, "A: %s", state.runPair.imagesA.label.c_str());
+    else std::snprintf(gtTitle, sizeof gtTitle, "Ground truth (%s, %d spp)", termName(state.view.term), state.render.spp);
     const std::string cmpTitle = compared.empty() ? std::string(state.view.compareSource == CompareSource::Run ? "Compared run" : "Prediction")
                                                   : compared.label;
-    const std::string errTitle = std::string("Error: ") + errorMapLabel(state.view.metric);
+    const std::string errTitle = std::string(pair ? "Difference B vs A: " : "Error: ") + errorMapLabel(state.view.metric);
 
     ImVec2 hover(-1, -1);
     bool over = drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
     ImGui::SameLine();
     over |= drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
-    ImGui::SameLine();
+    if (!layout.grid) ImGui::SameLine();
     static const Image kNoImage;
     const bool comparable = !cmp.empty() && cmp.width == ref.width && cmp.height == ref.height;
     over |= drawView(state, ViewModel::kError, errTitle.c_str(), comparable ? ref : kNoImage, size, hover);
     state.view.hoverX = over ? int(hover.x) : -1;
     state.view.hoverY = over ? int(hover.y) : -1;
 
+    // In the grid the figures fill the cell beside the error map; in a row they go below.
+    if (layout.grid) {
+        ImGui::SameLine();
+        ImGui::BeginGroup();
+        ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + size.x);
+    }
     drawErrorFigures(state);
+    const std::string partial = withoutNetworkText(compared, state.project.scene);
+    if (!partial.empty()) ImGui::TextColored(ImVec4(1.f, 0.3f, 1.f, 1.f), "%s", partial.c_str());
     drawReadout(state, ref, cmp);
-    drawLegend(state.view, std::min(w, ImGui::GetFontSize() * 18));
+    drawLegend(state.view, std::min(size.x, ImGui::GetFontSize() * 18));
+    if (layout.grid) {
+        ImGui::PopTextWrapPos();
+        ImGui::EndGroup();
+    }
 }
 
 }  // namespace rrf::panels

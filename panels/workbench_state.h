@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,8 @@
 namespace rrf::panels {
 
 /// What the middle view shows: the trained models' prediction or a saved run's images.
-enum class CompareSource { Prediction, Run };
+/// RunPair: two training runs side by side, prediction A | prediction B | their difference.
+enum class CompareSource { Prediction, Run, RunPair };
 
 /// Things panels ask the application to do.
 enum class Command {
@@ -49,6 +51,7 @@ enum class Command {
     SaveRun,          ///< record the current ground truth as a run
     ReopenRun,        ///< index: restore the run's settings and show its images as the ground truth
     CompareRun,       ///< index: show the run's images in the compare view, the error against it
+    CompareRunPair,   ///< show the predictions of runPair.a and runPair.b side by side
     DeleteRun,        ///< index
     ExportImages,     ///< path: a directory
     ExportScreenshot, ///< path: a PNG file
@@ -73,6 +76,9 @@ struct ImageSet {
     /// size; core/predict/footprint_mask.h): the pixels every error against them is measured over,
     /// as `rrf evaluate` measures. Null when unknown (e.g. a re-opened run's images).
     std::shared_ptr<const FootprintMask> footprint;
+    /// Objects in view the images have no prediction for (a partial model set: a stopped training).
+    /// The Views draw them hatched magenta with a legend, never as silent black.
+    std::vector<int> withoutNetwork;
     std::string label;      ///< shown above the view, e.g. "ground truth, 64 spp"
     uint64_t revision = 0;  ///< new value whenever the images change (drives the view cache and uploads)
 
@@ -115,6 +121,8 @@ struct ViewState {
 /// Progress of the ground-truth render, as last published by its job.
 struct RenderProgress {
     bool running = false;
+    /// The last render stopped before its target (the user stopped it, or an edit replaced it).
+    bool cancelled = false;
     int spp = 0, targetSpp = 0;
     /// The image's relative noise: the relative RMSE noise floor of the global term over the
     /// footprint mask (core/eval/reference_noise.h, the error a perfect prediction would show against
@@ -135,6 +143,29 @@ struct DatasetInfo {
     std::vector<std::string> objectNames;  ///< the scene's objects when it was generated (index = id)
     GeneratorStats generator;
     double seconds = 0.0;
+    /// What the dataset at `path` was generated with, so the coverage table can say it is stale.
+    std::optional<SamplingSettings> madeWith;
+    uint64_t sceneHash = 0;      ///< Scene::contentHash() it was generated for (0 = unknown)
+    bool lastCancelled = false;  ///< the generation after it was cancelled (nothing was written)
+};
+
+/// A problem (or warning) shown where the user is looking, besides the Log: in the status bar and
+/// at the top of the panel it concerns, until dismissed or replaced by a newer one.
+struct Notice {
+    LogLevel level = LogLevel::Error;
+    std::string panel;  ///< the tab it concerns ("Training", "Project", ...); empty: status bar only
+    std::string text;
+};
+
+/// Two training runs compared side by side (runs table A / B): their models' predictions at the
+/// current light and, when a ground truth is shown, their per-object errors against it.
+struct RunPair {
+    int a = -1, b = -1;            ///< indices into project.runs, -1 = not chosen
+    bool running = false;          ///< the job predicting them runs
+    ImageSet imagesA, imagesB;     ///< the predictions (labels name the runs)
+    /// Per-object errors of each against the ground truth (valid = false without one).
+    EvaluationInfo errorsA, errorsB;
+    std::string nameA, nameB;      ///< run names at the time of the comparison
 };
 
 struct WorkbenchState {
@@ -167,8 +198,10 @@ struct WorkbenchState {
     ImTextureID viewTextures[3] = {nullptr, nullptr, nullptr};
 
     int compareRun = -1;  ///< index into project.runs shown in the compare view, -1 = none
+    RunPair runPair;
     std::vector<std::string> recent;
     Log log;
+    std::optional<Notice> notice;  ///< the newest undismissed problem (panels/status_text.h draws it)
     std::vector<Request> requests;
     /// A tab the application wants in front ("Training", "Objects", ...); cleared once shown.
     std::string focusTab;
@@ -177,10 +210,23 @@ struct WorkbenchState {
         requests.push_back({c, std::move(path), index});
     }
     void markDirty() { dirty = true; }
+    /// Logs `text` and makes it the notice shown in the status bar and in `panel`.
+    void notify(LogLevel level, const std::string& panel, const std::string& text) {
+        log.add(level, text);
+        notice = Notice{level, panel, text};
+    }
     /// Name for titles: the project's name, else its file name, else "untitled".
     std::string projectName() const;
-    /// The images of the middle view (the prediction or the compared run, per view.compareSource).
-    const ImageSet& compared() const { return view.compareSource == CompareSource::Run ? compare : prediction; }
+    /// The images of the middle view (the prediction, the compared run, or run B of a pair, per
+    /// view.compareSource).
+    const ImageSet& compared() const {
+        return view.compareSource == CompareSource::Run       ? compare
+               : view.compareSource == CompareSource::RunPair ? runPair.imagesB
+                                                              : prediction;
+    }
+    /// The images of the left view, what the error map measures against: the ground truth, or run A
+    /// of a pair.
+    const ImageSet& reference() const { return view.compareSource == CompareSource::RunPair ? runPair.imagesA : groundTruth; }
 };
 
 }  // namespace rrf::panels

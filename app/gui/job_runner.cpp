@@ -12,6 +12,7 @@ const char* jobKindName(JobKind kind) {
         case JobKind::Evaluate: return "evaluate";
         case JobKind::Predict: return "predict";
         case JobKind::Sweep: return "sweep";
+        case JobKind::Compare: return "compare";
     }
     return "job";
 }
@@ -21,6 +22,7 @@ bool jobsConflict(JobKind a, JobKind b) {
     // A sweep renders, generates and trains in its own memory and writes no project files; it only
     // competes for the cores, which the user decides about.
     if (a == JobKind::Sweep || b == JobKind::Sweep) return false;
+    if (a == JobKind::Compare || b == JobKind::Compare) return false;  // its own models, copied images
     auto pair = [&](JobKind x, JobKind y) { return (a == x && b == y) || (a == y && b == x); };
     // Training reads the dataset being generated; evaluation reads the models being trained and
     // compares against the ground truth being rendered.

@@ -1,7 +1,8 @@
-// rrf-workbench [project.json] [--frames N] [--screenshot out.png] [--script steps.json]
+// rrf-workbench [project.json] [--frames N] [--screenshot out.png] [--script steps.json] [--size WxH]
 //
-// Opens the workbench on a project (by default the bundled Cornell box of the data directory, see
-// core/util/data_dir.h, which also holds the shaders). --frames N draws N frames
+// Opens the workbench on a project (by default the user's workspace copy of the bundled Cornell box
+// of the data directory, see app/gui/user_workspace.h and core/util/data_dir.h, which also holds
+// the shaders). --frames N draws N frames
 // (after the script, if any) and exits; --screenshot writes the last frame to a PNG. The exit status
 // is non-zero if the project cannot be opened, the script fails or the screenshot cannot be written
 // in these automated modes.
@@ -13,6 +14,7 @@
 
 #include "app/gui/script.h"
 #include "app/gui/user_config.h"
+#include "app/gui/user_workspace.h"
 #include "app/gui/window.h"
 #include "app/gui/workbench.h"
 #include "core/util/data_dir.h"
@@ -24,6 +26,7 @@ struct Args {
     std::string project;  ///< empty: the bundled Cornell box from the data directory
     int frames = -1;
     std::string screenshot, script;
+    int width = 1600, height = 1000;  ///< the window's size (--size)
 };
 
 /// Parses argv into `a`. Returns false with the exit status in `exitCode` when the program should
@@ -36,8 +39,20 @@ bool parse(int argc, char** argv, Args& a, int& exitCode) {
         ->check(CLI::Range(1, 1000000));
     app.add_option("--screenshot", a.screenshot, "write the last frame to a PNG file")->type_name("FILE");
     app.add_option("--script", a.script, "run a scripted session (JSON array of steps) first")->type_name("FILE");
+    std::string size;
+    app.add_option("--size", size, "window size, e.g. 1280x720 (default 1600x1000)")
+        ->type_name("WxH")
+        ->check([](const std::string& v) -> std::string {
+            int w = 0, h = 0;
+            char x = 0, rest = 0;
+            if (std::sscanf(v.c_str(), "%d%c%d%c", &w, &x, &h, &rest) != 3 || x != 'x' || w < 320 || h < 240 ||
+                w > 16384 || h > 16384)
+                return "expected WIDTHxHEIGHT with 320 <= WIDTH, 240 <= HEIGHT, both at most 16384, got '" + v + "'";
+            return {};
+        });
     try {
         app.parse(argc, argv);
+        if (!size.empty()) std::sscanf(size.c_str(), "%dx%d", &a.width, &a.height);
         return true;
     } catch (const CLI::ParseError& e) {
         const int cliStatus = app.exit(e);
@@ -79,7 +94,14 @@ int main(int argc, char** argv) {
     std::string dataDir;
     try {
         dataDir = rrf::dataDir().string();
-        if (args.project.empty()) args.project = rrf::bundledProject(rrf::kDefaultProject).string();
+        if (args.project.empty()) {
+            // The bundled project is read-only data: work happens in the user's workspace copy.
+            bool created = false;
+            args.project = rrf::userWorkspaceProject(
+                rrf::bundledProject(rrf::kDefaultProject).string(), created);
+            std::printf("rrf-workbench: %s the workspace copy of the bundled project: %s\n",
+                        created ? "created" : "opening", args.project.c_str());
+        }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "rrf-workbench: %s\n", e.what());
         return 1;
@@ -87,7 +109,7 @@ int main(int argc, char** argv) {
 
     const std::string configDir = rrf::userConfigDir();
     rrf::Window window;
-    if (!window.create(1600, 1000, "RRF Workbench", configDir, !automated, error)) {
+    if (!window.create(args.width, args.height, "RRF Workbench", configDir, !automated, error)) {
         std::fprintf(stderr, "rrf-workbench: %s\n", error.c_str());
         return 1;
     }

@@ -1,5 +1,6 @@
 #include "app/gui/script.h"
 
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -7,6 +8,7 @@
 
 #include "app/gui/workbench.h"
 #include "core/nn/network_settings.h"
+#include "core/project/run_recording.h"
 #include "core/project/scene_edits.h"
 #include "core/util/json_reader.h"
 
@@ -19,7 +21,7 @@ namespace {
 /// take the project's own "sampling" and "network" keys (read by the same readers).
 const std::map<std::string, std::vector<std::string>>& stepKeys() {
     static const std::map<std::string, std::vector<std::string>> keys = [] {
-        std::vector<std::string> train = {"epochs", "trainer"};
+        std::vector<std::string> train = {"epochs", "trainer", "refused"};
         train.insert(train.end(), NetworkSettings::keys().begin(), NetworkSettings::keys().end());
         return std::map<std::string, std::vector<std::string>>{
             {"render", {"spp"}},
@@ -35,13 +37,18 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"select_object", {"id"}},
             {"view", {"term", "metric", "exposure", "error_max", "zoom"}},
             {"open", {"path"}},
+            {"request_open", {"path"}},
+            {"answer_unsaved", {"choice"}},
+            {"stop", {"job"}},
+            {"compare_runs", {"a", "b"}},
             {"save", {"path"}},
             {"export_images", {"dir"}},
             {"screenshot", {"path"}},
             {"frames", {"count"}},
             {"tab", {"name"}},
             {"check", {"runs", "ground_truth_spp_min", "errors", "compare", "dataset", "prediction", "evaluated",
-                       "train_runs", "sweeps"}},
+                       "train_runs", "sweeps", "unsaved_prompt", "dirty", "stopped_runs", "prediction_partial",
+                       "render_cancelled", "notice", "pair"}},
         };
     }();
     return keys;
@@ -125,8 +132,11 @@ bool Script::execute(Workbench& wb, const json& s) {
             waiting_ = true;
             waitStart_ = std::chrono::steady_clock::now();
         }
-        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs"});
-        const bool busy = on == "render" ? wb.renderRunning() : !wb.jobs().idle();
+        // train_epoch: until the running training has reported its first epoch (to stop it mid-run).
+        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch"});
+        const bool busy = on == "render"        ? wb.renderRunning()
+                          : on == "train_epoch" ? wb.trainRunning() && st.training.epoch < 1
+                                                : !wb.jobs().idle();
         if (busy) {
             const double limit = r.numberOr("timeout_s", 300, 0, 1e9);
             const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart_).count();
@@ -145,7 +155,7 @@ bool Script::execute(Workbench& wb, const json& s) {
         // Optional overrides of the project's network settings, for small scripted runs: the step's
         // keys are the "network" section's (omitted keys keep their current values) and "trainer"
         // switches the trainer as the Network panel does.
-        const json section = sectionOf(r, {"epochs", "trainer"});
+        const json section = sectionOf(r, {"epochs", "trainer", "refused"});
         if (!section.empty()) {
             st.project.network = NetworkSettings::fromJson(JsonReader(section, r.file(), r.pointer()),
                                                            st.project.networkOrDefault());
@@ -156,7 +166,11 @@ bool Script::execute(Workbench& wb, const json& s) {
             st.project.trainer = st.project.networkOrDefault().options.trainer.withType(type);
             st.markDirty();
         }
-        require(wb.startTrain(intOr(r, "epochs", 0)), "training could not start (see the log)");
+        // "refused": true expects the workbench to refuse (e.g. no dataset yet) and say why.
+        const bool refused = r.booleanOr("refused", false);
+        const bool started = wb.startTrain(intOr(r, "epochs", 0));
+        require(started != refused, refused ? "training started although it should have been refused"
+                                            : "training could not start (see the log)");
     } else if (what == "evaluate") {
         require(wb.startEvaluate(), "the evaluation could not start (see the log)");
     } else if (what == "sweep") {
@@ -193,8 +207,34 @@ bool Script::execute(Workbench& wb, const json& s) {
         // Without a path: re-open the current project from disk (checks what a save kept).
         const std::string path = r.stringOr("path", st.project.path);
         require(wb.openProject(path), "could not open the project (see the log)");
+    } else if (what == "request_open") {
+        // As File > Open / Recent: asks first when there are unsaved changes.
+        wb.requestOpen(r.stringOr("path", st.project.path));
+    } else if (what == "answer_unsaved") {
+        require(wb.unsavedPromptOpen(), "no unsaved-changes prompt is open");
+        const std::string c = r.choiceOr("choice", "", {"save", "discard", "cancel"});
+        wb.answerUnsavedPrompt(c == "save"      ? Workbench::UnsavedChoice::Save
+                               : c == "discard" ? Workbench::UnsavedChoice::Discard
+                                                : Workbench::UnsavedChoice::Cancel);
+    } else if (what == "compare_runs") {
+        // As ticking A and B in the runs table.
+        st.runPair.a = intOr(r, "a", 0);
+        st.runPair.b = intOr(r, "b", 1);
+        require(wb.compareRunPair(), "could not compare the runs (see the log)");
+    } else if (what == "stop") {
+        // As the Stop buttons: the job stops at its next check and delivers what it has.
+        const std::string job = r.choiceOr("job", "", {"render", "generate", "train"});
+        st.request(job == "render"     ? panels::Command::CancelRender
+                   : job == "generate" ? panels::Command::CancelGenerate
+                                       : panels::Command::CancelTrain);
     } else if (what == "save") {
-        require(wb.saveProject(r.stringOr("path", "")), "could not save (see the log)");
+        // A new folder for Save As, as the file dialog would have offered one.
+        const std::string path = r.stringOr("path", "");
+        if (!path.empty()) {
+            std::error_code ec;
+            std::filesystem::create_directories(std::filesystem::absolute(path).parent_path(), ec);
+        }
+        require(wb.saveProject(path), "could not save (see the log)");
     } else if (what == "export_images") {
         require(wb.exportImages(r.at("dir").string()), "could not export images (see the log)");
     } else if (what == "screenshot") {
@@ -232,6 +272,19 @@ bool Script::execute(Workbench& wb, const json& s) {
         size_t trained = 0;
         for (const Run& run : st.project.runs) trained += run.kind == "train" && !run.curves.empty();
         count("train_runs", trained, "training runs with loss curves");
+        size_t stopped = 0;
+        for (const Run& run : st.project.runs) stopped += isStoppedTrainRun(run);
+        count("stopped_runs", stopped, "stopped training runs");
+        flag("unsaved_prompt", wb.unsavedPromptOpen(), "unsaved-changes prompt state");
+        flag("dirty", st.dirty, "unsaved-changes state");
+        flag("prediction_partial", !st.prediction.withoutNetwork.empty(), "partial prediction state");
+        flag("render_cancelled", st.render.cancelled, "render cancelled state");
+        flag("notice", st.notice.has_value(), "notice state");
+        // pair: the Views show two runs (both predictions) and the Objects panel both error columns.
+        flag("pair",
+             st.view.compareSource == panels::CompareSource::RunPair && !st.runPair.imagesA.empty() &&
+                 !st.runPair.imagesB.empty() && st.runPair.errorsA.valid && st.runPair.errorsB.valid,
+             "run pair state");
     } else {
         throw std::runtime_error("unknown step '" + what + "'");
     }

@@ -7,14 +7,17 @@
 ///       {"do": "compare_run", "index": 0}, {"do": "check", "runs": 1}, {"do": "frames", "count": 5} ]
 ///
 /// Steps: render {spp}, generate {the "sampling" section's keys: grid, directions, spp, seed, light,
-/// estimator, max_depth}, train {epochs, trainer, and the "network" section's keys: hidden,
-/// activation, targets}, evaluate,
+/// estimator, max_depth}, train {epochs, trainer, refused (expect a refusal), and the "network"
+/// section's keys: hidden, activation, targets}, evaluate,
 /// sweep {what: spp|grid|dirs|hidden|trainer},
-/// wait {for: render|jobs, timeout_s}, save_run, compare_run {index},
-/// reopen_run {index}, set_light {position}, select_object {id}, view {term, metric, exposure,
+/// wait {for: render|jobs|train_epoch, timeout_s}, save_run, compare_run {index},
+/// reopen_run {index}, request_open {path?: as File > Open, asking about unsaved changes},
+/// answer_unsaved {choice: save|discard|cancel}, stop {job: render|generate|train}, compare_runs {a, b:
+/// run indices, as ticking A and B}, set_light {position}, select_object {id}, view {term, metric, exposure,
 /// error_max, zoom}, open {path?: default re-opens the current file}, save {path?}, export_images {dir}, screenshot {path},
 /// frames {count}, tab {name: bring a panel tab to the front}, check {runs, ground_truth_spp_min, errors,
-/// compare, dataset, prediction, evaluated, train_runs, sweeps}. An unknown step or key fails the
+/// compare, dataset, prediction, evaluated, train_runs, sweeps, unsaved_prompt, dirty, stopped_runs,
+/// prediction_partial, render_cancelled, notice, pair}. An unknown step or key fails the
 /// script when it is loaded (it never skips silently), naming the file and the step's JSON pointer.
 
 #include <chrono>

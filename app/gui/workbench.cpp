@@ -3,11 +3,13 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "panels/panels.h"
+#include "panels/status_text.h"
 
 namespace rrf {
 
@@ -38,12 +40,42 @@ std::string Workbench::takeScreenshotRequest() {
 }
 
 bool Workbench::requestQuit() {
-    if (!state_.dirty || quitConfirmed_) {
-        quitConfirmed_ = true;
+    if (quitConfirmed_) return true;
+    return whenSaved({PendingAction::Quit, {}});
+}
+
+void Workbench::requestOpen(const std::string& path) { whenSaved({PendingAction::Open, path}); }
+
+bool Workbench::whenSaved(PendingAction action) {
+    if (!state_.dirty) {
+        carryOut(action);
         return true;
     }
-    quitModal_ = true;
+    pending_ = std::move(action);
+    unsavedModal_ = true;
     return false;
+}
+
+void Workbench::carryOut(const PendingAction& action) {
+    switch (action.kind) {
+        case PendingAction::Quit: quitConfirmed_ = true; break;
+        case PendingAction::Open:
+            if (action.path.empty()) openDialog(DialogPurpose::Open);
+            else openProject(action.path);
+            break;
+        case PendingAction::New: openDialog(DialogPurpose::New); break;
+        case PendingAction::None: break;
+    }
+}
+
+void Workbench::answerUnsavedPrompt(UnsavedChoice choice) {
+    const PendingAction action = std::move(pending_);
+    pending_ = PendingAction{};
+    if (choice == UnsavedChoice::Cancel) return;
+    // An untitled project's Save opens Save As instead and returns false: the action waits for the
+    // user to ask again rather than discarding the work.
+    if (choice == UnsavedChoice::Save && !saveProject()) return;
+    carryOut(action);
 }
 
 void Workbench::showError(const std::string& title, const std::string& message) {
@@ -55,7 +87,7 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 
 void Workbench::dropJobs() {
     for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &generateJob_, &trainJob_, &evaluateJob_,
-                                                                      &predictJob_, &sweepJob_})
+                                                                      &predictJob_, &sweepJob_, &pairJob_})
         job->drop();
     render_.reset();
     trainLive_.reset();
@@ -79,6 +111,7 @@ void Workbench::frame() {
     pollEvaluate();
     pollPredict();
     pollSweep();
+    pollRunPair();
     drawHost();
     drawModals();
     if (dialog_.draw()) dialogConfirmed(dialog_.result());
@@ -195,6 +228,10 @@ void Workbench::drawMenuBar() {
 }
 
 void Workbench::drawStatusBar() {
+    if (state_.notice) {
+        panels::drawNotice(state_, false);
+        ImGui::SameLine();
+    }
     const std::vector<JobInfo> running = jobs_.jobs();
     if (running.empty()) {
         ImGui::TextDisabled("%s%s", state_.hasProject ? state_.project.path.c_str() : "no project",
@@ -231,23 +268,30 @@ void Workbench::drawModals() {
         if (ImGui::Button("Close")) ImGui::CloseCurrentPopup();
         ImGui::EndPopup();
     }
-    if (quitModal_) {
+    if (unsavedModal_) {
         ImGui::OpenPopup("Unsaved changes");
-        quitModal_ = false;
+        unsavedModal_ = false;
     }
     if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::Text("'%s' has unsaved changes.", state_.projectName().c_str());
-        if (ImGui::Button("Save and quit")) {
-            if (saveProject()) quitConfirmed_ = true;
-            ImGui::CloseCurrentPopup();
+        if (!unsavedPromptOpen()) {
+            ImGui::CloseCurrentPopup();  // answered from elsewhere (a script)
+        } else {
+            const char* what = pending_.kind == PendingAction::Quit  ? "quitting"
+                               : pending_.kind == PendingAction::New ? "starting a new project"
+                                                                     : "opening another project";
+            ImGui::Text("'%s' has unsaved changes. Save them before %s?", state_.projectName().c_str(), what);
+            if (!pending_.path.empty()) ImGui::TextDisabled("%s", pending_.path.c_str());
+            std::optional<UnsavedChoice> choice;
+            if (ImGui::Button("Save")) choice = UnsavedChoice::Save;
+            ImGui::SameLine();
+            if (ImGui::Button("Discard")) choice = UnsavedChoice::Discard;
+            ImGui::SameLine();
+            if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) choice = UnsavedChoice::Cancel;
+            if (choice) {
+                ImGui::CloseCurrentPopup();
+                answerUnsavedPrompt(*choice);
+            }
         }
-        ImGui::SameLine();
-        if (ImGui::Button("Quit without saving")) {
-            quitConfirmed_ = true;
-            ImGui::CloseCurrentPopup();
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
         ImGui::EndPopup();
     }
     if (errorModal_) {
@@ -321,11 +365,8 @@ void Workbench::handleRequests() {
 void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
     {
         switch (r.command) {
-            case Command::NewProject: openDialog(DialogPurpose::New); break;
-            case Command::OpenProject:
-                if (r.path.empty()) openDialog(DialogPurpose::Open);
-                else openProject(r.path);
-                break;
+            case Command::NewProject: whenSaved({PendingAction::New, {}}); break;
+            case Command::OpenProject: requestOpen(r.path); break;
             case Command::SaveProject: saveProject(); break;
             case Command::SaveProjectAs:
                 if (r.path.empty()) openDialog(DialogPurpose::SaveAs);
@@ -348,11 +389,15 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
             case Command::SaveRun: saveRun(); break;
             case Command::ReopenRun: reopenRun(r.index); break;
             case Command::CompareRun: compareRun(r.index); break;
+            case Command::CompareRunPair: compareRunPair(); break;
             case Command::DeleteRun:
                 if (r.index >= 0 && r.index < int(state_.project.runs.size())) {
                     state_.log.info("removed run '" + state_.project.runs[size_t(r.index)].name +
                                     "' from the project (its files stay on disk)");
                     state_.project.runs.erase(state_.project.runs.begin() + r.index);
+                    state_.runPair.a = state_.runPair.b = -1;  // indices moved: choose again
+                    if (state_.training.partialRun == r.index) state_.training.partialRun = -1;
+                    else if (state_.training.partialRun > r.index) --state_.training.partialRun;
                     if (state_.compareRun == r.index) {
                         state_.compareRun = -1;
                         state_.compare = panels::ImageSet{};

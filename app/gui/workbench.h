@@ -23,8 +23,9 @@ struct GeneratedDataset;
 struct TrainingOutcome;
 struct TrainingLive;
 struct EvaluationOutcome;
-struct Prediction;
+struct TimedPrediction;
 struct SweepOutcome;
+struct PairOutcome;
 
 class Workbench {
 public:
@@ -44,6 +45,17 @@ public:
     /// The user (or the window manager) asked to quit. Returns true when it may happen now;
     /// with unsaved changes it opens the "Unsaved changes" modal and returns false.
     bool requestQuit();
+    /// What the "Unsaved changes" prompt asks about: the one guard of quitting, opening a project
+    /// (File > Open, Recent, the Project panel) and starting a new one.
+    enum class UnsavedChoice { Save, Discard, Cancel };
+    /// Opens `path` (empty: the Open dialog) once unsaved changes are saved or discarded; with
+    /// unsaved changes it asks first (Save / Discard / Cancel), as quitting does.
+    void requestOpen(const std::string& path);
+    /// True while the "Unsaved changes" prompt waits for an answer.
+    bool unsavedPromptOpen() const { return pending_.kind != PendingAction::None; }
+    /// Answers the prompt (its buttons call this; so do scripts): Save saves and then carries out
+    /// the action (not when saving fails), Discard carries it out, Cancel forgets it.
+    void answerUnsavedPrompt(UnsavedChoice choice);
     /// True once the user confirmed quitting (from the modal or the File menu).
     bool quitConfirmed() const { return quitConfirmed_; }
     /// Window title: "RRF Workbench - <project>" with "*" for unsaved changes.
@@ -59,6 +71,10 @@ public:
     /// Records the current ground truth as a run (files under <project dir>/runs/<id>/).
     bool saveRun();
     bool compareRun(int index);
+    /// Predicts the models of training runs runPair.a and runPair.b at the current light (and judges
+    /// each against the ground truth, when there is one) on a worker; the Views then show A | B |
+    /// difference and the Objects panel their per-object errors side by side.
+    bool compareRunPair();
     bool reopenRun(int index);
     bool exportImages(const std::string& dir);
     /// Starts the data generator with the project's sampling settings, writing
@@ -151,14 +167,31 @@ private:
     JobSession<TrainingOutcome> trainJob_{jobs_, JobKind::Train, state_.log};
     uint64_t trainRevision_ = 0;
     JobSession<EvaluationOutcome> evaluateJob_{jobs_, JobKind::Evaluate, state_.log};
-    JobSession<Prediction> predictJob_{jobs_, JobKind::Predict, state_.log};
+    JobSession<TimedPrediction> predictJob_{jobs_, JobKind::Predict, state_.log};
+    /// Recent per-frame prediction times of the loaded models (seconds), whose median is recorded
+    /// in their training run (runs table: "frame ms").
+    std::vector<double> frameSeconds_;
+    void noteFrameSeconds(const char* key, double seconds);
     bool predictPending_ = false;  ///< the light moved while a CPU prediction ran
     JobSession<SweepOutcome> sweepJob_{jobs_, JobKind::Sweep, state_.log};
+    JobSession<PairOutcome> pairJob_{jobs_, JobKind::Compare, state_.log};
+    void pollRunPair();
     LivePrediction live_;
     bool restartRender_ = false;   ///< a scene edit arrived while the old render was stopping
     bool untitled_ = false;        ///< the project has no file of its own yet (New)
 
-    bool quitModal_ = false, quitConfirmed_ = false, aboutModal_ = false;
+    /// An action waiting for the "Unsaved changes" prompt.
+    struct PendingAction {
+        enum Kind { None, Quit, Open, New } kind = None;
+        std::string path;  ///< Open: the project (empty: ask with the dialog)
+    };
+    /// Carries out `action` now when nothing is unsaved, else keeps it and opens the prompt.
+    /// Returns true when it was carried out now.
+    bool whenSaved(PendingAction action);
+    void carryOut(const PendingAction& action);
+    PendingAction pending_;
+    bool unsavedModal_ = false;  ///< open the prompt's popup next frame
+    bool quitConfirmed_ = false, aboutModal_ = false;
     std::string errorTitle_, errorMessage_;
     bool errorModal_ = false;
     std::string screenshotRequest_;

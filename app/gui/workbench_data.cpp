@@ -20,6 +20,8 @@ struct GeneratedDataset {
     std::vector<std::string> objectNames;  ///< index = object id
     double seconds = 0.0;
     int inputCount = 0;
+    SamplingSettings settings;  ///< what it was generated with (the coverage table's stale check)
+    uint64_t sceneHash = 0;
 };
 
 bool Workbench::generateRunning() const { return generateJob_.running(); }
@@ -58,6 +60,8 @@ bool Workbench::startGenerate() {
         for (const Object& o : scene->objects) written.objectNames.push_back(o.name);
         written.seconds = data.seconds;
         written.inputCount = gen.layout().inputCount();
+        written.settings = settings;
+        written.sceneHash = scene->contentHash();
         ctx.setProgress(1.0);
         ctx.setStatus("written");
         return written;
@@ -65,12 +69,16 @@ bool Workbench::startGenerate() {
     if (!started) return false;
     state_.dataset.running = true;
     state_.dataset.progress = 0.0;
+
     state_.log.info("generate started: " + name + " -> " + out);
     return true;
 }
 
 void Workbench::pollGenerate() {
+    const bool wasRunning = state_.dataset.running;
     state_.dataset.running = generateRunning();
+    // A cancelled generation writes nothing: the table still shows the dataset before it, marked stale.
+    if (wasRunning && !state_.dataset.running) state_.dataset.lastCancelled = true;  // until a result arrives
     if (state_.dataset.running) state_.dataset.progress = generateJob_.progress();
     generateJob_.poll([&](GeneratedDataset& d) {
         state_.dataset.progress = 1.0;
@@ -79,6 +87,9 @@ void Workbench::pollGenerate() {
         state_.dataset.generator = std::move(d.stats);
         state_.dataset.seconds = d.seconds;
         state_.dataset.inputCount = d.inputCount;
+        state_.dataset.madeWith = d.settings;
+        state_.dataset.sceneHash = d.sceneHash;
+        state_.dataset.lastCancelled = false;
         state_.log.info("dataset written: " + d.path + " (" + std::to_string(state_.dataset.generator.records) + " records)");
     });
 }

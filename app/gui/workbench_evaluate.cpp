@@ -27,11 +27,11 @@ bool Workbench::evaluateRunning() const { return evaluateJob_.running(); }
 
 bool Workbench::startEvaluate() {
     if (!live_.loaded()) {
-        state_.log.error("evaluate: no trained models; train first");
+        state_.notify(panels::LogLevel::Error, "Training", "evaluate: no trained models; train first");
         return false;
     }
     if (state_.groundTruth.empty()) {
-        state_.log.error("evaluate: no ground truth yet; render first");
+        state_.notify(panels::LogLevel::Error, "Training", "evaluate: no ground truth yet; render first");
         return false;
     }
     const PredictionSettings settings = state_.project.prediction;
@@ -78,6 +78,7 @@ void Workbench::pollEvaluate() {
         const int spp = out.info.referenceSpp;
         const Vec3 light = out.info.lightPosition;
         state_.evaluation = std::move(out.info);
+        state_.evaluation.modelsDir = out.modelsDir;
         state_.focusTab = "Objects";
         // The run that made these models gets the result, so the Cost panel can place it.
         const ErrorStats& g = out.global;

@@ -3,15 +3,25 @@
 // the GLSL predictor could not be built.
 #include "app/gui/workbench.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/eval/evaluation.h"
 #include "core/predict/predictor.h"
+#include "core/project/run_recording.h"
+#include "core/util/stopwatch.h"
 #include "panels/panels.h"
+#include "panels/view_model.h"
 
 namespace rrf {
 
 namespace fs = std::filesystem;
+
+/// A CPU prediction and the time it took (G-buffer + networks), for the runs table.
+struct TimedPrediction {
+    Prediction prediction;
+    double seconds = 0;
+};
 
 namespace {
 /// The ground truth's camera: the scene camera at the render settings' size, so the prediction
@@ -30,12 +40,13 @@ bool Workbench::loadModels(const std::string& dir) {
     try {
         live_.load(state_.project.scene, dir, true, glslError);
     } catch (const std::exception& e) {
-        state_.log.error(std::string("loading the models failed: ") + e.what());
+        state_.notify(panels::LogLevel::Error, "Project", std::string("loading the models failed: ") + e.what());
         return false;
     }
     if (!glslError.empty())
         state_.log.warning("GLSL prediction unavailable, using the CPU predictor (slower): " + glslError);
     state_.training.modelsDir = dir;
+    frameSeconds_.clear();
     state_.leaves = panels::leavesOf(*live_.models());
     state_.view.compareSource = panels::CompareSource::Prediction;
     state_.log.info("models loaded from " + dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)"));
@@ -60,7 +71,9 @@ void Workbench::refreshPrediction() {
     if (live_.usesGlsl()) {
         Image images[kTermCount];
         try {
+            const Stopwatch clock;
             live_.renderGlsl(camera, scene.lightPosition(), state_.project.prediction, images);
+            noteFrameSeconds("glsl_frame_seconds", clock.seconds());
         } catch (const std::exception& e) {
             state_.log.error(std::string("GLSL prediction failed: ") + e.what());
             return;
@@ -68,6 +81,7 @@ void Workbench::refreshPrediction() {
         panels::ImageSet& p = state_.prediction;
         for (Term t : kTerms) p.term(t) = std::move(images[int(t)]);
         p.label = "Prediction (GLSL)";
+        p.withoutNetwork = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
         p.touch();
         return;
     }
@@ -81,10 +95,12 @@ void Workbench::refreshPrediction() {
     const Vec3 light = scene.lightPosition();
     std::string why;
     const bool started = predictJob_.start("CPU prediction", [shared, models, settings, light, camera](JobContext& ctx)
-                                               -> std::optional<Prediction> {
+                                               -> std::optional<TimedPrediction> {
+        const Stopwatch clock;
         const Predictor predictor(*shared, *models, settings);
         const GBuffer gb = predictor.gbuffer(light, camera.width, camera.height);
-        Prediction p = predictor.predict(gb);
+        TimedPrediction p{predictor.predict(gb), 0.0};
+        p.seconds = clock.seconds();
         ctx.setProgress(1.0);
         return p;
     }, &why);
@@ -96,13 +112,28 @@ void Workbench::refreshPrediction() {
     predictPending_ = false;
 }
 
+void Workbench::noteFrameSeconds(const char* key, double seconds) {
+    // The median of the last few frames: the first GLSL frame also compiles and uploads, and a
+    // single frame is noisy; the figure lands in the models' training run for the runs table.
+    constexpr size_t kFrames = 9;
+    frameSeconds_.push_back(seconds);
+    if (frameSeconds_.size() > kFrames) frameSeconds_.erase(frameSeconds_.begin());
+    std::vector<double> sorted = frameSeconds_;
+    std::sort(sorted.begin(), sorted.end());
+    recordFrameSeconds(state_.project.runs, projectDir(), live_.dir(), key, sorted[sorted.size() / 2]);
+}
+
 bool Workbench::predictRunning() const { return predictJob_.running(); }
 
 void Workbench::pollPredict() {
-    predictJob_.poll([&](Prediction& prediction) {
+    predictJob_.poll([&](TimedPrediction& timed) {
+        Prediction& prediction = timed.prediction;
+        noteFrameSeconds("frame_seconds", timed.seconds);
         panels::ImageSet& p = state_.prediction;
         for (Term t : kTerms) p.term(t) = std::move(prediction.images[int(t)]);
         p.label = "Prediction (CPU)";
+        if (live_.loaded())
+            p.withoutNetwork = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
         p.touch();
     });
     if (predictPending_ && !predictRunning() && !trainRunning()) refreshPrediction();

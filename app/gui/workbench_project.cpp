@@ -48,7 +48,8 @@ bool Workbench::openProject(const std::string& path) {
     // drive the prediction of this one.
     live_.reset();
     for (auto it = state_.project.runs.rbegin(); it != state_.project.runs.rend(); ++it) {
-        if (it->kind != "train" || it->artifacts.empty()) continue;
+        // A stopped run's partial set is shown only when the user chooses it (Compare).
+        if (it->kind != "train" || it->artifacts.empty() || isStoppedTrainRun(*it)) continue;
         const fs::path models = fs::path(projectDir()) / fs::path(it->artifacts.front()).parent_path();
         if (fs::exists(models / "models.json", ec)) loadModels(models.string());
         break;
@@ -104,15 +105,15 @@ void Workbench::autosave() {
 
 bool Workbench::saveRun() {
     if (!render_ || !render_->latest()) {
-        state_.log.error("save run: no ground truth rendered yet");
+        state_.notify(panels::LogLevel::Error, "Views", "save run: no ground truth rendered yet");
         return false;
     }
     if (renderRunning()) {
-        state_.log.error("save run: the render is still running; wait for it or stop it first");
+        state_.notify(panels::LogLevel::Error, "Views", "save run: the render is still running; wait for it or stop it first");
         return false;
     }
     if (untitled_ || state_.project.path.empty()) {
-        state_.log.error("save run: save the project first (runs are stored next to it)");
+        state_.notify(panels::LogLevel::Error, "Views", "save run: save the project first (runs are stored next to it)");
         return false;
     }
     Run run = beginRun(state_.project.runs, "render");
@@ -165,7 +166,7 @@ bool Workbench::compareRun(int index) {
     panels::ImageSet set;
     std::string error;
     if (!loadRunImages(run, projectDir(), set, error)) {
-        state_.log.error("compare run: " + error);
+        state_.notify(panels::LogLevel::Error, "Project", "compare run: " + error);
         return false;
     }
     set.label = "Run '" + run.name + "' (" + std::to_string(runSpp(run)) + " spp)";
@@ -184,7 +185,7 @@ bool Workbench::reopenRun(int index) {
     panels::ImageSet set;
     std::string error;
     if (!loadRunImages(run, projectDir(), set, error)) {
-        state_.log.error("re-open run: " + error);
+        state_.notify(panels::LogLevel::Error, "Project", "re-open run: " + error);
         return false;
     }
     cancelRender();
@@ -241,7 +242,7 @@ bool Workbench::loadTrainRun(const Run& run, int index) {
         }
     }
     if (run.artifacts.empty()) {
-        state_.log.error("run '" + run.name + "' lists no models");
+        state_.notify(panels::LogLevel::Error, "Project", "run '" + run.name + "' lists no models");
         return false;
     }
     return loadModels((fs::path(projectDir()) / fs::path(run.artifacts.front()).parent_path()).string());

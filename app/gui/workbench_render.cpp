@@ -61,7 +61,9 @@ void Workbench::pollRender() {
             state_.render.etaSeconds = snap->sppCompleted > 0 ? snap->seconds * left / snap->sppCompleted : -1.0;
         }
     }
+    const bool wasRunning = state_.render.running;
     state_.render.running = renderRunning();
+    if (wasRunning && !state_.render.running) state_.render.cancelled = state_.render.spp < state_.render.targetSpp;
     if (restartRender_ && !renderRunning()) {
         restartRender_ = false;
         startRender();

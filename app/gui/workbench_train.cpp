@@ -42,6 +42,10 @@ struct TrainingOutcome {
     std::vector<LossCurve> curves;  ///< ordered by (object, target)
     double seconds = 0;
     int networks = 0, skipped = 0;
+    bool stopped = false;  ///< the user stopped it: the models are a partial set
+    int plannedNetworks = 0;
+    int leaves = 0;        ///< kd-tree leaves over the trained models
+    int64_t records = 0;   ///< training records read
 };
 
 namespace {
@@ -68,18 +72,18 @@ std::string Workbench::datasetPath() const {
 
 bool Workbench::startTrain(int maxEpochs) {
     if (!state_.hasProject) {
-        state_.log.error("train: no project is open");
+        state_.notify(panels::LogLevel::Error, "Training", "train: no project is open");
         return false;
     }
     if (untitled_ || state_.project.path.empty()) {
-        state_.log.error("train: save the project first (models are stored next to it)");
+        state_.notify(panels::LogLevel::Error, "Training", "train: save the project first (models are stored next to it)");
         return false;
     }
     TrainingOutcome job;
     job.dataset = datasetPath();
     job.project = state_.project.path;
     if (job.dataset.empty()) {
-        state_.log.error("train: no dataset yet; generate one in the Sampling panel");
+        state_.notify(panels::LogLevel::Error, "Training", "train: no dataset yet; generate one in the Sampling panel");
         return false;
     }
     job.settings = state_.project.networkOrDefault();
@@ -127,13 +131,21 @@ bool Workbench::startTrain(int maxEpochs) {
         out.seconds = run.seconds;
         out.networks = run.networks;
         out.skipped = run.skipped;
+        out.stopped = run.cancelled;
+        for (const ObjectModel& m : run.models)
+            if (!m.skipped) out.leaves += m.model.leafCount();
+        for (const ObjectSamples& s : samples) out.records += int64_t(s.size());
+        const int epochLimit = std::max(1, out.settings.options.trainer.maxEpochs());
+        out.plannedNetworks = int(trainingEpochBudget(samples, out.settings.options) / epochLimit + 0.5);
         ctx.setStatus(run.networks > 0 ? "models saved" : "no network trained");
         return out;
     });
     if (!started) return false;
     trainLive_ = live;
     trainRevision_ = ~0ull;
+    const std::string lastModels = state_.training.modelsDir;  // the prediction's, kept by a stop
     state_.training = panels::TrainingInfo{};
+    state_.training.modelsDir = lastModels;
     state_.training.running = true;
     state_.training.trainer = o.trainer.typeName();
     state_.training.runId = job.runId;
@@ -160,9 +172,13 @@ void Workbench::pollTrain() {
 }
 
 void Workbench::trainingFinished(TrainingOutcome& s) {
-    state_.training.progress = 1.0;
+    if (!s.stopped) state_.training.progress = 1.0;
+    state_.training.stopped = s.stopped;
+    state_.training.networks = s.networks;
+    state_.training.plannedNetworks = s.plannedNetworks;
+    state_.training.partialRun = -1;
     if (s.networks == 0) {
-        state_.log.error("train: no network was trained (see the messages above); nothing saved");
+        state_.notify(panels::LogLevel::Error, "Training", "train: no network was trained (see the Log); nothing saved");
         return;
     }
     Run run = beginRun(state_.project.runs, "train");
@@ -172,9 +188,23 @@ void Workbench::trainingFinished(TrainingOutcome& s) {
     TrainRecord record{s.settings, state_.project.sampling, s.dataset, s.modelsDir, s.sceneHash, std::move(s.curves),
                        s.networks, s.skipped, s.seconds, std::nullopt};
     if (state_.dataset.path == s.dataset && state_.dataset.seconds > 0) record.generateSeconds = state_.dataset.seconds;
+    record.stopped = s.stopped;
+    record.plannedNetworks = s.plannedNetworks;
+    record.leaves = s.leaves;
+    record.records = s.records;
     setTrainRun(run, projectDir(), std::move(record));
     state_.project.runs.push_back(run);
     state_.markDirty();
+    if (s.stopped) {
+        // A partial model set would leave the untrained objects without a prediction: the live view
+        // keeps the last complete set; the Training panel offers the partial one.
+        state_.training.partialRun = int(state_.project.runs.size()) - 1;
+        state_.notify(panels::LogLevel::Warning, "Training", "training " + trainRunStatusText(run) + "; partial run '" + run.name +
+                           "' recorded (models in " + rel(s.modelsDir) + "); the prediction keeps " +
+                           (live_.loaded() ? "the last complete models" : "no models") +
+                           " (Training panel: \"Use the partial models\")");
+        return;
+    }
     state_.log.info("trained " + std::to_string(s.networks) + " networks in " + std::to_string(int(s.seconds + 0.5)) +
                     " s; models in " + rel(s.modelsDir) + ", run '" + run.name + "' recorded");
     loadModels(s.modelsDir);

@@ -1,6 +1,7 @@
 #include "core/project/run_recording.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <system_error>
 
@@ -98,9 +99,33 @@ void setTrainRun(Run& run, const std::string& projectDir, TrainRecord r) {
     run.curves = std::move(r.curves);
     run.loss = aggregateLoss(run.curves);
     run.metrics = json{{"networks", r.networks}, {"skipped", r.skipped}, {"epochs", epochs}};
+    if (r.plannedNetworks > 0) run.metrics["planned_networks"] = r.plannedNetworks;
+    if (r.stopped) run.metrics["stopped"] = true;
+    if (r.leaves > 0) run.metrics["leaves"] = r.leaves;
+    if (r.records > 0) run.metrics["records"] = r.records;
     run.timings = json{{"train", r.seconds}};
     if (r.generateSeconds) run.timings["generate"] = *r.generateSeconds;
     run.artifacts = {projectRelative(projectDir, (fs::path(r.modelsDir) / "models.json").string())};
+}
+
+bool isStoppedTrainRun(const Run& run) {
+    const auto it = run.metrics.find("stopped");
+    return run.kind == "train" && it != run.metrics.end() && it->is_boolean() && it->get<bool>();
+}
+
+std::string stoppedTrainingText(int epoch, int networks, int planned) {
+    std::string t = "stopped at epoch " + std::to_string(epoch) + ", " + std::to_string(networks);
+    if (planned > 0) t += " of " + std::to_string(planned);
+    return t + (planned == 1 || (planned <= 0 && networks == 1) ? " network" : " networks");
+}
+
+std::string trainRunStatusText(const Run& run) {
+    if (run.kind != "train") return {};
+    const int networks = int(run.metric("networks").value_or(0));
+    if (isStoppedTrainRun(run))
+        return stoppedTrainingText(int(run.metric("epochs").value_or(0)), networks,
+                                   int(run.metric("planned_networks").value_or(0)));
+    return std::to_string(networks) + (networks == 1 ? " network" : " networks");
 }
 
 std::string trainRunModelsDir(const Run& run, const std::string& projectDir) {
@@ -131,6 +156,15 @@ int recordEvaluation(std::vector<Run>& runs, const std::string& projectDir, cons
         r.metrics["rmse"] = e.global.rmse;
         r.metrics["mae"] = e.global.mae;
         r.metrics["evaluated_spp"] = e.referenceSpp;
+        // The noise floor makes the error readable (an error at the floor is as good as the
+        // reference allows); without the reference's variance it is unknown and left out.
+        r.metrics.erase("relative_rmse_noise_floor");
+        r.metrics.erase("relative_rmse_corrected");
+        if (std::isfinite(e.global.relativeRmseNoiseFloor)) {
+            r.metrics["relative_rmse_noise_floor"] = e.global.relativeRmseNoiseFloor;
+            if (std::isfinite(e.global.relativeRmseCorrected))
+                r.metrics["relative_rmse_corrected"] = e.global.relativeRmseCorrected;
+        }
         r.metrics.erase("evaluated_light");
         r.metrics.erase("evaluated_lights");
         if (e.lights.size() == 1)
@@ -145,6 +179,18 @@ int recordEvaluation(std::vector<Run>& runs, const std::string& projectDir, cons
         }
         ++changed;
     }
+    return changed;
+}
+
+int recordFrameSeconds(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
+                       const std::string& key, double seconds) {
+    int changed = 0;
+    const fs::path wanted = normal(modelsDir);
+    for (Run& r : runs)
+        if (trainedInto(r, projectDir, wanted)) {
+            r.metrics[key] = seconds;
+            ++changed;
+        }
     return changed;
 }
 

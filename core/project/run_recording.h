@@ -55,15 +55,31 @@ struct TrainRecord {
     int networks = 0, skipped = 0;
     double seconds = 0;                       ///< training wall time
     std::optional<double> generateSeconds;    ///< time that made the dataset, when known
+    /// The user stopped the training: only `networks` of `plannedNetworks` were trained, so the models
+    /// are a partial set (the run says so, and the workbench does not make them the live prediction).
+    bool stopped = false;
+    int plannedNetworks = 0;                  ///< networks the run set out to train (0 = unknown)
+    int leaves = 0;                           ///< kd-tree leaves (networks) over all models (0 = unknown)
+    int64_t records = 0;                      ///< training records read from the dataset (0 = unknown)
 };
 
 /// The loss curves of a training run as a run stores them ("?" for a network without an object name).
 std::vector<LossCurve> lossCurves(const std::vector<NetworkCurve>& curves);
 
 /// Fills a "train" run: settings {network, trainer, dataset, scene_hash, sampling}, the per-network
-/// curves and their aggregate loss, metrics {networks, skipped, epochs}, timings {train, generate}
-/// and models.json as the first artifact (the workbench loads the models from its directory).
+/// curves and their aggregate loss, metrics {networks, skipped, epochs, and when known
+/// planned_networks, leaves, records; stopped when the user stopped it}, timings {train, generate} and models.json as the first
+/// artifact (the workbench loads the models from its directory).
 void setTrainRun(Run& run, const std::string& projectDir, TrainRecord record);
+
+/// True for a "train" run the user stopped before every network was trained (metrics.stopped).
+bool isStoppedTrainRun(const Run& run);
+/// "stopped at epoch 12, 2 of 14 networks" (without "of N" when `planned` is 0): the one wording of
+/// a stopped training, shared by the runs table, the Training panel's progress bar and the log.
+std::string stoppedTrainingText(int epoch, int networks, int planned);
+/// A training run's state for the runs table: stoppedTrainingText for a stopped run, else
+/// "<n> networks"; empty for other kinds.
+std::string trainRunStatusText(const Run& run);
 
 /// The models directory a "train" run names (absolute), or empty when it lists no artifacts.
 std::string trainRunModelsDir(const Run& run, const std::string& projectDir);
@@ -80,10 +96,16 @@ struct EvaluationRecord {
 };
 
 /// Adds an evaluation's metrics {relative_rmse, rmse, mae, evaluated_spp, evaluated_light (one light)
-/// or evaluated_lights (their count)}, timings {evaluate} and artifacts to every "train" run whose
+/// or evaluated_lights (their count), relative_rmse_noise_floor and relative_rmse_corrected when the
+/// reference's noise is known (removed otherwise)}, timings {evaluate} and artifacts to every "train" run whose
 /// models are in `modelsDir`, so the Cost panel can place it. Returns how many runs it changed.
 int recordEvaluation(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
                      const EvaluationRecord& record);
+
+/// Sets metrics[key] (e.g. "glsl_frame_seconds", "frame_seconds": one frame of prediction, the
+/// names sweeps use) of every "train" run whose models are in `modelsDir`. Returns how many changed.
+int recordFrameSeconds(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
+                       const std::string& key, double seconds);
 
 /// Appends `run` to the runs of the project file `projectFile` and saves it atomically (saveProject).
 /// The file is read again first, so that runs another program (the workbench) saved while the work

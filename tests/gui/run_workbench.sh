@@ -2,6 +2,7 @@
 # Runs rrf-workbench under Xvfb on a private copy of the Cornell-box project and checks the
 # screenshot. Fails (never skips) when xvfb-run is missing.
 #   run_workbench.sh WORKBENCH CHECKER PROJECT_DIR OUT_DIR VIEWS [SCRIPT]
+# RRF_GUI_SIZE=WxH (default 1600x1000) sets the screen and the window size.
 set -eu
 workbench=$1 checker=$2 project_dir=$3 out=$4 views=$5 script=${6:-}
 if ! command -v xvfb-run >/dev/null 2>&1; then
@@ -13,10 +14,11 @@ mkdir -p "$out/project" "$out/config"
 cp "$project_dir"/*.json "$out/project/"
 # Keep the user's config (recent projects, imgui.ini) out of the test and vice versa.
 export XDG_CONFIG_HOME="$out/config"
-set -- "$out/project/project.json" --frames 60 --screenshot "$out/shot.png"
+size=${RRF_GUI_SIZE:-1600x1000}
+set -- "$out/project/project.json" --frames 60 --screenshot "$out/shot.png" --size "$size"
 if [ -n "$script" ]; then
     set -- "$@" --script "$script"
 fi
 cd "$out"
-xvfb-run -a -s "-screen 0 1600x1000x24" "$workbench" "$@"
+xvfb-run -a -s "-screen 0 ${size}x24" "$workbench" "$@"
 "$checker" "$out/shot.png" --views "$views"

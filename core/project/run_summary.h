@@ -1,0 +1,40 @@
+#pragma once
+/// One row of the workbench's runs table: what a run was (kind, trainer, network), what it cost
+/// (records, training or render time, one frame of prediction) and how good it is (held-out error
+/// with the reference's noise floor), read from the run's settings snapshot and metrics so that a
+/// run recorded by the CLI and one recorded by the workbench read the same. Unknown fields stay
+/// empty (the table shows "-"), never 0.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/project/runs.h"
+
+namespace rrf {
+
+struct RunSummary {
+    std::string kind;                 ///< "render", "train", ...
+    std::string status;               ///< trainRunStatusText (train runs), "" otherwise
+    bool stopped = false;             ///< a stopped (partial) training run
+    std::string trainer;              ///< "LM" or "Adam" (train runs)
+    std::vector<int> hidden;          ///< hidden layer sizes (train runs)
+    std::optional<int> leaves;        ///< kd-tree leaves over all models
+    std::optional<double> records;    ///< training records
+    std::optional<double> spp;        ///< render runs: samples per pixel
+    std::optional<double> seconds;    ///< training time (train runs) or render time (render runs)
+    std::optional<double> error;      ///< held-out relative RMSE of the global term (evaluated runs)
+    /// Train runs: the reference's relative RMSE noise floor of `error`; render runs: the render's own
+    /// relative error estimate (its noise, the floor of any comparison against it).
+    std::optional<double> noiseFloor;
+    std::optional<double> frameSeconds;  ///< one frame of prediction: GLSL when measured, else CPU
+    bool frameGlsl = false;           ///< frameSeconds is the GLSL figure
+};
+
+/// The table row of `run`.
+RunSummary summarizeRun(const Run& run);
+
+/// "20,10": hidden sizes for tables; "-" when empty.
+std::string hiddenText(const std::vector<int>& hidden);
+
+}  // namespace rrf

@@ -1,0 +1,69 @@
+// Status words of jobs and results (see status_text.h).
+#include "panels/status_text.h"
+
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "core/project/run_recording.h"
+
+namespace rrf::panels {
+
+std::string renderProgressText(const RenderProgress& r) {
+    char buf[96];
+    if (r.running) std::snprintf(buf, sizeof buf, "%d/%d spp", r.spp, r.targetSpp);
+    else if (r.cancelled) std::snprintf(buf, sizeof buf, "cancelled at %d/%d spp", r.spp, r.targetSpp);
+    else std::snprintf(buf, sizeof buf, "%d/%d spp done", r.spp, r.targetSpp);
+    return buf;
+}
+
+std::string trainingProgressText(const TrainingInfo& t) {
+    if (t.running) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.0f%%", 100 * t.progress);
+        return buf;
+    }
+    if (t.stopped) return stoppedTrainingText(t.epoch, t.networks, t.plannedNetworks);
+    return "done, " + std::to_string(t.networks) + (t.networks == 1 ? " network" : " networks");
+}
+
+std::string datasetStaleReason(const DatasetInfo& d, const Project& project) {
+    if (d.path.empty()) return {};
+    if (d.lastCancelled) return "stale: the last generation was cancelled or failed; this is the dataset before it";
+    if (d.sceneHash != 0 && d.sceneHash != project.scene.contentHash())
+        return "stale: the scene changed since this dataset was generated";
+    if (d.madeWith && d.madeWith->toJson() != project.samplingOrDefault().toJson())
+        return "stale: the sampling settings changed since this dataset was generated";
+    return {};
+}
+
+std::string withoutNetworkText(const ImageSet& set, const Scene& scene) {
+    const size_t n = set.withoutNetwork.size();
+    if (n == 0) return {};
+    std::string t = "hatched magenta: no network for " + std::to_string(n) + (n == 1 ? " object (" : " objects (");
+    for (size_t i = 0; i < n; ++i) {
+        const int id = set.withoutNetwork[i];
+        if (i) t += ", ";
+        t += id >= 0 && id < int(scene.objects.size()) ? scene.objects[size_t(id)].name : "#" + std::to_string(id);
+    }
+    return t + "): a partial model set";
+}
+
+void drawNotice(WorkbenchState& state, bool wrap) {
+    if (!state.notice) return;
+    const Notice& n = *state.notice;
+    const ImVec4 colour = n.level == LogLevel::Error ? ImVec4(1.f, 0.45f, 0.4f, 1.f) : ImVec4(1.f, 0.8f, 0.3f, 1.f);
+    ImGui::PushID("##notice");
+    const bool dismiss = ImGui::SmallButton("Dismiss");
+    ImGui::SameLine();
+    // In a panel the text wraps at the pane's edge; on the one-line status bar it runs on, and
+    // hovering shows it whole.
+    if (wrap) ImGui::PushTextWrapPos(0.f);
+    ImGui::TextColored(colour, "%s", n.text.c_str());
+    if (wrap) ImGui::PopTextWrapPos();
+    else if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", n.text.c_str());
+    ImGui::PopID();
+    if (dismiss) state.notice.reset();
+}
+
+}  // namespace rrf::panels
