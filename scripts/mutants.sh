@@ -62,10 +62,35 @@ for b in blocks:
     print(json.dumps(b))
 PY
 
-# Scratch copy of the working tree (tracked and untracked files, not build outputs). rsync keeps
-# the times of unchanged files, so make rebuilds only what changed since the last run.
+# Scratch copy of the working tree (tracked and untracked files, not build outputs). Only files
+# whose bytes differ are copied (with a new time), so make rebuilds exactly what changed since the
+# last run, even after an interrupted run left a mutated file behind.
 mkdir -p "$tree"
-rsync -a --delete --exclude '/build*/' --exclude '/.git' "$root/" "$tree/"
+python3 - "$root" "$tree" <<'PY'
+import os, shutil, sys
+src, dst = sys.argv[1], sys.argv[2]
+skip = lambda rel: rel == ".git" or rel.split(os.sep)[0].startswith("build")
+seen = set()
+for d, dirs, files in os.walk(src):
+    rel_d = os.path.relpath(d, src)
+    dirs[:] = [x for x in dirs if not skip(os.path.normpath(os.path.join(rel_d, x)))]
+    os.makedirs(os.path.join(dst, rel_d), exist_ok=True)
+    for f in files:
+        rel = os.path.normpath(os.path.join(rel_d, f))
+        if skip(rel): continue
+        seen.add(rel)
+        a, b = os.path.join(src, rel), os.path.join(dst, rel)
+        if os.path.islink(a): continue
+        if not os.path.exists(b) or open(a, "rb").read() != open(b, "rb").read():
+            shutil.copyfile(a, b)
+            shutil.copymode(a, b)
+for d, dirs, files in os.walk(dst):
+    rel_d = os.path.relpath(d, dst)
+    dirs[:] = [x for x in dirs if not skip(os.path.normpath(os.path.join(rel_d, x)))]
+    for f in files:
+        rel = os.path.normpath(os.path.join(rel_d, f))
+        if rel not in seen: os.remove(os.path.join(dst, rel))
+PY
 # ccache keys on paths relative to the base directory: the same objects as the worktree's build.
 export CCACHE_BASEDIR=$tree
 cmake -S "$tree" -B "$build" -DCMAKE_BUILD_TYPE=Release -DRRF_BUILD_GUI=OFF -DRRF_BUILD_BENCH=OFF >/dev/null
