@@ -50,7 +50,7 @@ for raw in open(sys.argv[1], encoding="utf-8"):
         if cur: blocks.append(cur); cur = {}
         continue
     key, sep, value = line.partition(": ")
-    if not sep or key not in ("id", "file", "find", "replace", "models"):
+    if not sep or key not in ("id", "file", "find", "replace", "models", "tests"):
         sys.exit(f"mutants.txt: unexpected line: {line!r}")
     if key in cur:
         sys.exit(f"mutants.txt: mutant {cur.get('id', '?')} has two '{key}' lines")
@@ -101,8 +101,8 @@ buildAll() { cmake --build "$build" -j "$jobs" --target rrf_tests </dev/null >"$
 buildTests() {
   (cd "$build" && make -j "$jobs" rrf_core/fast && make -j "$jobs" rrf_tests/fast) </dev/null >"$scratch/build.log" 2>&1
 }
-runTests() {
-  (cd "$build" && timeout "$limit" ./rrf_tests --gtest_filter="$filter" --gtest_fail_fast --gtest_brief=1 \
+runTests() {  # [filter]: default the list's filter
+  (cd "$build" && timeout "$limit" ./rrf_tests --gtest_filter="${1:-$filter}" --gtest_fail_fast --gtest_brief=1 \
       </dev/null >"$scratch/test.log" 2>&1)
 }
 
@@ -121,8 +121,8 @@ addRow() {
   if [[ -n $table ]]; then printf '%s\n' "$1" >>"$table"; fi
 }
 while IFS= read -r json; do
-  get() { python3 -c 'import sys, json; print(json.loads(sys.argv[1])[sys.argv[2]])' "$json" "$1"; }
-  id=$(get id); file=$(get file); models=$(get models)
+  get() { python3 -c 'import sys, json; print(json.loads(sys.argv[1]).get(sys.argv[2], ""))' "$json" "$1"; }
+  id=$(get id); file=$(get file); models=$(get models); hint=$(get tests)
   if ((${#only[@]})); then
     skip=1; for o in "${only[@]}"; do [[ $o == "$id" ]] && skip=0; done
     ((skip)) && continue
@@ -143,15 +143,18 @@ PY
     # The code moved on: the list needs updating. Counted apart, and the run fails.
     stale=$((stale + 1))
     printf '%-34s %s\n' "$id" "STALE (pattern not found once in $file)"
-    addRow "| \`$id\` | \`$file\` | $models | stale pattern |"
+    addRow "| \`$id\` | \`$file\` | ${models//|/\\|} | stale pattern |"
     continue
   fi
   t0=$(date +%s)
   if ! buildTests; then
     result="killed (does not build)"
   else
+    # The tests named by the mutant's optional "tests:" line first (a quick kill); a mutant
+    # survives only if the whole filter passes.
     rc=0
-    runTests || rc=$?
+    if [[ -n $hint ]]; then runTests "$hint" || rc=$?; fi
+    if ((rc == 0)); then runTests || rc=$?; fi
     if ((rc == 0)); then result="SURVIVED"
     elif ((rc == 124)); then result="killed (timeout ${limit} s)"
     else
@@ -164,7 +167,7 @@ PY
   secs=$(( $(date +%s) - t0 ))
   if [[ $result == SURVIVED ]]; then survived=$((survived + 1)); else killed=$((killed + 1)); fi
   printf '%-34s %-58s %4d s  %s\n' "$id" "$result" "$secs" "$models"
-  addRow "| \`$id\` | \`$file\` | $models | $result |"
+  addRow "| \`$id\` | \`$file\` | ${models//|/\\|} | $result |"
 done <"$parsed"
 buildTests || true  # leave the scratch build unmutated for the next run
 
