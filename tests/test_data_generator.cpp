@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <fcntl.h>
@@ -546,8 +548,10 @@ TEST(DataGenerator, CancelledRunProducesNoData) {
 
 TEST(DataGenerator, InterruptedCliWritesNothing) {
     // SIGINT (Ctrl-C) during `rrf generate`: exit code 130, no dataset and no temporary file.
-    // The job is large (15³ cells × 400 × 16 paths, about 20 s), the signal comes once the
-    // progress line shows that the interrupt handler is installed.
+    // The job could never finish in a test's lifetime (100³ cells × 400 × 16 paths, hours on any
+    // machine), so the signal always finds it running, however loaded the machine; it comes once
+    // the progress line shows that the interrupt handler is installed. A run that ignored the
+    // signal would be killed after a minute and fail the test instead of hanging it.
     const fs::path dir = testDir();
     const std::string out = (dir / "interrupted.rrfd").string();
     int fds[2];
@@ -559,7 +563,7 @@ TEST(DataGenerator, InterruptedCliWritesNothing) {
         ::close(fds[0]);
         const int devNull = ::open("/dev/null", O_WRONLY);
         ::dup2(devNull, 1);
-        ::execl(RRF_CLI_PATH, "rrf", "generate", kCornell.c_str(), "--grid", "15,15,15", "--dirs", "400", "--spp", "16",
+        ::execl(RRF_CLI_PATH, "rrf", "generate", kCornell.c_str(), "--grid", "100,100,100", "--dirs", "400", "--spp", "16",
                 "--out", out.c_str(), static_cast<char*>(nullptr));
         ::_exit(127);
     }
@@ -569,10 +573,23 @@ TEST(DataGenerator, InterruptedCliWritesNothing) {
     ssize_t n;
     while (!contains(err, "generate:") && (n = ::read(fds[0], buf, sizeof buf)) > 0) err.append(buf, size_t(n));
     ::kill(pid, SIGINT);
+    // Read what it says until it exits; a process still running after a minute ignored the signal.
+    int status = 0;
+    pid_t ended = 0;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    ::fcntl(fds[0], F_SETFL, O_NONBLOCK);
+    while ((ended = ::waitpid(pid, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() < deadline) {
+        while ((n = ::read(fds[0], buf, sizeof buf)) > 0) err.append(buf, size_t(n));
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    if (ended == 0) {
+        ::kill(pid, SIGKILL);
+        ::waitpid(pid, &status, 0);
+        FAIL() << "rrf generate still running a minute after SIGINT: " << err;
+    }
     while ((n = ::read(fds[0], buf, sizeof buf)) > 0) err.append(buf, size_t(n));
     ::close(fds[0]);
-    int status = 0;
-    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ASSERT_EQ(ended, pid);
     ASSERT_TRUE(WIFEXITED(status)) << err;
     EXPECT_EQ(WEXITSTATUS(status), 130) << err;
     EXPECT_TRUE(contains(err, "no dataset written")) << err;

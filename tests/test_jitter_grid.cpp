@@ -215,3 +215,23 @@ TEST(ViewpointClassifier, GeneratorDropsExactlyTheCellsTheClassifierRejects) {
     EXPECT_EQ(data.header.at("stats").at("cells_dropped_inside_object").get<uint64_t>(), inside);
     EXPECT_EQ(data.header.at("stats").at("cells_dropped_outside_scene").get<uint64_t>(), outside);
 }
+
+TEST(ViewpointClassifier, InsideMeansAnOddNumberOfCrossings) {
+    // One closed object made of two nested cubes: the outer [-1.5, 1.5]³ facing out, the inner
+    // [-0.5, 0.5]³ facing in (a hollow block with a cavity). From the cavity every probe crosses the
+    // object twice (even: open air, kept); from the shell's material once (odd: inside); from far away
+    // no probe meets anything (outside the scene). Counting any crossing would drop the cavity.
+    Scene s;
+    const int m = addLambert(s, Vec3(0.5f));
+    std::vector<QuadSpec> faces = inwardCubeFaces(0.5f);
+    for (QuadSpec q : inwardCubeFaces(1.5f)) faces.push_back({q.corner + q.e1, -q.e1, q.e2});  // flipped: outwards
+    addQuads(s, faces, m, "hollow block");
+    s.objects.back().closed = true;
+    addCeilingLight(s, 0.f, 0.f, 3.f, 0.5f);
+    const Classifier classify(s);
+    for (const Vec3 p : {Vec3(0.f), Vec3(0.3f, -0.2f, 0.1f), Vec3(-0.4f, 0.4f, -0.35f)})
+        EXPECT_STREQ(statusName(classify(p)), "Kept") << "cavity at " << p;
+    for (const Vec3 p : {Vec3(1.f, 0.f, 0.f), Vec3(0.2f, -1.2f, 0.3f), Vec3(1.2f, 1.1f, -1.f)})
+        EXPECT_STREQ(statusName(classify(p)), "InsideObject") << "shell at " << p;
+    EXPECT_STREQ(statusName(classify(Vec3(0.f, 0.f, 40.f))), "OutsideScene");
+}

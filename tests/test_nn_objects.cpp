@@ -6,7 +6,9 @@
 
 #include <tbb/global_control.h>
 
+#include "core/nn/model.h"
 #include "core/nn/object_training.h"
+#include "core/nn/training_samples.h"
 #include "tests/synthetic_samples.h"
 
 using namespace rrf;
@@ -92,6 +94,48 @@ TEST(ObjectTraining, TargetModes) {
     EXPECT_EQ(parseTargetMode("indirect"), TargetMode::Indirect);
     EXPECT_THROW(parseTargetMode("both"), std::invalid_argument);
     EXPECT_EQ(modelFileName(3, "joint"), "object_3_joint.rrfm");
+}
+
+TEST(ObjectTraining, EachTargetModeLearnsItsOwnTarget) {
+    // Records laid out as the generator writes them (14 inputs, direct RGB, indirect RGB), read by
+    // the same bridge as dataset files. Direct (≈ 1 … 3) and indirect (≈ 0.04 … 0.3) differ by an
+    // order of magnitude, so a network fitted to one is far (relative RMSE ≫ 1) from the other.
+    const ObjectSamples synth = syntheticObject(3, 200);
+    std::vector<float> records;
+    for (size_t i = 0; i < synth.size(); ++i) {
+        records.insert(records.end(), synth.inputs.begin() + long(14 * i), synth.inputs.begin() + long(14 * (i + 1)));
+        records.insert(records.end(), synth.direct.begin() + long(3 * i), synth.direct.begin() + long(3 * (i + 1)));
+        records.insert(records.end(), synth.indirect.begin() + long(3 * i), synth.indirect.begin() + long(3 * (i + 1)));
+    }
+    uint64_t dropped = 0;
+    const ObjectSamples s = objectSamples(3, "object3", records.data(), synth.size(), 14, false, dropped);
+    EXPECT_EQ(dropped, 0u);
+    ASSERT_EQ(s.direct, synth.direct);
+    ASSERT_EQ(s.indirect, synth.indirect);
+
+    const MatX<float> x = s.inputMatrix();
+    const MatX<float> direct = s.directMatrix(), indirect = s.indirectMatrix();
+    ObjectTrainingOptions o = lmOptions(60);
+    o.hidden = {6};
+    o.targets = TargetMode::Separate;
+    const std::vector<ObjectModel> sep = trainObjects({s}, o);
+    ASSERT_EQ(sep.size(), 2u);
+    const MatX<float> pd = sep[0].model.predict(x), pi = sep[1].model.predict(x);
+    EXPECT_LT(relativeRmse(pd, direct), 0.1) << "the direct network reproduces the direct targets";
+    EXPECT_GT(relativeRmse(pd, indirect), 1.0) << "… not the indirect ones";
+    EXPECT_LT(relativeRmse(pi, indirect), 0.2) << "the indirect network reproduces the indirect targets";
+    EXPECT_GT(relativeRmse(pi, direct), 0.5);
+    o.targets = TargetMode::Joint;
+    const std::vector<ObjectModel> joint = trainObjects({s}, o);
+    ASSERT_EQ(joint.size(), 1u);
+    const MatX<float> pj = joint[0].model.predict(x);
+    EXPECT_LT(relativeRmse(pj.topRows(3), direct), 0.1) << "joint rows 0–2 are direct";
+    EXPECT_LT(relativeRmse(pj.bottomRows(3), indirect), 0.2) << "joint rows 3–5 are indirect";
+    o.targets = TargetMode::Global;
+    const std::vector<ObjectModel> global = trainObjects({s}, o);
+    ASSERT_EQ(global.size(), 1u);
+    const MatX<float> sum = direct + indirect;
+    EXPECT_LT(relativeRmse(global[0].model.predict(x), sum), 0.1) << "global is direct + indirect";
 }
 
 TEST(ObjectTraining, BitIdenticalForAnyThreadCountAndSelection) {

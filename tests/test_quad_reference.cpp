@@ -320,6 +320,45 @@ TEST(QuadReference, RaysThroughVerticesStayFinite) {
     }
 }
 
+TEST(QuadReference, RaysJustInsideVerticesAndEdgesHit) {
+    // The exact-vertex and in-plane edge rays above may hit or miss; rays aimed 1% of the way from a
+    // vertex or an edge midpoint towards the centroid (inside: every quad here is convex) must hit,
+    // in both intersectors, with (u, v) at that vertex or edge midpoint.
+    Device device;
+    Rng rng(14, 0);
+    const float corner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    const float midpoint[4][2] = {{0.5f, 0}, {1, 0.5f}, {0.5f, 1}, {0, 0.5f}};  // edge i: vertex i → i+1
+    int checked = 0;
+    for (int qi = 0; qi < 40; ++qi) {
+        float size;
+        const Quad q = randomQuad(rng, Shape(qi % 4), size);
+        const EmbreeQuad embree(device.handle, q);
+        const Vec3 centroid = (q[0] + q[1] + q[2] + q[3]) * 0.25f;
+        const Vec3 n = normalize(cross(q[1] - q[0], q[3] - q[0]));
+        for (int i = 0; i < 8; ++i) {
+            const bool vertex = i < 4;
+            const int k = i % 4;
+            const Vec3 at = vertex ? q[size_t(k)] : (q[size_t(k)] + q[size_t((k + 1) % 4)]) * 0.5f;
+            const float* uv = vertex ? corner[k] : midpoint[k];
+            const Vec3 target = at + (centroid - at) * 0.01f;
+            Vec3 offset = randomUnit(rng);
+            if (std::fabs(dot(offset, n)) < 0.2f) offset = offset + n;  // not grazing
+            const Vec3 origin = target + normalize(offset) * (2.f * size);
+            const Vec3 dir = target - origin;
+            float t = NAN, u = NAN, v = NAN, tE = NAN;
+            ASSERT_TRUE(intersectQuadLagaeDutre(origin, dir, q[0], q[1], q[2], q[3], t, u, v))
+                << "quad " << qi << (vertex ? " vertex " : " edge ") << k;
+            EXPECT_NEAR(t, 1.f, 1e-4f);
+            EXPECT_NEAR(u, uv[0], 0.03f) << "quad " << qi << (vertex ? " vertex " : " edge ") << k;
+            EXPECT_NEAR(v, uv[1], 0.03f) << "quad " << qi << (vertex ? " vertex " : " edge ") << k;
+            ASSERT_TRUE(embree.intersect(origin, dir, tE)) << "quad " << qi << (vertex ? " vertex " : " edge ") << k;
+            EXPECT_NEAR(tE, 1.f, 1e-4f);
+            ++checked;
+        }
+    }
+    EXPECT_EQ(checked, 320);
+}
+
 TEST(QuadReference, RaysAlongEdgesStayFinite) {
     Device device;
     Rng rng(12, 0);

@@ -203,9 +203,34 @@ TEST_F(LearningPanelTest, ObjectsTableSortsAndExports) {
     s.evaluation.rows[int(Term::Global)] = rows;
     for (int i = 0; i < 3; ++i) frame([&] { drawObjectsPanel(s); });
     EXPECT_TRUE(s.requests.empty());
-    s.view.term = Term::Direct;  // not predicted: the panel says so instead of an empty table
-    frame([&] { drawObjectsPanel(s); });
-    EXPECT_EQ(s.view.selectedObject, -1);
+
+    // Clicking a row highlights its object, clicking it again clears the highlight. The rows' place
+    // depends on the font; found by clicking upwards from inside the table (below its rows, clicks
+    // hit nothing), so the first row found is the last one in the default (name) order: "tall box".
+    auto clickAt = [&](float y) {
+        mouse(60, y, true);
+        frame([&] { drawObjectsPanel(s); });
+        mouse(60, y, false);
+        frame([&] { drawObjectsPanel(s); });
+    };
+    float rowY = -1;
+    for (float y = 300; y > 0 && rowY < 0; y -= 2) {
+        clickAt(y);
+        if (s.view.selectedObject != -1) rowY = y;
+    }
+    ASSERT_GT(rowY, 0) << "no table row answered a click";
+    EXPECT_EQ(s.view.selectedObject, 2) << "the last row in name order is the tall box";
+    clickAt(rowY);
+    EXPECT_EQ(s.view.selectedObject, -1) << "a second click clears the highlight";
+    clickAt(rowY);
+    EXPECT_EQ(s.view.selectedObject, 2);
+    EXPECT_TRUE(s.requests.empty());
+
+    // Not predicted: the panel says so instead of drawing a table, so the same click selects nothing.
+    s.view.term = Term::Direct;
+    s.view.selectedObject = -1;
+    clickAt(rowY);
+    EXPECT_EQ(s.view.selectedObject, -1) << "no table rows for a term the networks do not predict";
 }
 
 TEST_F(LearningPanelTest, CostPanelPlotsEvaluatedTrainingRuns) {
