@@ -290,7 +290,7 @@ TEST(Project, NetworkWithoutTrainerStaysWithoutTrainerOnSave) {
     ASSERT_TRUE(p.network.has_value());
     EXPECT_FALSE(p.trainer.has_value()) << "the file has no trainer section";
     EXPECT_EQ(p.networkOrDefault().options.hidden, (std::vector<int>{8, 4}));
-    EXPECT_EQ(p.networkOrDefault().trainerJson(), TrainerConfig().toJson()) << "the trainer in effect is the default";
+    EXPECT_EQ(p.networkOrDefault().trainerJson(), NetworkSettings::defaultTrainer().toJson()) << "the trainer in effect is the default";
 
     // An edit of the network section alone must not add a trainer section.
     NetworkSettings edited = p.networkOrDefault();

@@ -265,6 +265,8 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, (dir / "project.json").string(), error)) << error;
     ASSERT_TRUE(addHiddenLayer(s));
+    // Adam is the project default: switching away and back stores the trainer section.
+    ASSERT_TRUE(setTrainerType(s, TrainerType::LevenbergMarquardt));
     ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
     NetworkSettings edited = s.project.networkOrDefault();
     edited.options.trainer.adam.learningRate = 3e-3;
