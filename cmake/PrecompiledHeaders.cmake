@@ -6,9 +6,15 @@
 option(RRF_PCH "Precompile the large third-party and standard headers" ON)
 
 if(RRF_PCH)
-  set(rrf_pch_common <algorithm> <atomic> <cmath> <cstdint> <functional> <map> <memory> <mutex>
-                     <optional> <sstream> <string> <vector> <nlohmann/json.hpp> <Eigen/Dense>)
-  foreach(t rrf_core rrf rrf_panels rrf-workbench rrf_gl)
+  set(rrf_pch_std <algorithm> <atomic> <cmath> <cstdint> <functional> <map> <memory> <mutex>
+                  <optional> <sstream> <string> <vector>)
+  set(rrf_pch_common ${rrf_pch_std} <nlohmann/json.hpp> <Eigen/Dense>)
+  # panels/ must not parse JSON: its precompiled header leaves nlohmann out, so a panel that used it
+  # without including it would not compile.
+  if(TARGET rrf_panels)
+    target_precompile_headers(rrf_panels PRIVATE ${rrf_pch_std} <Eigen/Dense>)
+  endif()
+  foreach(t rrf_core rrf rrf-workbench rrf_gl)
     if(TARGET ${t})
       target_precompile_headers(${t} PRIVATE ${rrf_pch_common})
     endif()

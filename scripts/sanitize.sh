@@ -26,6 +26,7 @@ jobs_to_run=("$@")
 # take minutes while exercising nothing the faster tests do not: whole pipelines and convergence
 # studies built from the same renderer, generator and trainer code that the other tests run.
 asan_skip='EndToEnd\.SmallRunLearnsAndBrokenPipelinesFail|EndToEnd\.SppSweepShowsTheMonteCarloSlope'
+asan_skip+='|DefaultPipeline\.QuickRunOfTheProjectDefaultsStaysWithinItsMeasuredBound'
 # The threaded tests whose subject is our own threads: cancel from another thread, training runs, the
 # workbench's job runner and job sessions, and one thread-count test. Left out: the convergence and
 # statistics tests, and the bit-identical-for-any-thread-count tests of the generator and trainers,

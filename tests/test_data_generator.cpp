@@ -548,8 +548,8 @@ TEST(DataGenerator, CancelledRunProducesNoData) {
 
 TEST(DataGenerator, InterruptedCliWritesNothing) {
     // SIGINT (Ctrl-C) during `rrf generate`: exit code 130, no dataset and no temporary file.
-    // The job cannot finish before the signal (one cell × 10 million directions × 64 paths: minutes
-    // on 2 cores, and within the memory bound rrf generate checks up front), so the signal always
+    // The job cannot finish before the signal (one cell × 200 000 directions × 4096 paths: minutes on
+    // 2 cores, and only ~22 MB against the memory bound rrf generate checks up front), so the signal always
     // finds it running, however loaded the machine; it comes once
     // the progress line shows that the interrupt handler is installed. A run that ignored the
     // signal would be killed after a minute and fail the test instead of hanging it.
@@ -564,7 +564,7 @@ TEST(DataGenerator, InterruptedCliWritesNothing) {
         ::close(fds[0]);
         const int devNull = ::open("/dev/null", O_WRONLY);
         ::dup2(devNull, 1);
-        ::execl(RRF_CLI_PATH, "rrf", "generate", kCornell.c_str(), "--grid", "1,1,1", "--dirs", "10000000", "--spp", "64",
+        ::execl(RRF_CLI_PATH, "rrf", "generate", kCornell.c_str(), "--grid", "1,1,1", "--dirs", "200000", "--spp", "4096",
                 "--out", out.c_str(), static_cast<char*>(nullptr));
         ::_exit(127);
     }

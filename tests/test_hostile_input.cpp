@@ -314,11 +314,13 @@ TEST(HostileInput, CancelStopsWithinOneCellOfMillionsOfDirections) {
     SamplingSettings s;
     s.nx = s.ny = s.nz = 1;
     s.directions = 2000000;
-    s.spp = s.maxSpp = 1;
+    s.spp = s.maxSpp = 4;
     const DataGenerator gen(scene, s);
     std::atomic<bool> cancel{false};
     GeneratorProgress progress;
     std::chrono::steady_clock::time_point cancelledAt;
+    // 8 million paths: seconds even on a fast machine, so the cancel at 200 ms finds the cell running
+    // (progress counts records only per finished cell, so it cannot trigger the cancel).
     std::thread stopper([&] {
         std::this_thread::sleep_for(std::chrono::milliseconds(200));
         cancelledAt = std::chrono::steady_clock::now();

@@ -290,7 +290,12 @@ TEST(Project, NetworkWithoutTrainerStaysWithoutTrainerOnSave) {
     ASSERT_TRUE(p.network.has_value());
     EXPECT_FALSE(p.trainer.has_value()) << "the file has no trainer section";
     EXPECT_EQ(p.networkOrDefault().options.hidden, (std::vector<int>{8, 4}));
-    EXPECT_EQ(p.networkOrDefault().trainerJson(), NetworkSettings::defaultTrainer().toJson()) << "the trainer in effect is the default";
+    // The trainer in effect is the project default (README): Adam, relative L2, error goal 0.02, 600 epochs.
+    const TrainerConfig t = p.networkOrDefault().options.trainer;
+    EXPECT_EQ(t.type, TrainerType::Adam);
+    EXPECT_EQ(t.adam.loss, AdamLoss::RelativeL2);
+    EXPECT_DOUBLE_EQ(t.adam.errorGoal, 0.02);
+    EXPECT_EQ(t.adam.maxEpochs, 600);
 
     // An edit of the network section alone must not add a trainer section.
     NetworkSettings edited = p.networkOrDefault();

@@ -33,9 +33,11 @@ std::string userWorkspaceProject(const std::string& bundledProjectFile, bool& cr
     if (!ec) fs::copy(source, staging, fs::copy_options::recursive, ec);
     if (!ec) fs::rename(staging, target, ec);
     if (ec) {
-        fs::remove_all(staging, ec);
+        const std::string why = ec.message();  // before the clean-up reuses an error code
+        std::error_code cleanup;
+        fs::remove_all(staging, cleanup);
         throw std::runtime_error("cannot copy the bundled project " + source.string() + " into the workspace " +
-                                 target.string() + ": " + ec.message());
+                                 target.string() + ": " + why);
     }
     created = true;
     return project.string();

@@ -53,7 +53,8 @@ TrainingRun trainNetworks(const std::vector<ObjectSamples>& samples, const Objec
     inner.onWork = [&](int64_t done, int64_t budget) {
         if (progress) {
             progress->epochs += done;
-            progress->epochBudget = progress->epochBudget.load() + double(budget);  // one writer: the splitting thread
+            // Budget grows only between tree levels, on the thread that decides the splits (no race).
+            if (budget) progress->epochBudget = progress->epochBudget.load() + double(budget);
         }
         if (observer.onWork) observer.onWork(done, budget);
     };

@@ -112,10 +112,12 @@ void replaceDirectory(const std::string& targetPath, const std::function<bool(co
                              targetPath + "/out)");
     fs::create_directories(parent, ec);
     if (ec || !fs::is_directory(parent)) fail(parent, "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+    // Stale temporaries first: cleaning them up may put a killed writer's moved-aside set back at the
+    // target, whose other files must then be carried over like any old set's.
+    removeStaleDirectoryTemporaries(target.string());
     const bool replacing = fs::exists(target);
     if (replacing && !fs::is_directory(target)) fail(targetPath, "exists and is not a directory");
 
-    removeStaleDirectoryTemporaries(target.string());
     const fs::path staging = temporaryDirectoryFor(target.string(), "tmp");
     fs::create_directory(staging, ec);
     if (ec) fail(targetPath, "cannot create the temporary directory '" + staging.string() + "': " + ec.message());
