@@ -21,4 +21,4 @@ if [ -n "$script" ]; then
 fi
 cd "$out"
 xvfb-run -a -s "-screen 0 ${size}x24" "$workbench" "$@"
-"$checker" "$out/shot.png" --views "$views"
+"$checker" "$out/shot.png" --views "$views" ${RRF_SHOT_SCENE_VIEWS:+--scene-views "$RRF_SHOT_SCENE_VIEWS"}

@@ -5,7 +5,8 @@
 // 1 = the ground truth is shown, 3 = ground truth, prediction (or compared run) and error map are
 // all filled. Counting colours cannot tell a picture from noise or a mirrored image, so the images
 // of the scene (the first view, and the second when N ≥ 2) must also show the Cornell box the right
-// way round: a red wall left of a green wall, each covering a real part of the view. The error map
+// way round: a red wall left of a green wall, each covering a real part of the view (--scene-views K
+// checks only the first K: a partial model's prediction may leave walls hatched). The error map
 // (third view) uses a colour scale, not the scene's colours, so it must differ from the first view.
 #include <algorithm>
 #include <cmath>
@@ -70,11 +71,16 @@ double meanDifference(const rrf::Image& img, int ax, int bx, int y0, int width, 
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: rrf_gui_shotcheck shot.png [--views N]\n");
+        std::fprintf(stderr, "usage: rrf_gui_shotcheck shot.png [--views N] [--scene-views K]\n");
         return 2;
     }
     int views = 1;
-    if (argc == 4 && std::strcmp(argv[2], "--views") == 0) views = std::atoi(argv[3]);
+    int sceneViews = -1;  // leading views that must show the scene's walls; default min(N, 2)
+    for (int i = 2; i + 1 < argc; i += 2) {
+        if (std::strcmp(argv[i], "--views") == 0) views = std::atoi(argv[i + 1]);
+        else if (std::strcmp(argv[i], "--scene-views") == 0) sceneViews = std::atoi(argv[i + 1]);
+    }
+    if (sceneViews < 0) sceneViews = std::min(views, 2);
     rrf::Image img;
     try {
         img = rrf::readImage(argv[1]);
@@ -101,7 +107,7 @@ int main(int argc, char** argv) {
         }
     }
     // The scene's images: red wall left of green wall, each at least 1 % of the view.
-    for (int i = 0; i < std::min(views, 2); ++i) {
+    for (int i = 0; i < std::min(sceneViews, 2); ++i) {
         const int a = x0 + (x1 - x0) * i / 3 + 8, b = x0 + (x1 - x0) * (i + 1) / 3 - 8;
         const WallColours w = wallColours(img, a, y0, b, y1);
         const long area = long(b - a) * long(y1 - y0);
