@@ -147,32 +147,15 @@ TEST(CliHostile, CtrlCStopsOneHugeCellWithinASecond) {
     const fs::path dir = testDir();
     const std::string scene = writeScene(dir, "scene.json");
     const std::string out = (dir / "d.rrfd").string();
-    int fds[2];
-    ASSERT_EQ(::pipe(fds), 0);
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-        ::dup2(fds[1], 2);
-        ::close(fds[0]);
-        const int devNull = ::open("/dev/null", O_WRONLY);
-        ::dup2(devNull, 1);
-        ::execl(RRF_CLI_PATH, "rrf", "generate", scene.c_str(), "--grid", "1,1,1", "--dirs", "10000000", "--spp", "1",
-                "--max-spp", "1", "--out", out.c_str(), static_cast<char*>(nullptr));
-        ::_exit(127);
-    }
-    ::close(fds[1]);
-    std::string err;
-    char buf[256];
-    ssize_t n;
-    // The progress line shows the interrupt handler is installed and the cell is being worked on.
-    while (!contains(err, "generate:") && (n = ::read(fds[0], buf, sizeof buf)) > 0) err.append(buf, size_t(n));
-    const auto signalled = std::chrono::steady_clock::now();
-    ::kill(pid, SIGINT);
-    while ((n = ::read(fds[0], buf, sizeof buf)) > 0) err.append(buf, size_t(n));
-    ::close(fds[0]);
-    int status = 0;
-    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+    const rrf::test::InterruptedRun run =
+        rrf::test::interruptCli({"generate", scene, "--grid", "1,1,1", "--dirs", "10000000", "--spp", "1", "--max-spp", "1",
+                                 "--out", out},
+                                "generate:");
+    ASSERT_TRUE(run.started);
+    ASSERT_TRUE(run.exited) << "still running a minute after SIGINT: " << run.err;
+    const int status = run.status;
+    const std::string& err = run.err;
+    const double seconds = run.seconds;
     ASSERT_TRUE(WIFEXITED(status)) << err;
     EXPECT_EQ(WEXITSTATUS(status), 130) << err;
     EXPECT_LT(seconds, 1.0) << err;

@@ -31,6 +31,7 @@
 #include "core/project/project.h"
 #include "core/render/renderer.h"
 #include "scene_builders.h"
+#include "tests/cli_runner.h"
 
 using namespace rrf;
 using namespace rrf::test;
@@ -555,42 +556,12 @@ TEST(DataGenerator, InterruptedCliWritesNothing) {
     // signal would be killed after a minute and fail the test instead of hanging it.
     const fs::path dir = testDir();
     const std::string out = (dir / "interrupted.rrfd").string();
-    int fds[2];
-    ASSERT_EQ(::pipe(fds), 0);
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-        ::dup2(fds[1], 2);
-        ::close(fds[0]);
-        const int devNull = ::open("/dev/null", O_WRONLY);
-        ::dup2(devNull, 1);
-        ::execl(RRF_CLI_PATH, "rrf", "generate", kCornell.c_str(), "--grid", "1,1,1", "--dirs", "200000", "--spp", "4096",
-                "--out", out.c_str(), static_cast<char*>(nullptr));
-        ::_exit(127);
-    }
-    ::close(fds[1]);
-    std::string err;
-    char buf[256];
-    ssize_t n;
-    while (!contains(err, "generate:") && (n = ::read(fds[0], buf, sizeof buf)) > 0) err.append(buf, size_t(n));
-    ::kill(pid, SIGINT);
-    // Read what it says until it exits; a process still running after a minute ignored the signal.
-    int status = 0;
-    pid_t ended = 0;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    ::fcntl(fds[0], F_SETFL, O_NONBLOCK);
-    while ((ended = ::waitpid(pid, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() < deadline) {
-        while ((n = ::read(fds[0], buf, sizeof buf)) > 0) err.append(buf, size_t(n));
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    if (ended == 0) {
-        ::kill(pid, SIGKILL);
-        ::waitpid(pid, &status, 0);
-        FAIL() << "rrf generate still running a minute after SIGINT: " << err;
-    }
-    while ((n = ::read(fds[0], buf, sizeof buf)) > 0) err.append(buf, size_t(n));
-    ::close(fds[0]);
-    ASSERT_EQ(ended, pid);
+    const InterruptedRun run = interruptCli(
+        {"generate", kCornell, "--grid", "1,1,1", "--dirs", "200000", "--spp", "4096", "--out", out}, "generate:");
+    ASSERT_TRUE(run.started);
+    if (!run.exited) FAIL() << "rrf generate still running a minute after SIGINT: " << run.err;
+    const int status = run.status;
+    const std::string& err = run.err;
     ASSERT_TRUE(WIFEXITED(status)) << err;
     EXPECT_EQ(WEXITSTATUS(status), 130) << err;
     EXPECT_TRUE(contains(err, "no dataset written")) << err;
