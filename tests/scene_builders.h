@@ -396,8 +396,9 @@ inline double chiSquarePValue(const std::vector<double>& observed, const std::ve
 /// significance 0.01: the chance that any correct sampler fails one of them is 1%.
 inline double sidakAlpha(int tests, double overall = 0.01) { return 1.0 - std::pow(1.0 - overall, 1.0 / tests); }
 /// Number of chi-square tests in the sampling family (test_sampling.cpp: cosine + 4 Phong
-/// exponents; test_brdf.cpp: mixture at 3 view angles).
-constexpr int kChiSquareTests = 8;
+/// exponents; test_brdf.cpp: mixture at 3 view angles, and the glossy project's 3 Phong materials at
+/// 2 view angles).
+constexpr int kChiSquareTests = 14;
 
 /// Phong BRDF with grey kd, ks and exponent n.
 inline Brdf phong(float kd, float ks, float n) {

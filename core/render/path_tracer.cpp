@@ -1,6 +1,7 @@
 #include "core/render/path_tracer.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rrf {
 
@@ -35,6 +36,14 @@ bool intersectParallelogram(const Ray& ray, const Light& l, float tmax, float& t
     const float a = dot(cross(q, l.edge2), n) / nn;
     const float b = dot(cross(l.edge1, q), n) / nn;
     return a >= 0.f && a <= 1.f && b >= 0.f && b <= 1.f;
+}
+
+/// Power-heuristic weight (β = 2) of the strategy with pdf `p` against the one with pdf `other`
+/// (both in solid angle); 0 when `p` is 0 or either pdf is not finite.
+float powerHeuristic(float p, float other) {
+    const float p2 = p * p, o2 = other * other;
+    const float w = p2 / (p2 + o2);
+    return std::isfinite(w) ? w : 0.f;
 }
 }  // namespace
 
@@ -97,14 +106,15 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng,
         const Frame frame(n);
         const Vec3 woLocal = frame.toLocal(wo);
         Vec3& target = depth == 0 ? L.direct : L.indirect;
-        if (nee) target += beta * sampleDirect<kGlossy>(hit.p, hit.ng, n, frame, woLocal, brdf, movable, rng, counters);
-
         // Bounce: always for the naive estimator's first reflection (that is its direct light), and
         // beyond that only if the scene lets light travel between surfaces. NEE at depth d already
         // accounts for paths of d+1 reflections; the naive estimator needs the bounce at depth d to
         // see them, so for it the depth limit applies after the emission test below.
-        if (nee && depth + 1 >= maxDepth_) break;
-        if ((nee || depth >= 1) && !effects_.indirect) break;
+        const bool bounces = nee ? depth + 1 < maxDepth_ && effects_.indirect : depth == 0 || effects_.indirect;
+        const bool mis = kGlossy && nee && bounces;
+        if (nee)
+            target += beta * sampleDirect<kGlossy>(hit.p, hit.ng, n, frame, woLocal, brdf, movable, mis, rng, counters);
+        if (!bounces) break;
         const float uLobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
         Vec3 wiLocal, weight;
         bool ok;
@@ -136,9 +146,20 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng,
         ++counters.rays;
         if (counters.rayLog) counters.rayLog->push_back(r);
         if (!intersect(r, movable, next)) break;
-        if (next.light >= 0 && !nee) {
+        if (next.light >= 0 && (!nee || mis)) {
+            const Light& hitLight = light(next.light, movable);
+            Vec3 emitted = hitLight.emittedTowards(-wi);
+            if (mis && !emitted.isZero()) {
+                // The pdf with which this vertex's light sample would have picked the same direction:
+                // area pdf 1/A over |cos θ'| / t² (solid angle); rect lights only (point lights are
+                // never hit), sampled one point each.
+                const float cosLArea = std::fabs(dot(wi, cross(hitLight.edge1, hitLight.edge2)));
+                const float t = length(next.p - hit.p);
+                const float pLight = cosLArea > 0.f ? t * t / cosLArea : 0.f;
+                emitted *= powerHeuristic(brdf.pdf(woLocal, wiLocal), pLight);
+            }
             Vec3& t = depth == 0 ? L.direct : L.indirect;
-            t += beta * light(next.light, movable).emittedTowards(-wi);
+            t += beta * emitted;
         }
         if (!nee && depth + 1 >= maxDepth_) break;
         hit = next;
@@ -149,7 +170,8 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng,
 
 template <bool kGlossy>
 Vec3 PathTracer::sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, const Frame& frame, const Vec3& woLocal,
-                              const Brdf& brdf, const Light& movable, Rng& rng, TraceCounters& counters) const {
+                              const Brdf& brdf, const Light& movable, bool brdfRayFollows, Rng& rng,
+                              TraceCounters& counters) const {
     Vec3 sum(0.f);
     auto evalBrdf = [&](const Vec3& wi) -> Vec3 {
         if constexpr (kGlossy) return brdf.eval(woLocal, frame.toLocal(wi));
@@ -186,7 +208,13 @@ Vec3 PathTracer::sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, cons
         const Vec3 f = evalBrdf(wi);
         if (f.isZero() || !visible(wi, x)) continue;
         // Area sampling with pdf 1/A turned into solid angle: Le f cosθ cosθ' A / d².
-        sum += l.radiance * f * (cosTheta * cosLArea / dist2);
+        Vec3 contribution = l.radiance * f * (cosTheta * cosLArea / dist2);
+        if constexpr (kGlossy) {
+            if (brdfRayFollows) contribution *= powerHeuristic(dist2 / cosLArea, brdf.pdf(woLocal, frame.toLocal(wi)));
+        } else {
+            (void)brdfRayFollows;
+        }
+        sum += contribution;
     }
     for (int li : pointLights_) {
         const Light& l = light(li, movable);

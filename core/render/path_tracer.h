@@ -8,7 +8,11 @@
 /// Two estimators (docs/design.md §4–§5). `NEE`: direct light by light sampling only (uniform
 /// points on rect lights with pdf 1/area — not the seed report's 2/|v1×v2|, which is a triangle's
 /// pdf — and point lights), indirect light by BRDF sampling with Russian roulette; emission hit by
-/// BRDF rays is ignored because NEE already counted it. `Naive`: BRDF sampling only, emission
+/// BRDF rays is ignored because NEE already counted it — except in scenes with glossy materials,
+/// where a Phong lobe of exponent 1000 turns light sampling into fireflies: there the light sample and
+/// the BRDF ray that hits a rect light are combined with the power heuristic (multiple importance
+/// sampling, Veach 1997 §9.2), each weighted by p²/(p_light² + p_brdf²) in solid angle, whenever the
+/// vertex goes on to bounce (otherwise the light sample keeps weight 1). `Naive`: BRDF sampling only, emission
 /// counted when a ray hits an emitter (point lights are invisible to it). Both converge to the same
 /// image.
 
@@ -76,9 +80,12 @@ public:
 private:
     template <bool kGlossy>
     Radiance shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng, TraceCounters& counters) const;
+    /// Light sampling at a vertex; `brdfRayFollows`: the vertex goes on to bounce, so in a glossy scene
+    /// its light samples share the rect lights with the BRDF ray (power heuristic, see above).
     template <bool kGlossy>
     Vec3 sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, const Frame& frame, const Vec3& woLocal,
-                      const Brdf& brdf, const Light& movable, Rng& rng, TraceCounters& counters) const;
+                      const Brdf& brdf, const Light& movable, bool brdfRayFollows, Rng& rng,
+                      TraceCounters& counters) const;
     const Light& light(int index, const Light& movable) const {
         return index == movable_ ? movable : scene_.lights[size_t(index)];
     }
