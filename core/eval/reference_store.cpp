@@ -20,6 +20,7 @@
 #include "core/util/error.h"
 #include "core/util/image_io.h"
 #include "core/util/json_reader.h"
+#include "core/util/text_format.h"
 
 namespace rrf {
 
@@ -38,12 +39,6 @@ constexpr double kCheckpointSeconds = 120.0;
 
 static_assert(std::is_trivially_copyable<PixelSums>::value && sizeof(PixelSums) == 128,
               "the state file stores PixelSums as 15 doubles and 2 uint32 without padding");
-
-std::string hex64(uint64_t v) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
 
 /// Appends the bytes of `v` (fixed-size fields of the key digest and the state file).
 template <class T>
@@ -226,7 +221,7 @@ void writeEntry(const fs::path& storeDir, const ReferenceKey& key, const RenderS
                             {"complete", complete},
                             {"wanted_noise", noiseFigureJson(wanted)},
                             {"non_finite_samples_dropped", st.nonFinite},
-                            {"state", {{"file", kStateFile}, {"checksum64", hex64(checksum64(state.data(), state.size()))}}}};
+                            {"state", {{"file", kStateFile}, {"checksum64", hexString16(checksum64(state.data(), state.size()))}}}};
             writeFileAtomically((tmp / kMetaFile).string(), meta.dump(2) + "\n");
         });
     } catch (const InputError&) {
@@ -276,11 +271,11 @@ std::string ReferenceKey::id() const {
     put(b, int32_t(estimator));
     put(b, int32_t(maxDepth));
     put(b, seed);
-    return hex64(checksum64(b.data(), b.size()));
+    return hexString16(checksum64(b.data(), b.size()));
 }
 
 json ReferenceKey::toJson() const {
-    return {{"scene_hash", hex64(sceneHash)}, {"camera_hash", hex64(cameraHash)},
+    return {{"scene_hash", hexString16(sceneHash)}, {"camera_hash", hexString16(cameraHash)},
             {"light_position", {lightPosition.x, lightPosition.y, lightPosition.z}},
             {"width", width}, {"height", height}, {"estimator", estimatorName(estimator)},
             {"max_depth", maxDepth}, {"seed", seed}};

@@ -9,6 +9,7 @@
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
+#include "core/util/text_format.h"
 
 namespace rrf {
 
@@ -33,12 +34,6 @@ uint64_t fnv1a64(const char* p, size_t n) {
     uint64_t h = 0xCBF29CE484222325ULL;
     for (size_t i = 0; i < n; ++i) h = (h ^ uint8_t(p[i])) * 0x100000001B3ULL;
     return h;
-}
-
-std::string hex64(uint64_t v) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-    return buf;
 }
 
 /// NaN (an empty validation set) has no JSON spelling: it becomes null and back.
@@ -97,7 +92,7 @@ void saveModel(const NetworkModel& model, const std::string& path) {
     header["payload"] = {{"encoding", "float64-le"},
                          {"order", {"params", "input_offset", "input_scale", "output_offset", "output_scale"}},
                          {"bytes", payload.size()},
-                         {"fnv1a64", hex64(fnv1a64(payload.data(), payload.size()))}};
+                         {"fnv1a64", hexString16(fnv1a64(payload.data(), payload.size()))}};
     const std::string h = header.dump(1);
     const uint32_t version = kVersion, hlen = uint32_t(h.size());
     const uint64_t headerChecksum = checksum64(h.data(), h.size());
@@ -231,7 +226,7 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
                             std::to_string(expected) + " bytes");
     if (have > expected) fail("payload", std::to_string(have - expected) + " unexpected bytes after the payload");
     const char* p = bytes.data() + preamble + hlen;
-    if (hex64(fnv1a64(p, expected)) != checksum) fail("payload", "checksum mismatch: the file is corrupted");
+    if (hexString16(fnv1a64(p, expected)) != checksum) fail("payload", "checksum mismatch: the file is corrupted");
 
     auto readVec = [&](size_t n) {
         VecX<double> v(Eigen::Index(n), 1);

@@ -86,12 +86,6 @@ size_t indexChecksumAt(const std::string& text) {
     return digits + kHexDigits <= text.size() ? digits : std::string::npos;
 }
 
-/// 16 hex digits (hexString drops leading zeros; the checksum field has a fixed width).
-std::string hex16(uint64_t v) {
-    const std::string h = hexString(v);
-    return std::string(kHexDigits - h.size(), '0') + h;
-}
-
 uint64_t indexChecksum(std::string text, size_t digits) {
     text.replace(digits, kHexDigits, kHexDigits, '0');
     return checksum64(text.data(), text.size());
@@ -142,7 +136,7 @@ nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectMode
                 const PartitionNode& n = p.tree.nodes[size_t(leafNodes[size_t(l)])];
                 leaves.push_back({{"file", file},
                                   {"bytes", bytes.size()},
-                                  {"checksum64", hex16(checksum64(bytes.data(), bytes.size()))},
+                                  {"checksum64", hexString16(checksum64(bytes.data(), bytes.size()))},
                                   {"records", n.records},
                                   {"error", num(n.error)},
                                   {"rmse", {{"train", num(net.errors.train)}, {"validation", num(net.errors.validation)},
@@ -167,7 +161,7 @@ nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectMode
         // NaN errors (empty validation sets) are not valid JSON numbers: nlohmann writes null for them.
         std::string text = index.dump(2) + "\n";
         const size_t digits = indexChecksumAt(text);
-        const std::string sum = hex16(indexChecksum(text, digits));
+        const std::string sum = hexString16(indexChecksum(text, digits));
         text.replace(digits, kHexDigits, sum);
         index["index_checksum64"] = sum;
         writeFileAtomically((fs::path(staging) / "models.json").string(), text);
@@ -187,7 +181,7 @@ ModelSet loadModelSet(const std::string& dir, uint64_t expectedSceneHash) {
     }
     // The checksum goes first: a changed byte is reported as such, not as whatever it broke.
     const size_t digits = indexChecksumAt(text);
-    if (digits != std::string::npos && text.compare(digits, kHexDigits, hex16(indexChecksum(text, digits))) != 0)
+    if (digits != std::string::npos && text.compare(digits, kHexDigits, hexString16(indexChecksum(text, digits))) != 0)
         throw InputError(indexPath, "/index_checksum64",
                          "checksum mismatch: the index was changed or damaged after it was written (train the models again)");
     try {
@@ -246,7 +240,7 @@ ModelSet loadModelSet(const std::string& dir, uint64_t expectedSceneHash) {
             if (verified) {
                 const uint64_t size = entry.at("bytes").unsignedInteger();
                 const std::string sum = entry.at("checksum64").string();
-                if (size != bytes.size() || sum != hex16(checksum64(bytes.data(), bytes.size())))
+                if (size != bytes.size() || sum != hexString16(checksum64(bytes.data(), bytes.size())))
                     throw InputError(file, "", "does not match " + indexPath + " (" + entry.pointer() +
                                                    "/checksum64): the file was changed or belongs to another model set");
             }

@@ -19,4 +19,10 @@ std::string hexString(uint64_t value) {
     return buf;
 }
 
+std::string hexString16(uint64_t value) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", (unsigned long long)value);
+    return buf;
+}
+
 }  // namespace rrf

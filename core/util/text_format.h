@@ -14,4 +14,8 @@ std::string humanCount(double value);
 /// headers (read back with std::stoull(text, nullptr, 16)).
 std::string hexString(uint64_t value);
 
+/// Exactly 16 lower-case hexadecimal digits (leading zeros kept): checksums and the keys of the
+/// reference store, whose fields have a fixed width.
+std::string hexString16(uint64_t value);
+
 }  // namespace rrf
