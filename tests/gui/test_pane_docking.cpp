@@ -63,6 +63,28 @@ TEST_F(DockingTest, DraggingATabOntoAPaneEdgeSplitsIt) {
     EXPECT_EQ(w.layout.root.children[0].tabs, (std::vector<std::string>{"Scene", "Sampling", "Network"}));
 }
 
+TEST_F(DockingTest, DraggingATabAlongItsBarReordersThePane) {
+    Workspace w;
+    for (int i = 0; i < 3; ++i) frame([&] { w.draw(); });
+    // The "Scene" tab follows "Project" (8 px window padding, tabs ItemInnerSpacing apart); drag it
+    // to the left along the bar, past "Project".
+    const ImGuiStyle& st = ImGui::GetStyle();
+    const float sceneX = 8.f + ImGui::CalcTextSize("Project").x + 2 * st.FramePadding.x + st.ItemInnerSpacing.x + 10.f;
+    mouse(sceneX, 16, false);
+    frame([&] { w.draw(); });
+    mouse(sceneX, 16, true);
+    frame([&] { w.draw(); });
+    for (int i = 1; i <= 10; ++i) {
+        mouse(sceneX - (sceneX - 10.f) * float(i) / 10.f, 16, true);
+        frame([&] { w.draw(); });
+    }
+    mouse(10, 16, false);
+    for (int i = 0; i < 3; ++i) frame([&] { w.draw(); });
+    EXPECT_TRUE(w.changed);
+    EXPECT_EQ(w.layout.root.children[0].tabs, (std::vector<std::string>{"Scene", "Project", "Sampling", "Network"}));
+    EXPECT_EQ(w.layout.panes().size(), 3u) << "a drag along the bar moves no tab to another pane";
+}
+
 TEST_F(DockingTest, ContextMenuSplitsAPane) {
     Workspace w;
     for (int i = 0; i < 3; ++i) frame([&] { w.draw(); });
