@@ -49,6 +49,7 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_runs_compared.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_user_workspace.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_views_layout.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_pane_docking.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/user_workspace.cpp)
@@ -83,11 +84,28 @@ if(RRF_BUILD_TESTS)
   # prediction A | prediction B | difference filled. B is the stopped run's partial prediction: which
   # objects it lacks (hatched) depends on when the stop landed, so only A must show both walls.
   set_tests_properties(gui_stop_and_switch PROPERTIES ENVIRONMENT "RRF_GUI_SIZE=1280x720;RRF_SHOT_SCENE_VIEWS=1")
+  # Tabs moved between panes and panes split (issue 14 item 7): the arrangement is saved with the
+  # project and re-opened, a pane emptied by a move collapses, and Reset layout restores the default.
+  add_test(NAME gui_pane_layout
+           COMMAND ${RRF_GUI_RUNNER} $<TARGET_FILE:rrf-workbench> $<TARGET_FILE:rrf_gui_shotcheck>
+                   ${CMAKE_SOURCE_DIR}/projects/cornell-box ${CMAKE_BINARY_DIR}/gui_test_pane_layout 1
+                   ${CMAKE_SOURCE_DIR}/tests/gui/session_layout.json)
+  set_tests_properties(gui_pane_layout PROPERTIES ENVIRONMENT "RRF_GUI_SIZE=1280x720")
+  # Nothing cut off (issue 14 item 6): after a short render → generate → train → evaluate session every
+  # panel is brought to the front and no window, table column or fitted widget may cut its text, at
+  # the smallest size the panels are laid out for and at a common desktop size.
+  foreach(size 1280x720 1600x1000)
+    add_test(NAME gui_unclipped_${size}
+             COMMAND ${RRF_GUI_RUNNER} $<TARGET_FILE:rrf-workbench> $<TARGET_FILE:rrf_gui_shotcheck>
+                     ${CMAKE_SOURCE_DIR}/projects/cornell-box ${CMAKE_BINARY_DIR}/gui_test_unclipped_${size} 3
+                     ${CMAKE_SOURCE_DIR}/tests/gui/session_unclipped.json)
+    set_tests_properties(gui_unclipped_${size} PROPERTIES ENVIRONMENT "RRF_GUI_SIZE=${size}" TIMEOUT 600)
+  endforeach()
   # A first start without a project works in the per-user workspace; the bundled project stays clean.
   add_test(NAME gui_first_start_workspace
            COMMAND ${CMAKE_SOURCE_DIR}/tests/gui/run_first_start.sh $<TARGET_FILE:rrf-workbench>
                    ${CMAKE_SOURCE_DIR}/projects/cornell-box ${CMAKE_BINARY_DIR}/share/rrf-workbench/projects/cornell-box
                    ${CMAKE_BINARY_DIR}/gui_test_first_start ${CMAKE_SOURCE_DIR}/tests/gui/session_first_start.json)
   set_tests_properties(gui_screenshot gui_scripted_session gui_stop_and_switch gui_first_start_workspace
-                       PROPERTIES TIMEOUT 600)
+                       gui_pane_layout PROPERTIES TIMEOUT 600)
 endif()

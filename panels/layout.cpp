@@ -2,16 +2,35 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include <imgui.h>
 #include <imgui_internal.h>
 
+#include "panels/panels.h"
+
 namespace rrf::panels {
 
 namespace {
+
+/// A change the user asked for while the tree was drawn; applied after the walk.
+struct PendingMove {
+    std::string tab, target;
+    DropSide side = DropSide::Centre;
+};
+
+struct WorkspaceDraw {
+    PaneLayout& layout;
+    const std::function<void(const std::string&)>& drawPanel;
+    std::string& focusTab;
+    float thickness = 4.f;
+    std::optional<PendingMove> move;
+    std::vector<std::string> reorder;  ///< a pane's tabs in the order its bar now shows them
+};
+
 /// One splitter between two panes along `axis`; `first` is the size of the pane before it.
-void splitter(const char* id, ImGuiAxis axis, const ImVec2& origin, float total, float cross, float thickness,
-              float& first) {
+void splitter(ImGuiID id, ImGuiAxis axis, const ImVec2& origin, float total, float cross, float thickness, float& first) {
     float second = total - first - thickness;
     const float minSize = total * PaneLayout::kMinFraction;
     ImRect bb;
@@ -19,46 +38,181 @@ void splitter(const char* id, ImGuiAxis axis, const ImVec2& origin, float total,
         bb = ImRect(ImVec2(origin.x + first, origin.y), ImVec2(origin.x + first + thickness, origin.y + cross));
     else
         bb = ImRect(ImVec2(origin.x, origin.y + first), ImVec2(origin.x + cross, origin.y + first + thickness));
-    ImGui::SplitterBehavior(bb, ImGui::GetID(id), axis, &first, &second, minSize, minSize, 4.f, 0.f);
+    ImGui::SplitterBehavior(bb, id, axis, &first, &second, minSize, minSize, 4.f, 0.f);
 }
+
+std::string joined(const std::vector<std::string>& tabs) {
+    std::string s;
+    for (const std::string& t : tabs) s += (s.empty() ? "" : ", ") + t;
+    return s;
+}
+
+/// The part of `r` a drop on `side` would give the dropped tab (the whole pane for Centre).
+ImRect zoneRect(const ImRect& r, DropSide side) {
+    const ImVec2 c = r.GetCenter();
+    switch (side) {
+        case DropSide::Left: return ImRect(r.Min, ImVec2(c.x, r.Max.y));
+        case DropSide::Right: return ImRect(ImVec2(c.x, r.Min.y), r.Max);
+        case DropSide::Top: return ImRect(r.Min, ImVec2(r.Max.x, c.y));
+        case DropSide::Bottom: return ImRect(ImVec2(r.Min.x, c.y), r.Max);
+        case DropSide::Centre: break;
+    }
+    return r;
+}
+
+/// Right-click menu of a tab: split its pane, or move the tab to another pane.
+void tabMenu(WorkspaceDraw& w, const PaneNode& pane, const std::string& tab) {
+    if (!ImGui::BeginPopupContextItem()) return;
+    const bool alone = pane.tabs.size() == 1;
+    if (ImGui::MenuItem("Split right", nullptr, false, !alone)) w.move = PendingMove{tab, tab, DropSide::Right};
+    if (ImGui::MenuItem("Split below", nullptr, false, !alone)) w.move = PendingMove{tab, tab, DropSide::Bottom};
+    if (ImGui::BeginMenu("Move to pane", w.layout.panes().size() > 1)) {
+        for (const PaneNode* other : w.layout.panes())
+            if (other != &pane && ImGui::MenuItem(joined(other->tabs).c_str()))
+                w.move = PendingMove{tab, other->tabs.front(), DropSide::Centre};
+        ImGui::EndMenu();
+    }
+    ImGui::EndPopup();
+}
+
+/// The tab bar of one pane and its shown panel.
+void drawPaneTabs(WorkspaceDraw& w, PaneNode& pane) {
+    // The bar's ID follows the pane's tabs in model order: when the model changes them (a move, a
+    // reorder, a reset, a loaded project) ImGui sees a bar it has not shown in the last frame.
+    ImGui::PushID(joined(pane.tabs).c_str());
+    if (ImGui::BeginTabBar("##tabs", ImGuiTabBarFlags_Reorderable | ImGuiTabBarFlags_FittingPolicyScroll)) {
+        ImGuiTabBar* bar = GImGui->CurrentTabBar;
+        const bool fresh = bar->PrevFrameVisible != ImGui::GetFrameCount() - 1;
+        // A reorderable bar keeps its own tab order from the last time it was shown; a bar that
+        // (re)appears starts from the model's order instead.
+        if (fresh) bar->Tabs.clear();
+        for (const std::string& tab : pane.tabs) {
+            const bool select = w.focusTab == tab || (fresh && tab == pane.active);
+            const bool open = ImGui::BeginTabItem(tab.c_str(), nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
+            if (w.focusTab == tab) w.focusTab.clear();
+            // Dragging along the bar reorders (ImGui); a drag that leaves the bar carries the tab
+            // to another pane. Once it carries the tab, the source must be submitted every frame.
+            const ImVec2 m = ImGui::GetIO().MousePos;
+            const bool leftBar = m.y < bar->BarRect.Min.y || m.y > bar->BarRect.Max.y;
+            const bool carrying = GImGui->DragDropActive && GImGui->DragDropPayload.SourceId == ImGui::GetItemID();
+            if ((leftBar || carrying) && ImGui::BeginDragDropSource()) {
+                ImGui::SetDragDropPayload(kTabPayload, tab.c_str(), tab.size() + 1);
+                ImGui::Text("Move '%s': drop on a pane (its edge splits it)", tab.c_str());
+                ImGui::EndDragDropSource();
+            }
+            tabMenu(w, pane, tab);
+            if (open) {
+                // On a bar's first frame ImGui shows its first tab before the selection lands.
+                if (!fresh) pane.active = tab;
+                // Text wraps at the pane's edge instead of running past it (tables that size their
+                // columns to their content scroll in their own child window, which does not wrap).
+                ImGui::PushTextWrapPos(0.f);
+                w.drawPanel(tab);
+                ImGui::PopTextWrapPos();
+                ImGui::EndTabItem();
+            }
+        }
+        // Tabs reordered by dragging: the bar's order becomes the model's once the mouse is up.
+        if (!fresh && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+            std::vector<std::string> shown;
+            for (const ImGuiTabItem& t : bar->Tabs)
+                if (t.LastFrameVisible == ImGui::GetFrameCount() && t.NameOffset >= 0) shown.push_back(bar->GetTabName(&t));
+            if (shown.size() == pane.tabs.size() && shown != pane.tabs) w.reorder = shown;
+        }
+        ImGui::EndTabBar();
+    }
+    ImGui::PopID();
+}
+
+/// A pane as a drop target: the zone under the pointer is highlighted while a tab is dragged over it.
+void paneDropTarget(WorkspaceDraw& w, const PaneNode& pane, const ImRect& r) {
+    if (!ImGui::BeginDragDropTargetCustom(r, ImGui::GetID(("##drop" + joined(pane.tabs)).c_str()))) return;
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    const DropSide side = dropSideAt((m.x - r.Min.x) / std::max(1.f, r.GetWidth()), (m.y - r.Min.y) / std::max(1.f, r.GetHeight()));
+    if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload(
+            kTabPayload, ImGuiDragDropFlags_AcceptBeforeDelivery | ImGuiDragDropFlags_AcceptNoDrawDefaultRect)) {
+        const ImRect z = zoneRect(r, side);
+        ImGui::GetForegroundDrawList()->AddRectFilled(z.Min, z.Max, ImGui::GetColorU32(ImGuiCol_DragDropTarget, 0.25f));
+        ImGui::GetForegroundDrawList()->AddRect(z.Min, z.Max, ImGui::GetColorU32(ImGuiCol_DragDropTarget), 0.f, 0, 2.f);
+        if (p->IsDelivery())
+            w.move = PendingMove{std::string(static_cast<const char*>(p->Data)), pane.tabs.front(), side};
+    }
+    ImGui::EndDragDropTarget();
+}
+
+void drawNode(WorkspaceDraw& w, PaneNode& node, const ImVec2& origin, const ImVec2& size, int depth) {
+    if (node.isLeaf()) {
+        if (node.tabs.empty()) return;  // only an empty tree has an empty pane (PaneLayout collapses them)
+        ImGui::SetCursorScreenPos(origin);
+        if (ImGui::BeginChild(("##pane" + joined(node.tabs)).c_str(), size, true)) drawPaneTabs(w, node);
+        ImGui::EndChild();
+        paneDropTarget(w, node, ImRect(origin, ImVec2(origin.x + size.x, origin.y + size.y)));
+        return;
+    }
+    const bool row = node.split == PaneSplit::Row;
+    const float total = row ? size.x : size.y;
+    const float t = w.thickness;
+    node.fraction = PaneLayout::clampFraction(node.fraction, 0.5f);
+    float first = std::round(node.fraction * (total - t));
+    ImGui::PushID(depth);
+    const PaneNode* firstPane = &node;  // names the splitter: stable while panes elsewhere change
+    while (!firstPane->isLeaf()) firstPane = &firstPane->children[0];
+    ImGui::PushID(joined(firstPane->tabs).c_str());
+    const float placed = first;
+    splitter(ImGui::GetID("##split"), row ? ImGuiAxis_X : ImGuiAxis_Y, origin, total, row ? size.y : size.x, t, first);
+    ImGui::PopID();
+    ImGui::PopID();
+    // Only a drag changes the fraction: storing the rounded pixel position back every frame would
+    // let the fraction creep.
+    if (first != placed) {
+        node.fraction = PaneLayout::clampFraction(first / std::max(1.f, total - t), node.fraction);
+        first = std::round(node.fraction * (total - t));
+    }
+    const float second = total - first - t;
+    if (row) {
+        drawNode(w, node.children[0], origin, ImVec2(first, size.y), depth + 1);
+        drawNode(w, node.children[1], ImVec2(origin.x + first + t, origin.y), ImVec2(second, size.y), depth + 1);
+    } else {
+        drawNode(w, node.children[0], origin, ImVec2(size.x, first), depth + 1);
+        drawNode(w, node.children[1], ImVec2(origin.x, origin.y + first + t), ImVec2(size.x, second), depth + 1);
+    }
+}
+
 }  // namespace
 
-void drawWorkspace(PaneLayout& layout, const std::function<void()>& left, const std::function<void()>& centre,
-                   const std::function<void()>& bottom) {
+DropSide dropSideAt(float u, float v) {
+    constexpr float edge = 0.25f;
+    const float d[4] = {u, 1.f - u, v, 1.f - v};  // distance to left, right, top, bottom
+    const DropSide sides[4] = {DropSide::Left, DropSide::Right, DropSide::Top, DropSide::Bottom};
+    const int nearest = int(std::min_element(d, d + 4) - d);
+    return d[nearest] < edge ? sides[nearest] : DropSide::Centre;
+}
+
+bool drawWorkspace(PaneLayout& layout, const std::function<void(const std::string&)>& drawPanel,
+                   std::string& focusTab) {
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const float t = std::max(4.f, std::round(ImGui::GetFontSize() * 0.35f));
-    if (avail.x < 4 * t || avail.y < 4 * t) return;  // minimised window: nothing sensible to draw
-
-    layout.left = PaneLayout::clampFraction(layout.left, PaneLayout::kDefaultLeft);
-    layout.bottom = PaneLayout::clampFraction(layout.bottom, PaneLayout::kDefaultBottom);
-
-    // Left column | right side.
-    float leftW = std::round(layout.left * avail.x);
-    splitter("##split-left", ImGuiAxis_X, origin, avail.x, avail.y, t, leftW);
-    layout.left = PaneLayout::clampFraction(leftW / avail.x, PaneLayout::kDefaultLeft);
-    leftW = std::round(layout.left * avail.x);
-    const float rightW = avail.x - leftW - t;
-
-    // Centre above bottom, inside the right side.
-    const ImVec2 rightOrigin(origin.x + leftW + t, origin.y);
-    float centreH = avail.y - std::round(layout.bottom * avail.y) - t;
-    splitter("##split-bottom", ImGuiAxis_Y, rightOrigin, avail.y, rightW, t, centreH);
-    layout.bottom = PaneLayout::clampFraction((avail.y - centreH - t) / avail.y, PaneLayout::kDefaultBottom);
-    centreH = avail.y - std::round(layout.bottom * avail.y) - t;
-    const float bottomH = avail.y - centreH - t;
-
+    WorkspaceDraw w{layout, drawPanel, focusTab, std::max(4.f, std::round(ImGui::GetFontSize() * 0.35f)), {}, {}};
+    if (avail.x < 4 * w.thickness || avail.y < 4 * w.thickness) return false;  // minimised window
+    drawNode(w, layout.root, origin, avail, 0);
+    // The panes' child windows were placed by hand: claim their area so the parent's layout knows it.
     ImGui::SetCursorScreenPos(origin);
-    if (ImGui::BeginChild("##left", ImVec2(leftW, avail.y), true)) left();
-    ImGui::EndChild();
+    ImGui::Dummy(avail);
+    bool changed = false;
+    if (w.move) changed = layout.moveTab(w.move->tab, w.move->target, w.move->side);
+    else if (!w.reorder.empty()) changed = layout.reorderPane(w.reorder);
+    return changed;
+}
 
-    ImGui::SetCursorScreenPos(rightOrigin);
-    if (ImGui::BeginChild("##centre", ImVec2(rightW, centreH), true)) centre();
-    ImGui::EndChild();
-
-    ImGui::SetCursorScreenPos(ImVec2(rightOrigin.x, rightOrigin.y + centreH + t));
-    if (ImGui::BeginChild("##bottom", ImVec2(rightW, bottomH), true)) bottom();
-    ImGui::EndChild();
+void drawPanel(WorkbenchState& state, const std::string& name) {
+    static const std::pair<const char*, void (*)(WorkbenchState&)> kPanels[] = {
+        {"Project", drawProjectPanel}, {"Scene", drawScenePanel},       {"Sampling", drawSamplingPanel},
+        {"Network", drawNetworkPanel}, {"Views", drawViewsPanel},       {"Training", drawTrainingPanel},
+        {"Objects", drawObjectsPanel}, {"Cost", drawCostPanel},         {"Leaves", drawLeavesPanel},
+        {"Log", drawLogPanel},
+    };
+    for (const auto& [panel, draw] : kPanels)
+        if (name == panel) draw(state);
 }
 
 void sameLineIfFits(float width) {
@@ -69,6 +223,11 @@ void sameLineIfFits(float width) {
 float labelledWidth(float frameWidth, const char* label) {
     const float text = ImGui::CalcTextSize(label, nullptr, true).x;
     return text > 0.f ? frameWidth + ImGui::GetStyle().ItemInnerSpacing.x + text : frameWidth;
+}
+
+float fieldWidth(float preferred, const char* label) {
+    const float room = ImGui::GetContentRegionAvail().x - (labelledWidth(0.f, label));
+    return std::max(ImGui::GetFontSize() * 4, std::min(preferred, room));
 }
 
 }  // namespace rrf::panels

@@ -11,6 +11,7 @@
 #include <imgui.h>
 
 #include "core/data/record_layout.h"
+#include "panels/clip_check.h"
 #include "panels/panels.h"
 
 namespace rrf::panels {
@@ -237,8 +238,9 @@ void drawNetworkPanel(WorkbenchState& state) {
     }
     // Combo order is TargetMode's order: global, direct, indirect, separate, joint.
     int targets = int(s.options.targets);
-    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
-    if (ImGui::Combo("targets", &targets, "global\0direct\0indirect\0separate (direct + indirect nets)\0joint (6 outputs)\0")) {
+    const char* targetItems = "global\0direct\0indirect\0separate (direct + indirect nets)\0joint (6 outputs)\0";
+    ImGui::SetNextItemWidth(fittedComboWidth(targetItems));  // the longest entry is readable when chosen
+    if (ImGui::Combo("targets", &targets, targetItems)) {
         s.options.targets = TargetMode(targets);
         storeNetwork(state, s);
     }

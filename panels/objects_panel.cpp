@@ -198,10 +198,13 @@ void drawPairTable(WorkbenchState& state) {
         ImGui::TextDisabled("No per-object errors: render a ground truth, then compare the runs again.");
         return;
     }
+    // Columns as wide as their content, scrolling sideways in a narrow pane (nothing cut off). Not
+    // resizable: ImGui stops fitting a resizable column to its content after the first frames, so
+    // figures that arrive later would be cut.
     const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
-                                  ImGuiTableFlags_Resizable | ImGuiTableFlags_SizingStretchProp;
+                                  ImGuiTableFlags_ScrollX | ImGuiTableFlags_SizingFixedFit;
     if (!ImGui::BeginTable("##pair", 5, flags)) return;
-    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableSetupScrollFreeze(1, 1);
     const std::string a = "A " + p.nameA + " rel. RMSE", b = "B " + p.nameB + " rel. RMSE";
     ImGui::TableSetupColumn("object");
     ImGui::TableSetupColumn(a.c_str());
@@ -238,10 +241,12 @@ void drawObjectsPanel(WorkbenchState& state) {
                            termName(state.view.term));
         return;
     }
+    // Columns as wide as their content, the object column frozen while the figures scroll sideways
+    // in a narrow pane (nothing cut off); not resizable, as in the pair table above.
     const ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
-                                  ImGuiTableFlags_ScrollY | ImGuiTableFlags_Resizable | ImGuiTableFlags_SizingStretchProp;
+                                  ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX | ImGuiTableFlags_SizingFixedFit;
     if (!ImGui::BeginTable("##objects", int(ObjectColumn::Count), flags)) return;
-    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableSetupScrollFreeze(1, 1);
     for (int c = 0; c < int(ObjectColumn::Count); ++c)
         ImGui::TableSetupColumn(kColumnNames[c], c == 0 ? ImGuiTableColumnFlags_DefaultSort : 0, 0.f, ImGuiID(c));
     ImGui::TableHeadersRow();

@@ -62,12 +62,16 @@ void drawRenderSettings(WorkbenchState& state) {
 
 void drawRuns(WorkbenchState& state) {
     if (state.project.runs.empty()) {
+        ImGui::PushTextWrapPos(0.f);
         ImGui::TextDisabled("No runs yet. \"Save run\" in the Views panel records the current ground truth.");
+        ImGui::PopTextWrapPos();
         return;
     }
-    // Horizontal scrolling keeps the name column readable in a narrow left pane.
-    const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_Resizable |
-                                  ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit;
+    // Horizontal scrolling keeps the name column readable in a narrow left pane. Not resizable:
+    // ImGui stops fitting a resizable column to its content after the first frames, so figures
+    // that arrive later (a new run's error) would be cut.
+    const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollX |
+                                  ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit;
     const char* headers[] = {"A", "B", "kind", "state", "trainer", "hidden", "leaves", "records", "spp", "time (s)",
                              "rel. RMSE (noise floor)", "frame (ms)", ""};
     const int columns = 1 + int(sizeof headers / sizeof headers[0]);

@@ -50,7 +50,9 @@ void drawCoverage(const DatasetInfo& d) {
     ImGui::Text("paths: %llu (%.1f per record); records at the path cap with noise above the target: %llu",
                 (unsigned long long)g.paths, g.records ? double(g.paths) / double(g.records) : 0.0,
                 (unsigned long long)g.recordsAtSppCap);
-    if (!ImGui::BeginTable("##coverage", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
+    // Columns share the width in proportion to their content (headers included), so none is cut.
+    if (!ImGui::BeginTable("##coverage", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp))
+        return;
     ImGui::TableSetupColumn("object");
     ImGui::TableSetupColumn("records");
     // Relative standard error of the targets (core/data/record_noise.h): what the trainers' goal
@@ -85,7 +87,7 @@ void drawSamplingPanel(WorkbenchState& state) {
     // Edits a copy: a project without a sampling section keeps none until the user changes something.
     SamplingSettings s = state.project.samplingOrDefault();
     bool changed = false;
-    const float w = ImGui::GetFontSize() * 10;
+    const float w = fieldWidth(ImGui::GetFontSize() * 10, "paths per record (first round)");  // the longest label
     int grid[3] = {s.nx, s.ny, s.nz};
     ImGui::SetNextItemWidth(w);
     if (ImGui::DragInt3("jitter grid", grid, 0.2f, 1, kMaxGridCells)) {

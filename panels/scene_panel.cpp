@@ -25,6 +25,8 @@ void drawObjects(WorkbenchState& state) {
     const Scene& scene = state.project.scene;
     const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit;
     if (!ImGui::BeginTable("##objects", 5, flags)) return;
+    // Columns fitted to their content: wrapping their text at the column's edge would keep them narrow.
+    ImGui::PushTextWrapPos(-1.f);
     ImGui::TableSetupColumn("id");
     ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthStretch);
     ImGui::TableSetupColumn("kind");
@@ -49,6 +51,7 @@ void drawObjects(WorkbenchState& state) {
         const bool validMaterial = o.material >= 0 && o.material < int(scene.materials.size());
         ImGui::TextUnformatted(validMaterial ? scene.materials[size_t(o.material)].name.c_str() : "?");
     }
+    ImGui::PopTextWrapPos();
     ImGui::EndTable();
 }
 
@@ -80,11 +83,13 @@ void drawLights(WorkbenchState& state) {
         const Light& l = scene.lights[i];
         const Vec3 c = l.center();
         const bool movable = int(i) == scene.movableLight;
+        // Bullet + Text rather than BulletText, which does not wrap at the pane's edge.
+        ImGui::Bullet();
         if (l.type == Light::Type::Rect)
-            ImGui::BulletText("%s: rect, area %.4g, radiance (%.3g, %.3g, %.3g)%s", l.name.c_str(), l.area(), l.radiance.x,
-                              l.radiance.y, l.radiance.z, movable ? ", movable" : "");
+            ImGui::Text("%s: rect, area %.4g, radiance (%.3g, %.3g, %.3g)%s", l.name.c_str(), l.area(), l.radiance.x,
+                        l.radiance.y, l.radiance.z, movable ? ", movable" : "");
         else
-            ImGui::BulletText("%s: point at (%.3g, %.3g, %.3g)%s", l.name.c_str(), c.x, c.y, c.z, movable ? ", movable" : "");
+            ImGui::Text("%s: point at (%.3g, %.3g, %.3g)%s", l.name.c_str(), c.x, c.y, c.z, movable ? ", movable" : "");
     }
     if (scene.lights.empty()) {
         ImGui::TextDisabled("The scene has no light.");
@@ -134,10 +139,16 @@ void drawScenePanel(WorkbenchState& state) {
     if (ImGui::CollapsingHeader("Materials", ImGuiTreeNodeFlags_DefaultOpen)) drawMaterials(state);
     if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) drawLights(state);
     if (ImGui::CollapsingHeader("Effects", ImGuiTreeNodeFlags_DefaultOpen)) {
-        for (const std::string& line : Effects::derive(scene).describe()) ImGui::BulletText("%s", line.c_str());
+        for (const std::string& line : Effects::derive(scene).describe()) {
+            ImGui::Bullet();
+            ImGui::TextUnformatted(line.c_str());
+        }
     }
     if (!scene.warnings.empty() && ImGui::CollapsingHeader("Loader warnings")) {
-        for (const std::string& w : scene.warnings) ImGui::BulletText("%s", w.c_str());
+        for (const std::string& w : scene.warnings) {
+            ImGui::Bullet();
+            ImGui::TextUnformatted(w.c_str());
+        }
     }
 }
 

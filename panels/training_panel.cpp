@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include <imgui.h>
 
@@ -149,7 +151,22 @@ void drawTrainingBody(WorkbenchState& state) {
     lo = std::max(lo, hi * 1e-8);
 
     const float font = ImGui::GetFontSize();
-    const float legendW = curves.empty() ? 0.f : font * 13;
+    // The legend is as wide as its widest line (colour box, network, last train / validation loss).
+    std::vector<std::string> legend;
+    for (const LossCurve& c : curves) {
+        char line[160];
+        const LossPoint* last = c.points.empty() ? nullptr : &c.points.back();
+        if (last) std::snprintf(line, sizeof line, "%s  %.3g / %.3g", c.label().c_str(), last->train, last->validation);
+        else std::snprintf(line, sizeof line, "%s", c.label().c_str());
+        legend.emplace_back(line);
+    }
+    float legendW = 0.f;
+    if (!curves.empty()) {
+        legendW = std::max(ImGui::CalcTextSize(shown.source.c_str()).x, ImGui::CalcTextSize("thick: train, thin: validation").x);
+        for (const std::string& line : legend)
+            legendW = std::max(legendW, font * 0.8f + ImGui::GetStyle().ItemSpacing.x + ImGui::CalcTextSize(line.c_str()).x);
+        legendW += 2 * ImGui::GetStyle().ItemSpacing.x;
+    }
     const PlotArea area = plotArea("##loss-plot", legendW);
     const bool hovered = area.hovered;
     const ImVec2 pmin = area.min, pmax = area.max;
@@ -183,9 +200,7 @@ void drawTrainingBody(WorkbenchState& state) {
         dl->AddRectFilled(ImVec2(p.x, p.y + font * 0.3f), ImVec2(p.x + font * 0.7f, p.y + font), seriesColour(int(c)));
         ImGui::Dummy(ImVec2(font * 0.8f, font));
         ImGui::SameLine();
-        const LossPoint* last = curves[c].points.empty() ? nullptr : &curves[c].points.back();
-        if (last) ImGui::Text("%s  %.3g / %.3g", curves[c].label().c_str(), last->train, last->validation);
-        else ImGui::TextUnformatted(curves[c].label().c_str());
+        ImGui::TextUnformatted(legend[c].c_str());
     }
     ImGui::EndGroup();
 }

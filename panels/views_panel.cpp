@@ -13,10 +13,10 @@
 #include <imgui.h>
 
 #include "core/scene/camera_rays.h"
+#include "panels/clip_check.h"
 #include "panels/layout.h"
 #include "panels/panels.h"
 #include "panels/status_text.h"
-#include "panels/view_model.h"
 #include "panels/view_model.h"
 
 namespace rrf::panels {
@@ -72,21 +72,23 @@ void drawToolbar(WorkbenchState& state) {
     } else if (ImGui::Button("Stop render")) {
         state.request(Command::CancelRender);
     }
-    ImGui::SameLine();
     if (r.running || r.spp > 0) {
         char overlay[128];
         std::snprintf(overlay, sizeof overlay, "%s  noise (rel. RMSE of the mean) %s", renderProgressText(r).c_str(),
                       noiseFigureText(r.relativeNoise).c_str());
-        ImGui::ProgressBar(r.targetSpp > 0 ? float(r.spp) / float(r.targetSpp) : 0.f, ImVec2(ImGui::GetFontSize() * 24, 0),
-                           overlay);
+        // As wide as its text (at least 24 em), on the next line when this one has no room for it.
+        const float barW = std::max(ImGui::GetFontSize() * 24,
+                                    ImGui::CalcTextSize(overlay).x + 2 * ImGui::GetStyle().FramePadding.x);
+        sameLineIfFits(barW);
+        fittedProgressBar(r.targetSpp > 0 ? float(r.spp) / float(r.targetSpp) : 0.f, barW, overlay);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("%.2f s, %.3g samples/s%s\nnoise (rel. RMSE of the mean): the image's relative RMSE noise floor,\n"
                               "sqrt(mean Var(mean) / (|image| + 0.01)^2) over the footprint mask's pixels (global term):\n"
                               "the error a perfect prediction would show against this image",
                               r.seconds, r.samplesPerSecond,
                               r.etaSeconds >= 0 ? (", ETA " + std::to_string(int(r.etaSeconds + 0.5)) + " s").c_str() : "");
-        ImGui::SameLine();
     }
+    sameLineIfFits(ImGui::CalcTextSize("Save run").x + 2 * ImGui::GetStyle().FramePadding.x);
     if (ImGui::Button("Save run")) state.request(Command::SaveRun);
     ImGui::SameLine();
     if (ImGui::Button("Reset view")) {

@@ -78,7 +78,7 @@ TEST(Project, RoundTripKeepsUnknownSectionsAndRebasesSceneRef) {
     run.id = "3";
     run.metrics = {{"rmse", 0.125}};
     p.runs = {run};
-    p.layout.left = 0.25f;
+    p.layout.root.fraction = 0.25f;
     p.render.spp = 256;
     p.render.estimator = Estimator::Naive;
     p.render.seed = 18446744073709551615ULL;
@@ -240,8 +240,7 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     run.artifacts = {"runs/train-1/models/models.json"};
     run.extra = {{"future", true}};
     p.runs = {run};
-    p.layout.left = 0.4f;
-    p.layout.bottom = 0.2f;
+    p.layout.root = PaneLayout::defaultRoot(0.4f, 0.2f);
     const Vec3 light = moveLight(p, Vec3(0.1f, 0.99f, -0.05f));
     Material white = p.scene.materials[0];
     white.kd = Vec3(0.5f, 0.4f, 0.3f);
@@ -416,7 +415,7 @@ TEST(Project, DamagedWorkbenchSectionsAreWarningsNamingTheirPointer) {
     EXPECT_NE(p.warnings[2].find("d.json: /scene_overrides/light_position: expected array of 3 numbers"),
               std::string::npos)
         << p.warnings[2];
-    EXPECT_FLOAT_EQ(p.layout.left, PaneLayout::kDefaultLeft);
+    EXPECT_FLOAT_EQ(p.layout.root.fraction, PaneLayout::kDefaultLeft);
     EXPECT_TRUE(p.overrides.materials.count("white")) << "the other overrides still apply";
     for (const Material& m : p.scene.materials)
         if (m.name == "white") {

@@ -11,6 +11,7 @@
 #include "core/project/run_recording.h"
 #include "core/project/scene_edits.h"
 #include "core/util/json_reader.h"
+#include "panels/clip_check.h"
 
 namespace rrf {
 
@@ -46,9 +47,11 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"screenshot", {"path"}},
             {"frames", {"count"}},
             {"tab", {"name"}},
+            {"move_tab", {"tab", "to", "side"}},
+            {"reset_layout", {}},
             {"check", {"runs", "ground_truth_spp_min", "errors", "compare", "dataset", "prediction", "evaluated",
                        "train_runs", "sweeps", "unsaved_prompt", "dirty", "stopped_runs", "prediction_partial",
-                       "render_cancelled", "notice", "pair"}},
+                       "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped"}},
         };
     }();
     return keys;
@@ -177,6 +180,18 @@ bool Script::execute(Workbench& wb, const json& s) {
         require(wb.startSweep(r.at("what").string()), "the sweep could not start (see the log)");
     } else if (what == "tab") {
         st.focusTab = r.at("name").string();
+    } else if (what == "move_tab") {
+        // As dragging the tab onto the pane holding `to` (side centre: into it; an edge: split it).
+        const std::string tab = r.at("tab").string(), to = r.at("to").string();
+        const std::string side = r.choiceOr("side", "centre", {"centre", "left", "right", "top", "bottom"});
+        const DropSide drop = side == "left"    ? DropSide::Left
+                              : side == "right" ? DropSide::Right
+                              : side == "top"   ? DropSide::Top
+                              : side == "bottom" ? DropSide::Bottom
+                                                 : DropSide::Centre;
+        require(st.project.layout.moveTab(tab, to, drop), "cannot move tab '" + tab + "' to the pane of '" + to + "'");
+    } else if (what == "reset_layout") {
+        st.request(panels::Command::ResetLayout);
     } else if (what == "save_run") {
         require(wb.saveRun(), "could not save the run (see the log)");
     } else if (what == "compare_run") {
@@ -280,6 +295,26 @@ bool Script::execute(Workbench& wb, const json& s) {
         flag("prediction_partial", !st.prediction.withoutNetwork.empty(), "partial prediction state");
         flag("render_cancelled", st.render.cancelled, "render cancelled state");
         flag("notice", st.notice.has_value(), "notice state");
+        count("panes", st.project.layout.panes().size(), "panes");
+        // clipped: how many windows, table columns and fitted widgets cut their text off this frame.
+        if (const auto v = r.find("clipped")) {
+            const std::vector<panels::ClippedContent> found = panels::findClippedContent();
+            const int64_t want = v->integer(0, std::numeric_limits<int>::max());
+            std::string list;
+            for (const panels::ClippedContent& c : found) list += "\n  " + c.describe();
+            require(int64_t(found.size()) == want, "expected " + std::to_string(want) + " clipped texts, found " +
+                                                       std::to_string(found.size()) + list);
+        }
+        // same_pane: [a, b] must be tabs of one pane.
+        if (const auto v = r.find("same_pane")) {
+            const JsonReader pair = *v;
+            if (pair.requireArray() != 2) pair.fail("expected an array of 2 tab names");
+            const PaneNode* a = st.project.layout.paneOf(pair.at(size_t(0)).string());
+            const PaneNode* b = st.project.layout.paneOf(pair.at(size_t(1)).string());
+            require(a && b, "a tab named in same_pane is in no pane");
+            require(a == b, "'" + pair.at(size_t(0)).string() + "' and '" + pair.at(size_t(1)).string() +
+                                "' are in different panes");
+        }
         // pair: the Views show two runs (both predictions) and the Objects panel both error columns.
         flag("pair",
              st.view.compareSource == panels::CompareSource::RunPair && !st.runPair.imagesA.empty() &&

@@ -15,10 +15,13 @@
 /// answer_unsaved {choice: save|discard|cancel}, stop {job: render|generate|train}, compare_runs {a, b:
 /// run indices, as ticking A and B}, set_light {position}, select_object {id}, view {term, metric, exposure,
 /// error_max, zoom}, open {path?: default re-opens the current file}, save {path?}, export_images {dir}, screenshot {path},
-/// frames {count}, tab {name: bring a panel tab to the front}, check {runs, ground_truth_spp_min, errors,
-/// compare, dataset, prediction, evaluated, train_runs, sweeps, unsaved_prompt, dirty, stopped_runs,
-/// prediction_partial, render_cancelled, notice, pair}. An unknown step or key fails the
-/// script when it is loaded (it never skips silently), naming the file and the step's JSON pointer.
+/// frames {count}, tab {name: bring a panel tab to the front}, move_tab {tab, to: a tab of the target
+/// pane, side: centre (join it, the default)|left|right|top|bottom (split it)}, reset_layout,
+/// check {runs, ground_truth_spp_min, errors, compare, dataset, prediction, evaluated, train_runs,
+/// sweeps, unsaved_prompt, dirty, stopped_runs, prediction_partial, render_cancelled, notice, pair,
+/// panes (how many), same_pane [tab, tab], clipped (how many texts are cut off in this frame,
+/// panels/clip_check.h)}. An unknown step or key fails the script when it is loaded (it never skips
+/// silently), naming the file and the step's JSON pointer.
 
 #include <chrono>
 #include <string>

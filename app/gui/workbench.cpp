@@ -139,49 +139,13 @@ void Workbench::drawHost() {
 
     const float statusH = ImGui::GetFrameHeightWithSpacing();
     ImGui::BeginChild("##workspace", ImVec2(0, -statusH), false, ImGuiWindowFlags_NoScrollbar);
-    auto tab = [&](const char* name, void (*draw)(panels::WorkbenchState&)) {
-        if (!beginTab(name)) return;
-        draw(state_);
-        ImGui::EndTabItem();
-    };
+    // Panes, tabs and splitters follow the project's layout section (panels/layout.h); moving
+    // tabs changes that section like the splitters do, saved with the project.
     panels::drawWorkspace(
-        state_.project.layout,
-        [&] {
-            if (ImGui::BeginTabBar("##left-tabs")) {
-                tab("Project", panels::drawProjectPanel);
-                tab("Scene", panels::drawScenePanel);
-                tab("Sampling", panels::drawSamplingPanel);
-                tab("Network", panels::drawNetworkPanel);
-                ImGui::EndTabBar();
-            }
-        },
-        [&] {
-            if (ImGui::BeginTabBar("##centre-tabs")) {
-                tab("Views", panels::drawViewsPanel);
-                ImGui::EndTabBar();
-            }
-        },
-        [&] {
-            // Training first: the loss plot is what a user watches while the networks learn.
-            if (ImGui::BeginTabBar("##bottom-tabs")) {
-                tab("Training", panels::drawTrainingPanel);
-                tab("Objects", panels::drawObjectsPanel);
-                tab("Cost", panels::drawCostPanel);
-                tab("Leaves", panels::drawLeavesPanel);
-                tab("Log", panels::drawLogPanel);
-                ImGui::EndTabBar();
-            }
-        });
+        state_.project.layout, [&](const std::string& name) { panels::drawPanel(state_, name); }, state_.focusTab);
     ImGui::EndChild();
     drawStatusBar();
     ImGui::End();
-}
-
-bool Workbench::beginTab(const char* name) {
-    const bool focus = state_.focusTab == name;
-    const bool open = ImGui::BeginTabItem(name, nullptr, focus ? ImGuiTabItemFlags_SetSelected : 0);
-    if (focus) state_.focusTab.clear();
-    return open;
 }
 
 void Workbench::drawMenuBar() {

@@ -137,8 +137,6 @@ private:
     bool loadTrainRun(const Run& run, int index);
     /// The dataset training reads: this session's, else the project's data/dataset.rrfd if present.
     std::string datasetPath() const;
-    /// Draws a tab item, bringing it to the front once when state_.focusTab names it.
-    bool beginTab(const char* name);
     /// The scene changed. `geometryChanged` false means materials or the movable light only: the
     /// light is not in the BVH, so the picking BVH and the object-id buffer stay valid then.
     void sceneChanged(bool restartRender, bool geometryChanged = true);

@@ -2,15 +2,232 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <set>
 
 namespace rrf {
+
+using nlohmann::json;
+
+namespace {
+
+PaneNode leaf(std::vector<std::string> tabs) {
+    PaneNode n;
+    n.active = tabs.front();
+    n.tabs = std::move(tabs);
+    return n;
+}
+
+PaneNode splitNode(PaneSplit split, float fraction, PaneNode first, PaneNode second) {
+    PaneNode n;
+    n.split = split;
+    n.fraction = fraction;
+    n.children.push_back(std::move(first));
+    n.children.push_back(std::move(second));
+    return n;
+}
+
+template <typename Node, typename Out>
+void collectPanes(Node& n, Out& out) {
+    if (n.isLeaf()) {
+        out.push_back(&n);
+        return;
+    }
+    for (auto& c : n.children) collectPanes(c, out);
+}
+
+/// Keeps a pane's shown tab one of its tabs (the first when it is not).
+void fixActive(PaneNode& pane) {
+    if (pane.tabs.empty()) pane.active.clear();
+    else if (std::find(pane.tabs.begin(), pane.tabs.end(), pane.active) == pane.tabs.end()) pane.active = pane.tabs.front();
+}
+
+/// Replaces every split with an empty pane under it by its other child: a pane emptied by moving its
+/// last tab away disappears and its sibling takes the space. The root may end up an empty leaf only
+/// if the whole tree was empty.
+void collapse(PaneNode& n) {
+    if (n.isLeaf()) return;
+    for (PaneNode& c : n.children) collapse(c);
+    for (size_t i = 0; i < 2; ++i) {
+        const PaneNode& c = n.children[i];
+        if (c.isLeaf() && c.tabs.empty()) {
+            PaneNode keep = std::move(n.children[1 - i]);
+            n = std::move(keep);
+            return;
+        }
+    }
+}
+
+/// A fraction for messages: "%g" prints the float as written ("0.92"), not its double expansion.
+std::string fractionText(float f) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", double(f));
+    return buf;
+}
+
+const char* splitName(PaneSplit s) { return s == PaneSplit::Row ? "row" : "column"; }
+
+json nodeJson(const PaneNode& n) {
+    if (n.isLeaf()) return json{{"tabs", n.tabs}, {"active", n.active}};
+    return json{{"split", splitName(n.split)},
+                {"fraction", n.fraction},
+                {"panes", json::array({nodeJson(n.children[0]), nodeJson(n.children[1])})}};
+}
+
+/// Reads one node; a structural fault throws (the caller falls back to the default tree), a bad
+/// fraction is clamped with a warning.
+PaneNode readNode(const JsonReader& r, int depth, std::vector<std::string>& warnings) {
+    if (depth > PaneLayout::kMaxDepth)
+        r.fail("panes nested deeper than " + std::to_string(PaneLayout::kMaxDepth) + " levels");
+    r.requireObject();
+    PaneNode n;
+    if (!r.has("split")) {
+        r.checkKeys({"tabs", "active"});
+        const JsonReader tabs = r.at("tabs");
+        for (size_t i = 0, count = tabs.requireArray(); i < count; ++i) n.tabs.push_back(tabs.at(i).string());
+        n.active = r.stringOr("active", "");
+        return n;
+    }
+    r.checkKeys({"split", "fraction", "panes"});
+    n.split = r.choiceOr("split", "", {"row", "column"}) == "row" ? PaneSplit::Row : PaneSplit::Column;
+    const JsonReader panes = r.at("panes");
+    if (panes.requireArray() != 2) panes.fail("expected an array of 2 panes, got " + JsonReader::describe(panes.value()));
+    n.fraction = 0.5f;
+    try {
+        n.fraction = r.floatOr("fraction", 0.5f);
+    } catch (const InputError& e) {
+        warnings.push_back(std::string(e.what()) + "; 0.5 is used");
+    }
+    const float clamped = PaneLayout::clampFraction(n.fraction, 0.5f);
+    if (clamped != n.fraction)
+        warnings.push_back(InputError(r.file(), JsonReader::child(r.pointer(), "fraction"),
+                                      "expected a number in [" + fractionText(PaneLayout::kMinFraction) + ", " +
+                                          fractionText(PaneLayout::kMaxFraction) + "]; " + fractionText(clamped) +
+                                          " is used")
+                               .what());
+    n.fraction = clamped;
+    n.children.push_back(readNode(panes.at(size_t(0)), depth + 1, warnings));
+    n.children.push_back(readNode(panes.at(size_t(1)), depth + 1, warnings));
+    return n;
+}
+
+/// Makes the tree hold every panel exactly once: unknown and repeated tabs are dropped, missing
+/// panels join the first pane, empty panes collapse, and each pane shows one of its tabs.
+void normalise(PaneNode& root, const std::string& file, const std::string& pointer, std::vector<std::string>& warnings) {
+    const std::vector<std::string>& known = PaneLayout::panels();
+    std::set<std::string> seen;
+    std::vector<PaneNode*> panes;
+    collectPanes(root, panes);
+    for (PaneNode* p : panes) {
+        std::vector<std::string> kept;
+        for (const std::string& t : p->tabs) {
+            if (std::find(known.begin(), known.end(), t) == known.end())
+                warnings.push_back(InputError(file, pointer, "unknown panel '" + t + "' dropped").what());
+            else if (!seen.insert(t).second)
+                warnings.push_back(InputError(file, pointer, "panel '" + t + "' is in two panes; the second is dropped").what());
+            else
+                kept.push_back(t);
+        }
+        p->tabs = std::move(kept);
+    }
+    collapse(root);
+    std::vector<PaneNode*> first;
+    collectPanes(root, first);
+    for (const std::string& t : known)
+        if (!seen.count(t)) {
+            warnings.push_back(InputError(file, pointer, "panel '" + t + "' is in no pane; it is added to the first").what());
+            first.front()->tabs.push_back(t);
+        }
+    std::vector<PaneNode*> all;
+    collectPanes(root, all);
+    for (PaneNode* p : all) fixActive(*p);
+}
+
+}  // namespace
+
+bool PaneNode::operator==(const PaneNode& o) const {
+    return split == o.split && children == o.children && tabs == o.tabs && active == o.active &&
+           (isLeaf() || fraction == o.fraction);
+}
+
+const std::vector<std::string>& PaneLayout::panels() {
+    static const std::vector<std::string> names = {"Project",  "Scene",   "Sampling", "Network", "Views",
+                                                   "Training", "Objects", "Cost",     "Leaves",  "Log"};
+    return names;
+}
+
+PaneNode PaneLayout::defaultRoot(float left, float bottom) {
+    // Training first in the bottom pane: the loss plot is what a user watches while networks learn.
+    return splitNode(PaneSplit::Row, left, leaf({"Project", "Scene", "Sampling", "Network"}),
+                     splitNode(PaneSplit::Column, 1.f - bottom, leaf({"Views"}),
+                               leaf({"Training", "Objects", "Cost", "Leaves", "Log"})));
+}
 
 float PaneLayout::clampFraction(float f, float fallback) {
     if (!std::isfinite(f)) return fallback;
     return std::clamp(f, kMinFraction, kMaxFraction);
 }
 
-nlohmann::json PaneLayout::toJson() const { return nlohmann::json{{"left", left}, {"bottom", bottom}}; }
+PaneNode* PaneLayout::paneOf(const std::string& tab) {
+    std::vector<PaneNode*> all;
+    collectPanes(root, all);
+    for (PaneNode* p : all)
+        if (std::find(p->tabs.begin(), p->tabs.end(), tab) != p->tabs.end()) return p;
+    return nullptr;
+}
+
+const PaneNode* PaneLayout::paneOf(const std::string& tab) const { return const_cast<PaneLayout*>(this)->paneOf(tab); }
+
+std::vector<const PaneNode*> PaneLayout::panes() const {
+    std::vector<const PaneNode*> all;
+    collectPanes(root, all);
+    return all;
+}
+
+bool PaneLayout::moveTab(const std::string& tab, const std::string& target, DropSide side) {
+    PaneNode* from = paneOf(tab);
+    PaneNode* to = paneOf(target);
+    if (!from || !to) return false;
+    if (side == DropSide::Centre && from == to) return false;
+    if (side != DropSide::Centre && from == to && from->tabs.size() == 1) return false;
+    // Take the tab out first (the pane may become empty but stays in place, so `to` stays valid).
+    from->tabs.erase(std::find(from->tabs.begin(), from->tabs.end(), tab));
+    fixActive(*from);
+    if (side == DropSide::Centre) {
+        to->tabs.push_back(tab);
+        to->active = tab;
+    } else {
+        const bool row = side == DropSide::Left || side == DropSide::Right;
+        const bool before = side == DropSide::Left || side == DropSide::Top;
+        PaneNode old = std::move(*to);
+        PaneNode moved = leaf({tab});
+        *to = before ? splitNode(row ? PaneSplit::Row : PaneSplit::Column, 0.5f, std::move(moved), std::move(old))
+                     : splitNode(row ? PaneSplit::Row : PaneSplit::Column, 0.5f, std::move(old), std::move(moved));
+    }
+    collapse(root);
+    return true;
+}
+
+bool PaneLayout::reorderPane(const std::vector<std::string>& order) {
+    if (order.empty()) return false;
+    PaneNode* pane = paneOf(order.front());
+    if (!pane || order == pane->tabs) return false;
+    std::vector<std::string> a = order, b = pane->tabs;
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    if (a != b) return false;
+    pane->tabs = order;
+    return true;
+}
+
+bool PaneLayout::showTab(const std::string& tab) {
+    PaneNode* pane = paneOf(tab);
+    if (!pane || pane->active == tab) return false;
+    pane->active = tab;
+    return true;
+}
+
+json PaneLayout::toJson() const { return json{{"root", nodeJson(root)}}; }
 
 PaneLayout PaneLayout::fromJson(const JsonReader& section, std::vector<std::string>& warnings) {
     PaneLayout l;
@@ -21,16 +238,30 @@ PaneLayout PaneLayout::fromJson(const JsonReader& section, std::vector<std::stri
                                .what());
         return l;
     }
-    auto read = [&](const char* key, float fallback) {
-        try {
-            return clampFraction(section.floatOr(key, fallback), fallback);
-        } catch (const InputError& e) {
-            warnings.push_back(std::string(e.what()) + "; the default is used");
-            return fallback;
-        }
-    };
-    l.left = read("left", kDefaultLeft);
-    l.bottom = read("bottom", kDefaultBottom);
+    if (!section.has("root")) {
+        // The fixed three-pane arrangement of earlier versions: its two splitters' fractions.
+        auto read = [&](const char* key, float fallback) {
+            try {
+                return clampFraction(section.floatOr(key, fallback), fallback);
+            } catch (const InputError& e) {
+                warnings.push_back(std::string(e.what()) + "; the default is used");
+                return fallback;
+            }
+        };
+        l.root = defaultRoot(read("left", kDefaultLeft), read("bottom", kDefaultBottom));
+        return l;
+    }
+    const JsonReader root = section.at("root");
+    try {
+        std::vector<std::string> nodeWarnings;
+        PaneNode tree = readNode(root, 0, nodeWarnings);
+        normalise(tree, root.file(), root.pointer(), nodeWarnings);
+        l.root = std::move(tree);
+        warnings.insert(warnings.end(), nodeWarnings.begin(), nodeWarnings.end());
+    } catch (const InputError& e) {
+        warnings.push_back(std::string(e.what()) + "; the default layout is used");
+        l.root = defaultRoot();
+    }
     return l;
 }
 

@@ -15,26 +15,7 @@ namespace {
 const std::string kCornell = RRF_SOURCE_DIR "/projects/cornell-box/project.json";
 
 void drawAll(WorkbenchState& s) {
-    drawWorkspace(
-        s.project.layout,
-        [&] {
-            if (ImGui::BeginTabBar("##l")) {
-                if (ImGui::BeginTabItem("Project")) {
-                    drawProjectPanel(s);
-                    ImGui::EndTabItem();
-                }
-                if (ImGui::BeginTabItem("Scene")) {
-                    drawScenePanel(s);
-                    ImGui::EndTabItem();
-                }
-                if (ImGui::BeginTabItem("Sampling")) {
-                    drawSamplingPanel(s);
-                    ImGui::EndTabItem();
-                }
-                ImGui::EndTabBar();
-            }
-        },
-        [&] { drawViewsPanel(s); }, [&] { drawLogPanel(s); });
+    drawWorkspace(s.project.layout, [&](const std::string& name) { drawPanel(s, name); }, s.focusTab);
 }
 
 void fillGroundTruth(WorkbenchState& s) {
@@ -56,11 +37,9 @@ TEST_F(PanelTest, AllPanelsDrawWithoutProjectAndWithout) {
     fillGroundTruth(s);
     s.compare = s.groundTruth;
     for (int i = 0; i < 5; ++i) frame([&] { drawAll(s); });
-    // Tabs other than the first are not drawn by drawAll; draw each panel on its own too.
-    for (int i = 0; i < 2; ++i) {
-        frame([&] { drawScenePanel(s); });
-        frame([&] { drawSamplingPanel(s); });
-    }
+    // Tabs other than each pane's first are not drawn by drawAll; draw each panel on its own too.
+    for (int i = 0; i < 2; ++i)
+        for (const std::string& name : PaneLayout::panels()) frame([&] { drawPanel(s, name); });
     EXPECT_TRUE(s.requests.empty()) << "idle frames must not ask for anything";
     EXPECT_FALSE(s.dirty) << "idle frames must not edit the project";
     EXPECT_FALSE(s.project.sampling.has_value()) << "drawing must not write a default sampling section";
@@ -69,7 +48,7 @@ TEST_F(PanelTest, AllPanelsDrawWithoutProjectAndWithout) {
 
 TEST_F(PanelTest, SplitterDragResizesTheLeftColumn) {
     WorkbenchState s;
-    const float before = s.project.layout.left;
+    const float before = s.project.layout.root.fraction;
     const float x = before * 1600.f + 2.f;  // on the 5-pixel splitter right of the left column
     mouse(x, 500, false);
     frame([&] { drawAll(s); });
@@ -81,13 +60,14 @@ TEST_F(PanelTest, SplitterDragResizesTheLeftColumn) {
     }
     mouse(x + 160.f, 500, false);
     frame([&] { drawAll(s); });
-    EXPECT_NEAR(s.project.layout.left, before + 160.f / 1600.f, 2.f / 1600.f);
-    EXPECT_FLOAT_EQ(s.project.layout.bottom, PaneLayout::kDefaultBottom) << "the other splitter must not move";
+    EXPECT_NEAR(s.project.layout.root.fraction, before + 160.f / 1600.f, 2.f / 1600.f);
+    EXPECT_FLOAT_EQ(s.project.layout.root.children[1].fraction, 1.f - PaneLayout::kDefaultBottom)
+        << "the other splitter must not move";
 }
 
 TEST_F(PanelTest, SplitterCannotCollapseAPane) {
     WorkbenchState s;
-    const float x = s.project.layout.left * 1600.f + 2.f;
+    const float x = s.project.layout.root.fraction * 1600.f + 2.f;
     mouse(x, 500, false);
     frame([&] { drawAll(s); });
     for (int i = 0; i < 20; ++i) {
@@ -96,7 +76,7 @@ TEST_F(PanelTest, SplitterCannotCollapseAPane) {
     }
     mouse(0, 500, false);
     frame([&] { drawAll(s); });
-    EXPECT_GE(s.project.layout.left, PaneLayout::kMinFraction - 1e-4f);
+    EXPECT_GE(s.project.layout.root.fraction, PaneLayout::kMinFraction - 1e-4f);
 }
 
 TEST_F(PanelTest, RenderButtonClickRequestsOneRender) {

@@ -62,8 +62,7 @@ TEST(ProjectIo, SaveAndReopenKeepsEverySettingAndRun) {
     a.project.render.width = 64;
     a.project.render.height = 48;
     a.view.exposure = 1.5f;
-    a.project.layout.left = 0.4f;
-    a.project.layout.bottom = 0.2f;
+    a.project.layout.root = PaneLayout::defaultRoot(0.4f, 0.2f);
     a.project.runs = {sampleRun("a"), sampleRun("b")};
     Material white = a.project.scene.materials[0];
     white.kd = Vec3(0.3f, 0.4f, 0.5f);
@@ -90,8 +89,8 @@ TEST(ProjectIo, SaveAndReopenKeepsEverySettingAndRun) {
     EXPECT_EQ(b.project.render.width, 64);
     EXPECT_EQ(b.project.render.height, 48);
     EXPECT_FLOAT_EQ(b.view.exposure, 1.5f);
-    EXPECT_FLOAT_EQ(b.project.layout.left, 0.4f);
-    EXPECT_FLOAT_EQ(b.project.layout.bottom, 0.2f);
+    EXPECT_FLOAT_EQ(b.project.layout.root.fraction, 0.4f);
+    EXPECT_FLOAT_EQ(1.f - b.project.layout.root.children[1].fraction, 0.2f);
     ASSERT_EQ(b.project.runs.size(), 2u);
     for (size_t i = 0; i < 2; ++i) EXPECT_EQ(b.project.runs[i].toJson(), a.project.runs[i].toJson());
     EXPECT_TRUE(std::isnan(b.project.runs[0].loss[1].validation));
@@ -169,8 +168,8 @@ TEST(ProjectIo, DamagedWorkbenchSectionsAreReportedNotFatal) {
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, (dir / "project.json").string(), error)) << error;
     EXPECT_EQ(s.project.runs.size(), 1u);
-    EXPECT_FLOAT_EQ(s.project.layout.left, PaneLayout::kDefaultLeft);
-    EXPECT_FLOAT_EQ(s.project.layout.bottom, PaneLayout::kMaxFraction);
+    EXPECT_FLOAT_EQ(s.project.layout.root.fraction, PaneLayout::kDefaultLeft);
+    EXPECT_FLOAT_EQ(1.f - s.project.layout.root.children[1].fraction, PaneLayout::kMaxFraction);
     EXPECT_TRUE(s.project.scene.lightRegion.contains(s.project.scene.lightPosition()));
     EXPECT_GE(s.log.entries().size(), 4u) << s.log.text();
     fs::remove_all(dir);
@@ -200,8 +199,7 @@ TEST(Layout, JsonRoundTripAndReset) {
     std::vector<std::string> warnings;
     auto read = [&](const nlohmann::json& j) { return PaneLayout::fromJson(JsonReader(j, "p.json", "/layout"), warnings); };
     PaneLayout l;
-    l.left = 0.5f;
-    l.bottom = 0.1f;
+    l.root = PaneLayout::defaultRoot(0.5f, 0.1f);
     EXPECT_EQ(read(l.toJson()), l);
     l.reset();
     EXPECT_EQ(l, PaneLayout());
