@@ -12,6 +12,7 @@
 
 #include "core/data/record_layout.h"
 #include "panels/panels.h"
+#include "panels/pipeline_controls.h"
 
 namespace rrf::panels {
 
@@ -206,6 +207,7 @@ void drawNetworkPanel(WorkbenchState& state) {
         ImGui::TextDisabled("No project is open.");
         return;
     }
+    drawNetworkPresets(state);
     NetworkSettings s = current(state);
 
     ImGui::TextUnformatted("Hidden layers");
