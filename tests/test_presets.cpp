@@ -166,6 +166,7 @@ TEST(TimeEstimate, AdamCostsNPPerEpoch) {
 }
 
 TEST(TimeEstimate, DurationsReadAsAPersonWouldSayThem) {
+    EXPECT_EQ(durationText(0.3), "< 1 s");
     EXPECT_EQ(durationText(12.4), "12 s");
     EXPECT_EQ(durationText(150), "2.5 min");
     EXPECT_EQ(durationText(2 * 3600), "2.0 h");

@@ -71,6 +71,7 @@ int runPipeline(const PipelineArgs& a) {
                                                   RecordLayout::forScene(scene).inputCount(), int(std::thread::hardware_concurrency()));
         std::printf("estimated: generate %s (%s); train %s (%s)\n", rangeText(g).c_str(), g.basis.c_str(),
                     rangeText(tr).c_str(), tr.basis.c_str());
+        std::fflush(stdout);
     }
     makeDirectories(a.out);
     std::printf("rrf pipeline%s: %s -> %s\n  ground truth %dx%d, %d spp; %s; %d held-out lights (references from %s: "

@@ -38,7 +38,9 @@ PathRate PathRate::of(double measured, int threads) {
 }
 
 std::string PathRate::describe() const {
-    return format("%.3g M samples/s", samplesPerSecond / 1e6) + (measured ? " (last render)" : " (reference machine's rate per thread)");
+    if (measured) return format("%.3g M samples/s (the last render's)", samplesPerSecond / 1e6);
+    return format("%.3g M samples/s (the reference machine's %.3g M per thread x %.0f threads)", samplesPerSecond / 1e6,
+                  kReferencePathRate / 1e6, std::round(samplesPerSecond / kReferencePathRate));
 }
 
 double expectedRecords(const SamplingSettings& s, double recordsPerRay) {
@@ -112,7 +114,8 @@ StageEstimate estimateEvaluate(const RenderSettings& r, const Scene& scene, cons
 }
 
 std::string durationText(double seconds) {
-    if (seconds < 90) return format("%.0f s", std::max(seconds, 0.0) < 1 && seconds > 0 ? 1.0 : std::round(seconds));
+    if (seconds < 1) return "< 1 s";
+    if (seconds < 90) return format("%.0f s", std::round(seconds));
     if (seconds < 5400) return format("%.1f min", seconds / 60);
     if (seconds < 172800) return format("%.1f h", seconds / 3600);
     return format("%.1f days", seconds / 86400);

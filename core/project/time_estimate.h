@@ -53,7 +53,8 @@ struct PathRate {
     double samplesPerSecond = 0;
     bool measured = false;
     static PathRate of(double measured, int threads);
-    std::string describe() const;  ///< "3.7 M samples/s (last render)" / "... (reference machine, 2 threads)"
+    /// "3.7 M samples/s (the last render's)" or "... (the reference machine's 1.85 M per thread x 2 threads)".
+    std::string describe() const;
 };
 
 /// Records a generation makes at most: cells × directions × `recordsPerRay` (1 when unknown).
@@ -65,7 +66,7 @@ StageEstimate estimateTraining(const ObjectTrainingOptions& o, double records, i
 StageEstimate estimateRender(const RenderSettings& r, const Scene& scene, const PathRate& rate);
 StageEstimate estimateEvaluate(const RenderSettings& r, const Scene& scene, const PathRate& rate);
 
-/// "12 s", "4.5 min", "2.3 h": a duration for estimates.
+/// "< 1 s", "12 s", "4.5 min", "2.3 h": a duration for estimates.
 std::string durationText(double seconds);
 /// "12 s" or "12 s to 3.2 min": a range.
 std::string rangeText(const StageEstimate& e);
