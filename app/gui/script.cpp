@@ -54,7 +54,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"measure_frames", {"label", "frames", "drag_light"}},
             {"check", {"runs", "ground_truth_spp_min", "errors", "compare", "dataset", "prediction", "evaluated",
                        "train_runs", "sweeps", "unsaved_prompt", "dirty", "stopped_runs", "prediction_partial",
-                       "render_cancelled", "notice", "pair", "pipeline_done"}},
+                       "render_cancelled", "notice", "pair", "pipeline_done", "pipeline_stopped"}},
         };
     }();
     return keys;
@@ -227,8 +227,13 @@ bool Script::execute(Workbench& wb, const json& s) {
         }
         if (--framesLeft_ >= 0) return false;
         const FrameTimeSummary f = summarizeFrameTimes(wb.frameStats().takeRecording());
-        std::printf("frames %-24s median %6.1f ms  p95 %6.1f ms  max %6.1f ms  (%zu frames)\n",
-                    r.stringOr("label", "").c_str(), 1e3 * f.median, 1e3 * f.p95, 1e3 * f.max, f.frames);
+        // With drag_light, how much of a frame the prediction itself took (its last few frames).
+        const FrameTimeSummary p = summarizeFrameTimes(wb.predictionSeconds());
+        std::printf("frames %-20s median %7.1f ms  p95 %7.1f ms  max %7.1f ms  (%zu frames)%s\n",
+                    r.stringOr("label", "").c_str(), 1e3 * f.median, 1e3 * f.p95, 1e3 * f.max, f.frames,
+                    r.booleanOr("drag_light", false) && p.frames
+                        ? ("; prediction alone median " + std::to_string(int(1e3 * p.median + 0.5)) + " ms").c_str()
+                        : "");
         std::fflush(stdout);
     } else if (what == "tab") {
         st.focusTab = r.at("name").string();
@@ -337,6 +342,8 @@ bool Script::execute(Workbench& wb, const json& s) {
         flag("notice", st.notice.has_value(), "notice state");
         // pipeline_done: the last one-click pipeline ran to its end (not stopped, not failed).
         flag("pipeline_done", !wb.pipelineRunning() && st.pipeline.outcome.rfind("done", 0) == 0,
+             "pipeline outcome ('" + st.pipeline.outcome + "')");
+        flag("pipeline_stopped", !wb.pipelineRunning() && st.pipeline.outcome.rfind("stopped", 0) == 0,
              "pipeline outcome ('" + st.pipeline.outcome + "')");
         // pair: the Views show two runs (both predictions) and the Objects panel both error columns.
         flag("pair",

@@ -20,7 +20,7 @@
 /// train_running}, measure_frames {label, frames, drag_light: print the median and 95th percentile
 /// frame time}, check {runs, ground_truth_spp_min, errors,
 /// compare, dataset, prediction, evaluated, train_runs, sweeps, unsaved_prompt, dirty, stopped_runs,
-/// prediction_partial, render_cancelled, notice, pair}. An unknown step or key fails the
+/// prediction_partial, render_cancelled, notice, pair, pipeline_done, pipeline_stopped}. An unknown step or key fails the
 /// script when it is loaded (it never skips silently), naming the file and the step's JSON pointer.
 
 #include <chrono>

@@ -120,6 +120,8 @@ public:
     bool busy() const;
     /// The UI thread's frame times (the window loop adds each frame's work time).
     FrameStats& frameStats() { return frameStats_; }
+    /// The live prediction's recent frame times (seconds; GLSL on the UI thread, else CPU jobs).
+    const std::vector<double>& predictionSeconds() const { return frameSeconds_; }
 
     panels::WorkbenchState& state() { return state_; }
     JobRunner& jobs() { return jobs_; }

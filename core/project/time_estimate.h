@@ -37,8 +37,9 @@ constexpr double kLmFlopsPerThread = 20.0e9;
 /// Adam training throughput per thread in samples × weights per second (README, bench_nn: 6.30 M
 /// samples/s for 16-20-10-3, P = 583).
 constexpr double kAdamWeightSamplesPerThread = 6.30e6 * 583;
-/// The evaluation's CPU prediction costs about as much as this many path samples per pixel
-/// (exact direct light's shadow rays and the networks; README, bench_predict).
+/// The evaluation's CPU prediction (exact direct light's shadow rays and the networks) counted as
+/// this many path samples per pixel: a rough allowance that only weighs the pipeline's last stage
+/// against the others, not a measurement.
 constexpr double kEvaluateSppEquivalent = 4.0;
 
 /// The range of a stage's wall time in seconds and what it was computed from.
