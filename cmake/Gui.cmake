@@ -50,8 +50,11 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_user_workspace.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_views_layout.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_pane_docking.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_pipeline_controls.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_frame_stats.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp
+    ${CMAKE_SOURCE_DIR}/app/gui/frame_stats.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/user_workspace.cpp)
   target_link_libraries(rrf_gui_tests PRIVATE rrf_panels GTest::gtest GTest::gtest_main rrf_warnings)
   target_compile_definitions(rrf_gui_tests PRIVATE RRF_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
@@ -101,6 +104,13 @@ if(RRF_BUILD_TESTS)
                      ${CMAKE_SOURCE_DIR}/tests/gui/session_unclipped.json)
     set_tests_properties(gui_unclipped_${size} PROPERTIES ENVIRONMENT "RRF_GUI_SIZE=${size}" TIMEOUT 600)
   endforeach()
+  # The one-click pipeline (issue 14 item 9): the quick preset, shrunk further, renders, generates,
+  # trains and evaluates end to end at 1280x720 and leaves a training run with its evaluation.
+  add_test(NAME gui_pipeline
+           COMMAND ${RRF_GUI_RUNNER} $<TARGET_FILE:rrf-workbench> $<TARGET_FILE:rrf_gui_shotcheck>
+                   ${CMAKE_SOURCE_DIR}/projects/cornell-box ${CMAKE_BINARY_DIR}/gui_test_pipeline 3
+                   ${CMAKE_SOURCE_DIR}/tests/gui/session_pipeline.json)
+  set_tests_properties(gui_pipeline PROPERTIES ENVIRONMENT "RRF_GUI_SIZE=1280x720" TIMEOUT 600)
   # A first start without a project works in the per-user workspace; the bundled project stays clean.
   add_test(NAME gui_first_start_workspace
            COMMAND ${CMAKE_SOURCE_DIR}/tests/gui/run_first_start.sh $<TARGET_FILE:rrf-workbench>

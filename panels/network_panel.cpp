@@ -13,6 +13,7 @@
 #include "core/data/record_layout.h"
 #include "panels/clip_check.h"
 #include "panels/panels.h"
+#include "panels/pipeline_controls.h"
 
 namespace rrf::panels {
 
@@ -207,6 +208,7 @@ void drawNetworkPanel(WorkbenchState& state) {
         ImGui::TextDisabled("No project is open.");
         return;
     }
+    drawNetworkPresets(state);
     NetworkSettings s = current(state);
 
     ImGui::TextUnformatted("Hidden layers");

@@ -8,6 +8,7 @@
 #include "core/data/record_layout.h"
 #include "core/data/sampling_settings.h"
 #include "panels/panels.h"
+#include "panels/pipeline_controls.h"
 #include "panels/status_text.h"
 
 namespace rrf::panels {
@@ -19,17 +20,6 @@ void drawEstimate(const WorkbenchState& state, const SamplingSettings& s) {
     const int floats = RecordLayout::forScene(state.project.scene).floatsPerRecord();
     const double bytes = records * floats * 4.0;
     ImGui::Text("at most %.3g records, %.3g MB (%d floats per record)", records, bytes / 1e6, floats);
-    // Each record traces spp to max_spp paths; the last render's speed is the best guide this machine has.
-    if (state.render.samplesPerSecond > 0) {
-        const double seconds = records * double(s.spp) / state.render.samplesPerSecond;
-        if (s.adaptive())
-            ImGui::Text("%.0f to %.0f s at the last render's %.3g samples/s (adaptive paths per record)", seconds,
-                        seconds * double(s.maxSpp) / double(s.spp), state.render.samplesPerSecond);
-        else
-            ImGui::Text("about %.0f s at the last render's %.3g samples/s", seconds, state.render.samplesPerSecond);
-    } else {
-        ImGui::TextDisabled("render the ground truth once for a time estimate");
-    }
 }
 
 void drawCoverage(const DatasetInfo& d) {
@@ -84,6 +74,7 @@ void drawSamplingPanel(WorkbenchState& state) {
         ImGui::TextDisabled("No project is open.");
         return;
     }
+    drawSamplingPresets(state);
     // Edits a copy: a project without a sampling section keeps none until the user changes something.
     SamplingSettings s = state.project.samplingOrDefault();
     bool changed = false;

@@ -48,6 +48,8 @@ enum class Command {
     ExportObjectsCsv, ///< path: the Objects table as CSV (empty path: ask)
     RunSweep,         ///< path: what to sweep ("spp", "grid", "dirs", "hidden", "trainer")
     CancelSweep,
+    RunPipeline,      ///< path: a preset name (core/project/presets.h): render, generate, train, evaluate
+    CancelPipeline,   ///< stop the pipeline's running stage (within a second) and the stages after it
     SaveRun,          ///< record the current ground truth as a run
     ReopenRun,        ///< index: restore the run's settings and show its images as the ground truth
     CompareRun,       ///< index: show the run's images in the compare view, the error against it
@@ -157,6 +159,18 @@ struct Notice {
     std::string text;
 };
 
+/// The one-click pipeline (render → generate → train → evaluate) as its progress display shows it.
+struct PipelineInfo {
+    std::string preset = "quick";  ///< the preset the next run applies (core/project/presets.h)
+    bool running = false;
+    std::string stage;             ///< "render", "generate", "train", "evaluate" while running
+    int stageIndex = 0;            ///< 0..3, the stage's place in the pipeline
+    double fraction = 0.0;         ///< overall fraction done, stages weighted by their estimates
+    double etaSeconds = -1.0;      ///< overall time left; -1 while unknown
+    double seconds = 0.0;          ///< wall time so far (the whole run once it ended)
+    std::string outcome;           ///< how the last run ended ("done in 52 s", "stopped in train", ...)
+};
+
 /// Two training runs compared side by side (runs table A / B): their models' predictions at the
 /// current light and, when a ground truth is shown, their per-object errors against it.
 struct RunPair {
@@ -199,6 +213,7 @@ struct WorkbenchState {
 
     int compareRun = -1;  ///< index into project.runs shown in the compare view, -1 = none
     RunPair runPair;
+    PipelineInfo pipeline;
     std::vector<std::string> recent;
     Log log;
     std::optional<Notice> notice;  ///< the newest undismissed problem (panels/status_text.h draws it)

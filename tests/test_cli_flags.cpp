@@ -35,7 +35,7 @@ struct Experiment {
 Experiment settingsOf(const Project& p, bool quick) {
     const cli::ExperimentFlags flags;
     Experiment e;
-    cli::experimentSettings(p, flags, quick, e.sampling, e.training);
+    cli::experimentSettings(p, flags, quick ? &cli::quickPreset() : nullptr, e.sampling, e.training);
     return e;
 }
 

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/nn/network_settings.h"
+#include "core/project/presets.h"
 #include "core/project/project.h"
 
 namespace rrf::cli {
@@ -108,20 +109,17 @@ void addExperimentFlags(CLI::App* cmd, ExperimentFlags& flags) {
     addNetworkFlags(cmd, flags.network);
 }
 
-void experimentSettings(const Project& p, const ExperimentFlags& flags, bool quick, SamplingSettings& s,
+void experimentSettings(const Project& p, const ExperimentFlags& flags, const PipelinePreset* preset, SamplingSettings& s,
                         ObjectTrainingOptions& t) {
-    s = p.samplingOrDefault();
-    t = p.networkOrDefault().options;
-    if (quick) {
-        // About a minute on 2 cores, for tests and a first look; the project's own settings (or the
-        // project defaults) are what reach the accuracy the README quotes.
-        s.nx = s.ny = s.nz = 5;
-        s.directions = 150;
-        s.spp = 16;
-        t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = 50;
-    }
+    s = preset ? presetSampling(p, *preset) : p.samplingOrDefault();
+    t = preset ? presetNetwork(p, *preset) : p.networkOrDefault().options;
     flags.sampling.applyTo(s);
     flags.network.applyTo(t);
+}
+
+const PipelinePreset& quickPreset() {
+    static const PipelinePreset& quick = *findPreset("quick");
+    return quick;
 }
 
 void addNoiseTargetFlags(CLI::App* cmd, double& noise, int& sppCap, const std::string& which,

@@ -22,6 +22,7 @@
 #include "core/data/sampling_settings.h"
 #include "core/nn/object_training.h"
 #include "core/predict/prediction_settings.h"
+#include "core/project/presets.h"
 #include "core/util/vec3.h"
 
 namespace rrf {
@@ -127,12 +128,12 @@ void addExperimentFlags(CLI::App* cmd, ExperimentFlags& flags);
 void addNoiseTargetFlags(CLI::App* cmd, double& noise, int& sppCap, const std::string& which,
                          const std::string& capDefault, bool relaxedByError, CLI::Option* fixedSpp = nullptr);
 
-/// Data and network settings of the pipeline and of sweeps: the project's sections where present,
-/// sizes that finish in minutes where not (or all of them when `quick`), then the flags. Without a
-/// "sampling" section the data sizes are small; without a "trainer" section (whether or not there
-/// is a "network") the epoch limit is.
-void experimentSettings(const Project& p, const ExperimentFlags& flags, bool quick, SamplingSettings& s,
+/// Data and network settings of the pipeline and of sweeps: the project's sections (its defaults
+/// where absent), changed by `preset` when given (core/project/presets.h), then the flags.
+void experimentSettings(const Project& p, const ExperimentFlags& flags, const PipelinePreset* preset, SamplingSettings& s,
                         ObjectTrainingOptions& t);
+/// The "quick" row of the preset table (`--quick`, the sweeps' sizes).
+const PipelinePreset& quickPreset();
 
 /// One line: grid, directions, spp per record, network, targets, trainer and epochs.
 std::string describeExperiment(const SamplingSettings& s, const ObjectTrainingOptions& t);

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -21,7 +22,10 @@
 #include "core/eval/held_out.h"
 #include "core/nn/model_set.h"
 #include "core/nn/training_run.h"
+#include "core/project/presets.h"
 #include "core/project/project.h"
+#include "core/project/time_estimate.h"
+#include "core/data/record_layout.h"
 #include "core/render/render_outputs.h"
 #include "core/util/atomic_file.h"
 #include "core/util/image_io.h"
@@ -32,6 +36,7 @@ namespace rrf::cli {
 namespace {
 struct PipelineArgs : PredictionArgs {
     bool quick = false;
+    std::string preset;  ///< empty: the project's settings
     int spp = -1, heldOut = 0, sppCap = -1;
     double noise = -1;
     long long seed = 1;
@@ -44,21 +49,34 @@ int runPipeline(const PipelineArgs& a) {
     refuseOverwritingInputs(a.out, projectInputs(p));
     const Scene& scene = p.scene;
     auto threads = limitThreads(a.threads);
+    // --quick is --preset quick; without a preset the project's settings and the command's sizes apply.
+    const PipelinePreset* preset = a.quick ? &quickPreset() : a.preset.empty() ? nullptr : findPreset(a.preset);
     SamplingSettings s;
     ObjectTrainingOptions t;
-    experimentSettings(p, a.experiment, a.quick, s, t);
-    const RenderOptions ro = referenceOptions(p, a.spp > 0 ? a.spp : (a.quick ? 32 : 64), a.width > 0 ? a.width : (a.quick ? 128 : -1),
-                                              a.height > 0 ? a.height : (a.quick ? 128 : -1));
-    const int heldOut = a.heldOut > 0 ? a.heldOut : (a.quick ? 1 : 2);
-    // Held-out references come from the project's store, converged to the noise target (--quick caps
-    // them at 1024 spp unless --spp-cap says otherwise), at the ground truth's size.
+    experimentSettings(p, a.experiment, preset, s, t);
+    const PipelineEvaluationSizes sizes = preset ? preset->evaluation : PipelineEvaluationSizes{};
+    const RenderOptions ro = referenceOptions(p, a.spp > 0 ? a.spp : sizes.groundTruthSpp, a.width > 0 ? a.width : (sizes.width > 0 ? sizes.width : -1),
+                                              a.height > 0 ? a.height : (sizes.height > 0 ? sizes.height : -1));
+    const int heldOut = a.heldOut > 0 ? a.heldOut : sizes.heldOutLights;
+    // Held-out references come from the project's store, converged to the noise target (the quick
+    // preset caps them at 1024 spp unless --spp-cap says otherwise), at the ground truth's size.
     ReferenceStore store = projectReferenceStore(p);
     NoiseTarget target = noiseTargetFor(p, a.noise, a.sppCap);
-    if (a.quick && a.sppCap <= 0) target.sppCap = std::min(target.sppCap, 1024);
+    if (sizes.referenceSppCap > 0 && a.sppCap <= 0) target.sppCap = std::min(target.sppCap, sizes.referenceSppCap);
+    {
+        // What the stages will cost, from the settings (core/project/time_estimate.h).
+        const PathRate rate = PathRate::of(0, int(std::thread::hardware_concurrency()));
+        const StageEstimate g = estimateGenerate(s, rate);
+        const StageEstimate tr = estimateTraining(t, expectedRecords(s), int(scene.objects.size()),
+                                                  RecordLayout::forScene(scene).inputCount(), int(std::thread::hardware_concurrency()));
+        std::printf("estimated: generate %s (%s); train %s (%s)\n", rangeText(g).c_str(), g.basis.c_str(),
+                    rangeText(tr).c_str(), tr.basis.c_str());
+        std::fflush(stdout);
+    }
     makeDirectories(a.out);
     std::printf("rrf pipeline%s: %s -> %s\n  ground truth %dx%d, %d spp; %s; %d held-out lights (references from %s: "
                 "relative noise <= max(%g, %g x the error), at most %d spp)\n",
-                a.quick ? " --quick" : "", a.input.c_str(), a.out.c_str(), ro.width, ro.height, ro.spp,
+                preset ? (std::string(" --preset ") + preset->name).c_str() : "", a.input.c_str(), a.out.c_str(), ro.width, ro.height, ro.spp,
                 describeExperiment(s, t).c_str(), heldOut, store.dir().c_str(), target.relativeRmse, target.errorFraction,
                 target.sppCap);
     std::vector<std::pair<std::string, double>> stages;
@@ -139,12 +157,20 @@ void addPipelineCommand(CLI::App& app, int& exitCode) {
     auto a = std::make_shared<PipelineArgs>();
     CLI::App* cmd = app.add_subcommand("pipeline", "Ground truth, data, training and evaluation in one run");
     addPredictionOptions(cmd, *a);
-    cmd->add_flag("--quick", a->quick, "small grid, directions, spp and epochs (about a minute on 2 cores)");
+    CLI::Option* quick = cmd->add_flag("--quick", a->quick, "the same as --preset quick");
+    cmd->add_option("--preset", a->preset, std::string("settings of the whole pipeline (core/project/presets.h): ") + presetNames(", ") +
+                                               "; default: the project's")
+        ->check(CLI::IsMember([] {
+            std::vector<std::string> names;
+            for (const PipelinePreset& p : pipelinePresets()) names.push_back(p.name);
+            return names;
+        }()))
+        ->excludes(quick);
     cmd->add_option("--spp", a->spp,
                     "ground-truth samples per pixel (fixed; the held-out references come from the project's reference "
                     "store, converged to the noise target)")
         ->check(positive());
-    addNoiseTargetFlags(cmd, a->noise, a->sppCap, "the held-out references", "the project's, 4096; 1024 with --quick", true);
+    addNoiseTargetFlags(cmd, a->noise, a->sppCap, "the held-out references", "the project's, 4096; 1024 with the quick preset", true);
     cmd->add_option("--held-out", a->heldOut, "held-out light positions to evaluate")->check(positive());
     addExperimentFlags(cmd, a->experiment);
     cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());

@@ -41,7 +41,7 @@ int runSweepCommand(const SweepArgs& a) {
     ReferenceStore store = projectReferenceStore(p);
     if (a.referenceSpp <= 0) o.store = &store;
     o.referenceTarget = noiseTargetFor(p, a.noise, a.sppCap);
-    experimentSettings(p, a.experiment, true, o.sampling, o.training);
+    experimentSettings(p, a.experiment, &quickPreset(), o.sampling, o.training);
     o.prediction = a.prediction.applied(p.prediction);
     o.seed = uint64_t(a.seed);
     std::atomic<bool>& interrupted = installInterruptHandler();

@@ -13,6 +13,7 @@ const char* jobKindName(JobKind kind) {
         case JobKind::Predict: return "predict";
         case JobKind::Sweep: return "sweep";
         case JobKind::Compare: return "compare";
+        case JobKind::Overlay: return "leaf overlay";
     }
     return "job";
 }
@@ -23,6 +24,7 @@ bool jobsConflict(JobKind a, JobKind b) {
     // competes for the cores, which the user decides about.
     if (a == JobKind::Sweep || b == JobKind::Sweep) return false;
     if (a == JobKind::Compare || b == JobKind::Compare) return false;  // its own models, copied images
+    if (a == JobKind::Overlay || b == JobKind::Overlay) return false;  // shared read-only models
     auto pair = [&](JobKind x, JobKind y) { return (a == x && b == y) || (a == y && b == x); };
     // Training reads the dataset being generated; evaluation reads the models being trained and
     // compares against the ground truth being rendered.

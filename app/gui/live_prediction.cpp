@@ -7,9 +7,11 @@ namespace rrf {
 LivePrediction::LivePrediction() = default;
 LivePrediction::~LivePrediction() = default;
 
-void LivePrediction::load(const Scene& scene, const std::string& dir, bool tryGlsl, std::string& glslError) {
+void LivePrediction::load(const Scene& scene, const std::string& dir, bool tryGlsl, std::string& glslError,
+                          std::shared_ptr<const ModelSet> preloaded) {
     reset();
-    auto models = std::make_shared<ModelSet>(loadModelSet(dir, scene.contentHash()));
+    std::shared_ptr<const ModelSet> models =
+        preloaded ? std::move(preloaded) : std::make_shared<const ModelSet>(loadModelSet(dir, scene.contentHash()));
     if (models->objects.empty()) throw std::runtime_error(dir + ": the model set holds no networks");
     if (tryGlsl) {
         try {

@@ -32,7 +32,10 @@ public:
     /// Loads the model directory `dir` for `scene` (rejecting models of another scene: throws,
     /// naming the file) and, when `tryGlsl`, builds the GLSL predictor. A GLSL failure is not an
     /// error: the reason goes to `glslError` and the CPU path is used.
-    void load(const Scene& scene, const std::string& dir, bool tryGlsl, std::string& glslError);
+    /// `preloaded`: the set already read from `dir` (by a worker, so the UI thread does not read
+    /// weights); null reads it here.
+    void load(const Scene& scene, const std::string& dir, bool tryGlsl, std::string& glslError,
+              std::shared_ptr<const ModelSet> preloaded = nullptr);
     /// Forgets the models (a new project, or a scene edit that makes them stale).
     void reset();
 

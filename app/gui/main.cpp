@@ -6,6 +6,7 @@
 // (after the script, if any) and exits; --screenshot writes the last frame to a PNG. The exit status
 // is non-zero if the project cannot be opened, the script fails or the screenshot cannot be written
 // in these automated modes.
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -125,10 +126,16 @@ int main(int argc, char** argv) {
         bool scriptDone = script.empty();
         int framesDrawn = 0;
         std::string title;
+        int eventFrames = 0;  // frames still drawn at full rate after an event
         while (status == 0) {
-            // Automated runs poll quickly; interactive ones sleep until input or a 30 Hz refresh
-            // so the UI thread leaves the cores to the background jobs.
-            window.waitEvents(automated ? 0.005 : 1.0 / 30.0);
+            // Automated runs poll quickly. Interactive ones redraw at 30 Hz while something changes
+            // by itself (a job, a held mouse button) and for a few frames after input (ImGui settles
+            // hover and click states over 2-3 frames); otherwise they wait for events, waking twice
+            // a second, so an idle workbench leaves the cores to whatever else runs.
+            const double timeout = automated ? 0.005 : (wb.busy() || eventFrames > 0) ? 1.0 / 30.0 : 0.5;
+            if (window.waitEvents(timeout)) eventFrames = 3;
+            else if (eventFrames > 0) --eventFrames;
+            const auto frameStart = std::chrono::steady_clock::now();
             window.beginFrame();
             wb.frame();
             if (!scriptDone) {
@@ -156,6 +163,7 @@ int main(int argc, char** argv) {
                 }
             }
             window.swap();
+            wb.frameStats().add(std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart).count());
             if (last) break;
 
             const std::string t = wb.title();

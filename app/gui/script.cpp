@@ -1,5 +1,7 @@
 #include "app/gui/script.h"
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -8,6 +10,7 @@
 
 #include "app/gui/workbench.h"
 #include "core/nn/network_settings.h"
+#include "core/project/presets.h"
 #include "core/project/run_recording.h"
 #include "core/project/scene_edits.h"
 #include "core/util/json_reader.h"
@@ -49,9 +52,13 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"tab", {"name"}},
             {"move_tab", {"tab", "to", "side"}},
             {"reset_layout", {}},
+            {"pipeline", {"preset", "grid", "directions", "spp", "max_spp", "epochs", "hidden"}},
+            {"stop_pipeline", {}},
+            {"measure_frames", {"label", "frames", "drag_light"}},
             {"check", {"runs", "ground_truth_spp_min", "errors", "compare", "dataset", "prediction", "evaluated",
                        "train_runs", "sweeps", "unsaved_prompt", "dirty", "stopped_runs", "prediction_partial",
-                       "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped"}},
+                       "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped", "pipeline_done",
+                       "pipeline_stopped"}},
         };
     }();
     return keys;
@@ -136,10 +143,13 @@ bool Script::execute(Workbench& wb, const json& s) {
             waitStart_ = std::chrono::steady_clock::now();
         }
         // train_epoch: until the running training has reported its first epoch (to stop it mid-run).
-        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch"});
-        const bool busy = on == "render"        ? wb.renderRunning()
-                          : on == "train_epoch" ? wb.trainRunning() && st.training.epoch < 1
-                                                : !wb.jobs().idle();
+        // pipeline: until the one-click pipeline has ended; train_running: until a training runs.
+        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running"});
+        const bool busy = on == "render"          ? wb.renderRunning()
+                          : on == "train_epoch"   ? wb.trainRunning() && st.training.epoch < 1
+                          : on == "pipeline"      ? wb.pipelineRunning()
+                          : on == "train_running" ? !wb.trainRunning()
+                                                  : !wb.jobs().idle();
         if (busy) {
             const double limit = r.numberOr("timeout_s", 300, 0, 1e9);
             const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart_).count();
@@ -178,6 +188,57 @@ bool Script::execute(Workbench& wb, const json& s) {
         require(wb.startEvaluate(), "the evaluation could not start (see the log)");
     } else if (what == "sweep") {
         require(wb.startSweep(r.at("what").string()), "the sweep could not start (see the log)");
+    } else if (what == "pipeline") {
+        // As choosing a preset in the pipeline bar and clicking "Run pipeline" (the request the
+        // button makes). Optional sizes shrink the preset for small scripted runs: they are applied
+        // over the preset, and the pipeline then runs with the settings in effect.
+        const std::string name = r.choiceOr("preset", "quick", {"quick", "paper", "best"});
+        const PipelinePreset* preset = findPreset(name);
+        applySamplingPreset(st.project, *preset);
+        applyNetworkPreset(st.project, *preset);
+        json sampling = sectionOf(r, {"preset", "epochs", "hidden"});
+        if (!sampling.empty())
+            st.project.sampling = SamplingSettings::fromJson(JsonReader(sampling, r.file(), r.pointer()),
+                                                             st.project.samplingOrDefault());
+        if (r.has("hidden")) {
+            const json network = {{"hidden", r.at("hidden").value()}};
+            st.project.network =
+                NetworkSettings::fromJson(JsonReader(network, r.file(), r.pointer()), st.project.networkOrDefault());
+        }
+        if (r.has("epochs")) {
+            TrainerConfig t = st.project.networkOrDefault().options.trainer;
+            t.lm.maxEpochs = t.adam.maxEpochs = intOr(r, "epochs", 1);
+            st.project.trainer = t;
+        }
+        st.markDirty();
+        require(wb.runPipeline(name), "the pipeline could not start (see the log)");
+    } else if (what == "stop_pipeline") {
+        st.request(panels::Command::CancelPipeline);
+    } else if (what == "measure_frames") {
+        // Records the UI thread's frame times over `frames` frames and prints their median and 95th
+        // percentile (bench/bench_frames.sh). drag_light: moves the light a little every frame, as
+        // dragging it in the Scene panel does (GLSL prediction and a restarted ground truth).
+        if (!waiting_) {
+            waiting_ = true;
+            framesLeft_ = intOr(r, "frames", 60);
+            dragStart_ = st.project.scene.lightPosition();
+            wb.frameStats().startRecording();
+        }
+        if (r.booleanOr("drag_light", false)) {
+            const double a = 0.2 * double(framesLeft_);
+            moveLight(st.project, dragStart_ + Vec3(float(0.1 * std::cos(a)), 0.f, float(0.1 * std::sin(a))));
+            st.request(panels::Command::SceneChanged);
+        }
+        if (--framesLeft_ >= 0) return false;
+        const FrameTimeSummary f = summarizeFrameTimes(wb.frameStats().takeRecording());
+        // With drag_light, how much of a frame the prediction itself took (its last few frames).
+        const FrameTimeSummary p = summarizeFrameTimes(wb.predictionSeconds());
+        std::printf("frames %-20s median %7.1f ms  p95 %7.1f ms  max %7.1f ms  (%zu frames)%s\n",
+                    r.stringOr("label", "").c_str(), 1e3 * f.median, 1e3 * f.p95, 1e3 * f.max, f.frames,
+                    r.booleanOr("drag_light", false) && p.frames
+                        ? ("; prediction alone median " + std::to_string(int(1e3 * p.median + 0.5)) + " ms").c_str()
+                        : "");
+        std::fflush(stdout);
     } else if (what == "tab") {
         st.focusTab = r.at("name").string();
     } else if (what == "move_tab") {
@@ -315,6 +376,11 @@ bool Script::execute(Workbench& wb, const json& s) {
             require(a == b, "'" + pair.at(size_t(0)).string() + "' and '" + pair.at(size_t(1)).string() +
                                 "' are in different panes");
         }
+        // pipeline_done: the last one-click pipeline ran to its end (not stopped, not failed).
+        flag("pipeline_done", !wb.pipelineRunning() && st.pipeline.outcome.rfind("done", 0) == 0,
+             "pipeline outcome ('" + st.pipeline.outcome + "')");
+        flag("pipeline_stopped", !wb.pipelineRunning() && st.pipeline.outcome.rfind("stopped", 0) == 0,
+             "pipeline outcome ('" + st.pipeline.outcome + "')");
         // pair: the Views show two runs (both predictions) and the Objects panel both error columns.
         flag("pair",
              st.view.compareSource == panels::CompareSource::RunPair && !st.runPair.imagesA.empty() &&

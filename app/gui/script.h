@@ -17,16 +17,21 @@
 /// error_max, zoom}, open {path?: default re-opens the current file}, save {path?}, export_images {dir}, screenshot {path},
 /// frames {count}, tab {name: bring a panel tab to the front}, move_tab {tab, to: a tab of the target
 /// pane, side: centre (join it, the default)|left|right|top|bottom (split it)}, reset_layout,
+/// pipeline {preset, and optional sizes over it: grid, directions, spp, max_spp, epochs, hidden},
+/// stop_pipeline, wait {for: pipeline | train_running}, measure_frames {label, frames, drag_light:
+/// print the median and 95th percentile frame time},
 /// check {runs, ground_truth_spp_min, errors, compare, dataset, prediction, evaluated, train_runs,
 /// sweeps, unsaved_prompt, dirty, stopped_runs, prediction_partial, render_cancelled, notice, pair,
 /// panes (how many), same_pane [tab, tab], clipped (how many texts are cut off in this frame,
-/// panels/clip_check.h)}. An unknown step or key fails the script when it is loaded (it never skips
-/// silently), naming the file and the step's JSON pointer.
+/// panels/clip_check.h), pipeline_done, pipeline_stopped}. An unknown step or key fails the script
+/// when it is loaded (it never skips silently), naming the file and the step's JSON pointer.
 
 #include <chrono>
 #include <string>
 
 #include <nlohmann/json.hpp>
+
+#include "core/util/vec3.h"
 
 namespace rrf {
 
@@ -55,6 +60,7 @@ private:
     bool waiting_ = false;
     int framesLeft_ = 0;
     std::chrono::steady_clock::time_point waitStart_;
+    Vec3 dragStart_;  ///< measure_frames drag_light: the light's position when the step began
     std::string error_;
     bool failed_ = false;
 };

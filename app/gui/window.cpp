@@ -93,9 +93,16 @@ bool Window::shouldClose() const { return glfwWindowShouldClose(window_); }
 void Window::setShouldClose(bool close) { glfwSetWindowShouldClose(window_, close ? GLFW_TRUE : GLFW_FALSE); }
 void Window::setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
 
-void Window::waitEvents(double seconds) {
-    if (seconds > 0) glfwWaitEventsTimeout(seconds);
-    else glfwPollEvents();
+bool Window::waitEvents(double seconds) {
+    if (seconds <= 0) {
+        glfwPollEvents();
+        return true;
+    }
+    // GLFW does not say whether an event or the timeout ended the wait; returning well before the
+    // timeout means an event did.
+    const double start = glfwGetTime();
+    glfwWaitEventsTimeout(seconds);
+    return glfwGetTime() - start < 0.9 * seconds;
 }
 
 void Window::beginFrame() {

@@ -27,8 +27,9 @@ public:
     void setShouldClose(bool close);
     void setTitle(const std::string& title);
     /// Waits for events at most `seconds` (0 = just poll): the UI redraws on input and at least
-    /// this often, without spinning a core that the renderer needs.
-    void waitEvents(double seconds);
+    /// this often, without spinning a core that the renderer needs. Returns true when an event
+    /// (rather than the timeout) ended the wait.
+    bool waitEvents(double seconds);
     void beginFrame();
     /// Renders ImGui's draw data into the back buffer (call swap() after any read-back).
     void render();

@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include "panels/panels.h"
+#include "panels/pipeline_controls.h"
 #include "panels/status_text.h"
 
 namespace rrf {
@@ -87,11 +88,15 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 
 void Workbench::dropJobs() {
     for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &generateJob_, &trainJob_, &evaluateJob_,
-                                                                      &predictJob_, &sweepJob_, &pairJob_})
+                                                                      &predictJob_, &sweepJob_, &pairJob_, &overlayJob_})
         job->drop();
     render_.reset();
     trainLive_.reset();
     predictPending_ = false;
+    if (pipelineRunning()) {
+        pipeline_.cancelled = true;
+        endPipeline("stopped: its project was closed");
+    }
 }
 
 void Workbench::logFinishedJobs() {
@@ -112,8 +117,10 @@ void Workbench::frame() {
     pollPredict();
     pollSweep();
     pollRunPair();
+    pollPipeline();
     drawHost();
     drawModals();
+    drawFrameOverlay();
     if (dialog_.draw()) dialogConfirmed(dialog_.result());
     handleRequests();
     autosave();
@@ -175,14 +182,19 @@ void Workbench::drawMenuBar() {
             state_.view.zoom = 1.f;
             state_.view.panX = state_.view.panY = 0.f;
         }
+        ImGui::MenuItem("Frame time overlay", "F3", &frameOverlay_);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {
         if (ImGui::MenuItem("About")) aboutModal_ = true;
         ImGui::EndMenu();
     }
+    // The one-click pipeline and its one progress display, always in sight.
+    ImGui::Separator();
+    panels::drawPipelineBar(state_);
     // Keyboard shortcuts advertised in the menu (1.86 indexes keys by the GLFW backend's key codes).
     const ImGuiIO& io = ImGui::GetIO();
+    if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F3, false)) frameOverlay_ = !frameOverlay_;
     if (io.KeyCtrl && !io.WantTextInput) {
         if (ImGui::IsKeyPressed(GLFW_KEY_O)) state_.request(Command::OpenProject);
         if (ImGui::IsKeyPressed(GLFW_KEY_S) && state_.hasProject) state_.request(Command::SaveProject);
@@ -218,6 +230,25 @@ void Workbench::drawStatusBar() {
         ImGui::PopID();
     }
     ImGui::NewLine();
+}
+
+bool Workbench::busy() const { return !jobs_.idle() || pipelineRunning() || ImGui::IsAnyMouseDown(); }
+
+void Workbench::drawFrameOverlay() {
+    if (!frameOverlay_) return;
+    const FrameTimeSummary s = summarizeFrameTimes(frameStats_.recent());
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + vp->WorkSize.x - 10, vp->WorkPos.y + 30), ImGuiCond_Always, ImVec2(1, 0));
+    ImGui::SetNextWindowBgAlpha(0.7f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+    if (ImGui::Begin("##frame-time", nullptr, flags)) {
+        ImGui::Text("frame %.1f ms", 1e3 * frameStats_.last());
+        ImGui::Text("median %.1f ms, p95 %.1f ms", 1e3 * s.median, 1e3 * s.p95);
+        ImGui::TextDisabled("last %zu frames, UI thread work", s.frames);
+    }
+    ImGui::End();
 }
 
 void Workbench::drawModals() {
@@ -349,6 +380,8 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
                 break;
             case Command::RunSweep: startSweep(r.path); break;
             case Command::CancelSweep: sweepJob_.cancel(); break;
+            case Command::RunPipeline: startPipeline(r.path); break;
+            case Command::CancelPipeline: cancelPipeline(); break;
             case Command::SceneChanged: sceneEdited = true; break;  // many edits in a frame: one restart
             case Command::SaveRun: saveRun(); break;
             case Command::ReopenRun: reopenRun(r.index); break;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "app/gui/frame_stats.h"
 #include "app/gui/gl_texture.h"
 #include "app/gui/job_runner.h"
 #include "app/gui/job_session.h"
@@ -26,6 +27,7 @@ struct EvaluationOutcome;
 struct TimedPrediction;
 struct SweepOutcome;
 struct PairOutcome;
+struct LeafOverlay;
 
 class Workbench {
 public:
@@ -86,8 +88,9 @@ public:
     /// runs/<run>/models, a "train" run is recorded and the models drive the live prediction.
     bool startTrain(int maxEpochs = 0);
     bool trainRunning() const;
-    /// Loads a model directory for the live prediction (GLSL, else CPU).
-    bool loadModels(const std::string& dir);
+    /// Loads a model directory for the live prediction (GLSL, else CPU). `preloaded`: the set a
+    /// worker already read from `dir` (a finished training), so only the GL upload is left here.
+    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr);
     /// Recomputes the Views leaf overlay (leaf per pixel) when it is on and the prediction changed.
     void updateLeafOverlay();
     /// Compares the prediction with the ground truth per object and term (fills the Objects panel).
@@ -95,9 +98,30 @@ public:
     bool evaluateRunning() const;
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
     bool exportObjectsCsv(const std::string& path);
+    /// The one-click pipeline: applies `preset` (core/project/presets.h) to the project's data and
+    /// network settings, then renders the ground truth (or keeps a finished one), generates the
+    /// dataset, trains and evaluates, one job after the other, each the same job its own button
+    /// starts. state().pipeline shows one progress display (overall fraction weighted by the stages'
+    /// estimates, current stage, ETA); the trained models become a run in the runs table with their
+    /// evaluation. Refused (false, with a notice) without a saved project or while a job runs.
+    bool startPipeline(const std::string& preset);
+    /// The pipeline with the settings in effect (no preset applied); `label` names them in its
+    /// display and log (a script that shrank a preset's sizes).
+    bool runPipeline(const std::string& label);
+    /// Stops the running stage's job (its job stops within a second) and the stages after it.
+    void cancelPipeline();
+    bool pipelineRunning() const { return pipeline_.stage != PipelineStage::Idle; }
     /// Runs a cost sweep of one of the kinds in kSweepKinds (core/eval/sweep.h) with interactive sizes.
     bool startSweep(const std::string& what);
     bool sweepRunning() const;
+
+    /// True while something changes without input (a job or the pipeline runs, a mouse button is
+    /// held): the window then redraws at its frame rate, otherwise it waits for events.
+    bool busy() const;
+    /// The UI thread's frame times (the window loop adds each frame's work time).
+    FrameStats& frameStats() { return frameStats_; }
+    /// The live prediction's recent frame times (seconds; GLSL on the UI thread, else CPU jobs).
+    const std::vector<double>& predictionSeconds() const { return frameSeconds_; }
 
     panels::WorkbenchState& state() { return state_; }
     JobRunner& jobs() { return jobs_; }
@@ -109,6 +133,8 @@ private:
     void drawMenuBar();
     void drawStatusBar();
     void drawModals();
+    /// The frame-time overlay (View > Frame time overlay, F3): last, median and 95th percentile.
+    void drawFrameOverlay();
     void handleRequests();
     void openDialog(DialogPurpose purpose);
     void dialogConfirmed(const std::string& path);
@@ -120,6 +146,14 @@ private:
     void pollEvaluate();
     void pollPredict();
     void pollSweep();
+    /// Moves the pipeline to its next stage once the current one delivered, publishes its progress.
+    void pollPipeline();
+    enum class PipelineStage { Idle, Render, Generate, Train, Evaluate };
+    /// Starts `stage`'s job; false (the pipeline ends with `why`) when it is refused.
+    bool beginPipelineStage(PipelineStage stage);
+    void endPipeline(const std::string& outcome);
+    /// Why the pipeline cannot start now ("" when it can).
+    std::string pipelineRefusal() const;
     /// Logs the jobs that ended since the last frame (finished, stopped or failed).
     void logFinishedJobs();
     /// Cancels every session's job and forgets it, so nothing a previous project's job finishes
@@ -169,12 +203,28 @@ private:
     /// Recent per-frame prediction times of the loaded models (seconds), whose median is recorded
     /// in their training run (runs table: "frame ms").
     std::vector<double> frameSeconds_;
+    size_t framesSinceRecorded_ = 0;  ///< frames noted since the median was last recorded in the run
     void noteFrameSeconds(const char* key, double seconds);
     bool predictPending_ = false;  ///< the light moved while a CPU prediction ran
     JobSession<SweepOutcome> sweepJob_{jobs_, JobKind::Sweep, state_.log};
     JobSession<PairOutcome> pairJob_{jobs_, JobKind::Compare, state_.log};
     void pollRunPair();
+    /// The Views' leaf overlay, computed on a worker (a G-buffer and a leaf lookup per pixel).
+    JobSession<LeafOverlay> overlayJob_{jobs_, JobKind::Overlay, state_.log};
+    uint64_t overlayFor_ = 0;  ///< the prediction revision the last overlay job was started for
     LivePrediction live_;
+    /// Results each kind of job delivered so far: the pipeline advances when its stage's count grew
+    /// and fails when the job ended without one (stopped, refused, failed).
+    uint64_t datasetsDelivered_ = 0, trainingsCompleted_ = 0, evaluationsDelivered_ = 0;
+    struct PipelineRun {
+        PipelineStage stage = PipelineStage::Idle;
+        uint64_t mark = 0;                  ///< the stage's delivery count when it started
+        double weights[4] = {0, 0, 0, 0};   ///< estimated seconds per stage (render, generate, train, evaluate)
+        double spent[4] = {0, 0, 0, 0};     ///< measured seconds of the stages done (0: skipped)
+        std::chrono::steady_clock::time_point start, stageStart;
+        bool cancelled = false;
+        std::string preset;
+    } pipeline_;
     bool restartRender_ = false;   ///< a scene edit arrived while the old render was stopping
     bool untitled_ = false;        ///< the project has no file of its own yet (New)
 
@@ -193,6 +243,8 @@ private:
     std::string errorTitle_, errorMessage_;
     bool errorModal_ = false;
     std::string screenshotRequest_;
+    FrameStats frameStats_;
+    bool frameOverlay_ = false;
     std::chrono::steady_clock::time_point lastAutosave_;
 };
 

@@ -76,11 +76,11 @@ bool Workbench::startGenerate() {
 
 void Workbench::pollGenerate() {
     const bool wasRunning = state_.dataset.running;
-    state_.dataset.running = generateRunning();
-    // A cancelled generation writes nothing: the table still shows the dataset before it, marked stale.
-    if (wasRunning && !state_.dataset.running) state_.dataset.lastCancelled = true;  // until a result arrives
-    if (state_.dataset.running) state_.dataset.progress = generateJob_.progress();
+    if (generateRunning()) state_.dataset.progress = generateJob_.progress();
+    bool delivered = false;
     generateJob_.poll([&](GeneratedDataset& d) {
+        delivered = true;
+        ++datasetsDelivered_;
         state_.dataset.progress = 1.0;
         state_.dataset.path = d.path;
         state_.dataset.objectNames = std::move(d.objectNames);
@@ -92,6 +92,10 @@ void Workbench::pollGenerate() {
         state_.dataset.lastCancelled = false;
         state_.log.info("dataset written: " + d.path + " (" + std::to_string(state_.dataset.generator.records) + " records)");
     });
+    // Read after poll(): a job that ended between the two checks delivers this frame, not the next.
+    state_.dataset.running = generateRunning();
+    // A cancelled generation writes nothing: the table still shows the dataset before it, marked stale.
+    if (wasRunning && !state_.dataset.running && !delivered) state_.dataset.lastCancelled = true;  // until a result arrives
 }
 
 }  // namespace rrf

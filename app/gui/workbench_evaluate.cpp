@@ -74,6 +74,7 @@ bool Workbench::startEvaluate() {
 void Workbench::pollEvaluate() {
     state_.evaluation.running = evaluateRunning();
     evaluateJob_.poll([&](EvaluationOutcome& out) {
+        ++evaluationsDelivered_;
         const double seconds = out.info.seconds;
         const int spp = out.info.referenceSpp;
         const Vec3 light = out.info.lightPosition;

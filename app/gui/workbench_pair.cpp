@@ -26,13 +26,13 @@ struct PairSide {
 
 struct PairOutcome {
     PairSide a, b;
+    std::string error;  ///< a model set that could not be loaded (then nothing else is set)
 };
 
 namespace {
-/// The models of a training run, or an error naming the run.
-std::shared_ptr<const ModelSet> runModels(const Run& run, const std::string& projectDir, uint64_t sceneHash) {
-    const std::string dir = trainRunModelsDir(run, projectDir);
-    if (dir.empty()) throw std::runtime_error("run '" + run.name + "' lists no models");
+/// The models of training run `name` in `dir` (its trainRunModelsDir), or an error naming the run.
+std::shared_ptr<const ModelSet> runModels(const std::string& dir, const std::string& name, uint64_t sceneHash) {
+    if (dir.empty()) throw std::runtime_error("run '" + name + "' lists no models");
     return std::make_shared<const ModelSet>(loadModelSet(dir, sceneHash));
 }
 }  // namespace
@@ -50,16 +50,11 @@ bool Workbench::compareRunPair() {
         state_.notify(panels::LogLevel::Error, "Project", "compare runs: both runs must be training runs");
         return false;
     }
-    std::shared_ptr<const ModelSet> ma, mb;
-    try {
-        // Model indexes are small (the weights load with them, at most a few MB): read here so a
-        // missing or foreign model set is reported at once, where the user clicked.
-        ma = runModels(ra, projectDir(), state_.project.scene.contentHash());
-        mb = runModels(rb, projectDir(), state_.project.scene.contentHash());
-    } catch (const std::exception& e) {
-        state_.notify(panels::LogLevel::Error, "Project", std::string("compare runs: ") + e.what());
-        return false;
-    }
+    // The model sets load on the worker (reading weights grows with the models); a missing or foreign
+    // set comes back as the outcome's error, shown where the user clicked.
+    const std::string dirA = trainRunModelsDir(ra, projectDir()), dirB = trainRunModelsDir(rb, projectDir());
+    const std::string nameA = ra.name, nameB = rb.name;
+    const uint64_t sceneHash = state_.project.scene.contentHash();
     auto scene = std::make_shared<const Scene>(state_.project.scene);
     const PredictionSettings settings = state_.project.prediction;
     const Camera camera = [&] {
@@ -94,6 +89,15 @@ bool Workbench::compareRunPair() {
             }
             s.withoutNetwork = panels::objectsWithoutNetwork(ids, models, settings);
         };
+        std::shared_ptr<const ModelSet> ma, mb;
+        try {
+            ctx.setStatus("loading the models");
+            ma = runModels(dirA, nameA, sceneHash);
+            mb = runModels(dirB, nameB, sceneHash);
+        } catch (const std::exception& e) {
+            out.error = e.what();
+            return out;
+        }
         ctx.setStatus("run A");
         side(*ma, out.a);
         ctx.setProgress(0.5);
@@ -114,6 +118,10 @@ bool Workbench::compareRunPair() {
 void Workbench::pollRunPair() {
     state_.runPair.running = pairJob_.running();
     pairJob_.poll([&](PairOutcome& out) {
+        if (!out.error.empty()) {
+            state_.notify(panels::LogLevel::Error, "Project", "compare runs: " + out.error);
+            return;
+        }
         panels::RunPair& p = state_.runPair;
         auto publish = [](PairSide& s, panels::ImageSet& images, panels::EvaluationInfo& errors, const std::string& label) {
             for (Term t : kTerms) images.term(t) = std::move(s.prediction.images[int(t)]);

@@ -35,10 +35,10 @@ Camera viewCamera(const Project& project) {
 }
 }  // namespace
 
-bool Workbench::loadModels(const std::string& dir) {
+bool Workbench::loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded) {
     std::string glslError;
     try {
-        live_.load(state_.project.scene, dir, true, glslError);
+        live_.load(state_.project.scene, dir, true, glslError, std::move(preloaded));
     } catch (const std::exception& e) {
         state_.notify(panels::LogLevel::Error, "Project", std::string("loading the models failed: ") + e.what());
         return false;
@@ -47,6 +47,7 @@ bool Workbench::loadModels(const std::string& dir) {
         state_.log.warning("GLSL prediction unavailable, using the CPU predictor (slower): " + glslError);
     state_.training.modelsDir = dir;
     frameSeconds_.clear();
+    framesSinceRecorded_ = 0;
     state_.leaves = panels::leavesOf(*live_.models());
     state_.view.compareSource = panels::CompareSource::Prediction;
     state_.log.info("models loaded from " + dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)"));
@@ -118,6 +119,10 @@ void Workbench::noteFrameSeconds(const char* key, double seconds) {
     constexpr size_t kFrames = 9;
     frameSeconds_.push_back(seconds);
     if (frameSeconds_.size() > kFrames) frameSeconds_.erase(frameSeconds_.begin());
+    // Finding the run resolves its paths on the file system: once per kFrames frames, not per
+    // frame of a light drag (and at once for the first, single CPU frames).
+    if (++framesSinceRecorded_ < kFrames && frameSeconds_.size() > 1) return;
+    framesSinceRecorded_ = 0;
     std::vector<double> sorted = frameSeconds_;
     std::sort(sorted.begin(), sorted.end());
     recordFrameSeconds(state_.project.runs, projectDir(), live_.dir(), key, sorted[sorted.size() / 2]);
@@ -140,23 +145,42 @@ void Workbench::pollPredict() {
     updateLeafOverlay();
 }
 
+/// The leaf of every view pixel, for the prediction of revision `forPrediction`.
+struct LeafOverlay {
+    std::vector<int> pixelLeaf;
+    int width = 0, height = 0;
+    uint64_t forPrediction = 0;
+};
+
 void Workbench::updateLeafOverlay() {
     panels::LeavesInfo& l = state_.leaves;
+    overlayJob_.poll([&](LeafOverlay& o) {
+        // A result for an older prediction is still shown until the newer one arrives.
+        l.pixelLeaf = std::move(o.pixelLeaf);
+        l.width = o.width;
+        l.height = o.height;
+        l.forPrediction = o.forPrediction;
+        ++l.revision;
+    });
     if (!state_.view.leafOverlay || !live_.loaded() || l.forPrediction == state_.prediction.revision) return;
-    // Leaf lookup only (no network runs): a G-buffer of the view camera at the current light.
+    if (overlayJob_.running() || overlayFor_ == state_.prediction.revision) return;  // one at a time, once per revision
+    // Leaf lookup only (no network runs): a G-buffer of the view camera at the current light, on a
+    // worker, since both grow with the image and the trees.
     const Camera camera = viewCamera(state_.project);
-    try {
-        const Predictor predictor(state_.project.scene, *live_.models(), state_.project.prediction);
-        l.pixelLeaf = predictor.leaves(predictor.gbuffer(state_.project.scene.lightPosition(), camera.width, camera.height));
-    } catch (const std::exception& e) {
-        state_.log.error(std::string("leaf overlay: ") + e.what());
-        state_.view.leafOverlay = false;
-        return;
-    }
-    l.width = camera.width;
-    l.height = camera.height;
-    l.forPrediction = state_.prediction.revision;
-    ++l.revision;
+    auto scene = std::make_shared<const Scene>(state_.project.scene);
+    const std::shared_ptr<const ModelSet> models = live_.models();
+    const PredictionSettings settings = state_.project.prediction;
+    const uint64_t revision = state_.prediction.revision;
+    const bool started = overlayJob_.start("leaf overlay", [=](JobContext&) -> std::optional<LeafOverlay> {
+        const Predictor predictor(*scene, *models, settings);
+        LeafOverlay o;
+        o.pixelLeaf = predictor.leaves(predictor.gbuffer(scene->lightPosition(), camera.width, camera.height));
+        o.width = camera.width;
+        o.height = camera.height;
+        o.forPrediction = revision;
+        return o;
+    });
+    if (started) overlayFor_ = revision;
 }
 
 bool Workbench::exportPrediction(const std::string& dir) {

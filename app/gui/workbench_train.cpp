@@ -46,6 +46,9 @@ struct TrainingOutcome {
     int plannedNetworks = 0;
     int leaves = 0;        ///< kd-tree leaves over the trained models
     int64_t records = 0;   ///< training records read
+    /// The saved models read back on the worker (a complete run only), so that making them the
+    /// live prediction does not read weights on the UI thread.
+    std::shared_ptr<const ModelSet> models;
 };
 
 namespace {
@@ -126,6 +129,8 @@ bool Workbench::startTrain(int maxEpochs) {
         if (run.networks > 0) {
             ctx.setStatus("saving the models");
             saveTrainingRun(out.modelsDir, run, out.settings, out.sceneHash, data.inputLayout(), {out.dataset, out.project});
+            // Read back as the prediction will load them (the files are what the run records).
+            if (!run.cancelled) out.models = std::make_shared<const ModelSet>(loadModelSet(out.modelsDir, out.sceneHash));
         }
         out.curves = lossCurves(run.curves);
         out.seconds = run.seconds;
@@ -207,7 +212,8 @@ void Workbench::trainingFinished(TrainingOutcome& s) {
     }
     state_.log.info("trained " + std::to_string(s.networks) + " networks in " + std::to_string(int(s.seconds + 0.5)) +
                     " s; models in " + rel(s.modelsDir) + ", run '" + run.name + "' recorded");
-    loadModels(s.modelsDir);
+    loadModels(s.modelsDir, std::move(s.models));
+    ++trainingsCompleted_;
 }
 
 }  // namespace rrf

@@ -1,0 +1,124 @@
+#include "core/project/presets.h"
+
+#include "core/nn/network_settings.h"
+#include "core/project/project.h"
+
+namespace rrf {
+
+namespace {
+// quick: sizes only, so a sweep or a project with its own network keeps its shape and trainer.
+void quickSampling(SamplingSettings& s) {
+    s.nx = s.ny = s.nz = 5;
+    s.directions = 150;
+    s.spp = 16;
+}
+void quickNetwork(ObjectTrainingOptions& t) { t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = 50; }
+
+// paper: the seed report's data (15³ × 1200 directions) with a fixed path count per record (the
+// report had no adaptive sampling), the struct's own defaults being exactly that grid.
+void paperSampling(SamplingSettings& s) {
+    SamplingSettings p;
+    p.seed = s.seed;
+    p.maxSpp = p.spp;  // fixed 64 paths per record
+    s = p;
+}
+// One 20-10 tanh network per object and target (no kd-tree), Levenberg–Marquardt for at most 1000
+// epochs (its defaults, including the per-epoch GFLOP bound that keeps an epoch near 5 s).
+void paperNetwork(ObjectTrainingOptions& t) {
+    const uint64_t seed = t.trainer.seed();
+    NetworkSettings n;
+    n.options.hidden = {20, 10};
+    n.options.activation = Activation::Tanh;
+    n.options.partition.maxLeaves = 1;
+    n.options.trainer = TrainerConfig().withType(TrainerType::LevenbergMarquardt);
+    n.options.trainer.lm.maxEpochs = 1000;
+    n.options.trainer.lm.seed = seed;
+    n.options.targets = t.targets;  // follows the prediction's direct light (Project::networkOrDefault)
+    t = n.options;
+}
+
+void bestSampling(SamplingSettings& s) {
+    SamplingSettings b = SamplingSettings::projectDefault();
+    b.seed = s.seed;
+    s = b;
+}
+void bestNetwork(ObjectTrainingOptions& t) {
+    const uint64_t seed = t.trainer.seed();
+    NetworkSettings n;
+    n.options.trainer = NetworkSettings::defaultTrainer();
+    n.options.trainer.adam.seed = n.options.trainer.lm.seed = seed;
+    n.options.targets = t.targets;
+    t = n.options;
+}
+
+/// A network section with `o`'s layers, activation, targets and partition (the trainer is separate).
+NetworkSettings networkOf(const ObjectTrainingOptions& o) {
+    NetworkSettings n;
+    n.options = o;
+    return n;
+}
+}  // namespace
+
+const std::vector<PipelinePreset>& pipelinePresets() {
+    // The CLI's `rrf pipeline` evaluation under each preset: quick renders a small ground truth and
+    // one held-out light with references capped at 1024 spp; the others use the project's sizes.
+    static const std::vector<PipelinePreset> presets = {
+        {"quick", "about a minute on 2 cores: grid 5^3, 150 directions, 16 paths per record, 50 epochs",
+         quickSampling, quickNetwork, {32, 128, 128, 1, 1024}},
+        {"paper", "the seed report's setting: grid 15^3 x 1200 directions, 64 paths, 20-10 networks, LM 1000 epochs",
+         paperSampling, paperNetwork, {64, 0, 0, 2, 0}},
+        {"best", "the project defaults, the most accurate setting measured (grid 8^3 x 300, adaptive paths, Adam)",
+         bestSampling, bestNetwork, {64, 0, 0, 2, 0}},
+    };
+    return presets;
+}
+
+const PipelinePreset* findPreset(const std::string& name) {
+    for (const PipelinePreset& p : pipelinePresets())
+        if (name == p.name) return &p;
+    return nullptr;
+}
+
+std::string presetNames(const char* separator) {
+    std::string names;
+    for (const PipelinePreset& p : pipelinePresets()) names += (names.empty() ? "" : separator) + std::string(p.name);
+    return names;
+}
+
+SamplingSettings presetSampling(const Project& project, const PipelinePreset& preset) {
+    SamplingSettings s = project.samplingOrDefault();
+    preset.sampling(s);
+    return s;
+}
+
+ObjectTrainingOptions presetNetwork(const Project& project, const PipelinePreset& preset) {
+    ObjectTrainingOptions o = project.networkOrDefault().options;
+    preset.network(o);
+    return o;
+}
+
+void applySamplingPreset(Project& project, const PipelinePreset& preset) { project.sampling = presetSampling(project, preset); }
+
+void applyNetworkPreset(Project& project, const PipelinePreset& preset) {
+    const ObjectTrainingOptions o = presetNetwork(project, preset);
+    project.network = networkOf(o);
+    project.trainer = o.trainer;
+}
+
+const PipelinePreset* matchingSamplingPreset(const Project& project) {
+    const nlohmann::json current = project.samplingOrDefault().toJson();
+    for (const PipelinePreset& p : pipelinePresets())
+        if (presetSampling(project, p).toJson() == current) return &p;
+    return nullptr;
+}
+
+const PipelinePreset* matchingNetworkPreset(const Project& project) {
+    const NetworkSettings current = project.networkOrDefault();
+    for (const PipelinePreset& p : pipelinePresets()) {
+        const ObjectTrainingOptions o = presetNetwork(project, p);
+        if (networkOf(o).networkJson() == current.networkJson() && o.trainer.toJson() == current.trainerJson()) return &p;
+    }
+    return nullptr;
+}
+
+}  // namespace rrf

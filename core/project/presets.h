@@ -1,0 +1,69 @@
+#pragma once
+/// Presets of the whole pipeline (render → generate → train → evaluate): named settings of the data
+/// generator and the networks, and the sizes `rrf pipeline` evaluates at. One table, shared by the
+/// CLI (`rrf pipeline --preset NAME`, `--quick`, the sweeps' sizes) and the workbench (the Sampling
+/// and Network panels' preset choices and the one-click pipeline). A new preset is one more row of
+/// pipelinePresets() (presets.cpp); everything that lists or applies presets reads that table.
+///
+///   quick  about a minute for the whole pipeline on 2 cores: shrinks the sizes of the settings in
+///          effect (grid 5³, 150 directions, 16 paths per record in the first round, 50 epochs) and
+///          keeps everything else (network shape, trainer, adaptive sampling);
+///   paper  the seed report's setting (docs/design.md §21): grid 15³ × 1200 directions, 64 paths per
+///          record (fixed), one 20-10 tanh network per object and target, Levenberg–Marquardt with
+///          at most 1000 epochs — hours on 2 cores;
+///   best   the project defaults (SamplingSettings::projectDefault(), NetworkSettings() with
+///          NetworkSettings::defaultTrainer()), the most accurate setting measured so far (README).
+///
+/// paper and best set every data and network setting except the seeds; quick changes only sizes.
+
+#include <string>
+#include <vector>
+
+#include "core/data/sampling_settings.h"
+#include "core/nn/object_training.h"
+
+namespace rrf {
+
+struct Project;
+
+/// The ground truth and held-out evaluation of `rrf pipeline` under a preset (≤ 0: the command's
+/// default, the project's size and reference target).
+struct PipelineEvaluationSizes {
+    int groundTruthSpp = 64;   ///< samples per pixel of the ground truth
+    int width = 0, height = 0; ///< image size; 0 = the project's
+    int heldOutLights = 2;     ///< held-out light positions evaluated
+    int referenceSppCap = 0;   ///< cap on the held-out references' spp; 0 = the project's
+};
+
+/// One row of the preset table.
+struct PipelinePreset {
+    const char* name;     ///< "quick", "paper", "best": the CLI's --preset value and the panels' label
+    const char* summary;  ///< one line for help texts and tooltips
+    /// Changes the data settings in effect (a project's samplingOrDefault()) into the preset's.
+    void (*sampling)(SamplingSettings&);
+    /// Changes the network and trainer settings in effect (networkOrDefault().options) into the preset's.
+    void (*network)(ObjectTrainingOptions&);
+    PipelineEvaluationSizes evaluation;
+};
+
+/// Every preset, in the order menus list them (quick, paper, best).
+const std::vector<PipelinePreset>& pipelinePresets();
+/// The preset named `name`, or null.
+const PipelinePreset* findPreset(const std::string& name);
+/// The names joined by `separator` ("quick|paper|best"), for help texts and error messages.
+std::string presetNames(const char* separator = "|");
+
+/// The project's data settings in effect with `preset` applied.
+SamplingSettings presetSampling(const Project& project, const PipelinePreset& preset);
+/// The project's network and trainer settings in effect with `preset` applied.
+ObjectTrainingOptions presetNetwork(const Project& project, const PipelinePreset& preset);
+/// Stores presetSampling() as the project's "sampling" section.
+void applySamplingPreset(Project& project, const PipelinePreset& preset);
+/// Stores presetNetwork() as the project's "network" and "trainer" sections.
+void applyNetworkPreset(Project& project, const PipelinePreset& preset);
+/// The preset whose data settings are the project's (applying it would change nothing), or null.
+const PipelinePreset* matchingSamplingPreset(const Project& project);
+/// The preset whose network and trainer settings are the project's, or null.
+const PipelinePreset* matchingNetworkPreset(const Project& project);
+
+}  // namespace rrf

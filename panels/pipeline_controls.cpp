@@ -1,0 +1,145 @@
+// Preset choices (Sampling, Network) and the one-click pipeline bar, with the estimates of
+// core/project/time_estimate.h and what they were computed from.
+#include "panels/pipeline_controls.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <thread>
+
+#include <imgui.h>
+
+#include "core/data/record_layout.h"
+
+namespace rrf::panels {
+
+namespace {
+int threads() { return std::max(1, int(std::thread::hardware_concurrency())); }
+
+/// A combo of the presets whose items carry `estimate(preset)`; returns the chosen one (null: none).
+template <class Estimate>
+const PipelinePreset* presetCombo(const char* label, const PipelinePreset* current, Estimate estimate) {
+    const PipelinePreset* chosen = nullptr;
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    if (ImGui::BeginCombo(label, current ? current->name : "custom")) {
+        for (const PipelinePreset& p : pipelinePresets()) {
+            const StageEstimate e = estimate(p);
+            const std::string item = std::string(p.name) + "  (" + rangeText(e) + ")";
+            if (ImGui::Selectable(item.c_str(), &p == current)) chosen = &p;
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\nestimate: %s", p.summary, e.basis.c_str());
+        }
+        ImGui::EndCombo();
+    }
+    return chosen;
+}
+
+void drawEstimateLine(const char* what, const StageEstimate& e) {
+    ImGui::Text("estimated %s: %s", what, rangeText(e).c_str());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", e.basis.c_str());
+    ImGui::SameLine();
+    ImGui::TextDisabled("(?)");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", e.basis.c_str());
+}
+
+StageEstimate total(const std::vector<StageEstimate>& stages) {
+    StageEstimate t;
+    for (const StageEstimate& e : stages) {
+        t.low += e.low;
+        t.high += e.high;
+        t.basis += (t.basis.empty() ? "" : "\n") + e.basis;
+    }
+    return t;
+}
+
+const char* const kStageNames[] = {"render", "generate", "train", "evaluate"};
+}  // namespace
+
+PathRate pathRateOf(const WorkbenchState& state) { return PathRate::of(state.render.samplesPerSecond, threads()); }
+
+double recordsPerRayOf(const WorkbenchState& state) {
+    const DatasetInfo& d = state.dataset;
+    // Not checked against the scene's hash (a per-frame hash of a large scene would cost the UI
+    // thread): the fraction of rays that make a record changes little with material edits.
+    if (!d.madeWith || d.generator.records == 0) return 1.0;
+    return std::min(1.0, double(d.generator.records) / expectedRecords(*d.madeWith));
+}
+
+StageEstimate dataEstimate(const WorkbenchState& state, const SamplingSettings& s) {
+    return estimateGenerate(s, pathRateOf(state), recordsPerRayOf(state));
+}
+
+StageEstimate trainingEstimate(const WorkbenchState& state, const SamplingSettings& s, const ObjectTrainingOptions& o) {
+    const Scene& scene = state.project.scene;
+    return estimateTraining(o, expectedRecords(s, recordsPerRayOf(state)), int(scene.objects.size()),
+                            RecordLayout::forScene(scene).inputCount(), threads());
+}
+
+std::vector<StageEstimate> pipelineEstimates(const WorkbenchState& state, const PipelinePreset* preset) {
+    const SamplingSettings s = preset ? presetSampling(state.project, *preset) : state.project.samplingOrDefault();
+    const ObjectTrainingOptions o = preset ? presetNetwork(state.project, *preset) : state.project.networkOrDefault().options;
+    const PathRate rate = pathRateOf(state);
+    return {estimateRender(state.project.render, state.project.scene, rate), dataEstimate(state, s), trainingEstimate(state, s, o),
+            estimateEvaluate(state.project.render, state.project.scene, rate)};
+}
+
+void drawSamplingPresets(WorkbenchState& state) {
+    const PipelinePreset* chosen = presetCombo("preset##sampling", matchingSamplingPreset(state.project),
+                                               [&](const PipelinePreset& p) { return dataEstimate(state, presetSampling(state.project, p)); });
+    if (chosen) {
+        applySamplingPreset(state.project, *chosen);
+        state.markDirty();
+    }
+    drawEstimateLine("data time", dataEstimate(state, state.project.samplingOrDefault()));
+}
+
+void drawNetworkPresets(WorkbenchState& state) {
+    const SamplingSettings s = state.project.samplingOrDefault();
+    const PipelinePreset* chosen =
+        presetCombo("preset##network", matchingNetworkPreset(state.project),
+                    [&](const PipelinePreset& p) { return trainingEstimate(state, s, presetNetwork(state.project, p)); });
+    if (chosen) {
+        applyNetworkPreset(state.project, *chosen);
+        state.markDirty();
+    }
+    drawEstimateLine("training time", trainingEstimate(state, s, state.project.networkOrDefault().options));
+}
+
+void drawPipelineBar(WorkbenchState& state) {
+    PipelineInfo& p = state.pipeline;
+    if (p.running) {
+        if (ImGui::Button("Stop pipeline")) state.request(Command::CancelPipeline);
+    } else {
+        ImGui::BeginDisabled(!state.hasProject);
+        if (ImGui::Button("Run pipeline")) state.request(Command::RunPipeline, p.preset);
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+            const PipelinePreset* preset = findPreset(p.preset);
+            const std::string estimate =
+                preset && state.hasProject ? "\nestimated " + rangeText(total(pipelineEstimates(state, preset))) : std::string();
+            ImGui::SetTooltip("render, generate, train and evaluate with the chosen preset's settings%s", estimate.c_str());
+        }
+    }
+    ImGui::SameLine();
+    const PipelinePreset* current = findPreset(p.preset);
+    ImGui::BeginDisabled(p.running || !state.hasProject);
+    const PipelinePreset* chosen = presetCombo("##pipeline-preset", current, [&](const PipelinePreset& preset) {
+        return state.hasProject ? total(pipelineEstimates(state, &preset)) : StageEstimate{};
+    });
+    ImGui::EndDisabled();
+    if (chosen) p.preset = chosen->name;
+    ImGui::SameLine();
+    if (p.running) {
+        char overlay[96];
+        const int stage = std::clamp(p.stageIndex, 0, 3);
+        if (p.etaSeconds >= 0)
+            std::snprintf(overlay, sizeof overlay, "%d/4 %s  %.0f%%  ETA %s", stage + 1, kStageNames[stage], 100 * p.fraction,
+                          durationText(p.etaSeconds).c_str());
+        else
+            std::snprintf(overlay, sizeof overlay, "%d/4 %s  %.0f%%", stage + 1, kStageNames[stage], 100 * p.fraction);
+        ImGui::ProgressBar(float(p.fraction), ImVec2(ImGui::GetFontSize() * 16, 0), overlay);
+    } else if (!p.outcome.empty()) {
+        ImGui::TextDisabled("pipeline %s", p.outcome.c_str());
+    }
+}
+
+}  // namespace rrf::panels

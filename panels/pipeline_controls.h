@@ -1,0 +1,36 @@
+#pragma once
+/// Presets and the one-click pipeline in the workbench: the preset choices of the Sampling and
+/// Network panels (each with its estimated time and the estimate's basis), and the pipeline bar
+/// (preset, Run / Stop, one progress display: overall fraction, current stage, ETA). The presets
+/// and estimates are core's (core/project/presets.h, core/project/time_estimate.h); these functions
+/// only choose and show them, and ask the application to run the pipeline with a Request.
+
+#include "core/project/presets.h"
+#include "core/project/time_estimate.h"
+#include "panels/workbench_state.h"
+
+namespace rrf::panels {
+
+/// The path-sample rate estimates use: the last render's samples/s, else the reference machine's
+/// per-thread rate times this machine's threads.
+PathRate pathRateOf(const WorkbenchState& state);
+/// Records per generated ray measured by the last dataset of this scene (records ÷ (cells ×
+/// directions)); 1 (the upper bound) when there is none.
+double recordsPerRayOf(const WorkbenchState& state);
+/// Data time of `s` for the open project.
+StageEstimate dataEstimate(const WorkbenchState& state, const SamplingSettings& s);
+/// Training time of `o` on the data `s` makes, for the open project.
+StageEstimate trainingEstimate(const WorkbenchState& state, const SamplingSettings& s, const ObjectTrainingOptions& o);
+/// The four stages of the pipeline under `preset` (null: the settings in effect), in order: render,
+/// generate, train, evaluate.
+std::vector<StageEstimate> pipelineEstimates(const WorkbenchState& state, const PipelinePreset* preset);
+
+/// Sampling panel: the preset choice (applies the preset's data half) and its estimated time.
+void drawSamplingPresets(WorkbenchState& state);
+/// Network panel: the preset choice (applies the network and trainer half) and its estimated time.
+void drawNetworkPresets(WorkbenchState& state);
+/// The pipeline bar: "Run pipeline" (or "Stop pipeline" while it runs) first, then the preset choice
+/// with the whole pipeline's estimate, then the progress display while it runs or how it ended.
+void drawPipelineBar(WorkbenchState& state);
+
+}  // namespace rrf::panels
