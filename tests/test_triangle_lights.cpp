@@ -55,12 +55,14 @@ double triangleIrradiance(const Vec3& a, const Vec3& b, const Vec3& c, double ra
     return 0.5 * radiance * std::fabs(sum);
 }
 
-/// NEE mean of the floor's direct radiance at p against `expected` within 1% at ≥ 5σ.
-void expectDirect(const Scene& scene, const Vec3& p, double expected, int samples, uint64_t seed, const char* what) {
+/// NEE mean of the floor's direct radiance at p against `expected` within `tol` (relative), where
+/// the sample count makes `tol` at least 5 standard errors (asserted).
+void expectDirect(const Scene& scene, const Vec3& p, double expected, int samples, uint64_t seed, const char* what,
+                  double tol = 0.01) {
     const FloorShading st = shadeFloor(scene, p, samples, seed);
     EXPECT_EQ(st.nonFinite, 0u);
-    EXPECT_LE(5 * st.direct.sigma(), 0.01 * expected) << what << ": too few samples for a 1% check";
-    EXPECT_NEAR(st.direct.mean, expected, 0.01 * expected) << what << " (σ = " << st.direct.sigma() << ")";
+    EXPECT_LE(5 * st.direct.sigma(), tol * expected) << what << ": too few samples for the check";
+    EXPECT_NEAR(st.direct.mean, expected, tol * expected) << what << " (σ = " << st.direct.sigma() << ")";
 }
 
 }  // namespace
@@ -73,29 +75,30 @@ TEST(TriangleLights, TwoHalvesOfASquareGiveTheSquaresIrradiance) {
     addCeilingLight(square, 0, 0, 1.f, 1.f, 4.f);
     const double eSquare = polygonIrradiance(square.lights[0], Vec3(0.f), Vec3(0, 1, 0));
     const Vec3 a(-0.5f, 1, -0.5f), b(0.5f, 1, -0.5f), c(0.5f, 1, 0.5f), d(-0.5f, 1, 0.5f);
-    // Winding a d c / a c b: normal (d − a) × (c − a) = −y, facing the floor.
-    EXPECT_NEAR(triangleIrradiance(a, d, c, 4.0, Vec3(0.f), Vec3(0, 1, 0)), 0.5 * eSquare, 1e-9);
-    EXPECT_NEAR(triangleIrradiance(a, c, b, 4.0, Vec3(0.f), Vec3(0, 1, 0)), 0.5 * eSquare, 1e-9);
+    // Winding a c d / a b c: normal (c − a) × (d − a) = (b − a) × (c − a) = −y, facing the floor.
+    EXPECT_NEAR(triangleIrradiance(a, c, d, 4.0, Vec3(0.f), Vec3(0, 1, 0)), 0.5 * eSquare, 1e-9);
+    EXPECT_NEAR(triangleIrradiance(a, b, c, 4.0, Vec3(0.f), Vec3(0, 1, 0)), 0.5 * eSquare, 1e-9);
 
     Scene s = floorScene(kRho, 5.f);
-    addTriangleLight(s, a, d, c, 4.f);
-    addTriangleLight(s, a, c, b, 4.f);
+    addTriangleLight(s, a, c, d, 4.f);
+    addTriangleLight(s, a, b, c, 4.f);
+    ASSERT_LT(s.lights[0].normal().y, -0.99f);
+    ASSERT_LT(s.lights[1].normal().y, -0.99f);
     expectDirect(s, Vec3(0.f), kRho / kPiD * eSquare, 200000, 1, "under two triangles making a square");
 }
 
 TEST(TriangleLights, UnequalTrianglesMatchLambertFormula) {
     // Three triangles of different areas, radiances and tilts: the area-picked single sample must
-    // still converge to the sum of their irradiances.
+    // still converge to the sum of their irradiances. Two-sided, so that every point sees each
+    // triangle's emitting side whatever its tilt (Lambert's formula does not know sides).
     Scene s = floorScene(kRho, 30.f);
     const Vec3 t[3][3] = {{{-0.4f, 1.f, -0.3f}, {-0.4f, 1.f, 0.5f}, {0.6f, 1.f, -0.3f}},   // facing down
                           {{1.5f, 0.6f, 0.f}, {1.5f, 1.0f, 0.1f}, {1.6f, 0.8f, 0.9f}},     // steep, small
-                          {{-2.f, 2.f, -1.f}, {-2.f, 2.5f, 1.f}, {-1.f, 2.2f, -0.8f}}};    // high, large
+                          {{-2.f, 0.5f, -1.f}, {-2.f, 0.9f, 1.f}, {-1.f, 0.7f, -0.8f}}};   // large, far
+    // No triangle shadows another from the test points (Lambert's formula knows no occlusion): the
+    // first lies in the plane y = 1 and the others below it, on opposite sides.
     const float le[3] = {4.f, 10.f, 2.f};
-    for (int i = 0; i < 3; ++i) {
-        // Orient every triangle towards the floor (normal with negative y).
-        const bool down = cross(t[i][1] - t[i][0], t[i][2] - t[i][0]).y < 0.f;
-        addTriangleLight(s, t[i][0], down ? t[i][1] : t[i][2], down ? t[i][2] : t[i][1], le[i]);
-    }
+    for (int i = 0; i < 3; ++i) addTriangleLight(s, t[i][0], t[i][1], t[i][2], le[i], false);
     for (const Vec3& p : {Vec3(0.f), Vec3(0.8f, 0.f, 0.3f), Vec3(-3.f, 0.f, 2.f)}) {
         double e = 0;
         for (const Light& l : s.lights) {
@@ -103,7 +106,7 @@ TEST(TriangleLights, UnequalTrianglesMatchLambertFormula) {
             ASSERT_EQ(l.vertices(v), 3);
             e += triangleIrradiance(v[0], v[1], v[2], double(l.radiance.x), p, Vec3(0, 1, 0));
         }
-        expectDirect(s, p, kRho / kPiD * e, 400000, 7, "three unequal triangles");
+        expectDirect(s, p, kRho / kPiD * e, 400000, 7, "three unequal triangles", 0.015);
     }
 }
 
@@ -137,12 +140,19 @@ TEST(TriangleLights, WhiteFurnaceOfTriangleEmitters) {
     s.movableLight = 0;
     const Accel accel(s);
     for (const Estimator e : {Estimator::NEE, Estimator::Naive}) {
-        const ImageMeanStats st = traceImageMean(s, accel, e, 40000, 11);
+        // NEE's one area-picked sample over 12 triangles has a heavy tail near the cube's edges
+        // (A/d² of a neighbouring face's triangle), so its check is 2.5% at 5σ; the naive
+        // estimator's direct term is exact here (every BRDF ray hits an emitter) and gets 1%.
+        const bool nee = e == Estimator::NEE;
+        const double tol = nee ? 0.025 : 0.01;
+        const ImageMeanStats st = traceImageMean(s, accel, e, nee ? 400000 : 40000, 11);
         EXPECT_EQ(st.nonFinite, 0u);
-        EXPECT_LE(5 * st.direct.sigma(), 0.01 * 0.75);
-        EXPECT_NEAR(st.direct.mean, 0.75, 0.01 * 0.75) << "σ = " << st.direct.sigma();
+        EXPECT_LE(5 * st.direct.sigma(), tol * 0.75);
+        EXPECT_NEAR(st.direct.mean, 0.75, tol * 0.75) << "σ = " << st.direct.sigma();
         EXPECT_NEAR(st.indirect.mean, 0.25, 5 * st.indirect.sigma() + 1e-3) << "σ = " << st.indirect.sigma();
-        EXPECT_NEAR(st.global.mean, 1.0, 0.012);
+        // Global: both estimators' indirect paths carry Russian-roulette noise; 2.5% at 5σ.
+        EXPECT_LE(5 * st.global.sigma(), 0.025);
+        EXPECT_NEAR(st.global.mean, 1.0, 0.025) << "σ = " << st.global.sigma();
     }
 }
 
