@@ -129,6 +129,9 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng,
             ok = wiLocal.z > 0.f;
         }
         if (!ok) break;
+        // With a shading normal a direction above it may point below the geometric surface; such a
+        // ray would start on the far side and leak light through the mesh, so the path ends.
+        if (!hit.ns.isZero() && dot(frame.toWorld(wiLocal), hit.ng) * side <= 0.f) break;
         beta *= weight;
         if (depth >= 1) {
             // Russian roulette: survive with the path's throughput, bounded away from 0 so that the
@@ -167,7 +170,11 @@ Vec3 PathTracer::sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, cons
         if constexpr (kGlossy) return brdf.eval(woLocal, frame.toLocal(wi));
         else return brdf.kd * kInvPi;
     };
+    // Same for light samples: below the geometric surface means behind it, whatever the shading
+    // normal says (for flat surfaces n = ±ng, and cos θ > 0 already implies this).
+    const float ngSide = dot(n, ng);
     auto visible = [&](const Vec3& wi, const Vec3& target) {
+        if (dot(wi, ng) * ngSide <= 0.f) return false;
         Ray s;
         s.origin = accel_.spawnOrigin(p, ng, wi);
         const Vec3 d = target - s.origin;
