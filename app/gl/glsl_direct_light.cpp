@@ -36,7 +36,7 @@ void GlslPredictor::setPrediction(const PredictionSettings& prediction) {
     }
     directMode_ = 2;
     directNote_ = "exact direct light on the CPU: the scene has " + std::to_string(triangles) + " triangles and " +
-                  std::to_string(rects) + " rect lights, the shader's brute-force shadow rays take at most " +
+                  std::to_string(rects) + " area lights, the shader's brute-force shadow rays take at most " +
                   std::to_string(kMaxShaderDirectTriangles) + " and " + std::to_string(kMaxShaderDirectRectLights);
     std::fprintf(stderr, "GLSL predictor: %s\n", directNote_.c_str());
     if (!hostTracer_) {
