@@ -1,4 +1,5 @@
-// Scene panel: objects (select to highlight), materials (editable, kd + ks ≤ 1 enforced), lights,
+// Scene panel: objects by name with their materials (select to highlight; OBJ groups with vertex
+// normals marked "smooth"), materials (editable, kd + ks ≤ 1 enforced), lights (rect, triangle, point),
 // the movable light's position bounded by the light region, and the effects derived from the scene.
 #include <cstdio>
 #include <string>
@@ -6,21 +7,13 @@
 #include <imgui.h>
 
 #include "core/scene/effects.h"
+#include "core/scene/scene_summary.h"
 #include "panels/panels.h"
 #include "core/project/scene_edits.h"
 
 namespace rrf::panels {
 
 namespace {
-const char* kindName(Object::Kind k) {
-    switch (k) {
-        case Object::Kind::Quads: return "quads";
-        case Object::Kind::Triangles: return "triangles";
-        case Object::Kind::Sphere: return "sphere";
-    }
-    return "?";
-}
-
 void drawObjects(WorkbenchState& state) {
     const Scene& scene = state.project.scene;
     const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit;
@@ -44,7 +37,7 @@ void drawObjects(WorkbenchState& state) {
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(o.name.c_str());
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(kindName(o.kind));
+        ImGui::Text("%s%s", objectKindName(o.kind), o.normals.empty() ? "" : ", smooth");
         ImGui::TableNextColumn();
         ImGui::Text("%zu", o.primitiveCount());
         ImGui::TableNextColumn();
@@ -85,9 +78,9 @@ void drawLights(WorkbenchState& state) {
         const bool movable = int(i) == scene.movableLight;
         // Bullet + Text rather than BulletText, which does not wrap at the pane's edge.
         ImGui::Bullet();
-        if (l.type == Light::Type::Rect)
-            ImGui::Text("%s: rect, area %.4g, radiance (%.3g, %.3g, %.3g)%s", l.name.c_str(), l.area(), l.radiance.x,
-                        l.radiance.y, l.radiance.z, movable ? ", movable" : "");
+        if (l.isArea())
+            ImGui::Text("%s: %s, area %.4g, radiance (%.3g, %.3g, %.3g)%s", l.name.c_str(), lightTypeName(l.type),
+                        l.area(), l.radiance.x, l.radiance.y, l.radiance.z, movable ? ", movable" : "");
         else
             ImGui::Text("%s: point at (%.3g, %.3g, %.3g)%s", l.name.c_str(), c.x, c.y, c.z, movable ? ", movable" : "");
     }

@@ -11,7 +11,8 @@
 //   0                 (rect lights, point lights, triangles, spheres)
 //   1                 first texel of (rect lights, point lights, triangles, spheres)
 //   2                 (first texel of materials, 0, 0, 0)
-//   rect light        (corner, one-sided), (edge1, area), (edge2, 0), (radiance, 0)
+//   area light        (corner, one-sided), (edge1, area), (edge2, triangle), (radiance, 0): a rect
+//                     light (triangle = 0) or a triangle light (triangle = 1, rrf::Light::Type::Triangle)
 //   point light       (position, 0), (intensity, 0)
 //   material          per object: (kd, exponent), (ks, 0)   (ks = 0 for Lambert, as rrf::Brdf)
 //   triangle          (v0, 0), (v1, 0), (v2, 0)            (a quad is Embree's two triangles)
@@ -82,7 +83,7 @@ bool hitsTriangle(vec3 o, vec3 d, float tmax, vec3 v0, vec3 v1, vec3 v2) {
     // surface, as at a crease between two walls, is occluded on both paths.
     return t >= 0.0 && t < tmax;
 }
-bool hitsParallelogram(vec3 o, vec3 d, float tmax, vec3 c, vec3 e1, vec3 e2) {
+bool hitsAreaLight(vec3 o, vec3 d, float tmax, vec3 c, vec3 e1, vec3 e2, bool triangle) {
     vec3 n = cross(e1, e2);
     float denom = dot(d, n);
     if (denom == 0.0) return false;
@@ -91,6 +92,7 @@ bool hitsParallelogram(vec3 o, vec3 d, float tmax, vec3 c, vec3 e1, vec3 e2) {
     vec3 q = o + d * t - c;
     float nn = dot(n, n);
     float a = dot(cross(q, e2), n) / nn, b = dot(cross(e1, q), n) / nn;
+    if (triangle) return a >= 0.0 && b >= 0.0 && a + b <= 1.0;
     return a >= 0.0 && a <= 1.0 && b >= 0.0 && b <= 1.0;
 }
 bool hitsSphere(vec3 o, vec3 d, float tmax, vec3 c, float r) {
@@ -117,7 +119,8 @@ bool dsVisible(vec3 p, vec3 n, vec3 target) {
     }
     for (int k = 0; k < int(counts.x); ++k) {
         int t = int(first.x) + 4 * k;
-        if (hitsParallelogram(o, d, tmax, dsTexel(t).xyz, dsTexel(t + 1).xyz, dsTexel(t + 2).xyz)) return false;
+        vec4 e2 = dsTexel(t + 2);
+        if (hitsAreaLight(o, d, tmax, dsTexel(t).xyz, dsTexel(t + 1).xyz, e2.xyz, e2.w > 0.5)) return false;
     }
     for (int k = 0; k < int(counts.w); ++k) {
         vec4 s = dsTexel(int(first.w) + k);
@@ -128,14 +131,18 @@ bool dsVisible(vec3 p, vec3 n, vec3 target) {
 
 // rrf::projectedSolidAngle in float: Lambert's formula over the light clipped to n's hemisphere.
 // Returns the clipped polygon's vertex mean in `clippedCentre`.
-float dsProjectedSolidAngle(vec3 c, vec3 e1, vec3 e2, bool oneSided, vec3 p, vec3 n, out vec3 clippedCentre) {
+float dsProjectedSolidAngle(vec3 c, vec3 e1, vec3 e2, bool triangle, bool oneSided, vec3 p, vec3 n,
+                            out vec3 clippedCentre) {
     clippedCentre = p;
     if (oneSided && dot(p - c, cross(e1, e2)) <= 0.0) return 0.0;
-    vec3 quad[4] = vec3[4](c - p, c + e1 - p, c + e1 + e2 - p, c + e2 - p);
+    // rrf::Light::vertices: a triangle's corners are c, c + e1, c + e2.
+    vec3 quad[4] = triangle ? vec3[4](c - p, c + e1 - p, c + e2 - p, c - p)
+                            : vec3[4](c - p, c + e1 - p, c + e1 + e2 - p, c + e2 - p);
+    int nv = triangle ? 3 : 4;
     vec3 poly[5];
     int m = 0;
-    for (int k = 0; k < 4; ++k) {
-        vec3 a = quad[k], b = quad[(k + 1) & 3];
+    for (int k = 0; k < nv; ++k) {
+        vec3 a = quad[k], b = quad[k + 1 < nv ? k + 1 : 0];
         float ha = dot(a, n), hb = dot(b, n);
         if (ha >= 0.0) poly[m++] = a;
         if ((ha >= 0.0) != (hb >= 0.0)) poly[m++] = a + (b - a) * (ha / (ha - hb));
@@ -197,6 +204,10 @@ vec3 rrfExactDirect(vec3 p, vec3 n, vec3 wo, int object, uint pixel) {
             float v = (cellV + j2) / float(rows) + shift[r].y;
             if (u >= 1.0) u -= 1.0;
             if (v >= 1.0) v -= 1.0;
+            if (a2.w > 0.5 && u + v > 1.0) {  // rrf::Light::pointAt's fold of the square onto a triangle
+                u = 1.0 - u;
+                v = 1.0 - v;
+            }
             vec3 x = c.xyz + a1.xyz * u + a2.xyz * v;
             vec3 d = x - p;
             float dist2 = dot(d, d);
@@ -222,7 +233,7 @@ vec3 rrfExactDirect(vec3 p, vec3 n, vec3 wo, int object, uint pixel) {
         int t = int(first.x) + 4 * r;
         vec4 c = dsTexel(t), a1 = dsTexel(t + 1), a2 = dsTexel(t + 2), le = dsTexel(t + 3);
         vec3 clippedCentre;
-        float omega = dsProjectedSolidAngle(c.xyz, a1.xyz, a2.xyz, c.w > 0.5, p, n, clippedCentre);
+        float omega = dsProjectedSolidAngle(c.xyz, a1.xyz, a2.xyz, a2.w > 0.5, c.w > 0.5, p, n, clippedCentre);
         if (omega > 0.0 && any(notEqual(kd, vec3(0.0)))) {
             float ratio = sumF[r] > 0.0 ? sumFV[r] / sumF[r] : (dsVisible(p, n, clippedCentre) ? 1.0 : 0.0);
             L += kd * le.rgb * (omega * kInvPiD * ratio);

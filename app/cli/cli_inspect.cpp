@@ -1,4 +1,5 @@
-// `rrf inspect`: a dataset's header, record counts and per-object statistics of every column.
+// `rrf inspect`: a dataset's header, record counts and per-object statistics of every column; or, for
+// a scene or project file (.json), the scene's objects with their materials, its lights and effects.
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -6,14 +7,26 @@
 #include "app/cli/commands.h"
 #include "core/data/dataset_file.h"
 #include "core/data/dataset_summary.h"
+#include "core/project/project.h"
+#include "core/scene/effects.h"
+#include "core/scene/scene_summary.h"
 
 namespace rrf::cli {
 
 void addInspectCommand(CLI::App& app, int& exitCode) {
     auto file = std::make_shared<std::string>();
-    CLI::App* cmd = app.add_subcommand("inspect", "Print a dataset's header, counts and per-object statistics");
-    cmd->add_option("dataset", *file, "dataset file")->required();
+    CLI::App* cmd = app.add_subcommand(
+        "inspect", "Print a dataset's header, counts and per-object statistics, or a scene's objects, materials and lights");
+    cmd->add_option("file", *file, "dataset file, or a scene or project file (.json)")->required();
     cmd->callback([file, &exitCode] {
+        if (file->size() >= 5 && file->compare(file->size() - 5, 5, ".json") == 0) {
+            const Project p = loadProjectOrScene(*file);
+            std::fputs(formatSceneSummary(p.scene).c_str(), stdout);
+            std::fputs("effects:\n", stdout);
+            for (const std::string& line : Effects::derive(p.scene).describe()) std::printf("  %s\n", line.c_str());
+            exitCode = 0;
+            return;
+        }
         const Dataset data(*file);
         std::fputs(formatDatasetReport(data, summarizeDataset(data)).c_str(), stdout);
         exitCode = 0;

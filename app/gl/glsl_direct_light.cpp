@@ -28,7 +28,7 @@ void GlslPredictor::setPrediction(const PredictionSettings& prediction) {
     size_t triangles = 0, rects = 0;
     for (const Object& o : scene_.objects)
         if (o.kind != Object::Kind::Sphere) triangles += o.primitiveCount() * (o.kind == Object::Kind::Quads ? 2 : 1);
-    for (const Light& l : scene_.lights) rects += l.type == Light::Type::Rect;
+    for (const Light& l : scene_.lights) rects += l.isArea();
     if (triangles <= size_t(kMaxShaderDirectTriangles) && rects <= size_t(kMaxShaderDirectRectLights)) {
         directMode_ = 1;
         uploadDirectScene();
@@ -36,7 +36,7 @@ void GlslPredictor::setPrediction(const PredictionSettings& prediction) {
     }
     directMode_ = 2;
     directNote_ = "exact direct light on the CPU: the scene has " + std::to_string(triangles) + " triangles and " +
-                  std::to_string(rects) + " rect lights, the shader's brute-force shadow rays take at most " +
+                  std::to_string(rects) + " area lights, the shader's brute-force shadow rays take at most " +
                   std::to_string(kMaxShaderDirectTriangles) + " and " + std::to_string(kMaxShaderDirectRectLights);
     std::fprintf(stderr, "GLSL predictor: %s\n", directNote_.c_str());
     if (!hostTracer_) {
@@ -54,10 +54,10 @@ void GlslPredictor::uploadDirectScene() {
     std::vector<float> rects, points, materials, triangles, spheres;
     auto put = [](std::vector<float>& v, const Vec3& a, float w) { v.insert(v.end(), {a.x, a.y, a.z, w}); };
     for (const Light& l : scene_.lights) {
-        if (l.type == Light::Type::Rect) {
+        if (l.isArea()) {
             put(rects, l.corner, l.oneSided ? 1.f : 0.f);
             put(rects, l.edge1, l.area());
-            put(rects, l.edge2, 0.f);
+            put(rects, l.edge2, l.type == Light::Type::Triangle ? 1.f : 0.f);
             put(rects, l.radiance, 0.f);
         } else {
             put(points, l.position, 0.f);

@@ -177,9 +177,11 @@ void GlslPredictor::buildStaticGeometry() {
 void GlslPredictor::uploadLights() {
     std::vector<float> v;
     for (const Light& l : scene_.lights) {
-        if (l.type != Light::Type::Rect) continue;  // point lights are invisible
-        const Vec3 a = l.corner, b = l.corner + l.edge1, c = l.corner + l.edge1 + l.edge2, d = l.corner + l.edge2;
-        addQuad(v, a, b, c, d, l.normal(), kLightId, l.oneSided ? kKindLightOneSided : kKindLightTwoSided, l.radiance);
+        if (!l.isArea()) continue;  // point lights are invisible
+        Vec3 q[4];
+        const float kind = l.oneSided ? kKindLightOneSided : kKindLightTwoSided;
+        if (l.vertices(q) == 4) addQuad(v, q[0], q[1], q[2], q[3], l.normal(), kLightId, kind, l.radiance);
+        else addTriangle(v, q[0], q[1], q[2], l.normal(), kLightId, kind, l.radiance);
     }
     lightVertices_ = int(v.size() / kFloatsPerVertex);
     glBindBuffer(GL_ARRAY_BUFFER, lightVbo_);

@@ -17,9 +17,9 @@
 /// Direct light: a new predictor takes it from the networks. setPrediction() with "direct": "exact"
 /// (the project default, which the live view passes) computes it instead, as core/predict/predictor
 /// does: shaders/direct_light.glsl runs core/predict/exact_direct.h's estimator with the same random
-/// numbers and shadow rays cast by brute force against the scene's triangles, spheres and rect lights
+/// numbers and shadow rays cast by brute force against the scene's triangles, spheres and area lights
 /// (uploaded to a texture buffer on texture unit 4). Scenes above kMaxShaderDirectTriangles triangles
-/// or kMaxShaderDirectRectLights rect lights get the CPU estimator (Embree) on the read-back
+/// or kMaxShaderDirectRectLights area lights (rect or triangle) get the CPU estimator (Embree) on the read-back
 /// G-buffer each frame instead, uploaded on unit 5; directLightNote() says so.
 ///
 /// Usage for live relighting (all calls on the thread whose GL 3.3 core context is current):

@@ -111,7 +111,7 @@ bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const
     summarise();
     result = RecordOutcome::Stored;
     const Object& obj = scene_.objects[size_t(hit.object)];
-    layout_.writeInputs(hit.p, wo, lightPos, hit.ng, scene_.materials[size_t(obj.material)], record);
+    layout_.writeInputs(hit.p, wo, lightPos, hit.shading(), scene_.materials[size_t(obj.material)], record);
     float* t = record + layout_.inputCount();
     for (int c = 0; c < 6; ++c) {
         t[c] = mean[c];

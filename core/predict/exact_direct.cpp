@@ -29,12 +29,15 @@ double projectedSolidAngle(const Light& l, const Vec3& pf, const Vec3& nf, Vec3*
     const D3 p = d3(pf), n = d3(nf);
     const D3 c = d3(l.corner), e1 = d3(l.edge1), e2 = d3(l.edge2);
     if (l.oneSided && dotD(p - c, crossD(e1, e2)) <= 0.0) return 0.0;  // behind the emitting side
-    const D3 quad[4] = {c - p, c + e1 - p, c + e1 + e2 - p, c + e2 - p};
+    Vec3 corners[4];
+    const int nv = l.vertices(corners);
+    D3 quad[4];
+    for (int k = 0; k < nv; ++k) quad[k] = d3(corners[k]) - p;
     // Clip to the receiver's hemisphere: the part below the horizon sends no light to the surface.
     D3 poly[5];
     int m = 0;
-    for (int k = 0; k < 4; ++k) {
-        const D3 &a = quad[k], &b = quad[(k + 1) % 4];
+    for (int k = 0; k < nv; ++k) {
+        const D3 &a = quad[k], &b = quad[(k + 1) % nv];
         const double ha = dotD(a, n), hb = dotD(b, n);
         if (ha >= 0.0) poly[m++] = a;
         if ((ha >= 0.0) != (hb >= 0.0)) poly[m++] = a + (b - a) * (ha / (ha - hb));
@@ -95,7 +98,7 @@ Vec3 ExactDirect::radiance(const Vec3& p, const Vec3& n, const Vec3& wo, int obj
     const bool glossy = !brdf.ks.isZero();
     auto lightAt = [&](size_t i) -> const Light& { return int(i) == scene.movableLight ? movable : scene.lights[i]; };
 
-    // Per rect light, in scene order: the toroidal shift, then the sums over its N samples.
+    // Per area light, in scene order: the toroidal shift, then the sums over its N samples.
     struct Acc {
         float shiftU = 0.f, shiftV = 0.f;
         float sumF = 0.f, sumFV = 0.f;
@@ -104,7 +107,7 @@ Vec3 ExactDirect::radiance(const Vec3& p, const Vec3& n, const Vec3& wo, int obj
     std::vector<Acc> acc;
     Rng shiftRng(seed_, pixel, kShiftSample);
     for (const Light& l : scene.lights)
-        if (l.type == Light::Type::Rect) {
+        if (l.isArea()) {
             Acc a;
             a.shiftU = shiftRng.uniform();
             a.shiftV = shiftRng.uniform();
@@ -116,7 +119,7 @@ Vec3 ExactDirect::radiance(const Vec3& p, const Vec3& n, const Vec3& wo, int obj
         const float cellU = float(s % grid_.cols), cellV = float(s / grid_.cols);
         size_t r = 0;
         for (size_t li = 0; li < scene.lights.size(); ++li) {
-            if (scene.lights[li].type != Light::Type::Rect) continue;
+            if (!scene.lights[li].isArea()) continue;
             const Light& l = lightAt(li);
             Acc& a = acc[r++];
             const float j1 = rng.uniform(), j2 = rng.uniform();
@@ -124,7 +127,7 @@ Vec3 ExactDirect::radiance(const Vec3& p, const Vec3& n, const Vec3& wo, int obj
             float v = (cellV + j2) / float(grid_.rows) + a.shiftV;
             if (u >= 1.f) u -= 1.f;
             if (v >= 1.f) v -= 1.f;
-            const Vec3 x = l.corner + l.edge1 * u + l.edge2 * v;
+            const Vec3 x = l.pointAt(u, v);
             const Vec3 d = x - p;
             const float dist2 = lengthSquared(d);
             if (!(dist2 > 0.f)) continue;
@@ -148,7 +151,7 @@ Vec3 ExactDirect::radiance(const Vec3& p, const Vec3& n, const Vec3& wo, int obj
     size_t r = 0;
     for (size_t li = 0; li < scene.lights.size(); ++li) {
         const Light& l = lightAt(li);
-        if (l.type == Light::Type::Rect) {
+        if (l.isArea()) {
             const Acc& a = acc[r++];
             Vec3 centroid;
             const double omega = projectedSolidAngle(l, p, n, &centroid);

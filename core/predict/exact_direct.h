@@ -3,11 +3,11 @@
 /// instead of learned, as in Ren et al. 2013, with the estimator real-time renderers use for polygon
 /// lights so that a few dozen shadow rays per pixel leave little noise.
 ///
-/// For a receiver at p with normal n (facing the viewer), material kd, ks, exponent e, and a rect
-/// light of radiance Le:
+/// For a receiver at p with normal n (facing the viewer), material kd, ks, exponent e, and an area
+/// light (rect or triangle) of radiance Le:
 ///
 ///   diffuse  = kd/π · Le · Ω⊥ · R,   Ω⊥ = ∫_light cosθ dω in closed form (Lambert's polygon formula,
-///              after clipping the parallelogram to n's hemisphere: projectedSolidAngle below),
+///              after clipping the parallelogram or triangle to n's hemisphere: projectedSolidAngle),
 ///              R = Σ_j f_j V_j / Σ_j f_j  the visibility ratio of Heitz et al. 2018, with
 ///              f_j = cosθ_j cosθ'_j / d_j² the unshadowed integrand and V_j ∈ {0,1} the shadow ray
 ///              of light sample j. R = 1 wherever every sample is visible, so unoccluded pixels are
@@ -20,11 +20,11 @@
 /// sliver of the light just above the horizon), R is the visibility of one ray to the clipped
 /// polygon's centroid. Point lights are exact with one shadow ray.
 ///
-/// Light samples: N per rect light, a jittered grid of ⌈√N⌉ columns × ⌈N/⌈√N⌉⌉ rows over the
-/// parallelogram's (u, v) square, sample s in cell (s mod cols, s div cols), rotated per pixel by a
+/// Light samples: N per area light, a jittered grid of ⌈√N⌉ columns × ⌈N/⌈√N⌉⌉ rows over the
+/// light's (u, v) square (Light::pointAt: a triangle folds the square onto itself), sample s in cell (s mod cols, s div cols), rotated per pixel by a
 /// uniform toroidal shift (Cranley–Patterson) so that every sample is uniform on the light for any N
 /// (partial last row included). Sample s of pixel i takes its jitter from Rng(seed', i, s) and the
-/// shift from Rng(seed', i, kShiftSample), two numbers per rect light in scene order, with
+/// shift from Rng(seed', i, kShiftSample), two numbers per area light in scene order, with
 /// seed' = mix64(seed ^ kExactDirectStream). shaders/direct_light.glsl repeats all of this (64-bit
 /// Rng emulated with 32-bit words), so the GLSL result is the same estimate up to float rounding and
 /// the shadow-ray test's edge cases.
@@ -40,8 +40,8 @@
 
 namespace rrf {
 
-/// ∫ cosθ dω (steradians) over the rect light `l` seen from p, with n the unit receiver normal:
-/// Lambert's formula ½ Σ_edges γ_k n·(q_k × q_k+1)/|q_k × q_k+1| over the parallelogram clipped to
+/// ∫ cosθ dω (steradians) over the area light `l` seen from p, with n the unit receiver normal:
+/// Lambert's formula ½ Σ_edges γ_k n·(q_k × q_k+1)/|q_k × q_k+1| over the parallelogram or triangle clipped to
 /// the half-space n·(x − p) ≥ 0 (Sutherland–Hodgman), double precision. 0 behind a one-sided light.
 /// `centroid` (optional) receives the clipped polygon's vertex mean (p when it is empty).
 double projectedSolidAngle(const Light& l, const Vec3& p, const Vec3& n, Vec3* centroid = nullptr);

@@ -41,9 +41,10 @@ GBuffer buildGBuffer(const PathTracer& tracer, const RecordLayout& layout, const
                 continue;
             }
             g.object[i] = hit.object;
-            g.normal[i] = dot(wo, hit.ng) >= 0.f ? hit.ng : -hit.ng;  // as RecordLayout::writeInputs flips it
-            g.distance[i] = hit.t;                                     // ray.dir is unit
-            layout.writeInputs(hit.p, wo, g.lightPosition, hit.ng,
+            const Vec3 ns = hit.shading();
+            g.normal[i] = dot(wo, ns) >= 0.f ? ns : -ns;  // as RecordLayout::writeInputs flips it
+            g.distance[i] = hit.t;                         // ray.dir is unit
+            layout.writeInputs(hit.p, wo, g.lightPosition, ns,
                                scene.materials[size_t(scene.objects[size_t(hit.object)].material)],
                                g.inputs.data() + i * size_t(g.numInputs));
         }

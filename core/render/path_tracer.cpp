@@ -9,8 +9,16 @@ PathTracer::PathTracer(const Scene& scene, const Accel& accel, Estimator estimat
     : scene_(scene), accel_(accel), estimator_(estimator), maxDepth_(std::max(1, maxDepth)) {
     effects_ = Effects::derive(scene);
     for (const Material& m : scene.materials) brdfs_.emplace_back(m);
-    for (size_t i = 0; i < scene.lights.size(); ++i)
-        (scene.lights[i].type == Light::Type::Rect ? rectLights_ : pointLights_).push_back(int(i));
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& l = scene.lights[i];
+        if (l.type == Light::Type::Triangle) {
+            triangleLights_.push_back(int(i));
+            triangleArea_ += double(l.area());
+            triangleCdf_.push_back(triangleArea_);
+        } else {
+            (l.type == Light::Type::Rect ? rectLights_ : pointLights_).push_back(int(i));
+        }
+    }
     if (scene.movableLight >= 0 && scene.movableLight < int(scene.lights.size())) {
         movable_ = scene.movableLight;
         movableDefault_ = scene.lights[size_t(movable_)];
@@ -24,8 +32,9 @@ Light PathTracer::movableLightAt(const Vec3& p) const {
 }
 
 namespace {
-/// Ray–parallelogram intersection (corner + s·e1 + t·e2, s,t ∈ [0,1]) in (tmin, tmax).
-bool intersectParallelogram(const Ray& ray, const Light& l, float tmax, float& t) {
+/// Ray intersection with an area light (corner + s·e1 + t·e2: s,t ∈ [0,1] for a rect, s,t ≥ 0 and
+/// s+t ≤ 1 for a triangle) in (tmin, tmax).
+bool intersectAreaLight(const Ray& ray, const Light& l, float tmax, float& t) {
     const Vec3 n = cross(l.edge1, l.edge2);
     const float denom = dot(ray.dir, n);
     if (denom == 0.f) return false;
@@ -35,6 +44,7 @@ bool intersectParallelogram(const Ray& ray, const Light& l, float tmax, float& t
     const float nn = dot(n, n);
     const float a = dot(cross(q, l.edge2), n) / nn;
     const float b = dot(cross(l.edge1, q), n) / nn;
+    if (l.type == Light::Type::Triangle) return a >= 0.f && b >= 0.f && a + b <= 1.f;
     return a >= 0.f && a <= 1.f && b >= 0.f && b <= 1.f;
 }
 
@@ -50,8 +60,7 @@ float powerHeuristic(float p, float other) {
 bool PathTracer::intersect(const Ray& ray, const Light& movable, Hit& hit) const {
     bool found = accel_.intersect(ray, hit);
     float t;
-    if (movable_ >= 0 && movable.type == Light::Type::Rect &&
-        intersectParallelogram(ray, movable, found ? hit.t : ray.tmax, t)) {
+    if (movable_ >= 0 && movable.isArea() && intersectAreaLight(ray, movable, found ? hit.t : ray.tmax, t)) {
         hit = Hit{};
         hit.t = t;
         hit.p = ray.origin + ray.dir * t;
@@ -64,7 +73,7 @@ bool PathTracer::intersect(const Ray& ray, const Light& movable, Hit& hit) const
 
 bool PathTracer::occluded(const Ray& ray, const Light& movable) const {
     float t;
-    if (movable_ >= 0 && movable.type == Light::Type::Rect && intersectParallelogram(ray, movable, ray.tmax, t))
+    if (movable_ >= 0 && movable.isArea() && intersectAreaLight(ray, movable, ray.tmax, t))
         return true;
     return accel_.occluded(ray);
 }
@@ -102,7 +111,10 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng,
         const Brdf& brdf = brdfs_[size_t(mat)];
         const float side = dot(wo, hit.ng);
         if (side == 0.f) break;  // exactly grazing: no reflection
-        const Vec3 n = side > 0.f ? hit.ng : -hit.ng;  // two-sided surfaces: shade the side we see
+        // Two-sided surfaces: shade the side we see (decided by the geometric normal; the shading
+        // normal is on ng's side).
+        const Vec3 ns = hit.shading();
+        const Vec3 n = side > 0.f ? ns : -ns;
         const Frame frame(n);
         const Vec3 woLocal = frame.toLocal(wo);
         Vec3& target = depth == 0 ? L.direct : L.indirect;
@@ -127,6 +139,9 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng,
             ok = wiLocal.z > 0.f;
         }
         if (!ok) break;
+        // With a shading normal a direction above it may point below the geometric surface; such a
+        // ray would start on the far side and leak light through the mesh, so the path ends.
+        if (!hit.ns.isZero() && dot(frame.toWorld(wiLocal), hit.ng) * side <= 0.f) break;
         beta *= weight;
         if (depth >= 1) {
             // Russian roulette: survive with the path's throughput, bounded away from 0 so that the
@@ -150,10 +165,13 @@ Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng,
             const Light& hitLight = light(next.light, movable);
             Vec3 emitted = hitLight.emittedTowards(-wi);
             if (mis && !emitted.isZero()) {
-                // The pdf with which this vertex's light sample would have picked the same direction:
-                // area pdf 1/A over |cos θ'| / t² (solid angle); rect lights only (point lights are
-                // never hit), sampled one point each.
-                const float cosLArea = std::fabs(dot(wi, cross(hitLight.edge1, hitLight.edge2)));
+                // The pdf with which this vertex's light sample would have picked the same point, in
+                // solid angle: t² / (|cos θ'| A), with A the rect's own area (one sample per rect
+                // light) or the total area of the triangle lights (one sample for all of them, the
+                // triangle picked by area). Point lights are never hit.
+                const float sampledArea =
+                    hitLight.type == Light::Type::Triangle ? float(triangleArea_) : hitLight.area();
+                const float cosLArea = std::fabs(dot(wi, hitLight.normal())) * sampledArea;
                 const float t = length(next.p - hit.p);
                 const float pLight = cosLArea > 0.f ? t * t / cosLArea : 0.f;
                 emitted *= powerHeuristic(brdf.pdf(woLocal, wiLocal), pLight);
@@ -177,7 +195,11 @@ Vec3 PathTracer::sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, cons
         if constexpr (kGlossy) return brdf.eval(woLocal, frame.toLocal(wi));
         else return brdf.kd * kInvPi;
     };
+    // Same for light samples: below the geometric surface means behind it, whatever the shading
+    // normal says (for flat surfaces n = ±ng, and cos θ > 0 already implies this).
+    const float ngSide = dot(n, ng);
     auto visible = [&](const Vec3& wi, const Vec3& target) {
+        if (dot(wi, ng) * ngSide <= 0.f) return false;
         Ray s;
         s.origin = accel_.spawnOrigin(p, ng, wi);
         const Vec3 d = target - s.origin;
@@ -215,6 +237,40 @@ Vec3 PathTracer::sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, cons
             (void)brdfRayFollows;
         }
         sum += contribution;
+    }
+    if (!triangleLights_.empty()) {
+        // One sample for all triangle lights together: a triangle picked with probability ∝ its area
+        // (areas do not change when the movable light moves), then a uniform point on it, so the
+        // point is uniform on the emitters' total area A (pdf 1/A) and a mesh emitter of many
+        // triangles costs one shadow ray.
+        const float uPick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        const double target = double(uPick) * triangleArea_;
+        const size_t k = std::min(size_t(std::upper_bound(triangleCdf_.begin(), triangleCdf_.end(), target) -
+                                         triangleCdf_.begin()),
+                                  triangleCdf_.size() - 1);
+        const Light& l = light(triangleLights_[k], movable);
+        const Vec3 x = l.pointAt(u1, u2);
+        const Vec3 d = x - p;
+        const float dist2 = lengthSquared(d);
+        if (dist2 > 0.f) {
+            const float dist = std::sqrt(dist2);
+            const Vec3 wi = d / dist;
+            const float cosTheta = dot(wi, n);
+            float cosL = -dot(wi, l.normal());
+            if (!l.oneSided) cosL = std::fabs(cosL);
+            if (cosTheta > 0.f && cosL > 0.f) {
+                const Vec3 f = evalBrdf(wi);
+                if (!f.isZero() && visible(wi, x)) {
+                    Vec3 contribution = l.radiance * f * (cosTheta * cosL * float(triangleArea_) / dist2);
+                    if constexpr (kGlossy) {
+                        if (brdfRayFollows)
+                            contribution *= powerHeuristic(dist2 / (cosL * float(triangleArea_)),
+                                                           brdf.pdf(woLocal, frame.toLocal(wi)));
+                    }
+                    sum += contribution;
+                }
+            }
+        }
     }
     for (int li : pointLights_) {
         const Light& l = light(li, movable);

@@ -6,13 +6,14 @@
 ///   global   = direct + indirect
 ///
 /// Two estimators (docs/design.md §4–§5). `NEE`: direct light by light sampling only (uniform
-/// points on rect lights with pdf 1/area — not the seed report's 2/|v1×v2|, which is a triangle's
-/// pdf — and point lights), indirect light by BRDF sampling with Russian roulette; emission hit by
-/// BRDF rays is ignored because NEE already counted it — except in scenes with glossy materials,
-/// where a Phong lobe of exponent 1000 turns light sampling into fireflies: there the light sample and
-/// the BRDF ray that hits a rect light are combined with the power heuristic (multiple importance
-/// sampling, Veach 1997 §9.2), each weighted by p²/(p_light² + p_brdf²) in solid angle, whenever the
-/// vertex goes on to bounce (otherwise the light sample keeps weight 1). `Naive`: BRDF sampling only, emission
+/// points on each rect light with pdf 1/area — not the seed report's 2/|v1×v2|, which is a
+/// triangle's pdf —, one point for all triangle lights together, the triangle picked by area, and
+/// point lights), indirect light by BRDF sampling with Russian roulette; emission hit by BRDF rays is
+/// ignored because NEE already counted it — except in scenes with glossy materials, where a Phong
+/// lobe of exponent 1000 turns light sampling into fireflies: there the light sample and the BRDF ray
+/// that hits an area light are combined with the power heuristic (multiple importance sampling,
+/// Veach 1997 §9.2), each weighted by p²/(p_light² + p_brdf²) in solid angle, whenever the vertex goes
+/// on to bounce (otherwise the light sample keeps weight 1). `Naive`: BRDF sampling only, emission
 /// counted when a ray hits an emitter (point lights are invisible to it). Both converge to the same
 /// image.
 
@@ -63,10 +64,10 @@ public:
     }
     Radiance shade(const Hit& hit, const Vec3& wo, const Light& movable, Rng& rng, TraceCounters& counters) const;
 
-    /// Closest hit against the static BVH and the movable light (if it is a rect light).
+    /// Closest hit against the static BVH and the movable light (if it is an area light).
     bool intersect(const Ray& ray, const Light& movable, Hit& hit) const;
     bool intersect(const Ray& ray, Hit& hit) const { return intersect(ray, movableDefault_, hit); }
-    /// True if anything (static geometry or the movable rect light) lies along `ray` in
+    /// True if anything (static geometry or the movable area light) lies along `ray` in
     /// [tmin, tmax]: the shadow-ray test of NEE, also used by exact direct light in prediction.
     bool occluded(const Ray& ray, const Light& movable) const;
     /// Copy of the movable light with its centre at `p` (shape and emission unchanged).
@@ -97,7 +98,9 @@ private:
     int maxDepth_;
     Effects effects_;
     std::vector<Brdf> brdfs_;
-    std::vector<int> rectLights_, pointLights_;
+    std::vector<int> rectLights_, pointLights_, triangleLights_;
+    std::vector<double> triangleCdf_;  ///< running sum of the triangle lights' areas
+    double triangleArea_ = 0.0;        ///< total area of the triangle lights
     int movable_ = -1;       ///< index of the movable light, -1 if the scene has none
     Light movableDefault_;   ///< the movable light where the scene puts it
 };

@@ -1,5 +1,7 @@
 #include "core/render/render_outputs.h"
 
+#include "core/scene/scene_summary.h"
+
 #include <filesystem>
 #include <stdexcept>
 
@@ -35,6 +37,7 @@ nlohmann::json renderMetadata(const Scene& scene, const Renderer& renderer, cons
         {"max_depth", o.maxDepth},
         {"light_position", {lp.x, lp.y, lp.z}},
         {"effects", renderer.tracer().effects().toJson()},
+        {"scene_contents", sceneSummaryJson(scene)},
         {"seconds", st.seconds},
         {"samples", st.samples},
         {"rays", st.rays},

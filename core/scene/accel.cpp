@@ -31,6 +31,7 @@ Accel::Accel(const Scene& scene) {
     for (const Object& o : scene.objects) {
         GeomInfo info;
         info.object = o.id;
+        if (o.kind == Object::Kind::Triangles && o.normals.size() == o.positions.size()) info.smooth = &o;
         if (o.kind == Object::Kind::Sphere) addSphere(o.center, o.radius, info);
         else addMesh(o.positions, o.indices, o.kind == Object::Kind::Quads, std::move(info));
     }
@@ -38,11 +39,13 @@ Accel::Accel(const Scene& scene) {
         const Light& l = scene.lights[i];
         // The movable light is intersected analytically by the path tracer, so that it can sit at a
         // different place for every path (training records) without rebuilding the BVH.
-        if (l.type != Light::Type::Rect || int(i) == scene.movableLight) continue;
+        if (!l.isArea() || int(i) == scene.movableLight) continue;
         GeomInfo info;
         info.light = int(i);
-        addMesh({l.corner, l.corner + l.edge1, l.corner + l.edge1 + l.edge2, l.corner + l.edge2}, {0, 1, 2, 3},
-                true, std::move(info));
+        Vec3 v[4];
+        const int n = l.vertices(v);
+        if (n == 4) addMesh({v[0], v[1], v[2], v[3]}, {0, 1, 2, 3}, true, std::move(info));
+        else addMesh({v[0], v[1], v[2]}, {0, 1, 2}, false, std::move(info));
     }
     rtcCommitScene(scene_);
     check(device_, "BVH build");
@@ -137,7 +140,20 @@ bool Accel::intersect(const Ray& ray, Hit& hit) const {
     } else {
         hit.ng = g.normals[rh.hit.primID];
     }
+    hit.ns = g.smooth ? shadingNormal(g, rh.hit.primID, rh.hit.u, rh.hit.v, hit.ng) : Vec3(0.f);
     return true;
+}
+
+Vec3 Accel::shadingNormal(const GeomInfo& g, uint32_t prim, float u, float v, const Vec3& ng) {
+    const Object& o = *g.smooth;
+    const uint32_t* t = &o.indices[size_t(prim) * 3];
+    // Embree's barycentrics: p = (1−u−v)·v0 + u·v1 + v·v2.
+    const Vec3 n = o.normals[t[0]] * (1.f - u - v) + o.normals[t[1]] * u + o.normals[t[2]] * v;
+    const float len = length(n);
+    if (!(len > 0.f)) return ng;
+    // Vertex normals that disagree with the winding are turned to ng's side: the winding decides
+    // which side is the front everywhere else (one-sided emitters, ray offsets).
+    return dot(n, ng) < 0.f ? -n / len : n / len;
 }
 
 bool Accel::occluded(const Ray& ray) const {

@@ -1,5 +1,5 @@
 #pragma once
-/// Embree 3 acceleration structure over a Scene: every object and every rect light except the
+/// Embree 3 acceleration structure over a Scene: every object and every area light except the
 /// movable one becomes one Embree geometry (quads, triangles or a sphere point); the movable light
 /// is intersected analytically by PathTracer so it can move per path without a rebuild. Built with RTC_SCENE_FLAG_ROBUST so that rays
 /// exactly along edges and through vertices do not slip between primitives.
@@ -29,10 +29,16 @@ struct Hit {
     float t = INFINITY;
     Vec3 p;       ///< hit point
     Vec3 ng;      ///< unit geometric normal, as stored (not flipped towards the ray)
+    /// Unit shading normal: the object's interpolated vertex normals where it has them (turned to
+    /// ng's side); zero = none (hits built by hand). Read it through shading().
+    Vec3 ns{0.f};
     int object = -1;
     int light = -1;
     uint32_t prim = 0;
     bool valid() const { return object >= 0 || light >= 0; }
+    /// The normal shading uses (BRDF frame, cosines, network input): ns, or ng where there is none.
+    /// Ray offsets and the side a ray arrives from use ng.
+    Vec3 shading() const { return ns.isZero() ? ng : ns; }
 };
 
 class Accel {
@@ -71,9 +77,12 @@ private:
         bool sphere = false;
         Vec3 center;                 ///< sphere
         std::vector<Vec3> normals;   ///< per primitive (quads, triangles)
+        const Object* smooth = nullptr;  ///< triangles with vertex normals (Object::normals)
     };
     void addMesh(const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices, bool quads,
                  GeomInfo info);
+    /// Hit's ns for a hit at barycentrics (u, v) of triangle `prim` of `g` (Embree's convention).
+    static Vec3 shadingNormal(const GeomInfo& g, uint32_t prim, float u, float v, const Vec3& ng);
     void addSphere(const Vec3& c, float r, GeomInfo info);
 
     RTCDevice device_ = nullptr;

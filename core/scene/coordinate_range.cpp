@@ -30,10 +30,10 @@ std::string lightPlacementProblem(const Light& l, const Vec3& centre) {
     Light moved = l;
     moved.moveTo(centre);
     if (moved.type == Light::Type::Point) return coordinateRangeProblem(moved.position);
-    const Vec3 corners[4] = {moved.corner, moved.corner + moved.edge1, moved.corner + moved.edge2,
-                             moved.corner + moved.edge1 + moved.edge2};
-    for (const Vec3& c : corners)
-        if (std::string why = coordinateRangeProblem(c); !why.empty()) return "a corner of light '" + l.name + "' has " + why;
+    Vec3 corners[4];
+    const int n = moved.vertices(corners);
+    for (int k = 0; k < n; ++k)
+        if (std::string why = coordinateRangeProblem(corners[k]); !why.empty()) return "a corner of light '" + l.name + "' has " + why;
     return "";
 }
 

@@ -29,8 +29,8 @@ Effects Effects::derive(const Scene& scene) {
         if (o.kind != Object::Kind::Sphere && prims > 1) concave = true;
     }
     for (const Light& l : scene.lights) {
-        if (l.type == Light::Type::Rect) {
-            e.rectLights = true;
+        if (l.isArea()) {
+            (l.type == Light::Type::Rect ? e.rectLights : e.triangleLights) = true;
             if (addMaterial(l.material)) {
                 e.reflectiveEmitters = true;
                 ++reflectingSurfaces;
@@ -46,6 +46,8 @@ Effects Effects::derive(const Scene& scene) {
 std::vector<std::string> Effects::describe() const {
     std::vector<std::string> out;
     if (rectLights) out.push_back("area lights (next-event estimation, visible to rays)");
+    if (triangleLights)
+        out.push_back("triangle emitters (mesh lights; next-event estimation picks one triangle by area, visible to rays)");
     if (pointLights) out.push_back("point lights (next-event estimation only; the naive estimator cannot see them)");
     if (reflectiveEmitters) out.push_back("emitters that also reflect light");
     if (diffuse) out.push_back("diffuse reflection (Lambert)");
@@ -66,7 +68,7 @@ std::vector<std::string> Effects::describe() const {
 
 nlohmann::json Effects::toJson() const {
     return {{"diffuse", diffuse},       {"glossy", glossy},
-            {"rect_lights", rectLights}, {"point_lights", pointLights},
+            {"rect_lights", rectLights}, {"triangle_lights", triangleLights}, {"point_lights", pointLights},
             {"reflective_emitters", reflectiveEmitters},
             {"indirect", indirect},     {"max_albedo", maxAlbedo},
             {"max_phong_exponent", maxPhongExponent}, {"description", describe()}};

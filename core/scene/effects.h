@@ -16,7 +16,8 @@ namespace rrf {
 struct Effects {
     bool diffuse = false;            ///< some material has kd > 0
     bool glossy = false;             ///< some Phong material has ks > 0
-    bool rectLights = false;         ///< area lights (sampled by NEE, visible to rays)
+    bool rectLights = false;         ///< rect lights (sampled by NEE, visible to rays)
+    bool triangleLights = false;     ///< triangle emitters, e.g. an OBJ's mesh lamps (NEE picks one by area)
     bool pointLights = false;        ///< point lights (NEE only: no ray can hit them)
     bool reflectiveEmitters = false; ///< an emitter surface that also reflects (furnace scenes)
     bool indirect = false;           ///< light can bounce between surfaces (≥ 2 reflecting surfaces, or a concave one)

@@ -1,8 +1,11 @@
 #include "core/scene/obj_loader.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <tiny_obj_loader.h>
@@ -20,9 +23,74 @@ void appendLines(const std::string& text, const std::string& prefix, std::vector
     while (std::getline(in, line))
         if (!line.empty()) out.push_back(prefix + line);
 }
+
+/// What the line scan found: the statements tinyobjloader reports without a line number.
+struct LineScan {
+    struct Named {
+        size_t line;
+        std::string name;
+    };
+    std::vector<Named> mtllibs, usemtls;
+    size_t badLine = 0;  ///< first face line with an index out of range (0 = none)
+    std::string badWhat;
+};
+
+/// One pass over the text: counts `v`/`vn` as they come and checks every face corner's position
+/// and normal index against them (1 … count, or −count … −1 relative to the vertices so far; an
+/// index may not name a vertex defined later, as tinyobjloader resolves relative indices early).
+LineScan scanLines(const std::string& path) {
+    LineScan scan;
+    std::ifstream in(path);
+    std::string line;
+    long long positions = 0, normals = 0;
+    for (size_t number = 1; std::getline(in, line); ++number) {
+        std::istringstream words(line);
+        std::string key;
+        words >> key;
+        if (key == "v") ++positions;
+        else if (key == "vn") ++normals;
+        else if (key == "mtllib" || key == "usemtl") {
+            std::string name;
+            std::getline(words >> std::ws, name);
+            while (!name.empty() && (name.back() == '\r' || name.back() == ' ' || name.back() == '\t')) name.pop_back();
+            (key == "mtllib" ? scan.mtllibs : scan.usemtls).push_back({number, name});
+        } else if (key == "f" && scan.badLine == 0) {
+            std::string corner;
+            while (words >> corner) {
+                // Corner forms: v, v/t, v//n, v/t/n.
+                const size_t s1 = corner.find('/');
+                const size_t s2 = s1 == std::string::npos ? s1 : corner.find('/', s1 + 1);
+                auto bad = [&](const std::string& text, long long count, const char* what, const char* plural) {
+                    if (text.empty()) return false;
+                    const long long i = std::atoll(text.c_str());
+                    if (i != 0 && i <= count && -i <= count) return false;
+                    scan.badLine = number;
+                    scan.badWhat = std::string(what) + " index " + text + " is out of range: " + std::to_string(count) +
+                                   " " + (count == 1 ? what : plural) + " defined so far";
+                    return true;
+                };
+                if (bad(corner.substr(0, s1), positions, "vertex", "vertices")) break;
+                if (s2 != std::string::npos && bad(corner.substr(s2 + 1), normals, "normal", "normals")) break;
+            }
+        }
+    }
+    return scan;
+}
+
+std::string fileLine(const std::string& path, size_t line) { return "OBJ file '" + path + "' line " + std::to_string(line); }
+
+Vec3 vec3At(const std::vector<tinyobj::real_t>& v, size_t i) {
+    return {float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2])};
+}
 }  // namespace
 
-ObjMesh loadObj(const std::string& objPath, const std::string& sceneFile, const std::string& where) {
+void fanTriangulate(const std::vector<uint32_t>& indices, size_t first, size_t count, std::vector<uint32_t>& out) {
+    for (size_t k = 1; k + 1 < count; ++k)
+        out.insert(out.end(), {indices[first], indices[first + k], indices[first + k + 1]});
+}
+
+ObjFile loadObjFile(const std::string& objPath, const std::string& sceneFile, const std::string& where,
+                    ObjSplit split, bool requireMaterials, const std::vector<std::string>& knownMaterials) {
     {
         // tinyobjloader's own message for a missing file is terse; check first to say which file.
         std::ifstream probe(objPath);
@@ -32,16 +100,27 @@ ObjMesh loadObj(const std::string& objPath, const std::string& sceneFile, const 
     // A device or pipe (/dev/zero) would be read until memory runs out.
     if (!std::filesystem::is_regular_file(objPath, ec))
         throw InputError(sceneFile, where, "OBJ file '" + objPath + "' is not a regular file");
-    // tinyobjloader keeps every vertex and index of the text, and the mesh is copied once more: about
+    // tinyobjloader keeps every vertex and index of the text, and the parts copy them once more: about
     // as many bytes as the text has, twice (a "v x y z" line of ~30 bytes becomes 12-24 bytes).
     const uint64_t fileBytes = uint64_t(std::filesystem::file_size(objPath, ec));
     requireMemory(2 * fileBytes, "twice the OBJ file's " + formatBytes(fileBytes), sceneFile, where);
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    const size_t slash = objPath.find_last_of('/');
-    config.mtl_search_path = slash == std::string::npos ? "./" : objPath.substr(0, slash + 1);
 
+    const LineScan scan = scanLines(objPath);
+    if (scan.badLine) throw InputError(sceneFile, where, fileLine(objPath, scan.badLine) + ": " + scan.badWhat);
+    const std::string dir = std::filesystem::path(objPath).parent_path().string();
+    if (requireMaterials)
+        for (const LineScan::Named& lib : scan.mtllibs) {
+            const std::filesystem::path p = std::filesystem::path(dir.empty() ? "." : dir) / lib.name;
+            if (!std::filesystem::is_regular_file(p, ec))
+                throw InputError(sceneFile, where,
+                                 fileLine(objPath, lib.line) + ": material library '" + lib.name + "' not found (looked for '" +
+                                     p.string() + "'); give the shape a \"material\" to ignore the OBJ's materials");
+        }
+
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = false;  // emitting quads become rect lights; the scene builder triangulates the rest
+    config.vertex_color = false;
+    config.mtl_search_path = dir.empty() ? "./" : dir + "/";
     tinyobj::ObjReader reader;
     if (!reader.ParseFromFile(objPath, config)) {
         std::string err = reader.Error();
@@ -49,43 +128,116 @@ ObjMesh loadObj(const std::string& objPath, const std::string& sceneFile, const 
         throw InputError(sceneFile, where, "cannot parse OBJ file '" + objPath + "': " + err);
     }
 
-    ObjMesh mesh;
-    appendLines(reader.Warning(), objPath + ": ", mesh.warnings);
-    const std::vector<tinyobj::real_t>& v = reader.GetAttrib().vertices;
-    const size_t vertexCount = v.size() / 3;
-    mesh.positions.reserve(vertexCount);
-    for (size_t i = 0; i < vertexCount; ++i) {
-        const Vec3 p{static_cast<float>(v[3 * i]), static_cast<float>(v[3 * i + 1]), static_cast<float>(v[3 * i + 2])};
-        if (!p.isFinite())
-            throw InputError(sceneFile, where,
-                             "OBJ file '" + objPath + "': vertex " + std::to_string(i + 1) + " is not finite");
-        mesh.positions.push_back(p);
+    ObjFile file;
+    appendLines(reader.Warning(), objPath + ": ", file.warnings);
+    for (const tinyobj::material_t& m : reader.GetMaterials()) {
+        ObjMaterial om;
+        om.name = m.name;
+        om.kd = Vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
+        om.ks = Vec3(m.specular[0], m.specular[1], m.specular[2]);
+        om.ke = Vec3(m.emission[0], m.emission[1], m.emission[2]);
+        om.ns = float(m.shininess);
+        for (const Vec3& c : {om.kd, om.ks, om.ke})
+            for (int i = 0; i < 3; ++i)
+                if (!(std::isfinite(c[i]) && c[i] >= 0.f))
+                    throw InputError(sceneFile, where, "OBJ file '" + objPath + "': material '" + m.name +
+                                                           "' has a colour component that is negative or not finite");
+        if (!(std::isfinite(om.ns) && om.ns >= 0.f))
+            throw InputError(sceneFile, where, "OBJ file '" + objPath + "': material '" + m.name + "' has Ns < 0 or not finite");
+        file.materials.push_back(om);
     }
+    if (requireMaterials)
+        for (const LineScan::Named& use : scan.usemtls) {
+            const auto defined = [&](const std::string& n) {
+                return std::any_of(file.materials.begin(), file.materials.end(), [&](const ObjMaterial& m) { return m.name == n; }) ||
+                       std::find(knownMaterials.begin(), knownMaterials.end(), n) != knownMaterials.end();
+            };
+            if (!defined(use.name))
+                throw InputError(sceneFile, where,
+                                 fileLine(objPath, use.line) + ": usemtl '" + use.name +
+                                     "' names a material that no material library (mtllib) defines");
+        }
+
+    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    const size_t vertexCount = attrib.vertices.size() / 3, normalCount = attrib.normals.size() / 3;
+    for (size_t i = 0; i < vertexCount; ++i)
+        if (!vec3At(attrib.vertices, i).isFinite())
+            throw InputError(sceneFile, where, "OBJ file '" + objPath + "': vertex " + std::to_string(i + 1) + " is not finite");
+
+    // Part key: (group name, material) when splitting by groups, the material alone otherwise.
+    std::map<std::pair<std::string, int>, size_t> partIndex;
+    std::vector<std::map<std::pair<int, int>, uint32_t>> renumber;  // per part: (v, vn) -> local vertex
+    std::vector<bool> allNormals;
+    const std::string stem = std::filesystem::path(objPath).stem().string();
     for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-        const auto& faceSizes = shape.mesh.num_face_vertices;
-        const auto& idx = shape.mesh.indices;
+        const std::string group = shape.name.empty() ? stem : shape.name;
+        const auto& sizes = shape.mesh.num_face_vertices;
         size_t offset = 0;
-        for (size_t f = 0; f < faceSizes.size(); ++f) {
-            const size_t n = faceSizes[f];
-            // Triangulation is on, so anything but 3 is a face tinyobjloader could not split.
-            if (n == 3) {
-                for (size_t k = 0; k < 3; ++k) {
-                    const int vi = idx[offset + k].vertex_index;
-                    if (vi < 0 || size_t(vi) >= vertexCount)
-                        throw InputError(sceneFile, where,
-                                         "OBJ file '" + objPath + "': face " + std::to_string(f + 1) + " of '" +
-                                             shape.name + "' refers to a missing vertex");
-                    mesh.indices.push_back(uint32_t(vi));
-                }
-            } else {
-                mesh.warnings.push_back(objPath + ": skipped a face with " + std::to_string(n) + " vertices");
+        for (size_t f = 0; f < sizes.size(); ++f) {
+            const size_t n = sizes[f];
+            const int mat = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
+            const auto key = split == ObjSplit::Groups ? std::make_pair(group, mat) : std::make_pair(std::string(), mat);
+            auto [it, fresh] = partIndex.emplace(key, file.parts.size());
+            if (fresh) {
+                file.parts.emplace_back();
+                file.parts.back().material = mat;
+                renumber.emplace_back();
+                allNormals.push_back(true);
             }
+            ObjPart& part = file.parts[it->second];
+            if (n < 3) {
+                file.warnings.push_back(objPath + ": skipped a face with " + std::to_string(n) + " vertices in '" + group + "'");
+                offset += n;
+                continue;
+            }
+            for (size_t k = 0; k < n; ++k) {
+                const tinyobj::index_t& c = shape.mesh.indices[offset + k];
+                // The line scan has checked every index; tinyobjloader resolved relative ones.
+                if (c.vertex_index < 0 || size_t(c.vertex_index) >= vertexCount || c.normal_index >= int(normalCount))
+                    throw InputError(sceneFile, where, "OBJ file '" + objPath + "': face " + std::to_string(f + 1) + " of '" +
+                                                           group + "' refers to a missing vertex");
+                if (c.normal_index < 0) allNormals[it->second] = false;
+                auto [v, added] = renumber[it->second].emplace(std::make_pair(c.vertex_index, c.normal_index),
+                                                               uint32_t(part.positions.size()));
+                if (added) {
+                    part.positions.push_back(vec3At(attrib.vertices, size_t(c.vertex_index)));
+                    part.normals.push_back(c.normal_index >= 0 ? vec3At(attrib.normals, size_t(c.normal_index)) : Vec3(0.f));
+                }
+                part.indices.push_back(v->second);
+            }
+            part.faceSizes.push_back(uint32_t(n));
             offset += n;
         }
     }
-    if (mesh.indices.empty())
-        throw InputError(sceneFile, where, "OBJ file '" + objPath + "' contains no triangles or polygons");
-    return mesh;
+    size_t faces = 0;
+    for (size_t i = 0; i < file.parts.size(); ++i) {
+        ObjPart& part = file.parts[i];
+        faces += part.faceSizes.size();
+        const std::string matName = part.material >= 0 ? file.materials[size_t(part.material)].name : "default";
+        if (split == ObjSplit::Materials) {
+            part.name = matName;
+        } else {
+            const std::string group = std::find_if(partIndex.begin(), partIndex.end(), [&](const auto& kv) {
+                                          return kv.second == i;
+                                      })->first.first;
+            const bool several = std::count_if(partIndex.begin(), partIndex.end(), [&](const auto& kv) {
+                                     return kv.first.first == group;
+                                 }) > 1;
+            part.name = several ? group + "." + matName : group;
+        }
+        // Normals count only if every corner has one and all have a direction.
+        bool ok = allNormals[i];
+        for (Vec3& n : part.normals) {
+            const float len = length(n);
+            if (!(len > 0.f) || !std::isfinite(len)) ok = false;
+            else n = n / len;
+        }
+        if (!ok) part.normals.clear();
+    }
+    file.parts.erase(std::remove_if(file.parts.begin(), file.parts.end(), [](const ObjPart& p) { return p.faceSizes.empty(); }),
+                     file.parts.end());
+    if (faces == 0) throw InputError(sceneFile, where, "OBJ file '" + objPath + "' contains no triangles or polygons");
+    return file;
 }
 
 }  // namespace rrf

@@ -21,11 +21,9 @@ Bounds3 Scene::bounds() const {
     Bounds3 b;
     for (const Object& o : objects) b.expand(o.bounds());
     for (const Light& l : lights) {
-        if (l.type != Light::Type::Rect) continue;
-        b.expand(l.corner);
-        b.expand(l.corner + l.edge1);
-        b.expand(l.corner + l.edge2);
-        b.expand(l.corner + l.edge1 + l.edge2);
+        Vec3 v[4];
+        if (!l.isArea()) continue;
+        for (int k = 0, n = l.vertices(v); k < n; ++k) b.expand(v[k]);
     }
     return b;
 }
@@ -90,6 +88,8 @@ uint64_t Scene::contentHash() const {
         for (const Vec3& p : o.positions) h.v3(p);
         h.word(o.indices.size());
         for (uint32_t i : o.indices) h.word(i);
+        h.word(o.normals.size());
+        for (const Vec3& n : o.normals) h.v3(n);
         h.v3(o.center);
         h.f(o.radius);
     }

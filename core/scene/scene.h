@@ -50,6 +50,9 @@ struct Object {
     /// Triangles: 3 indices per primitive. Sphere: empty.
     std::vector<Vec3> positions;
     std::vector<uint32_t> indices;
+    /// Per-vertex shading normals (unit, parallel to `positions`), from an OBJ file's `vn`; empty =
+    /// flat shading with the geometric normal. Triangles only.
+    std::vector<Vec3> normals;
     Vec3 center{0.f};   ///< sphere only
     float radius = 0.f; ///< sphere only
     /// True when the loader knows the surface is closed (box, sphere, or "closed": true in JSON).
@@ -62,40 +65,72 @@ struct Object {
     Bounds3 bounds() const;
 };
 
-/// Light source. A rect light is the parallelogram corner + s·edge1 + t·edge2 (s, t ∈ [0,1])
-/// with normal normalize(edge1 × edge2); one-sided lights emit only on the normal's side.
-/// A rect light is also visible geometry (hit by camera and BRDF rays, black BSDF).
-/// A point light emits `intensity` (W/sr) uniformly in all directions.
+/// Light source. A rect light is the parallelogram corner + s·edge1 + t·edge2 (s, t ∈ [0,1]); a
+/// triangle light is the triangle corner + s·edge1 + t·edge2 (s, t ≥ 0, s + t ≤ 1), as an OBJ
+/// file's emitting faces give them. Both are area lights with normal normalize(edge1 × edge2);
+/// one-sided lights emit only on the normal's side. An area light is also visible geometry (hit by
+/// camera and BRDF rays, black BSDF). A point light emits `intensity` (W/sr) uniformly in all
+/// directions.
 struct Light {
-    enum class Type { Rect, Point };
+    enum class Type { Rect, Point, Triangle };
     Type type = Type::Rect;
     std::string name;
-    Vec3 corner{0.f}, edge1{1, 0, 0}, edge2{0, 0, 1};  ///< rect
-    Vec3 radiance{1.f};                                 ///< rect: emitted radiance
-    bool oneSided = true;                               ///< rect
+    Vec3 corner{0.f}, edge1{1, 0, 0}, edge2{0, 0, 1};  ///< rect and triangle
+    Vec3 radiance{1.f};                                 ///< area lights: emitted radiance
+    bool oneSided = true;                               ///< area lights
     Vec3 position{0.f};                                 ///< point
     Vec3 intensity{1.f};                                ///< point
-    /// Material of the emitting surface (rect only): -1 = black (the usual case, as in Mitsuba's
-    /// Cornell box). A reflective emitter makes furnace scenes possible (walls that emit and reflect).
+    /// Material of the emitting surface (area lights only): -1 = black (the usual case, as in
+    /// Mitsuba's Cornell box). A reflective emitter makes furnace scenes possible (walls that emit
+    /// and reflect).
     int material = -1;
 
+    bool isArea() const { return type != Type::Point; }
     Vec3 normal() const { return normalize(cross(edge1, edge2)); }
-    /// Radiance the surface of a rect light sends towards `w` (unit, pointing away from it): zero
+    /// Radiance the surface of an area light sends towards `w` (unit, pointing away from it): zero
     /// from behind a one-sided light, and zero for point lights, which no ray can hit. The path
     /// tracer and the G-buffer both use this, so prediction and ground truth agree on emitters.
     Vec3 emittedTowards(const Vec3& w) const {
-        if (type != Type::Rect || (oneSided && dot(w, cross(edge1, edge2)) <= 0.f)) return Vec3(0.f);
+        if (!isArea() || (oneSided && dot(w, cross(edge1, edge2)) <= 0.f)) return Vec3(0.f);
         return radiance;
     }
-    float area() const { return length(cross(edge1, edge2)); }
-    /// Reference position of the light: the rect's centre or the point's position. This is the
-    /// "light position" input of the networks.
-    Vec3 center() const { return type == Type::Rect ? corner + 0.5f * (edge1 + edge2) : position; }
+    float area() const {
+        const float a = length(cross(edge1, edge2));
+        return type == Type::Triangle ? 0.5f * a : a;
+    }
+    /// The point of an area light at (u, v) ∈ [0,1)²: uniform (u, v) give points uniform by area,
+    /// pdf 1/area(). A triangle folds the square's upper half onto its lower one (u+v > 1 →
+    /// 1−u, 1−v), which keeps the map measure-preserving and stratified samples stratified.
+    Vec3 pointAt(float u, float v) const {
+        if (type == Type::Triangle && u + v > 1.f) {
+            u = 1.f - u;
+            v = 1.f - v;
+        }
+        return corner + edge1 * u + edge2 * v;
+    }
+    /// Corners of an area light in boundary order (3 for a triangle, 4 for a rect); returns the count.
+    int vertices(Vec3 out[4]) const {
+        out[0] = corner;
+        out[1] = corner + edge1;
+        if (type == Type::Triangle) {
+            out[2] = corner + edge2;
+            return 3;
+        }
+        out[2] = corner + edge1 + edge2;
+        out[3] = corner + edge2;
+        return 4;
+    }
+    /// Reference position of the light: the rect's centre, the triangle's centroid or the point's
+    /// position. This is the "light position" input of the networks.
+    Vec3 center() const { return isArea() ? corner + centerOffset() : position; }
     /// Moves the light so that center() == p, keeping shape, orientation and emission.
     void moveTo(const Vec3& p) {
-        if (type == Type::Rect) corner = p - 0.5f * (edge1 + edge2);
+        if (isArea()) corner = p - centerOffset();
         else position = p;
     }
+
+private:
+    Vec3 centerOffset() const { return (edge1 + edge2) * (type == Type::Triangle ? 1.f / 3.f : 0.5f); }
 };
 
 struct Scene {
@@ -112,7 +147,7 @@ struct Scene {
     /// Non-fatal findings of the loader (e.g. degenerate triangles dropped from an OBJ file).
     std::vector<std::string> warnings;
 
-    /// Bounds of all objects and rect lights.
+    /// Bounds of all objects and area lights.
     Bounds3 bounds() const;
     /// Length of the bounds' diagonal; sets the scale of ray offsets.
     float scale() const;

@@ -5,11 +5,13 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
 #include "core/scene/coordinate_range.h"
+#include "core/scene/light_region.h"
 #include "core/scene/obj_loader.h"
 #include "core/scene/scene_parse.h"
 #include "core/scene/transform.h"
@@ -148,6 +150,14 @@ void pointQuad(const JsonReader& r, Object& o) {
 
 void applyTransform(const Transform& t, Object& o) {
     for (Vec3& p : o.positions) p = t.apply(p);
+    if (!o.normals.empty()) {
+        // Normals map with the inverse transpose, so they stay perpendicular to the surface.
+        const Eigen::Matrix3d m = t.linear.inverse().transpose();
+        for (Vec3& n : o.normals) {
+            const Eigen::Vector3d q = m * Eigen::Vector3d(n.x, n.y, n.z);
+            n = normalize(Vec3(float(q.x()), float(q.y()), float(q.z())));
+        }
+    }
     if (!t.flipsOrientation()) return;
     // A mirror turns counter-clockwise into clockwise; reverse each primitive to keep normals outward.
     const size_t k = size_t(o.verticesPerPrimitive());
@@ -244,13 +254,21 @@ struct SceneBuilder {
             o.kind = Object::Kind::Triangles;
             inlineTriangles(r, o);
         } else if (type == "obj") {
+            // With a "material" the OBJ is one object of that material (its MTL is not read);
+            // without one, objFile() below makes objects, materials and lights from the OBJ + MTL.
             r.checkKeys({"type", "name", "material", "closed", "file", "transform"});
             o.kind = Object::Kind::Triangles;
             const JsonReader file = r.at("file");
-            ObjMesh mesh = loadObj(resolvePath(baseDir, file.string()), file.file(), file.pointer());
-            o.positions = std::move(mesh.positions);
-            o.indices = std::move(mesh.indices);
-            for (std::string& w : mesh.warnings) scene.warnings.push_back(std::move(w));
+            ObjFile obj = loadObjFile(resolvePath(baseDir, file.string()), file.file(), file.pointer(), ObjSplit::Groups, false);
+            for (const ObjPart& part : obj.parts) {
+                const uint32_t base = uint32_t(o.positions.size());
+                o.positions.insert(o.positions.end(), part.positions.begin(), part.positions.end());
+                std::vector<uint32_t> tris;
+                for (size_t f = 0, first = 0; f < part.faceSizes.size(); first += part.faceSizes[f++])
+                    fanTriangulate(part.indices, first, part.faceSizes[f], tris);
+                for (uint32_t i : tris) o.indices.push_back(base + i);
+            }
+            for (std::string& w : obj.warnings) scene.warnings.push_back(std::move(w));
         } else if (type == "sphere") {
             r.checkKeys({"type", "name", "material", "center", "radius"});
             o.kind = Object::Kind::Sphere;
@@ -298,6 +316,126 @@ struct SceneBuilder {
         const auto [it, fresh] = objectNames.emplace(o.name, r.pointer());
         if (!fresh) r.fail("duplicate object name '" + o.name + "' (first used at " + it->second + ")");
         return o;
+    }
+
+    /// The scene's material for an MTL material: the JSON's material of that name if there is one
+    /// (explicit entries override), else Lambert (Ks = 0) or Phong from Kd, Ks, Ns, scaled down with a
+    /// warning where Kd + Ks > 1 in some channel.
+    int mtlMaterial(const JsonReader& r, const ObjMaterial* m, const std::string& objPath) {
+        const std::string name = m ? m->name : "default";
+        if (const auto it = materialIndex.find(name); it != materialIndex.end()) return it->second;
+        Material mat;
+        mat.name = name;
+        if (m) {
+            mat.kd = m->kd;
+            mat.ks = m->ks;
+            mat.exponent = m->ns;
+            mat.type = m->ks.isZero() ? Material::Type::Lambert : Material::Type::Phong;
+            const float sum = (m->kd + m->ks).maxComponent();
+            if (sum > 1.f + float(kEnergySlack)) {
+                const float s = 1.f / sum;
+                mat.kd = m->kd * s;
+                mat.ks = m->ks * s;
+                scene.warnings.push_back(r.file() + ": " + r.pointer() + ": material '" + name + "' of '" + objPath +
+                                         "' has Kd + Ks = " + formatNumber(sum) +
+                                         " > 1; Kd and Ks scaled by " + formatNumber(s) + " (energy conservation)");
+            }
+        } else {
+            scene.warnings.push_back(r.file() + ": " + r.pointer() + ": faces of '" + objPath +
+                                     "' without usemtl get material 'default' (Lambert, albedo 0.5)");
+        }
+        materialIndex[name] = int(scene.materials.size());
+        scene.materials.push_back(mat);
+        return materialIndex[name];
+    }
+
+    /// An OBJ shape without "material": one object per part (ObjSplit), materials from the MTL,
+    /// and — when `emitters` (the scene JSON has no "lights") — area lights from faces whose
+    /// material has Ke > 0: a planar parallelogram quad becomes a rect light, any other face a fan
+    /// of triangle lights. Emitting faces are black emitters, as in the Cornell box.
+    void objFile(const JsonReader& r, bool emitters, std::vector<Light>& lightsOut) {
+        r.checkKeys({"type", "name", "file", "transform", "split", "closed"});
+        const JsonReader file = r.at("file");
+        const std::string path = resolvePath(baseDir, file.string());
+        ObjSplit split = ObjSplit::Groups;
+        if (auto sp = r.find("split")) {
+            const std::string v = sp->string();
+            if (v == "materials") split = ObjSplit::Materials;
+            else if (v != "groups") sp->fail("split must be \"groups\" or \"materials\", got '" + v + "'");
+        }
+        std::vector<std::string> known;
+        for (const auto& kv : materialIndex) known.push_back(kv.first);
+        ObjFile obj = loadObjFile(path, file.file(), file.pointer(), split, true, known);
+        for (std::string& w : obj.warnings) scene.warnings.push_back(std::move(w));
+        std::optional<Transform> transform;
+        if (auto t = r.find("transform")) transform = parseTransform(*t);
+        const std::string prefix = r.has("name") ? r.at("name").string() + "/" : "";
+        for (const ObjPart& part : obj.parts) {
+            const ObjMaterial* m = part.material >= 0 ? &obj.materials[size_t(part.material)] : nullptr;
+            Object o;
+            o.kind = Object::Kind::Triangles;
+            o.name = prefix + part.name;
+            o.positions = part.positions;
+            o.normals = part.normals;
+            if (transform) applyTransform(*transform, o);  // indices are still empty: only points and normals
+            for (const Vec3& p : o.positions)
+                if (const std::string why = coordinateRangeProblem(p); !why.empty())
+                    r.fail("OBJ part '" + o.name + "' has a point outside the scene's coordinate range: " + why);
+            const bool emits = emitters && m && !m->ke.isZero();
+            if (!emitters && m && !m->ke.isZero())
+                scene.warnings.push_back(r.file() + ": " + r.pointer() + ": emitting faces of '" + o.name +
+                                         "' are plain surfaces: the scene's \"lights\" replace the OBJ's emitters");
+            size_t first = 0, lightCount = 0;
+            std::vector<Light> partLights;
+            for (size_t f = 0; f < part.faceSizes.size(); first += part.faceSizes[f++]) {
+                const size_t n = part.faceSizes[f];
+                std::vector<uint32_t> tris;
+                fanTriangulate(part.indices, first, n, tris);
+                if (transform && transform->flipsOrientation())
+                    for (size_t i = 0; i + 3 <= tris.size(); i += 3) std::swap(tris[i + 1], tris[i + 2]);
+                if (!emits) {
+                    o.indices.insert(o.indices.end(), tris.begin(), tris.end());
+                    continue;
+                }
+                Light l;
+                l.radiance = m->ke;
+                const Vec3 a = o.positions[tris[0]];
+                if (n == 4) {
+                    // Fan (0 1 2)(0 2 3) of a parallelogram a b c d: c = b + d − a.
+                    const Vec3 b = o.positions[tris[1]], c = o.positions[tris[2]], d = o.positions[tris[5]];
+                    const float diag = std::max(length(c - a), length(d - b));
+                    if (length(c - (b + d - a)) <= float(kPlanarity) * diag) {
+                        l.type = Light::Type::Rect;
+                        l.corner = a;
+                        l.edge1 = b - a;
+                        l.edge2 = d - a;
+                        if (l.area() > 0.f) partLights.push_back(l);
+                        continue;
+                    }
+                }
+                for (size_t i = 0; i + 3 <= tris.size(); i += 3) {
+                    l.type = Light::Type::Triangle;
+                    l.corner = o.positions[tris[i]];
+                    l.edge1 = o.positions[tris[i + 1]] - l.corner;
+                    l.edge2 = o.positions[tris[i + 2]] - l.corner;
+                    if (l.area() > 0.f) partLights.push_back(l);
+                }
+            }
+            for (Light& l : partLights) {
+                l.name = partLights.size() == 1 ? o.name : o.name + "." + std::to_string(lightCount);
+                ++lightCount;
+                lightsOut.push_back(l);
+            }
+            if (o.indices.empty()) continue;  // an emitter only
+            o.material = mtlMaterial(r, m, path);
+            o.closed = r.booleanOr("closed", false);
+            dropDegenerateTriangles(r, o, scene.warnings);
+            // Vertices no face of this object uses (emitting faces) stay; only the indices matter.
+            o.id = int(scene.objects.size());
+            const auto [it, fresh] = objectNames.emplace(o.name, r.pointer());
+            if (!fresh) r.fail("duplicate object name '" + o.name + "' (first used at " + it->second + ")");
+            scene.objects.push_back(std::move(o));
+        }
     }
 
     Light light(const JsonReader& r, size_t index) {
@@ -380,16 +518,44 @@ Scene parseSceneAt(const JsonReader& root, const std::string& baseDir) {
     SceneBuilder b{scene, baseDir, {}, {}};
     scene.camera = parseCamera(root.at("camera"));
 
-    const JsonReader mats = root.at("materials");
-    mats.requireObject();
-    for (auto it = mats.value().begin(); it != mats.value().end(); ++it) {
-        b.materialIndex[it.key()] = int(scene.materials.size());
-        scene.materials.push_back(parseMaterial(mats.at(it.key()), it.key()));
+    // "materials" may be left out when every shape takes its materials from an OBJ's MTL.
+    if (auto mats = root.find("materials")) {
+        mats->requireObject();
+        for (auto it = mats->value().begin(); it != mats->value().end(); ++it) {
+            b.materialIndex[it.key()] = int(scene.materials.size());
+            scene.materials.push_back(parseMaterial(mats->at(it.key()), it.key()));
+        }
     }
 
     const JsonReader shapes = root.at("shapes");
     const size_t shapeCount = shapes.requireArray();
-    for (size_t i = 0; i < shapeCount; ++i) scene.objects.push_back(b.shape(shapes.at(i), i));
+    const bool objEmitters = !root.has("lights");
+    std::vector<Light> objLights;
+    for (size_t i = 0; i < shapeCount; ++i) {
+        const JsonReader s = shapes.at(i);
+        s.requireObject();
+        if (s.has("type") && s.at("type").value().is_string() && s.at("type").string() == "obj" && !s.has("material")) {
+            b.objFile(s, objEmitters, objLights);
+        } else {
+            scene.objects.push_back(b.shape(s, i));
+            scene.objects.back().id = int(scene.objects.size() - 1);
+        }
+    }
+    if (!objLights.empty()) {
+        // The OBJ's emitters are the scene's lights; the one of largest power moves.
+        std::map<std::string, size_t> seen;
+        for (Light& l : objLights) {
+            if (seen.count(l.name)) l.name += "#" + std::to_string(seen[l.name]);
+            ++seen[l.name];
+        }
+        scene.lights = std::move(objLights);
+        size_t best = 0;
+        for (size_t i = 1; i < scene.lights.size(); ++i)
+            if (scene.lights[i].radiance.sum() * scene.lights[i].area() >
+                scene.lights[best].radiance.sum() * scene.lights[best].area())
+                best = i;
+        scene.movableLight = int(best);
+    }
 
     if (auto lights = root.find("lights")) {
         const size_t n = lights->requireArray();
@@ -410,6 +576,7 @@ Scene parseSceneAt(const JsonReader& root, const std::string& baseDir) {
         scene.movableLight = std::max(movable, 0);
     }
     if (auto region = root.find("light_region")) b.lightRegion(*region);
+    else if (!scene.lights.empty() && !root.has("lights")) scene.lightRegion = deriveLightRegion(scene, scene.movableLight);
     if (scene.lights.empty()) scene.warnings.push_back(root.file() + ": the scene has no lights (it renders black)");
     return scene;
 }

@@ -1,6 +1,6 @@
 // Exact direct light in GLSL (shaders/direct_light.glsl) against the CPU estimator
-// (core/predict/exact_direct.h) on the Cornell box, and the CPU fallback for scenes too big for the
-// shader's brute-force shadow rays.
+// (core/predict/exact_direct.h) on the Cornell box (with its rect lamp, and with triangle emitters),
+// and the CPU fallback for scenes too big for the shader's brute-force shadow rays.
 //
 // The bound: the shader repeats the CPU's random numbers and arithmetic in float, so a pixel differs
 // only by rounding — relative 1e-3 allowed (measured at most 1.7e-4 with llvmpipe, from the float
@@ -90,6 +90,49 @@ TEST(GlslDirect, ExactDirectMatchesCpuCornellBox) {
             EXPECT_LE(double(c.beyondRounding), 0.005 * double(c.compared));
             EXPECT_LT(c.meanRelative, 1e-4);
         }
+    }
+}
+
+TEST(GlslDirect, TriangleLightsMatchCpu) {
+    // The Cornell box lit by triangle emitters (an OBJ's Ke faces): its lamp split into two triangles
+    // (the first one movable) and a third, tilted triangle on the back wall. The shader's area-light
+    // texels mark triangles (edge2.w = 1): sampling by the fold, Lambert's formula over three corners.
+    RRF_REQUIRE_GL();
+    Scene scene = test::cornellBox();
+    scene.camera.width = scene.camera.height = 64;
+    const Light lamp = scene.lights[0];
+    scene.lights.clear();
+    auto triangle = [&](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& le) {
+        Light l;
+        l.type = Light::Type::Triangle;
+        l.name = "tri" + std::to_string(scene.lights.size());
+        l.corner = a;
+        l.edge1 = b - a;
+        l.edge2 = c - a;
+        l.radiance = le;
+        scene.lights.push_back(l);
+    };
+    const Vec3 a = lamp.corner, b = a + lamp.edge1, c = b + lamp.edge2, d = a + lamp.edge2;
+    triangle(a, b, c, lamp.radiance);
+    triangle(a, c, d, lamp.radiance);
+    triangle(Vec3(-0.3f, 0.2f, -0.98f), Vec3(0.3f, 0.1f, -0.95f), Vec3(0.f, 0.6f, -0.97f), Vec3(3.f));
+    scene.movableLight = 0;
+    ASSERT_LT(scene.lights[0].normal().y, -0.99f);
+    ASSERT_GT(scene.lights[2].normal().z, 0.f);
+    const ModelSet set = test::mixedModelSet(scene);
+    GlslPredictor gp(scene, set);
+    const PredictionSettings s = exactSettings(9, 5);
+    gp.setPrediction(s);
+    EXPECT_TRUE(gp.directLightNote().empty()) << gp.directLightNote();
+    for (const Vec3& light : {scene.lightPosition(), scene.lightRegion.lo}) {
+        gp.setLightPosition(light);
+        gp.render();
+        const DirectComparison cmp = compareWithCpu(scene, gp, s);
+        std::printf("  triangles: %zu pixels, %zu beyond rounding, mean relative %.3g, max %.3g\n", cmp.compared,
+                    cmp.beyondRounding, cmp.meanRelative, cmp.maxRelative);
+        EXPECT_GT(cmp.compared, size_t(0.8 * 64 * 64));
+        EXPECT_LE(double(cmp.beyondRounding), 0.005 * double(cmp.compared));
+        EXPECT_LT(cmp.meanRelative, 1e-4);
     }
 }
 

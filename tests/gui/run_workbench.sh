@@ -12,6 +12,10 @@ fi
 rm -rf "$out"
 mkdir -p "$out/project" "$out/config"
 cp "$project_dir"/*.json "$out/project/"
+# A project whose scene is an OBJ + MTL (projects/mesh-room) needs those beside it.
+for f in "$project_dir"/*.obj "$project_dir"/*.mtl; do
+    if [ -e "$f" ]; then cp "$f" "$out/project/"; fi
+done
 # Keep the user's config (recent projects, imgui.ini) out of the test and vice versa.
 export XDG_CONFIG_HOME="$out/config"
 size=${RRF_GUI_SIZE:-1600x1000}
