@@ -11,6 +11,8 @@
 #include "core/util/rng.h"
 #include "scene_builders.h"
 
+namespace test_brdf {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -191,3 +193,5 @@ TEST(Brdf, EvalIsReciprocalAndZeroBelowTheSurface) {
         EXPECT_TRUE(b.eval(a, Vec3(c.x, c.y, -c.z)).isZero());
     }
 }
+
+}  // namespace test_brdf
