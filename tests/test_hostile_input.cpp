@@ -237,10 +237,12 @@ TEST(HostileInput, IntegersBeyondInt64AreRefusedNotCast) {
 }
 
 // 2^63 and beyond, written as integers: nlohmann keeps 2^63..2^64-1 as unsigned and turns 2^64 and
-// -2^63-1 into doubles; none fits int64, and none may reach a float→int cast (UBSan's job checks).
+// integers below -2^63 into doubles; none fits int64, and none may reach a float→int cast (UBSan's
+// job checks). -2^63-1 itself would round to the double -2^63, a valid int64; -(2^63 + 2^11) is the
+// next double below it.
 TEST(HostileInput, IntegersFrom2To63OnNameFileFieldAndRange) {
     const json doc = json::parse(R"({"two63": 9223372036854775808, "max64": 18446744073709551615,
-                                     "two64": 18446744073709551616, "below": -9223372036854775809,
+                                     "two64": 18446744073709551616, "below": -9223372036854777856,
                                      "e19": 1e19, "fits": 9223372036854775807, "least": -9223372036854775808})");
     const JsonReader r(doc, "f.json");
     const int64_t lo = std::numeric_limits<int64_t>::min(), hi = std::numeric_limits<int64_t>::max();
@@ -248,7 +250,7 @@ TEST(HostileInput, IntegersFrom2To63OnNameFileFieldAndRange) {
     const std::pair<const char*, const char*> refused[] = {{"two63", "9223372036854775808"},
                                                            {"max64", "18446744073709551615"},
                                                            {"two64", "1.8446744073709552e+19"},
-                                                           {"below", "-9.223372036854776e+18"},
+                                                           {"below", "-9.223372036854778e+18"},
                                                            {"e19", "1e+19"}};
     for (const auto& [key, shown] : refused) {
         try {
