@@ -35,20 +35,9 @@ if(RRF_BUILD_FUZZ)
   if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
     message(FATAL_ERROR "RRF_BUILD_FUZZ needs clang (libFuzzer): configure with -DCMAKE_CXX_COMPILER=clang++")
   endif()
-  # Coverage feedback from everything the parsers call; the fuzz executables add libFuzzer's main.
-  add_compile_options(-fsanitize=fuzzer-no-link)
+  # The coverage feedback (-fsanitize=fuzzer-no-link) is compiled into rrf_core and the fuzz
+  # targets only (cmake/Fuzz.cmake): the parsers are all in core, and the tests and the CLI that the
+  # same build runs would only be slower with it. Linking it into every program gives the ones that
+  # are not fuzz targets the runtime's hooks.
   add_link_options(-fsanitize=fuzzer-no-link)
 endif()
-
-# scripts/sanitize.sh builds with CMAKE_UNITY_BUILD (several sources per compiler run: instrumented
-# template code is generated once per batch instead of once per file, which halves the build). These
-# sources define file-local helpers under names that other sources use too, so they are compiled
-# on their own.
-set_source_files_properties(
-  core/eval/reference_store.cpp core/nn/model_file.cpp core/nn/model_set.cpp core/project/scene_overrides.cpp
-  app/cli/cli_reference.cpp
-  PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
-# The test sources share helper names (TempDir, toD, ...) in anonymous namespaces: each is compiled
-# on its own.
-file(GLOB rrf_unity_skipped_tests CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/*.cpp)
-set_source_files_properties(${rrf_unity_skipped_tests} PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)

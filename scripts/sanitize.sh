@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
-# The sanitizer and fuzz jobs of CI (scripts/test.sh runs them after the main suite; docs/design.md
-# §22). Each job builds with clang 14 into its own directory and fails on any sanitizer report,
-# failed test or fuzz finding:
+# The sanitizer and fuzz jobs of CI (scripts/test.sh runs them after the release job; docs/design.md
+# §22). Each job builds with clang 14 into its own directory, in unity batches (cmake/Unity.cmake),
+# and fails on any sanitizer report, failed test or fuzz finding:
 #
-#   asan   clang, -O1, AddressSanitizer + UndefinedBehaviorSanitizer + libFuzzer coverage: this one
-#          build is the project's clang build, runs the core tests (rrf_tests, less the slow ones in
-#          $asan_skip) and the fuzz targets' seeds and regressions once (CTest fuzz_*_corpus)
-#   fuzz   each fuzz target of that build mutates its seeds for RRF_FUZZ_SECONDS (default 20),
-#          two targets at a time; a crashing input is kept under <asan build>/fuzz-findings/
-#   tsan   clang, -O1, ThreadSanitizer: core + rrf_threaded_tests (renderer, generator, training,
-#          job runner; cmake/ThreadedTests.cmake), the tests in $tsan_filter
+#   asan   clang, -O1, AddressSanitizer + UndefinedBehaviorSanitizer; core, rrf, rrf_tests and the
+#          fuzz targets (core and the fuzz targets also carry libFuzzer's coverage feedback). This
+#          build is the project's clang build; it runs the core tests (rrf_tests, less the slow ones
+#          in $asan_skip) and the fuzz targets' seeds and regressions once (CTest fuzz_*_corpus)
+#   fuzz   each fuzz target of that build mutates its seeds for RRF_FUZZ_SECONDS (default 60), two
+#          targets at a time; a crashing input is kept under <asan build>/fuzz-findings/
+#   tsan   clang, -O1, ThreadSanitizer: core + rrf_threaded_tests only (renderer, generator,
+#          training, job runner; cmake/ThreadedTests.cmake), the tests in $tsan_filter
 #
 # Usage: scripts/sanitize.sh [asan|fuzz|tsan]...   (no argument: all three, in that order)
 # Build directories: RRF_ASAN_BUILD_DIR (default build-asan), RRF_TSAN_BUILD_DIR (default build-tsan).
@@ -17,7 +18,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 asan_build=${RRF_ASAN_BUILD_DIR:-$root/build-asan}
 tsan_build=${RRF_TSAN_BUILD_DIR:-$root/build-tsan}
-fuzz_seconds=${RRF_FUZZ_SECONDS:-20}
+fuzz_seconds=${RRF_FUZZ_SECONDS:-60}
 jobs=$(nproc)
 jobs_to_run=("$@")
 [[ ${#jobs_to_run[@]} -eq 0 ]] && jobs_to_run=(asan fuzz tsan)
@@ -51,7 +52,7 @@ configure() {  # configure <build dir> <cmake args...>
   shift
   # -O1: the speed of the tests matters as much as that of the compiler; NDEBUG stays off, so the
   # asserts of the code and of Eigen are checked too. Unity batches of 16 sources halve the compile
-  # time (cmake/Sanitizers.cmake lists the sources that must stay on their own).
+  # time (cmake/Unity.cmake lists the sources that must stay on their own).
   # Full paths, as CMake caches them: a bare name would differ from the cache and reset it every run.
   cmake -S "$root" -B "$dir" -DCMAKE_C_COMPILER="$(command -v clang-14)" -DCMAKE_CXX_COMPILER="$(command -v clang++-14)" \
         -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE=-O1 -DCMAKE_C_FLAGS_SANITIZE=-O1 \
@@ -59,7 +60,12 @@ configure() {  # configure <build dir> <cmake args...>
         -DRRF_BUILD_GUI=OFF -DRRF_BUILD_BENCH=OFF "$@" >/dev/null
 }
 
-stamp() { echo "sanitize: $1 ($(date +%T), ${SECONDS}s since start)"; }
+# CPU seconds (user + system) of the finished child processes so far: on a shared machine a truer
+# measure of what a job costs than its wall time.
+# (/proc/$$/stat's cutime and cstime: this shell's, even when read from a command substitution).
+clock_ticks=$(getconf CLK_TCK)
+cpu_seconds() { local st; read -r -a st </proc/$$/stat; echo $(((st[15] + st[16]) / clock_ticks)); }
+stamp() { echo "sanitize: $1 ($(date +%T), ${SECONDS} s since start, $(cpu_seconds) s CPU)"; }
 
 run_asan() {
   stamp "asan: building (clang, address+undefined, fuzzer coverage)"

@@ -1,16 +1,42 @@
 #!/usr/bin/env bash
-# The README's test command: installs what is missing, builds everything (core, CLI, GUI, tests,
-# benchmarks) and runs every test, GUI tests included (under Xvfb). Exits non-zero on any failure.
-# RRF_SANITIZE_JOBS=1 also runs the sanitizer and fuzz jobs (scripts/sanitize.sh: clang ASan+UBSan
-# build with the core tests and fuzz targets, TSan build of the threaded tests). They are not yet part
-# of CI's default run: the ASan job has not completed a green run yet and the whole CI with them was
-# projected at ~24 minutes on 2 cores, over the 20-minute budget (docs/devlog/2026-11-30-session-4.md).
+# The README's test command and CI's (.ci/run). Installs what is missing, then runs, in this order:
+#   release  GCC Release build of everything (core, CLI, GUI, tests, benchmarks) and every test, GUI
+#            tests included (under Xvfb);
+#   asan     clang build with AddressSanitizer + UndefinedBehaviorSanitizer running the core tests and
+#            the fuzz targets' seeds (CI's clang build);
+#   fuzz     each libFuzzer target (scene, project, dataset, model parsers) for RRF_FUZZ_SECONDS;
+#   tsan     clang ThreadSanitizer build of the threaded tests.
+# (the last three: scripts/sanitize.sh, docs/design.md §22). RRF_SANITIZE_JOBS=0 runs the release job
+# only, for a quick local check. Every build is a unity build (cmake/Unity.cmake): CI builds from
+# scratch without a compiler cache, and batches of sources halve the compile time. The whole run takes
+# about 16 minutes on 2 cores (README). Exits non-zero on the first failing job; each job prints its
+# time.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${RRF_BUILD_DIR:-$root/build}
-"$root/scripts/install-deps.sh"
-RRF_BUILD_DIR=$build "$root/scripts/build.sh" -DRRF_BUILD_GUI=ON -DRRF_BUILD_TESTS=ON -DRRF_BUILD_BENCH=ON
+sanitize=${RRF_SANITIZE_JOBS:-1}
+
+if [[ "$sanitize" != 0 ]]; then
+  "$root/scripts/install-deps.sh" --sanitizers
+else
+  "$root/scripts/install-deps.sh"
+fi
+
+# CPU seconds (user + system) of the finished child processes so far: on a shared machine a truer
+# measure of what a job costs than its wall time.
+# (/proc/$$/stat's cutime and cstime: this shell's, even when read from a command substitution).
+clock_ticks=$(getconf CLK_TCK)
+cpu_seconds() { local st; read -r -a st </proc/$$/stat; echo $(((st[15] + st[16]) / clock_ticks)); }
+
+start=$SECONDS
+echo "test: release: building ($(date +%T))"
+RRF_BUILD_DIR=$build "$root/scripts/build.sh" -DRRF_BUILD_GUI=ON -DRRF_BUILD_TESTS=ON -DRRF_BUILD_BENCH=ON \
+  -DCMAKE_UNITY_BUILD=ON
+echo "test: release: built in $((SECONDS - start)) s ($(cpu_seconds) s CPU); running every test"
 (cd "$build" && ctest --output-on-failure -j "$(nproc)" --timeout 600)
-if [[ "${RRF_SANITIZE_JOBS:-0}" != 0 ]]; then
+echo "test: release: passed ($((SECONDS - start)) s, $(cpu_seconds) s CPU)"
+
+if [[ "$sanitize" != 0 ]]; then
   "$root/scripts/sanitize.sh"
 fi
+echo "test: all jobs passed in $((SECONDS / 60)) min $((SECONDS % 60)) s ($(cpu_seconds) s CPU, load $(cut -d' ' -f1-3 /proc/loadavg))"

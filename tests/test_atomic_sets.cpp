@@ -28,6 +28,8 @@
 #include "core/util/temp_files.h"
 #include "scene_builders.h"
 
+namespace test_atomic_sets {
+
 using namespace rrf;
 using namespace rrf::test;
 namespace fs = std::filesystem;
@@ -464,3 +466,5 @@ TEST(AtomicSets, CliTrainKilledBeforeOrAfterTheSwapLeavesOneWholeSet) {
     EXPECT_NE(train(5, "replace m: after swap"), 0);
     EXPECT_EQ(hiddenOfEveryNetwork(), std::set<int>{5}) << "killed after the swap: the new set must be complete";
 }
+
+}  // namespace test_atomic_sets

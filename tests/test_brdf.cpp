@@ -12,6 +12,8 @@
 #include "core/util/rng.h"
 #include "scene_builders.h"
 
+namespace test_brdf {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -294,3 +296,4 @@ TEST(Brdf, GlossyProjectMaterialsPassChiSquareInTheLobeFrame) {
     }
     EXPECT_EQ(tested, 3) << "the glossy project's three Phong materials";
 }
+}  // namespace test_brdf

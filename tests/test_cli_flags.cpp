@@ -9,6 +9,8 @@
 #include "app/cli/cli_flags.h"
 #include "core/project/project.h"
 
+namespace test_cli_flags {
+
 using namespace rrf;
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -73,3 +75,5 @@ TEST(CliFlags, NeitherSectionGetsTheProjectDefaults) {
     EXPECT_EQ(settingsOf(partial, false).sampling.nx, 4);
     EXPECT_EQ(settingsOf(partial, false).sampling.directions, 300);
 }
+
+}  // namespace test_cli_flags

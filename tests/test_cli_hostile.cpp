@@ -20,6 +20,8 @@
 
 #include "tests/cli_runner.h"
 
+namespace test_cli_hostile {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 using rrf::test::runCli;
@@ -162,3 +164,5 @@ TEST(CliHostile, CtrlCStopsOneHugeCellWithinASecond) {
     EXPECT_FALSE(fs::exists(out));
     fs::remove_all(dir);
 }
+
+}  // namespace test_cli_hostile

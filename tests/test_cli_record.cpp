@@ -20,7 +20,7 @@
 
 namespace fs = std::filesystem;
 
-namespace rrf::test {
+namespace rrf::test::test_cli_record {
 namespace {
 
 using Result = rrf::test::CliResult;
@@ -172,4 +172,4 @@ TEST(CliRecord, TrainAndEvaluateRecordLikeTheWorkbench) {
     fs::remove_all(dir);
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_cli_record

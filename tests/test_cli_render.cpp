@@ -17,6 +17,8 @@
 
 #include "tests/cli_runner.h"
 
+namespace test_cli_render {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -161,3 +163,5 @@ TEST(CliFlags, HelpStatesOneSpellingPerSetting) {
     EXPECT_NE(sweep.output.find("5 10,5 20,10"), std::string::npos) << sweep.output;
     EXPECT_NE(sweep.output.find("2,2,2 4,4,4"), std::string::npos) << sweep.output;
 }
+
+}  // namespace test_cli_render

@@ -15,6 +15,8 @@
 #include "core/scene/accel.h"
 #include "scene_builders.h"
 
+namespace test_cost_of_accuracy {
+
 using namespace rrf;
 
 namespace {
@@ -167,3 +169,5 @@ TEST(SweepRun, EveryPointUsesOneFootprintMaskAndModelSweepsRenderThePathTracer) 
     EXPECT_EQ(r.rows[0].models, nullptr) << "networks are kept only on request";
     EXPECT_DOUBLE_EQ(r.relativeNoiseFloor, r.rows[0].overall.relativeRmseNoiseFloor) << "one reference, one mask";
 }
+
+}  // namespace test_cost_of_accuracy

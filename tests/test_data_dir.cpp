@@ -10,6 +10,8 @@
 
 #include "core/util/data_dir.h"
 
+namespace test_data_dir {
+
 using namespace rrf;
 namespace fs = std::filesystem;
 
@@ -138,3 +140,5 @@ TEST(DataDir, WrongVariableIsReportedNotReplaced) {
         EXPECT_NE(msg.find("shaders/ and projects/"), std::string::npos) << msg;
     }
 }
+
+}  // namespace test_data_dir

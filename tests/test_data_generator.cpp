@@ -33,6 +33,8 @@
 #include "scene_builders.h"
 #include "tests/cli_runner.h"
 
+namespace test_data_generator {
+
 using namespace rrf;
 using namespace rrf::test;
 namespace fs = std::filesystem;
@@ -569,3 +571,5 @@ TEST(DataGenerator, InterruptedCliWritesNothing) {
     EXPECT_EQ(tempFiles(dir), 0);
     fs::remove_all(dir);
 }
+
+}  // namespace test_data_generator

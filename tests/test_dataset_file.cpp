@@ -25,6 +25,8 @@
 #include "core/data/dataset_summary.h"
 #include "core/nn/training_samples.h"
 
+namespace test_dataset_file {
+
 using namespace rrf;
 namespace fs = std::filesystem;
 
@@ -476,3 +478,5 @@ TEST(DatasetFile, TrainingRefusesALayoutWithoutSixTargets) {
     }
     fs::remove_all(dir);
 }
+
+}  // namespace test_dataset_file

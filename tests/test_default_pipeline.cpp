@@ -12,6 +12,8 @@
 #include "core/eval/held_out.h"
 #include "core/project/project.h"
 
+namespace test_default_pipeline {
+
 using namespace rrf;
 
 namespace {
@@ -69,3 +71,5 @@ TEST(DefaultPipeline, QuickRunOfTheProjectDefaultsStaysWithinItsMeasuredBound) {
     EXPECT_LT(good.indirect, 0.2);
     EXPECT_GT(broken.indirect, 1.15 * good.indirect);
 }
+
+}  // namespace test_default_pipeline

@@ -14,6 +14,8 @@
 #include "core/util/stopwatch.h"
 #include "core/eval/sweep.h"
 
+namespace test_end_to_end {
+
 using namespace rrf;
 
 namespace {
@@ -193,3 +195,5 @@ TEST(EndToEnd, SppSweepShowsTheMonteCarloSlope) {
     for (size_t i = 1; i < r.rows.size(); ++i) EXPECT_LT(r.rows[i].overall.rmse, r.rows[i - 1].overall.rmse);
     EXPECT_NE(sweepCsv(cornell.scene, r).find("spp,16,"), std::string::npos);
 }
+
+}  // namespace test_end_to_end

@@ -7,6 +7,8 @@
 #include "core/eval/error_metrics.h"
 #include "tests/image_builders.h"
 
+namespace test_error_metrics {
+
 using namespace rrf;
 
 namespace {
@@ -134,3 +136,5 @@ TEST(ErrorMetrics, MapKindNamesRoundTrip) {
     EXPECT_FALSE(parseErrorMapKind("luminance").has_value());
     EXPECT_FALSE(parseErrorMapKind("Relative").has_value());
 }
+
+}  // namespace test_error_metrics

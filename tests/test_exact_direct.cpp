@@ -14,6 +14,8 @@
 #include "core/predict/predictor.h"
 #include "scene_builders.h"
 
+namespace test_exact_direct {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -191,3 +193,5 @@ TEST(ExactDirect, SampleGridCoversEveryCount) {
         EXPECT_LE(std::abs(g.cols - g.rows), 1) << n;
     }
 }
+
+}  // namespace test_exact_direct

@@ -15,6 +15,8 @@
 #include "core/scene/camera_rays.h"
 #include "scene_builders.h"
 
+namespace test_footprint_mask {
+
 using namespace rrf;
 
 namespace {
@@ -274,3 +276,5 @@ TEST(FootprintMask, ExactDirectLightOfTheShortBoxMatchesItsReferenceWithinNoise)
                 (unsigned long long)old.pixels);
     EXPECT_GT(old.relativeRmse, 10.0 * kept.relativeRmse);
 }
+
+}  // namespace test_footprint_mask

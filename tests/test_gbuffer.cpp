@@ -7,6 +7,8 @@
 #include "core/predict/gbuffer.h"
 #include "core/project/project.h"
 
+namespace test_gbuffer {
+
 using namespace rrf;
 
 namespace {
@@ -117,3 +119,5 @@ TEST(GBuffer, EmitterPixelsCarryTheLightsRadianceAndFollowTheLight) {
             ASSERT_EQ(Vec3(gb.input(i)[6], gb.input(i)[7], gb.input(i)[8]), b);
         }
 }
+
+}  // namespace test_gbuffer

@@ -13,6 +13,8 @@
 #include "core/project/project.h"
 #include "core/util/error.h"
 
+namespace test_generator_stats {
+
 using namespace rrf;
 namespace fs = std::filesystem;
 
@@ -97,3 +99,5 @@ TEST(GeneratorStats, AddingTheNextShardSumsCountersAndAppendsCells) {
     EXPECT_EQ(a.recordsPerObject, (std::vector<uint64_t>{5, 3, 1}));
     EXPECT_EQ(a.paths, 18u);
 }
+
+}  // namespace test_generator_stats

@@ -12,6 +12,8 @@
 #include "core/scene/camera_rays.h"
 #include "scene_builders.h"
 
+namespace test_glossy_transport {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -151,3 +153,4 @@ TEST(GlossyTransport, NeeMatchesNaiveWithTriangleLightsAtHighExponents) {
         EXPECT_LT(5 * dGlobal.sigma(), 0.08 * global.mean) << "n = " << n;
     }
 }
+}  // namespace test_glossy_transport

@@ -24,6 +24,8 @@
 #include "core/nn/model.h"
 #include "core/nn/training_samples.h"
 
+namespace test_golden_files {
+
 using namespace rrf;
 namespace fs = std::filesystem;
 
@@ -193,3 +195,5 @@ TEST(GoldenFiles, ModelFileDecodesToItsKnownValues) {
         EXPECT_NEAR(p(1, 0), y[1], 1e-12 * std::fabs(y[1]));
     }
 }
+
+}  // namespace test_golden_files

@@ -14,6 +14,8 @@
 #include "core/render/renderer.h"
 #include "scene_builders.h"
 
+namespace test_hard_cases {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -380,3 +382,5 @@ TEST(HardCases, DegenerateGeometryAndRaysAlongEdges) {
         ASSERT_TRUE(L.direct.isFinite() && L.indirect.isFinite()) << "ray " << i;
     }
 }
+
+}  // namespace test_hard_cases

@@ -32,6 +32,8 @@
 #include "core/util/json_reader.h"
 #include "core/util/memory_budget.h"
 
+namespace test_hostile_input {
+
 using namespace rrf;
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -234,6 +236,40 @@ TEST(HostileInput, IntegersBeyondInt64AreRefusedNotCast) {
     }
 }
 
+// 2^63 and beyond, written as integers: nlohmann keeps 2^63..2^64-1 as unsigned and turns 2^64 and
+// integers below -2^63 into doubles; none fits int64, and none may reach a float→int cast (UBSan's
+// job checks). -2^63-1 itself would round to the double -2^63, a valid int64; -(2^63 + 2^11) is the
+// next double below it.
+TEST(HostileInput, IntegersFrom2To63OnNameFileFieldAndRange) {
+    const json doc = json::parse(R"({"two63": 9223372036854775808, "max64": 18446744073709551615,
+                                     "two64": 18446744073709551616, "below": -9223372036854777856,
+                                     "e19": 1e19, "fits": 9223372036854775807, "least": -9223372036854775808})");
+    const JsonReader r(doc, "f.json");
+    const int64_t lo = std::numeric_limits<int64_t>::min(), hi = std::numeric_limits<int64_t>::max();
+    const std::string range = " out of range [-9223372036854775808, 9223372036854775807]";
+    const std::pair<const char*, const char*> refused[] = {{"two63", "9223372036854775808"},
+                                                           {"max64", "18446744073709551615"},
+                                                           {"two64", "1.8446744073709552e+19"},
+                                                           {"below", "-9.223372036854778e+18"},
+                                                           {"e19", "1e+19"}};
+    for (const auto& [key, shown] : refused) {
+        try {
+            r.at(key).integer(lo, hi);
+            FAIL() << key << " was accepted";
+        } catch (const InputError& e) {
+            EXPECT_TRUE(contains(e.what(), "f.json: /" + std::string(key) + ": integer " + shown + range)) << e.what();
+        }
+    }
+    try {
+        r.at("two63").integer(0, 100);
+        FAIL() << "2^63 accepted in [0, 100]";
+    } catch (const InputError& e) {
+        EXPECT_TRUE(contains(e.what(), "f.json: /two63: integer 9223372036854775808 out of range [0, 100]")) << e.what();
+    }
+    EXPECT_EQ(r.at("fits").integer(lo, hi), hi);
+    EXPECT_EQ(r.at("least").integer(lo, hi), lo);
+}
+
 TEST(HostileInput, MalformedDatasetHeadersNameTheFileAndField) {
     const fs::path dir = testDir();
     struct Case {
@@ -369,3 +405,5 @@ TEST(HostileInput, ObjFileThatIsNotARegularFileIsRefused) {
     const std::string msg = sceneError(scene);
     EXPECT_TRUE(contains(msg, "scene.json: /shapes/5/file: OBJ file '/dev/zero' is not a regular file")) << msg;
 }
+
+}  // namespace test_hostile_input

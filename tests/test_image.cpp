@@ -15,6 +15,8 @@
 #include "core/util/image.h"
 #include "core/util/image_io.h"
 
+namespace test_image {
+
 namespace fs = std::filesystem;
 using namespace rrf;
 
@@ -318,3 +320,5 @@ TEST(Image, FalseColorEndpoints) {
     EXPECT_THROW(falseColor(s, 1.f, 0.f), std::invalid_argument);
     EXPECT_EQ(falseColor(s, 0.5f, 0.5f).at(2, 0), viridis(1.f));
 }
+
+}  // namespace test_image

@@ -11,6 +11,8 @@
 #include "core/render/path_tracer.h"
 #include "scene_builders.h"
 
+namespace test_irradiance {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -122,3 +124,5 @@ TEST(Irradiance, PointLightIsExact) {
     Rng rng(31, 0);
     EXPECT_TRUE(below.shade(surfaceHit(Vec3(0.5f, 0, 0)), Vec3(0, 1, 0), rng, counters).direct.isZero());
 }
+
+}  // namespace test_irradiance

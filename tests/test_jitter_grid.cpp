@@ -14,6 +14,8 @@
 #include "core/project/project.h"
 #include "scene_builders.h"
 
+namespace test_jitter_grid {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -235,3 +237,5 @@ TEST(ViewpointClassifier, InsideMeansAnOddNumberOfCrossings) {
         EXPECT_STREQ(statusName(classify(p)), "InsideObject") << "shell at " << p;
     EXPECT_STREQ(statusName(classify(Vec3(0.f, 0.f, 40.f))), "OutsideScene");
 }
+
+}  // namespace test_jitter_grid

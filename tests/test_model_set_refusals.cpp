@@ -20,6 +20,8 @@
 #include "scene_builders.h"
 #include "tests/synthetic_samples.h"
 
+namespace test_model_set_refusals {
+
 using namespace rrf;
 namespace fs = std::filesystem;
 
@@ -151,3 +153,5 @@ TEST(ModelSetRefusals, IndexFromANewerBuild) {
     EXPECT_TRUE(has(e, "/version")) << e;
     EXPECT_TRUE(has(e, s.index())) << e;
 }
+
+}  // namespace test_model_set_refusals

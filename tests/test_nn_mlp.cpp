@@ -6,6 +6,8 @@
 #include "core/nn/mlp.h"
 #include "core/util/rng.h"
 
+namespace test_nn_mlp {
+
 using namespace rrf;
 
 namespace {
@@ -187,3 +189,5 @@ TEST(MinMaxScaler, RoundingNoiseIsNotStretched) {
     EXPECT_DOUBLE_EQ(n.row(1).minCoeff(), -1.0);
     EXPECT_DOUBLE_EQ(n.row(1).maxCoeff(), 1.0);
 }
+
+}  // namespace test_nn_mlp

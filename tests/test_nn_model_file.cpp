@@ -15,6 +15,8 @@
 #include "core/nn/model.h"
 #include "core/util/rng.h"
 
+namespace test_nn_model_file {
+
 using namespace rrf;
 namespace fs = std::filesystem;
 
@@ -223,3 +225,5 @@ TEST(ModelFile, RefusesToSaveNonFiniteWeights) {
     EXPECT_THROW(saveModel(m, dir.file("inf.rrfm")), std::invalid_argument);
     EXPECT_FALSE(fs::exists(dir.file("inf.rrfm")));
 }
+
+}  // namespace test_nn_model_file

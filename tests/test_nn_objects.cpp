@@ -11,6 +11,8 @@
 #include "core/nn/training_samples.h"
 #include "tests/synthetic_samples.h"
 
+namespace test_nn_objects {
+
 using namespace rrf;
 
 namespace {
@@ -165,3 +167,5 @@ TEST(ObjectTraining, CancelledBeforeStartIsSkipped) {
     EXPECT_TRUE(r[0].skipped);
     EXPECT_NE(r[0].message.find("cancelled"), std::string::npos);
 }
+
+}  // namespace test_nn_objects

@@ -9,6 +9,8 @@
 #include "core/nn/model.h"
 #include "core/util/rng.h"
 
+namespace test_nn_training {
+
 using namespace rrf;
 
 namespace {
@@ -249,3 +251,5 @@ TEST(Adam, CancelAndEarlyStop) {
     EXPECT_EQ(s.training.stopReason, "validation stop");
     EXPECT_LT(s.training.epochs, 10);
 }
+
+}  // namespace test_nn_training

@@ -28,6 +28,8 @@
 #include "scene_builders.h"
 #include "tests/image_builders.h"
 
+namespace test_noise_floor {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -337,3 +339,5 @@ TEST(NoiseFloor, RenderOutputsSaveTheVarianceAndLoadReferenceReadsIt) {
     }
     fs::remove_all(dir);
 }
+
+}  // namespace test_noise_floor

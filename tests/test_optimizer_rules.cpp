@@ -13,6 +13,8 @@
 #include "core/nn/validation_monitor.h"
 #include "core/util/rng.h"
 
+namespace test_optimizer_rules {
+
 using namespace rrf;
 
 namespace {
@@ -280,3 +282,5 @@ TEST(LevenbergMarquardtStops, MuMaxStopsBeforeAnyStep) {
     EXPECT_EQ(r.epochs, 0);
     EXPECT_EQ(w, initialParams(smallArch(), 9));
 }
+
+}  // namespace test_optimizer_rules

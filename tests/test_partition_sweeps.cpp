@@ -10,6 +10,8 @@
 #include "core/util/error.h"
 #include "scene_builders.h"
 
+namespace test_partition_sweeps {
+
 using namespace rrf;
 
 namespace {
@@ -101,3 +103,5 @@ TEST(PartitionSweeps, RecordSppSetsThePathsPerRecord) {
     EXPECT_GE(r.rows[1].extra.at("mean_record_spp").get<double>(), 4.0);
     EXPECT_LE(r.rows[1].extra.at("mean_record_spp").get<double>(), 8.0);
 }
+
+}  // namespace test_partition_sweeps

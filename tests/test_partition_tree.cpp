@@ -23,6 +23,8 @@
 #include "core/util/error.h"
 #include "core/util/rng.h"
 
+namespace test_partition_tree {
+
 using namespace rrf;
 namespace fs = std::filesystem;
 
@@ -511,3 +513,5 @@ TEST(PartitionedPrediction, EveryPixelIsPredictedByTheLeafOfItsInputs) {
         EXPECT_EQ(pred.leaves(g), out.leaf);  // the overlay's lookup without evaluating networks
     }
 }
+
+}  // namespace test_partition_tree

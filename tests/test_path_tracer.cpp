@@ -16,6 +16,8 @@
 #include "core/scene/camera_rays.h"
 #include "scene_builders.h"
 
+namespace test_path_tracer {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -183,3 +185,5 @@ TEST(PathTracer, MissAndBlackEmitterBack) {
     EXPECT_TRUE(tracer.trace(back, rng, counters).global().isZero());
     EXPECT_EQ(counters.rays, 3u);
 }
+
+}  // namespace test_path_tracer

@@ -10,6 +10,8 @@
 #include "core/util/json_reader.h"
 #include "core/project/project.h"
 
+namespace test_predictor {
+
 using namespace rrf;
 
 namespace {
@@ -268,3 +270,5 @@ TEST(Evaluation, FootprintPixelsAreLeftOutAndCounted) {
     const Evaluation moved = evaluate(pred, ref);
     EXPECT_GT(moved.term(Term::Global).overall.maxError, 0.99);
 }
+
+}  // namespace test_predictor

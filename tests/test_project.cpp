@@ -12,6 +12,8 @@
 #include "core/project/scene_edits.h"
 #include "core/util/json_reader.h"
 
+namespace test_project {
+
 using namespace rrf;
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -448,3 +450,5 @@ TEST(SceneEdits, EditMaterialEnforcesEnergyConservationAndRecords) {
     EXPECT_FLOAT_EQ(*o.exponent, 20.f);
     EXPECT_FALSE(editMaterial(p, 99, m, true)) << "no such material";
 }
+
+}  // namespace test_project

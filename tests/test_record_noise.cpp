@@ -20,6 +20,8 @@
 #include "core/nn/training_samples.h"
 #include "core/project/project.h"
 
+namespace test_record_noise {
+
 using namespace rrf;
 namespace fs = std::filesystem;
 
@@ -206,3 +208,5 @@ TEST(DatasetVersion, VersionTwoRoundTripsTheNoiseAndVersionOneLoadsWithNoiseUnkn
     fs::remove(v1);
     fs::remove(v2);
 }
+
+}  // namespace test_record_noise

@@ -38,6 +38,8 @@
 #include "scene_builders.h"
 #include "tests/cli_runner.h"
 
+namespace test_reference_store {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -426,3 +428,5 @@ TEST(ReferenceCli, RendersReusesListsAndPrunes) {
     EXPECT_NE(pruned.output.find("0 reference(s)"), std::string::npos) << pruned.output;
     fs::remove_all(dir);
 }
+
+}  // namespace test_reference_store

@@ -13,6 +13,8 @@
 #include "core/render/renderer.h"
 #include "scene_builders.h"
 
+namespace test_renderer {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -203,3 +205,5 @@ TEST(Renderer, NeeAndNaiveAgreeAtEveryMaxDepth) {
         else EXPECT_EQ(b.indirect.mean().x, 0.f);
     }
 }
+
+}  // namespace test_renderer

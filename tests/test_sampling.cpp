@@ -15,6 +15,8 @@
 #include "core/util/warp.h"
 #include "scene_builders.h"
 
+namespace test_sampling {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -159,3 +161,5 @@ TEST(Sampling, PhongLobeStaysFiniteAndUnitAtHugeExponents) {
     EXPECT_EQ(powCos(0.5f, 0.f), 1.f);
     EXPECT_EQ(powCos(0.999f, 1e6f), 0.f);  // underflows to 0, not NaN
 }
+
+}  // namespace test_sampling

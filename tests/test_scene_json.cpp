@@ -11,6 +11,8 @@
 #include "core/util/error.h"
 #include "core/scene/scene_json.h"
 
+namespace test_scene_json {
+
 using namespace rrf;
 using nlohmann::json;
 
@@ -432,3 +434,5 @@ TEST(SceneJsonError, ZeroAreaRectLight) {
     doc["lights"][0]["edge2"] = {0, 0, 0};
     expectMessage(loadError("zero_light.json", doc), "zero_light.json", "/lights/0", {"zero area"});
 }
+
+}  // namespace test_scene_json

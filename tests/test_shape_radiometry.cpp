@@ -11,6 +11,8 @@
 #include "core/scene/accel.h"
 #include "scene_builders.h"
 
+namespace test_shape_radiometry {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -179,3 +181,5 @@ TEST(ShapeRadiometry, RectLightOnATriangleMeshMatchesLambertsPolygonFormula) {
         EXPECT_NEAR(st.mean, expected, 5 * st.sigma() + 2e-3 * expected) << p;
     }
 }
+
+}  // namespace test_shape_radiometry

@@ -10,6 +10,8 @@
 #include "core/util/error.h"
 #include "scene_builders.h"
 
+namespace test_sweep_values {
+
 using namespace rrf;
 
 namespace {
@@ -75,3 +77,5 @@ TEST(SweepValues, ShardOutOfRangeNamesTheSetting) {
     EXPECT_EQ(settingNamedBy([&] { gen.run(3, 3); }), "shard");
     EXPECT_EQ(settingNamedBy([&] { gen.run(0, 0); }), "shard");
 }
+
+}  // namespace test_sweep_values

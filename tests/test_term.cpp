@@ -3,6 +3,8 @@
 
 #include "core/render/term.h"
 
+namespace test_term {
+
 using namespace rrf;
 
 TEST(Term, StorageOrderIsDirectIndirectGlobal) {
@@ -25,3 +27,5 @@ TEST(Term, NamesRoundTrip) {
     EXPECT_FALSE(parseTerm("joint").has_value()) << "a network target, not a radiance term";
     EXPECT_FALSE(parseTerm("").has_value());
 }
+
+}  // namespace test_term

@@ -10,6 +10,8 @@
 #include "core/nn/validation_monitor.h"
 #include "core/util/rng.h"
 
+namespace test_training_goal {
+
 using namespace rrf;
 
 namespace {
@@ -236,3 +238,5 @@ TEST(RelativeL2, ValueAndGradientMatchClosedFormAndFiniteDifferences) {
         EXPECT_NEAR(grad[i], fd, 1e-6 * std::max(1.0, std::fabs(fd))) << "parameter " << i;
     }
 }
+
+}  // namespace test_training_goal

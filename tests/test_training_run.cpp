@@ -10,6 +10,8 @@
 #include "core/nn/training_run.h"
 #include "tests/synthetic_samples.h"
 
+namespace test_training_run {
+
 using namespace rrf;
 
 TEST(TrainingRun, SameNetworksAsTrainObjectsWithOrderedCurves) {
@@ -81,3 +83,5 @@ TEST(TrainingRun, SavedModelSetRecordsWhereTheRunCameFrom) {
     EXPECT_EQ(set.index.at("cancelled"), false);
     std::filesystem::remove_all(dir);
 }
+
+}  // namespace test_training_run

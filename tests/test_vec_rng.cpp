@@ -6,6 +6,8 @@
 #include "core/util/rng.h"
 #include "core/util/vec3.h"
 
+namespace test_vec_rng {
+
 using namespace rrf;
 
 TEST(Rng, SameKeyGivesSameSequence) {
@@ -50,3 +52,5 @@ TEST(Frame, IsOrthonormal) {
         EXPECT_NEAR(length(w - v), 0, 1e-5);
     }
 }
+
+}  // namespace test_vec_rng

@@ -10,8 +10,12 @@ ValidationMonitor::ValidationMonitor(AdamLoss loss, const MinMaxScaler& outputSc
     : loss_(loss, outputScaler), goal_(goal), y_(yNormalised.cast<double>()) {
     invScale_ = 1.0 / outputScaler.scale.array();
     offset_ = outputScaler.offset;
-    yRaw_ = (y_.array().colwise() * invScale_.array()).matrix();
-    yRaw_.colwise() += offset_;
+    // Without validation samples y_ may be 0 x 0, whose rows do not match the scaler's (an Eigen
+    // precondition, asserted in the sanitizer build): there is nothing to convert then.
+    if (y_.size() > 0) {
+        yRaw_ = (y_.array().colwise() * invScale_.array()).matrix();
+        yRaw_.colwise() += offset_;
+    }
     weight_.resize(y_.rows(), y_.cols());
     for (Eigen::Index j = 0; j < y_.cols(); ++j)
         for (Eigen::Index k = 0; k < y_.rows(); ++k) weight_(k, j) = loss_.rawWeight(k, y_(k, j));

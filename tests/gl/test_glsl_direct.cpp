@@ -20,7 +20,7 @@
 #include "tests/gl/gl_test_env.h"
 #include "tests/gl/test_models.h"
 
-namespace rrf {
+namespace rrf::test_glsl_direct {
 namespace {
 
 PredictionSettings exactSettings(int samples, uint64_t seed) {
@@ -187,4 +187,4 @@ TEST(GlslDirect, LargeScenesFallBackToCpuDirectLight) {
 }
 
 }  // namespace
-}  // namespace rrf
+}  // namespace rrf::test_glsl_direct

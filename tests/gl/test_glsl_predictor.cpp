@@ -17,7 +17,7 @@
 #include "tests/gl/gl_test_env.h"
 #include "tests/gl/test_models.h"
 
-namespace rrf {
+namespace rrf::test_glsl_predictor {
 namespace {
 
 using test::closeEnough;
@@ -541,9 +541,9 @@ TEST(GlslPredictor, ShaderErrorsNameTheFile) {
 }
 
 }  // namespace
-}  // namespace rrf
+}  // namespace rrf::test_glsl_predictor
 
-namespace rrf {
+namespace rrf::test_glsl_predictor {
 namespace {
 
 TEST(GlslPredictor, AgreesWithCorePredictorImages) {
@@ -595,4 +595,4 @@ TEST(GlslPredictor, AgreesWithCorePredictorImages) {
 }
 
 }  // namespace
-}  // namespace rrf
+}  // namespace rrf::test_glsl_predictor

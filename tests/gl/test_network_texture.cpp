@@ -7,7 +7,7 @@
 #include "core/predict/network_texture.h"
 #include "tests/gl/test_models.h"
 
-namespace rrf {
+namespace rrf::test_network_texture {
 namespace {
 
 using test::closeEnough;
@@ -165,4 +165,4 @@ TEST(NetworkTexture, RejectsModelsThatDoNotFitTheScene) {
 }
 
 }  // namespace
-}  // namespace rrf
+}  // namespace rrf::test_network_texture

@@ -16,7 +16,7 @@
 #include "panels/view_model.h"
 #include "tests/gui/imgui_fixture.h"
 
-namespace rrf::test {
+namespace rrf::test::test_honest_figures {
 
 using namespace rrf::panels;
 
@@ -215,4 +215,4 @@ TEST_F(CostPanelTest, SeriesColoursFollowTheirNames) {
     }
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_honest_figures

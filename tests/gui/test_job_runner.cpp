@@ -11,7 +11,7 @@
 #include "app/gui/job_runner.h"
 #include "app/gui/job_session.h"
 
-namespace rrf::test {
+namespace rrf::test::test_job_runner {
 
 namespace {
 /// Runs until cancelled, reporting progress.
@@ -209,4 +209,4 @@ TEST(JobSession, FailedJobDeliversNothingAndTheRunnerReportsIt) {
     EXPECT_EQ(done[0].error, "bad value");
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_job_runner

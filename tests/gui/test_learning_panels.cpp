@@ -13,7 +13,7 @@
 #include "panels/project_io.h"
 #include "tests/gui/imgui_fixture.h"
 
-namespace rrf::test {
+namespace rrf::test::test_learning_panels {
 
 namespace fs = std::filesystem;
 using namespace rrf::panels;
@@ -303,4 +303,4 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     fs::remove_all(dir);
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_learning_panels

@@ -7,7 +7,7 @@
 #include "panels/view_model.h"
 #include "tests/gui/imgui_fixture.h"
 
-namespace rrf::test {
+namespace rrf::test::test_leaves_panel {
 
 using namespace rrf::panels;
 
@@ -122,4 +122,4 @@ TEST_F(LeavesPanelTest, PartitionEditsAreStoredInTheNetworkSection) {
     EXPECT_TRUE(s.requests.empty());
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_leaves_panel

@@ -7,7 +7,7 @@
 #include "panels/project_io.h"
 #include "tests/gui/imgui_fixture.h"
 
-namespace rrf::test {
+namespace rrf::test::test_panels {
 
 using namespace rrf::panels;
 
@@ -155,4 +155,4 @@ TEST_F(PanelTest, LogCollectsMessagesAndCopiesThem) {
     EXPECT_NE(text.find("error: second"), std::string::npos);
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_panels

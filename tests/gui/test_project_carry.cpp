@@ -13,7 +13,7 @@
 #include "core/project/run_recording.h"
 #include "panels/project_io.h"
 
-namespace rrf::test {
+namespace rrf::test::test_project_carry {
 
 namespace fs = std::filesystem;
 using namespace rrf::panels;
@@ -124,4 +124,4 @@ TEST(ProjectCarry, AFileAlreadyAtTheDestinationIsKept) {
     fs::remove_all(root);
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_project_carry

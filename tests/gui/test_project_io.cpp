@@ -14,7 +14,7 @@
 #include "core/project/scene_edits.h"
 #include "panels/view_model.h"
 
-namespace rrf::test {
+namespace rrf::test::test_project_io {
 
 namespace fs = std::filesystem;
 using namespace rrf::panels;
@@ -313,4 +313,4 @@ TEST(ViewModel, ErrorMapIsTheMetricRrfEvaluateReports) {
     EXPECT_NEAR(vm.error().at(1, 1).x, (0.09 + 0.04) / 3.0, 1e-6);
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_project_io

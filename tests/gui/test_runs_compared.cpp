@@ -10,7 +10,7 @@
 #include "core/project/run_summary.h"
 #include "panels/panels.h"
 
-namespace rrf::test {
+namespace rrf::test::test_runs_compared {
 
 using namespace rrf::panels;
 
@@ -119,4 +119,4 @@ TEST(ObjectsTable, SaysWhenItJudgedOtherModelsThanTheOnesShown) {
     EXPECT_NE(objectsTableMismatch(s).find("two runs"), std::string::npos);
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_runs_compared

@@ -12,7 +12,7 @@
 
 #include "app/gui/user_workspace.h"
 
-namespace rrf::test {
+namespace rrf::test::test_user_workspace {
 
 namespace fs = std::filesystem;
 
@@ -77,4 +77,4 @@ TEST(UserWorkspace, WithoutXdgDataHomeTheWorkspaceIsUnderHome) {
     EXPECT_EQ(userDataDir(), "/home/someone/.local/share/rrf-workbench");
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_user_workspace

@@ -5,7 +5,7 @@
 
 #include "panels/view_model.h"
 
-namespace rrf::test {
+namespace rrf::test::test_views_layout {
 
 using namespace rrf::panels;
 
@@ -36,4 +36,4 @@ TEST(ViewsLayout, TheImageKeepsItsAspect) {
     EXPECT_FLOAT_EQ(viewsLayout(ImVec2(1200, 600), ImVec2(8, 4), 17.f, Image()).view.y, 1184.f / 3.f);
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_views_layout

@@ -13,7 +13,7 @@
 #include "panels/view_model.h"
 #include "tests/gui/imgui_fixture.h"
 
-namespace rrf::test {
+namespace rrf::test::test_workbench_status {
 
 using namespace rrf::panels;
 
@@ -192,4 +192,4 @@ TEST_F(StatusPanelTest, ANoticeShowsInItsPanelAndInTheLogUntilDismissed) {
     EXPECT_TRUE(s.requests.empty()) << "dismissing asks for nothing";
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_workbench_status
