@@ -18,7 +18,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 asan_build=${RRF_ASAN_BUILD_DIR:-$root/build-asan}
 tsan_build=${RRF_TSAN_BUILD_DIR:-$root/build-tsan}
-fuzz_seconds=${RRF_FUZZ_SECONDS:-60}
+fuzz_seconds=${RRF_FUZZ_SECONDS:-30}
 jobs=$(nproc)
 jobs_to_run=("$@")
 [[ ${#jobs_to_run[@]} -eq 0 ]] && jobs_to_run=(asan fuzz tsan)
@@ -28,6 +28,10 @@ jobs_to_run=("$@")
 # studies built from the same renderer, generator and trainer code that the other tests run.
 asan_skip='EndToEnd\.SmallRunLearnsAndBrokenPipelinesFail|EndToEnd\.SppSweepShowsTheMonteCarloSlope'
 asan_skip+='|DefaultPipeline\.QuickRunOfTheProjectDefaultsStaysWithinItsMeasuredBound'
+# The slowest of the rest under ASan (a quarter of its test time, measured in the session-5 run): the
+# kd-tree training studies, the NEE furnace's convergence and LM's two-thread identity run in the
+# Release suite; the other training, tracer and LM tests still run here.
+asan_skip+='|PartitionedTraining\..*|PathTracer\.WhiteFurnaceNEE|LevenbergMarquardt\.BitIdenticalForOneOrTwoThreads'
 # This one runs rrf under `ulimit -v 4 GiB`, where an AddressSanitizer build cannot even start (its
 # shadow memory alone reserves terabytes of address space); the Release suite runs it.
 asan_skip+='|CliHostile\.RequestsBeyondMemoryAreRefusedWithTheEstimate'

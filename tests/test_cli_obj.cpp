@@ -12,6 +12,8 @@
 
 #include "tests/cli_runner.h"
 
+namespace test_cli_obj {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -74,3 +76,5 @@ TEST(CliObj, PipelineRunsOnTheMeshProject) {
     EXPECT_GT(files, 5u) << r.output;
     fs::remove_all(out);
 }
+
+}  // namespace test_cli_obj

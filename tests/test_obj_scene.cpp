@@ -17,6 +17,8 @@
 #include "core/scene/scene_json.h"
 #include "core/util/error.h"
 
+namespace test_obj_scene {
+
 using namespace rrf;
 using nlohmann::json;
 
@@ -279,3 +281,5 @@ TEST_F(ObjScene, FacesWithoutMaterialGetTheDefault) {
     EXPECT_FLOAT_EQ(m.kd.x, 0.5f);
     EXPECT_TRUE(s.lights.empty());
 }
+
+}  // namespace test_obj_scene

@@ -8,7 +8,7 @@
 
 #include "core/project/pane_layout.h"
 
-namespace rrf::test {
+namespace rrf::test::test_pane_layout {
 
 using nlohmann::json;
 
@@ -174,4 +174,4 @@ TEST(PaneLayout, ClampFraction) {
     EXPECT_FLOAT_EQ(PaneLayout::clampFraction(std::numeric_limits<float>::quiet_NaN(), 0.3f), 0.3f);
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_pane_layout

@@ -13,6 +13,8 @@
 #include "core/project/project.h"
 #include "core/project/time_estimate.h"
 
+namespace test_presets {
+
 using namespace rrf;
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -185,3 +187,5 @@ TEST(Presets, PipelineCommandRefusesAnUnknownPreset) {
     EXPECT_NE(r.output.find("quick"), std::string::npos) << "the allowed names are listed: " << r.output;
     EXPECT_FALSE(fs::exists(fs::path(::testing::TempDir()) / "rrf_presets_unknown"));
 }
+
+}  // namespace test_presets

@@ -12,6 +12,8 @@
 #include "core/scene/accel.h"
 #include "scene_builders.h"
 
+namespace test_triangle_lights {
+
 using namespace rrf;
 using namespace rrf::test;
 
@@ -201,3 +203,5 @@ TEST(TriangleLights, PointAtIsUniformOnTheTriangle) {
     EXPECT_NEAR(l.center().x, centroid.x, 1e-6);
     EXPECT_NEAR(l.area(), 0.5f * 2.f * 1.f, 1e-6);
 }
+
+}  // namespace test_triangle_lights

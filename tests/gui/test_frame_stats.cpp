@@ -4,7 +4,7 @@
 
 #include "app/gui/frame_stats.h"
 
-namespace rrf {
+namespace rrf::test_frame_stats {
 
 TEST(FrameStats, NearestRankMedianAndPercentile) {
     std::vector<double> t;
@@ -31,4 +31,4 @@ TEST(FrameStats, WindowKeepsTheLastFramesAndRecordingTakesAStretch) {
     EXPECT_TRUE(f.takeRecording().empty());
 }
 
-}  // namespace rrf
+}  // namespace rrf::test_frame_stats

@@ -7,7 +7,7 @@
 #include "panels/panels.h"
 #include "tests/gui/imgui_fixture.h"
 
-namespace rrf::test {
+namespace rrf::test::test_pane_docking {
 
 using namespace rrf::panels;
 
@@ -189,4 +189,4 @@ TEST_F(DockingTest, FieldWidthLeavesRoomForTheLabel) {
     });
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_pane_docking

@@ -5,7 +5,7 @@
 #include "panels/project_io.h"
 #include "tests/gui/imgui_fixture.h"
 
-namespace rrf::test {
+namespace rrf::test::test_pipeline_controls {
 
 using namespace rrf::panels;
 
@@ -84,4 +84,4 @@ TEST_F(PipelineControls, EstimatesUseTheLastRenderAndTheLastDataset) {
     EXPECT_NE(stages[2].basis.find("epochs"), std::string::npos) << stages[2].basis;
 }
 
-}  // namespace rrf::test
+}  // namespace rrf::test::test_pipeline_controls
