@@ -7,13 +7,15 @@
 //   kind 2: triangle of a one-sided rect light, kind 3: of a two-sided one
 // Outputs (RGBA32F each):
 //   0: hit point xyz, id (object id >= 0, -2 for a light; the clear value -1 marks background)
-//   1: geometric normal flipped to face the viewer (the network input), kind
+//   1: shading normal flipped to face the viewer (the network input), kind: the geometric normal,
+//      or on a smooth mesh the interpolated vertex normals turned to its side (core/scene/accel.cpp)
 //   2: emitted radiance towards the eye (lights only), alpha 1
 
 flat in vec4 vGeometry;
 flat in vec3 vNormal;
 flat in vec2 vInfo;
 flat in vec3 vEmission;
+in vec3 vShading;
 
 uniform vec3 uEye;
 uniform vec3 uForward;  // CameraRays::forward_
@@ -65,6 +67,11 @@ void main() {
 
     gl_FragDepth = clamp(t / uFar, 0.0, 1.0);
     oPosition = vec4(p, vInfo.x);
-    oNormal = vec4(dot(wo, ng) >= 0.0 ? ng : -ng, float(kind));
+    vec3 ns = ng;
+    if (kind == 0 && dot(vShading, vShading) > 0.0) {
+        ns = normalize(vShading);
+        if (dot(ns, ng) < 0.0) ns = -ns;
+    }
+    oNormal = vec4(dot(wo, ns) >= 0.0 ? ns : -ns, float(kind));
     oEmission = vec4(lightBack ? vec3(0.0) : vEmission, 1.0);
 }

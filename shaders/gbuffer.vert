@@ -8,6 +8,7 @@ layout(location = 1) in vec4 aGeometry;  // polygon: triangle plane (unit n, d =
 layout(location = 2) in vec3 aNormal;    // polygon: geometric normal as core/scene/accel.cpp stores it
 layout(location = 3) in vec2 aInfo;      // (object id, or -2 for a light; kind, see gbuffer.frag)
 layout(location = 4) in vec3 aEmission;  // lights: emitted radiance
+layout(location = 5) in vec3 aShading;   // smooth meshes: the vertex normal; zero: flat
 
 uniform vec3 uEye;
 uniform vec3 uForward;   // unit
@@ -20,6 +21,7 @@ flat out vec4 vGeometry;
 flat out vec3 vNormal;
 flat out vec2 vInfo;
 flat out vec3 vEmission;
+out vec3 vShading;  // interpolated (perspective-correct: barycentric on the triangle, as Embree's u, v)
 
 void main() {
     vec3 d = aPosition - uEye;
@@ -31,4 +33,5 @@ void main() {
     vNormal = aNormal;
     vInfo = aInfo;
     vEmission = aEmission;
+    vShading = aShading;
 }

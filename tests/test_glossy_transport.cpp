@@ -46,6 +46,39 @@ double quadratureDirect(const Light& l, const D3& p, const D3& wo, double kd, do
                         0, 1, 16);
 }
 
+/// NEE and the naive estimator on the same 150 000 camera rays of `scene` (32×32 pixels, ray i from
+/// Rng(seed, i), NEE's path randomness from Rng(seed + 1, i), the naive one's from Rng(seed + 2, i)):
+/// paired samples, so the standard error of the mean difference is exact.
+struct PairedEstimates {
+    RunningStat dDirect, dGlobal;  ///< NEE − naive, red channel
+    RunningStat direct, global;    ///< NEE alone
+    bool allFinite = true;
+};
+
+PairedEstimates pairedNeeAndNaive(const Scene& scene, uint64_t seed) {
+    const Accel accel(scene);
+    const PathTracer nee(scene, accel, Estimator::NEE), naive(scene, accel, Estimator::Naive);
+    const CameraRays cam(scene.camera, 32, 32);
+    TraceCounters counters;
+    PairedEstimates e;
+    for (int i = 0; i < 150000; ++i) {
+        Rng pick(seed, uint64_t(i));
+        const int px = int(pick.uniformInt(32)), py = int(pick.uniformInt(32));
+        const Ray ray = cam.generate(px, py, pick.uniform(), pick.uniform());
+        Rng ra(seed + 1, uint64_t(i)), rb(seed + 2, uint64_t(i));
+        const Radiance a = nee.trace(ray, ra, counters), b = naive.trace(ray, rb, counters);
+        if (!(a.direct.isFinite() && a.indirect.isFinite() && b.direct.isFinite() && b.indirect.isFinite())) {
+            e.allFinite = false;
+            return e;
+        }
+        e.dDirect.add(double(a.direct.x) - double(b.direct.x));
+        e.dGlobal.add(double(a.direct.x + a.indirect.x) - double(b.direct.x + b.indirect.x));
+        e.direct.add(a.direct.x);
+        e.global.add(double(a.direct.x) + double(a.indirect.x));
+    }
+    return e;
+}
+
 }  // namespace
 
 TEST(GlossyTransport, DirectLightOnAPhongPlaneMatchesQuadratureOverTheLight) {
@@ -85,23 +118,9 @@ TEST(GlossyTransport, NeeMatchesNaiveOnAGlossySceneAtSeveralExponents) {
         white.kd = Vec3(0.3f);
         white.ks = Vec3(0.4f);
         white.exponent = n;
-        const Accel accel(scene);
-        const PathTracer nee(scene, accel, Estimator::NEE), naive(scene, accel, Estimator::Naive);
-        const CameraRays cam(scene.camera, 32, 32);
-        TraceCounters counters;
-        RunningStat dDirect, dGlobal, direct, global;
-        for (int i = 0; i < 150000; ++i) {
-            Rng pick(40, uint64_t(i));
-            const int px = int(pick.uniformInt(32)), py = int(pick.uniformInt(32));
-            const Ray ray = cam.generate(px, py, pick.uniform(), pick.uniform());
-            Rng ra(41, uint64_t(i)), rb(42, uint64_t(i));
-            const Radiance a = nee.trace(ray, ra, counters), b = naive.trace(ray, rb, counters);
-            ASSERT_TRUE(a.direct.isFinite() && a.indirect.isFinite() && b.direct.isFinite() && b.indirect.isFinite());
-            dDirect.add(double(a.direct.x) - double(b.direct.x));
-            dGlobal.add(double(a.direct.x + a.indirect.x) - double(b.direct.x + b.indirect.x));
-            direct.add(a.direct.x);
-            global.add(double(a.direct.x) + double(a.indirect.x));
-        }
+        const PairedEstimates e = pairedNeeAndNaive(scene, 40);
+        ASSERT_TRUE(e.allFinite) << "n = " << n;
+        const RunningStat &dDirect = e.dDirect, &dGlobal = e.dGlobal, &direct = e.direct, &global = e.global;
         EXPECT_NEAR(dDirect.mean, 0.0, 5 * dDirect.sigma()) << "n = " << n;
         EXPECT_NEAR(dGlobal.mean, 0.0, 5 * dGlobal.sigma()) << "n = " << n;
         EXPECT_LT(5 * dDirect.sigma(), 0.05 * direct.mean) << "n = " << n << ": must see a 5% bias of direct";
@@ -130,23 +149,9 @@ TEST(GlossyTransport, NeeMatchesNaiveWithTriangleLightsAtHighExponents) {
         b.name = rect.name + "-b";
         scene.lights = {a, b};
         scene.movableLight = -1;
-        const Accel accel(scene);
-        const PathTracer nee(scene, accel, Estimator::NEE), naive(scene, accel, Estimator::Naive);
-        const CameraRays cam(scene.camera, 32, 32);
-        TraceCounters counters;
-        RunningStat dDirect, dGlobal, direct, global;
-        for (int i = 0; i < 150000; ++i) {
-            Rng pick(50, uint64_t(i));
-            const int px = int(pick.uniformInt(32)), py = int(pick.uniformInt(32));
-            const Ray ray = cam.generate(px, py, pick.uniform(), pick.uniform());
-            Rng ra(51, uint64_t(i)), rb(52, uint64_t(i));
-            const Radiance x = nee.trace(ray, ra, counters), y = naive.trace(ray, rb, counters);
-            ASSERT_TRUE(x.direct.isFinite() && x.indirect.isFinite() && y.direct.isFinite() && y.indirect.isFinite());
-            dDirect.add(double(x.direct.x) - double(y.direct.x));
-            dGlobal.add(double(x.direct.x + x.indirect.x) - double(y.direct.x + y.indirect.x));
-            direct.add(x.direct.x);
-            global.add(double(x.direct.x) + double(x.indirect.x));
-        }
+        const PairedEstimates e = pairedNeeAndNaive(scene, 50);
+        ASSERT_TRUE(e.allFinite) << "n = " << n;
+        const RunningStat &dDirect = e.dDirect, &dGlobal = e.dGlobal, &direct = e.direct, &global = e.global;
         EXPECT_NEAR(dDirect.mean, 0.0, 5 * dDirect.sigma()) << "n = " << n;
         EXPECT_NEAR(dGlobal.mean, 0.0, 5 * dGlobal.sigma()) << "n = " << n;
         EXPECT_LT(5 * dDirect.sigma(), 0.05 * direct.mean) << "n = " << n << ": must see a 5% bias of direct";

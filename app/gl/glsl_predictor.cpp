@@ -20,8 +20,8 @@ namespace rrf {
 namespace {
 
 // Vertex layout of the G-buffer pass (see shaders/gbuffer.vert): position 3, geometry 4, normal 3,
-// info 2 (id, kind), emission 3.
-constexpr int kFloatsPerVertex = 15;
+// info 2 (id, kind), emission 3, vertex shading normal 3 (zero: flat, the geometric normal).
+constexpr int kFloatsPerVertex = 18;
 constexpr float kKindPolygon = 0.f, kKindSphere = 1.f, kKindLightOneSided = 2.f, kKindLightTwoSided = 3.f;
 constexpr float kLightId = float(GlGBuffer::kLightPixel);
 
@@ -34,17 +34,22 @@ DVec dcross(const DVec& a, const DVec& b) { return {a.y * b.z - a.z * b.y, a.z *
 double ddot(const DVec& a, const DVec& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 /// Appends one triangle whose fragments intersect the pixel ray with the triangle's own plane
-/// (computed in double) and report `normal` (the CPU's normal of the whole primitive).
+/// (computed in double) and report `normal` (the CPU's normal of the whole primitive) and, for a
+/// smooth mesh, the interpolation of its `vertexNormals` (a, b, c order; null: flat). A zero vector
+/// interpolates to exactly zero, which is how the fragment stage tells flat triangles apart.
 void addTriangle(std::vector<float>& out, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& normal, float id,
-                 float kind, const Vec3& emission) {
+                 float kind, const Vec3& emission, const Vec3* vertexNormals = nullptr) {
     const DVec n = dcross(dsub(dv(b), dv(a)), dsub(dv(c), dv(a)));
     const double len = std::sqrt(ddot(n, n));
     if (!(len > 0.0) || !std::isfinite(len)) return;  // degenerate: a ray cannot hit it either
     const DVec u{n.x / len, n.y / len, n.z / len};
     const float plane[4] = {float(u.x), float(u.y), float(u.z), float(ddot(u, dv(a)))};
-    for (const Vec3* p : {&a, &b, &c}) {
-        out.insert(out.end(), {p->x, p->y, p->z, plane[0], plane[1], plane[2], plane[3], normal.x, normal.y, normal.z,
-                               id, kind, emission.x, emission.y, emission.z});
+    const Vec3* corners[3] = {&a, &b, &c};
+    for (int k = 0; k < 3; ++k) {
+        const Vec3& p = *corners[k];
+        const Vec3 s = vertexNormals ? vertexNormals[k] : Vec3(0.f);
+        out.insert(out.end(), {p.x, p.y, p.z, plane[0], plane[1], plane[2], plane[3], normal.x, normal.y, normal.z, id,
+                               kind, emission.x, emission.y, emission.z, s.x, s.y, s.z});
     }
 }
 
@@ -158,15 +163,19 @@ void GlslPredictor::buildStaticGeometry() {
             continue;
         }
         const bool quad = o.kind == Object::Kind::Quads;
+        // Vertex normals (triangles only, as core/scene/accel.cpp interpolates them).
+        const bool smooth = !quad && !o.normals.empty();
         const size_t nv = size_t(o.verticesPerPrimitive());
         for (size_t p = 0; p < o.primitiveCount(); ++p) {
-            Vec3 q[4];
+            Vec3 q[4], vn[3];
             for (size_t k = 0; k < nv; ++k) q[k] = o.positions[o.indices[p * nv + k]];
+            if (smooth)
+                for (size_t k = 0; k < 3; ++k) vn[k] = o.normals[o.indices[p * nv + k]];
             const Vec3 n = accelNormal(q, quad);
             if (quad)
                 addQuad(v, q[0], q[1], q[2], q[3], n, id, kKindPolygon, Vec3(0.f));
             else
-                addTriangle(v, q[0], q[1], q[2], n, id, kKindPolygon, Vec3(0.f));
+                addTriangle(v, q[0], q[1], q[2], n, id, kKindPolygon, Vec3(0.f), smooth ? vn : nullptr);
         }
     }
     objectVertices_ = int(v.size() / kFloatsPerVertex);
@@ -316,9 +325,9 @@ void GlslPredictor::render() {
         if (count == 0) continue;
         glBindBuffer(GL_ARRAY_BUFFER, vbo);
         const GLsizei stride = kFloatsPerVertex * sizeof(float);
-        const int sizes[5] = {3, 4, 3, 2, 3};
+        const int sizes[6] = {3, 4, 3, 2, 3, 3};
         size_t offset = 0;
-        for (GLuint a = 0; a < 5; ++a) {
+        for (GLuint a = 0; a < 6; ++a) {
             glEnableVertexAttribArray(a);
             glVertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset));
             offset += size_t(sizes[a]) * sizeof(float);

@@ -2,6 +2,8 @@
 // network outputs against NetworkModel::predict on exactly the inputs the G-buffer holds
 // (issue 6: max relative difference ≤ 1e-4 on every covered pixel of the Cornell box).
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -69,7 +71,8 @@ GBufferComparison compareGBuffer(const Scene& scene, const GlGBuffer& g) {
             c.maxPositionError = std::max(c.maxPositionError, double(length(p - h.p)));
             if (cpuId[i] >= 0) {
                 const Vec3 wo = -rays.generate(x, y, 0.5f, 0.5f).dir;
-                const Vec3 n = dot(wo, h.ng) >= 0.f ? h.ng : -h.ng;  // data_generator.cpp's convention
+                const Vec3 ns = h.shading();                    // vertex normals where the mesh has them
+                const Vec3 n = dot(wo, ns) >= 0.f ? ns : -ns;  // core/predict/gbuffer.cpp's convention
                 const Vec3 gn(g.normal[3 * i], g.normal[3 * i + 1], g.normal[3 * i + 2]);
                 c.maxNormalError = std::max(c.maxNormalError, double(length(gn - n)));
             }
@@ -409,6 +412,34 @@ TEST(GlslPredictor, SphereTrianglePhongAndWideCamera) {
     for (int id : g.objectId) lights += id == GlGBuffer::kLightPixel;
     EXPECT_GT(lights, 0u);
     expectEquivalent(scene, set, gp, 0.3);
+}
+
+TEST(GlslPredictor, SmoothMeshNormalsInterpolateLikeTheCpu) {
+    // The fin becomes a smooth triangle: vertex normals tilted ~0.3 rad from its face normal in
+    // three different directions, so a G-buffer that kept the flat normal would be ~0.3 off.
+    RRF_REQUIRE_GL();
+    Scene scene = sphereScene();
+    Object& fin = scene.objects[2];
+    const Vec3 face = normalize(cross(fin.positions[1] - fin.positions[0], fin.positions[2] - fin.positions[0]));
+    fin.normals = {normalize(face + Vec3(0.3f, 0.f, 0.f)), normalize(face + Vec3(0.f, 0.3f, 0.f)),
+                   normalize(face + Vec3(0.f, 0.f, -0.3f))};
+    GlslPredictor gp(scene, test::mixedModelSet(scene, Activation::Tanh, {16, 9}, 31));
+    gp.render();
+    const GlGBuffer g = gp.readGBuffer();
+    const GBufferComparison c = compareGBuffer(scene, g);
+    std::printf("  %zu pixels compared, max |dn| %.3g\n", c.compared, c.maxNormalError);
+    EXPECT_EQ(c.idMismatchesOffSilhouette, 0u);
+    EXPECT_LE(c.maxNormalError, 1e-5);
+    size_t finPixels = 0;
+    double spread = 0;  // largest angle between a fin pixel's normal and the face normal
+    for (size_t i = 0; i < g.objectId.size(); ++i) {
+        if (g.objectId[i] != 2) continue;
+        ++finPixels;
+        const Vec3 n(g.normal[3 * i], g.normal[3 * i + 1], g.normal[3 * i + 2]);
+        spread = std::max(spread, std::acos(std::min(1.0, std::fabs(double(dot(n, face))))));
+    }
+    EXPECT_GT(finPixels, 100u);
+    EXPECT_GT(spread, 0.1) << "the fin's normals must vary across it";
 }
 
 TEST(GlslPredictor, OneSidedLightIsDarkFromBehind) {
