@@ -70,6 +70,7 @@ Vec3 accelNormal(const Vec3* q, bool quad) {
 /// A cube around the sphere; its fragments ray-cast the sphere itself (gbuffer.frag, kind 1). The
 /// margin makes sure every pixel whose centre ray touches the sphere is covered.
 void addSphereProxy(std::vector<float>& out, const Vec3& c, float r, float id) {
+    static_assert(kFloatsPerVertex == 18, "the proxy's vertices below spell out every float of the layout");
     const float h = r * 1.05f + 1e-6f * (std::fabs(c.x) + std::fabs(c.y) + std::fabs(c.z) + r);
     Vec3 v[8];
     for (int i = 0; i < 8; ++i) v[i] = c + Vec3(i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h);
@@ -78,7 +79,8 @@ void addSphereProxy(std::vector<float>& out, const Vec3& c, float r, float id) {
         const int tris[2][3] = {{f[0], f[1], f[2]}, {f[0], f[2], f[3]}};
         for (const auto& tri : tris)
             for (int i : tri)
-                out.insert(out.end(), {v[i].x, v[i].y, v[i].z, c.x, c.y, c.z, r, 0.f, 0.f, 0.f, id, kKindSphere, 0.f, 0.f, 0.f});
+                out.insert(out.end(),
+                           {v[i].x, v[i].y, v[i].z, c.x, c.y, c.z, r, 0.f, 0.f, 0.f, id, kKindSphere, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f});
     }
 }
 
