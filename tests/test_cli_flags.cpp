@@ -8,6 +8,7 @@
 
 #include "app/cli/cli_flags.h"
 #include "core/project/project.h"
+#include "project_builders.h"
 
 namespace test_cli_flags {
 
@@ -17,15 +18,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// The Cornell box project with `sections` added, written to a fresh file, loaded.
+/// The Cornell box project with `sections` added (tests/project_builders.h), in this file's directory.
 Project cornellWith(const std::string& name, const json& sections) {
-    const fs::path dir = fs::path(::testing::TempDir()) / "rrf_cli_flags_tests";
-    fs::create_directories(dir);
-    json doc = {{"rrf_project", 1}, {"scene", std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/scene.json"}};
-    for (auto it = sections.begin(); it != sections.end(); ++it) doc[it.key()] = it.value();
-    const std::string path = (dir / name).string();
-    std::ofstream(path) << doc.dump(2);
-    return loadProjectOrScene(path);
+    return rrf::test::cornellProjectWith("rrf_cli_flags_tests", name, sections);
 }
 
 struct Experiment {

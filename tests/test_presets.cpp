@@ -11,6 +11,7 @@
 #include "core/nn/network_settings.h"
 #include "core/project/presets.h"
 #include "core/project/project.h"
+#include "project_builders.h"
 #include "core/project/time_estimate.h"
 
 namespace test_presets {
@@ -20,15 +21,9 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
-/// The Cornell box project with `sections` added, written to a fresh file, loaded.
+/// The Cornell box project with `sections` added (tests/project_builders.h), in this file's directory.
 Project cornellWith(const std::string& name, const json& sections) {
-    const fs::path dir = fs::path(::testing::TempDir()) / "rrf_presets_tests";
-    fs::create_directories(dir);
-    json doc = {{"rrf_project", 1}, {"scene", std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/scene.json"}};
-    for (auto it = sections.begin(); it != sections.end(); ++it) doc[it.key()] = it.value();
-    const std::string path = (dir / name).string();
-    std::ofstream(path) << doc.dump(2);
-    return loadProjectOrScene(path);
+    return rrf::test::cornellProjectWith("rrf_presets_tests", name, sections);
 }
 
 const PipelinePreset& preset(const char* name) {
