@@ -7,7 +7,7 @@
 #          fuzz targets (core and the fuzz targets also carry libFuzzer's coverage feedback). This
 #          build is the project's clang build; it runs the core tests (rrf_tests, less the slow ones
 #          in $asan_skip) and the fuzz targets' seeds and regressions once (CTest fuzz_*_corpus)
-#   fuzz   each fuzz target of that build mutates its seeds for RRF_FUZZ_SECONDS (default 60), two
+#   fuzz   each fuzz target of that build mutates its seeds for RRF_FUZZ_SECONDS (default 30), two
 #          targets at a time; a crashing input is kept under <asan build>/fuzz-findings/
 #   tsan   clang, -O1, ThreadSanitizer: core + rrf_threaded_tests only (renderer, generator,
 #          training, job runner; cmake/ThreadedTests.cmake), the tests in $tsan_filter

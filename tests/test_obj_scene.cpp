@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -280,6 +281,30 @@ TEST_F(ObjScene, FacesWithoutMaterialGetTheDefault) {
     EXPECT_EQ(m.name, "default");
     EXPECT_FLOAT_EQ(m.kd.x, 0.5f);
     EXPECT_TRUE(s.lights.empty());
+}
+
+TEST_F(ObjScene, MirroredLampStaysOneRectFacingTheFloor) {
+    // A mirroring transform swaps the winding back; the lamp quad must still be recognised as one
+    // parallelogram (one movable rect light), not two triangles, and still face -y.
+    const Scene s = load(sceneWith({{"type", "obj"}, {"file", "room.obj"}, {"transform", {{"scale", {-1, 1, 1}}}}}));
+    ASSERT_EQ(s.lights.size(), 2u);
+    EXPECT_EQ(s.lights[0].type, Light::Type::Rect);
+    EXPECT_NEAR(s.lights[0].area(), 0.16f, 1e-6);
+    EXPECT_LT(s.lights[0].normal().y, -0.99f);
+    EXPECT_LT(s.lights[1].normal().y, 0.f) << "the triangle lamp keeps its side too";
+}
+
+TEST_F(ObjScene, LightNamesStayUniqueAcrossShapes) {
+    // Three OBJ shapes whose only faces are the same emitting triangle: their lights get distinct names.
+    writeFile("lamp.obj", "mtllib room.mtl\nv 0 0.99 0\nv 0.1 0.99 0\nv 0 0.99 0.1\ng lamp\nusemtl lamp\nf 1 3 2\n");
+    json doc = sceneWith({{"type", "obj"}, {"file", "lamp.obj"}});
+    doc["shapes"].push_back({{"type", "obj"}, {"file", "lamp.obj"}, {"transform", {{"translate", {0.2, 0, 0}}}}});
+    doc["shapes"].push_back({{"type", "obj"}, {"file", "lamp.obj"}, {"transform", {{"translate", {0.4, 0, 0}}}}});
+    doc["shapes"].push_back({{"type", "obj"}, {"file", "room.obj"}});
+    const Scene s = load(doc);
+    std::set<std::string> names;
+    for (const Light& l : s.lights) EXPECT_TRUE(names.insert(l.name).second) << "repeated light name " << l.name;
+    EXPECT_EQ(s.lights.size(), 5u);
 }
 
 }  // namespace test_obj_scene

@@ -166,7 +166,7 @@ void GlslPredictor::buildStaticGeometry() {
         }
         const bool quad = o.kind == Object::Kind::Quads;
         // Vertex normals (triangles only, as core/scene/accel.cpp interpolates them).
-        const bool smooth = !quad && !o.normals.empty();
+        const bool smooth = o.smooth();
         const size_t nv = size_t(o.verticesPerPrimitive());
         for (size_t p = 0; p < o.primitiveCount(); ++p) {
             Vec3 q[4], vn[3];

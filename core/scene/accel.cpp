@@ -31,7 +31,7 @@ Accel::Accel(const Scene& scene) {
     for (const Object& o : scene.objects) {
         GeomInfo info;
         info.object = o.id;
-        if (o.kind == Object::Kind::Triangles && o.normals.size() == o.positions.size()) info.smooth = &o;
+        if (o.smooth()) info.smooth = &o;
         if (o.kind == Object::Kind::Sphere) addSphere(o.center, o.radius, info);
         else addMesh(o.positions, o.indices, o.kind == Object::Kind::Quads, std::move(info));
     }

@@ -43,7 +43,9 @@ struct Hit {
 
 class Accel {
 public:
-    /// Builds the BVH. Throws std::runtime_error with Embree's message on failure.
+    /// Builds the BVH. Throws std::runtime_error with Embree's message on failure. Smooth meshes'
+    /// vertex normals are read from `scene` at every hit, so the scene's objects must outlive the
+    /// Accel and stay where they are (rebuild the Accel after changing Scene::objects).
     explicit Accel(const Scene& scene);
     ~Accel();
     Accel(const Accel&) = delete;

@@ -53,6 +53,9 @@ struct Object {
     /// Per-vertex shading normals (unit, parallel to `positions`), from an OBJ file's `vn`; empty =
     /// flat shading with the geometric normal. Triangles only.
     std::vector<Vec3> normals;
+    /// Shaded with interpolated vertex normals: triangles with one normal per position. The path
+    /// tracer (Accel) and the GLSL G-buffer both ask this, so they agree on which meshes are smooth.
+    bool smooth() const { return kind == Kind::Triangles && !normals.empty() && normals.size() == positions.size(); }
     Vec3 center{0.f};   ///< sphere only
     float radius = 0.f; ///< sphere only
     /// True when the loader knows the surface is closed (box, sphere, or "closed": true in JSON).

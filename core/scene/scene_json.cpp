@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <set>
 #include <optional>
 #include <sstream>
 
@@ -391,7 +392,26 @@ struct SceneBuilder {
                 const size_t n = part.faceSizes[f];
                 std::vector<uint32_t> tris;
                 fanTriangulate(part.indices, first, n, tris);
-                if (transform && transform->flipsOrientation())
+                // A mirroring transform turns the winding: the triangles, and a rect's edges, are
+                // swapped back so that the front stays the front.
+                const bool flip = transform && transform->flipsOrientation();
+                const Vec3 a = o.positions[tris[0]];
+                if (emits && n == 4) {
+                    // Fan (0 1 2)(0 2 3) of a parallelogram a b c d (before any swap): c = b + d − a.
+                    const Vec3 b = o.positions[tris[1]], c = o.positions[tris[2]], d = o.positions[tris[5]];
+                    const float diag = std::max(length(c - a), length(d - b));
+                    if (length(c - (b + d - a)) <= float(kPlanarity) * diag) {
+                        Light l;
+                        l.radiance = m->ke;
+                        l.type = Light::Type::Rect;
+                        l.corner = a;
+                        l.edge1 = flip ? d - a : b - a;
+                        l.edge2 = flip ? b - a : d - a;
+                        if (l.area() > 0.f) partLights.push_back(l);
+                        continue;
+                    }
+                }
+                if (flip)
                     for (size_t i = 0; i + 3 <= tris.size(); i += 3) std::swap(tris[i + 1], tris[i + 2]);
                 if (!emits) {
                     o.indices.insert(o.indices.end(), tris.begin(), tris.end());
@@ -399,20 +419,6 @@ struct SceneBuilder {
                 }
                 Light l;
                 l.radiance = m->ke;
-                const Vec3 a = o.positions[tris[0]];
-                if (n == 4) {
-                    // Fan (0 1 2)(0 2 3) of a parallelogram a b c d: c = b + d − a.
-                    const Vec3 b = o.positions[tris[1]], c = o.positions[tris[2]], d = o.positions[tris[5]];
-                    const float diag = std::max(length(c - a), length(d - b));
-                    if (length(c - (b + d - a)) <= float(kPlanarity) * diag) {
-                        l.type = Light::Type::Rect;
-                        l.corner = a;
-                        l.edge1 = b - a;
-                        l.edge2 = d - a;
-                        if (l.area() > 0.f) partLights.push_back(l);
-                        continue;
-                    }
-                }
                 for (size_t i = 0; i + 3 <= tris.size(); i += 3) {
                     l.type = Light::Type::Triangle;
                     l.corner = o.positions[tris[i]];
@@ -543,10 +549,14 @@ Scene parseSceneAt(const JsonReader& root, const std::string& baseDir) {
     }
     if (!objLights.empty()) {
         // The OBJ's emitters are the scene's lights; the one of largest power moves.
-        std::map<std::string, size_t> seen;
+        // Unique names: a repeated name gets the next free "#k" (a per-name counter keeps this linear
+        // for mesh lamps of many triangles; the set catches names that already end in "#k").
+        std::set<std::string> used;
+        std::map<std::string, size_t> suffix;
         for (Light& l : objLights) {
-            if (seen.count(l.name)) l.name += "#" + std::to_string(seen[l.name]);
-            ++seen[l.name];
+            const std::string base = l.name;
+            size_t& k = suffix[base];
+            while (!used.insert(l.name).second) l.name = base + "#" + std::to_string(++k);
         }
         scene.lights = std::move(objLights);
         size_t best = 0;
