@@ -1,0 +1,141 @@
+#pragma once
+/// Input encodings of a radiance regression network (issue 16; docs/design.md §10a): a fixed or
+/// trainable map from the network's normalised inputs to the features its first layer reads.
+///
+///     raw record inputs x (12 + n)  --MinMaxScaler-->  x' in [-1, 1]  --InputEncoding-->  features (F)  --MLP-->
+///
+/// Ren et al. 2013 feed x' itself (the identity encoding, F = 12 + n); later work gets far more
+/// accuracy per weight from encodings (NeRF's frequencies, NRC's one-blob, instant-NGP's hash grid).
+/// As in tiny-cuda-nn, an encoding is picked by "type" and owns its hyperparameters; each has its own
+/// header (encoding_frequency.h, encoding_one_blob.h, encoding_hash_grid.h).
+///
+/// Project / model JSON ("network": {"encoding": [...]}); an empty or missing list is the identity:
+///
+///     "encoding": [
+///       {"type": "hash_grid", "inputs": "position", "levels": 16, "log2_table_size": 14,
+///        "features_per_level": 2, "base_resolution": 16, "growth": 1.5},
+///       {"type": "frequency", "inputs": ["view", "normal"], "frequencies": 4, "include_input": true},
+///       {"type": "one_blob",  "inputs": "light", "bins": 16}
+///     ]
+///
+/// "inputs" names record input groups (RecordLayout): "position" (x' 0–2), "view" (3–5), "light"
+/// (6–8), "normal" (9–11), "brdf" (12 … 12+n−1); a group may be encoded by one component only.
+///
+/// Feature order (the MLP's input rows; CPU, GLSL and the model file agree on it):
+///   the components' outputs in list order, each in its own order (documented per encoding), then
+///   every input no component reads, unchanged, in ascending input index.
+///
+/// Trainable parameters (the hash grid's tables) live in one flat float/double vector per network,
+/// component after component (`paramOffset`), beside the MLP's weights; fixed encodings have none.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/nn/mlp.h"
+#include "core/util/json_reader.h"
+
+namespace rrf {
+
+/// One encoding applied to some of the network's normalised inputs. Implementations are immutable
+/// (settings only); parameters are passed in. Every routine works on samples as COLUMNS (dims × N),
+/// like nn/mlp.h, and exists for float (training with Adam, prediction) and double (Levenberg–
+/// Marquardt, finite-difference tests); both compute the same formula.
+class Encoding {
+public:
+    virtual ~Encoding() = default;
+    /// "frequency", "one_blob", "hash_grid".
+    virtual const char* typeName() const = 0;
+    /// Number of inputs it reads (the size of its input groups).
+    virtual int inputDims() const = 0;
+    /// Number of features it writes.
+    virtual int outputDims() const = 0;
+    /// Trainable parameters (0 for fixed encodings).
+    virtual int64_t numParams() const { return 0; }
+    /// Initial parameters, a pure function of (seed, stream) through Rng (hash grid: uniform in
+    /// [−1e-4, 1e-4], as instant-NGP). Nothing for fixed encodings.
+    virtual void initParams(double* /*params*/, uint64_t /*seed*/, uint64_t /*stream*/) const {}
+
+    /// out (outputDims × N) = encoding of x (inputDims × N, normalised inputs).
+    virtual void forward(const float* params, const Eigen::Ref<const MatX<float>>& x, Eigen::Ref<MatX<float>> out) const = 0;
+    virtual void forward(const double* params, const Eigen::Ref<const MatX<double>>& x, Eigen::Ref<MatX<double>> out) const = 0;
+
+    /// Adds ∂loss/∂params to `grad` (numParams entries) given dOut = ∂loss/∂features (outputDims × N),
+    /// after forward on the same x. When `touched` is given, the index of every parameter that may
+    /// have received a nonzero gradient is appended (duplicates allowed): the sparse Adam update
+    /// visits only those (instant-NGP skips table entries with zero gradient). No-op for fixed encodings.
+    virtual void backwardParams(const float* /*params*/, const Eigen::Ref<const MatX<float>>& /*x*/,
+                                const Eigen::Ref<const MatX<float>>& /*dOut*/, float* /*grad*/,
+                                std::vector<int64_t>* /*touched*/) const {}
+    virtual void backwardParams(const double* /*params*/, const Eigen::Ref<const MatX<double>>& /*x*/,
+                                const Eigen::Ref<const MatX<double>>& /*dOut*/, double* /*grad*/,
+                                std::vector<int64_t>* /*touched*/) const {}
+
+    /// dX (inputDims × N) = ∂loss/∂x given dOut, after forward on the same x (the chain rule through
+    /// the encoding; checked against finite differences).
+    virtual void backwardInputs(const float* params, const Eigen::Ref<const MatX<float>>& x,
+                                const Eigen::Ref<const MatX<float>>& dOut, Eigen::Ref<MatX<float>> dX) const = 0;
+    virtual void backwardInputs(const double* params, const Eigen::Ref<const MatX<double>>& x,
+                                const Eigen::Ref<const MatX<double>>& dOut, Eigen::Ref<MatX<double>> dX) const = 0;
+
+    /// Its hyperparameters, every key written ("type" and "inputs" are added by InputEncoding).
+    virtual nlohmann::json settingsJson() const = 0;
+};
+
+/// One configured component: the encoding and the normalised input indices it reads, in order.
+struct EncodingComponent {
+    std::vector<std::string> groups;        ///< as written: "position", "view", "light", "normal", "brdf"
+    std::vector<int> inputs;                ///< input indices of those groups, in group order
+    std::shared_ptr<const Encoding> encoding;
+    int64_t paramOffset = 0;                ///< start of its parameters in the network's encoding vector
+};
+
+/// The encoding of one network: its components, then pass-through of every other input.
+struct InputEncoding {
+    int inputs = 0;                            ///< normalised inputs it reads (12 + n)
+    std::vector<EncodingComponent> components; ///< empty: identity (Ren et al.'s raw inputs)
+
+    bool isIdentity() const { return components.empty(); }
+    /// Features written (the MLP's input count).
+    int outputs() const;
+    /// Trainable parameters over all components.
+    int64_t numParams() const;
+    /// Inputs no component reads, ascending (passed through unchanged after the components' outputs).
+    std::vector<int> passThrough() const;
+    /// Initial parameters (numParams entries; component k keyed by stream·16 + k).
+    VecX<double> initialParams(uint64_t seed, uint64_t stream) const;
+
+    /// features (outputs() × N) for normalised inputs x (inputs × N).
+    template <typename S>
+    void forward(const S* params, const Eigen::Ref<const MatX<S>>& x, MatX<S>& features) const;
+    /// Adds ∂loss/∂params to grad (numParams entries) given ∂loss/∂features; appends touched indices.
+    template <typename S>
+    void backwardParams(const S* params, const Eigen::Ref<const MatX<S>>& x, const Eigen::Ref<const MatX<S>>& dFeatures,
+                        S* grad, std::vector<int64_t>* touched) const;
+    /// dX (inputs × N) = ∂loss/∂x given ∂loss/∂features.
+    template <typename S>
+    void backwardInputs(const S* params, const Eigen::Ref<const MatX<S>>& x, const Eigen::Ref<const MatX<S>>& dFeatures,
+                        MatX<S>& dX) const;
+
+    /// Reads an "encoding" array for a network of `inputs` normalised inputs (12 + brdfCount);
+    /// InputError names the reader's file and the JSON pointer of an unknown type or key, a
+    /// wrong value, an unknown or repeated input group. An empty array is the identity.
+    static InputEncoding fromJson(const JsonReader& r, int inputs);
+    /// The array, every key of every component written (what a model file stores).
+    nlohmann::json toJson() const;
+    /// "identity" or e.g. "hash_grid(position) + frequency(view,normal)", for tables and logs.
+    std::string describe() const;
+
+    /// Same components with the same settings (the parameters are not part of an encoding).
+    bool operator==(const InputEncoding& o) const { return toJson() == o.toJson() && inputs == o.inputs; }
+    bool operator!=(const InputEncoding& o) const { return !(*this == o); }
+};
+
+/// Input indices of a record input group ("position" → {0,1,2}, "brdf" → {12 … inputs−1}); throws
+/// std::invalid_argument for an unknown name.
+std::vector<int> encodingGroupInputs(const std::string& group, int inputs);
+
+}  // namespace rrf
