@@ -14,20 +14,13 @@
 #include "core/scene/coordinate_range.h"
 #include "core/scene/light_region.h"
 #include "core/scene/obj_loader.h"
+#include "core/scene/scene_builder.h"
 #include "core/scene/scene_parse.h"
 #include "core/scene/transform.h"
 
 namespace rrf {
 
 namespace {
-
-/// A primitive whose doubled area is below this fraction of its squared size counts as zero-area:
-/// float vertices of collinear points leave a cross product of about 1e-7 of the size squared.
-constexpr double kDegenerateArea = 1e-6;
-/// Allowed distance of a quad corner from the quad's plane, relative to the quad's diagonal.
-constexpr double kPlanarity = 1e-4;
-/// Slack for "kd + ks <= 1": decimal inputs such as 0.7 + 0.3 do not sum to exactly 1.
-constexpr double kEnergySlack = 1e-6;
 
 const char* const kChannel[3] = {"red", "green", "blue"};
 
@@ -149,45 +142,6 @@ void pointQuad(const JsonReader& r, Object& o) {
     }
 }
 
-void applyTransform(const Transform& t, Object& o) {
-    for (Vec3& p : o.positions) p = t.apply(p);
-    if (!o.normals.empty()) {
-        // Normals map with the inverse transpose, so they stay perpendicular to the surface.
-        const Eigen::Matrix3d m = t.linear.inverse().transpose();
-        for (Vec3& n : o.normals) {
-            const Eigen::Vector3d q = m * Eigen::Vector3d(n.x, n.y, n.z);
-            n = normalize(Vec3(float(q.x()), float(q.y()), float(q.z())));
-        }
-    }
-    if (!t.flipsOrientation()) return;
-    // A mirror turns counter-clockwise into clockwise; reverse each primitive to keep normals outward.
-    const size_t k = size_t(o.verticesPerPrimitive());
-    for (size_t i = 0; i + k <= o.indices.size(); i += k)
-        std::reverse(o.indices.begin() + long(i + 1), o.indices.begin() + long(i + k));
-}
-
-/// Removes zero-area triangles (counted in scene.warnings); an object left empty is an error.
-void dropDegenerateTriangles(const JsonReader& r, Object& o, std::vector<std::string>& warnings) {
-    std::vector<uint32_t> kept;
-    kept.reserve(o.indices.size());
-    size_t dropped = 0;
-    for (size_t i = 0; i + 3 <= o.indices.size(); i += 3) {
-        const DVec a(o.positions[o.indices[i]]), b(o.positions[o.indices[i + 1]]), c(o.positions[o.indices[i + 2]]);
-        const DVec e0 = b - a, e1 = c - a, e2 = c - b;
-        const double size = std::max({e0.dot(e0), e1.dot(e1), e2.dot(e2)});
-        if (e0.cross(e1).norm() > kDegenerateArea * size) {
-            kept.insert(kept.end(), o.indices.begin() + long(i), o.indices.begin() + long(i + 3));
-        } else {
-            ++dropped;
-        }
-    }
-    if (kept.empty()) r.fail("mesh '" + o.name + "' has no triangles with non-zero area");
-    if (dropped)
-        warnings.push_back(r.file() + ": " + r.pointer() + ": dropped " + std::to_string(dropped) +
-                           " zero-area triangle" + (dropped == 1 ? "" : "s") + " from '" + o.name + "'");
-    o.indices = std::move(kept);
-}
-
 void inlineTriangles(const JsonReader& r, Object& o) {
     const JsonReader pos = r.at("positions");
     const size_t n = pos.requireArray();
@@ -217,11 +171,7 @@ void unitBox(Object& o) {
     o.indices = {0, 4, 6, 2, 1, 3, 7, 5, 0, 1, 5, 4, 2, 6, 7, 3, 0, 2, 3, 1, 4, 5, 7, 6};
 }
 
-struct SceneBuilder {
-    Scene& scene;
-    std::string baseDir;
-    std::map<std::string, int> materialIndex;
-    std::map<std::string, std::string> objectNames;  ///< name -> pointer of first use
+struct SceneBuilder : SceneBuildState {
 
     int lookupMaterial(const JsonReader& r) const {
         const std::string name = r.string();
@@ -314,134 +264,8 @@ struct SceneBuilder {
             dropDegenerateTriangles(r, o, scene.warnings);
         }
         o.material = lookupMaterial(r.at("material"));
-        const auto [it, fresh] = objectNames.emplace(o.name, r.pointer());
-        if (!fresh) r.fail("duplicate object name '" + o.name + "' (first used at " + it->second + ")");
+        claimObjectName(r, o.name);
         return o;
-    }
-
-    /// The scene's material for an MTL material: the JSON's material of that name if there is one
-    /// (explicit entries override), else Lambert (Ks = 0) or Phong from Kd, Ks, Ns, scaled down with a
-    /// warning where Kd + Ks > 1 in some channel.
-    int mtlMaterial(const JsonReader& r, const ObjMaterial* m, const std::string& objPath) {
-        const std::string name = m ? m->name : "default";
-        if (const auto it = materialIndex.find(name); it != materialIndex.end()) return it->second;
-        Material mat;
-        mat.name = name;
-        if (m) {
-            mat.kd = m->kd;
-            mat.ks = m->ks;
-            mat.exponent = m->ns;
-            mat.type = m->ks.isZero() ? Material::Type::Lambert : Material::Type::Phong;
-            const float sum = (m->kd + m->ks).maxComponent();
-            if (sum > 1.f + float(kEnergySlack)) {
-                const float s = 1.f / sum;
-                mat.kd = m->kd * s;
-                mat.ks = m->ks * s;
-                scene.warnings.push_back(r.file() + ": " + r.pointer() + ": material '" + name + "' of '" + objPath +
-                                         "' has Kd + Ks = " + formatNumber(sum) +
-                                         " > 1; Kd and Ks scaled by " + formatNumber(s) + " (energy conservation)");
-            }
-        } else {
-            scene.warnings.push_back(r.file() + ": " + r.pointer() + ": faces of '" + objPath +
-                                     "' without usemtl get material 'default' (Lambert, albedo 0.5)");
-        }
-        materialIndex[name] = int(scene.materials.size());
-        scene.materials.push_back(mat);
-        return materialIndex[name];
-    }
-
-    /// An OBJ shape without "material": one object per part (ObjSplit), materials from the MTL,
-    /// and — when `emitters` (the scene JSON has no "lights") — area lights from faces whose
-    /// material has Ke > 0: a planar parallelogram quad becomes a rect light, any other face a fan
-    /// of triangle lights. Emitting faces are black emitters, as in the Cornell box.
-    void objFile(const JsonReader& r, bool emitters, std::vector<Light>& lightsOut) {
-        r.checkKeys({"type", "name", "file", "transform", "split", "closed"});
-        const JsonReader file = r.at("file");
-        const std::string path = resolvePath(baseDir, file.string());
-        ObjSplit split = ObjSplit::Groups;
-        if (auto sp = r.find("split")) {
-            const std::string v = sp->string();
-            if (v == "materials") split = ObjSplit::Materials;
-            else if (v != "groups") sp->fail("split must be \"groups\" or \"materials\", got '" + v + "'");
-        }
-        std::vector<std::string> known;
-        for (const auto& kv : materialIndex) known.push_back(kv.first);
-        ObjFile obj = loadObjFile(path, file.file(), file.pointer(), split, true, known);
-        for (std::string& w : obj.warnings) scene.warnings.push_back(std::move(w));
-        std::optional<Transform> transform;
-        if (auto t = r.find("transform")) transform = parseTransform(*t);
-        const std::string prefix = r.has("name") ? r.at("name").string() + "/" : "";
-        for (const ObjPart& part : obj.parts) {
-            const ObjMaterial* m = part.material >= 0 ? &obj.materials[size_t(part.material)] : nullptr;
-            Object o;
-            o.kind = Object::Kind::Triangles;
-            o.name = prefix + part.name;
-            o.positions = part.positions;
-            o.normals = part.normals;
-            if (transform) applyTransform(*transform, o);  // indices are still empty: only points and normals
-            for (const Vec3& p : o.positions)
-                if (const std::string why = coordinateRangeProblem(p); !why.empty())
-                    r.fail("OBJ part '" + o.name + "' has a point outside the scene's coordinate range: " + why);
-            const bool emits = emitters && m && !m->ke.isZero();
-            if (!emitters && m && !m->ke.isZero())
-                scene.warnings.push_back(r.file() + ": " + r.pointer() + ": emitting faces of '" + o.name +
-                                         "' are plain surfaces: the scene's \"lights\" replace the OBJ's emitters");
-            size_t first = 0, lightCount = 0;
-            std::vector<Light> partLights;
-            for (size_t f = 0; f < part.faceSizes.size(); first += part.faceSizes[f++]) {
-                const size_t n = part.faceSizes[f];
-                std::vector<uint32_t> tris;
-                fanTriangulate(part.indices, first, n, tris);
-                // A mirroring transform turns the winding: the triangles, and a rect's edges, are
-                // swapped back so that the front stays the front.
-                const bool flip = transform && transform->flipsOrientation();
-                const Vec3 a = o.positions[tris[0]];
-                if (emits && n == 4) {
-                    // Fan (0 1 2)(0 2 3) of a parallelogram a b c d (before any swap): c = b + d − a.
-                    const Vec3 b = o.positions[tris[1]], c = o.positions[tris[2]], d = o.positions[tris[5]];
-                    const float diag = std::max(length(c - a), length(d - b));
-                    if (length(c - (b + d - a)) <= float(kPlanarity) * diag) {
-                        Light l;
-                        l.radiance = m->ke;
-                        l.type = Light::Type::Rect;
-                        l.corner = a;
-                        l.edge1 = flip ? d - a : b - a;
-                        l.edge2 = flip ? b - a : d - a;
-                        if (l.area() > 0.f) partLights.push_back(l);
-                        continue;
-                    }
-                }
-                if (flip)
-                    for (size_t i = 0; i + 3 <= tris.size(); i += 3) std::swap(tris[i + 1], tris[i + 2]);
-                if (!emits) {
-                    o.indices.insert(o.indices.end(), tris.begin(), tris.end());
-                    continue;
-                }
-                Light l;
-                l.radiance = m->ke;
-                for (size_t i = 0; i + 3 <= tris.size(); i += 3) {
-                    l.type = Light::Type::Triangle;
-                    l.corner = o.positions[tris[i]];
-                    l.edge1 = o.positions[tris[i + 1]] - l.corner;
-                    l.edge2 = o.positions[tris[i + 2]] - l.corner;
-                    if (l.area() > 0.f) partLights.push_back(l);
-                }
-            }
-            for (Light& l : partLights) {
-                l.name = partLights.size() == 1 ? o.name : o.name + "." + std::to_string(lightCount);
-                ++lightCount;
-                lightsOut.push_back(l);
-            }
-            if (o.indices.empty()) continue;  // an emitter only
-            o.material = mtlMaterial(r, m, path);
-            o.closed = r.booleanOr("closed", false);
-            dropDegenerateTriangles(r, o, scene.warnings);
-            // Vertices no face of this object uses (emitting faces) stay; only the indices matter.
-            o.id = int(scene.objects.size());
-            const auto [it, fresh] = objectNames.emplace(o.name, r.pointer());
-            if (!fresh) r.fail("duplicate object name '" + o.name + "' (first used at " + it->second + ")");
-            scene.objects.push_back(std::move(o));
-        }
     }
 
     Light light(const JsonReader& r, size_t index) {
@@ -507,6 +331,49 @@ struct SceneBuilder {
 
 }  // namespace
 
+void SceneBuildState::claimObjectName(const JsonReader& r, const std::string& name) {
+    const auto [it, fresh] = objectNames.emplace(name, r.pointer());
+    if (!fresh) r.fail("duplicate object name '" + name + "' (first used at " + it->second + ")");
+}
+
+void applyTransform(const Transform& t, Object& o) {
+    for (Vec3& p : o.positions) p = t.apply(p);
+    if (!o.normals.empty()) {
+        // Normals map with the inverse transpose, so they stay perpendicular to the surface.
+        const Eigen::Matrix3d m = t.linear.inverse().transpose();
+        for (Vec3& n : o.normals) {
+            const Eigen::Vector3d q = m * Eigen::Vector3d(n.x, n.y, n.z);
+            n = normalize(Vec3(float(q.x()), float(q.y()), float(q.z())));
+        }
+    }
+    if (!t.flipsOrientation()) return;
+    // A mirror turns counter-clockwise into clockwise; reverse each primitive to keep normals outward.
+    const size_t k = size_t(o.verticesPerPrimitive());
+    for (size_t i = 0; i + k <= o.indices.size(); i += k)
+        std::reverse(o.indices.begin() + long(i + 1), o.indices.begin() + long(i + k));
+}
+
+void dropDegenerateTriangles(const JsonReader& r, Object& o, std::vector<std::string>& warnings) {
+    std::vector<uint32_t> kept;
+    kept.reserve(o.indices.size());
+    size_t dropped = 0;
+    for (size_t i = 0; i + 3 <= o.indices.size(); i += 3) {
+        const DVec a(o.positions[o.indices[i]]), b(o.positions[o.indices[i + 1]]), c(o.positions[o.indices[i + 2]]);
+        const DVec e0 = b - a, e1 = c - a, e2 = c - b;
+        const double size = std::max({e0.dot(e0), e1.dot(e1), e2.dot(e2)});
+        if (e0.cross(e1).norm() > kDegenerateArea * size) {
+            kept.insert(kept.end(), o.indices.begin() + long(i), o.indices.begin() + long(i + 3));
+        } else {
+            ++dropped;
+        }
+    }
+    if (kept.empty()) r.fail("mesh '" + o.name + "' has no triangles with non-zero area");
+    if (dropped)
+        warnings.push_back(r.file() + ": " + r.pointer() + ": dropped " + std::to_string(dropped) +
+                           " zero-area triangle" + (dropped == 1 ? "" : "s") + " from '" + o.name + "'");
+    o.indices = std::move(kept);
+}
+
 std::string directoryOf(const std::string& path) {
     return std::filesystem::path(path).parent_path().string();
 }
@@ -521,7 +388,7 @@ Scene parseSceneAt(const JsonReader& root, const std::string& baseDir) {
     root.checkKeys({"camera", "materials", "shapes", "lights", "light_region"});
     Scene scene;
     scene.sourcePath = root.file();
-    SceneBuilder b{scene, baseDir, {}, {}};
+    SceneBuilder b{{scene, baseDir, {}, {}}};
     scene.camera = parseCamera(root.at("camera"));
 
     // "materials" may be left out when every shape takes its materials from an OBJ's MTL.
@@ -541,31 +408,13 @@ Scene parseSceneAt(const JsonReader& root, const std::string& baseDir) {
         const JsonReader s = shapes.at(i);
         s.requireObject();
         if (s.has("type") && s.at("type").value().is_string() && s.at("type").string() == "obj" && !s.has("material")) {
-            b.objFile(s, objEmitters, objLights);
+            addObjFileShapes(b, s, objEmitters, objLights);
         } else {
             scene.objects.push_back(b.shape(s, i));
             scene.objects.back().id = int(scene.objects.size() - 1);
         }
     }
-    if (!objLights.empty()) {
-        // The OBJ's emitters are the scene's lights; the one of largest power moves.
-        // Unique names: a repeated name gets the next free "#k" (a per-name counter keeps this linear
-        // for mesh lamps of many triangles; the set catches names that already end in "#k").
-        std::set<std::string> used;
-        std::map<std::string, size_t> suffix;
-        for (Light& l : objLights) {
-            const std::string base = l.name;
-            size_t& k = suffix[base];
-            while (!used.insert(l.name).second) l.name = base + "#" + std::to_string(++k);
-        }
-        scene.lights = std::move(objLights);
-        size_t best = 0;
-        for (size_t i = 1; i < scene.lights.size(); ++i)
-            if (scene.lights[i].radiance.sum() * scene.lights[i].area() >
-                scene.lights[best].radiance.sum() * scene.lights[best].area())
-                best = i;
-        scene.movableLight = int(best);
-    }
+    if (!objLights.empty()) adoptObjLights(scene, std::move(objLights));
 
     if (auto lights = root.find("lights")) {
         const size_t n = lights->requireArray();
