@@ -53,6 +53,7 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_pipeline_controls.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_frame_stats.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
+    ${CMAKE_SOURCE_DIR}/app/gui/worker_priority.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/frame_stats.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/user_workspace.cpp)

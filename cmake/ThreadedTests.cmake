@@ -14,6 +14,7 @@ add_executable(rrf_threaded_tests
   ${CMAKE_SOURCE_DIR}/tests/test_training_run.cpp
   ${CMAKE_SOURCE_DIR}/tests/gui/test_job_runner.cpp
   ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
+  ${CMAKE_SOURCE_DIR}/app/gui/worker_priority.cpp
   ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp
   ${CMAKE_SOURCE_DIR}/panels/log.cpp)
 target_link_libraries(rrf_threaded_tests PRIVATE rrf_core GTest::gtest GTest::gtest_main rrf_warnings)

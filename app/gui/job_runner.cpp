@@ -1,5 +1,7 @@
 #include "app/gui/job_runner.h"
 
+#include "app/gui/worker_priority.h"
+
 #include <algorithm>
 
 namespace rrf {
@@ -86,6 +88,7 @@ int JobRunner::start(JobKind kind, const std::string& name, std::function<void(J
     Entry* raw = entry.get();
     std::shared_ptr<JobContext> ctx = entry->context;
     entry->thread = std::thread([raw, ctx, work = std::move(work)] {
+        lowerCurrentThreadPriority();  // the UI thread draws first (app/gui/worker_priority.h)
         std::string error;
         try {
             work(*ctx);

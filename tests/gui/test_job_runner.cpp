@@ -10,6 +10,11 @@
 
 #include "app/gui/job_runner.h"
 #include "app/gui/job_session.h"
+#include "app/gui/worker_priority.h"
+
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 namespace rrf::test::test_job_runner {
 
@@ -106,6 +111,20 @@ TEST(JobRunner, ExceptionsMarkTheJobFailed) {
     ASSERT_EQ(done.size(), 1u);
     EXPECT_TRUE(done[0].failed);
     EXPECT_EQ(done[0].error, "no models");
+}
+
+TEST(JobRunner, JobsRunBelowTheUiThreadsPriority) {
+    // The UI thread keeps its priority; a job's thread and the TBB workers of its parallel loops
+    // run at nice +kWorkerNice, so a busy job cannot stretch the UI's frames (item 10 of issue 14).
+    auto niceOfThisThread = [] { return getpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid))); };
+    const int uiNice = niceOfThisThread();
+    ASSERT_LT(uiNice, kWorkerNice) << "the test process itself already runs at the workers' nice";
+    JobRunner runner;
+    int jobNice = -100;
+    runner.start(JobKind::Render, "nice", [&](JobContext&) { jobNice = niceOfThisThread(); });
+    runner.waitAll();
+    EXPECT_EQ(jobNice, kWorkerNice);
+    EXPECT_EQ(niceOfThisThread(), uiNice) << "the calling thread is never lowered";
 }
 
 TEST(JobRunner, ConflictMatrixIsSymmetric) {
