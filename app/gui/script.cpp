@@ -231,12 +231,12 @@ bool Script::execute(Workbench& wb, const json& s) {
         }
         if (--framesLeft_ >= 0) return false;
         const FrameTimeSummary f = summarizeFrameTimes(wb.frameStats().takeRecording());
-        // With drag_light, how much of a frame the prediction itself took (its last few frames).
-        const FrameTimeSummary p = summarizeFrameTimes(wb.predictionSeconds());
+        // With drag_light, how much of a frame the draft prediction itself took (its last frames).
+        const FrameTimeSummary p = summarizeFrameTimes(wb.draftSeconds());
         std::printf("frames %-20s median %7.1f ms  p95 %7.1f ms  max %7.1f ms  (%zu frames)%s\n",
                     r.stringOr("label", "").c_str(), 1e3 * f.median, 1e3 * f.p95, 1e3 * f.max, f.frames,
                     r.booleanOr("drag_light", false) && p.frames
-                        ? ("; prediction alone median " + std::to_string(int(1e3 * p.median + 0.5)) + " ms").c_str()
+                        ? ("; draft prediction alone median " + std::to_string(int(1e3 * p.median + 0.5)) + " ms").c_str()
                         : "");
         std::fflush(stdout);
     } else if (what == "tab") {

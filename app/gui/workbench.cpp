@@ -118,6 +118,7 @@ void Workbench::frame() {
     pollSweep();
     pollRunPair();
     pollPipeline();
+    finishDraft();
     drawHost();
     drawModals();
     drawFrameOverlay();
@@ -232,7 +233,10 @@ void Workbench::drawStatusBar() {
     ImGui::NewLine();
 }
 
-bool Workbench::busy() const { return !jobs_.idle() || pipelineRunning() || ImGui::IsAnyMouseDown(); }
+bool Workbench::busy() const {
+    // A draft on screen is replaced by the full frame shortly: keep the frames coming until then.
+    return !jobs_.idle() || pipelineRunning() || draftShown_ || ImGui::IsAnyMouseDown();
+}
 
 void Workbench::drawFrameOverlay() {
     if (!frameOverlay_) return;

@@ -12,6 +12,7 @@
 #include "app/gui/job_runner.h"
 #include "app/gui/job_session.h"
 #include "app/gui/live_prediction.h"
+#include "app/gui/prediction_draft.h"
 #include "app/gui/render_session.h"
 #include "app/gui/user_config.h"
 #include "panels/file_dialog.h"
@@ -122,6 +123,8 @@ public:
     FrameStats& frameStats() { return frameStats_; }
     /// The live prediction's recent frame times (seconds; GLSL on the UI thread, else CPU jobs).
     const std::vector<double>& predictionSeconds() const { return frameSeconds_; }
+    /// The recent draft frames' prediction times while the light was dragged (seconds).
+    const std::vector<double>& draftSeconds() const { return draftSeconds_; }
 
     panels::WorkbenchState& state() { return state_; }
     JobRunner& jobs() { return jobs_; }
@@ -206,6 +209,17 @@ private:
     size_t framesSinceRecorded_ = 0;  ///< frames noted since the median was last recorded in the run
     void noteFrameSeconds(const char* key, double seconds);
     bool predictPending_ = false;  ///< the light moved while a CPU prediction ran
+    /// Light-drag drafts (app/gui/prediction_draft.h): the light position of the last GLSL frame,
+    /// whether one was rendered for the loaded models, whether the view shows a draft and when
+    /// that draft was rendered (the full frame follows kDraftRestSeconds later), draft frame times.
+    Vec3 predictedLight_{};
+    bool predictedOnce_ = false;
+    bool draftShown_ = false;
+    std::chrono::steady_clock::time_point draftTime_{};
+    std::vector<double> draftSeconds_;
+    int draftDivisor_ = kMaxDraftDivisor;  ///< resolution divisor of the next draft (adapts to its time)
+    /// Renders the full-quality frame once the light has rested after a drag.
+    void finishDraft();
     JobSession<SweepOutcome> sweepJob_{jobs_, JobKind::Sweep, state_.log};
     JobSession<PairOutcome> pairJob_{jobs_, JobKind::Compare, state_.log};
     void pollRunPair();

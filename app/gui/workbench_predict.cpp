@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "app/gui/prediction_draft.h"
 #include "core/eval/evaluation.h"
 #include "core/predict/predictor.h"
 #include "core/project/run_recording.h"
@@ -48,6 +49,7 @@ bool Workbench::loadModels(const std::string& dir, std::shared_ptr<const ModelSe
     state_.training.modelsDir = dir;
     frameSeconds_.clear();
     framesSinceRecorded_ = 0;
+    predictedOnce_ = draftShown_ = false;  // the first frame of new models is a full one
     state_.leaves = panels::leavesOf(*live_.models());
     state_.view.compareSource = panels::CompareSource::Prediction;
     state_.log.info("models loaded from " + dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)"));
@@ -70,18 +72,34 @@ void Workbench::refreshPrediction() {
     }
     const Camera camera = viewCamera(state_.project);
     if (live_.usesGlsl()) {
+        // A light that moved since the last frame is being dragged: draft until it rests.
+        const Vec3 light = scene.lightPosition();
+        const bool draft = predictedOnce_ && !(light == predictedLight_);
         Image images[kTermCount];
         try {
             const Stopwatch clock;
-            live_.renderGlsl(camera, scene.lightPosition(), state_.project.prediction, images);
-            noteFrameSeconds("glsl_frame_seconds", clock.seconds());
+            if (draft) {
+                live_.renderGlsl(draftCamera(camera, draftDivisor_), light, draftPrediction(state_.project.prediction),
+                                 images);
+                for (Image& im : images) im = replicatePixels(im, camera.width, camera.height);
+                draftSeconds_.push_back(clock.seconds());
+                draftDivisor_ = nextDraftDivisor(draftDivisor_, draftSeconds_.back());
+                if (draftSeconds_.size() > 64) draftSeconds_.erase(draftSeconds_.begin());
+            } else {
+                live_.renderGlsl(camera, light, state_.project.prediction, images);
+                noteFrameSeconds("glsl_frame_seconds", clock.seconds());
+            }
         } catch (const std::exception& e) {
             state_.log.error(std::string("GLSL prediction failed: ") + e.what());
             return;
         }
+        predictedLight_ = light;
+        predictedOnce_ = true;
+        draftShown_ = draft;
+        if (draft) draftTime_ = std::chrono::steady_clock::now();
         panels::ImageSet& p = state_.prediction;
         for (Term t : kTerms) p.term(t) = std::move(images[int(t)]);
-        p.label = "Prediction (GLSL)";
+        p.label = draft ? "Prediction (GLSL, draft while the light moves)" : "Prediction (GLSL)";
         p.withoutNetwork = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
         p.touch();
         return;
@@ -111,6 +129,14 @@ void Workbench::refreshPrediction() {
         return;
     }
     predictPending_ = false;
+}
+
+void Workbench::finishDraft() {
+    if (!draftShown_) return;
+    const double rested = std::chrono::duration<double>(std::chrono::steady_clock::now() - draftTime_).count();
+    if (rested < kDraftRestSeconds) return;
+    draftShown_ = false;
+    if (live_.loaded() && live_.usesGlsl()) refreshPrediction();  // same light: the full-quality frame
 }
 
 void Workbench::noteFrameSeconds(const char* key, double seconds) {
