@@ -100,29 +100,40 @@ uint32_t HashGridEncoding::entryIndex(int l, const int* v) const {
     return h & uint32_t(tableSize() - 1);
 }
 
-uint32_t HashGridEncoding::cornerIndex(int l, const int* c, int k) const {
-    int v[kMaxInputs];
-    for (int i = 0; i < inputDims_; ++i) v[i] = c[i] + ((k >> i) & 1);
-    return entryIndex(l, v);
+template <typename S>
+uint32_t HashGridEncoding::cornerIndex(int l, const Cell<S>& cl, int k) const {
+    if (levels_[size_t(l)].dense) {
+        uint32_t idx = cl.term[0][k & 1];
+        for (int i = 1; i < inputDims_; ++i) idx += cl.term[i][(k >> i) & 1];
+        return idx;
+    }
+    uint32_t h = cl.term[0][k & 1];
+    for (int i = 1; i < inputDims_; ++i) h ^= cl.term[i][(k >> i) & 1];
+    return h & uint32_t(tableSize() - 1);
 }
 
 template <typename S>
 HashGridEncoding::Cell<S> HashGridEncoding::cell(int l, const S* u) const {
-    const int res = levels_[size_t(l)].resolution;
+    const Level& level = levels_[size_t(l)];
+    const int res = level.resolution;
     const S s = S(res);
     Cell<S> cl;
     for (int i = 0; i < inputDims_; ++i) {
         const S pos = u[i] * s;
-        cl.c[i] = std::min(int(std::floor(pos)), res - 1);
-        cl.f[i] = pos - S(cl.c[i]);
+        const int c = std::min(int(std::floor(pos)), res - 1);
+        const S f = pos - S(c);
+        cl.factor[i][0] = S(1) - f;
+        cl.factor[i][1] = f;
+        for (int b = 0; b < 2; ++b)
+            cl.term[i][b] = level.dense ? uint32_t(c + b) * level.stride[size_t(i)] : uint32_t(c + b) * kPrimes[size_t(i)];
     }
     return cl;
 }
 
 template <typename S>
 S HashGridEncoding::cornerWeight(const Cell<S>& cl, int k) const {
-    S w = ((k & 1) ? cl.f[0] : S(1) - cl.f[0]);
-    for (int i = 1; i < inputDims_; ++i) w *= ((k >> i) & 1) ? cl.f[i] : S(1) - cl.f[i];
+    S w = cl.factor[0][k & 1];
+    for (int i = 1; i < inputDims_; ++i) w *= cl.factor[i][(k >> i) & 1];
     return w;
 }
 
@@ -147,7 +158,7 @@ void HashGridEncoding::forwardImpl(const S* params, const Eigen::Ref<const MatX<
             S acc[8] = {};
             for (int k = 0; k < corners; ++k) {
                 const S w = cornerWeight<S>(cl, k);
-                const S* p = params + (int64_t(l) * T + cornerIndex(l, cl.c, k)) * F;
+                const S* p = params + (int64_t(l) * T + cornerIndex<S>(l, cl, k)) * F;
                 for (int f = 0; f < F; ++f) acc[f] += w * p[f];
             }
             for (int f = 0; f < F; ++f) out(l * F + f, n) = acc[f];
@@ -168,7 +179,7 @@ void HashGridEncoding::backwardParamsImpl(const Eigen::Ref<const MatX<S>>& x, co
             const Cell<S> cl = cell<S>(l, u);
             for (int k = 0; k < corners; ++k) {
                 const S w = cornerWeight<S>(cl, k);
-                const int64_t base = (int64_t(l) * T + cornerIndex(l, cl.c, k)) * F;
+                const int64_t base = (int64_t(l) * T + cornerIndex<S>(l, cl, k)) * F;
                 for (int f = 0; f < F; ++f) {
                     grad[base + f] += w * dOut(l * F + f, n);
                     if (touched) touched->push_back(base + f);
@@ -193,14 +204,14 @@ void HashGridEncoding::backwardInputsImpl(const S* params, const Eigen::Ref<cons
             const S s = S(levels_[size_t(l)].resolution);
             for (int k = 0; k < corners; ++k) {
                 // g = Σ_f dOut·param: how much the loss changes per unit of this corner's weight.
-                const S* p = params + (int64_t(l) * T + cornerIndex(l, cl.c, k)) * F;
+                const S* p = params + (int64_t(l) * T + cornerIndex<S>(l, cl, k)) * F;
                 S g = 0;
                 for (int f = 0; f < F; ++f) g += dOut(l * F + f, n) * p[f];
                 for (int i = 0; i < inputDims_; ++i) {
                     // ∂w/∂f_i: the other factors, with sign + for the upper and − for the lower corner.
                     S dw = ((k >> i) & 1) ? S(1) : S(-1);
                     for (int j = 0; j < inputDims_; ++j)
-                        if (j != i) dw *= ((k >> j) & 1) ? cl.f[j] : S(1) - cl.f[j];
+                        if (j != i) dw *= cl.factor[j][(k >> j) & 1];
                     du[i] += g * dw * s;
                 }
             }

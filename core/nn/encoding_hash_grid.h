@@ -108,19 +108,23 @@ private:
         bool dense = false;
         std::array<uint32_t, kMaxInputs> stride{};  ///< (res + 1)^i, dense levels only
     };
-    /// The cell of one sample at one level: lower corner c and fractions f (formula above).
+    /// The cell of one sample at one level (formula above): per dimension the factors {1 − f_i, f_i}
+    /// of the corner weights and the index terms of the lower and upper vertex
+    /// ((c_i + b)·(res + 1)^i when dense, uint32(c_i + b)·π_i when hashed), so that each corner only
+    /// sums or XORs d terms.
     template <typename S>
     struct Cell {
-        int c[kMaxInputs];
-        S f[kMaxInputs];
+        S factor[kMaxInputs][2];
+        uint32_t term[kMaxInputs][2];
     };
     template <typename S>
     Cell<S> cell(int l, const S* u) const;
     /// Interpolation weight of corner k of a cell (product in increasing i).
     template <typename S>
     S cornerWeight(const Cell<S>& cell, int k) const;
-    /// Table entry of corner k of a cell at level l.
-    uint32_t cornerIndex(int l, const int* c, int k) const;
+    /// Table entry of corner k of a cell at level l (equals entryIndex of its vertex).
+    template <typename S>
+    uint32_t cornerIndex(int l, const Cell<S>& cell, int k) const;
 
     template <typename S>
     void forwardImpl(const S* params, const Eigen::Ref<const MatX<S>>& x, Eigen::Ref<MatX<S>> out) const;
