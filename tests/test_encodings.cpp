@@ -14,9 +14,13 @@
 #include "core/util/error.h"
 #include "core/util/rng.h"
 
+// The TESTs sit inside the file's namespace too (as tests/test_nn_mlp.cpp): a using-directive at
+// global scope would leak these helpers into the other sources of a unity batch.
 namespace test_encodings {
 
 using namespace rrf;
+
+namespace {
 
 constexpr double kPiD = 3.14159265358979323846;  // vec3.h's kPi is a float
 
@@ -138,9 +142,7 @@ int expectInputGradientsMatch(const MatX<double>& analytic, const MatX<double>& 
     return compared;
 }
 
-}  // namespace test_encodings
-
-using namespace test_encodings;
+}  // namespace
 
 TEST(Encoding, FrequencyForwardIsSinCosOfPowersOfTwoTimesPi) {
     const FrequencyEncoding enc(2, {2, true});
@@ -517,3 +519,5 @@ TEST(Encoding, ToJsonWritesEveryKeyAndReadsBackEqual) {
     EXPECT_EQ(encodingGroupInputs("normal", 16), (std::vector<int>{9, 10, 11}));
     EXPECT_THROW(encodingGroupInputs("colour", 16), std::invalid_argument);
 }
+
+}  // namespace test_encodings

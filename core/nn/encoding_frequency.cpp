@@ -8,7 +8,7 @@ namespace rrf {
 
 namespace {
 // vec3.h's kPi is a float; ω_k must be formed in double before the single rounding to float.
-constexpr double kPiDouble = 3.14159265358979323846;
+constexpr double kOmegaPi = 3.14159265358979323846;
 }  // namespace
 
 FrequencyEncoding::FrequencyEncoding(int inputDims, FrequencySettings settings)
@@ -28,7 +28,7 @@ std::shared_ptr<const FrequencyEncoding> FrequencyEncoding::fromJson(const JsonR
 
 template <typename S>
 S FrequencyEncoding::angularFrequency(int k) {
-    return S(kPiDouble * std::ldexp(1.0, k));
+    return S(kOmegaPi * std::ldexp(1.0, k));
 }
 
 template float FrequencyEncoding::angularFrequency<float>(int);
