@@ -146,19 +146,24 @@ void HashGridEncoding::initParams(double* params, uint64_t seed, uint64_t stream
     }
 }
 
+// The passes loop over levels outside and samples inside: one level's table (T·F values) stays in
+// cache while every sample reads it, instead of all L tables competing for it per sample. The
+// arithmetic per (sample, level) and its order are those of the formula.
+
 template <typename S>
 void HashGridEncoding::forwardImpl(const S* params, const Eigen::Ref<const MatX<S>>& x, Eigen::Ref<MatX<S>> out) const {
     const int F = settings_.featuresPerLevel, corners = 1 << inputDims_;
     const int64_t T = tableSize();
     S u[kMaxInputs];
-    for (Eigen::Index n = 0; n < x.cols(); ++n) {
-        unitCoordinates<S>(x, n, inputDims_, u);
-        for (int l = 0; l < settings_.levels; ++l) {
+    for (int l = 0; l < settings_.levels; ++l) {
+        const S* table = params + int64_t(l) * T * F;
+        for (Eigen::Index n = 0; n < x.cols(); ++n) {
+            unitCoordinates<S>(x, n, inputDims_, u);
             const Cell<S> cl = cell<S>(l, u);
             S acc[8] = {};
             for (int k = 0; k < corners; ++k) {
                 const S w = cornerWeight<S>(cl, k);
-                const S* p = params + (int64_t(l) * T + cornerIndex<S>(l, cl, k)) * F;
+                const S* p = table + int64_t(cornerIndex<S>(l, cl, k)) * F;
                 for (int f = 0; f < F; ++f) acc[f] += w * p[f];
             }
             for (int f = 0; f < F; ++f) out(l * F + f, n) = acc[f];
@@ -173,9 +178,9 @@ void HashGridEncoding::backwardParamsImpl(const Eigen::Ref<const MatX<S>>& x, co
     const int64_t T = tableSize();
     if (touched) touched->reserve(touched->size() + size_t(x.cols()) * size_t(settings_.levels * corners * F));
     S u[kMaxInputs];
-    for (Eigen::Index n = 0; n < x.cols(); ++n) {
-        unitCoordinates<S>(x, n, inputDims_, u);
-        for (int l = 0; l < settings_.levels; ++l) {
+    for (int l = 0; l < settings_.levels; ++l) {
+        for (Eigen::Index n = 0; n < x.cols(); ++n) {
+            unitCoordinates<S>(x, n, inputDims_, u);
             const Cell<S> cl = cell<S>(l, u);
             for (int k = 0; k < corners; ++k) {
                 const S w = cornerWeight<S>(cl, k);
@@ -195,16 +200,16 @@ void HashGridEncoding::backwardInputsImpl(const S* params, const Eigen::Ref<cons
     const int F = settings_.featuresPerLevel, corners = 1 << inputDims_;
     const int64_t T = tableSize();
     S u[kMaxInputs];
-    bool clamped[kMaxInputs];
-    for (Eigen::Index n = 0; n < x.cols(); ++n) {
-        unitCoordinates<S>(x, n, inputDims_, u, clamped);
-        S du[kMaxInputs] = {};  // ∂loss/∂u_i
-        for (int l = 0; l < settings_.levels; ++l) {
+    dX.setZero();  // accumulates ∂loss/∂u_i over the levels, in level order
+    for (int l = 0; l < settings_.levels; ++l) {
+        const S* table = params + int64_t(l) * T * F;
+        const S s = S(levels_[size_t(l)].resolution);
+        for (Eigen::Index n = 0; n < x.cols(); ++n) {
+            unitCoordinates<S>(x, n, inputDims_, u);
             const Cell<S> cl = cell<S>(l, u);
-            const S s = S(levels_[size_t(l)].resolution);
             for (int k = 0; k < corners; ++k) {
                 // g = Σ_f dOut·param: how much the loss changes per unit of this corner's weight.
-                const S* p = params + (int64_t(l) * T + cornerIndex<S>(l, cl, k)) * F;
+                const S* p = table + int64_t(cornerIndex<S>(l, cl, k)) * F;
                 S g = 0;
                 for (int f = 0; f < F; ++f) g += dOut(l * F + f, n) * p[f];
                 for (int i = 0; i < inputDims_; ++i) {
@@ -212,11 +217,15 @@ void HashGridEncoding::backwardInputsImpl(const S* params, const Eigen::Ref<cons
                     S dw = ((k >> i) & 1) ? S(1) : S(-1);
                     for (int j = 0; j < inputDims_; ++j)
                         if (j != i) dw *= cl.factor[j][(k >> j) & 1];
-                    du[i] += g * dw * s;
+                    dX(i, n) += g * dw * s;
                 }
             }
         }
-        for (int i = 0; i < inputDims_; ++i) dX(i, n) = clamped[i] ? S(0) : du[i] * S(0.5);
+    }
+    bool clamped[kMaxInputs];
+    for (Eigen::Index n = 0; n < x.cols(); ++n) {
+        unitCoordinates<S>(x, n, inputDims_, u, clamped);
+        for (int i = 0; i < inputDims_; ++i) dX(i, n) = clamped[i] ? S(0) : dX(i, n) * S(0.5);
     }
 }
 
