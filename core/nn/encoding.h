@@ -117,10 +117,13 @@ struct InputEncoding {
     /// Initial parameters (numParams entries; component k keyed by stream·16 + k).
     VecX<double> initialParams(uint64_t seed, uint64_t stream) const;
 
-    /// features (outputs() × N) for normalised inputs x (inputs × N).
+    /// features (outputs() × N) for normalised inputs x (inputs × N). `params` holds numParams()
+    /// entries (may be null when there are none); S is deduced from it, so pass e.g. a
+    /// `static_cast<const float*>(nullptr)` for a parameter-free encoding.
     template <typename S>
     void forward(const S* params, const EncodingIn<S>& x, MatX<S>& features) const;
-    /// Adds ∂loss/∂params to grad (numParams entries) given ∂loss/∂features; appends touched indices.
+    /// Adds ∂loss/∂params to grad (numParams entries) given ∂loss/∂features; appends touched indices
+    /// into the same vector (components' paramOffset added; unordered, with duplicates).
     template <typename S>
     void backwardParams(const S* params, const EncodingIn<S>& x, const EncodingIn<S>& dFeatures, S* grad,
                         std::vector<int64_t>* touched) const;
