@@ -93,6 +93,15 @@ struct EncodingComponent {
     int64_t paramOffset = 0;                ///< start of its parameters in the network's encoding vector
 };
 
+/// `T` itself, in a context where template arguments are not deduced: InputEncoding's routines
+/// deduce S from the params pointer alone, so plain MatX<S> arguments convert to their Eigen::Ref.
+template <typename T>
+struct EncodingNoDeduce {
+    using type = T;
+};
+template <typename S>
+using EncodingIn = Eigen::Ref<const MatX<typename EncodingNoDeduce<S>::type>>;
+
 /// The encoding of one network: its components, then pass-through of every other input.
 struct InputEncoding {
     int inputs = 0;                            ///< normalised inputs it reads (12 + n)
@@ -108,17 +117,19 @@ struct InputEncoding {
     /// Initial parameters (numParams entries; component k keyed by stream·16 + k).
     VecX<double> initialParams(uint64_t seed, uint64_t stream) const;
 
-    /// features (outputs() × N) for normalised inputs x (inputs × N).
+    /// features (outputs() × N) for normalised inputs x (inputs × N). `params` holds numParams()
+    /// entries (may be null when there are none); S is deduced from it, so pass e.g. a
+    /// `static_cast<const float*>(nullptr)` for a parameter-free encoding.
     template <typename S>
-    void forward(const S* params, const Eigen::Ref<const MatX<S>>& x, MatX<S>& features) const;
-    /// Adds ∂loss/∂params to grad (numParams entries) given ∂loss/∂features; appends touched indices.
+    void forward(const S* params, const EncodingIn<S>& x, MatX<S>& features) const;
+    /// Adds ∂loss/∂params to grad (numParams entries) given ∂loss/∂features; appends touched indices
+    /// into the same vector (components' paramOffset added; unordered, with duplicates).
     template <typename S>
-    void backwardParams(const S* params, const Eigen::Ref<const MatX<S>>& x, const Eigen::Ref<const MatX<S>>& dFeatures,
-                        S* grad, std::vector<int64_t>* touched) const;
+    void backwardParams(const S* params, const EncodingIn<S>& x, const EncodingIn<S>& dFeatures, S* grad,
+                        std::vector<int64_t>* touched) const;
     /// dX (inputs × N) = ∂loss/∂x given ∂loss/∂features.
     template <typename S>
-    void backwardInputs(const S* params, const Eigen::Ref<const MatX<S>>& x, const Eigen::Ref<const MatX<S>>& dFeatures,
-                        MatX<S>& dX) const;
+    void backwardInputs(const S* params, const EncodingIn<S>& x, const EncodingIn<S>& dFeatures, MatX<S>& dX) const;
 
     /// Reads an "encoding" array for a network of `inputs` normalised inputs (12 + brdfCount);
     /// InputError names the reader's file and the JSON pointer of an unknown type or key, a
