@@ -31,6 +31,7 @@ void drawToolbar(WorkbenchState& state) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("spp: path tracer vs samples; grid: viewpoint grid; dirs: directions per viewpoint; hidden: network size; trainer: LM vs Adam\n"
                           "goal: error goal (trainer stop and kd-tree split); leaves: kd-tree leaf budget; record_spp: most paths per training record\n"
+                          "encoding: the networks' input encoding (raw, frequency, hash grid), with parameters and model bytes per row\n"
                           "model sweeps also render the path tracer against the same reference, for the break-even");
     ImGui::SameLine();
     if (!state.cost.running) {
