@@ -137,11 +137,21 @@ void checkShard(int shardIndex, int shardCount) {
 GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atomic<bool>* cancel,
                                  GeneratorProgress* progress) const {
     checkShard(shardIndex, shardCount);
+    const int cells = settings_.cellCount();
+    const int begin = int(int64_t(cells) * shardIndex / shardCount);
+    const int end = int(int64_t(cells) * (shardIndex + 1) / shardCount);
+    return runCells(begin, end, shardIndex, shardCount, cancel, progress);
+}
+
+GeneratedData DataGenerator::runCells(int begin, int end, int shardIndex, int shardCount, const std::atomic<bool>* cancel,
+                                      GeneratorProgress* progress) const {
+    checkShard(shardIndex, shardCount);
     const auto start = std::chrono::steady_clock::now();
     const JitterGrid grid(scene_.bounds(), settings_.nx, settings_.ny, settings_.nz);
     const int cells = grid.cellCount();
-    const int begin = int(int64_t(cells) * shardIndex / shardCount);
-    const int end = int(int64_t(cells) * (shardIndex + 1) / shardCount);
+    if (begin < 0 || begin > end || end > cells)
+        throw SettingError("shard", "expected cells 0 <= begin <= end <= " + std::to_string(cells) + ", got " +
+                                        std::to_string(begin) + " ... " + std::to_string(end));
     if (progress) progress->cellsInShard = uint64_t(end - begin);
     const ViewpointClassifier classifier(tracer_);
     const Bounds3 region = lightRegion();
