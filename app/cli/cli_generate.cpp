@@ -107,6 +107,10 @@ int runGenerate(const GenerateArgs& a) {
         std::printf("%s: %llu records in %.2f s\n", ranks.name().c_str(), (unsigned long long)data.stats.records,
                     data.seconds);
         std::fflush(stdout);
+        // The barrier separates waiting for the slowest rank from the transfer and join (bench/bench_mpi.py).
+        const Stopwatch waitClock;
+        ranks.barrier();
+        const double waited = waitClock.seconds();
         const Stopwatch joinClock;
         std::vector<std::string> parts = ranks.gather(encodeGeneratedPart(data));
         if (!ranks.isRoot()) return 0;
@@ -117,8 +121,9 @@ int runGenerate(const GenerateArgs& a) {
             std::string().swap(parts[r]);
         }
         data = joinGeneratedParts(std::move(named));
-        std::printf("joined %d ranks' parts %.2f s after rank 0 finished its own (slowest rank %.2f s)\n", ranks.size(), joinClock.seconds(),
-                    data.seconds);
+        std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s (slowest rank "
+                    "%.2f s)\n",
+                    waited, ranks.size(), joinClock.seconds(), data.seconds);
     }
     writeDataset(a.out, data.header, data.sceneHash, data.perObject);
     const GeneratorStats& st = data.stats;

@@ -152,6 +152,11 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     if (ranks.size() > 1) {
         std::printf("%s: trained %d networks in %.2f s\n", ranks.name().c_str(), run.networks, run.seconds);
         std::fflush(stdout);
+        // The barrier separates waiting for the slowest rank from the transfer and join (bench/bench_mpi.py).
+        const Stopwatch waitClock;
+        ranks.barrier();
+        const double waited = waitClock.seconds();
+        const Stopwatch joinClock;
         std::vector<std::string> parts = ranks.gather(encodeTrainingPart(run));
         if (!ranks.isRoot()) return run.cancelled ? 130 : 0;
         std::vector<TrainingRun> decoded;
@@ -165,7 +170,9 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
         run = joinTrainingParts(std::move(decoded), share.rankOfPosition, networksPerObject(o));
         // The job's wall time as rank 0 saw it, from the start of training to the joined models.
         run.seconds = clock.seconds();
-        std::printf("joined %d ranks' models: %.2f s in all, slowest rank %.2f s\n", ranks.size(), run.seconds, slowest);
+        std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s (slowest rank "
+                    "%.2f s, %.2f s in all)\n",
+                    waited, ranks.size(), joinClock.seconds(), slowest, run.seconds);
     }
     const std::vector<ObjectModel>& trained = run.models;
     const double seconds = run.seconds;
