@@ -13,8 +13,9 @@ ranks log ("rank k/n: ... in X s"), then projects the time at 200 ranks for the 
   S0  constant serial seconds: start-up, scene and BVH (a run of 8 cells x 1 direction, measured)
   s   serial seconds per record on rank 0: what the 1-rank run spends outside its compute, less S0
       (reading, grouping and writing the dataset, or loading the dataset and writing the models)
-  c   compute seconds per record of one rank with one thread (the 1-rank run's logged compute time)
-  b   imbalance: the slowest rank's compute time over the ranks' mean, measured at 2 ranks
+  c   compute seconds per record of one rank with one thread: the CPU seconds the 1-rank run logs for
+      its work (CPU, not wall: on a shared machine the wall time also holds other jobs' share)
+  b   imbalance: the busiest rank's CPU seconds over the ranks' mean, measured at 2 ranks
   k   seconds per record of sending the other ranks' parts to rank 0 and joining them (the
       "gathered and joined" time rank 0 logs at 2 ranks, over the R/2 records it received): every
       record but rank 0's own crosses once, whatever P; MPI's start-up and per-message latency
@@ -24,8 +25,12 @@ For training, whole objects go to ranks, so at P >= objects the compute term is 
 share of the records: c*R*max_share*b_obj (b_obj = 1), not c*R/P; the projection says so. Epochs are fixed
 (--epochs) so that both runs do the same work; a real run stops each network at its error goal.
 
-Usage: bench/bench_mpi.py [--rrf build/rrf] [--mpirun mpirun] [--grid 8,8,8] [--dirs 200] [--spp 16]
-                          [--epochs 20]
+Load balance of generation, measured: the same grid as two equal cell counts (`--shard 0/2`, `1/2`, run
+one after the other with one thread each) against the ranks' cost-balanced ranges; the imbalance is the
+busier part's CPU seconds over the mean of the two.
+
+Usage: bench/bench_mpi.py [--rrf build/rrf] [--mpirun mpirun] [--grid 10,10,10] [--dirs 300] [--spp 16]
+                          [--epochs 60]
 Keep the defaults on a shared 2-core machine: the whole bench takes about two minutes.
 """
 import argparse
@@ -58,10 +63,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--rrf", default=os.path.join(here, "..", "build", "rrf"))
     ap.add_argument("--mpirun", default="mpirun")
-    ap.add_argument("--grid", default="8,8,8")
-    ap.add_argument("--dirs", default="200")
+    ap.add_argument("--grid", default="10,10,10")
+    ap.add_argument("--dirs", default="300")
     ap.add_argument("--spp", default="16")
-    ap.add_argument("--epochs", default="20")
+    ap.add_argument("--epochs", default="60")
     a = ap.parse_args()
     project = os.path.join(here, "..", "projects", "cornell-box", "project.json")
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
@@ -84,32 +89,43 @@ def main():
     # ---- generate ----
     data = os.path.join(tmp, "one.rrfd")
     w1, log1 = run(mpi(1, ["generate", project] + sampling + ["--out", data]), env)
-    records = int(re.search(r"^(\d+) records in ([\d.]+) s", log1, re.M).group(1))
-    c1 = float(re.search(r"^\d+ records in ([\d.]+) s", log1, re.M).group(1))
+    records = int(re.search(r"^(\d+) records in ", log1, re.M).group(1))
+    c1 = float(re.search(r"^\d+ records in [\d.]+ s \(([\d.]+) s CPU", log1, re.M).group(1))
     w2, log2 = run(mpi(2, ["generate", project] + sampling + ["--out", os.path.join(tmp, "two.rrfd")]), env)
-    r2 = rank_times(log2, r"rank \d/2: \d+ records in ([\d.]+) s")
+    r2 = rank_times(log2, r"rank \d/2: \d+ records in [\d.]+ s \(([\d.]+) s CPU")
     j2 = float(re.search(r"gathered and joined 2 parts in ([\d.]+) s", log2).group(1))
     same = open(data, "rb").read() == open(os.path.join(tmp, "two.rrfd"), "rb").read()
     stages.append(("generate", w1, c1, w2, r2, j2, records, None, same))
+    # Equal cell counts, as --shard k/n splits (and as the ranks would without the cost model).
+    equal = []
+    for k in (0, 1):
+        _, logk = run(mpi(1, ["generate", project] + sampling + ["--shard", "%d/2" % k,
+                                                                 "--out", os.path.join(tmp, "shard%d.rrfd" % k)]), env)
+        equal.append(float(re.search(r"^\d+ records in [\d.]+ s \(([\d.]+) s CPU", logk, re.M).group(1)))
 
     # ---- train ----
     net = ["--epochs", a.epochs, "--threads", "1", "--log-every", "0"]
     tw1, tlog1 = run(mpi(1, ["train", project, "--data", data] + net + ["--out", os.path.join(tmp, "m1")]), env)
-    tc1 = float(re.search(r"^trained in ([\d.]+) s", tlog1, re.M).group(1))
+    tc1 = float(re.search(r"^trained in [\d.]+ s \(([\d.]+) s CPU", tlog1, re.M).group(1))
     tw2, tlog2 = run(mpi(2, ["train", project, "--data", data] + net + ["--out", os.path.join(tmp, "m2")]), env)
-    tr2 = rank_times(tlog2, r"rank \d/2: trained \d+ networks in ([\d.]+) s")
+    tr2 = rank_times(tlog2, r"rank \d/2: trained \d+ networks in [\d.]+ s \(([\d.]+) s CPU")
     tj2 = float(re.search(r"gathered and joined 2 parts in ([\d.]+) s", tlog2).group(1))
     # Each object's records, from the generator's per-object lines: objects are the unit ranks train.
     shares = [int(n) for n in re.findall(r"^\s+object \d+ \S+\s+(\d+) records", log1, re.M)]
     max_share = max(shares) / sum(shares) if shares else 1.0
     stages.append(("train", tw1, tc1, tw2, tr2, tj2, records, max_share, None))
 
-    print("\n%-9s %9s %9s %8s  %-26s %s" % ("stage", "1 rank s", "2 ranks s", "speed-up", "rank compute s (1 | 2)",
+    print("\n%-9s %9s %9s %8s  %-26s %s" % ("stage", "1 rank s", "2 ranks s", "speed-up", "rank CPU s (1 | 2)",
                                             "output"))
     for name, w1_, c1_, w2_, r2_, _, _, _, same_ in stages:
         print("%-9s %9.2f %9.2f %7.2fx  %-26s %s" % (
             name, w1_, w2_, w1_ / w2_, "%.2f | %s" % (c1_, " ".join("%.2f" % t for t in r2_)),
             "" if same_ is None else ("bytes identical" if same_ else "BYTES DIFFER")))
+
+    mean = lambda v: sum(v) / len(v)
+    print("\nload balance of generate at 2 ranks (busiest part / mean, CPU s): equal cell counts %.3f (%.2f, %.2f), "
+          "cost-balanced ranges %.3f (%.2f, %.2f)" % (max(equal) / mean(equal), equal[0], equal[1],
+                                                        max(r2) / mean(r2), r2[0], r2[1]))
 
     print("\nprojection to %d ranks for %.0f M records: T(P) = S0 + s*R + c*R/P*b + k*R*(P-1)/P" %
           (RANKS_TARGET, RECORDS_TARGET / 1e6))

@@ -1,6 +1,7 @@
-// `mpirun -n 3 rrf generate|train` on localhost against the single-process run (issue 17): the
-// dataset byte for byte, the model set's weights and trees bit for bit (the files' timing fields
-// differ, as between two single-process runs), and a failing rank ends the job with its message.
+// `mpirun -n 3 rrf generate|train|evaluate` on localhost against the single-process run (issue 17):
+// the dataset byte for byte, the model set's weights and trees bit for bit (the files' timing fields
+// differ, as between two single-process runs), the evaluation's images byte for byte and its report
+// but for times, and a failing rank ends the job with its message.
 // Compiled only when rrf is built with MPI (CMake sets RRF_MPIEXEC to the launcher).
 #ifdef RRF_MPIEXEC
 
@@ -58,6 +59,31 @@ fs::path testDir() {
     return dir;
 }
 
+/// An evaluation report without what times the run (keys ending in "seconds") and without where each
+/// reference came from (rendered by this process, or reused from the store after another rank rendered it).
+nlohmann::json withoutTimesAndSources(nlohmann::json j) {
+    if (j.is_object()) {
+        nlohmann::json out = nlohmann::json::object();
+        for (auto& [key, value] : j.items()) {
+            const bool timed = key.size() >= 7 && key.compare(key.size() - 7, 7, "seconds") == 0;
+            if (!timed && key != "reference_source") out[key] = withoutTimesAndSources(value);
+        }
+        return out;
+    }
+    if (j.is_array())
+        for (auto& value : j) value = withoutTimesAndSources(value);
+    return j;
+}
+
+/// A fresh copy of the bundled Cornell box in `dir` (its reference store starts empty).
+std::string copyProject(const fs::path& dir) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (const char* f : {"project.json", "scene.json"})
+        fs::copy_file(fs::path(RRF_SOURCE_DIR) / "projects" / "cornell-box" / f, dir / f);
+    return (dir / "project.json").string();
+}
+
 /// models.json without the fields that time the run: "seconds", and the model files' sizes and
 /// checksums, which cover the per-epoch times in their headers (the weights are compared apart).
 nlohmann::json withoutTimes(nlohmann::json j) {
@@ -71,7 +97,7 @@ nlohmann::json withoutTimes(nlohmann::json j) {
 }
 
 
-TEST(CliMpi, ThreeRanksGenerateAndTrainWhatOneProcessDoes) {
+TEST(CliMpi, ThreeRanksGenerateTrainAndEvaluateWhatOneProcessDoes) {
     const fs::path dir = testDir();
     const std::string one = (dir / "one.rrfd").string(), three = (dir / "three.rrfd").string();
     const CliResult g1 = runCli("generate " + kCornell + kSampling + " --out " + one);
@@ -108,6 +134,26 @@ TEST(CliMpi, ThreeRanksGenerateAndTrainWhatOneProcessDoes) {
                     << "object " << s1.objects[i].objectId << " " << target << " leaf " << l;
             }
         }
+    }
+
+    // Evaluate at 3 held-out lights: the ranks render the references into the project's store, rank 0
+    // evaluates. Same project and output paths for both runs, so the reports differ only in times.
+    const std::string eval = " --models " + m1 + " --held-out 3 --noise 0.3 --spp-cap 8 --width 24 --height 24 --out " +
+                             (dir / "e").string();
+    const std::string project = copyProject(dir / "p");
+    const CliResult e1 = runCli("evaluate " + project + eval);
+    ASSERT_EQ(e1.code, 0) << e1.output;
+    fs::rename(dir / "e", dir / "e1");
+    copyProject(dir / "p");
+    const CliResult e3 = runMpi(3, "evaluate " + project + eval);
+    ASSERT_EQ(e3.code, 0) << e3.output;
+    EXPECT_NE(e3.output.find("rank 1/3: references 2 of 3"), std::string::npos) << e3.output;
+    auto json = [](const fs::path& f) { return withoutTimesAndSources(nlohmann::json::parse(readBytes(f.string()))); };
+    EXPECT_EQ(json(dir / "e1" / "held_out.json").dump(), json(dir / "e" / "held_out.json").dump());
+    for (const char* image : {"light_0/reference_global.exr", "light_2/prediction_global.exr", "light_1/error_relative_global.exr"}) {
+        const std::string x = readBytes((dir / "e1" / image).string()), y = readBytes((dir / "e" / image).string());
+        EXPECT_FALSE(x.empty()) << image;
+        EXPECT_TRUE(x == y) << image;
     }
     fs::remove_all(dir);
 }

@@ -29,27 +29,25 @@ struct GenerateArgs {
     SettingFlags<SamplingSettings> sampling;
 };
 
-/// This rank's cells of an MPI job: the grid split into contiguous ranges of near-equal cost
-/// (core/data/cell_split.h), logged with the share of the work they hold.
-CellRange rankCells(const Project& project, const DataGenerator& gen, const mpi::Ranks& ranks) {
+/// This rank's cells of an MPI job: the grid split into contiguous ranges of near-equal cost, the
+/// predicted records × spp (core/data/cell_split.h), logged with the share of the work they hold.
+CellRange rankCells(const DataGenerator& gen, const mpi::Ranks& ranks) {
     const Stopwatch clock;
-    const std::vector<uint64_t> costs = cellCosts(project.scene, gen);
+    const std::vector<uint64_t> costs = cellCosts(gen);
     const std::vector<CellRange> ranges = splitCellsByCost(costs, ranks.size());
     const CellRange mine = ranges[size_t(ranks.rank())];
-    uint64_t total = 0, own = 0, kept = 0;
+    uint64_t total = 0, own = 0;
     for (size_t c = 0; c < costs.size(); ++c) {
         total += costs[c];
-        if (int(c) >= mine.begin && int(c) < mine.end) {
-            own += costs[c];
-            kept += costs[c] > 0;
-        }
+        if (int(c) >= mine.begin && int(c) < mine.end) own += costs[c];
     }
+    const uint64_t spp = uint64_t(gen.settings().spp);
     if (mine.size() == 0)
         std::printf("%s: no cells (%d ranks for %zu cells)\n", ranks.name().c_str(), ranks.size(), costs.size());
     else
-        std::printf("%s: cells %d-%d of %zu (%llu kept, %.1f%% of the paths; contiguous ranges balanced by kept cells, "
-                    "planned in %.2f s)\n",
-                    ranks.name().c_str(), mine.begin, mine.end - 1, costs.size(), (unsigned long long)kept,
+        std::printf("%s: cells %d-%d of %zu (%llu records predicted, %.1f%% of the paths; contiguous ranges balanced by "
+                    "predicted records, planned in %.2f s)\n",
+                    ranks.name().c_str(), mine.begin, mine.end - 1, costs.size(), (unsigned long long)(own / spp),
                     total ? 100.0 * double(own) / double(total) : 0.0, clock.seconds());
     std::fflush(stdout);
     return mine;
@@ -75,7 +73,7 @@ int runGenerate(const GenerateArgs& a) {
         std::printf("rrf generate: %s, grid %dx%dx%d, %d directions, %d spp, seed %llu, %s\n", a.input.c_str(), s.nx,
                     s.ny, s.nz, s.directions, s.spp, (unsigned long long)s.seed, split.c_str());
     }
-    const CellRange cells = ranks.size() > 1 ? rankCells(project, gen, ranks) : CellRange{};
+    const CellRange cells = ranks.size() > 1 ? rankCells(gen, ranks) : CellRange{};
     if (s.adaptive() && ranks.isRoot())
         std::printf("adaptive paths per record: %d, doubling up to %d until the relative noise is <= %g\n", s.spp,
                     s.maxSpp, s.noiseTarget);
@@ -88,6 +86,7 @@ int runGenerate(const GenerateArgs& a) {
     GeneratorProgress progress;
     std::atomic<bool> cancel{false};
     GeneratedData data;
+    const double cpuStart = processCpuSeconds();
     runWithProgress(
         "generate",
         [&] {
@@ -104,8 +103,8 @@ int runGenerate(const GenerateArgs& a) {
     }
     if (ranks.size() > 1) {
         // Rank 0 joins the ranks' parts into the single-process run's data (core/data/dataset_part.h).
-        std::printf("%s: %llu records in %.2f s\n", ranks.name().c_str(), (unsigned long long)data.stats.records,
-                    data.seconds);
+        std::printf("%s: %llu records in %.2f s (%.2f s CPU)\n", ranks.name().c_str(), (unsigned long long)data.stats.records,
+                    data.seconds, processCpuSeconds() - cpuStart);
         std::fflush(stdout);
         // The barrier separates waiting for the slowest rank from the transfer and join (bench/bench_mpi.py).
         const Stopwatch waitClock;
@@ -127,8 +126,9 @@ int runGenerate(const GenerateArgs& a) {
     }
     writeDataset(a.out, data.header, data.sceneHash, data.perObject);
     const GeneratorStats& st = data.stats;
-    std::printf("%llu records in %.2f s: %srecords/s, %spath samples/s, %srays/s\n", (unsigned long long)st.records,
-                data.seconds, humanCount(double(st.records) / data.seconds).c_str(),
+    std::printf("%llu records in %.2f s (%.2f s CPU%s): %srecords/s, %spath samples/s, %srays/s\n",
+                (unsigned long long)st.records, data.seconds, processCpuSeconds() - cpuStart,
+                ranks.size() > 1 ? " of rank 0" : "", humanCount(double(st.records) / data.seconds).c_str(),
                 humanCount(double(st.paths) / data.seconds).c_str(),
                 humanCount(double(st.rays + st.shadowRays) / data.seconds).c_str());
     std::printf("cells: %llu in shard, %llu dropped inside objects, %llu dropped outside the scene, %llu dropped behind "

@@ -140,6 +140,7 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     TrainingProgress progress;
     TrainingRun run;
     const Stopwatch clock;
+    const double cpuStart = processCpuSeconds();
     // In an MPI job this rank trains its share of the objects (core/nn/training_split.h).
     const RankShare share = rankShare(samples, o, ranks, project.scene);
     runWithProgress(
@@ -150,7 +151,8 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
         },
         [&] { return std::make_pair(progress.fraction(), std::string()); }, [&] { cancel = true; });
     if (ranks.size() > 1) {
-        std::printf("%s: trained %d networks in %.2f s\n", ranks.name().c_str(), run.networks, run.seconds);
+        std::printf("%s: trained %d networks in %.2f s (%.2f s CPU)\n", ranks.name().c_str(), run.networks, run.seconds,
+                    processCpuSeconds() - cpuStart);
         std::fflush(stdout);
         // The barrier separates waiting for the slowest rank from the transfer and join (bench/bench_mpi.py).
         const Stopwatch waitClock;
@@ -202,8 +204,8 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
                         t.stopReason.c_str());
         }
     }
-    std::printf("trained in %.2f s%s; wrote %s/models.json\n", seconds, run.cancelled ? " (stopped early by Ctrl-C)" : "",
-                a.out.c_str());
+    std::printf("trained in %.2f s (%.2f s CPU%s)%s; wrote %s/models.json\n", seconds, processCpuSeconds() - cpuStart,
+                ranks.size() > 1 ? " of rank 0" : "", run.cancelled ? " (stopped early by Ctrl-C)" : "", a.out.c_str());
     if (record && run.networks > 0) {
         TrainRecord r{settings, project.sampling, a.data, a.out, project.scene.contentHash(),
                       lossCurves(run.curves), run.networks, run.skipped, run.seconds, std::nullopt};

@@ -3,10 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include <tbb/parallel_for.h>
-
 #include "core/data/data_generator.h"
-#include "core/data/jitter_grid.h"
 
 namespace rrf {
 
@@ -34,15 +31,9 @@ std::vector<CellRange> splitCellsByCost(const std::vector<uint64_t>& costs, int 
     return ranges;
 }
 
-std::vector<uint64_t> cellCosts(const Scene& scene, const DataGenerator& gen) {
-    const SamplingSettings& s = gen.settings();
-    const JitterGrid grid(scene.bounds(), s.nx, s.ny, s.nz);
-    const ViewpointClassifier classifier(gen.tracer());
-    const uint64_t kept = uint64_t(s.directions) * uint64_t(s.spp);
-    std::vector<uint64_t> costs(size_t(grid.cellCount()));
-    tbb::parallel_for(0, grid.cellCount(), [&](int cell) {
-        costs[size_t(cell)] = classifier.classify(grid.viewpoint(cell, s.seed)) == ViewpointStatus::Kept ? kept : 0;
-    });
+std::vector<uint64_t> cellCosts(const DataGenerator& gen) {
+    std::vector<uint64_t> costs = gen.cellRecordCounts();
+    for (uint64_t& c : costs) c *= uint64_t(gen.settings().spp);
     return costs;
 }
 

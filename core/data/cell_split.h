@@ -3,14 +3,15 @@
 /// rank generates one contiguous range of cells, so the ranges join into the bytes of the unsharded
 /// run exactly as `--shard k/n` parts do (core/data/dataset_part.h).
 ///
-/// Load balance by a cost model, not by cell count: a viewpoint dropped inside an object, outside
-/// the scene or behind a surface costs only its 14 classification probes, while a kept one traces
-/// directions × spp paths — in the Cornell box a quarter of the grid lies inside the two blocks or
-/// under the floor, so equal cell counts leave some ranks with a third less work than others. Every
-/// rank classifies every cell (a pure function of the seed and the scene, 14 rays a cell: a few
-/// milliseconds against the minutes of the paths) and derives the same ranges, so no message is
-/// needed to agree on them. Adaptive sampling's extra paths are not known in advance and are not
-/// modelled: the ranges balance the fixed part, spp paths per direction.
+/// Load balance by a cost model, not by cell count: a cell costs its records × spp paths. A viewpoint
+/// dropped inside an object, outside the scene or behind a surface makes no record, and of a kept
+/// one's directions only those that hit an object do (rays that escape or hit the light cost one ray);
+/// both vary across the grid — in the Cornell box, cells next to the open front see half their
+/// directions escape. The records of every cell are predicted by tracing each direction's first hit
+/// (DataGenerator::cellRecordCounts: one ray a direction against spp paths of several bounces each)
+/// on every rank, so all ranks derive the same ranges without a message. Not modelled: paths differ
+/// in length (Russian roulette, dark and bright regions), and adaptive sampling's extra paths are not
+/// known in advance: the ranges balance the fixed spp paths per record.
 
 #include <cstdint>
 #include <vector>
@@ -18,7 +19,6 @@
 namespace rrf {
 
 class DataGenerator;
-struct Scene;
 
 /// Cells [begin, end) of the grid.
 struct CellRange {
@@ -33,8 +33,8 @@ struct CellRange {
 /// `--shard r/parts` does. Throws std::invalid_argument unless parts ≥ 1.
 std::vector<CellRange> splitCellsByCost(const std::vector<uint64_t>& costs, int parts);
 
-/// Cost of each cell of `gen`'s grid over `scene` in paths: directions × spp for a kept viewpoint,
-/// 0 for a dropped one (classified as the generator does, core/data/jitter_grid.h).
-std::vector<uint64_t> cellCosts(const Scene& scene, const DataGenerator& gen);
+/// Cost of each cell of `gen`'s grid in paths: its predicted records × spp
+/// (DataGenerator::cellRecordCounts).
+std::vector<uint64_t> cellCosts(const DataGenerator& gen);
 
 }  // namespace rrf

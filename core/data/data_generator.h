@@ -70,6 +70,12 @@ public:
     GeneratedData runCells(int cellBegin, int cellEnd, int partIndex, int partCount,
                            const std::atomic<bool>* cancel = nullptr, GeneratorProgress* progress = nullptr) const;
 
+    /// The records each cell of the grid makes, predicted by tracing only each direction's first hit
+    /// (one ray a direction instead of its paths): 0 for a dropped viewpoint, else the directions
+    /// that hit an object. Equal to the records run() stores but for those whose every sample is NaN
+    /// or infinite. The cost model of the MPI ranks' cell ranges (core/data/cell_split.h).
+    std::vector<uint64_t> cellRecordCounts() const;
+
     /// The settings the generator runs with.
     const SamplingSettings& settings() const { return settings_; }
 
