@@ -10,9 +10,11 @@ ranks log ("rank k/n: ... in X s"), then projects the time at 200 ranks for the 
   T(P) = S0 + s*R + c*R/P * b + k*R*(P-1)/P
 
   R   records; the measured run's, or 7e6 for the projection
-  S0  constant serial seconds: start-up, scene and BVH (a run of 8 cells x 1 direction, measured)
-  s   serial seconds per record on rank 0: what the 1-rank run spends outside its compute, less S0
-      (reading, grouping and writing the dataset, or loading the dataset and writing the models)
+  S0  constant serial seconds: start-up, scene and BVH (the CPU seconds of mpirun and rrf for a run of
+      8 cells x 1 direction)
+  s   serial seconds per record on rank 0: the CPU seconds of the 1-rank run (mpirun and rrf) outside
+      its logged compute, less S0 (reading, grouping and writing the dataset, or loading the dataset
+      and writing the models)
   c   compute seconds per record of one rank with one thread: the CPU seconds the 1-rank run logs for
       its work (CPU, not wall: on a shared machine the wall time also holds other jobs' share)
   b   imbalance: the busiest rank's CPU seconds over the ranks' mean, measured at 2 ranks
@@ -36,21 +38,29 @@ Keep the defaults on a shared 2-core machine: the whole bench takes about two mi
 import argparse
 import os
 import re
+import resource
 import subprocess
 import sys
 import tempfile
 import time
 
-RECORDS_TARGET = 7e6  # the seed report's dataset (Ren et al. trained on ~7 M records per scene)
+RECORDS_TARGET = 7e6  # the seed report's 7 M records
 RANKS_TARGET = 200    # Ren et al.'s cluster of 200 PCs
 
 
+def child_cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def run(cmd, env):
-    start = time.monotonic()
+    """Runs cmd; returns its wall seconds, its output and the CPU seconds of it and its processes."""
+    start, cpu = time.monotonic(), child_cpu()
     p = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     wall = time.monotonic() - start
     if p.returncode != 0:
         sys.exit("bench_mpi: failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stdout[-4000:]))
+    run.cpu = child_cpu() - cpu
     return wall, p.stdout
 
 
@@ -82,20 +92,22 @@ def main():
           % (a.grid, a.dirs, a.spp, a.epochs, os.cpu_count(), open("/proc/loadavg").read().split()[0]))
 
     # S0: the constant part of one process (start-up, scene, BVH, a near-empty dataset).
-    s0, _ = run(mpi(1, ["generate", project, "--grid", "2,2,2", "--dirs", "1", "--spp", "1", "--max-spp", "1",
-                        "--threads", "1", "--out", os.path.join(tmp, "tiny.rrfd")]), env)
+    run(mpi(1, ["generate", project, "--grid", "2,2,2", "--dirs", "1", "--spp", "1", "--max-spp", "1",
+                "--threads", "1", "--out", os.path.join(tmp, "tiny.rrfd")]), env)
+    s0 = run.cpu
 
     stages = []
     # ---- generate ----
     data = os.path.join(tmp, "one.rrfd")
     w1, log1 = run(mpi(1, ["generate", project] + sampling + ["--out", data]), env)
+    cpu1 = run.cpu
     records = int(re.search(r"^(\d+) records in ", log1, re.M).group(1))
     c1 = float(re.search(r"^\d+ records in [\d.]+ s \(([\d.]+) s CPU", log1, re.M).group(1))
     w2, log2 = run(mpi(2, ["generate", project] + sampling + ["--out", os.path.join(tmp, "two.rrfd")]), env)
     r2 = rank_times(log2, r"rank \d/2: \d+ records in [\d.]+ s \(([\d.]+) s CPU")
     j2 = float(re.search(r"gathered and joined 2 parts in ([\d.]+) s", log2).group(1))
     same = open(data, "rb").read() == open(os.path.join(tmp, "two.rrfd"), "rb").read()
-    stages.append(("generate", w1, c1, w2, r2, j2, records, None, same))
+    stages.append(("generate", w1, c1, w2, r2, j2, records, None, same, cpu1))
     # Equal cell counts, as --shard k/n splits (and as the ranks would without the cost model).
     equal = []
     for k in (0, 1):
@@ -106,6 +118,7 @@ def main():
     # ---- train ----
     net = ["--epochs", a.epochs, "--threads", "1", "--log-every", "0"]
     tw1, tlog1 = run(mpi(1, ["train", project, "--data", data] + net + ["--out", os.path.join(tmp, "m1")]), env)
+    tcpu1 = run.cpu
     tc1 = float(re.search(r"^trained in [\d.]+ s \(([\d.]+) s CPU", tlog1, re.M).group(1))
     tw2, tlog2 = run(mpi(2, ["train", project, "--data", data] + net + ["--out", os.path.join(tmp, "m2")]), env)
     tr2 = rank_times(tlog2, r"rank \d/2: trained \d+ networks in [\d.]+ s \(([\d.]+) s CPU")
@@ -113,11 +126,11 @@ def main():
     # Each object's records, from the generator's per-object lines: objects are the unit ranks train.
     shares = [int(n) for n in re.findall(r"^\s+object \d+ \S+\s+(\d+) records", log1, re.M)]
     max_share = max(shares) / sum(shares) if shares else 1.0
-    stages.append(("train", tw1, tc1, tw2, tr2, tj2, records, max_share, None))
+    stages.append(("train", tw1, tc1, tw2, tr2, tj2, records, max_share, None, tcpu1))
 
     print("\n%-9s %9s %9s %8s  %-26s %s" % ("stage", "1 rank s", "2 ranks s", "speed-up", "rank CPU s (1 | 2)",
                                             "output"))
-    for name, w1_, c1_, w2_, r2_, _, _, _, same_ in stages:
+    for name, w1_, c1_, w2_, r2_, _, _, _, same_, _ in stages:
         print("%-9s %9.2f %9.2f %7.2fx  %-26s %s" % (
             name, w1_, w2_, w1_ / w2_, "%.2f | %s" % (c1_, " ".join("%.2f" % t for t in r2_)),
             "" if same_ is None else ("bytes identical" if same_ else "BYTES DIFFER")))
@@ -129,9 +142,10 @@ def main():
 
     print("\nprojection to %d ranks for %.0f M records: T(P) = S0 + s*R + c*R/P*b + k*R*(P-1)/P" %
           (RANKS_TARGET, RECORDS_TARGET / 1e6))
-    print("  S0 = %.2f s (start-up, scene, BVH: a run of 8 cells x 1 direction)" % s0)
-    for name, w1_, c1_, w2_, r2_, j2_, recs, share, _ in stages:
-        serial1 = max(w1_ - c1_, 0.0)
+    print("  S0 = %.2f s (start-up, scene, BVH: a run of 8 cells x 1 direction, CPU s of mpirun and rrf)" % s0)
+    print("  all terms in CPU seconds of one core (on this shared machine wall times also hold other jobs' share)")
+    for name, w1_, c1_, w2_, r2_, j2_, recs, share, _, cpu1_ in stages:
+        serial1 = max(cpu1_ - c1_, 0.0)
         s = max(serial1 - s0, 0.0) / recs
         c = c1_ / recs
         b = max(r2_) / (sum(r2_) / len(r2_)) if r2_ and sum(r2_) > 0 else 1.0
