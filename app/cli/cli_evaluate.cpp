@@ -1,5 +1,7 @@
 // `rrf evaluate`: the networks' predictions against path-traced references at the scene's light, at
-// a given position, at K held-out positions, or against a saved `rrf render` output.
+// a given position, at K held-out positions, or against a saved `rrf render` output. Under an MPI
+// launcher the ranks render the references of the light positions into the project's reference
+// store, each its share, and rank 0 evaluates (docs/cluster.md).
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -9,8 +11,10 @@
 #include "app/cli/cli_evaluation.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
+#include "app/mpi/ranks.h"
 #include "core/eval/held_out.h"
 #include "core/nn/model_set.h"
+#include "core/nn/training_split.h"
 #include "core/project/project.h"
 #include "core/project/run_recording.h"
 #include "core/util/error.h"
@@ -66,19 +70,51 @@ void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vecto
     std::printf("recorded the evaluation in the train run of %s in %s\n", a.models.c_str(), a.input.c_str());
 }
 
+/// In an MPI job of more than one rank: this rank renders (or continues) the references of its share
+/// of `lights` into the project's store — light k to rank k mod N (longest first on equal costs),
+/// each rank one reference at a time with all its threads — and all ranks wait for the last.
+/// Rank 0 then evaluates as one process does and finds every reference in the store. The store's
+/// entries are directories written whole, one per light, so ranks never write the same file; the
+/// project's directory must be shared by the ranks (docs/cluster.md).
+void obtainRankReferences(const mpi::Ranks& ranks, const std::vector<Vec3>& lights, const ReferenceSource& source) {
+    const std::vector<int> rankOf = assignLongestFirst(std::vector<uint64_t>(lights.size(), 1), ranks.size());
+    std::string mine;
+    for (size_t k = 0; k < lights.size(); ++k)
+        if (rankOf[k] == ranks.rank()) mine += (mine.empty() ? "" : ", ") + std::to_string(k + 1);
+    std::printf("%s: references %s of %zu (light k to rank k mod %d)\n", ranks.name().c_str(),
+                mine.empty() ? "none" : mine.c_str(), lights.size(), ranks.size());
+    std::fflush(stdout);
+    const Stopwatch clock;
+    for (size_t k = 0; k < lights.size(); ++k)
+        if (rankOf[k] == ranks.rank()) source(k, lights[k]);
+    std::printf("%s: references done in %.2f s\n", ranks.name().c_str(), clock.seconds());
+    std::fflush(stdout);
+    ranks.barrier();
+}
+
 int runEvaluate(EvaluateArgs a) {
+    const mpi::Ranks& ranks = mpi::ranks();
     const Project p = loadProjectOrScene(a.input);
     std::vector<std::string> inputs = projectInputs(p);
     inputs.push_back(a.models);
     inputs.push_back(a.reference);
     refuseOverwritingInputs(a.out, inputs);
-    prepareRecording(p, a);
+    if (ranks.size() > 1 && a.spp > 0)
+        throw InputError("command line", "--spp",
+                         "references at a fixed spp are not stored, so MPI ranks cannot share them; drop --spp (the "
+                         "project's reference store) or run one process");
+    if (ranks.size() > 1 && !a.reference.empty())
+        throw InputError("command line", "--reference", "one given reference leaves nothing to split across MPI ranks; run one process");
+    if (ranks.isRoot()) prepareRecording(p, a);
     auto threads = limitThreads(a.threads);
     const ModelSet models = loadModelSet(a.models, p.scene.contentHash());
     const Predictor predictor(p.scene, models, a.prediction.applied(p.prediction));
-    makeDirectories(a.out);
-    std::printf("rrf evaluate: %s with %s (direct light: %s)\n", a.input.c_str(), a.models.c_str(), predictor.settings().directName());
-    for (const std::string& l : predictor.describe()) std::printf("  %s\n", l.c_str());
+    if (ranks.isRoot()) makeDirectories(a.out);
+    if (ranks.isRoot()) {
+        std::printf("rrf evaluate: %s with %s (direct light: %s)\n", a.input.c_str(), a.models.c_str(),
+                    predictor.settings().directName());
+        for (const std::string& l : predictor.describe()) std::printf("  %s\n", l.c_str());
+    }
     if (!a.reference.empty()) {
         const Reference ref = loadReference(a.reference);
         std::printf("reference: %s (%d spp, light at %.3f,%.3f,%.3f; noise %s)\n", a.reference.c_str(), ref.spp,
@@ -108,12 +144,16 @@ int runEvaluate(EvaluateArgs a) {
     if (a.spp > 0)
         std::printf("%zu light position(s), references %dx%d at a fixed %d spp (no noise target, not stored)\n", lights.size(),
                     ro.width, ro.height, ro.spp);
-    else
+    else if (ranks.isRoot())
         std::printf("%zu light position(s)%s, references %dx%d from %s: relative noise <= max(%g, %g x the error), at most "
                     "%d spp\n",
                     lights.size(), a.heldOut > 0 ? (" (held out, seed " + std::to_string(a.seed) + ")").c_str() : "", width,
                     height, store.dir().c_str(), target.relativeRmse, target.errorFraction, target.sppCap);
     const Stopwatch clock;
+    if (ranks.size() > 1) {
+        obtainRankReferences(ranks, lights, source);
+        if (!ranks.isRoot()) return 0;
+    }
     const std::vector<Evaluation> evals = evaluateAll(p, predictor, lights, source, a.out, a.exposure);
     if (a.record) recordEvaluations(a, p, evals, clock.seconds());
     return 0;

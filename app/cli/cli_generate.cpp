@@ -1,5 +1,6 @@
 // `rrf generate`: training records (jitter grid × directions × light positions) for a project's
-// scene, whole or as shard k of n.
+// scene, whole or as shard k of n; under an MPI launcher (`mpirun -n N rrf generate`) the ranks share
+// the cells and rank 0 writes the dataset of the single-process run (docs/cluster.md).
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -9,9 +10,14 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
+#include "app/mpi/ranks.h"
+#include "core/data/cell_split.h"
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
+#include "core/data/dataset_part.h"
 #include "core/project/project.h"
+#include "core/util/error.h"
+#include "core/util/stopwatch.h"
 
 namespace rrf::cli {
 
@@ -23,39 +29,106 @@ struct GenerateArgs {
     SettingFlags<SamplingSettings> sampling;
 };
 
+/// This rank's cells of an MPI job: the grid split into contiguous ranges of near-equal cost, the
+/// predicted records × spp (core/data/cell_split.h), logged with the share of the work they hold.
+CellRange rankCells(const DataGenerator& gen, const mpi::Ranks& ranks) {
+    const Stopwatch clock;
+    const std::vector<uint64_t> costs = cellCosts(gen);
+    const std::vector<CellRange> ranges = splitCellsByCost(costs, ranks.size());
+    const CellRange mine = ranges[size_t(ranks.rank())];
+    uint64_t total = 0, own = 0;
+    for (size_t c = 0; c < costs.size(); ++c) {
+        total += costs[c];
+        if (int(c) >= mine.begin && int(c) < mine.end) own += costs[c];
+    }
+    const uint64_t spp = uint64_t(gen.settings().spp);
+    if (mine.size() == 0)
+        std::printf("%s: no cells (%d ranks for %zu cells)\n", ranks.name().c_str(), ranks.size(), costs.size());
+    else
+        std::printf("%s: cells %d-%d of %zu (%llu records predicted, %.1f%% of the paths; contiguous ranges balanced by "
+                    "predicted records, planned in %.2f s)\n",
+                    ranks.name().c_str(), mine.begin, mine.end - 1, costs.size(), (unsigned long long)(own / spp),
+                    total ? 100.0 * double(own) / double(total) : 0.0, clock.seconds());
+    std::fflush(stdout);
+    return mine;
+}
+
 int runGenerate(const GenerateArgs& a) {
     const Project project = loadProjectOrScene(a.input);
     refuseOverwritingInputs(a.out, projectInputs(project));
     const SamplingSettings s = a.sampling.applied(project.samplingOrDefault());
     const int k = a.shard[0], n = a.shard[1];
     checkShard(k, n);
+    const mpi::Ranks& ranks = mpi::ranks();
+    if (ranks.size() > 1 && n > 1)
+        throw InputError("command line", "--shard",
+                         "cannot be combined with an MPI job (" + std::to_string(ranks.size()) +
+                             " ranks): the ranks split the cells themselves; use --shard in single-process runs");
     auto threads = limitThreads(a.threads);
 
     DataGenerator gen(project.scene, s);
-    std::printf("rrf generate: %s, grid %dx%dx%d, %d directions, %d spp, seed %llu, shard %d/%d\n", a.input.c_str(), s.nx,
-                s.ny, s.nz, s.directions, s.spp, (unsigned long long)s.seed, k, n);
-    if (s.adaptive())
+    if (ranks.isRoot()) {
+        const std::string split = ranks.size() > 1 ? std::to_string(ranks.size()) + " MPI ranks"
+                                                   : "shard " + std::to_string(k) + "/" + std::to_string(n);
+        std::printf("rrf generate: %s, grid %dx%dx%d, %d directions, %d spp, seed %llu, %s\n", a.input.c_str(), s.nx,
+                    s.ny, s.nz, s.directions, s.spp, (unsigned long long)s.seed, split.c_str());
+    }
+    const CellRange cells = ranks.size() > 1 ? rankCells(gen, ranks) : CellRange{};
+    if (s.adaptive() && ranks.isRoot())
         std::printf("adaptive paths per record: %d, doubling up to %d until the relative noise is <= %g\n", s.spp,
                     s.maxSpp, s.noiseTarget);
-    std::printf("inputs (%d): ", gen.layout().inputCount());
-    for (const std::string& name : gen.layout().inputs) std::printf("%s ", name.c_str());
-    std::printf("\n");
+    if (ranks.isRoot()) {
+        std::printf("inputs (%d): ", gen.layout().inputCount());
+        for (const std::string& name : gen.layout().inputs) std::printf("%s ", name.c_str());
+        std::printf("\n");
+    }
     std::fflush(stdout);
     GeneratorProgress progress;
     std::atomic<bool> cancel{false};
     GeneratedData data;
+    const double cpuStart = processCpuSeconds();
     runWithProgress(
-        "generate", [&] { data = gen.run(k, n, &cancel, &progress); },
+        "generate",
+        [&] {
+            data = ranks.size() > 1 ? gen.runCells(cells.begin, cells.end, ranks.rank(), ranks.size(), &cancel, &progress)
+                                    : gen.run(k, n, &cancel, &progress);
+        },
         [&] { return std::make_pair(progress.fraction(), std::to_string(progress.records.load()) + " records"); },
         [&] { cancel = true; });
     if (data.cancelled) {
-        std::fprintf(stderr, "generate: cancelled, no dataset written (%s untouched)\n", a.out.c_str());
+        std::fprintf(stderr, "generate: %scancelled, no dataset written (%s untouched)\n",
+                     ranks.size() > 1 ? (ranks.name() + ": ").c_str() : "", a.out.c_str());
+        mpi::stopJobOnError(130);
         return 130;
+    }
+    if (ranks.size() > 1) {
+        // Rank 0 joins the ranks' parts into the single-process run's data (core/data/dataset_part.h).
+        std::printf("%s: %llu records in %.2f s (%.2f s CPU)\n", ranks.name().c_str(), (unsigned long long)data.stats.records,
+                    data.seconds, processCpuSeconds() - cpuStart);
+        std::fflush(stdout);
+        // The barrier separates waiting for the slowest rank from the transfer and join (bench/bench_mpi.py).
+        const Stopwatch waitClock;
+        ranks.barrier();
+        const double waited = waitClock.seconds();
+        const Stopwatch joinClock;
+        std::vector<std::string> parts = ranks.gather(encodeGeneratedPart(data));
+        if (!ranks.isRoot()) return 0;
+        std::vector<NamedPart> named;
+        for (size_t r = 0; r < parts.size(); ++r) {
+            const std::string name = mpi::Ranks(int(r), ranks.size()).name();
+            named.push_back({name, decodeGeneratedPart(parts[r], name)});
+            std::string().swap(parts[r]);
+        }
+        data = joinGeneratedParts(std::move(named));
+        std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s (slowest rank "
+                    "%.2f s)\n",
+                    waited, ranks.size(), joinClock.seconds(), data.seconds);
     }
     writeDataset(a.out, data.header, data.sceneHash, data.perObject);
     const GeneratorStats& st = data.stats;
-    std::printf("%llu records in %.2f s: %srecords/s, %spath samples/s, %srays/s\n", (unsigned long long)st.records,
-                data.seconds, humanCount(double(st.records) / data.seconds).c_str(),
+    std::printf("%llu records in %.2f s (%.2f s CPU%s): %srecords/s, %spath samples/s, %srays/s\n",
+                (unsigned long long)st.records, data.seconds, processCpuSeconds() - cpuStart,
+                ranks.size() > 1 ? " of rank 0" : "", humanCount(double(st.records) / data.seconds).c_str(),
                 humanCount(double(st.paths) / data.seconds).c_str(),
                 humanCount(double(st.rays + st.shadowRays) / data.seconds).c_str());
     std::printf("cells: %llu in shard, %llu dropped inside objects, %llu dropped outside the scene, %llu dropped behind "

@@ -1,4 +1,6 @@
-// `rrf train`: one network per object (and target) from a dataset, saved as a model directory.
+// `rrf train`: one network per object (and target) from a dataset, saved as a model directory. Under
+// an MPI launcher the ranks share the objects and rank 0 writes the models (docs/cluster.md).
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <cstdio>
@@ -19,6 +21,10 @@
 #include "core/project/project.h"
 #include "core/project/run_recording.h"
 #include "app/cli/cli_record.h"
+#include "app/mpi/ranks.h"
+#include "core/nn/training_part.h"
+#include "core/nn/training_split.h"
+#include "core/util/stopwatch.h"
 #include "core/nn/training_run.h"
 #include "core/nn/training_samples.h"
 
@@ -57,7 +63,45 @@ std::string fmt(double v) {
     return buf;
 }
 
+/// This rank's objects in an MPI job and the assignment of every object (the positions of
+/// trainingObjectOrder) to ranks.
+struct RankShare {
+    ObjectTrainingOptions options;     ///< the run's options with `objects` this rank's (in order)
+    std::vector<int> rankOfPosition;   ///< rank of each object of trainingObjectOrder
+};
+
+/// Assigns the objects to the ranks by the longest-first rule on record counts and logs this
+/// rank's share (core/nn/training_split.h). One rank: every object, nothing logged.
+RankShare rankShare(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options,
+                    const mpi::Ranks& ranks, const Scene& scene) {
+    RankShare share{options, {}};
+    if (ranks.size() == 1) return share;
+    const std::vector<int> order = trainingObjectOrder(samples, options);
+    const std::vector<uint64_t> costs = trainingCosts(samples, order);
+    share.rankOfPosition = assignLongestFirst(costs, ranks.size());
+    share.options.objects.clear();
+    uint64_t total = 0, own = 0;
+    std::string list;
+    for (size_t p = 0; p < order.size(); ++p) {
+        total += costs[p];
+        if (share.rankOfPosition[p] != ranks.rank()) continue;
+        share.options.objects.push_back(order[p]);
+        own += costs[p];
+        const std::string name = order[p] >= 0 && size_t(order[p]) < scene.objects.size() ? scene.objects[size_t(order[p])].name : "?";
+        list += (list.empty() ? "" : ", ") + std::to_string(order[p]) + " " + name + " (" + std::to_string(costs[p]) + ")";
+    }
+    if (share.options.objects.empty())
+        std::printf("%s: no objects (%d ranks for %zu objects)\n", ranks.name().c_str(), ranks.size(), order.size());
+    else
+        std::printf("%s: objects %s: %llu of %llu records (%.1f%%; longest first by record count)\n", ranks.name().c_str(),
+                    list.c_str(), (unsigned long long)own, (unsigned long long)total,
+                    total ? 100.0 * double(own) / double(total) : 0.0);
+    std::fflush(stdout);
+    return share;
+}
+
 int runTrain(const TrainArgs& a, std::optional<Run> record) {
+    const mpi::Ranks& ranks = mpi::ranks();
     const Project project = loadProjectOrScene(a.input);
     std::vector<std::string> inputs = projectInputs(project);
     inputs.push_back(a.data);
@@ -73,7 +117,8 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     const std::vector<ObjectSamples> samples = samplesFromDataset(data, &dropped);
     if (dropped) std::printf("warning: %llu records with NaN/Inf dropped from %s\n", (unsigned long long)dropped, a.data.c_str());
     const std::string encoding = networkEncoding(o.encoding, data.inputCount()).describe();
-    std::printf("rrf train: %s on %s (%llu records), hidden %s, %s, encoding %s, targets %s, trainer %s\n", a.input.c_str(),
+    if (ranks.isRoot())
+        std::printf("rrf train: %s on %s (%llu records), hidden %s, %s, encoding %s, targets %s, trainer %s\n", a.input.c_str(),
                 a.data.c_str(), (unsigned long long)data.totalRecords(), nlohmann::json(o.hidden).dump().c_str(),
                 activationName(o.activation), encoding.c_str(), targetModeName(o.targets), o.trainer.typeName());
     std::fflush(stdout);
@@ -96,9 +141,43 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     };
     TrainingProgress progress;
     TrainingRun run;
+    const Stopwatch clock;
+    const double cpuStart = processCpuSeconds();
+    // In an MPI job this rank trains its share of the objects (core/nn/training_split.h).
+    const RankShare share = rankShare(samples, o, ranks, project.scene);
     runWithProgress(
-        "train", [&] { run = trainNetworks(samples, o, observer, &progress); },
+        "train",
+        [&] {
+            if (ranks.size() == 1) run = trainNetworks(samples, o, observer, &progress);
+            else if (!share.options.objects.empty()) run = trainNetworks(samples, share.options, observer, &progress);
+        },
         [&] { return std::make_pair(progress.fraction(), std::string()); }, [&] { cancel = true; });
+    if (ranks.size() > 1) {
+        std::printf("%s: trained %d networks in %.2f s (%.2f s CPU)\n", ranks.name().c_str(), run.networks, run.seconds,
+                    processCpuSeconds() - cpuStart);
+        std::fflush(stdout);
+        // The barrier separates waiting for the slowest rank from the transfer and join (bench/bench_mpi.py).
+        const Stopwatch waitClock;
+        ranks.barrier();
+        const double waited = waitClock.seconds();
+        const Stopwatch joinClock;
+        std::vector<std::string> parts = ranks.gather(encodeTrainingPart(run));
+        if (!ranks.isRoot()) return run.cancelled ? 130 : 0;
+        std::vector<TrainingRun> decoded;
+        for (size_t r = 0; r < parts.size(); ++r) {
+            decoded.push_back(decodeTrainingPart(parts[r], mpi::Ranks(int(r), ranks.size()).name()));
+            std::string().swap(parts[r]);
+        }
+        const double slowest = std::max_element(decoded.begin(), decoded.end(), [](const TrainingRun& x, const TrainingRun& y) {
+                                   return x.seconds < y.seconds;
+                               })->seconds;
+        run = joinTrainingParts(std::move(decoded), share.rankOfPosition, networksPerObject(o));
+        // The job's wall time as rank 0 saw it, from the start of training to the joined models.
+        run.seconds = clock.seconds();
+        std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s (slowest rank "
+                    "%.2f s, %.2f s in all)\n",
+                    waited, ranks.size(), joinClock.seconds(), slowest, run.seconds);
+    }
     const std::vector<ObjectModel>& trained = run.models;
     const double seconds = run.seconds;
 
@@ -127,8 +206,8 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
                         t.stopReason.c_str());
         }
     }
-    std::printf("trained in %.2f s%s; wrote %s/models.json\n", seconds, run.cancelled ? " (stopped early by Ctrl-C)" : "",
-                a.out.c_str());
+    std::printf("trained in %.2f s (%.2f s CPU%s)%s; wrote %s/models.json\n", seconds, processCpuSeconds() - cpuStart,
+                ranks.size() > 1 ? " of rank 0" : "", run.cancelled ? " (stopped early by Ctrl-C)" : "", a.out.c_str());
     if (record && run.networks > 0) {
         TrainRecord r{settings, project.sampling, a.data, a.out, project.scene.contentHash(),
                       lossCurves(run.curves), run.networks, run.skipped, run.seconds, std::nullopt};
@@ -160,7 +239,9 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--log-every", a->logEvery, "print every N-th epoch (0 = none)")->check(nonNegative());
     cmd->add_flag("--record", a->record, recordHelp("a train run (models under runs/<id>/models)"));
     cmd->callback([a, &exitCode] {
-        std::optional<Run> record = beginRecording(a->record, a->input, "train", a->out, "models");
+        // In an MPI job rank 0 alone writes the models and records the run; the others need no --out.
+        std::optional<Run> record;
+        if (mpi::ranks().isRoot()) record = beginRecording(a->record, a->input, "train", a->out, "models");
         exitCode = runTrain(*a, std::move(record));
     });
 }

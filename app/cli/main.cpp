@@ -9,6 +9,7 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
+#include "app/mpi/ranks.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"rrf - RRF Workbench: learn global illumination with radiance regression functions"};
@@ -37,6 +38,22 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
+    // Under an MPI launcher with more than one process only the commands that split their work across
+    // ranks may run; any other would run N times over and write its outputs N times (docs/cluster.md).
+    if (const rrf::mpi::Launch launch = rrf::mpi::launchFromEnvironment(); launch.size > 1 && argc > 1) {
+        const std::string command = argv[1];
+        const bool splits = command == "generate" || command == "train" || command == "evaluate";
+        if (!splits || !rrf::mpi::mpiBuilt()) {
+            if (launch.rank == 0)
+                std::fprintf(stderr, "rrf: error: %s\n",
+                             splits ? "this rrf was built without MPI (configure with -DRRF_WITH_MPI=ON and "
+                                      "libopenmpi-dev installed); run one process, or --shard k/n per process and rrf merge"
+                                    : ("'" + command + "' does not split its work across MPI ranks (generate, train and evaluate do); "
+                                                       "run it as one process")
+                                          .c_str());
+            return 2;
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -44,7 +61,11 @@ int main(int argc, char** argv) {
         // any other, so it exits 1 rather than with CLI11's per-kind code.
         return app.exit(e) == 0 ? 0 : 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "rrf: error: %s\n", rrf::cli::errorMessage(e).c_str());
+        const rrf::mpi::Launch launch = rrf::mpi::launchFromEnvironment();
+        const std::string where = launch.size > 1 ? " (rank " + std::to_string(launch.rank) + "/" + std::to_string(launch.size) + ")" : "";
+        std::fprintf(stderr, "rrf: error%s: %s\n", where.c_str(), rrf::cli::errorMessage(e).c_str());
+        // In an MPI job one failing rank ends every rank: the others may be waiting for its part.
+        rrf::mpi::stopJobOnError(1);
         return 1;
     }
     return exitCode;

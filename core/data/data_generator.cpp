@@ -21,6 +21,16 @@ namespace {
 uint64_t recordSeed(uint64_t seed) { return mix64(seed ^ 0x5245434F52445321ULL); }
 uint64_t pathSeed(uint64_t seed) { return mix64(seed ^ 0x5041544853414D50ULL); }
 
+/// The direction and light position of record r: the one place they are drawn (runCells traces
+/// them, cellRecordCounts predicts which make a record).
+void recordRay(uint64_t recordSeedValue, uint64_t r, const Bounds3& region, Vec3& dir, Vec3& lightPos) {
+    Rng rng(recordSeedValue, r);
+    const float u1 = rng.uniform(), u2 = rng.uniform();
+    dir = sampleUniformSphere(u1, u2);
+    const Vec3 e = region.extent();
+    lightPos = Vec3(region.lo.x + e.x * rng.uniform(), region.lo.y + e.y * rng.uniform(), region.lo.z + e.z * rng.uniform());
+}
+
 struct CellOutput {
     std::vector<float> records;
     std::vector<int32_t> objects;
@@ -128,6 +138,31 @@ uint64_t DataGenerator::memoryEstimate(uint64_t cells) const {
     return saturatingProduct(cells, perCell);
 }
 
+std::vector<uint64_t> DataGenerator::cellRecordCounts() const {
+    const JitterGrid grid(scene_.bounds(), settings_.nx, settings_.ny, settings_.nz);
+    const ViewpointClassifier classifier(tracer_);
+    const Bounds3 region = lightRegion();
+    const uint64_t rs = recordSeed(settings_.seed);
+    std::vector<uint64_t> counts(static_cast<size_t>(grid.cellCount()), 0);
+    tbb::parallel_for(0, grid.cellCount(), [&](int cell) {
+        const Vec3 vp = grid.viewpoint(cell, settings_.seed);
+        if (classifier.classify(vp) != ViewpointStatus::Kept) return;
+        uint64_t n = 0;
+        for (int j = 0; j < settings_.directions; ++j) {
+            Vec3 dir, lp;
+            recordRay(rs, uint64_t(cell) * uint64_t(settings_.directions) + uint64_t(j), region, dir, lp);
+            Ray ray;
+            ray.origin = vp;
+            ray.dir = dir;
+            Hit hit;
+            // As estimateRecord decides: no hit escapes, an emitter's hit makes no record.
+            n += tracer_.intersect(ray, tracer_.movableLightAt(lp), hit) && hit.object >= 0;
+        }
+        counts[size_t(cell)] = n;
+    });
+    return counts;
+}
+
 void checkShard(int shardIndex, int shardCount) {
     if (shardCount < 1 || shardIndex < 0 || shardIndex >= shardCount)
         throw SettingError("shard", "expected part k of n with 0 <= k < n, got k = " + std::to_string(shardIndex) +
@@ -137,15 +172,24 @@ void checkShard(int shardIndex, int shardCount) {
 GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atomic<bool>* cancel,
                                  GeneratorProgress* progress) const {
     checkShard(shardIndex, shardCount);
+    const int cells = settings_.cellCount();
+    const int begin = int(int64_t(cells) * shardIndex / shardCount);
+    const int end = int(int64_t(cells) * (shardIndex + 1) / shardCount);
+    return runCells(begin, end, shardIndex, shardCount, cancel, progress);
+}
+
+GeneratedData DataGenerator::runCells(int begin, int end, int shardIndex, int shardCount, const std::atomic<bool>* cancel,
+                                      GeneratorProgress* progress) const {
+    checkShard(shardIndex, shardCount);
     const auto start = std::chrono::steady_clock::now();
     const JitterGrid grid(scene_.bounds(), settings_.nx, settings_.ny, settings_.nz);
     const int cells = grid.cellCount();
-    const int begin = int(int64_t(cells) * shardIndex / shardCount);
-    const int end = int(int64_t(cells) * (shardIndex + 1) / shardCount);
+    if (begin < 0 || begin > end || end > cells)
+        throw SettingError("shard", "expected cells 0 <= begin <= end <= " + std::to_string(cells) + ", got " +
+                                        std::to_string(begin) + " ... " + std::to_string(end));
     if (progress) progress->cellsInShard = uint64_t(end - begin);
     const ViewpointClassifier classifier(tracer_);
     const Bounds3 region = lightRegion();
-    const Vec3 regionExtent = region.extent();
     const int fpr = layout_.floatsPerRecord();
     const uint64_t rs = recordSeed(settings_.seed);
 
@@ -172,11 +216,8 @@ GeneratedData DataGenerator::run(int shardIndex, int shardCount, const std::atom
             // Cancel is checked per record, not per cell: one cell may hold millions of directions.
             for (int j = 0; j < settings_.directions && !cancelled(); ++j) {
                 const uint64_t r = uint64_t(cell) * uint64_t(settings_.directions) + uint64_t(j);
-                Rng rng(rs, r);
-                const float u1 = rng.uniform(), u2 = rng.uniform();
-                const Vec3 dir = sampleUniformSphere(u1, u2);
-                const Vec3 lp(region.lo.x + regionExtent.x * rng.uniform(), region.lo.y + regionExtent.y * rng.uniform(),
-                              region.lo.z + regionExtent.z * rng.uniform());
+                Vec3 dir, lp;
+                recordRay(rs, r, region, dir, lp);
                 int objectId = -1, paths = 0;
                 bool capped = false;
                 RecordOutcome outcome;

@@ -62,6 +62,23 @@ public:
     GeneratedData run(int shardIndex = 0, int shardCount = 1, const std::atomic<bool>* cancel = nullptr,
                       GeneratorProgress* progress = nullptr) const;
 
+    /// Generates the cells [cellBegin, cellEnd) as part `partIndex` of `partCount` (a rank's share of
+    /// an MPI job, core/data/cell_split.h): run(k, n) is runCells over shard k's cells. Parts that
+    /// tile the grid join (core/data/dataset_part.h) into the bytes of the unsharded run. Throws
+    /// SettingError naming "shard" unless 0 <= partIndex < partCount and 0 <= cellBegin <= cellEnd
+    /// <= cells, and what run() throws.
+    GeneratedData runCells(int cellBegin, int cellEnd, int partIndex, int partCount,
+                           const std::atomic<bool>* cancel = nullptr, GeneratorProgress* progress = nullptr) const;
+
+    /// The records each cell of the grid makes, predicted by tracing only each direction's first hit
+    /// (one ray a direction instead of its paths): 0 for a dropped viewpoint, else the directions
+    /// that hit an object. Equal to the records run() stores but for those whose every sample is NaN
+    /// or infinite. The cost model of the MPI ranks' cell ranges (core/data/cell_split.h).
+    std::vector<uint64_t> cellRecordCounts() const;
+
+    /// The settings the generator runs with.
+    const SamplingSettings& settings() const { return settings_; }
+
     /// Why a ray did or did not make a record.
     enum class RecordOutcome { Stored, Escaped, HitEmitter, NoFiniteSample };
 

@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/data/dataset_part.h"
 #include "core/data/generator_stats.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
@@ -257,48 +258,22 @@ const float* Dataset::records(size_t i) const {
 
 void mergeDatasets(const std::vector<std::string>& inputs, const std::string& output) {
     if (inputs.empty()) throw std::runtime_error("merge: no input files");
-    std::vector<std::unique_ptr<Dataset>> shards;
-    for (const std::string& p : inputs) shards.push_back(std::make_unique<Dataset>(p));
-    std::sort(shards.begin(), shards.end(), [](const auto& a, const auto& b) {
-        return a->header().at("shard").at("cell_begin").template get<int>() < b->header().at("shard").at("cell_begin").template get<int>();
-    });
-    const Dataset& first = *shards.front();
-    auto comparable = [](nlohmann::json h) {
-        h.erase("shard");
-        h.erase("stats");
-        for (auto& o : h.at("objects")) {
-            o.erase("count");
-            o.erase("offset");
-        }
-        return h;
-    };
-    const nlohmann::json reference = comparable(first.header());
-    int expectedBegin = 0;
-    const int cells = first.header().at("shard").at("cells_total").get<int>();
-    nlohmann::json header = first.header();
-    GeneratorStats stats = GeneratorStats::fromHeader(first.header(), first.path());
-    std::vector<std::vector<float>> perObject(first.objects().size());
-    for (size_t s = 0; s < shards.size(); ++s) {
-        const Dataset& d = *shards[s];
-        if (d.sceneHash() != first.sceneHash() || comparable(d.header()) != reference)
-            fail(d.path(), "was generated with a different scene or different settings than " + first.path());
-        const nlohmann::json& sh = d.header().at("shard");
-        if (sh.at("cell_begin").get<int>() != expectedBegin)
-            fail(d.path(), "shards do not tile the grid: expected a shard starting at cell " + std::to_string(expectedBegin));
-        expectedBegin = sh.at("cell_end").get<int>();
+    std::vector<NamedPart> parts;
+    for (const std::string& path : inputs) {
+        const Dataset d(path);
+        NamedPart p;
+        p.name = path;
+        p.data.header = d.header();
+        p.data.sceneHash = d.sceneHash();
+        p.data.stats = GeneratorStats::fromHeader(d.header(), path);
         for (size_t i = 0; i < d.objects().size(); ++i) {
             const float* r = d.records(i);
-            perObject[i].insert(perObject[i].end(), r, r + d.objects()[i].count * size_t(d.floatsPerRecord()));
+            p.data.perObject.emplace_back(r, r + d.objects()[i].count * size_t(d.floatsPerRecord()));
         }
-        // Shards are in cell order, so appending their per-cell counts keeps the cell order.
-        if (s > 0) stats += GeneratorStats::fromHeader(d.header(), d.path());
+        parts.push_back(std::move(p));
     }
-    if (expectedBegin != cells)
-        fail(shards.back()->path(), "shards do not cover the grid: cells " + std::to_string(expectedBegin) + ".." +
-                                        std::to_string(cells) + " are missing");
-    header["stats"] = stats.toJson();
-    header["shard"] = {{"index", 0}, {"count", 1}, {"cell_begin", 0}, {"cell_end", cells}, {"cells_total", cells}};
-    writeDataset(output, header, first.sceneHash(), perObject);
+    const GeneratedData joined = joinGeneratedParts(std::move(parts));
+    writeDataset(output, joined.header, joined.sceneHash, joined.perObject);
 }
 
 }  // namespace rrf

@@ -143,6 +143,10 @@ NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, cons
                         const Eigen::Ref<const MatX<float>>& inputs, const Eigen::Ref<const MatX<float>>& targets,
                         const MatX<float>& targetVariance, const TrainObserver& observer = {}, uint64_t stream = 0);
 
+/// The bytes saveModel writes for `model` (what loadModel/parseModel read back bit for bit).
+/// Throws std::invalid_argument if the model holds non-finite numbers.
+std::string modelFileBytes(const NetworkModel& model);
+
 /// Writes `model` to `path` atomically. Throws std::runtime_error on I/O failure and
 /// std::invalid_argument if the model holds non-finite numbers.
 void saveModel(const NetworkModel& model, const std::string& path);

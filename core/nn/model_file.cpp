@@ -84,7 +84,7 @@ json modelHeader(const NetworkModel& m) {
     };
 }
 
-void saveModel(const NetworkModel& model, const std::string& path) {
+std::string modelFileBytes(const NetworkModel& model) {
     model.validate();
     std::string payload;
     appendDoubles(payload, model.params.data(), model.params.size());
@@ -103,13 +103,19 @@ void saveModel(const NetworkModel& model, const std::string& path) {
     const uint32_t version = kVersion, hlen = uint32_t(h.size());
     const uint64_t headerChecksum = checksum64(h.data(), h.size());
 
+    std::string bytes(kMagic, sizeof kMagic);
+    bytes.append(reinterpret_cast<const char*>(&version), 4);
+    bytes.append(reinterpret_cast<const char*>(&hlen), 4);
+    bytes.append(reinterpret_cast<const char*>(&headerChecksum), 8);
+    bytes += h;
+    bytes += payload;
+    return bytes;
+}
+
+void saveModel(const NetworkModel& model, const std::string& path) {
+    const std::string bytes = modelFileBytes(model);
     AtomicFile f(path);
-    f.write(kMagic, sizeof kMagic);
-    f.write(&version, 4);
-    f.write(&hlen, 4);
-    f.write(&headerChecksum, 8);
-    f.write(h);
-    f.write(payload);
+    f.write(bytes);
     f.commit();
 }
 

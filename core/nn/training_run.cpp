@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "core/nn/model_set.h"
+#include "core/nn/training_split.h"
 #include "core/util/stopwatch.h"
 
 namespace rrf {
@@ -17,8 +18,7 @@ double TrainingProgress::fraction() const {
 
 double trainingEpochBudget(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options) {
     const size_t objects = options.objects.empty() ? samples.size() : options.objects.size();
-    const int networksPerObject = options.targets == TargetMode::Separate ? 2 : 1;
-    return double(objects) * networksPerObject * options.trainer.maxEpochs();
+    return double(objects) * networksPerObject(options) * options.trainer.maxEpochs();
 }
 
 TrainingRun trainNetworks(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options,

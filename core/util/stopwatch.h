@@ -2,6 +2,7 @@
 /// A steady-clock stopwatch for the timings every stage prints and records.
 
 #include <chrono>
+#include <ctime>
 
 namespace rrf {
 
@@ -14,5 +15,10 @@ public:
 private:
     std::chrono::steady_clock::time_point start_;
 };
+
+/// CPU seconds (all threads, user + system) this process has used so far. On a shared machine the
+/// CPU time of a piece of work says what it costs when its wall time also counts other jobs' share
+/// of the cores (the MPI ranks log both, bench/bench_mpi.py compares them).
+inline double processCpuSeconds() { return double(std::clock()) / double(CLOCKS_PER_SEC); }
 
 }  // namespace rrf

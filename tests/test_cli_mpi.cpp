@@ -1,0 +1,178 @@
+// `mpirun -n 3 rrf generate|train|evaluate` on localhost against the single-process run (issue 17):
+// the dataset byte for byte, the model set's weights and trees bit for bit (the files' timing fields
+// differ, as between two single-process runs), the evaluation's images byte for byte and its report
+// but for times, and a failing rank ends the job with its message.
+// Compiled only when rrf is built with MPI (CMake sets RRF_MPIEXEC to the launcher).
+#ifdef RRF_MPIEXEC
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <unistd.h>
+
+#include "core/nn/model_set.h"
+#include "tests/cli_runner.h"
+
+namespace test_cli_mpi {
+
+using namespace rrf;
+using namespace rrf::test;
+namespace fs = std::filesystem;
+
+const std::string kCornell = std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json";
+/// A small run: 64 cells × 30 directions × 4 paths, small networks for a few epochs.
+const std::string kSampling = " --grid 4,4,4 --dirs 30 --spp 4 --seed 3";
+const std::string kNetwork = " --hidden 6 --trainer adam --epochs 12 --log-every 0";
+
+/// `rrf <args>` under `mpirun -n <ranks>` on this host: oversubscribed (CI has 2 cores), unbound (each
+/// rank runs its own threads), over shared memory, and allowed as root (CI's containers run as root).
+CliResult runMpi(int ranks, const std::string& args) {
+    const std::string env = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                            "OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_btl=self,vader ";
+    CliResult r;
+    const std::string cmd = env + RRF_MPIEXEC + std::string(" --oversubscribe --bind-to none -n ") + std::to_string(ranks) +
+                            " " + RRF_CLI_PATH + " " + args + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) return r;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
+    const int status = pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+std::string readBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+fs::path testDir() {
+    const fs::path dir = fs::temp_directory_path() / ("rrf_mpi_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+/// An evaluation report without what times the run (keys ending in "seconds") and without where each
+/// reference came from (rendered by this process, or reused from the store after another rank rendered it).
+nlohmann::json withoutTimesAndSources(nlohmann::json j) {
+    if (j.is_object()) {
+        nlohmann::json out = nlohmann::json::object();
+        for (auto& [key, value] : j.items()) {
+            const bool timed = key.size() >= 7 && key.compare(key.size() - 7, 7, "seconds") == 0;
+            if (!timed && key != "reference_source") out[key] = withoutTimesAndSources(value);
+        }
+        return out;
+    }
+    if (j.is_array())
+        for (auto& value : j) value = withoutTimesAndSources(value);
+    return j;
+}
+
+/// A fresh copy of the bundled Cornell box in `dir` (its reference store starts empty).
+std::string copyProject(const fs::path& dir) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (const char* f : {"project.json", "scene.json"})
+        fs::copy_file(fs::path(RRF_SOURCE_DIR) / "projects" / "cornell-box" / f, dir / f);
+    return (dir / "project.json").string();
+}
+
+/// models.json without the fields that time the run: "seconds", and the model files' sizes and
+/// checksums, which cover the per-epoch times in their headers (the weights are compared apart).
+nlohmann::json withoutTimes(nlohmann::json j) {
+    if (j.is_object()) {
+        for (const char* key : {"seconds", "bytes", "checksum64", "index_checksum64"}) j.erase(key);
+        for (auto& [key, value] : j.items()) value = withoutTimes(value);
+    } else if (j.is_array()) {
+        for (auto& value : j) value = withoutTimes(value);
+    }
+    return j;
+}
+
+
+TEST(CliMpi, ThreeRanksGenerateTrainAndEvaluateWhatOneProcessDoes) {
+    const fs::path dir = testDir();
+    const std::string one = (dir / "one.rrfd").string(), three = (dir / "three.rrfd").string();
+    const CliResult g1 = runCli("generate " + kCornell + kSampling + " --out " + one);
+    ASSERT_EQ(g1.code, 0) << g1.output;
+    const CliResult g3 = runMpi(3, "generate " + kCornell + kSampling + " --out " + three);
+    ASSERT_EQ(g3.code, 0) << g3.output;
+    // Every rank logs its share of the cells; the shares tile the 64 cells.
+    EXPECT_NE(g3.output.find("rank 0/3: cells 0-"), std::string::npos) << g3.output;
+    EXPECT_NE(g3.output.find("rank 1/3: cells "), std::string::npos) << g3.output;
+    EXPECT_NE(g3.output.find("-63 of 64"), std::string::npos) << g3.output;
+    const std::string a = readBytes(one), b = readBytes(three);
+    ASSERT_FALSE(a.empty());
+    EXPECT_TRUE(a == b) << "the 3-rank dataset differs from the single-process one";
+
+    const std::string m1 = (dir / "m1").string(), m3 = (dir / "m3").string();
+    const CliResult t1 = runCli("train " + kCornell + " --data " + one + kNetwork + " --out " + m1);
+    ASSERT_EQ(t1.code, 0) << t1.output;
+    const CliResult t3 = runMpi(3, "train " + kCornell + " --data " + one + kNetwork + " --out " + m3);
+    ASSERT_EQ(t3.code, 0) << t3.output;
+    EXPECT_NE(t3.output.find("rank 2/3: objects "), std::string::npos) << t3.output;
+    const ModelSet s1 = loadModelSet(m1), s3 = loadModelSet(m3);
+    EXPECT_EQ(withoutTimes(s1.index).dump(), withoutTimes(s3.index).dump());
+    ASSERT_EQ(s1.objects.size(), s3.objects.size());
+    ASSERT_GT(s1.objects.size(), 2u);
+    for (size_t i = 0; i < s1.objects.size(); ++i) {
+        for (const auto& [target, net] : s1.objects[i].byTarget) {
+            ASSERT_TRUE(s3.objects[i].has(target));
+            const PartitionedNetwork& other = s3.objects[i].byTarget.at(target);
+            ASSERT_EQ(net.leafCount(), other.leafCount());
+            for (int l = 0; l < net.leafCount(); ++l) {
+                const auto &p = net.leaves[size_t(l)].params, &q = other.leaves[size_t(l)].params;
+                ASSERT_EQ(p.size(), q.size());
+                EXPECT_EQ(std::memcmp(p.data(), q.data(), size_t(p.size()) * sizeof(double)), 0)
+                    << "object " << s1.objects[i].objectId << " " << target << " leaf " << l;
+            }
+        }
+    }
+
+    // Evaluate at 3 held-out lights: the ranks render the references into the project's store, rank 0
+    // evaluates. Same project and output paths for both runs, so the reports differ only in times.
+    const std::string eval = " --models " + m1 + " --held-out 3 --noise 0.3 --spp-cap 8 --width 24 --height 24 --out " +
+                             (dir / "e").string();
+    const std::string project = copyProject(dir / "p");
+    const CliResult e1 = runCli("evaluate " + project + eval);
+    ASSERT_EQ(e1.code, 0) << e1.output;
+    fs::rename(dir / "e", dir / "e1");
+    copyProject(dir / "p");
+    const CliResult e3 = runMpi(3, "evaluate " + project + eval);
+    ASSERT_EQ(e3.code, 0) << e3.output;
+    EXPECT_NE(e3.output.find("rank 1/3: references 2 of 3"), std::string::npos) << e3.output;
+    auto json = [](const fs::path& f) { return withoutTimesAndSources(nlohmann::json::parse(readBytes(f.string()))); };
+    EXPECT_EQ(json(dir / "e1" / "held_out.json").dump(), json(dir / "e" / "held_out.json").dump());
+    for (const char* image : {"light_0/reference_global.exr", "light_2/prediction_global.exr", "light_1/error_relative_global.exr"}) {
+        const std::string x = readBytes((dir / "e1" / image).string()), y = readBytes((dir / "e" / image).string());
+        EXPECT_FALSE(x.empty()) << image;
+        EXPECT_TRUE(x == y) << image;
+    }
+    fs::remove_all(dir);
+}
+
+TEST(CliMpi, AFailingRankStopsTheJobWithItsMessage) {
+    const fs::path dir = testDir();
+    // A dataset file that does not exist: every rank fails while loading; the job ends (no hang)
+    // with the message and a non-zero status.
+    const CliResult r = runMpi(2, "train " + kCornell + " --data " + (dir / "missing.rrfd").string() + " --out " +
+                                      (dir / "m").string());
+    EXPECT_NE(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("missing.rrfd"), std::string::npos) << r.output;
+    // A command that does not split its work refuses to run N times over.
+    const CliResult render = runMpi(2, "render " + kCornell + " --out " + (dir / "r").string());
+    EXPECT_EQ(render.code, 2) << render.output;
+    EXPECT_NE(render.output.find("does not split its work across MPI ranks"), std::string::npos) << render.output;
+    fs::remove_all(dir);
+}
+
+}  // namespace test_cli_mpi
+
+#endif  // RRF_MPIEXEC
