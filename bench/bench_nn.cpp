@@ -3,7 +3,10 @@
 //   bench_nn [--quick]
 //
 // Rows: Eigen float/double GEMM (the yardstick), one Levenberg–Marquardt epoch against the
-// 3·N·P² flop estimate, Adam training and batched inference for the 20-10 and 64-64-64 networks.
+// 3·N·P² flop estimate, Adam training and batched inference for the 20-10 and 64-64-64 networks,
+// and encoded networks (issue 16: hash grid, frequency and one-blob inputs into 64-64-64 ReLU):
+// their forward and forward+backward passes on 1024-sample batches, with the encoding's share of the
+// time in a second table.
 // Targets (issue 4): Adam and inference ≥ 30 % of the float GEMM rate of one core, LM epoch ≤ 2× the
 // estimate at that rate. Every figure is the fastest of several repetitions (the machine is shared).
 // Everything runs on synthetic data; no files are read or written.
@@ -16,7 +19,9 @@
 #include <tbb/info.h>
 
 #include "bench/bench_args.h"
+#include "core/nn/encoding.h"
 #include "core/nn/model.h"
+#include "core/util/json_reader.h"
 #include "core/util/rng.h"
 
 using namespace rrf;
@@ -96,10 +101,100 @@ double g_minT = 1.0;
 /// minute, so the yardstick is the best rate seen over the whole run, sampled between measurements.
 void sampleYardstick() { g_gemmF = std::max(g_gemmF, gemmGflops<float>(1024, 0.25 * g_minT)); }
 
+/// Time share of the encoding inside an encoded network's passes (printed under the main table).
+struct EncodingShare {
+    std::string network, encoding;
+    double forwardShare, trainShare;
+};
+std::vector<EncodingShare> g_shares;
+
+/// Fastest time of `fn` over repetitions filling at least `minSeconds`.
+template <typename Fn>
+double fastest(Fn&& fn, double minSeconds) {
+    fn();  // warm-up (allocations)
+    double best = 1e30;
+    const double t0 = now();
+    do {
+        const double t1 = now();
+        fn();
+        best = std::min(best, now() - t1);
+    } while (now() - t0 < minSeconds);
+    return best;
+}
+
+/// One encoded network: its encoding over the 16 record inputs and the MLP after it.
+struct EncodedNetwork {
+    std::string label;  // short, for the table's configuration column
+    InputEncoding encoding;
+    MlpArch arch;
+};
+
+EncodedNetwork encodedNetwork(const std::string& label, const char* encodingJson, std::vector<int> hidden) {
+    const nlohmann::json j = nlohmann::json::parse(encodingJson);
+    EncodedNetwork e;
+    e.encoding = InputEncoding::fromJson(JsonReader(j, "bench_nn", ""), 16);
+    e.arch = arch(std::move(hidden), e.encoding.outputs());
+    e.arch.activation = Activation::Relu;
+    e.label = label + " + " + e.arch.describe().substr(0, e.arch.describe().find(' '));
+    return e;
+}
+
+/// Forward (encoding + MLP) and forward+backward (MLP backward, ∂loss/∂features through W_0ᵀ, the
+/// encoding's parameter gradients with touched indices, as Adam on an encoded network needs) on a
+/// batch of `batch` samples. GFLOP/s counts the MLP's multiply-adds only (2·Σ in·out forward, 4·Σ
+/// in·out backward: weight gradients and input deltas of every layer), so the encoding's cost shows
+/// as a lower rate than the plain network's.
+void benchEncoded(const EncodedNetwork& e, int batch) {
+    const MlpArch& a = e.arch;
+    const VecX<float> w = initialParams(a, 1).cast<float>();
+    const VecX<float> pe = e.encoding.initialParams(1, 0).cast<float>();
+    MatX<float> x(16, batch);
+    for (Eigen::Index c = 0; c < batch; ++c) {
+        Rng rng(3, uint64_t(c));
+        for (int r = 0; r < 16; ++r) x(r, c) = 2.f * rng.uniform() - 1.f;
+    }
+    MatX<float> features, dFeatures, dOut;
+    std::vector<MatX<float>> acts, deltas;
+    VecX<float> grad(a.numParams());
+    VecX<float> gradEnc = VecX<float>::Zero(Eigen::Index(e.encoding.numParams()));
+    std::vector<int64_t> touched;
+    const Eigen::Map<const MatX<float>> W0(w.data() + a.weightOffset(0), a.layerOutputs(0), a.layerInputs(0));
+
+    auto encodeForward = [&] { e.encoding.forward(pe.data(), x, features); };
+    auto encodeBackward = [&] {
+        touched.clear();
+        e.encoding.backwardParams(pe.data(), x, dFeatures, gradEnc.data(), &touched);
+    };
+    auto forward = [&] {
+        encodeForward();
+        mlpForward<float>(a, w.data(), features, acts);
+    };
+    auto train = [&] {
+        forward();
+        dOut = acts.back();
+        mlpBackward<float>(a, w.data(), features, acts, dOut, deltas, grad.data());
+        dFeatures.noalias() = W0.transpose() * deltas[0];
+        encodeBackward();
+    };
+    const double tForward = fastest(forward, g_minT), tTrain = fastest(train, g_minT);
+    const double tEncForward = fastest(encodeForward, 0.5 * g_minT);
+    train();  // dFeatures of this batch for the encoding-only backward
+    const double tEncBackward = fastest(encodeBackward, 0.5 * g_minT);
+
+    char cfgText[96];
+    std::snprintf(cfgText, sizeof cfgText, "%s B=%d", e.label.c_str(), batch);
+    g_rows.push_back({"Encoded forward", cfgText, batch / tForward, "samples/s",
+                      batch * 2.0 * a.macsPerSample() / tForward / 1e9, 1});
+    g_rows.push_back({"Encoded fwd+bwd", cfgText, batch / tTrain, "samples/s",
+                      batch * 6.0 * a.macsPerSample() / tTrain / 1e9, 1});
+    g_shares.push_back({e.label, e.encoding.describe(), tEncForward / tForward, (tEncForward + tEncBackward) / tTrain});
+    sampleYardstick();
+}
+
 void printTable() {
-    std::printf("\n| %-24s | %-34s | %22s | %8s | %8s | %-26s |\n", "measurement", "configuration", "result",
+    std::printf("\n| %-24s | %-42s | %22s | %8s | %8s | %-26s |\n", "measurement", "configuration", "result",
                 "GFLOP/s", "of GEMM", "target");
-    std::printf("|%s|%s|%s|%s|%s|%s|\n", std::string(26, '-').c_str(), std::string(36, '-').c_str(),
+    std::printf("|%s|%s|%s|%s|%s|%s|\n", std::string(26, '-').c_str(), std::string(44, '-').c_str(),
                 std::string(24, '-').c_str(), std::string(10, '-').c_str(), std::string(10, '-').c_str(),
                 std::string(28, '-').c_str());
     for (const Row& r : g_rows) {
@@ -112,7 +207,7 @@ void printTable() {
             std::snprintf(verdict, sizeof verdict, "%.2fx est. %.3f s: %s (%.2fx at f64 rate)", r.value / est, est,
                           r.value <= 2 * est ? "ok" : "MISS", r.value / (r.estimateFlops / (g_gemmD * 1e9)));
         }
-        std::printf("| %-24s | %-34s | %12.4g %-9s | %8.2f | %6.0f %% | %-26s |\n", r.what.c_str(), r.config.c_str(),
+        std::printf("| %-24s | %-42s | %12.4g %-9s | %8.2f | %6.0f %% | %-26s |\n", r.what.c_str(), r.config.c_str(),
                     r.value, r.unit.c_str(), r.gflops, 100.0 * r.gflops / g_gemmF, verdict);
     }
 }
@@ -194,10 +289,29 @@ int main(int argc, char** argv) {
         g_rows.push_back({"Inference (predict)", cfgText, sps, "samples/s", gf, 1});
         sampleYardstick();
     }
+    // ---- encoded networks (issue 16) ---------------------------------------------------------------
+    {
+        const EncodedNetwork nets[] = {
+            encodedNetwork("hash L16 T2^14 F2", R"([{"type": "hash_grid", "inputs": "position"}])", {64, 64, 64}),
+            encodedNetwork("freq K6 on 12 in",
+                           R"([{"type": "frequency", "inputs": ["position", "view", "light", "normal"]}])", {64, 64, 64}),
+            encodedNetwork("blob B16 on 9 in", R"([{"type": "one_blob", "inputs": ["view", "light", "normal"]}])",
+                           {64, 64, 64}),
+        };
+        for (const EncodedNetwork& e : nets) benchEncoded(e, 1024);
+    }
     g_rows.insert(g_rows.begin(), {{"Eigen GEMM float", "1024^3, 1 core (best seen)", g_gemmF, "GFLOP/s", g_gemmF, 0},
                                    {"Eigen GEMM double", "1024^3, 1 core", g_gemmD, "GFLOP/s", g_gemmD, 0}});
     printTable();
     std::printf("\nGFLOP/s counts useful multiply-adds only (2 flops each); 'of GEMM' is relative to the float "
                 "GEMM of one core.\n");
+    std::printf("Encoded networks: GFLOP/s counts the MLP only (forward 2, forward+backward 6 flops per "
+                "multiply-add); the encoding's time is overhead on it:\n\n");
+    std::printf("| %-38s | %-48s | %16s | %16s |\n", "network", "encoding", "share of forward", "share of fwd+bwd");
+    std::printf("|%s|%s|%s|%s|\n", std::string(40, '-').c_str(), std::string(50, '-').c_str(),
+                std::string(18, '-').c_str(), std::string(18, '-').c_str());
+    for (const EncodingShare& s : g_shares)
+        std::printf("| %-38s | %-48s | %14.0f %% | %14.0f %% |\n", s.network.c_str(), s.encoding.c_str(),
+                    100.0 * s.forwardShare, 100.0 * s.trainShare);
     return 0;
 }

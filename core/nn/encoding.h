@@ -93,6 +93,15 @@ struct EncodingComponent {
     int64_t paramOffset = 0;                ///< start of its parameters in the network's encoding vector
 };
 
+/// `T` itself, in a context where template arguments are not deduced: InputEncoding's routines
+/// deduce S from the params pointer alone, so plain MatX<S> arguments convert to their Eigen::Ref.
+template <typename T>
+struct EncodingNoDeduce {
+    using type = T;
+};
+template <typename S>
+using EncodingIn = Eigen::Ref<const MatX<typename EncodingNoDeduce<S>::type>>;
+
 /// The encoding of one network: its components, then pass-through of every other input.
 struct InputEncoding {
     int inputs = 0;                            ///< normalised inputs it reads (12 + n)
@@ -110,15 +119,14 @@ struct InputEncoding {
 
     /// features (outputs() × N) for normalised inputs x (inputs × N).
     template <typename S>
-    void forward(const S* params, const Eigen::Ref<const MatX<S>>& x, MatX<S>& features) const;
+    void forward(const S* params, const EncodingIn<S>& x, MatX<S>& features) const;
     /// Adds ∂loss/∂params to grad (numParams entries) given ∂loss/∂features; appends touched indices.
     template <typename S>
-    void backwardParams(const S* params, const Eigen::Ref<const MatX<S>>& x, const Eigen::Ref<const MatX<S>>& dFeatures,
-                        S* grad, std::vector<int64_t>* touched) const;
+    void backwardParams(const S* params, const EncodingIn<S>& x, const EncodingIn<S>& dFeatures, S* grad,
+                        std::vector<int64_t>* touched) const;
     /// dX (inputs × N) = ∂loss/∂x given ∂loss/∂features.
     template <typename S>
-    void backwardInputs(const S* params, const Eigen::Ref<const MatX<S>>& x, const Eigen::Ref<const MatX<S>>& dFeatures,
-                        MatX<S>& dX) const;
+    void backwardInputs(const S* params, const EncodingIn<S>& x, const EncodingIn<S>& dFeatures, MatX<S>& dX) const;
 
     /// Reads an "encoding" array for a network of `inputs` normalised inputs (12 + brdfCount);
     /// InputError names the reader's file and the JSON pointer of an unknown type or key, a

@@ -1,0 +1,258 @@
+#include "core/nn/encoding.h"
+
+#include <stdexcept>
+
+#include "core/nn/encoding_frequency.h"
+#include "core/nn/encoding_hash_grid.h"
+#include "core/nn/encoding_one_blob.h"
+#include "core/util/error.h"
+
+namespace rrf {
+
+namespace {
+
+/// The record input groups (RecordLayout's input order): name, first index, size (brdf: the rest).
+struct InputGroup {
+    const char* name;
+    int first, size;
+};
+constexpr InputGroup kGroups[] = {{"position", 0, 3}, {"view", 3, 3}, {"light", 6, 3}, {"normal", 9, 3}, {"brdf", 12, -1}};
+constexpr int kGeometryInputs = 12;
+
+/// Keys a component object may have, per type.
+std::vector<std::string> componentKeys(const std::string& type) {
+    if (type == "frequency") return {"type", "inputs", "frequencies", "include_input"};
+    if (type == "one_blob") return {"type", "inputs", "bins"};
+    return {"type", "inputs", "levels", "log2_table_size", "features_per_level", "base_resolution", "growth"};
+}
+
+/// The component's inputs as one contiguous block of rows, if they are (first row), else −1.
+int contiguousStart(const EncodingComponent& c) {
+    for (size_t k = 1; k < c.inputs.size(); ++k)
+        if (c.inputs[k] != c.inputs[0] + int(k)) return -1;
+    return c.inputs[0];
+}
+
+/// Calls fn(xc) with the component's inputs (dims × N): rows of x when contiguous, else gathered
+/// into `scratch`.
+template <typename S, typename Fn>
+void withComponentInputs(const EncodingComponent& c, const Eigen::Ref<const MatX<S>>& x, MatX<S>& scratch, Fn&& fn) {
+    const int first = contiguousStart(c);
+    const Eigen::Index d = Eigen::Index(c.inputs.size());
+    if (first >= 0) {
+        const Eigen::Ref<const MatX<S>> xc(x.middleRows(first, d));
+        fn(xc);
+        return;
+    }
+    scratch.resize(d, x.cols());
+    for (Eigen::Index k = 0; k < d; ++k) scratch.row(k) = x.row(c.inputs[size_t(k)]);
+    const Eigen::Ref<const MatX<S>> xc(scratch);
+    fn(xc);
+}
+
+template <typename S>
+const S* offsetParams(const S* params, const EncodingComponent& c) {
+    return params ? params + c.paramOffset : nullptr;
+}
+
+}  // namespace
+
+std::vector<int> encodingGroupInputs(const std::string& group, int inputs) {
+    for (const InputGroup& g : kGroups) {
+        if (group != g.name) continue;
+        const int size = g.size >= 0 ? g.size : inputs - kGeometryInputs;
+        if (size < 0 || g.first + size > inputs)
+            throw std::invalid_argument("input group '" + group + "' does not fit in " + std::to_string(inputs) +
+                                        " inputs");
+        std::vector<int> idx(static_cast<size_t>(size));
+        for (int k = 0; k < size; ++k) idx[size_t(k)] = g.first + k;
+        return idx;
+    }
+    throw std::invalid_argument("unknown input group '" + group +
+                                "' (expected \"position\", \"view\", \"light\", \"normal\" or \"brdf\")");
+}
+
+int InputEncoding::outputs() const {
+    int n = int(passThrough().size());
+    for (const EncodingComponent& c : components) n += c.encoding->outputDims();
+    return n;
+}
+
+int64_t InputEncoding::numParams() const {
+    int64_t n = 0;
+    for (const EncodingComponent& c : components) n += c.encoding->numParams();
+    return n;
+}
+
+std::vector<int> InputEncoding::passThrough() const {
+    std::vector<bool> read(size_t(inputs), false);
+    for (const EncodingComponent& c : components)
+        for (int i : c.inputs) read[size_t(i)] = true;
+    std::vector<int> rest;
+    for (int i = 0; i < inputs; ++i)
+        if (!read[size_t(i)]) rest.push_back(i);
+    return rest;
+}
+
+VecX<double> InputEncoding::initialParams(uint64_t seed, uint64_t stream) const {
+    VecX<double> p = VecX<double>::Zero(Eigen::Index(numParams()));
+    for (size_t k = 0; k < components.size(); ++k)
+        components[k].encoding->initParams(p.data() + components[k].paramOffset, seed, stream * 16 + k);
+    return p;
+}
+
+template <typename S>
+void InputEncoding::forward(const S* params, const EncodingIn<S>& x, MatX<S>& features) const {
+    features.resize(outputs(), x.cols());
+    Eigen::Index row = 0;
+    MatX<S> scratch;
+    for (const EncodingComponent& c : components) {
+        const int out = c.encoding->outputDims();
+        withComponentInputs<S>(c, x, scratch, [&](const Eigen::Ref<const MatX<S>>& xc) {
+            c.encoding->forward(offsetParams(params, c), xc, features.middleRows(row, out));
+        });
+        row += out;
+    }
+    for (int i : passThrough()) features.row(row++) = x.row(i);
+}
+
+template <typename S>
+void InputEncoding::backwardParams(const S* params, const EncodingIn<S>& x, const EncodingIn<S>& dFeatures, S* grad,
+                                   std::vector<int64_t>* touched) const {
+    Eigen::Index row = 0;
+    MatX<S> scratch;
+    for (const EncodingComponent& c : components) {
+        const int out = c.encoding->outputDims();
+        if (c.encoding->numParams() > 0) {
+            const size_t before = touched ? touched->size() : 0;
+            withComponentInputs<S>(c, x, scratch, [&](const Eigen::Ref<const MatX<S>>& xc) {
+                c.encoding->backwardParams(offsetParams(params, c), xc, dFeatures.middleRows(row, out),
+                                           grad + c.paramOffset, touched);
+            });
+            // The component reports indices into its own block; callers see the network's vector.
+            if (touched)
+                for (size_t k = before; k < touched->size(); ++k) (*touched)[k] += c.paramOffset;
+        }
+        row += out;
+    }
+}
+
+template <typename S>
+void InputEncoding::backwardInputs(const S* params, const EncodingIn<S>& x, const EncodingIn<S>& dFeatures,
+                                   MatX<S>& dX) const {
+    dX.setZero(inputs, x.cols());
+    Eigen::Index row = 0;
+    MatX<S> scratch, dXc;
+    for (const EncodingComponent& c : components) {
+        const int out = c.encoding->outputDims();
+        dXc.resize(Eigen::Index(c.inputs.size()), x.cols());
+        withComponentInputs<S>(c, x, scratch, [&](const Eigen::Ref<const MatX<S>>& xc) {
+            c.encoding->backwardInputs(offsetParams(params, c), xc, dFeatures.middleRows(row, out), dXc);
+        });
+        // Groups are disjoint, so each input's gradient comes from exactly one component.
+        for (size_t k = 0; k < c.inputs.size(); ++k) dX.row(c.inputs[k]) = dXc.row(Eigen::Index(k));
+        row += out;
+    }
+    for (int i : passThrough()) dX.row(i) = dFeatures.row(row++);
+}
+
+template void InputEncoding::forward<float>(const float*, const Eigen::Ref<const MatX<float>>&, MatX<float>&) const;
+template void InputEncoding::forward<double>(const double*, const Eigen::Ref<const MatX<double>>&, MatX<double>&) const;
+template void InputEncoding::backwardParams<float>(const float*, const Eigen::Ref<const MatX<float>>&,
+                                                   const Eigen::Ref<const MatX<float>>&, float*,
+                                                   std::vector<int64_t>*) const;
+template void InputEncoding::backwardParams<double>(const double*, const Eigen::Ref<const MatX<double>>&,
+                                                    const Eigen::Ref<const MatX<double>>&, double*,
+                                                    std::vector<int64_t>*) const;
+template void InputEncoding::backwardInputs<float>(const float*, const Eigen::Ref<const MatX<float>>&,
+                                                   const Eigen::Ref<const MatX<float>>&, MatX<float>&) const;
+template void InputEncoding::backwardInputs<double>(const double*, const Eigen::Ref<const MatX<double>>&,
+                                                    const Eigen::Ref<const MatX<double>>&, MatX<double>&) const;
+
+InputEncoding InputEncoding::fromJson(const JsonReader& r, int inputs) {
+    InputEncoding e;
+    e.inputs = inputs;
+    const size_t count = r.requireArray();
+    std::vector<int> encodedBy(size_t(inputs), -1);  // component reading each input, −1: none yet
+    int64_t offset = 0;
+    for (size_t k = 0; k < count; ++k) {
+        const JsonReader cr = r.at(k);
+        cr.requireObject();
+        const JsonReader typeReader = cr.at("type");
+        const std::string type = typeReader.string();
+        if (type != "frequency" && type != "one_blob" && type != "hash_grid")
+            typeReader.fail("unknown encoding type '" + type + "' (expected \"frequency\", \"one_blob\" or \"hash_grid\")");
+        cr.checkKeys(componentKeys(type));
+
+        EncodingComponent c;
+        const JsonReader in = cr.at("inputs");
+        std::vector<JsonReader> groupReaders;
+        if (in.value().is_string()) {
+            groupReaders.push_back(in);
+        } else {
+            if (!in.isArray()) in.fail("expected an input group name or an array of them, got " + JsonReader::describe(in.value()));
+            if (in.requireArray() == 0) in.fail("expected at least one input group");
+            for (size_t g = 0; g < in.value().size(); ++g) groupReaders.push_back(in.at(g));
+        }
+        for (const JsonReader& gr : groupReaders) {
+            const std::string group = gr.string();
+            std::vector<int> idx;
+            try {
+                idx = encodingGroupInputs(group, inputs);
+            } catch (const std::invalid_argument& err) {
+                gr.fail(err.what());
+            }
+            if (idx.empty()) gr.fail("input group '" + group + "' is empty (the scene's materials have no BRDF parameters)");
+            for (int i : idx) {
+                if (encodedBy[size_t(i)] == int(k)) gr.fail("input group '" + group + "' is named twice");
+                if (encodedBy[size_t(i)] >= 0)
+                    gr.fail("input group '" + group + "' is already encoded by component " +
+                            std::to_string(encodedBy[size_t(i)]) + " (a group may be encoded once)");
+                encodedBy[size_t(i)] = int(k);
+            }
+            c.groups.push_back(group);
+            c.inputs.insert(c.inputs.end(), idx.begin(), idx.end());
+        }
+
+        const int dims = int(c.inputs.size());
+        if (type == "frequency") {
+            c.encoding = FrequencyEncoding::fromJson(cr, dims);
+        } else if (type == "one_blob") {
+            c.encoding = OneBlobEncoding::fromJson(cr, dims);
+        } else {
+            if (dims > HashGridEncoding::kMaxInputs)
+                in.fail("a hash_grid reads at most " + std::to_string(HashGridEncoding::kMaxInputs) + " inputs, these groups have " +
+                        std::to_string(dims));
+            c.encoding = HashGridEncoding::fromJson(cr, dims);
+        }
+        c.paramOffset = offset;
+        offset += c.encoding->numParams();
+        e.components.push_back(std::move(c));
+    }
+    return e;
+}
+
+nlohmann::json InputEncoding::toJson() const {
+    nlohmann::json a = nlohmann::json::array();
+    for (const EncodingComponent& c : components) {
+        nlohmann::json j = c.encoding->settingsJson();
+        j["type"] = c.encoding->typeName();
+        j["inputs"] = c.groups.size() == 1 ? nlohmann::json(c.groups[0]) : nlohmann::json(c.groups);
+        a.push_back(std::move(j));
+    }
+    return a;
+}
+
+std::string InputEncoding::describe() const {
+    if (isIdentity()) return "identity";
+    std::string s;
+    for (const EncodingComponent& c : components) {
+        if (!s.empty()) s += " + ";
+        s += std::string(c.encoding->typeName()) + "(";
+        for (size_t g = 0; g < c.groups.size(); ++g) s += (g ? "," : "") + c.groups[g];
+        s += ")";
+    }
+    return s;
+}
+
+}  // namespace rrf
