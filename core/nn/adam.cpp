@@ -1,4 +1,5 @@
 // Adam training on shuffled mini-batches, in float (see core/nn/trainer.h).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -17,30 +18,73 @@ constexpr Eigen::Index kEvalChunk = 4096;
 constexpr Eigen::Index kPrefetch = 8;
 constexpr double kPiDouble = 3.14159265358979323846;  // vec3.h's kPi is a float
 
+/// The network from its normalised inputs: the input encoding with its parameters `e` (unless it is
+/// the identity, whose inputs go to the MLP unchanged), then the MLP with weights `w`.
+struct EncodedNetwork {
+    const MlpArch& arch;
+    const InputEncoding& encoding;
+    MatX<float> features;  ///< the last forward's encoded inputs (unused for the identity)
+
+    bool encoded() const { return !encoding.isIdentity(); }
+    /// Forward pass; `acts` as mlpForward. Returns what the MLP read (x itself for the identity).
+    Eigen::Ref<const MatX<float>> forward(const VecX<float>& w, const VecX<float>& e, const Eigen::Ref<const MatX<float>>& x,
+                                          std::vector<MatX<float>>& acts) {
+        if (!encoded()) {
+            mlpForward<float>(arch, w.data(), x, acts);
+            return x;
+        }
+        encoding.forward<float>(e.data(), x, features);
+        mlpForward<float>(arch, w.data(), features, acts);
+        return features;
+    }
+};
+
 /// Mean loss over a whole (validation or test) set, chunked to bound memory.
-double meanLoss(const MlpArch& arch, const VecX<float>& w, const TrainingLoss<float>& loss, const Eigen::Ref<const MatX<float>>& x,
-                const Eigen::Ref<const MatX<float>>& y, std::vector<MatX<float>>& acts) {
+double meanLoss(EncodedNetwork& net, const VecX<float>& w, const VecX<float>& e, const TrainingLoss<float>& loss,
+                const Eigen::Ref<const MatX<float>>& x, const Eigen::Ref<const MatX<float>>& y, std::vector<MatX<float>>& acts) {
     if (x.cols() == 0) return std::numeric_limits<double>::quiet_NaN();
     double sum = 0;
     for (Eigen::Index c = 0; c < x.cols(); c += kEvalChunk) {
         const Eigen::Index nc = std::min(kEvalChunk, x.cols() - c);
-        mlpForward<float>(arch, w.data(), x.middleCols(c, nc), acts);
+        net.forward(w, e, x.middleCols(c, nc), acts);
         sum += loss.evaluate(acts.back(), y.middleCols(c, nc), nullptr, 1.0);
     }
     return sum / (double(x.cols()) * double(y.rows()));
 }
 
 /// Network outputs (normalised) on `x`, in double for the validation monitor.
-MatX<double> predictions(const MlpArch& arch, const VecX<float>& w, const MatX<float>& x,
+MatX<double> predictions(EncodedNetwork& net, const VecX<float>& w, const VecX<float>& e, const MatX<float>& x,
                          std::vector<MatX<float>>& acts) {
-    MatX<double> out(arch.outputs, x.cols());
+    MatX<double> out(net.arch.outputs, x.cols());
     for (Eigen::Index c = 0; c < x.cols(); c += kEvalChunk) {
         const Eigen::Index nc = std::min(kEvalChunk, x.cols() - c);
-        mlpForward<float>(arch, w.data(), x.middleCols(c, nc), acts);
+        net.forward(w, e, x.middleCols(c, nc), acts);
         out.middleCols(c, nc) = acts.back().cast<double>();
     }
     return out;
 }
+
+/// Adam moments of the encoding's parameters, updated sparsely as instant-NGP does: only the entries
+/// a batch touched (deduplicated, ascending) see a step, and their gradient is cleared afterwards;
+/// an untouched entry keeps its moments. No weight decay (it would shrink unvisited table cells).
+struct SparseAdam {
+    VecX<float> grad, m, v;
+    std::vector<int64_t> touched;
+
+    explicit SparseAdam(Eigen::Index n) : grad(VecX<float>::Zero(n)), m(VecX<float>::Zero(n)), v(VecX<float>::Zero(n)) {}
+    void step(VecX<float>& e, float b1, float b2, float c1, float c2, float lr, float eps) {
+        std::sort(touched.begin(), touched.end());
+        touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+        for (const int64_t i : touched) {
+            const float g = grad[i];
+            m[i] = b1 * m[i] + (1.0f - b1) * g;
+            v[i] = b2 * v[i] + (1.0f - b2) * g * g;
+            e[i] -= lr * ((m[i] / c1) / (std::sqrt(v[i] / c2) + eps));
+            grad[i] = 0.0f;
+        }
+        touched.clear();
+    }
+};
 
 }  // namespace
 
@@ -58,9 +102,23 @@ double adamLearningRate(const AdamConfig& c, int epoch) {
 
 TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const TrainingData& data,
                       const MinMaxScaler& outputScaler, VecX<double>& params, const TrainObserver& observer) {
+    VecX<double> none;
+    return trainAdam(arch, InputEncoding(), cfg, data, outputScaler, params, none, observer);
+}
+
+TrainResult trainAdam(const MlpArch& arch, const InputEncoding& encoding, const AdamConfig& cfg, const TrainingData& data,
+                      const MinMaxScaler& outputScaler, VecX<double>& params, VecX<double>& encodingParams,
+                      const TrainObserver& observer) {
     arch.validate();
     const Eigen::Index P = arch.numParams();
     if (params.size() != P) throw std::invalid_argument("adam: parameter vector has the wrong size");
+    EncodedNetwork net{arch, encoding, {}};
+    const Eigen::Index inputs = net.encoded() ? encoding.inputs : arch.inputs;
+    const Eigen::Index E = net.encoded() ? Eigen::Index(encoding.numParams()) : 0;
+    if (net.encoded() && encoding.outputs() != arch.inputs)
+        throw std::invalid_argument("adam: the encoding writes " + std::to_string(encoding.outputs()) +
+                                    " features, the network reads " + std::to_string(arch.inputs));
+    if (encodingParams.size() != E) throw std::invalid_argument("adam: encoding parameter vector has the wrong size");
     if (data.xTrain.cols() == 0) throw std::invalid_argument("adam: no training samples");
     if (outputScaler.size() != arch.outputs) throw std::invalid_argument("adam: output scaler size mismatch");
     const auto t0 = std::chrono::steady_clock::now();
@@ -90,6 +148,9 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
         return std::isnan(v.relativeRmseCorrected) ? v.relativeRmse : v.relativeRmseCorrected;
     };
     VecX<float> w = params.cast<float>(), best = w, grad(P), m = VecX<float>::Zero(P), v = VecX<float>::Zero(P);
+    VecX<float> e = encodingParams.cast<float>(), bestE = e;
+    SparseAdam encodingAdam(E);
+    MatX<float> dFeatures;
     // Decoupled weight decay applies to weight matrices only; shrinking biases would shift outputs.
     VecX<float> decayMask = VecX<float>::Zero(P);
     for (int l = 0; l < arch.numLayers(); ++l)
@@ -97,15 +158,15 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
 
     std::vector<MatX<float>> acts, deltas;
     const Eigen::Index B = std::min<Eigen::Index>(cfg.batchSize, n);
-    MatX<float> xb(arch.inputs, B), yb(arch.outputs, B), dOut;
+    MatX<float> xb(inputs, B), yb(arch.outputs, B), dOut;
     std::vector<uint32_t> order(static_cast<size_t>(n));
     std::iota(order.begin(), order.end(), 0u);
 
     bool goalReached = false;
     {
-        const double tl = meanLoss(arch, w, loss, data.xTrain.leftCols(n), data.yTrain.leftCols(n), acts);
+        const double tl = meanLoss(net, w, e, loss, data.xTrain.leftCols(n), data.yTrain.leftCols(n), acts);
         ValidationEpoch v;
-        if (hasVal) v = monitor.observe(predictions(arch, w, data.xValidation, acts));
+        if (hasVal) v = monitor.observe(predictions(net, w, e, data.xValidation, acts));
         goalReached = v.goalReached;
         EpochRecord r{0, tl, v.loss, adamLearningRate(cfg, 1), elapsed()};
         r.validationRelativeRmse = figure(v);
@@ -132,7 +193,7 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
         double epochLoss = 0;
         for (Eigen::Index b0 = 0; b0 < n; b0 += B) {
             const Eigen::Index nb = std::min(B, n - b0);
-            xb.resize(arch.inputs, nb);
+            xb.resize(inputs, nb);
             yb.resize(arch.outputs, nb);
             for (Eigen::Index j = 0; j < nb; ++j) {
                 // Shuffled columns are cache misses; fetching a few ahead hides most of the latency.
@@ -145,9 +206,10 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
                 xb.col(j) = data.xTrain.col(src);
                 yb.col(j) = data.yTrain.col(src);
             }
-            mlpForward<float>(arch, w.data(), xb, acts);
+            const Eigen::Ref<const MatX<float>> mlpIn = net.forward(w, e, xb, acts);
             epochLoss += loss.evaluate(acts.back(), yb, &dOut, double(nb) * arch.outputs);
-            mlpBackward<float>(arch, w.data(), xb, acts, dOut, deltas, grad.data());
+            mlpBackward<float>(arch, w.data(), mlpIn, acts, dOut, deltas, grad.data(), E > 0 ? &dFeatures : nullptr);
+            if (E > 0) encoding.backwardParams<float>(e.data(), xb, dFeatures, encodingAdam.grad.data(), &encodingAdam.touched);
 
             ++step;
             const float c1 = float(1.0 - std::pow(cfg.beta1, double(step)));
@@ -157,20 +219,23 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
             const float lrf = float(lr);
             w.array() -= lrf * ((m.array() / c1) / ((v.array() / c2).sqrt() + float(cfg.epsilon)) +
                                 float(cfg.weightDecay) * decayMask.array() * w.array());
+            if (E > 0) encodingAdam.step(e, b1, b2, c1, c2, lrf, float(cfg.epsilon));
         }
         const double trainLoss = epochLoss / (double(n) * arch.outputs);
-        if (!w.allFinite()) {
+        if (!w.allFinite() || !e.allFinite()) {
             // Divergence (e.g. a learning rate far too high): keep the best finite weights.
             res.stopReason = "diverged (non-finite weights)";
             w = best;
+            e = bestE;
             res.epochs = epoch;
             break;
         }
         ValidationEpoch v;
         if (hasVal) {
-            v = monitor.observe(predictions(arch, w, data.xValidation, acts));
+            v = monitor.observe(predictions(net, w, e, data.xValidation, acts));
             if (v.outcome == ValidationOutcome::Improved) {
                 best = w;
+                bestE = e;
                 res.bestEpoch = epoch;
             }
             patience.update(v.outcome, lr);
@@ -179,6 +244,7 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
                 goalReached = true;
                 monitor.acceptLastAsBest();
                 best = w;
+                bestE = e;
                 res.bestEpoch = epoch;
             }
         }
@@ -190,15 +256,18 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
         if (observer.onEpoch) observer.onEpoch(res.history.back());
     }
 
-    if (hasVal) w = best;
-    else if (res.stopReason.rfind("diverged", 0) != 0) res.bestEpoch = res.epochs;
+    if (hasVal) {
+        w = best;
+        e = bestE;
+    } else if (res.stopReason.rfind("diverged", 0) != 0) res.bestEpoch = res.epochs;
     params = w.cast<double>();
-    res.trainLoss = meanLoss(arch, w, loss, data.xTrain, data.yTrain, acts);
-    res.validationLoss = meanLoss(arch, w, loss, data.xValidation, data.yValidation, acts);
-    res.testLoss = meanLoss(arch, w, loss, data.xTest, data.yTest, acts);
+    encodingParams = e.cast<double>();
+    res.trainLoss = meanLoss(net, w, e, loss, data.xTrain, data.yTrain, acts);
+    res.validationLoss = meanLoss(net, w, e, loss, data.xValidation, data.yValidation, acts);
+    res.testLoss = meanLoss(net, w, e, loss, data.xTest, data.yTest, acts);
     if (hasVal) {
         ValidationMonitor final(cfg.loss, outputScaler, data.yValidation, data.vValidation, cfg.errorGoal);
-        const ValidationEpoch v = final.observe(predictions(arch, w, data.xValidation, acts));
+        const ValidationEpoch v = final.observe(predictions(net, w, e, data.xValidation, acts));
         res.validationRelativeRmse = v.relativeRmse;
         res.validationRelativeRmseCorrected = v.relativeRmseCorrected;
         res.validationRelativeNoise = final.relativeNoiseFloor();

@@ -198,7 +198,7 @@ void mlpForward(const MlpArch& arch, const S* params, const Eigen::Ref<const Mat
 template <typename S>
 void mlpBackward(const MlpArch& arch, const S* params, const Eigen::Ref<const MatX<S>>& x,
                  const std::vector<MatX<S>>& acts, const MatX<S>& dOut, std::vector<MatX<S>>& deltas,
-                 S* grad) {
+                 S* grad, MatX<S>* dInputs) {
     const int L = arch.numLayers();
     deltas.resize(size_t(L));
     deltas[size_t(L - 1)] = dOut;
@@ -219,6 +219,10 @@ void mlpBackward(const MlpArch& arch, const S* params, const Eigen::Ref<const Ma
             prev.resize(in, x.cols());
             prev.noalias() = W.transpose() * d;
             multiplyByDerivative(arch.activation, acts[size_t(l - 1)], prev);
+        } else if (dInputs) {
+            ConstMap<S> W(params + arch.weightOffset(0), out, in);
+            dInputs->resize(in, x.cols());
+            dInputs->noalias() = W.transpose() * d;  // the input layer has no nonlinearity
         }
     }
 }
@@ -261,7 +265,8 @@ void mlpJacobianT(const MlpArch& arch, const S* params, const Eigen::Ref<const M
     template void mlpForward<S>(const MlpArch&, const S*, const Eigen::Ref<const MatX<S>>&,              \
                                 std::vector<MatX<S>>&);                                                  \
     template void mlpBackward<S>(const MlpArch&, const S*, const Eigen::Ref<const MatX<S>>&,             \
-                                 const std::vector<MatX<S>>&, const MatX<S>&, std::vector<MatX<S>>&, S*); \
+                                 const std::vector<MatX<S>>&, const MatX<S>&, std::vector<MatX<S>>&, S*, \
+                                 MatX<S>*);                                                              \
     template void mlpJacobianT<S>(const MlpArch&, const S*, const Eigen::Ref<const MatX<S>>&,            \
                                   const std::vector<MatX<S>>&, std::vector<MatX<S>>&, MatX<S>&);
 

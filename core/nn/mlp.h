@@ -97,10 +97,12 @@ void mlpForward(const MlpArch& arch, const S* params, const Eigen::Ref<const Mat
 
 /// Backward pass after mlpForward on the same `x`. `dOut` (outputs × N) is ∂loss/∂output; on return
 /// `grad` (P entries) holds ∂loss/∂params summed over the N samples. `deltas` is scratch space.
+/// When `dInputs` is given it receives ∂loss/∂x (inputs × N, the first layer's deltas through W₀ᵀ):
+/// what a trainable input encoding (nn/encoding.h) back-propagates into its parameters.
 template <typename S>
 void mlpBackward(const MlpArch& arch, const S* params, const Eigen::Ref<const MatX<S>>& x,
                  const std::vector<MatX<S>>& acts, const MatX<S>& dOut, std::vector<MatX<S>>& deltas,
-                 S* grad);
+                 S* grad, MatX<S>* dInputs = nullptr);
 
 /// Jacobian rows of the outputs w.r.t. the parameters, after mlpForward on the same `x` (N samples).
 /// On return `jt` is P × (N·outputs); column `k·N + n` is ∂output_k(sample n)/∂params, i.e. one row

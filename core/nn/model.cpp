@@ -1,5 +1,6 @@
 #include "core/nn/model.h"
 
+#include "core/util/error.h"
 #include "core/util/relative_error.h"
 
 #include <cmath>
@@ -32,17 +33,20 @@ double rawRmse(const NetworkModel& model, const Eigen::Ref<const MatX<float>>& x
 
 template <typename S>
 static MatX<S> predictImpl(const NetworkModel& m, const Eigen::Ref<const MatX<S>>& raw) {
-    if (raw.rows() != m.arch.inputs)
-        throw std::invalid_argument("predict: expected " + std::to_string(m.arch.inputs) + " input rows, got " +
+    if (raw.rows() != m.rawInputs())
+        throw std::invalid_argument("predict: expected " + std::to_string(m.rawInputs()) + " input rows, got " +
                                     std::to_string(raw.rows()));
     const VecX<S> w = m.params.cast<S>();
-    MatX<S> out(m.arch.outputs, raw.cols()), x;
+    const VecX<S> e = m.encodingParams.cast<S>();
+    const bool encoded = !m.encoding.isIdentity();
+    MatX<S> out(m.arch.outputs, raw.cols()), x, features;
     std::vector<MatX<S>> acts;
     for (Eigen::Index c = 0; c < raw.cols(); c += kPredictChunk) {
         const Eigen::Index nc = std::min(kPredictChunk, raw.cols() - c);
         x = raw.middleCols(c, nc);
         m.inputScaler.apply(x);
-        mlpForward<S>(m.arch, w.data(), x, acts);
+        if (encoded) m.encoding.forward<S>(e.data(), x, features);
+        mlpForward<S>(m.arch, w.data(), encoded ? features : x, acts);
         m.outputScaler.invert(acts.back());
         out.middleCols(c, nc) = acts.back();
     }
@@ -62,7 +66,25 @@ void NetworkModel::validate() const {
     if (params.size() != arch.numParams())
         throw std::invalid_argument("model has " + std::to_string(params.size()) + " parameters, the " +
                                     arch.describe() + " architecture needs " + std::to_string(arch.numParams()));
-    if (inputScaler.offset.size() != arch.inputs || inputScaler.scale.size() != arch.inputs ||
+    if (encoding.isIdentity()) {
+        if (encodingParams.size() != 0)
+            throw std::invalid_argument("model has " + std::to_string(encodingParams.size()) +
+                                        " encoding parameters but no input encoding");
+    } else {
+        if (encoding.outputs() != arch.inputs)
+            throw std::invalid_argument("the input encoding " + encoding.describe() + " writes " +
+                                        std::to_string(encoding.outputs()) + " features, the " + arch.describe() +
+                                        " network reads " + std::to_string(arch.inputs));
+        if (encodingParams.size() != encoding.numParams())
+            throw std::invalid_argument("model has " + std::to_string(encodingParams.size()) +
+                                        " encoding parameters, the encoding " + encoding.describe() + " needs " +
+                                        std::to_string(encoding.numParams()));
+        for (Eigen::Index i = 0; i < encodingParams.size(); ++i)
+            if (!std::isfinite(encodingParams[i]))
+                throw std::invalid_argument("non-finite encoding parameter at index " + std::to_string(i));
+    }
+    const int in = rawInputs();
+    if (inputScaler.offset.size() != in || inputScaler.scale.size() != in ||
         outputScaler.offset.size() != arch.outputs || outputScaler.scale.size() != arch.outputs)
         throw std::invalid_argument("model normalisation sizes do not match the architecture");
     for (Eigen::Index i = 0; i < params.size(); ++i)
@@ -85,7 +107,7 @@ PartitionedNetwork::PartitionedNetwork(NetworkModel single)
 
 int64_t PartitionedNetwork::numParams() const {
     int64_t n = 0;
-    for (const NetworkModel& m : leaves) n += int64_t(m.arch.numParams());
+    for (const NetworkModel& m : leaves) n += m.numParams();
     return n;
 }
 
@@ -126,29 +148,30 @@ MatX<S> predictPartitioned(const PartitionedNetwork& p, const Eigen::Ref<const M
 
 MatX<float> PartitionedNetwork::predict(const Eigen::Ref<const MatX<float>>& raw) const {
     if (leaves.size() == 1) return leaves.front().predict(raw);
-    if (raw.rows() != arch().inputs) return leaves.front().predict(raw);  // throws the size message
+    if (raw.rows() != rawInputs()) return leaves.front().predict(raw);  // throws the size message
     return predictPartitioned<float>(*this, raw, findLeaves(raw));
 }
 
 MatX<double> PartitionedNetwork::predictDouble(const Eigen::Ref<const MatX<double>>& raw) const {
     if (leaves.size() == 1) return leaves.front().predictDouble(raw);
-    if (raw.rows() != arch().inputs) return leaves.front().predictDouble(raw);
+    if (raw.rows() != rawInputs()) return leaves.front().predictDouble(raw);
     const MatX<float> asFloat = raw.cast<float>();
     return predictPartitioned<double>(*this, raw, findLeaves(asFloat));
 }
 
 void PartitionedNetwork::validate() const {
     if (leaves.empty()) throw std::invalid_argument("partitioned network has no leaf networks");
-    tree.validate(leaves.front().arch.inputs);
+    tree.validate(rawInputs());
     if (int(leaves.size()) != tree.leafCount())
         throw std::invalid_argument("partition tree has " + std::to_string(tree.leafCount()) + " leaves but " +
                                     std::to_string(leaves.size()) + " networks");
     for (size_t l = 0; l < leaves.size(); ++l) {
         const NetworkModel& m = leaves[l];
         m.validate();
-        if (!(m.arch == leaves.front().arch) || m.objectId != leaves.front().objectId ||
-            m.target != leaves.front().target)
-            throw std::invalid_argument("leaf " + std::to_string(l) + " differs from leaf 0 in architecture, object or target");
+        if (!(m.arch == leaves.front().arch) || m.encoding != leaves.front().encoding ||
+            m.objectId != leaves.front().objectId || m.target != leaves.front().target)
+            throw std::invalid_argument("leaf " + std::to_string(l) +
+                                        " differs from leaf 0 in architecture, input encoding, object or target");
     }
 }
 
@@ -196,10 +219,25 @@ NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eig
 NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eigen::Ref<const MatX<float>>& inputs,
                         const Eigen::Ref<const MatX<float>>& targets, const MatX<float>& targetVariance,
                         const TrainObserver& observer, uint64_t stream) {
+    return fitNetwork(arch, InputEncoding(), cfg, inputs, targets, targetVariance, observer, stream);
+}
+
+NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, const TrainerConfig& cfg,
+                        const Eigen::Ref<const MatX<float>>& inputs, const Eigen::Ref<const MatX<float>>& targets,
+                        const MatX<float>& targetVariance, const TrainObserver& observer, uint64_t stream) {
     arch.validate();
     if (targetVariance.size() > 0 && (targetVariance.rows() != targets.rows() || targetVariance.cols() != targets.cols()))
         throw std::invalid_argument("fitNetwork: the target variance's shape differs from the targets'");
-    if (inputs.rows() != arch.inputs || targets.rows() != arch.outputs)
+    const bool encoded = !encoding.isIdentity();
+    if (encoded && (inputs.rows() != encoding.inputs || encoding.outputs() != arch.inputs))
+        throw std::invalid_argument("fitNetwork: data has " + std::to_string(inputs.rows()) + " inputs, the encoding " +
+                                    encoding.describe() + " reads " + std::to_string(encoding.inputs) + " and writes " +
+                                    std::to_string(encoding.outputs()) + ", the network " + arch.describe());
+    if (encoded && encoding.numParams() > 0 && cfg.type != TrainerType::Adam)
+        throw SettingError("network.encoding", "the encoding " + encoding.describe() +
+                                                   " has trainable parameters, which only the adam trainer trains "
+                                                   "(trainer.type is " + cfg.typeName() + ")");
+    if ((!encoded && inputs.rows() != arch.inputs) || targets.rows() != arch.outputs)
         throw std::invalid_argument("fitNetwork: data has " + std::to_string(inputs.rows()) + " inputs and " +
                                     std::to_string(targets.rows()) + " targets, the network " + arch.describe());
     if (inputs.cols() != targets.cols()) throw std::invalid_argument("fitNetwork: input and target counts differ");
@@ -209,6 +247,8 @@ NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eig
 
     NetworkModel model;
     model.arch = arch;
+    model.encoding = encoding;
+    model.encoding.inputs = int(inputs.rows());
     model.trainer = cfg;
     model.inputScaler = MinMaxScaler::fit(inputs);
     model.outputScaler = MinMaxScaler::fit(targets);
@@ -226,7 +266,19 @@ NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eig
     if (targetVariance.size() > 0) d.vValidation = gather(targetVariance, split.validation);
 
     model.params = initialParams(arch, cfg.seed(), stream);
-    model.training = trainNetwork(arch, cfg, d, model.outputScaler, model.params, observer);
+    if (encoded && encoding.numParams() > 0) {
+        model.encodingParams = encoding.initialParams(cfg.seed(), stream);
+        model.training = trainAdam(arch, encoding, cfg.adam, d, model.outputScaler, model.params, model.encodingParams, observer);
+    } else {
+        // A fixed encoding is a function of the inputs alone: encode once, train the MLP on the features.
+        if (encoded)
+            for (MatX<float>* x : {&d.xTrain, &d.xValidation, &d.xTest}) {
+                MatX<float> features;
+                encoding.forward<float>(nullptr, *x, features);
+                *x = std::move(features);
+            }
+        model.training = trainNetwork(arch, cfg, d, model.outputScaler, model.params, observer);
+    }
 
     model.errors.train = rawRmse(model, inputs, targets, split.train);
     model.errors.validation = rawRmse(model, inputs, targets, split.validation);

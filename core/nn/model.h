@@ -1,21 +1,29 @@
 #pragma once
-/// A trained radiance regression network: architecture, weights, mapminmax normalisation, the
-/// trainer settings and the training record, plus fitting from raw data and the model file format.
+/// A trained radiance regression network: architecture, weights, mapminmax normalisation, the input
+/// encoding and its parameters, the trainer settings and the training record, plus fitting from raw
+/// data and the model file format.
+///
+///     raw inputs (rawInputs()) --inputScaler--> x' in [-1, 1] --encoding--> features (arch.inputs) --MLP-->
 ///
 /// Model file (".rrfm"), little-endian:
 ///
 ///     offset 0   8 bytes   magic "RRFMODEL"
-///     offset 8   u32       format version (2)
+///     offset 8   u32       format version (3)
 ///     offset 12  u32       header length H in bytes
 ///     offset 16  u64       checksum64 (core/data/dataset_file.h) of the H header bytes
 ///     offset 24  H bytes   JSON header (UTF-8): architecture, object, target, trainer settings,
-///                          training record (history, stop reason, errors), payload description
-///                          with the payload's byte count and FNV-1a 64 checksum
+///                          input encoding ("input_encoding": {"inputs": raw input count,
+///                          "components": InputEncoding::toJson()}), training record (history, stop
+///                          reason, errors), payload description with the payload's byte count and
+///                          FNV-1a 64 checksum
 ///     offset 24+H          payload: IEEE-754 float64 values, in this order:
-///                          params[P], input_offset[in], input_scale[in], output_offset[out], output_scale[out]
+///                          params[P], input_offset[in], input_scale[in], output_offset[out], output_scale[out],
+///                          encoding_params[E]
+///                          (P: the MLP's weights and biases; in: raw inputs; E: encoding.numParams())
 ///
-/// Version 1 files (no header checksum: the header starts at offset 16) still load; the header's
-/// integrity is then unchecked (a model set of version 3 checksums its files as a whole).
+/// Version 2 files (no "input_encoding", no encoding_params) load as the identity encoding; version 1
+/// files (no header checksum either: the header starts at offset 16) too, their header's integrity
+/// unchecked (a model set of version 3 checksums its files as a whole).
 ///
 /// Weights are stored as raw doubles, so a loaded model holds the very same bits and predicts
 /// bit-identically. Files are written atomically (temporary file + rename).
@@ -24,6 +32,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/nn/encoding.h"
 #include "core/nn/mlp.h"
 #include "core/nn/partition_tree.h"
 #include "core/nn/trainer.h"
@@ -37,9 +46,13 @@ struct ModelErrors {
 };
 
 struct NetworkModel {
-    MlpArch arch;
-    MinMaxScaler inputScaler, outputScaler;
+    MlpArch arch;                  ///< arch.inputs = the encoding's features (the raw inputs for the identity)
+    MinMaxScaler inputScaler, outputScaler;  ///< inputScaler: rawInputs() features
     VecX<double> params;           ///< flat weights, layout in nn/mlp.h
+    /// Map from the normalised raw inputs to the MLP's inputs; no components = the identity
+    /// (Ren et al.'s raw inputs). A model built in code may leave an identity's `inputs` at 0.
+    InputEncoding encoding;
+    VecX<double> encodingParams;   ///< encoding.numParams() trainable values (hash-grid tables); empty for fixed encodings
     int objectId = -1;             ///< -1 when not tied to a scene object
     std::string objectName;
     std::string target = "global"; ///< "global", "direct", "indirect" or "joint" (6 outputs: direct, indirect)
@@ -54,6 +67,10 @@ struct NetworkModel {
     MatX<double> predictDouble(const Eigen::Ref<const MatX<double>>& rawInputs) const;
     /// Throws std::invalid_argument unless sizes agree and every number is finite.
     void validate() const;
+    /// Raw record inputs the model reads (12 + n): the encoding's inputs, or arch.inputs for the identity.
+    int rawInputs() const { return encoding.isIdentity() ? arch.inputs : encoding.inputs; }
+    /// Trainable numbers: the MLP's weights and biases plus the encoding's parameters.
+    int64_t numParams() const { return int64_t(arch.numParams()) + int64_t(encodingParams.size()); }
 };
 
 /// A partitioned radiance regression function (Ren et al. 2013): a kd-tree over the record inputs
@@ -70,10 +87,13 @@ struct PartitionedNetwork {
 
     /// The leaves' common architecture (the first leaf's; validate() checks the others).
     const MlpArch& arch() const { return leaves.front().arch; }
+    /// The leaves' common input encoding and raw input count (the first leaf's).
+    const InputEncoding& encoding() const { return leaves.front().encoding; }
+    int rawInputs() const { return leaves.front().rawInputs(); }
     int objectId() const { return leaves.front().objectId; }
     const std::string& target() const { return leaves.front().target; }
     int leafCount() const { return int(leaves.size()); }
-    /// Weights and biases of all leaves together.
+    /// Weights, biases and encoding parameters of all leaves together.
     int64_t numParams() const;
     /// Leaf number of every column of `rawInputs` (inputs × N).
     std::vector<int> findLeaves(const Eigen::Ref<const MatX<float>>& rawInputs) const;
@@ -84,7 +104,7 @@ struct PartitionedNetwork {
     /// The same in double; the leaf of a column is looked up on its float value, as predict does.
     MatX<double> predictDouble(const Eigen::Ref<const MatX<double>>& rawInputs) const;
     /// Throws std::invalid_argument unless the tree is valid for the inputs, there is one valid
-    /// network per leaf and all share architecture, object and target.
+    /// network per leaf and all share architecture, encoding, object and target.
     void validate() const;
 };
 
@@ -102,7 +122,8 @@ double relativeRmse(const Eigen::Ref<const MatX<float>>& predicted, const Eigen:
 /// Fits one network on raw data (inputs × N, targets × N, samples as columns):
 /// 70/15/15 split (splitSamples(N, cfg.seed(), stream)), mapminmax scalers fitted on all N samples
 /// (as Matlab's train does), initial weights initialParams(arch, seed, stream), training with `cfg`,
-/// and RMSEs in raw units. `arch.inputs`/`arch.outputs` must match the data. N must be ≥ 1.
+/// and RMSEs in raw units. `arch.inputs`/`arch.outputs` must match the data. N must be ≥ 1. The
+/// network reads the normalised inputs themselves (the identity encoding).
 NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eigen::Ref<const MatX<float>>& inputs,
                         const Eigen::Ref<const MatX<float>>& targets, const TrainObserver& observer = {},
                         uint64_t stream = 0);
@@ -112,6 +133,15 @@ NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eig
 NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eigen::Ref<const MatX<float>>& inputs,
                         const Eigen::Ref<const MatX<float>>& targets, const MatX<float>& targetVariance,
                         const TrainObserver& observer = {}, uint64_t stream = 0);
+/// The same behind an input encoding: `inputs` has encoding.inputs rows (the raw record inputs) and
+/// arch.inputs must be encoding.outputs() (the identity: inputs.rows()). The encoding's initial
+/// parameters are encoding.initialParams(seed, stream). A fixed encoding (no parameters) encodes the
+/// normalised data once and trains the MLP on the features with either trainer; a trainable one
+/// (hash grid) trains jointly with Adam (trainAdam) and is a SettingError naming "network.encoding"
+/// under Levenberg–Marquardt.
+NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, const TrainerConfig& cfg,
+                        const Eigen::Ref<const MatX<float>>& inputs, const Eigen::Ref<const MatX<float>>& targets,
+                        const MatX<float>& targetVariance, const TrainObserver& observer = {}, uint64_t stream = 0);
 
 /// Writes `model` to `path` atomically. Throws std::runtime_error on I/O failure and
 /// std::invalid_argument if the model holds non-finite numbers.

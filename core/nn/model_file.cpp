@@ -20,8 +20,9 @@ namespace {
 using nlohmann::json;
 
 constexpr char kMagic[8] = {'R', 'R', 'F', 'M', 'O', 'D', 'E', 'L'};
-/// Version 2 adds the header's checksum to the preamble; version 1 files (no header checksum) still load.
-constexpr uint32_t kVersion = 2;
+/// Version 2 adds the header's checksum to the preamble, version 3 the input encoding and its
+/// parameters; version 1 and 2 files still load (as the identity encoding).
+constexpr uint32_t kVersion = 3;
 constexpr size_t kPreambleV1 = 16;  // magic + version + header length
 constexpr size_t kPreamble = 24;    // ... + checksum64 of the header
 constexpr uint32_t kMaxHeader = 64u << 20;
@@ -66,6 +67,10 @@ json modelHeader(const NetworkModel& m) {
         {"architecture",
          {{"inputs", m.arch.inputs}, {"hidden", m.arch.hidden}, {"outputs", m.arch.outputs},
           {"activation", activationName(m.arch.activation)}, {"parameters", m.arch.numParams()}}},
+        {"input_encoding",
+         {{"inputs", m.rawInputs()},
+          {"components", m.encoding.isIdentity() ? json::array() : m.encoding.toJson()},
+          {"parameters", m.encodingParams.size()}}},
         {"trainer", m.trainer.toJson()},
         {"training",
          {{"epochs", t.epochs}, {"best_epoch", t.bestEpoch}, {"stop_reason", t.stopReason},
@@ -87,10 +92,11 @@ void saveModel(const NetworkModel& model, const std::string& path) {
     appendDoubles(payload, model.inputScaler.scale.data(), model.inputScaler.size());
     appendDoubles(payload, model.outputScaler.offset.data(), model.outputScaler.size());
     appendDoubles(payload, model.outputScaler.scale.data(), model.outputScaler.size());
+    appendDoubles(payload, model.encodingParams.data(), model.encodingParams.size());
 
     json header = modelHeader(model);
     header["payload"] = {{"encoding", "float64-le"},
-                         {"order", {"params", "input_offset", "input_scale", "output_offset", "output_scale"}},
+                         {"order", {"params", "input_offset", "input_scale", "output_offset", "output_scale", "encoding_params"}},
                          {"bytes", payload.size()},
                          {"fnv1a64", hexString16(fnv1a64(payload.data(), payload.size()))}};
     const std::string h = header.dump(1);
@@ -168,6 +174,18 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
     } catch (const std::exception& e) {
         fail("header/architecture", std::string("bad architecture: ") + e.what());
     }
+    m.encoding.inputs = m.arch.inputs;  // versions 1 and 2: the identity
+    if (version >= 3) {
+        const JsonReader e = header.at("input_encoding");
+        const int inputs = int(e.at("inputs").integer(1, kMaxInt));
+        m.encoding = InputEncoding::fromJson(e.at("components"), inputs);
+        if (m.encoding.isIdentity()) m.encoding.inputs = inputs;
+        const int features = m.encoding.isIdentity() ? inputs : m.encoding.outputs();
+        if (features != m.arch.inputs)
+            fail("header/input_encoding", "the encoding " + m.encoding.describe() + " writes " + std::to_string(features) +
+                                              " features, the " + m.arch.describe() + " network reads " +
+                                              std::to_string(m.arch.inputs));
+    }
     try {
         m.trainer = TrainerConfig::fromJson(header.at("trainer"));
     } catch (const InputError&) {
@@ -212,8 +230,9 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
         fail("header/training", std::string("bad training record: ") + e.what());
     }
 
-    const size_t P = size_t(m.arch.numParams()), in = size_t(m.arch.inputs), out = size_t(m.arch.outputs);
-    const size_t expected = (P + 2 * in + 2 * out) * sizeof(double);
+    const size_t P = size_t(m.arch.numParams()), in = size_t(m.rawInputs()), out = size_t(m.arch.outputs);
+    const size_t E = size_t(m.encoding.isIdentity() ? 0 : m.encoding.numParams());
+    const size_t expected = (P + 2 * in + 2 * out + E) * sizeof(double);
     const size_t have = bytes.size() - preamble - hlen;
     const JsonReader payload = header.at("payload");
     const uint64_t declared = payload.at("bytes").unsignedInteger();
@@ -239,6 +258,7 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
     m.inputScaler.scale = readVec(in);
     m.outputScaler.offset = readVec(out);
     m.outputScaler.scale = readVec(out);
+    m.encodingParams = readVec(E);
     try {
         m.validate();
     } catch (const std::exception& e) {

@@ -148,6 +148,7 @@ nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectMode
                               {"name", m.objectName},
                               {"target", m.target},
                               {"architecture", p.arch().describe()},
+                              {"encoding", p.encoding().describe()},
                               {"parameters", p.numParams()},
                               {"leaf_count", p.leafCount()},
                               {"depth", p.tree.depth()},
@@ -245,8 +246,8 @@ ModelSet loadModelSet(const std::string& dir, uint64_t expectedSceneHash) {
                                                    "/checksum64): the file was changed or belongs to another model set");
             }
             NetworkModel net = parseModel(bytes, file);
-            if (net.arch.inputs != int(set.inputLayout.size()))
-                throw InputError(file, "", "network has " + std::to_string(net.arch.inputs) + " inputs but the index lists " +
+            if (net.rawInputs() != int(set.inputLayout.size()))
+                throw InputError(file, "", "network has " + std::to_string(net.rawInputs()) + " inputs but the index lists " +
                                                std::to_string(set.inputLayout.size()));
             if (net.objectId != id || net.target != target)
                 throw InputError(file, "", "holds the " + net.target + " network of object " + std::to_string(net.objectId) +

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "core/nn/encoding.h"
 #include "core/nn/mlp.h"
 #include "core/nn/trainer_config.h"
 #include "core/nn/validation_monitor.h"
@@ -124,6 +125,16 @@ double adamLearningRate(const AdamConfig& cfg, int epoch);
 /// deterministic; objects are parallelised one level up.
 TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const TrainingData& data,
                       const MinMaxScaler& outputScaler, VecX<double>& params,
+                      const TrainObserver& observer = {});
+/// The same for a network behind an input encoding (nn/encoding.h) whose parameters are trained
+/// jointly with the weights: `data`'s x are the normalised raw inputs (encoding.inputs rows) and
+/// arch.inputs = encoding.outputs(). Per batch: encode → MLP forward → loss → MLP backward with
+/// ∂loss/∂features → the encoding's parameter gradient; the weights take the dense Adam step, the
+/// encoding parameters (`encodingParams`, in: initial, out: those of the kept epoch) a sparse one:
+/// only the entries the batch touched, each once, without weight decay (instant-NGP). The identity
+/// encoding is exactly trainAdam above.
+TrainResult trainAdam(const MlpArch& arch, const InputEncoding& encoding, const AdamConfig& cfg, const TrainingData& data,
+                      const MinMaxScaler& outputScaler, VecX<double>& params, VecX<double>& encodingParams,
                       const TrainObserver& observer = {});
 
 /// Dispatches on cfg.type.

@@ -147,8 +147,8 @@ NetworkTexture packNetworkTexture(const Scene& scene, const ModelSet& models, in
             const std::string who = "network '" + target + "' of object " + std::to_string(on.objectId);
             m.validate();
             const MlpArch& arch = m.arch();
-            if (arch.inputs != tex.inputCount)
-                throw std::invalid_argument(who + " has " + std::to_string(arch.inputs) + " inputs, the scene's records " +
+            if (m.rawInputs() != tex.inputCount)
+                throw std::invalid_argument(who + " has " + std::to_string(m.rawInputs()) + " inputs, the scene's records " +
                                             std::to_string(tex.inputCount));
             const int wantOut = slot == kSlotJoint ? 6 : 3;
             if (arch.outputs != wantOut)

@@ -78,9 +78,9 @@ Predictor::Predictor(const Scene& scene, const ModelSet& models, const Predictio
     for (const ObjectNetworks& o : models.objects)
         for (const auto& [target, tree] : o.byTarget) {
             const MlpArch& net = tree.arch();
-            if (net.inputs != layout_.inputCount())
+            if (tree.rawInputs() != layout_.inputCount())
                 throw std::invalid_argument("network " + target + " of object " + std::to_string(o.objectId) + " has " +
-                                            std::to_string(net.inputs) + " inputs, the scene's records have " +
+                                            std::to_string(tree.rawInputs()) + " inputs, the scene's records have " +
                                             std::to_string(layout_.inputCount()));
             const int want = target == "joint" ? 6 : 3;
             if (net.outputs != want)
