@@ -264,7 +264,8 @@ TEST(GlslPredictor, ShaderErrorsNameTheFile) {
     namespace fs = std::filesystem;
     const fs::path dir = fs::temp_directory_path() / ("rrf_gl_shaders_" + std::to_string(::getpid()));
     fs::create_directories(dir);
-    for (const char* f : {"gbuffer.vert", "gbuffer.frag", "fullscreen.vert", "predict.frag", "direct_light.glsl"})
+    for (const char* f : {"gbuffer.vert", "gbuffer.frag", "fullscreen.vert", "predict.frag", "direct_light.glsl",
+                          "encoding.glsl"})
         fs::copy_file(fs::path(RRF_SOURCE_DIR) / "shaders" / f, dir / f, fs::copy_options::overwrite_existing);
     {
         std::ofstream bad(dir / "predict.frag", std::ios::app);
