@@ -1,4 +1,4 @@
-// Network panel: hidden layers, activation, what the networks predict, the kd-tree partition
+// Network panel: hidden layers, activation, the input encoding (by name), what the networks predict, the kd-tree partition
 // (Ren et al.'s leaves: goal, depth, leaf budget, records per weight, split axes), the trainer and its
 // parameters (error goal included), and the parameter count of each network. Project::network and Project::trainer are the
 // only copies of these settings: every edit goes through storeNetwork() or storeTrainer(), so editing
@@ -11,6 +11,7 @@
 #include <imgui.h>
 
 #include "core/data/record_layout.h"
+#include "core/nn/encoding_presets.h"
 #include "panels/clip_check.h"
 #include "panels/panels.h"
 #include "panels/pipeline_controls.h"
@@ -140,22 +141,51 @@ bool drawPartition(PartitionSettings& p, long long paramsPerNetwork) {
     return changed;
 }
 
-void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
+/// The MLP of one network under `s`: its first layer reads the encoding's features.
+MlpArch networkArch(const WorkbenchState& state, const NetworkSettings& s, const InputEncoding& encoding) {
     MlpArch arch;
-    arch.inputs = inputCount(state);
+    arch.inputs = encoding.isIdentity() ? inputCount(state) : encoding.outputs();
     arch.hidden = s.options.hidden;
     arch.activation = s.options.activation;
     arch.outputs = s.options.targets == TargetMode::Joint ? 6 : 3;
+    return arch;
+}
+
+/// The encoding combo (the named encodings, plus "custom" when the project's own array is none of
+/// them) and the warning for a trainable encoding under Levenberg–Marquardt.
+void drawEncoding(WorkbenchState& state, const NetworkSettings& s) {
+    const std::string name = encodingPresetName(s.options.encoding);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
+    if (ImGui::BeginCombo("input encoding", name.empty() ? "custom (the project file's)" : name.c_str())) {
+        for (const EncodingPreset& p : encodingPresets()) {
+            if (ImGui::Selectable(p.name, name == p.name)) setEncoding(state, p.name);
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.summary);
+        }
+        ImGui::EndCombo();
+    }
+    if (s.options.trainer.type == TrainerType::LevenbergMarquardt && encodingHasParameters(s.options.encoding))
+        ImGui::TextColored(ImVec4(1.f, .6f, .3f, 1.f),
+                           "a hash grid's tables train with Adam only: choose the Adam trainer (LM would refuse)");
+}
+
+void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
+    const InputEncoding encoding = networkEncoding(s.options.encoding, inputCount(state));
+    const MlpArch arch = networkArch(state, s, encoding);
     const int perObject = s.options.targets == TargetMode::Separate ? 2 : 1;
-    const long long params = (long long)arch.numParams();
+    const long long table = (long long)encoding.numParams();
+    const long long params = (long long)arch.numParams() + table;
     std::string hidden;
     for (const int h : arch.hidden) hidden += (hidden.empty() ? "" : ", ") + std::to_string(h);
-    ImGui::Text("%d inputs -> [%s] -> %d outputs: %lld parameters per network", arch.inputs, hidden.c_str(),
-                arch.outputs, params);
+    if (encoding.isIdentity())
+        ImGui::Text("%d inputs -> [%s] -> %d outputs: %lld parameters per network", arch.inputs, hidden.c_str(),
+                    arch.outputs, params);
+    else
+        ImGui::Text("%d inputs -> %s -> %d features -> [%s] -> %d outputs: %lld parameters per network (%lld in the encoding)",
+                    inputCount(state), encoding.describe().c_str(), arch.inputs, hidden.c_str(), arch.outputs, params, table);
     ImGui::Text("%d network%s per object, %zu objects: %lld parameters in all", perObject, perObject > 1 ? "s" : "",
                 state.project.scene.objects.size(), params * perObject * (long long)state.project.scene.objects.size());
     if (s.options.trainer.type == TrainerType::LevenbergMarquardt)
-        ImGui::TextDisabled("LM solves a %lld x %lld system per step", params, params);
+        ImGui::TextDisabled("LM solves a %lld x %lld system per step", (long long)arch.numParams(), (long long)arch.numParams());
 }
 }  // namespace
 
@@ -199,6 +229,15 @@ bool setPartition(WorkbenchState& state, const PartitionSettings& partition) {
     NetworkSettings s = current(state);
     if (s.options.partition == partition) return false;
     s.options.partition = partition;
+    storeNetwork(state, s);
+    return true;
+}
+
+bool setEncoding(WorkbenchState& state, const std::string& name) {
+    const EncodingPreset* preset = findEncodingPreset(name);
+    NetworkSettings s = current(state);
+    if (!preset || s.options.encoding == preset->settings) return false;
+    s.options.encoding = preset->settings;
     storeNetwork(state, s);
     return true;
 }
@@ -248,14 +287,14 @@ void drawNetworkPanel(WorkbenchState& state) {
     }
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("per object: one global net, one net per term (separate), or one 6-output net (joint)");
+    drawEncoding(state, s);
+    s = current(state);
 
     ImGui::Separator();
     ImGui::TextUnformatted("Partition (kd-tree of networks per object)");
     {
-        MlpArch arch;
-        arch.inputs = inputCount(state);
-        arch.hidden = s.options.hidden;
-        arch.outputs = s.options.targets == TargetMode::Joint ? 6 : 3;
+        // The records-per-weight bound counts the MLP's weights only (not an encoding's table entries).
+        const MlpArch arch = networkArch(state, s, networkEncoding(s.options.encoding, inputCount(state)));
         PartitionSettings p = s.options.partition;
         if (drawPartition(p, (long long)arch.numParams())) setPartition(state, p);
         s = current(state);

@@ -44,6 +44,9 @@ bool resizeHiddenLayer(WorkbenchState& state, int index, int size);
 bool setTrainerType(WorkbenchState& state, TrainerType type);
 /// Replaces the kd-tree settings (Project::network's "partition" section).
 bool setPartition(WorkbenchState& state, const PartitionSettings& partition);
+/// Sets the networks' input encoding to the named one (nn/encoding_presets.h; Project::network's
+/// "encoding"); false for an unknown name or no change.
+bool setEncoding(WorkbenchState& state, const std::string& name);
 
 /// The Objects table of an evaluation: per term, one row per object in view or trained (errors with
 /// the reference's noise floor and corrected figure, as evaluate() computed them), with the samples

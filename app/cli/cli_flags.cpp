@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/nn/encoding_presets.h"
 #include "core/nn/network_settings.h"
 #include "core/project/presets.h"
 #include "core/project/project.h"
@@ -71,6 +72,11 @@ void addNetworkFlags(CLI::App* cmd, SettingFlags<ObjectTrainingOptions>& flags) 
         ->allow_extra_args(false)
         ->check(CLI::Range(1, kMaxHiddenSize))
         ->type_name("N[,N...]");
+    std::vector<std::string> encodings;
+    for (const EncodingPreset& e : encodingPresets()) encodings.push_back(e.name);
+    flags.add<std::string>(cmd, "--encoding", "input encoding of every network, by name (network.encoding; default: the project's)",
+                           [](ObjectTrainingOptions& t, const std::string& name) { t.encoding = encodingPresetSettings(name); })
+        ->check(CLI::IsMember(encodings));
     flags.add<std::string>(cmd, "--trainer", "trainer",
                            [](ObjectTrainingOptions& t, const std::string& type) { t.trainer = t.trainer.withType(type); })
         ->check(CLI::IsMember({"lm", "adam"}));
@@ -139,9 +145,11 @@ void addNoiseTargetFlags(CLI::App* cmd, double& noise, int& sppCap, const std::s
 
 std::string describeExperiment(const SamplingSettings& s, const ObjectTrainingOptions& t) {
     char buf[256];
-    std::snprintf(buf, sizeof buf, "grid %dx%dx%d, %d directions, %d spp per record; network %s, targets %s, %s, %d epochs",
-                  s.nx, s.ny, s.nz, s.directions, s.spp, nlohmann::json(t.hidden).dump().c_str(), targetModeName(t.targets),
-                  t.trainer.typeName(), t.trainer.maxEpochs());
+    const std::string encoding = encodingPresetName(t.encoding);
+    std::snprintf(buf, sizeof buf, "grid %dx%dx%d, %d directions, %d spp per record; network %s, encoding %s, targets %s, %s, %d epochs",
+                  s.nx, s.ny, s.nz, s.directions, s.spp, nlohmann::json(t.hidden).dump().c_str(),
+                  encoding.empty() ? "(the project's)" : encoding.c_str(), targetModeName(t.targets), t.trainer.typeName(),
+                  t.trainer.maxEpochs());
     return buf;
 }
 

@@ -14,6 +14,7 @@
 #include "core/data/dataset_file.h"
 #include "core/util/error.h"
 #include "core/nn/model_set.h"
+#include "core/nn/encoding_presets.h"
 #include "core/nn/network_settings.h"
 #include "core/project/project.h"
 #include "core/project/run_recording.h"
@@ -29,7 +30,7 @@ struct TrainArgs {
     std::vector<std::string> objects;
     int threads = 0, logEvery = 10;
     bool record = false;
-    SettingFlags<ObjectTrainingOptions> network;  ///< --hidden, --trainer, --epochs, --targets
+    SettingFlags<ObjectTrainingOptions> network;  ///< --hidden, --encoding, --trainer, --epochs, --targets
 };
 
 /// "--objects 0,3,tall-box": ids or names of scene objects.
@@ -71,9 +72,10 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     uint64_t dropped = 0;
     const std::vector<ObjectSamples> samples = samplesFromDataset(data, &dropped);
     if (dropped) std::printf("warning: %llu records with NaN/Inf dropped from %s\n", (unsigned long long)dropped, a.data.c_str());
-    std::printf("rrf train: %s on %s (%llu records), hidden %s, %s, targets %s, trainer %s\n", a.input.c_str(),
+    const std::string encoding = networkEncoding(o.encoding, data.inputCount()).describe();
+    std::printf("rrf train: %s on %s (%llu records), hidden %s, %s, encoding %s, targets %s, trainer %s\n", a.input.c_str(),
                 a.data.c_str(), (unsigned long long)data.totalRecords(), nlohmann::json(o.hidden).dump().c_str(),
-                activationName(o.activation), targetModeName(o.targets), o.trainer.typeName());
+                activationName(o.activation), encoding.c_str(), targetModeName(o.targets), o.trainer.typeName());
     std::fflush(stdout);
 
     std::mutex printMutex;
@@ -120,7 +122,7 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
                                                                                  : t.validationRelativeRmse;
             std::printf("%-4d %-12s %-9s %9lld %7lld %7d %-11s %-11s %-11s %-10s %8.2f  %s\n", m.objectId, m.objectName.c_str(),
                         target.c_str(), (long long)(t.trainSamples + t.validationSamples + t.testSamples),
-                        (long long)net.arch.numParams(), t.epochs, fmt(net.errors.train).c_str(),
+                        (long long)net.numParams(), t.epochs, fmt(net.errors.train).c_str(),
                         fmt(net.errors.validation).c_str(), fmt(net.errors.test).c_str(), fmt(rel).c_str(), t.seconds,
                         t.stopReason.c_str());
         }

@@ -11,6 +11,7 @@
 #include "core/eval/experiment.h"
 #include "core/eval/held_out.h"
 #include "core/eval/reference_noise.h"
+#include "core/nn/encoding_presets.h"
 #include "core/nn/network_settings.h"
 #include "core/nn/training_run.h"
 
@@ -85,6 +86,13 @@ std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
                                                                                         std::to_string(kMaxPartitionLeaves));
             if (p.training.partition.maxLeaves > 1 && p.training.partition.maxDepth == 0)
                 p.training.partition.maxDepth = PartitionSettings{}.maxDepth;
+        } else if (o.what == "encoding") {
+            p.training.encoding = encodingPresetSettings(v, kValuesSetting);
+            try {
+                checkEncodingTrainer(p.training.encoding, p.training.trainer);
+            } catch (const SettingError& e) {
+                throw SettingError(kValuesSetting, "'" + v + "': " + e.detail());
+            }
         } else if (o.what == "record_spp") {
             p.sampling.maxSpp = positiveValue(v, v, kMaxSamplesPerRecord, "the most paths per record, 1.." + std::to_string(kMaxSamplesPerRecord));
             p.sampling.spp = std::min(p.sampling.spp, p.sampling.maxSpp);
@@ -134,14 +142,18 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
     row.frameSeconds = e.gbufferSeconds + e.prediction.inferenceSeconds + e.prediction.directSeconds;
     row.breakEven = breakEven(c.pathTracer, comparableError(row.overall));
     if (c.o.keepModels) row.models = std::make_shared<const ModelSet>(models);
-    int64_t params = 0, leaves = 0, leafEpochs = 0;
+    int64_t params = 0, leaves = 0, leafEpochs = 0, bytes = 0;
     for (const ObjectModel& m : trained) {
         if (m.skipped) continue;
         params += m.model.numParams();
         leaves += m.model.leafCount();
-        for (const NetworkModel& leaf : m.model.leaves) leafEpochs += leaf.training.epochs;
+        for (const NetworkModel& leaf : m.model.leaves) {
+            leafEpochs += leaf.training.epochs;
+            bytes += int64_t(sizeof(double)) * (leaf.numParams() + 2 * leaf.rawInputs() + 2 * leaf.arch.outputs);
+        }
     }
     row.extra["parameters"] = params;
+    row.extra["model_bytes"] = bytes;
     // What the goal and leaves sweeps change: how far the trees grew and how long their leaves trained.
     row.extra["leaves"] = leaves;
     row.extra["leaf_epochs"] = leafEpochs;
@@ -295,6 +307,7 @@ std::vector<std::string> defaultSweepValues(const std::string& what) {
     if (what == "goal") return {"0.1", "0.05", "0.03"};
     if (what == "leaves") return {"1", "4", "16"};
     if (what == "record_spp") return {"64", "256", "1024"};
+    if (what == "encoding") return {"raw", "frequency", "hash_grid"};
     std::string kinds;
     for (const char* k : kSweepKinds) kinds += std::string(kinds.empty() ? "" : ", ") + k;
     throw SettingError("sweep dimension", "expected one of " + kinds + ", got '" + what + "'");

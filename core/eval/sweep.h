@@ -20,6 +20,12 @@
 ///            project's partition depth, goal and min records per weight (one dataset)
 ///   record_spp  the most paths per training record (the adaptive sampler's max_spp, e.g. "256"; a
 ///            value below the sampling's spp also lowers spp: fixed paths), new data for each point
+///   encoding the networks' input encoding (network.encoding) by name (nn/encoding_presets.h, e.g.
+///            "raw", "frequency", "hash_grid"), with the training settings' layers and trainer (one
+///            dataset); a trainable encoding under Levenberg–Marquardt is refused before anything runs
+///
+/// Every model row records its networks' parameters (MLP weights and encoding parameters, all
+/// leaves) and model bytes (the float64 payload of its model files: parameters and scalers).
 ///
 /// Each value is one setting, spelled as outside a JSON file everywhere else (integers, comma-
 /// separated lists); every value is read before anything runs, and a bad one throws SettingError
@@ -55,7 +61,7 @@
 namespace rrf {
 
 /// The kinds of sweep (SweepOptions::what), the one list the CLI's --what and the Cost panel offer.
-constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer", "goal", "leaves", "record_spp"};
+constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer", "goal", "leaves", "record_spp", "encoding"};
 constexpr int kSweepKindCount = int(sizeof kSweepKinds / sizeof kSweepKinds[0]);
 
 struct SweepOptions {

@@ -68,7 +68,13 @@ std::string sweepCsv(const Scene& scene, const SweepResult& r) {
     for (const Object& o : scene.objects)
         out << "," << o.name << "_rmse," << o.name << "_relative_rmse," << o.name << "_relative_rmse_noise_floor," << o.name
             << "_relative_rmse_corrected";
-    out << ",spp,one_off_seconds,frame_seconds,glsl_frame_seconds,breakeven_spp,breakeven_seconds,breakeven_extrapolated\n";
+    out << ",spp,one_off_seconds,frame_seconds,glsl_frame_seconds,breakeven_spp,breakeven_seconds,breakeven_extrapolated,"
+           "parameters,model_bytes\n";
+    // A model row's size (parameters incl. encoding tables, float64 payload bytes); empty for the path tracer.
+    auto count = [](const SweepRow& row, const char* key) {
+        return row.extra.contains(key) && row.extra[key].is_number_integer() ? std::to_string(row.extra[key].get<int64_t>())
+                                                                              : std::string();
+    };
     auto line = [&](const std::string& what, const SweepRow& row) {
         out << what << "," << csvField(row.setting);
         for (const std::string& s : stages) {
@@ -91,7 +97,8 @@ std::string sweepCsv(const Scene& scene, const SweepResult& r) {
         out << "," << (row.spp > 0 ? std::to_string(row.spp) : "") << "," << optionalField(row.oneOffSeconds) << ","
             << optionalField(row.frameSeconds) << "," << optionalField(row.glslFrameSeconds) << ","
             << (known ? num(row.breakEven.spp) : "") << "," << (known ? num(row.breakEven.seconds) : "") << ","
-            << (known ? (row.breakEven.extrapolated ? "1" : "0") : "") << "\n";
+            << (known ? (row.breakEven.extrapolated ? "1" : "0") : "") << "," << count(row, "parameters") << ","
+            << count(row, "model_bytes") << "\n";
     };
     for (const SweepRow& row : r.rows) line(r.what, row);
     for (const SweepRow& row : r.pathTracer) line("path_tracer", row);
@@ -208,8 +215,11 @@ std::string sweepTable(const SweepResult& r) {
         if (!isModelRow(row)) continue;
         if (!header) out << "break-even (what the model's error costs the path tracer):\n";
         header = true;
-        std::snprintf(line, sizeof line, "  %s %s: one-off %.3g s (data + training); ", r.what.c_str(), row.setting.c_str(),
-                      row.oneOffSeconds);
+        const auto size = [&](const char* key) {
+            return row.extra.contains(key) && row.extra[key].is_number() ? row.extra[key].get<double>() : std::nan("");
+        };
+        std::snprintf(line, sizeof line, "  %s %s: %.0f parameters, %.3g MB; one-off %.3g s (data + training); ", r.what.c_str(),
+                      row.setting.c_str(), size("parameters"), size("model_bytes") / 1e6, row.oneOffSeconds);
         out << line << sweepBreakEvenText(row) << "\n";
     }
     return out.str();

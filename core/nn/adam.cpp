@@ -65,23 +65,28 @@ MatX<double> predictions(EncodedNetwork& net, const VecX<float>& w, const VecX<f
 }
 
 /// Adam moments of the encoding's parameters, updated sparsely as instant-NGP does: only the entries
-/// a batch touched (deduplicated, ascending) see a step, and their gradient is cleared afterwards;
-/// an untouched entry keeps its moments. No weight decay (it would shrink unvisited table cells).
+/// a batch touched see a step, each once, and their gradient is cleared afterwards; an untouched
+/// entry keeps its value and moments. No weight decay (it would shrink unvisited table cells). Each
+/// entry's step depends on its own gradient and moments only, so the visiting order does not matter
+/// (no sort: a batch touches ~10⁵ entries with repeats, and sorting them cost more than training).
 struct SparseAdam {
     VecX<float> grad, m, v;
     std::vector<int64_t> touched;
+    std::vector<uint8_t> done;  ///< entries stepped in this batch (reset after it)
 
-    explicit SparseAdam(Eigen::Index n) : grad(VecX<float>::Zero(n)), m(VecX<float>::Zero(n)), v(VecX<float>::Zero(n)) {}
+    explicit SparseAdam(Eigen::Index n)
+        : grad(VecX<float>::Zero(n)), m(VecX<float>::Zero(n)), v(VecX<float>::Zero(n)), done(size_t(n), 0) {}
     void step(VecX<float>& e, float b1, float b2, float c1, float c2, float lr, float eps) {
-        std::sort(touched.begin(), touched.end());
-        touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
         for (const int64_t i : touched) {
+            if (done[size_t(i)]) continue;
+            done[size_t(i)] = 1;
             const float g = grad[i];
             m[i] = b1 * m[i] + (1.0f - b1) * g;
             v[i] = b2 * v[i] + (1.0f - b2) * g * g;
             e[i] -= lr * ((m[i] / c1) / (std::sqrt(v[i] / c2) + eps));
             grad[i] = 0.0f;
         }
+        for (const int64_t i : touched) done[size_t(i)] = 0;
         touched.clear();
     }
 };

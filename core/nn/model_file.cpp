@@ -155,6 +155,11 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
     // Typed reads (core/util/json_reader.h): an integer field holding 1e300 or "3" is an InputError
     // naming the field, never a float-to-int conversion out of range.
     const JsonReader header(h, path, "header");
+    // A checksummed header repeats the version: a damaged preamble version, which the header's checksum
+    // does not cover, would otherwise read a version 3 file as version 2 (version 1 headers are unchecked).
+    if (version >= 2 && header.has("version") && header.at("version").integer(0, kMaxInt) != int64_t(version))
+        fail("header/version", "the header says version " + header.value().at("version").dump() + ", the preamble " +
+                                   std::to_string(version));
     NetworkModel m;
     try {
         const JsonReader a = header.at("architecture");

@@ -1,5 +1,7 @@
 #include "core/nn/network_settings.h"
 
+#include "core/nn/encoding_presets.h"
+
 #include <sstream>
 
 #include "core/util/error.h"
@@ -27,7 +29,7 @@ std::vector<int> parseHiddenSizes(const std::string& text, const std::string& se
 }
 
 const std::vector<std::string>& NetworkSettings::keys() {
-    static const std::vector<std::string> k = {"hidden", "activation", "targets", "partition"};
+    static const std::vector<std::string> k = {"hidden", "activation", "encoding", "targets", "partition"};
     return k;
 }
 
@@ -41,6 +43,13 @@ NetworkSettings NetworkSettings::fromJson(const JsonReader& r, const NetworkSett
             s.options.hidden.push_back(int(hidden->at(i).integer(1, kMaxHiddenSize)));
     }
     s.options.activation = parseActivation(r.choiceOr("activation", activationName(s.options.activation), {"tanh", "relu"}));
+    if (const auto encoding = r.find("encoding")) {
+        // Read as every network will read it (errors name the file and the pointer of the bad value);
+        // kept as written, since each network builds it for its own records' input count.
+        encoding->requireArray();
+        InputEncoding::fromJson(*encoding, kEncodingCheckInputs);
+        s.options.encoding = encoding->value();
+    }
     s.options.targets = parseTargetMode(r.choiceOr("targets", targetModeName(s.options.targets),
                                                    {"separate", "joint", "global", "direct", "indirect"}));
     if (const auto partition = r.find("partition")) s.options.partition = partitionFromJson(*partition, s.options.partition);
@@ -50,6 +59,7 @@ NetworkSettings NetworkSettings::fromJson(const JsonReader& r, const NetworkSett
 nlohmann::json NetworkSettings::networkJson() const {
     return {{"hidden", options.hidden},
             {"activation", activationName(options.activation)},
+            {"encoding", options.encoding},
             {"targets", targetModeName(options.targets)},
             {"partition", partitionJson(options.partition)}};
 }

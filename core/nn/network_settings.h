@@ -3,6 +3,7 @@
 /// and the GUI:
 ///
 ///     "network": {"hidden": [20, 10], "activation": "tanh", "targets": "separate",
+///                 "encoding": [{"type": "hash_grid", "inputs": "position"}],
 ///                 "partition": {"goal": 0.05, "max_depth": 8, "max_leaves": 16,
 ///                               "min_records_per_weight": 8, "min_split_gain": 0.1,
 ///                               "split_axes": ["position", "light"]}},
@@ -11,6 +12,9 @@
 /// "partition" sets the kd-tree of networks per object and target (PartitionSettings in
 /// nn/object_training.h); every key is optional, unknown keys are errors, and "max_leaves": 1 (or
 /// "max_depth": 0) trains one network per object.
+/// "encoding" is the input encoding of every network (nn/encoding.h; [] or absent: the raw inputs),
+/// checked when read against records of kEncodingCheckInputs inputs; nn/encoding_presets.h names
+/// a few. A trainable one (hash grid) needs the adam trainer (checked when training starts).
 /// "targets": "separate" (default: one direct and one indirect net per object, so direct light can
 /// also be computed exactly while the networks predict indirect light), "joint" (one 6-output net),
 /// "global", "direct" or "indirect".
@@ -67,7 +71,7 @@ struct NetworkSettings {
     static NetworkSettings fromJson(const JsonReader& network, const NetworkSettings& base);
     /// fromJson over the project defaults (a project file's section).
     static NetworkSettings fromJson(const JsonReader& network) { return fromJson(network, NetworkSettings()); }
-    /// The "network" section's keys ("hidden", "activation", "targets", "partition").
+    /// The "network" section's keys ("hidden", "activation", "encoding", "targets", "partition").
     static const std::vector<std::string>& keys();
     nlohmann::json networkJson() const;
     nlohmann::json trainerJson() const { return options.trainer.toJson(); }

@@ -1,5 +1,7 @@
 #include "core/nn/object_training.h"
 
+#include "core/nn/encoding_presets.h"
+
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -209,9 +211,13 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
 
     const PartitionSettings& part = options.partition;
     auto cancelled = [&] { return observer.cancel && observer.cancel->load(); };
+    checkEncodingTrainer(options.encoding, options.trainer);
+    std::vector<InputEncoding> encodings;  // index = job
+    for (const Job& job : jobs) encodings.push_back(networkEncoding(options.encoding, job.samples->numInputs));
     auto archFor = [&](const Job& job) {
         MlpArch arch;
-        arch.inputs = job.samples->numInputs;
+        const InputEncoding& encoding = encodings[size_t(&job - jobs.data())];  // job is an element of jobs
+        arch.inputs = encoding.isIdentity() ? job.samples->numInputs : encoding.outputs();
         arch.hidden = options.hidden;
         arch.activation = options.activation;
         arch.outputs = job.target == "joint" ? 6 : 3;
@@ -282,7 +288,7 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
             const MatX<float>& vAll = variancesOf[task.job];
             const MatX<float> v = vAll.size() == 0 || all ? vAll : gatherColumns(vAll, task.records);
             const TrainerConfig& trainer = task.depth == 0 ? options.trainer : leafTrainer;
-            NetworkModel net = fitNetwork(archFor(job), trainer, xin, yin, v, obs, stream);
+            NetworkModel net = fitNetwork(archFor(job), encodings[task.job], trainer, xin, yin, v, obs, stream);
             // The epochs this network was budgeted but did not need count as done.
             if (observer.onWork && net.training.epochs < trainer.maxEpochs())
                 observer.onWork(int64_t(trainer.maxEpochs() - net.training.epochs), 0);

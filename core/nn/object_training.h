@@ -63,7 +63,8 @@ TargetMode parseTargetMode(const std::string& s);
 /// grows level by level: a node's network is trained on the node's records, and the node is split
 /// (median of the widest allowed axis) while
 ///   its network's validation relative RMSE (relativeRmse, ε = 0.01) is above `goal`,
-///   both children would hold at least `minRecordsPerWeight` × P records (P: the network's weights),
+///   both children would hold at least `minRecordsPerWeight` × P records (P: the MLP's weights and
+///   biases; an input encoding's trainable parameters, e.g. hash-grid tables, are not counted),
 ///   the node is shallower than `maxDepth` and the tree has fewer than `maxLeaves` leaves;
 /// within a level the worst nodes split first when `maxLeaves` runs out. Every node trains on its
 /// own records from scratch, nodes of a level (of all objects and targets) in parallel. Once both
@@ -92,6 +93,9 @@ struct PartitionSettings {
 struct ObjectTrainingOptions {
     std::vector<int> hidden{20, 10};
     Activation activation = Activation::Tanh;
+    /// The "encoding" array (nn/encoding.h, nn/encoding_presets.h); empty = the identity. Each network
+    /// gets networkEncoding(encoding, its records' input count); its first layer reads the features.
+    nlohmann::json encoding = nlohmann::json::array();
     TargetMode targets = TargetMode::Global;
     TrainerConfig trainer;
     PartitionSettings partition;  ///< default: one network per object and target
@@ -128,7 +132,9 @@ struct ObjectModel {
 /// enabled (PartitionSettings). The result is in the order of `objects` (then direct before indirect)
 /// and is bit-identical for any thread count. An object with no samples is skipped with a message;
 /// a single-sample object trains (on that one sample, without validation or test sets).
-/// Throws std::invalid_argument for malformed ObjectSamples or a network the trainer cannot handle.
+/// Throws std::invalid_argument for malformed ObjectSamples or a network the trainer cannot handle,
+/// and SettingError naming "network.encoding" for an encoding the records or the trainer cannot take
+/// (checkEncodingTrainer, networkEncoding).
 std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects, const ObjectTrainingOptions& options,
                                       const ObjectTrainingObserver& observer = {});
 

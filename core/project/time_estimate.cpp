@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/nn/encoding_presets.h"
 #include "core/nn/mlp.h"
 #include "core/render/renderer.h"
+#include "core/util/error.h"
 #include "core/scene/scene.h"
 
 namespace rrf {
@@ -61,6 +63,13 @@ StageEstimate estimateGenerate(const SamplingSettings& s, const PathRate& rate, 
 StageEstimate estimateTraining(const ObjectTrainingOptions& o, double records, int objects, int inputs, int threads) {
     MlpArch arch;
     arch.inputs = std::max(1, inputs);
+    try {
+        // An input encoding widens the first layer (its own cost per record is not modelled).
+        const InputEncoding encoding = networkEncoding(o.encoding, arch.inputs);
+        if (!encoding.isIdentity()) arch.inputs = encoding.outputs();
+    } catch (const InputError&) {
+        // An encoding these records cannot take: training will say so; estimate the raw network.
+    }
     arch.hidden = o.hidden;
     arch.activation = o.activation;
     arch.outputs = o.targets == TargetMode::Joint ? 6 : 3;

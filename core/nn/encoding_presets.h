@@ -1,0 +1,62 @@
+#pragma once
+/// The input encoding of a project's networks as a setting (docs/design.md §10a): the project's
+/// "network": {"encoding": [...]} array (nn/encoding.h), the named encodings that the CLI's
+/// `--encoding NAME`, the sweeps' `encoding` kind and the Network panel offer, and the encoding each
+/// network gets from the array for its own input count.
+///
+///   raw                the identity: Ren et al. 2013's normalised inputs
+///   frequency          sin/cos of 2^k·π·x' (NeRF) over position and light, the rest raw
+///   one_blob           one-blob bins (NRC) over every geometric input (position, view, light, normal)
+///   hash_grid          a multiresolution hash grid (instant-NGP) over position, the rest raw
+///   hash_grid_one_blob the hash grid over position and one-blob over view, light and normal (NRC's
+///                      mix: a trainable grid where detail is spatial, fixed bins for directions)
+///
+/// A new named encoding is one more row of encodingPresets() (encoding_presets.cpp).
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/nn/encoding.h"
+#include "core/nn/trainer_config.h"
+
+namespace rrf {
+
+/// The setting's name in errors and sweeps.
+constexpr const char* kEncodingSetting = "network.encoding";
+
+/// One named encoding.
+struct EncodingPreset {
+    const char* name;     ///< "raw", "frequency", …: the CLI's --encoding value and the panel's label
+    const char* summary;  ///< one line for help texts and tooltips
+    nlohmann::json settings;  ///< the "encoding" array it stands for ([] for raw)
+};
+
+/// Every named encoding, in the order menus list them.
+const std::vector<EncodingPreset>& encodingPresets();
+/// The named encoding called `name`, or null.
+const EncodingPreset* findEncodingPreset(const std::string& name);
+/// The "encoding" array of the named encoding `name`; SettingError naming `setting` for an unknown
+/// name, listing the known ones.
+nlohmann::json encodingPresetSettings(const std::string& name, const std::string& setting = kEncodingSetting);
+/// The names joined by `separator` ("raw|frequency|…"), for help texts and error messages.
+std::string encodingPresetNames(const char* separator = "|");
+/// The name of the named encoding whose array is `encoding`, or "" (a project's own encoding).
+std::string encodingPresetName(const nlohmann::json& encoding);
+
+/// The record inputs a settings check assumes (12 geometric inputs and the 3 diffuse BRDF
+/// parameters every scene has): "encoding" arrays are checked against it when read.
+constexpr int kEncodingCheckInputs = 15;
+
+/// The encoding of a network whose records have `inputs` raw inputs, from an "encoding" array;
+/// the identity (with `inputs`) for an empty one. A wrong array is a SettingError naming
+/// "network.encoding" and what is wrong (e.g. a group this network's records lack).
+InputEncoding networkEncoding(const nlohmann::json& encoding, int inputs);
+/// Throws SettingError naming "network.encoding" when the array has trainable parameters (a hash
+/// grid) and `trainer` is not Adam: Levenberg–Marquardt's JᵀJ over the table entries is out of reach.
+void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& trainer);
+/// True when the array's encoding has trainable parameters (for the panel's warning).
+bool encodingHasParameters(const nlohmann::json& encoding);
+
+}  // namespace rrf

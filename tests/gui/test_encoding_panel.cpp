@@ -1,0 +1,46 @@
+// The Network panel's input encoding in a bare ImGui context: choosing a named encoding stores its
+// array in the project's network section (and nothing else), drawing never edits the project, and
+// the panel draws every named encoding under both trainers.
+#include "core/nn/encoding_presets.h"
+#include "panels/panels.h"
+#include "panels/project_io.h"
+#include "tests/gui/imgui_fixture.h"
+
+namespace rrf::test::test_encoding_panel {
+
+using namespace rrf::panels;
+
+using EncodingPanelTest = ImGuiFixture;
+
+TEST_F(EncodingPanelTest, ChoosingANamedEncodingStoresItsArray) {
+    WorkbenchState s;
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-box/project.json", error)) << error;
+    for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(s); });
+    EXPECT_FALSE(s.dirty) << "drawing the encoding combo must not edit the project";
+    EXPECT_EQ(encodingPresetName(s.project.networkOrDefault().options.encoding), "raw");
+
+    EXPECT_FALSE(setEncoding(s, "raw")) << "no change, nothing stored";
+    EXPECT_FALSE(setEncoding(s, "nerf")) << "an unknown name changes nothing";
+    EXPECT_FALSE(s.dirty);
+    const std::vector<int> hidden = s.project.networkOrDefault().options.hidden;
+    ASSERT_TRUE(setEncoding(s, "hash_grid"));
+    EXPECT_TRUE(s.dirty);
+    const NetworkSettings n = s.project.networkOrDefault();
+    EXPECT_EQ(n.options.encoding, findEncodingPreset("hash_grid")->settings);
+    EXPECT_EQ(n.options.hidden, hidden) << "the other network settings are kept";
+    EXPECT_EQ(n.networkJson().at("encoding"), findEncodingPreset("hash_grid")->settings);
+    EXPECT_FALSE(s.project.trainer.has_value()) << "choosing an encoding adds no trainer section";
+
+    // Every named encoding draws, with Adam and (the warning for trainable ones) with LM.
+    for (TrainerType t : {TrainerType::Adam, TrainerType::LevenbergMarquardt}) {
+        setTrainerType(s, t);
+        for (const EncodingPreset& p : encodingPresets()) {
+            setEncoding(s, p.name);
+            frame([&] { drawNetworkPanel(s); });
+        }
+    }
+    EXPECT_TRUE(s.requests.empty());
+}
+
+}  // namespace rrf::test::test_encoding_panel
