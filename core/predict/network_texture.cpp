@@ -50,7 +50,7 @@ EncodingType encodingType(const std::string& name) {
     throw std::invalid_argument("network texture: the GLSL predictor has no encoding '" + name + "'");
 }
 
-/// Hash-grid settings as the texture stores them, from the component's settings (nn/encoding.h).
+/// Hash-grid settings as the texture stores them, from the component's HashGridEncoding.
 struct HashGridLayout {
     int levels = 0, log2Size = 0, perLevel = 0;
     std::vector<int> resolution;  ///< per level
