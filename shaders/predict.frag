@@ -7,12 +7,14 @@
 //   #define RRF_TERM_DIRECT 0, RRF_TERM_INDIRECT 1, RRF_TERM_GLOBAL 2
 //                                 output location of each term: its index in core's Term
 //                                 (core/render/term.h), which is also the host's colour attachment
-// All arithmetic is float, in the order of NetworkModel::predict: (x - offset) * scale, affine
-// layers with tanh/ReLU, linear output layer, y / scale + offset. evaluateTerms() in
-// core/predict/network_texture.cpp mirrors this shader step by step.
+// All arithmetic is float, in the order of NetworkModel::predict: (x - offset) * scale, the input
+// encoding (shaders/encoding.glsl; none for Ren et al.'s raw inputs), affine layers with tanh/ReLU,
+// linear output layer, y / scale + offset. evaluateTerms() in core/predict/network_texture.cpp
+// mirrors this shader step by step.
 //
-// shaders/direct_light.glsl is inserted before this file: with uDirectMode != 0 the direct term is
-// rrfDirectLight() (exact direct light) instead of the networks'.
+// shaders/direct_light.glsl and shaders/encoding.glsl are inserted before this file: with
+// uDirectMode != 0 the direct term is rrfDirectLight() (exact direct light) instead of the
+// networks'; rrfEncode() writes the encoded features into act[] through the functions below.
 //
 // Outputs (RGBA32F), one per term at location RRF_TERM_<term>; alpha 1 where an object or a light
 // was hit.
@@ -31,10 +33,15 @@ layout(location = RRF_TERM_GLOBAL) out vec4 oGlobal;
 const int kWidthMask = (1 << RRF_NET_WIDTH_LOG2) - 1;
 
 vec4 rawIn[5];                 // 20 raw inputs: p, view, light, normal, BRDF parameters, zero-padded
-vec4 act[RRF_MAX_VEC4];        // activations of the current layer
+vec4 scaledIn[5];              // the same scaled by the network's input scaler: x'
+vec4 act[RRF_MAX_VEC4];        // activations of the current layer (first: the encoded features)
 vec4 nxt[RRF_MAX_VEC4];        // activations being computed
 
 vec4 texel(int i) { return texelFetch(uNetworks, ivec2(i & kWidthMask, i >> RRF_NET_WIDTH_LOG2), 0); }
+// What shaders/encoding.glsl reads and writes.
+float rrfScaledInput(int i) { return scaledIn[i >> 2][i & 3]; }
+void rrfSetFeature(int j, float v) { act[j >> 2][j & 3] = v; }
+void rrfAddFeature(int j, float v) { act[j >> 2][j & 3] += v; }
 
 // tanh as Eigen 3.4 computes it for float (generic_fast_tanh_float, which NetworkModel::predict
 // uses): a 13/6 rational approximation on [-7.9053, 7.9053], x itself for |x| < 0.0004. Matching the
@@ -79,15 +86,22 @@ vec3 finiteOrZero(vec3 v) { return any(isnan(v)) || any(isinf(v)) ? vec3(0.0) : 
 
 // Evaluates the network block at texel `base`; outputs 0-2 go to `first`, 3-5 (joint nets) to `second`.
 void predictNetwork(int base, out vec3 first, out vec3 second) {
-    vec4 h = texel(base);
+    vec4 h = texel(base), e = texel(base + 1);
     int nIn = int(h.x), nOut = int(h.y), layers = int(h.z);
     bool relu = h.w > 0.5;
+    int comps = int(e.x), features = int(e.y), passCount = int(e.z);
     int inV = (nIn + 3) >> 2, outV = (nOut + 3) >> 2;
-    int inOff = base + 1, inScale = inOff + inV, outOff = inScale + inV, outScale = outOff + outV;
+    int inOff = base + 2, inScale = inOff + inV, outOff = inScale + inV, outScale = outOff + outV;
     int t = outScale + outV;
 
     for (int k = 0; k < RRF_MAX_VEC4; ++k) act[k] = vec4(0.0);
-    for (int k = 0; k < inV; ++k) act[k] = (rawIn[k] - texel(inOff + k)) * texel(inScale + k);
+    for (int k = 0; k < inV; ++k) scaledIn[k] = (rawIn[k] - texel(inOff + k)) * texel(inScale + k);
+    if (comps == 0) {  // identity: the features are x' itself (its pass-through indices are 0 ... I-1)
+        for (int k = 0; k < inV; ++k) act[k] = scaledIn[k];
+        t += (passCount + 3) >> 2;
+    } else {
+        t = rrfEncode(t, comps, features, passCount);
+    }
 
     for (int l = 0; l < layers; ++l) {
         vec4 lh = texel(t);

@@ -119,10 +119,14 @@ GlslPredictor::GlslPredictor(const Scene& scene, const ModelSet& models, const s
         std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::toupper(c)); });
         defines += "#define RRF_TERM_" + name + " " + std::to_string(int(t)) + "\n";
     }
-    // Exact direct light (shaders/direct_light.glsl) goes in front of predict.frag, which calls it;
-    // #line keeps the driver's messages pointing at predict.frag's own lines.
-    defines += "#line 1 1\n" + readShaderFile(dir + "direct_light.glsl") + "\n#line 2 0\n";
-    predictProgram_ = GlProgram::fromFiles(dir + "fullscreen.vert", dir + "predict.frag", defines);
+    // Exact direct light (shaders/direct_light.glsl) and the input encodings (shaders/encoding.glsl,
+    // which calls functions predict.frag defines) go in front of predict.frag only; #line keeps the
+    // driver's messages pointing at each file's own lines (source string 1, 2, then predict.frag's 0).
+    const std::string inserted = "#line 1 1\n" + readShaderFile(dir + "direct_light.glsl") + "\n#line 1 2\n" +
+                                 readShaderFile(dir + "encoding.glsl") + "\n#line 2 0\n";
+    const std::string vert = dir + "fullscreen.vert", frag = dir + "predict.frag";
+    predictProgram_ = GlProgram(vert, injectDefines(readShaderFile(vert), defines, vert), frag,
+                                injectDefines(readShaderFile(frag), defines + inserted, frag));
 
     glUseProgram(predictProgram_.id());
     glUniform1i(predictProgram_.uniform("uGPosition"), 0);

@@ -9,7 +9,9 @@
 ///   2. shaders/fullscreen.vert + predict.frag: the network inputs (RecordLayout order) are formed
 ///      from the G-buffer, the light position and the object's BRDF parameters, and the object's
 ///      networks are evaluated with weights and scalers from the RGBA32F texture of
-///      core/predict/network_texture.h (how direct / indirect / global are formed is documented there).
+///      core/predict/network_texture.h (how direct / indirect / global are formed is documented there);
+///      networks with an input encoding (nn/encoding.h) encode the scaled inputs first
+///      (shaders/encoding.glsl, hash tables in the same texture).
 ///      Each term t is written to colour output int(t) (core/render/term.h; the host passes the
 ///      locations to the shader as RRF_TERM_DIRECT/INDIRECT/GLOBAL).
 /// The prediction equals NetworkModel::predict on the same inputs to float rounding.

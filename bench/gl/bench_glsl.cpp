@@ -4,9 +4,13 @@
 //
 //   xvfb-run -a -s "-screen 0 1280x1024x24" bench_glsl [--size 256] [--frames 50]
 //                                                       [--project P --models DIR]
+//                                                       [--encoding NAME|JSON] [--encodings-only]
 //
 // Without --models: the Cornell box with untrained networks of several sizes (weights from
-// initialParams; speed does not depend on their values), one row per (hidden sizes, targets).
+// initialParams; speed does not depend on their values), one row per (hidden sizes, targets),
+// then encoded networks (issue 16, nn/encoding.h) beside the raw network of the same hidden sizes:
+// every named encoding (nn/encoding_presets.h), or the one --encoding names (a name or an
+// "encoding" JSON array).
 // With --models: the trained model directory of the project (`rrf train` output), plus the largest
 // relative difference between the GLSL prediction and NetworkModel::predict on the G-buffer's inputs.
 //
@@ -31,6 +35,8 @@
 #include "app/gl/glsl_predictor.h"
 #include "core/project/project.h"
 #include "core/data/record_layout.h"
+#include "core/nn/encoding.h"
+#include "core/nn/encoding_presets.h"
 
 using namespace rrf;
 
@@ -38,26 +44,31 @@ namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-NetworkModel untrained(const Scene& scene, int object, const std::string& target, const std::vector<int>& hidden) {
+NetworkModel untrained(const Scene& scene, int object, const std::string& target, const std::vector<int>& hidden,
+                       const nlohmann::json& encoding = nlohmann::json::array()) {
     NetworkModel m;
-    m.arch.inputs = RecordLayout::forScene(scene).inputCount();
+    const int inputs = RecordLayout::forScene(scene).inputCount();
+    m.encoding = networkEncoding(encoding, inputs);
+    m.encodingParams = m.encoding.initialParams(1, uint64_t(object));
+    m.arch.inputs = m.encoding.isIdentity() ? inputs : m.encoding.outputs();
     m.arch.hidden = hidden;
     m.arch.outputs = target == "joint" ? 6 : 3;
     m.params = initialParams(m.arch, 1, uint64_t(object));
-    m.inputScaler = MinMaxScaler::identity(m.arch.inputs);
+    m.inputScaler = MinMaxScaler::identity(inputs);
     m.outputScaler = MinMaxScaler::identity(m.arch.outputs);
     m.objectId = object;
     m.target = target;
     return m;
 }
 
-ModelSet untrainedSet(const Scene& scene, const std::vector<int>& hidden, const std::vector<std::string>& targets) {
+ModelSet untrainedSet(const Scene& scene, const std::vector<int>& hidden, const std::vector<std::string>& targets,
+                      const nlohmann::json& encoding = nlohmann::json::array()) {
     ModelSet set;
     for (const Object& o : scene.objects) {
         ObjectNetworks on;
         on.objectId = o.id;
         on.name = o.name;
-        for (const std::string& t : targets) on.byTarget[t] = untrained(scene, o.id, t, hidden);
+        for (const std::string& t : targets) on.byTarget[t] = untrained(scene, o.id, t, hidden, encoding);
         set.objects.push_back(std::move(on));
     }
     return set;
@@ -165,7 +176,8 @@ std::string join(const std::vector<int>& v) {
 
 int main(int argc, char** argv) {
     int size = 256, frames = 50;
-    std::string project, models;
+    std::string project, models, encodingText;
+    bool encodingsOnly = false;
     CLI::App app{"Milliseconds per frame of the GLSL predictor (G-buffer + networks)", "bench_glsl"};
     app.add_option("--size", size, "image width and height")->check(CLI::Range(1, 16384))->capture_default_str();
     app.add_option("--frames", frames, "frames to average over (after 2 warm-up frames)")
@@ -174,6 +186,11 @@ int main(int argc, char** argv) {
     app.add_option("--project", project, bench::kProjectHelp)->type_name("FILE");
     app.add_option("--models", models, "trained model directory of the project (default: untrained networks)")
         ->type_name("DIR");
+    app.add_option("--encoding", encodingText,
+                   "the encoding timed instead of every named one: a name (" + encodingPresetNames() +
+                       ") or an \"encoding\" JSON array (nn/encoding.h)")
+        ->type_name("NAME|JSON");
+    app.add_flag("--encodings-only", encodingsOnly, "only the encoded rows and their raw counterparts");
     bench::parseArgs(app, argc, argv);
     project = bench::projectOrDefault(project, "bench_glsl");
     try {
@@ -182,7 +199,7 @@ int main(int argc, char** argv) {
         scene.camera.width = scene.camera.height = size;
         std::printf("bench_glsl: %s | %s\n%s, %dx%d, mean of %d frames (light moved every frame)\n\n",
                     ctx.renderer().c_str(), ctx.version().c_str(), project.c_str(), size, size, frames);
-        std::printf("%-26s %8s %12s %16s%s\n", "networks", "weights", "ms/frame", "+read back ms", models.empty() ? "" : "  max rel GLSL-CPU (CPU float-double)");
+        std::printf("%-44s %8s %12s %16s%s\n", "networks", "weights", "ms/frame", "+read back ms", models.empty() ? "" : "  max rel GLSL-CPU (CPU float-double)");
         auto row = [&](const std::string& name, const ModelSet& set, int directSamples = 0) {
             GlslPredictor gp(scene, set);
             if (directSamples > 0) {
@@ -190,11 +207,13 @@ int main(int argc, char** argv) {
                 exact.directSamples = directSamples;
                 gp.setPrediction(exact);
             }
-            size_t weights = 0;
+            size_t weights = 0;  // MLP weights and encoding parameters (hash tables)
             for (const ObjectNetworks& on : set.objects)
-                for (const auto& kv : on.byTarget) weights += size_t(kv.second.numParams());
+                for (const auto& kv : on.byTarget)
+                    for (const NetworkModel& leaf : kv.second.leaves)
+                        weights += size_t(leaf.arch.numParams()) + size_t(leaf.encodingParams.size());
             const Timing t = timeFrames(gp, scene, frames);
-            std::printf("%-26s %8zu %12.2f %16.2f", name.c_str(), weights, t.renderMs, t.readMs);
+            std::printf("%-44s %8zu %12.2f %16.2f", name.c_str(), weights, t.renderMs, t.readMs);
             if (!models.empty() && directSamples == 0) {
                 const auto [vsCpu, floor] = maxRelativeVsCpu(gp, scene, set);
                 std::printf("  %.3g (%.3g)", vsCpu, floor);
@@ -206,12 +225,30 @@ int main(int argc, char** argv) {
             row("trained (" + models + ")", set);
             for (int n : {16, 64}) row("trained, exact direct " + std::to_string(n), set, n);
         } else {
-            row("none (G-buffer only)", ModelSet{});
-            for (const auto& hidden : std::vector<std::vector<int>>{{20, 10}, {32, 16}, {64, 32}}) {
-                row(join(hidden) + " tanh, global", untrainedSet(scene, hidden, {"global"}));
-                row(join(hidden) + " tanh, direct+indirect", untrainedSet(scene, hidden, {"direct", "indirect"}));
+            if (!encodingsOnly) {
+                row("none (G-buffer only)", ModelSet{});
+                for (const auto& hidden : std::vector<std::vector<int>>{{20, 10}, {32, 16}, {64, 32}}) {
+                    row(join(hidden) + " tanh, global", untrainedSet(scene, hidden, {"global"}));
+                    row(join(hidden) + " tanh, direct+indirect", untrainedSet(scene, hidden, {"direct", "indirect"}));
+                }
+                for (int n : {16, 64})
+                    row("20-10 indirect, exact direct " + std::to_string(n), untrainedSet(scene, {20, 10}, {"indirect"}), n);
             }
-            for (int n : {16, 64}) row("20-10 indirect, exact direct " + std::to_string(n), untrainedSet(scene, {20, 10}, {"indirect"}), n);
+            // Encoded networks, each beside the raw network of the same hidden sizes (global target).
+            std::vector<std::pair<std::string, nlohmann::json>> encodings;
+            if (encodingText.empty()) {
+                for (const EncodingPreset& e : encodingPresets())
+                    if (!e.settings.empty()) encodings.emplace_back(e.name, e.settings);
+            } else if (!encodingText.empty() && encodingText.front() == '[') {
+                encodings.emplace_back("--encoding", nlohmann::json::parse(encodingText));
+            } else {
+                encodings.emplace_back(encodingText, encodingPresetSettings(encodingText, "--encoding"));
+            }
+            for (const auto& hidden : std::vector<std::vector<int>>{{20, 10}, {64, 64}}) {
+                row(join(hidden) + " tanh, global, raw inputs", untrainedSet(scene, hidden, {"global"}));
+                for (const auto& [name, json] : encodings)
+                    row(join(hidden) + " tanh, global, " + name, untrainedSet(scene, hidden, {"global"}, json));
+            }
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_glsl: %s\n", e.what());

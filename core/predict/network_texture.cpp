@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "core/data/record_layout.h"
+#include "core/nn/encoding.h"
+#include "core/nn/encoding_hash_grid.h"
 
 namespace rrf {
 
@@ -38,15 +40,86 @@ int slotOf(const std::string& target) {
     throw std::invalid_argument("unknown network target '" + target + "'");
 }
 
+// Encoding component types as the texture stores them (shaders/encoding.glsl).
+enum EncodingType { kFrequency = 0, kOneBlob = 1, kHashGrid = 2 };
+
+EncodingType encodingType(const std::string& name) {
+    if (name == "frequency") return kFrequency;
+    if (name == "one_blob") return kOneBlob;
+    if (name == "hash_grid") return kHashGrid;
+    throw std::invalid_argument("network texture: the GLSL predictor has no encoding '" + name + "'");
+}
+
+/// Hash-grid settings as the texture stores them, from the component's HashGridEncoding.
+struct HashGridLayout {
+    int levels = 0, log2Size = 0, perLevel = 0;
+    std::vector<int> resolution;  ///< per level
+    std::vector<bool> dense;      ///< per level: (res + 1)^d ≤ 2^log2Size
+    size_t tableFloats() const { return size_t(levels) * (size_t(1) << log2Size) * size_t(perLevel); }
+};
+
+HashGridLayout hashGridLayout(const EncodingComponent& c) {
+    const auto* grid = dynamic_cast<const HashGridEncoding*>(c.encoding.get());
+    if (!grid) throw std::invalid_argument("network texture: a hash_grid component that is not a HashGridEncoding");
+    const HashGridSettings& s = grid->settings();
+    HashGridLayout g;
+    g.levels = s.levels;
+    g.log2Size = s.log2TableSize;
+    g.perLevel = s.featuresPerLevel;
+    for (int l = 0; l < g.levels; ++l) {  // the encoding's own resolutions and dense/hashed choice
+        g.resolution.push_back(grid->levelResolution(l));
+        g.dense.push_back(grid->levelIsDense(l));
+    }
+    return g;
+}
+
+/// Writes the encoding section of a network block (layout in network_texture.h) and returns, per
+/// hash-grid component, the texel whose w holds its table's offset (patched when the table is written).
+std::vector<std::pair<size_t, const EncodingComponent*>> writeEncoding(TexelWriter& w, const InputEncoding& e,
+                                                                         int rawInputs) {
+    std::vector<std::pair<size_t, const EncodingComponent*>> tables;
+    int first = 0;
+    for (const EncodingComponent& c : e.components) {
+        const int d = int(c.inputs.size()), outs = c.encoding->outputDims();
+        const EncodingType type = encodingType(c.encoding->typeName());
+        w.texel4(float(type), float(d), float(first), float(outs));
+        w.padded(d, [&](int i) { return float(c.inputs[size_t(i)]); });
+        const nlohmann::json s = c.encoding->settingsJson();
+        if (type == kFrequency) {
+            w.texel4(float(s.at("frequencies").get<int>()), s.at("include_input").get<bool>() ? 1.f : 0.f, 0.f, 0.f);
+        } else if (type == kOneBlob) {
+            w.texel4(float(s.at("bins").get<int>()), 0.f, 0.f, 0.f);
+        } else {
+            const HashGridLayout g = hashGridLayout(c);
+            tables.emplace_back(w.texel(), &c);
+            w.texel4(float(g.levels), float(g.log2Size), float(g.perLevel), -1.f);
+            w.padded(2 * g.levels, [&](int i) { return i % 2 ? (g.dense[size_t(i / 2)] ? 1.f : 0.f) : float(g.resolution[size_t(i / 2)]); });
+        }
+        first += outs;
+    }
+    std::vector<int> pass;  // the identity passes every input through
+    if (e.isIdentity())
+        for (int i = 0; i < rawInputs; ++i) pass.push_back(i);
+    else
+        pass = e.passThrough();
+    w.padded(int(pass.size()), [&](int i) { return float(pass[size_t(i)]); });
+    return tables;
+}
+
 void writeNetwork(TexelWriter& w, const NetworkModel& m) {
     const MlpArch& a = m.arch;
-    w.texel4(float(a.inputs), float(a.outputs), float(a.numLayers()), a.activation == Activation::Relu ? 1.f : 0.f);
+    const InputEncoding& enc = m.encoding;
+    const int rawInputs = m.rawInputs();
+    const int passCount = enc.isIdentity() ? rawInputs : int(enc.passThrough().size());
+    w.texel4(float(rawInputs), float(a.outputs), float(a.numLayers()), a.activation == Activation::Relu ? 1.f : 0.f);
+    w.texel4(float(enc.components.size()), float(a.inputs), float(passCount), 0.f);
     // The shader computes in float what NetworkModel::predict computes in float: the same casts of
-    // the double-precision scalers and weights.
-    w.padded(a.inputs, [&](int i) { return float(m.inputScaler.offset[i]); });
-    w.padded(a.inputs, [&](int i) { return float(m.inputScaler.scale[i]); });
+    // the double-precision scalers, encoding parameters and weights.
+    w.padded(rawInputs, [&](int i) { return float(m.inputScaler.offset[i]); });
+    w.padded(rawInputs, [&](int i) { return float(m.inputScaler.scale[i]); });
     w.padded(a.outputs, [&](int i) { return float(m.outputScaler.offset[i]); });
     w.padded(a.outputs, [&](int i) { return float(m.outputScaler.scale[i]); });
+    const auto tables = writeEncoding(w, enc, rawInputs);
     for (int l = 0; l < a.numLayers(); ++l) {
         const int in = a.layerInputs(l), out = a.layerOutputs(l);
         w.texel4(float(in), float(out), float(vec4s(in)), 0.f);
@@ -54,6 +127,12 @@ void writeNetwork(TexelWriter& w, const NetworkModel& m) {
         for (int j = 0; j < out; ++j) w.padded(in, [&](int i) { return float(W[size_t(j) + size_t(i) * size_t(out)]); });
         const double* b = m.params.data() + a.biasOffset(l);
         w.padded(out, [&](int j) { return float(b[j]); });
+    }
+    const VecX<double>& params = m.encodingParams;
+    for (const auto& [descriptor, c] : tables) {
+        w.data()[4 * descriptor + 3] = float(w.texel());
+        const size_t n = hashGridLayout(*c).tableFloats();
+        w.padded(int(n), [&](int i) { return params[Eigen::Index(c->paramOffset) + i]; });
     }
 }
 
@@ -86,16 +165,106 @@ float tanhEigen(float a) {
 
 float dot4(const float* a, const float* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]; }
 
+constexpr float kPiFloat = 3.14159265358979323846f;  // float(π · 2^k) = kPiFloat · 2^k exactly
+constexpr uint32_t kHashPrimes[4] = {1u, 2654435761u, 805459861u, 3674653429u};
+
+/// Same steps as rrfEncode() in shaders/encoding.glsl: writes the features of the encoding whose
+/// component descriptors start at texel t into `act` (zeroed, features ≤ its size) from the scaled
+/// inputs `x`; returns the texel after the pass-through indices.
+int encodeFeatures(const TexelReader& r, int t, int comps, int features, int passCount, const float* x, float* act) {
+    auto input = [&](int at, int i) { return x[int(r.at(at + i / 4, i % 4))]; };
+    for (int c = 0; c < comps; ++c) {
+        const int type = int(r.at(t, 0)), d = int(r.at(t, 1)), first = int(r.at(t, 2));
+        const int inputsAt = t + 1, settingsAt = inputsAt + vec4s(d);
+        const float* set = r.texel(settingsAt);
+        t = settingsAt + 1;
+        int j = first;
+        if (type == kFrequency) {
+            const int frequencies = int(set[0]);
+            const bool includeInput = set[1] > 0.5f;
+            for (int i = 0; i < d; ++i) {
+                const float xi = input(inputsAt, i);
+                if (includeInput) act[j++] = xi;
+                float m = kPiFloat;
+                for (int k = 0; k < frequencies; ++k) {
+                    const float a = xi * m;
+                    act[j++] = std::sin(a);
+                    act[j++] = std::cos(a);
+                    m *= 2.f;
+                }
+            }
+        } else if (type == kOneBlob) {
+            const int bins = int(set[0]);
+            const float b = float(bins);
+            for (int i = 0; i < d; ++i) {
+                const float u = std::clamp((input(inputsAt, i) + 1.f) * 0.5f, 0.f, 1.f);
+                for (int k = 0; k < bins; ++k) {
+                    const float z = (u - (float(k) + 0.5f) / b) * b;
+                    act[j++] = std::exp(-0.5f * z * z);
+                }
+            }
+        } else {
+            const int levels = int(set[0]), log2Size = int(set[1]), perLevel = int(set[2]), table = int(set[3]);
+            const uint32_t mask = (uint32_t(1) << log2Size) - 1u;
+            float u[4];
+            for (int i = 0; i < d; ++i) u[i] = std::clamp((input(inputsAt, i) + 1.f) * 0.5f, 0.f, 1.f);
+            for (int l = 0; l < levels; ++l) {
+                const int res = int(r.at(t + l / 2, (l % 2) * 2));
+                const bool dense = r.at(t + l / 2, (l % 2) * 2 + 1) > 0.5f;
+                const float s = float(res);
+                int cell[4];
+                float f[4];
+                for (int i = 0; i < d; ++i) {
+                    const float pos = u[i] * s;
+                    cell[i] = std::min(int(std::floor(pos)), res - 1);
+                    f[i] = pos - float(cell[i]);
+                }
+                float* out = act + first + l * perLevel;
+                std::fill(out, out + perLevel, 0.f);
+                for (int k = 0; k < (1 << d); ++k) {
+                    float w = 1.f;
+                    uint32_t idx = 0, stride = 1;
+                    for (int i = 0; i < d; ++i) {
+                        const bool up = ((k >> i) & 1) != 0;
+                        w *= up ? f[i] : 1.f - f[i];
+                        const uint32_t v = uint32_t(cell[i] + (up ? 1 : 0));
+                        if (dense) {
+                            idx += v * stride;
+                            stride *= uint32_t(res + 1);
+                        } else {
+                            idx ^= v * kHashPrimes[i];
+                        }
+                    }
+                    if (!dense) idx &= mask;
+                    const int at = ((l << log2Size) + int(idx)) * perLevel;
+                    for (int q = 0; q < perLevel; ++q) out[q] += w * r.at(table + (at + q) / 4, (at + q) % 4);
+                }
+            }
+            t += (levels + 1) / 2;
+        }
+    }
+    for (int q = 0; q < passCount; ++q) act[features - passCount + q] = x[int(r.at(t + q / 4, q % 4))];
+    return t + vec4s(passCount);
+}
+
 /// Same steps as predictNetwork() in shaders/predict.frag; `out` receives up to 8 outputs.
 void evaluateNetwork(const TexelReader& r, int base, const float* raw, float* out) {
     const int in = int(r.at(base, 0)), outs = int(r.at(base, 1)), layers = int(r.at(base, 2));
     const bool relu = r.at(base, 3) > 0.5f;
+    const int comps = int(r.at(base + 1, 0)), features = int(r.at(base + 1, 1)), passCount = int(r.at(base + 1, 2));
     const int inV = vec4s(in), outV = vec4s(outs);
-    int t = base + 1;
+    int t = base + 2;
     const int inOff = t, inScale = t + inV, outOff = t + 2 * inV, outScale = t + 2 * inV + outV;
     t += 2 * inV + 2 * outV;
-    std::vector<float> a(size_t(4 * vec4s(std::max(r.t.maxLayerWidth, in))), 0.f), b(a.size(), 0.f);
-    for (int i = 0; i < in; ++i) a[size_t(i)] = (raw[i] - r.at(inOff + i / 4, i % 4)) * r.at(inScale + i / 4, i % 4);
+    std::vector<float> a(size_t(4 * vec4s(std::max({r.t.maxLayerWidth, in, features}))), 0.f), b(a.size(), 0.f);
+    float x[20] = {};
+    for (int i = 0; i < in; ++i) x[i] = (raw[i] - r.at(inOff + i / 4, i % 4)) * r.at(inScale + i / 4, i % 4);
+    if (comps == 0) {  // identity: the features are x' (the pass-through indices are 0 … in−1)
+        std::copy(x, x + in, a.begin());
+        t += vec4s(passCount);
+    } else {
+        t = encodeFeatures(r, t, comps, features, passCount, x, a.data());
+    }
     for (int l = 0; l < layers; ++l) {
         const int nOut = int(r.at(t, 1)), R = int(r.at(t, 2));
         const int rows = t + 1, bias = rows + nOut * R;
@@ -150,6 +319,17 @@ NetworkTexture packNetworkTexture(const Scene& scene, const ModelSet& models, in
             if (m.rawInputs() != tex.inputCount)
                 throw std::invalid_argument(who + " has " + std::to_string(m.rawInputs()) + " inputs, the scene's records " +
                                             std::to_string(tex.inputCount));
+            // validate() checked that every leaf's encoding writes the features its first layer reads.
+            widest = std::max(widest, arch.inputs);
+            for (const NetworkModel& leaf : m.leaves)
+                for (const EncodingComponent& c : leaf.encoding.components) {
+                    encodingType(c.encoding->typeName());  // one the shader knows
+                    if (c.encoding->typeName() != std::string("hash_grid")) continue;
+                    if (c.inputs.empty() || c.inputs.size() > 4)
+                        throw std::invalid_argument(who + ": the GLSL hash grid reads 1 to 4 inputs, not " +
+                                                    std::to_string(c.inputs.size()));
+                    tex.tableTexels += size_t(vec4s(int(std::min(hashGridLayout(c).tableFloats(), kMaxExactInteger * 4))));
+                }
             const int wantOut = slot == kSlotJoint ? 6 : 3;
             if (arch.outputs != wantOut)
                 throw std::invalid_argument(who + " has " + std::to_string(arch.outputs) + " outputs, expected " +
@@ -164,9 +344,17 @@ NetworkTexture packNetworkTexture(const Scene& scene, const ModelSet& models, in
         }
     }
     if (widest > maxLayerWidth)
-        throw std::invalid_argument("network texture: a layer of " + std::to_string(widest) +
-                                    " neurons is wider than the GLSL predictor's limit of " +
+        throw std::invalid_argument("network texture: a layer (or encoding) of " + std::to_string(widest) +
+                                    " neurons (features) is wider than the GLSL predictor's limit of " +
                                     std::to_string(maxLayerWidth));
+    if (tex.tableTexels / size_t(tex.width) > size_t(maxRows))  // before allocating them
+        throw std::invalid_argument("network texture: the hash-grid tables alone take " + std::to_string(tex.tableTexels) +
+                                    " texels, more than the limit of " + std::to_string(maxRows) + " rows of " +
+                                    std::to_string(tex.width) + "; use fewer levels or a smaller log2_table_size");
+    if (tex.tableTexels >= kMaxExactInteger)
+        throw std::invalid_argument("network texture: the hash-grid tables take " + std::to_string(tex.tableTexels) +
+                                    " texels, more than float texel indices address (2^24); use fewer levels "
+                                    "or a smaller log2_table_size");
     tex.maxLayerWidth = widest;
 
     TexelWriter w;
@@ -220,7 +408,13 @@ NetworkTexture packNetworkTexture(const Scene& scene, const ModelSet& models, in
     if (rows > size_t(maxRows))
         throw std::invalid_argument("network texture: " + std::to_string(texels) + " texels need " + std::to_string(rows) +
                                     " rows of " + std::to_string(tex.width) + ", more than the limit of " +
-                                    std::to_string(maxRows));
+                                    std::to_string(maxRows) +
+                                    (tex.tableTexels > 0 ? " (hash-grid tables: " + std::to_string(tex.tableTexels) +
+                                                               " texels; use fewer levels or a smaller log2_table_size)"
+                                                         : std::string()));
+    if (texels > kMaxExactInteger)
+        throw std::invalid_argument("network texture: " + std::to_string(texels) +
+                                    " texels, more than float texel indices address (2^24)");
     tex.height = int(rows);
     tex.texels = std::move(w.data());
     tex.texels.resize(4 * tex.texelCount(), 0.f);

@@ -7,7 +7,7 @@
 /// (t mod width, t div width). A texel is 4 floats. Integers (counts, offsets) are stored as floats,
 /// exact because every one is < 2^24 (packNetworkTexture enforces it).
 ///
-///     texel 0                (version = 2, object count O, network input count I, max layer width)
+///     texel 0                (version = 3, object count O, network input count I, max layer width)
 ///     texels 1 + 3o … 3 + 3o for object o = 0 … O−1:
 ///       1 + 3o               model offsets (direct, indirect, global, joint): texel index of the
 ///                            model's tree block, or −1 when the object has no such network
@@ -21,15 +21,37 @@
 ///                              leaf:     (−1, texel index of the leaf's network block, 0, 0)
 ///       then the leaves' network blocks
 ///     network block at texel N:
-///       N                    (inputs, outputs, layer count L, activation: 0 = tanh, 1 = ReLU)
-///       next ⌈in/4⌉          input scaler offsets   (mapminmax: x' = (x − offset) · scale)
-///       next ⌈in/4⌉          input scaler scales
+///       N                    (inputs I, outputs, layer count L, activation: 0 = tanh, 1 = ReLU)
+///       N + 1                (encoding components C, features F = the first layer's inputs,
+///                             pass-through count P, 0); C = 0: the identity (F = P = I)
+///       next ⌈I/4⌉           input scaler offsets   (mapminmax: x' = (x − offset) · scale)
+///       next ⌈I/4⌉           input scaler scales
 ///       next ⌈out/4⌉         output scaler offsets  (y = y' / scale + offset)
 ///       next ⌈out/4⌉         output scaler scales
+///       then per encoding component c = 0 … C−1 (nn/encoding.h, in the model's list order):
+///         1 texel            (type: 0 frequency, 1 one_blob, 2 hash_grid; input count d;
+///                             index of its first feature; its feature count)
+///         ⌈d/4⌉ texels       the normalised input indices it reads, in order
+///         1 texel            settings: frequency (frequencies K, include_input 0/1, 0, 0)
+///                                      one_blob  (bins B, 0, 0, 0)
+///                                      hash_grid (levels Lh, log2 table size, features per level
+///                                                 Fh, texel index of its table)
+///         hash_grid only:    ⌈Lh/2⌉ texels (res_l, dense_l, res_l+1, dense_l+1): the grid
+///                            resolution of each level and 1 when it is indexed densely
+///                            ((res_l + 1)^d ≤ table size), 0 when hashed
+///       next ⌈P/4⌉           the pass-through input indices, ascending (features F − P … F − 1)
 ///       then per layer l = 0 … L−1:
 ///         1 texel            (layer inputs n_in, layer outputs n_out, row texels R = ⌈n_in/4⌉, 0)
 ///         n_out · R texels   weight rows: row j holds W_l(j, 0 … n_in−1), zero-padded to 4R
 ///         ⌈n_out/4⌉ texels   bias b_l, zero-padded
+///       then each hash_grid component's table: its Lh · 2^log2 · Fh trainable parameters in the
+///         order of nn/encoding.h (float index (l · 2^log2 + entry) · Fh + f), zero-padded to a
+///         whole texel; entry is the level's dense or hashed index (encoding_hash_grid.h)
+/// The encoding features are computed from the scaled inputs x' exactly as InputEncoding::forward
+/// does (same float operations in the same order; sin, cos and exp are the platform's), and the
+/// first layer reads them as it reads x' for the identity. Hash tables make the texture large
+/// (16 levels of 2^14 entries with 2 features: 128 rows per network); packNetworkTexture rejects a
+/// texture of more than maxRows rows and says how many texels the tables take.
 /// Rows are stored whole (row-major, unlike the column-major flat parameter vector of nn/mlp.h) so
 /// that the shader computes each neuron as a sum of vec4 dot products. Zero padding multiplies
 /// zero activations, so padded lanes never change a sum.
@@ -55,8 +77,9 @@ namespace rrf {
 /// Texture width in texels; 1024 is the smallest GL_MAX_TEXTURE_SIZE that OpenGL 3.3 guarantees.
 constexpr int kNetworkTextureWidth = 1024;
 /// Version written into texel 0.x, so that a dump of the texture says which layout it follows
-/// (2: every model is a kd-tree block followed by its leaves' networks).
-constexpr int kNetworkTextureVersion = 2;
+/// (2: every model is a kd-tree block followed by its leaves' networks; 3: every network block
+/// carries its input encoding and hash tables).
+constexpr int kNetworkTextureVersion = 3;
 /// Slots of the per-object offset texel, in texel component order.
 enum NetworkSlot { kSlotDirect = 0, kSlotIndirect = 1, kSlotGlobal = 2, kSlotJoint = 3 };
 
@@ -66,9 +89,10 @@ struct NetworkTexture {
     std::vector<float> texels;         ///< 4 · width · height floats, row-major, texel 0 first
     int objectCount = 0;               ///< O: objects of the scene (ids 0 … O−1)
     int inputCount = 0;                ///< I: network inputs per pixel (12 + BRDF parameters)
-    int maxLayerWidth = 0;             ///< widest layer input or output over all networks
+    int maxLayerWidth = 0;             ///< widest layer input or output (encoding features included)
     int networkCount = 0;              ///< leaf networks over all models
     int maxTreeDepth = 0;              ///< deepest kd-tree (0: no model is partitioned)
+    size_t tableTexels = 0;            ///< texels taken by hash-grid tables over all networks
     /// Texel offset of each object's networks by slot (NetworkSlot), −1 where absent.
     std::vector<std::array<int, 4>> offsets;
     /// Per object (index = object id): whether its networks provide direct, indirect, global by the

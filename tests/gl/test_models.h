@@ -9,7 +9,9 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/nn/encoding.h"
 #include "core/nn/model_set.h"
+#include "core/util/json_reader.h"
 #include "core/data/record_layout.h"
 #include "core/scene/scene.h"
 #include "core/scene/scene_json.h"
@@ -77,11 +79,29 @@ inline NetworkModel randomNetwork(const Scene& scene, int objectId, const std::s
     return m;
 }
 
+/// randomNetwork reading its inputs through `encoding` (an "encoding" array, nn/encoding.h): the
+/// first layer sized for the encoding's features, hash tables uniform in [−1, 1] (far larger than a
+/// fresh instant-NGP table, so that every table entry read moves the outputs).
+inline NetworkModel encodedNetwork(const Scene& scene, int objectId, const std::string& target, std::vector<int> hidden,
+                                   Activation act, uint64_t seed, const nlohmann::json& encoding) {
+    NetworkModel m = randomNetwork(scene, objectId, target, std::move(hidden), act, seed);
+    m.encoding = InputEncoding::fromJson(JsonReader(encoding, "test encoding"), int(m.inputScaler.size()));
+    m.arch.inputs = m.encoding.outputs();
+    m.params = initialParams(m.arch, seed, uint64_t(objectId) * 4 + uint64_t(target.size()));
+    TestRandom rnd(seed * 977 + uint64_t(objectId));
+    m.encodingParams.resize(m.encoding.numParams());
+    for (Eigen::Index i = 0; i < m.encodingParams.size(); ++i) m.encodingParams[i] = double(rnd.range(-1.f, 1.f));
+    m.validate();
+    return m;
+}
+
 /// Per object a different mix of targets, so that every combination rule of the shader is exercised:
 /// joint; direct + indirect; global only; global + direct + indirect (global net unused); global +
 /// indirect (global net used); direct only.
+/// With `encoding` (an "encoding" array, nn/encoding.h), every network reads its inputs through it
+/// (encodedNetwork).
 inline ModelSet mixedModelSet(const Scene& scene, Activation act = Activation::Tanh, std::vector<int> hidden = {20, 10},
-                              uint64_t seed = 7) {
+                              uint64_t seed = 7, const nlohmann::json& encoding = nlohmann::json::array()) {
     static const std::vector<std::vector<std::string>> mixes = {
         {"joint"}, {"direct", "indirect"}, {"global"}, {"global", "direct", "indirect"}, {"global", "indirect"}, {"direct"}};
     ModelSet set;
@@ -91,7 +111,8 @@ inline ModelSet mixedModelSet(const Scene& scene, Activation act = Activation::T
         on.objectId = o.id;
         on.name = o.name;
         for (const std::string& t : mixes[size_t(o.id) % mixes.size()])
-            on.byTarget[t] = randomNetwork(scene, o.id, t, hidden, act, seed);
+            on.byTarget[t] = encoding.empty() ? randomNetwork(scene, o.id, t, hidden, act, seed)
+                                              : encodedNetwork(scene, o.id, t, hidden, act, seed, encoding);
         set.objects.push_back(std::move(on));
     }
     return set;
