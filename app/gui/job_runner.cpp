@@ -88,10 +88,10 @@ int JobRunner::start(JobKind kind, const std::string& name, std::function<void(J
     Entry* raw = entry.get();
     std::shared_ptr<JobContext> ctx = entry->context;
     entry->thread = std::thread([raw, ctx, work = std::move(work)] {
-        lowerCurrentThreadPriority();  // the UI thread draws first (app/gui/worker_priority.h)
         std::string error;
         try {
-            work(*ctx);
+            // Below the UI thread, its parallel loops included (app/gui/worker_priority.h).
+            runAtBackgroundPriority([&] { work(*ctx); });
         } catch (const std::exception& ex) {
             error = ex.what();
         } catch (...) {

@@ -18,7 +18,6 @@
 #include "app/gui/user_workspace.h"
 #include "app/gui/window.h"
 #include "app/gui/workbench.h"
-#include "app/gui/worker_priority.h"
 #include "core/util/data_dir.h"
 #include "core/util/image_io.h"
 
@@ -83,8 +82,6 @@ int main(int argc, char** argv) {
     // --script or --screenshot without --frames still ends by itself: one frame after the script.
     const bool automated = args.frames > 0 || !args.script.empty() || !args.screenshot.empty();
     if (automated && args.frames < 0) args.frames = 1;
-    // Jobs' parallel loops run below the UI thread's priority (app/gui/worker_priority.h).
-    const rrf::BackgroundWorkerPriority backgroundWorkers;
 
     rrf::Script script;
     std::string error;

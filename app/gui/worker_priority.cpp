@@ -2,6 +2,7 @@
 
 #include <cerrno>
 
+#include <tbb/task_arena.h>
 #include <tbb/task_scheduler_observer.h>
 
 #if defined(__linux__)
@@ -27,17 +28,23 @@ bool lowerCurrentThreadPriority() {
 #endif
 }
 
-/// TBB calls on_scheduler_entry on each thread that joins the global arena; workers are lowered,
-/// a thread that merely calls into TBB (the UI thread, if it ever did) is not.
-struct BackgroundWorkerPriority::Observer : tbb::task_scheduler_observer {
-    Observer() { observe(true); }
-    ~Observer() override { observe(false); }
-    void on_scheduler_entry(bool isWorker) override {
-        if (isWorker) lowerCurrentThreadPriority();
-    }
+namespace {
+/// Lowers each thread as it enters the observed arena (workers and the job thread alike). A worker
+/// stays lowered afterwards: the UI thread itself never runs parallel loops (workbench rule), so
+/// the only cost is that a lowered worker also serves other jobs' loops at the same low priority.
+struct LowerOnEntry : tbb::task_scheduler_observer {
+    explicit LowerOnEntry(tbb::task_arena& arena) : tbb::task_scheduler_observer(arena) { observe(true); }
+    ~LowerOnEntry() override { observe(false); }
+    void on_scheduler_entry(bool) override { lowerCurrentThreadPriority(); }
 };
+}  // namespace
 
-BackgroundWorkerPriority::BackgroundWorkerPriority() : observer_(new Observer) {}
-BackgroundWorkerPriority::~BackgroundWorkerPriority() { delete observer_; }
+void runAtBackgroundPriority(const std::function<void()>& work) {
+    lowerCurrentThreadPriority();
+    tbb::task_arena arena;
+    arena.initialize();
+    LowerOnEntry observer(arena);
+    arena.execute(work);
+}
 
 }  // namespace rrf

@@ -3,10 +3,13 @@
 // forwarded, dropped jobs never deliver, cancel acts at once.
 #include <chrono>
 #include <functional>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include "app/gui/job_runner.h"
 #include "app/gui/job_session.h"
@@ -121,9 +124,24 @@ TEST(JobRunner, JobsRunBelowTheUiThreadsPriority) {
     ASSERT_LT(uiNice, kWorkerNice) << "the test process itself already runs at the workers' nice";
     JobRunner runner;
     int jobNice = -100;
-    runner.start(JobKind::Render, "nice", [&](JobContext&) { jobNice = niceOfThisThread(); });
+    std::mutex m;
+    std::map<std::thread::id, int> loopNice;  // every thread that ran an iteration of the job's loop
+    runner.start(JobKind::Render, "nice", [&](JobContext&) {
+        jobNice = niceOfThisThread();
+        // Iterations that sleep leave time for every TBB worker to steal some.
+        tbb::parallel_for(0, 64, [&](int) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+            std::lock_guard<std::mutex> l(m);
+            loopNice[std::this_thread::get_id()] = niceOfThisThread();
+        });
+    });
     runner.waitAll();
     EXPECT_EQ(jobNice, kWorkerNice);
+    ASSERT_FALSE(loopNice.empty());
+    for (const auto& [thread, nice] : loopNice) EXPECT_EQ(nice, kWorkerNice) << "a thread of the job's parallel loop";
+    if (std::thread::hardware_concurrency() > 1) {
+        EXPECT_GT(loopNice.size(), 1u) << "the loop ran on the job thread alone: no worker was checked";
+    }
     EXPECT_EQ(niceOfThisThread(), uiNice) << "the calling thread is never lowered";
 }
 
