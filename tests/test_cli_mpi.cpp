@@ -31,12 +31,15 @@ const std::string kNetwork = " --hidden 6 --trainer adam --epochs 12 --log-every
 
 /// `rrf <args>` under `mpirun -n <ranks>` on this host: oversubscribed (CI has 2 cores), unbound (each
 /// rank runs its own threads), over shared memory, and allowed as root (CI's containers run as root).
-CliResult runMpi(int ranks, const std::string& args) {
+/// With `perRank`, each rank runs `sh -c 'rrf <args>'`, so $OMPI_COMM_WORLD_RANK in `args` names
+/// that rank's files. The job is killed after a minute, so a hang fails the test (status 124).
+CliResult runMpi(int ranks, const std::string& args, bool perRank = false) {
     const std::string env = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
                             "OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_btl=self,vader ";
     CliResult r;
-    const std::string cmd = env + RRF_MPIEXEC + std::string(" --oversubscribe --bind-to none -n ") + std::to_string(ranks) +
-                            " " + RRF_CLI_PATH + " " + args + " 2>&1";
+    const std::string rrf = std::string(RRF_CLI_PATH) + " " + args;
+    const std::string cmd = env + "timeout -k 5 60 " + RRF_MPIEXEC + std::string(" --oversubscribe --bind-to none -n ") +
+                            std::to_string(ranks) + " " + (perRank ? "sh -c '" + rrf + "'" : rrf) + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
     char buf[4096];
@@ -166,6 +169,18 @@ TEST(CliMpi, AFailingRankStopsTheJobWithItsMessage) {
                                       (dir / "m").string());
     EXPECT_NE(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("missing.rrfd"), std::string::npos) << r.output;
+    // Only rank 1 fails, before any collective call (its project file does not exist); ranks 0 and 2
+    // read theirs and go on. Rank 1 ends the job through MPI_Abort with its message, so the others
+    // do not wait for it (under srun a rank that merely exits would leave them waiting).
+    for (const char* r : {"0", "2"}) copyProject(dir / ("in" + std::string(r)));
+    const CliResult one = runMpi(3, "generate " + (dir / "in$OMPI_COMM_WORLD_RANK" / "project.json").string() + kSampling +
+                                        " --out " + (dir / "d$OMPI_COMM_WORLD_RANK.rrfd").string(), true);
+    EXPECT_NE(one.code, 0) << one.output;
+    EXPECT_NE(one.code, 124) << "the job hung\n" << one.output;
+    EXPECT_NE(one.output.find("rrf: error (rank 1/3)"), std::string::npos) << one.output;
+    EXPECT_NE(one.output.find("in1/project.json"), std::string::npos) << one.output;
+    EXPECT_NE(one.output.find("MPI_ABORT was invoked on rank 1"), std::string::npos) << one.output;
+    EXPECT_FALSE(fs::exists(dir / "d0.rrfd"));
     // A command that does not split its work refuses to run N times over.
     const CliResult render = runMpi(2, "render " + kCornell + " --out " + (dir / "r").string());
     EXPECT_EQ(render.code, 2) << render.output;

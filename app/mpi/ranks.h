@@ -46,7 +46,9 @@ private:
 };
 
 /// This process's ranks: MPI is initialised on the first call when this build has MPI and a
-/// launcher started the process, and finalised when the program exits normally.
+/// launcher started the process, and finalised when the program exits normally. main() makes the
+/// first call before parsing the command line when a launcher started more than one process, so
+/// every error on any rank can end the job (stopJobOnError).
 const Ranks& ranks();
 
 /// Ends the whole job after an error: in an MPI job of more than one rank, MPI_Abort with `code`,
