@@ -16,6 +16,7 @@
 #include "core/data/dataset_file.h"
 #include "core/data/dataset_part.h"
 #include "core/project/project.h"
+#include "core/util/byte_stream.h"
 #include "core/util/error.h"
 #include "core/util/stopwatch.h"
 
@@ -31,9 +32,21 @@ struct GenerateArgs {
 
 /// This rank's cells of an MPI job: the grid split into contiguous ranges of near-equal cost, the
 /// predicted records × spp (core/data/cell_split.h), logged with the share of the work they hold.
+/// Rank 0 alone predicts the costs (first hits traced by Embree) and sends them to the others: nodes
+/// with different instruction sets may see a ray graze an edge differently, and ranges computed
+/// apart would then not tile the grid. The split of the same costs is exact integer arithmetic.
 CellRange rankCells(const DataGenerator& gen, const mpi::Ranks& ranks) {
     const Stopwatch clock;
-    const std::vector<uint64_t> costs = cellCosts(gen);
+    std::string sent;
+    if (ranks.isRoot()) {
+        ByteWriter out;
+        for (uint64_t cost : cellCosts(gen)) out.u64(cost);
+        sent = out.take();
+    }
+    ranks.broadcast(sent);
+    std::vector<uint64_t> costs(sent.size() / sizeof(uint64_t));
+    ByteReader in(sent, "cell costs from rank 0");
+    for (uint64_t& cost : costs) cost = in.u64();
     const std::vector<CellRange> ranges = splitCellsByCost(costs, ranks.size());
     const CellRange mine = ranges[size_t(ranks.rank())];
     uint64_t total = 0, own = 0;

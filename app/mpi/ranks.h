@@ -38,6 +38,8 @@ public:
     /// Rank 0 receives every rank's `bytes` (index = rank, its own included); the others get an
     /// empty vector. Any size (sent in pieces below MPI's 2 GiB message limit).
     std::vector<std::string> gather(const std::string& bytes) const;
+    /// Every rank receives rank 0's `bytes` (replacing its own). Any size, as gather.
+    void broadcast(std::string& bytes) const;
     /// Every rank waits until all have arrived.
     void barrier() const;
 
