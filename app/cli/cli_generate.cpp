@@ -10,6 +10,7 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
+#include "app/mpi/gather_parts.h"
 #include "app/mpi/ranks.h"
 #include "core/data/cell_split.h"
 #include "core/data/data_generator.h"
@@ -116,26 +117,17 @@ int runGenerate(const GenerateArgs& a) {
     }
     if (ranks.size() > 1) {
         // Rank 0 joins the ranks' parts into the single-process run's data (core/data/dataset_part.h).
-        std::printf("%s: %llu records in %.2f s (%.2f s CPU)\n", ranks.name().c_str(), (unsigned long long)data.stats.records,
-                    data.seconds, processCpuSeconds() - cpuStart);
-        std::fflush(stdout);
-        // The barrier separates waiting for the slowest rank from the transfer and join (bench/bench_mpi.py).
-        const Stopwatch waitClock;
-        ranks.barrier();
-        const double waited = waitClock.seconds();
-        const Stopwatch joinClock;
-        std::vector<std::string> parts = ranks.gather(encodeGeneratedPart(data));
+        char summary[160];
+        std::snprintf(summary, sizeof summary, "%llu records in %.2f s (%.2f s CPU)", (unsigned long long)data.stats.records,
+                      data.seconds, processCpuSeconds() - cpuStart);
+        mpi::GatheredParts<NamedPart> gathered = mpi::gatherParts<NamedPart>(
+            ranks, summary, encodeGeneratedPart(data),
+            [](const std::string& bytes, const std::string& name) { return NamedPart{name, decodeGeneratedPart(bytes, name)}; });
         if (!ranks.isRoot()) return 0;
-        std::vector<NamedPart> named;
-        for (size_t r = 0; r < parts.size(); ++r) {
-            const std::string name = mpi::Ranks(int(r), ranks.size()).name();
-            named.push_back({name, decodeGeneratedPart(parts[r], name)});
-            std::string().swap(parts[r]);
-        }
-        data = joinGeneratedParts(std::move(named));
+        data = joinGeneratedParts(std::move(gathered.parts));
         std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s (slowest rank "
                     "%.2f s)\n",
-                    waited, ranks.size(), joinClock.seconds(), data.seconds);
+                    gathered.waitedSeconds, ranks.size(), gathered.joinClock.seconds(), data.seconds);
     }
     writeDataset(a.out, data.header, data.sceneHash, data.perObject);
     const GeneratorStats& st = data.stats;
