@@ -1,7 +1,8 @@
 // `mpirun -n 3 rrf generate|train|evaluate` on localhost against the single-process run (issue 17):
-// the dataset byte for byte, the model set's weights and trees bit for bit (the files' timing fields
-// differ, as between two single-process runs), the evaluation's images byte for byte and its report
-// but for times, and a failing rank ends the job with its message.
+// the dataset byte for byte, the model set's weights (of raw inputs, and with a hash grid's tables)
+// and trees bit for bit (the files' timing fields differ, as between two single-process runs), the
+// evaluation's images byte for byte and its report but for times, and a failing rank (all of them,
+// or only one before any collective call) ends the job with its message.
 // Compiled only when rrf is built with MPI (CMake sets RRF_MPIEXEC to the launcher).
 #ifdef RRF_MPIEXEC
 
@@ -31,12 +32,15 @@ const std::string kNetwork = " --hidden 6 --trainer adam --epochs 12 --log-every
 
 /// `rrf <args>` under `mpirun -n <ranks>` on this host: oversubscribed (CI has 2 cores), unbound (each
 /// rank runs its own threads), over shared memory, and allowed as root (CI's containers run as root).
-CliResult runMpi(int ranks, const std::string& args) {
+/// With `perRank`, each rank runs `sh -c 'rrf <args>'`, so $OMPI_COMM_WORLD_RANK in `args` names
+/// that rank's files. The job is killed after a minute, so a hang fails the test (status 124).
+CliResult runMpi(int ranks, const std::string& args, bool perRank = false) {
     const std::string env = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
                             "OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_btl=self,vader ";
     CliResult r;
-    const std::string cmd = env + RRF_MPIEXEC + std::string(" --oversubscribe --bind-to none -n ") + std::to_string(ranks) +
-                            " " + RRF_CLI_PATH + " " + args + " 2>&1";
+    const std::string rrf = std::string(RRF_CLI_PATH) + " " + args;
+    const std::string cmd = env + "timeout -k 5 60 " + RRF_MPIEXEC + std::string(" --oversubscribe --bind-to none -n ") +
+                            std::to_string(ranks) + " " + (perRank ? "sh -c '" + rrf + "'" : rrf) + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
     char buf[4096];
@@ -96,6 +100,32 @@ nlohmann::json withoutTimes(nlohmann::json j) {
     return j;
 }
 
+/// The model sets in directories `a` and `b` hold the same networks: the index but for times, and
+/// every leaf's weights and encoding parameters bit for bit (`encoded`: the encoding has some).
+void expectSameModels(const std::string& a, const std::string& b, bool encoded) {
+    const ModelSet s1 = loadModelSet(a), s3 = loadModelSet(b);
+    EXPECT_EQ(withoutTimes(s1.index).dump(), withoutTimes(s3.index).dump());
+    ASSERT_EQ(s1.objects.size(), s3.objects.size());
+    ASSERT_GT(s1.objects.size(), 2u);
+    auto same = [](const VecX<double>& p, const VecX<double>& q) {
+        return p.size() == q.size() && std::memcmp(p.data(), q.data(), size_t(p.size()) * sizeof(double)) == 0;
+    };
+    for (size_t i = 0; i < s1.objects.size(); ++i) {
+        for (const auto& [target, net] : s1.objects[i].byTarget) {
+            ASSERT_TRUE(s3.objects[i].has(target));
+            const PartitionedNetwork& other = s3.objects[i].byTarget.at(target);
+            ASSERT_EQ(net.leafCount(), other.leafCount());
+            for (int l = 0; l < net.leafCount(); ++l) {
+                const NetworkModel &x = net.leaves[size_t(l)], &y = other.leaves[size_t(l)];
+                const std::string where = "object " + std::to_string(s1.objects[i].objectId) + " " + target + " leaf " +
+                                          std::to_string(l);
+                EXPECT_TRUE(same(x.params, y.params)) << where;
+                EXPECT_EQ(x.encodingParams.size() > 0, encoded) << where;
+                EXPECT_TRUE(same(x.encodingParams, y.encodingParams)) << where;
+            }
+        }
+    }
+}
 
 TEST(CliMpi, ThreeRanksGenerateTrainAndEvaluateWhatOneProcessDoes) {
     const fs::path dir = testDir();
@@ -118,23 +148,15 @@ TEST(CliMpi, ThreeRanksGenerateTrainAndEvaluateWhatOneProcessDoes) {
     const CliResult t3 = runMpi(3, "train " + kCornell + " --data " + one + kNetwork + " --out " + m3);
     ASSERT_EQ(t3.code, 0) << t3.output;
     EXPECT_NE(t3.output.find("rank 2/3: objects "), std::string::npos) << t3.output;
-    const ModelSet s1 = loadModelSet(m1), s3 = loadModelSet(m3);
-    EXPECT_EQ(withoutTimes(s1.index).dump(), withoutTimes(s3.index).dump());
-    ASSERT_EQ(s1.objects.size(), s3.objects.size());
-    ASSERT_GT(s1.objects.size(), 2u);
-    for (size_t i = 0; i < s1.objects.size(); ++i) {
-        for (const auto& [target, net] : s1.objects[i].byTarget) {
-            ASSERT_TRUE(s3.objects[i].has(target));
-            const PartitionedNetwork& other = s3.objects[i].byTarget.at(target);
-            ASSERT_EQ(net.leafCount(), other.leafCount());
-            for (int l = 0; l < net.leafCount(); ++l) {
-                const auto &p = net.leaves[size_t(l)].params, &q = other.leaves[size_t(l)].params;
-                ASSERT_EQ(p.size(), q.size());
-                EXPECT_EQ(std::memcmp(p.data(), q.data(), size_t(p.size()) * sizeof(double)), 0)
-                    << "object " << s1.objects[i].objectId << " " << target << " leaf " << l;
-            }
-        }
-    }
+    expectSameModels(m1, m3, false);
+    // A trainable encoding: the hash grid's tables travel with the networks and join bit for bit too.
+    const std::string h1 = (dir / "h1").string(), h3 = (dir / "h3").string();
+    const std::string hashGrid = " --hidden 6 --trainer adam --epochs 2 --log-every 0 --encoding hash_grid";
+    const CliResult th1 = runCli("train " + kCornell + " --data " + one + hashGrid + " --out " + h1);
+    ASSERT_EQ(th1.code, 0) << th1.output;
+    const CliResult th3 = runMpi(3, "train " + kCornell + " --data " + one + hashGrid + " --out " + h3);
+    ASSERT_EQ(th3.code, 0) << th3.output;
+    expectSameModels(h1, h3, true);
 
     // Evaluate at 3 held-out lights: the ranks render the references into the project's store, rank 0
     // evaluates. Same project and output paths for both runs, so the reports differ only in times.
@@ -166,6 +188,18 @@ TEST(CliMpi, AFailingRankStopsTheJobWithItsMessage) {
                                       (dir / "m").string());
     EXPECT_NE(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("missing.rrfd"), std::string::npos) << r.output;
+    // Only rank 1 fails, before any collective call (its project file does not exist); ranks 0 and 2
+    // read theirs and go on. Rank 1 ends the job through MPI_Abort with its message, so the others
+    // do not wait for it (under srun a rank that merely exits would leave them waiting).
+    for (const char* r : {"0", "2"}) copyProject(dir / ("in" + std::string(r)));
+    const CliResult one = runMpi(3, "generate " + (dir / "in$OMPI_COMM_WORLD_RANK" / "project.json").string() + kSampling +
+                                        " --out " + (dir / "d$OMPI_COMM_WORLD_RANK.rrfd").string(), true);
+    EXPECT_NE(one.code, 0) << one.output;
+    EXPECT_NE(one.code, 124) << "the job hung\n" << one.output;
+    EXPECT_NE(one.output.find("rrf: error (rank 1/3)"), std::string::npos) << one.output;
+    EXPECT_NE(one.output.find("in1/project.json"), std::string::npos) << one.output;
+    EXPECT_NE(one.output.find("MPI_ABORT was invoked on rank 1"), std::string::npos) << one.output;
+    EXPECT_FALSE(fs::exists(dir / "d0.rrfd"));
     // A command that does not split its work refuses to run N times over.
     const CliResult render = runMpi(2, "render " + kCornell + " --out " + (dir / "r").string());
     EXPECT_EQ(render.code, 2) << render.output;

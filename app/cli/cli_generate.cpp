@@ -10,12 +10,14 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
+#include "app/mpi/gather_parts.h"
 #include "app/mpi/ranks.h"
 #include "core/data/cell_split.h"
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
 #include "core/data/dataset_part.h"
 #include "core/project/project.h"
+#include "core/util/byte_stream.h"
 #include "core/util/error.h"
 #include "core/util/stopwatch.h"
 
@@ -31,9 +33,21 @@ struct GenerateArgs {
 
 /// This rank's cells of an MPI job: the grid split into contiguous ranges of near-equal cost, the
 /// predicted records × spp (core/data/cell_split.h), logged with the share of the work they hold.
+/// Rank 0 alone predicts the costs (first hits traced by Embree) and sends them to the others: nodes
+/// with different instruction sets may see a ray graze an edge differently, and ranges computed
+/// apart would then not tile the grid. The split of the same costs is exact integer arithmetic.
 CellRange rankCells(const DataGenerator& gen, const mpi::Ranks& ranks) {
     const Stopwatch clock;
-    const std::vector<uint64_t> costs = cellCosts(gen);
+    std::string sent;
+    if (ranks.isRoot()) {
+        ByteWriter out;
+        for (uint64_t cost : cellCosts(gen)) out.u64(cost);
+        sent = out.take();
+    }
+    ranks.broadcast(sent);
+    std::vector<uint64_t> costs(sent.size() / sizeof(uint64_t));
+    ByteReader in(sent, "cell costs from rank 0");
+    for (uint64_t& cost : costs) cost = in.u64();
     const std::vector<CellRange> ranges = splitCellsByCost(costs, ranks.size());
     const CellRange mine = ranges[size_t(ranks.rank())];
     uint64_t total = 0, own = 0;
@@ -103,26 +117,17 @@ int runGenerate(const GenerateArgs& a) {
     }
     if (ranks.size() > 1) {
         // Rank 0 joins the ranks' parts into the single-process run's data (core/data/dataset_part.h).
-        std::printf("%s: %llu records in %.2f s (%.2f s CPU)\n", ranks.name().c_str(), (unsigned long long)data.stats.records,
-                    data.seconds, processCpuSeconds() - cpuStart);
-        std::fflush(stdout);
-        // The barrier separates waiting for the slowest rank from the transfer and join (bench/bench_mpi.py).
-        const Stopwatch waitClock;
-        ranks.barrier();
-        const double waited = waitClock.seconds();
-        const Stopwatch joinClock;
-        std::vector<std::string> parts = ranks.gather(encodeGeneratedPart(data));
+        char summary[160];
+        std::snprintf(summary, sizeof summary, "%llu records in %.2f s (%.2f s CPU)", (unsigned long long)data.stats.records,
+                      data.seconds, processCpuSeconds() - cpuStart);
+        mpi::GatheredParts<NamedPart> gathered = mpi::gatherParts<NamedPart>(
+            ranks, summary, encodeGeneratedPart(data),
+            [](const std::string& bytes, const std::string& name) { return NamedPart{name, decodeGeneratedPart(bytes, name)}; });
         if (!ranks.isRoot()) return 0;
-        std::vector<NamedPart> named;
-        for (size_t r = 0; r < parts.size(); ++r) {
-            const std::string name = mpi::Ranks(int(r), ranks.size()).name();
-            named.push_back({name, decodeGeneratedPart(parts[r], name)});
-            std::string().swap(parts[r]);
-        }
-        data = joinGeneratedParts(std::move(named));
+        data = joinGeneratedParts(std::move(gathered.parts));
         std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s (slowest rank "
                     "%.2f s)\n",
-                    waited, ranks.size(), joinClock.seconds(), data.seconds);
+                    gathered.waitedSeconds, ranks.size(), gathered.joinClock.seconds(), data.seconds);
     }
     writeDataset(a.out, data.header, data.sceneHash, data.perObject);
     const GeneratorStats& st = data.stats;

@@ -21,6 +21,7 @@
 #include "core/project/project.h"
 #include "core/project/run_recording.h"
 #include "app/cli/cli_record.h"
+#include "app/mpi/gather_parts.h"
 #include "app/mpi/ranks.h"
 #include "core/nn/training_part.h"
 #include "core/nn/training_split.h"
@@ -153,21 +154,13 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
         },
         [&] { return std::make_pair(progress.fraction(), std::string()); }, [&] { cancel = true; });
     if (ranks.size() > 1) {
-        std::printf("%s: trained %d networks in %.2f s (%.2f s CPU)\n", ranks.name().c_str(), run.networks, run.seconds,
-                    processCpuSeconds() - cpuStart);
-        std::fflush(stdout);
-        // The barrier separates waiting for the slowest rank from the transfer and join (bench/bench_mpi.py).
-        const Stopwatch waitClock;
-        ranks.barrier();
-        const double waited = waitClock.seconds();
-        const Stopwatch joinClock;
-        std::vector<std::string> parts = ranks.gather(encodeTrainingPart(run));
+        char summary[160];
+        std::snprintf(summary, sizeof summary, "trained %d networks in %.2f s (%.2f s CPU)", run.networks, run.seconds,
+                      processCpuSeconds() - cpuStart);
+        mpi::GatheredParts<TrainingRun> gathered =
+            mpi::gatherParts<TrainingRun>(ranks, summary, encodeTrainingPart(run), decodeTrainingPart);
         if (!ranks.isRoot()) return run.cancelled ? 130 : 0;
-        std::vector<TrainingRun> decoded;
-        for (size_t r = 0; r < parts.size(); ++r) {
-            decoded.push_back(decodeTrainingPart(parts[r], mpi::Ranks(int(r), ranks.size()).name()));
-            std::string().swap(parts[r]);
-        }
+        std::vector<TrainingRun>& decoded = gathered.parts;
         const double slowest = std::max_element(decoded.begin(), decoded.end(), [](const TrainingRun& x, const TrainingRun& y) {
                                    return x.seconds < y.seconds;
                                })->seconds;
@@ -176,7 +169,7 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
         run.seconds = clock.seconds();
         std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s (slowest rank "
                     "%.2f s, %.2f s in all)\n",
-                    waited, ranks.size(), joinClock.seconds(), slowest, run.seconds);
+                    gathered.waitedSeconds, ranks.size(), gathered.joinClock.seconds(), slowest, run.seconds);
     }
     const std::vector<ObjectModel>& trained = run.models;
     const double seconds = run.seconds;

@@ -55,11 +55,17 @@ int main(int argc, char** argv) {
         }
     }
     try {
+        // MPI starts before anything can fail, so a rank that fails while reading its inputs ends the
+        // whole job through MPI_Abort (stopJobOnError) instead of exiting alone while the others wait
+        // in a collective call: srun, unlike mpirun, keeps them waiting unless --kill-on-bad-exit.
+        if (rrf::mpi::launchFromEnvironment().size > 1) rrf::mpi::ranks();
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         // app.exit prints CLI11's message (or the help, which exits 0); a bad flag is bad input like
         // any other, so it exits 1 rather than with CLI11's per-kind code.
-        return app.exit(e) == 0 ? 0 : 1;
+        if (app.exit(e) == 0) return 0;
+        rrf::mpi::stopJobOnError(1);
+        return 1;
     } catch (const std::exception& e) {
         const rrf::mpi::Launch launch = rrf::mpi::launchFromEnvironment();
         const std::string where = launch.size > 1 ? " (rank " + std::to_string(launch.rank) + "/" + std::to_string(launch.size) + ")" : "";

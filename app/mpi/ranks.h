@@ -38,6 +38,8 @@ public:
     /// Rank 0 receives every rank's `bytes` (index = rank, its own included); the others get an
     /// empty vector. Any size (sent in pieces below MPI's 2 GiB message limit).
     std::vector<std::string> gather(const std::string& bytes) const;
+    /// Every rank receives rank 0's `bytes` (replacing its own). Any size, as gather.
+    void broadcast(std::string& bytes) const;
     /// Every rank waits until all have arrived.
     void barrier() const;
 
@@ -46,7 +48,9 @@ private:
 };
 
 /// This process's ranks: MPI is initialised on the first call when this build has MPI and a
-/// launcher started the process, and finalised when the program exits normally.
+/// launcher started the process, and finalised when the program exits normally. main() makes the
+/// first call before parsing the command line when a launcher started more than one process, so
+/// every error on any rank can end the job (stopJobOnError).
 const Ranks& ranks();
 
 /// Ends the whole job after an error: in an MPI job of more than one rank, MPI_Abort with `code`,

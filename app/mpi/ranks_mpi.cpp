@@ -77,6 +77,15 @@ std::vector<std::string> Ranks::gather(const std::string& bytes) const {
     return all;
 }
 
+void Ranks::broadcast(std::string& bytes) const {
+    if (size_ == 1) return;
+    uint64_t n = bytes.size();
+    checkMpi(MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "broadcast");
+    bytes.resize(size_t(n));
+    for (uint64_t at = 0; at < n; at += kPiece)
+        checkMpi(MPI_Bcast(bytes.data() + at, int(std::min(kPiece, n - at)), MPI_BYTE, 0, MPI_COMM_WORLD), "broadcast");
+}
+
 void Ranks::barrier() const {
     if (size_ > 1) checkMpi(MPI_Barrier(MPI_COMM_WORLD), "barrier");
 }

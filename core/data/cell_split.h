@@ -9,7 +9,8 @@
 /// both vary across the grid — in the Cornell box, cells next to the open front see half their
 /// directions escape. The records of every cell are predicted by tracing each direction's first hit
 /// (DataGenerator::cellRecordCounts: one ray a direction against spp paths of several bounces each)
-/// on every rank, so all ranks derive the same ranges without a message. Not modelled: paths differ
+/// on rank 0, which sends the costs to the others (app/cli/cli_generate.cpp), so every rank derives
+/// the same ranges even where nodes' Embree results differ at edges. Not modelled: paths differ
 /// in length (Russian roulette, dark and bright regions), and adaptive sampling's extra paths are not
 /// known in advance: the ranges balance the fixed spp paths per record.
 
