@@ -21,10 +21,10 @@ struct CliResult {
     std::string output;  ///< stdout and stderr together
 };
 
-/// Runs `rrf <args>` through the shell (args are not quoted: callers pass plain paths and flags).
-inline CliResult runCli(const std::string& args) {
+/// Runs the shell command `cmd` (stderr should be redirected into stdout by the caller) and returns
+/// its exit status (-1 when it did not exit normally) and output.
+inline CliResult runShell(const std::string& cmd) {
     CliResult r;
-    const std::string cmd = std::string(RRF_CLI_PATH) + " " + args + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
     std::array<char, 4096> buf;
@@ -34,6 +34,9 @@ inline CliResult runCli(const std::string& args) {
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
 }
+
+/// Runs `rrf <args>` through the shell (args are not quoted: callers pass plain paths and flags).
+inline CliResult runCli(const std::string& args) { return runShell(std::string(RRF_CLI_PATH) + " " + args + " 2>&1"); }
 
 /// What an interrupted `rrf` run did (interruptCli).
 struct InterruptedRun {

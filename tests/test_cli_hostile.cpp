@@ -63,16 +63,8 @@ std::string writeScene(const fs::path& dir, const std::string& name, const std::
 /// `rrf args` with the address space limited to 4 GiB (`ulimit -v`): the memory the process may
 /// use is then known whatever machine runs the test.
 rrf::test::CliResult runCliWithin4GiB(const std::string& args) {
-    rrf::test::CliResult r;
     const std::string cmd = "ulimit -v 4194304; exec " + std::string(RRF_CLI_PATH) + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+    return rrf::test::runShell(cmd);
 }
 
 }  // namespace

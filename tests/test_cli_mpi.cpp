@@ -37,18 +37,10 @@ const std::string kNetwork = " --hidden 6 --trainer adam --epochs 12 --log-every
 CliResult runMpi(int ranks, const std::string& args, bool perRank = false) {
     const std::string env = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
                             "OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_btl=self,vader ";
-    CliResult r;
     const std::string rrf = std::string(RRF_CLI_PATH) + " " + args;
     const std::string cmd = env + "timeout -k 5 60 " + RRF_MPIEXEC + std::string(" --oversubscribe --bind-to none -n ") +
                             std::to_string(ranks) + " " + (perRank ? "sh -c '" + rrf + "'" : rrf) + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+    return rrf::test::runShell(cmd);
 }
 
 std::string readBytes(const std::string& path) {
@@ -198,7 +190,12 @@ TEST(CliMpi, AFailingRankStopsTheJobWithItsMessage) {
     EXPECT_NE(one.code, 124) << "the job hung\n" << one.output;
     EXPECT_NE(one.output.find("rrf: error (rank 1/3)"), std::string::npos) << one.output;
     EXPECT_NE(one.output.find("in1/project.json"), std::string::npos) << one.output;
-    EXPECT_NE(one.output.find("MPI_ABORT was invoked on rank 1"), std::string::npos) << one.output;
+    // Through MPI_Abort, not a plain exit: mpirun then reports "MPI_ABORT was invoked on rank 1" and
+    // never its "exited with non-zero status" / "without calling init" lines. Open MPI 4.1's help
+    // printer sometimes loses the abort banner ("ORTE_ERROR_LOG: Data unpack would read past end of
+    // buffer"), so the test asks for the absence of the plain-exit lines, which it never prints then.
+    EXPECT_EQ(one.output.find("non-zero status"), std::string::npos) << one.output;
+    EXPECT_EQ(one.output.find("without calling"), std::string::npos) << one.output;
     EXPECT_FALSE(fs::exists(dir / "d0.rrfd"));
     // A command that does not split its work refuses to run N times over.
     const CliResult render = runMpi(2, "render " + kCornell + " --out " + (dir / "r").string());

@@ -9,6 +9,7 @@
 #include "core/nn/encoding_presets.h"
 #include "core/util/error.h"
 #include "scene_builders.h"
+#include "sweep_refusal.h"
 
 namespace test_encoding_sweeps {
 
@@ -16,15 +17,7 @@ using namespace rrf;
 
 namespace {
 
-std::string settingNamedBy(const Scene& scene, const SweepOptions& o) {
-    try {
-        runSweep(scene, o);
-    } catch (const SettingError& e) {
-        return e.setting();
-    } catch (...) {
-    }
-    return "";
-}
+using rrf::test::settingNamedBy;
 
 }  // namespace
 
