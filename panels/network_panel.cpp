@@ -12,6 +12,7 @@
 
 #include "core/data/record_layout.h"
 #include "core/nn/encoding_presets.h"
+#include "core/util/error.h"
 #include "panels/clip_check.h"
 #include "panels/panels.h"
 #include "panels/pipeline_controls.h"
@@ -119,7 +120,7 @@ bool drawAdam(AdamConfig& c) {
     return changed;
 }
 
-/// The kd-tree settings; returns true when one changed.
+/// The kd-tree settings; returns true when one changed. `paramsPerNetwork` < 0: unknown (no bound shown).
 bool drawPartition(PartitionSettings& p, long long paramsPerNetwork) {
     bool changed = inputInt("max leaves (1 = none)", p.maxLeaves, 1, kMaxPartitionLeaves);
     changed |= inputInt("max depth", p.maxDepth, 0, 20);
@@ -134,7 +135,7 @@ bool drawPartition(PartitionSettings& p, long long paramsPerNetwork) {
     ImGui::SameLine();
     changed |= ImGui::Checkbox("split on light", &p.axes.light);
     if (!p.axes.any()) ImGui::TextColored(ImVec4(1.f, .6f, .3f, 1.f), "no split axis: the trees will not grow");
-    if (p.enabled())
+    if (p.enabled() && paramsPerNetwork >= 0)
         ImGui::TextDisabled("a node splits only if each half keeps >= %.0f records (%.3g x %lld weights)",
                             std::ceil(p.minRecordsPerWeight * double(paramsPerNetwork)), p.minRecordsPerWeight,
                             paramsPerNetwork);
@@ -151,6 +152,15 @@ MlpArch networkArch(const WorkbenchState& state, const NetworkSettings& s, const
     return arch;
 }
 
+/// encodingHasParameters, false for an array no records could take (drawParameterCount shows why).
+bool hasParameters(const nlohmann::json& encoding) {
+    try {
+        return encodingHasParameters(encoding);
+    } catch (const InputError&) {
+        return false;
+    }
+}
+
 /// The encoding combo (the named encodings, plus "custom" when the project's own array is none of
 /// them) and the warning for a trainable encoding under Levenberg–Marquardt.
 void drawEncoding(WorkbenchState& state, const NetworkSettings& s) {
@@ -163,13 +173,21 @@ void drawEncoding(WorkbenchState& state, const NetworkSettings& s) {
         }
         ImGui::EndCombo();
     }
-    if (s.options.trainer.type == TrainerType::LevenbergMarquardt && encodingHasParameters(s.options.encoding))
+    if (s.options.trainer.type == TrainerType::LevenbergMarquardt && hasParameters(s.options.encoding))
         ImGui::TextColored(ImVec4(1.f, .6f, .3f, 1.f),
                            "a hash grid's tables train with Adam only: choose the Adam trainer (LM would refuse)");
 }
 
 void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
-    const InputEncoding encoding = networkEncoding(s.options.encoding, inputCount(state));
+    InputEncoding encoding;
+    try {
+        encoding = networkEncoding(s.options.encoding, inputCount(state));
+    } catch (const InputError& e) {
+        // A project's own array may not fit this scene's records (e.g. a hash grid over more than 4
+        // inputs); training would refuse it with this message, so show it in place of the count.
+        ImGui::TextColored(ImVec4(1.f, .4f, .4f, 1.f), "input encoding: %s", e.what());
+        return;
+    }
     const MlpArch arch = networkArch(state, s, encoding);
     const int perObject = s.options.targets == TargetMode::Separate ? 2 : 1;
     const long long table = (long long)encoding.numParams();
@@ -293,10 +311,15 @@ void drawNetworkPanel(WorkbenchState& state) {
     ImGui::Separator();
     ImGui::TextUnformatted("Partition (kd-tree of networks per object)");
     {
-        // The records-per-weight bound counts the MLP's weights only (not an encoding's table entries).
-        const MlpArch arch = networkArch(state, s, networkEncoding(s.options.encoding, inputCount(state)));
+        // The records-per-weight bound counts the MLP's weights only (not an encoding's table entries);
+        // unknown (-1) while the encoding does not fit the records (drawParameterCount says why).
+        long long weights = -1;
+        try {
+            weights = (long long)networkArch(state, s, networkEncoding(s.options.encoding, inputCount(state))).numParams();
+        } catch (const InputError&) {
+        }
         PartitionSettings p = s.options.partition;
-        if (drawPartition(p, (long long)arch.numParams())) setPartition(state, p);
+        if (drawPartition(p, weights)) setPartition(state, p);
         s = current(state);
     }
 

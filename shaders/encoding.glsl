@@ -60,7 +60,11 @@ void rrfEncodeHashGrid(int inputsAt, int d, int first, vec4 settings, int levels
     int levels = int(settings.x), log2Size = int(settings.y), perLevel = int(settings.z), table = int(settings.w);
     uint mask = (1u << uint(log2Size)) - 1u;
     float u[4];
-    for (int i = 0; i < d; ++i) u[i] = clamp((rrfScaledInput(rrfComponentInput(inputsAt, i)) + 1.0) * 0.5, 0.0, 1.0);
+    // Clamp to [0, 1] with NaN → 0, as the CPU (GLSL's clamp of NaN is undefined).
+    for (int i = 0; i < d; ++i) {
+        float r = (rrfScaledInput(rrfComponentInput(inputsAt, i)) + 1.0) * 0.5;
+        u[i] = r > 0.0 ? (r < 1.0 ? r : 1.0) : 0.0;
+    }
     for (int l = 0; l < levels; ++l) {
         vec4 lv = texel(levelsAt + (l >> 1));
         int res = int(lv[(l & 1) * 2]);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "core/nn/encoding.h"
@@ -195,6 +196,45 @@ TEST(Encoding, HashGridDenseLevelsInterpolateAVertexIndexExactly) {
             for (int i = 0; i < 3; ++i) expected += (x(i, n) + 1) * 0.5 * res * std::pow(res + 1, i);
             EXPECT_NEAR(out(l, n), expected, 1e-12) << "sample " << n << " level " << l;
         }
+}
+
+TEST(Encoding, HashGridTreatsANaNInputAsTheLowerBound) {
+    // A NaN coordinate counts as u = 0 (the clamp written with comparisons): finite features, equal to
+    // those of x = −1 there, no read outside the tables, and no input gradient for it. Level 0 is
+    // dense (res 4), level 1 hashed (res 16: 17^3 > 1024), in float and in double.
+    const HashGridEncoding enc(3, grid(2, 10, 1, 4, 4.0));
+    ASSERT_TRUE(enc.levelIsDense(0) && !enc.levelIsDense(1));
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    MatX<double> x(3, 3), lower(3, 3);
+    x << nan, 0.3, nan,  //
+        -0.2, nan, nan,  //
+        0.7, -0.9, nan;
+    lower << -1, 0.3, -1,  //
+        -0.2, -1, -1,      //
+        0.7, -0.9, -1;
+    const std::vector<double> params = randomParams(enc.numParams(), 5);
+    MatX<double> out(2, 3), expected(2, 3);
+    enc.forward(params.data(), x, out);
+    enc.forward(params.data(), lower, expected);
+    ASSERT_TRUE(out.allFinite());
+    EXPECT_EQ(out, expected);
+    const std::vector<float> paramsF(params.begin(), params.end());
+    MatX<float> outF(2, 3);
+    enc.forward(paramsF.data(), x.cast<float>(), outF);
+    EXPECT_TRUE(outF.allFinite());
+    EXPECT_LT((outF.cast<double>() - expected).cwiseAbs().maxCoeff(), 1e-5);
+    MatX<double> dX(3, 3);
+    enc.backwardInputs(params.data(), x, MatX<double>::Ones(2, 3), dX);
+    ASSERT_TRUE(dX.allFinite());
+    for (Eigen::Index n = 0; n < 3; ++n)
+        for (int i = 0; i < 3; ++i)
+            if (std::isnan(x(i, n))) {
+                EXPECT_EQ(dX(i, n), 0.0) << i << "," << n;
+            }
+    std::vector<double> grad(size_t(enc.numParams()), 0.0);
+    std::vector<int64_t> touched;
+    enc.backwardParams(params.data(), x, MatX<double>::Ones(2, 3), grad.data(), &touched);
+    for (const int64_t t : touched) ASSERT_TRUE(t >= 0 && t < enc.numParams()) << t;
 }
 
 TEST(Encoding, FeatureOrderIsComponentsInListOrderThenUnreadInputsAscending) {
@@ -448,13 +488,33 @@ TEST(Encoding, InitialParametersAreSmallUniformAndAPureFunctionOfSeedAndStream) 
     EXPECT_EQ(a, e.initialParams(7, 3));
     EXPECT_NE(a, e.initialParams(7, 4));
     EXPECT_NE(a, e.initialParams(8, 3));
-    // Component k is keyed by stream·16 + k: the second grid equals a one-level grid initialised alone.
+    // Component k is keyed by kEncodingStreamTag + stream·16 + k: the second grid equals a one-level
+    // grid initialised alone.
     const HashGridEncoding alone(3, grid(1, 10, 2, 16, 1.5));
     std::vector<double> p(size_t(alone.numParams()));
-    alone.initParams(p.data(), 7, 3 * 16 + 1);
+    alone.initParams(p.data(), 7, kEncodingStreamTag + 3 * 16 + 1);
     for (size_t i = 0; i < p.size(); ++i) ASSERT_EQ(a[Eigen::Index(4096 + i)], p[i]) << i;
     // The identity has no parameters.
     EXPECT_EQ(parse("[]").initialParams(7, 3).size(), 0);
+}
+
+TEST(Encoding, InitialParametersDoNotReuseTheMlpsRandomNumbers) {
+    // The MLP's initial weights of (seed, stream) draw from Rng(seed, stream·128 + layer, neuron)
+    // (mlp.cpp). A hash grid level l keyed by the bare stream would start with the very number neuron
+    // l of layer 0 draws; no level's first value may be (2u − 1)·1e-4 of any of those first draws.
+    const InputEncoding e = parse(R"([{"type": "hash_grid", "inputs": "position", "levels": 8, "log2_table_size": 10,
+                                       "features_per_level": 1}])");
+    for (uint64_t stream = 0; stream < 4; ++stream) {
+        const VecX<double> a = e.initialParams(7, stream);
+        ASSERT_EQ(a.size(), 8 * 1024);
+        for (uint64_t s = 0; s < 4 * 128; ++s)
+            for (uint64_t neuron = 0; neuron < 8; ++neuron) {
+                Rng mlp(7, s, neuron);
+                const double mlpValue = (2.0 * mlp.uniformDouble() - 1.0) * 1e-4;
+                for (Eigen::Index l = 0; l < 8; ++l)
+                    ASSERT_NE(a[l * 1024], mlpValue) << "stream " << stream << " level " << l << " = MLP stream " << s;
+            }
+    }
 }
 
 TEST(Encoding, JsonErrorsNameFileAndPointer) {

@@ -218,6 +218,27 @@ TEST(ModelFile, DamagedFilesNameTheFile) {
     EXPECT_NO_THROW(loadModel(good));
 }
 
+TEST(ModelFile, RefusesAnEncodingInputCountNoRecordHas) {
+    // A header whose input_encoding claims 65 or 2^31 − 1 inputs: an InputError naming the file and
+    // the field before anything is allocated per input (not a bad_alloc).
+    TempDir dir;
+    const std::string path = dir.file("wide.rrfm");
+    saveModel(trainedModel(), path);
+    const std::string bytes = readFile(path);
+    for (const int64_t inputs : {int64_t(65), int64_t(std::numeric_limits<int>::max())}) {
+        writeFileAtomically(path, bytes);
+        rewrite(path, [&](std::string& h) {
+            nlohmann::json j = nlohmann::json::parse(h);
+            ASSERT_EQ(j.at("input_encoding").at("inputs"), 5);
+            j["input_encoding"]["inputs"] = inputs;
+            h = j.dump();
+        }, [](std::string&) {});
+        const std::string error = errorOf(path);
+        EXPECT_NE(error.find("wide.rrfm"), std::string::npos) << error;
+        EXPECT_NE(error.find("header/input_encoding/inputs"), std::string::npos) << error;
+    }
+}
+
 TEST(ModelFile, RefusesToSaveNonFiniteWeights) {
     TempDir dir;
     NetworkModel m = trainedModel();

@@ -149,7 +149,7 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
         leaves += m.model.leafCount();
         for (const NetworkModel& leaf : m.model.leaves) {
             leafEpochs += leaf.training.epochs;
-            bytes += int64_t(sizeof(double)) * (leaf.numParams() + 2 * leaf.rawInputs() + 2 * leaf.arch.outputs);
+            bytes += modelPayloadBytes(leaf);
         }
     }
     row.extra["parameters"] = params;

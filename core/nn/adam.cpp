@@ -5,6 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/nn/sparse_adam.h"
 #include "core/nn/trainer.h"
 #include "core/nn/training_loss.h"
 #include "core/util/rng.h"
@@ -63,33 +64,6 @@ MatX<double> predictions(EncodedNetwork& net, const VecX<float>& w, const VecX<f
     }
     return out;
 }
-
-/// Adam moments of the encoding's parameters, updated sparsely as instant-NGP does: only the entries
-/// a batch touched see a step, each once, and their gradient is cleared afterwards; an untouched
-/// entry keeps its value and moments. No weight decay (it would shrink unvisited table cells). Each
-/// entry's step depends on its own gradient and moments only, so the visiting order does not matter
-/// (no sort: a batch touches ~10⁵ entries with repeats, and sorting them cost more than training).
-struct SparseAdam {
-    VecX<float> grad, m, v;
-    std::vector<int64_t> touched;
-    std::vector<uint8_t> done;  ///< entries stepped in this batch (reset after it)
-
-    explicit SparseAdam(Eigen::Index n)
-        : grad(VecX<float>::Zero(n)), m(VecX<float>::Zero(n)), v(VecX<float>::Zero(n)), done(size_t(n), 0) {}
-    void step(VecX<float>& e, float b1, float b2, float c1, float c2, float lr, float eps) {
-        for (const int64_t i : touched) {
-            if (done[size_t(i)]) continue;
-            done[size_t(i)] = 1;
-            const float g = grad[i];
-            m[i] = b1 * m[i] + (1.0f - b1) * g;
-            v[i] = b2 * v[i] + (1.0f - b2) * g * g;
-            e[i] -= lr * ((m[i] / c1) / (std::sqrt(v[i] / c2) + eps));
-            grad[i] = 0.0f;
-        }
-        for (const int64_t i : touched) done[size_t(i)] = 0;
-        touched.clear();
-    }
-};
 
 }  // namespace
 
@@ -224,7 +198,7 @@ TrainResult trainAdam(const MlpArch& arch, const InputEncoding& encoding, const 
             const float lrf = float(lr);
             w.array() -= lrf * ((m.array() / c1) / ((v.array() / c2).sqrt() + float(cfg.epsilon)) +
                                 float(cfg.weightDecay) * decayMask.array() * w.array());
-            if (E > 0) encodingAdam.step(e, b1, b2, c1, c2, lrf, float(cfg.epsilon));
+            if (E > 0) encodingAdam.step(e, b1, b2, lrf, float(cfg.epsilon));
         }
         const double trainLoss = epochLoss / (double(n) * arch.outputs);
         if (!w.allFinite() || !e.allFinite()) {

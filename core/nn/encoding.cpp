@@ -97,7 +97,8 @@ std::vector<int> InputEncoding::passThrough() const {
 VecX<double> InputEncoding::initialParams(uint64_t seed, uint64_t stream) const {
     VecX<double> p = VecX<double>::Zero(Eigen::Index(numParams()));
     for (size_t k = 0; k < components.size(); ++k)
-        components[k].encoding->initParams(p.data() + components[k].paramOffset, seed, stream * 16 + k);
+        components[k].encoding->initParams(p.data() + components[k].paramOffset, seed,
+                                           kEncodingStreamTag + stream * 16 + k);
     return p;
 }
 

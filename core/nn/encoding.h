@@ -102,6 +102,10 @@ struct EncodingNoDeduce {
 template <typename S>
 using EncodingIn = Eigen::Ref<const MatX<typename EncodingNoDeduce<S>::type>>;
 
+/// Offset of the Rng streams of encodings' initial parameters ("ENCODE"): keeps them apart from the
+/// MLP's initial weights (streams stream·128 + layer, mlp.cpp) for any realistic network stream.
+constexpr uint64_t kEncodingStreamTag = 0x454E434F44450000ULL;
+
 /// The encoding of one network: its components, then pass-through of every other input.
 struct InputEncoding {
     int inputs = 0;                            ///< normalised inputs it reads (12 + n)
@@ -114,7 +118,9 @@ struct InputEncoding {
     int64_t numParams() const;
     /// Inputs no component reads, ascending (passed through unchanged after the components' outputs).
     std::vector<int> passThrough() const;
-    /// Initial parameters (numParams entries; component k keyed by stream·16 + k).
+    /// Initial parameters (numParams entries; component k keyed by Rng stream
+    /// kEncodingStreamTag + stream·16 + k, so they never share random numbers with the MLP's initial
+    /// weights, which use streams stream·128 + layer of the same seed).
     VecX<double> initialParams(uint64_t seed, uint64_t stream) const;
 
     /// features (outputs() × N) for normalised inputs x (inputs × N). `params` holds numParams()

@@ -17,13 +17,15 @@ std::string settingRange(const char* name, double v, double lo, double hi) {
            formatNumber(v);
 }
 
-/// u = clamp((x + 1)·0.5, 0, 1) of a sample's inputs; `clamped[i]` says the clamp is active.
+/// u = clamp((x + 1)·0.5, 0, 1) of a sample's inputs, NaN → 0; `clamped[i]` says the clamp is
+/// active (also for NaN). Written as comparisons because std::clamp(NaN) is NaN, and floor(NaN)
+/// converted to int (the cell index) is undefined: it read outside the tables.
 template <typename S>
 void unitCoordinates(const Eigen::Ref<const MatX<S>>& x, Eigen::Index n, int d, S* u, bool* clamped = nullptr) {
     for (int i = 0; i < d; ++i) {
         const S raw = (x(i, n) + S(1)) * S(0.5);
-        u[i] = std::clamp(raw, S(0), S(1));
-        if (clamped) clamped[i] = raw < S(0) || raw > S(1);
+        u[i] = raw > S(0) ? (raw < S(1) ? raw : S(1)) : S(0);
+        if (clamped) clamped[i] = !(raw >= S(0) && raw <= S(1));
     }
 }
 

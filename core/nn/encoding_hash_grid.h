@@ -11,7 +11,9 @@
 ///
 /// Formula (CPU float, CPU double and GLSL compute exactly this, in this order; the hash is fixed, so
 /// indices are identical on every platform):
-///   u_i   = clamp((x_i + 1)·0.5, 0, 1)                                   i = 0 … d−1
+///   r_i   = (x_i + 1)·0.5;  u_i = r_i > 0 ? (r_i < 1 ? r_i : 1) : 0      i = 0 … d−1
+///           (clamp to [0, 1] with NaN → 0: a NaN input gives finite features, never an index
+///           outside the tables)
 ///   res_l = floor(b · g^l)   in double, g^l = g·g·…·g (l−1 products; g^0 = 1), an integer ≥ 2
 ///   s     = res_l (as S);  pos_i = u_i·s;  c_i = min(int(floor(pos_i)), res_l − 1);  f_i = pos_i − c_i
 ///   corner k = 0 … 2^d−1 (bit i of k = offset in dimension i), in increasing k:
@@ -26,11 +28,12 @@
 /// first (res_l + 1)^d of them).
 ///
 /// Gradients: ∂out[l·F+f]/∂params[(l·T+idx_k)·F+f] = w_k; ∂/∂x_i = 0.5 · Σ_l s_l · Σ_k (Σ_f dOut·param)
-/// · ∂w_k/∂f_i, and 0 where the clamp is active (the unclamped u_i is outside [0, 1]). Within a cell
+/// · ∂w_k/∂f_i, and 0 where the clamp is active (r_i is outside [0, 1] or NaN). Within a cell
 /// the map is smooth; across cell faces it is continuous with a kink.
 ///
 /// Initial parameters: params[l·T·F + e] = (2·U − 1)·1e-4 with U = Rng(seed, stream, l)'s e-th
-/// uniformDouble() (instant-NGP's U(−1e-4, 1e-4)).
+/// uniformDouble() (instant-NGP's U(−1e-4, 1e-4)); InputEncoding passes stream =
+/// kEncodingStreamTag + network stream·16 + component (nn/encoding.h).
 
 #include <array>
 #include <cstdint>

@@ -105,6 +105,12 @@ PartitionedNetwork::PartitionedNetwork(NetworkModel single)
     leaves.push_back(std::move(single));
 }
 
+int64_t modelPayloadBytes(const NetworkModel& model) {
+    const int64_t encoding = model.encoding.isIdentity() ? 0 : model.encoding.numParams();
+    return int64_t(sizeof(double)) *
+           (int64_t(model.arch.numParams()) + 2 * int64_t(model.rawInputs()) + 2 * int64_t(model.arch.outputs) + encoding);
+}
+
 int64_t PartitionedNetwork::numParams() const {
     int64_t n = 0;
     for (const NetworkModel& m : leaves) n += m.numParams();

@@ -73,6 +73,12 @@ struct NetworkModel {
     int64_t numParams() const { return int64_t(arch.numParams()) + int64_t(encodingParams.size()); }
 };
 
+/// Bytes of the model's payload in its file (nn/model_file.h, float64): its MLP weights and biases,
+/// the input and output scalers' offsets and scales, and the encoding's parameters. A function of the
+/// architecture and encoding alone (the loader checks a file's payload against it before reading it);
+/// also a model's size in the sweeps' `model_bytes` column.
+int64_t modelPayloadBytes(const NetworkModel& model);
+
 /// A partitioned radiance regression function (Ren et al. 2013): a kd-tree over the record inputs
 /// (nn/partition_tree.h) whose leaf k is predicted by `leaves[k]`. A tree of one leaf is a plain
 /// network, which is what older model sets load as. All leaves share architecture, object and target.

@@ -27,6 +27,10 @@ constexpr size_t kPreambleV1 = 16;  // magic + version + header length
 constexpr size_t kPreamble = 24;    // ... + checksum64 of the header
 constexpr uint32_t kMaxHeader = 64u << 20;
 constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
+/// Raw inputs an encoded network may read: records have 12 geometric inputs and a BRDF's parameters
+/// (at most 7 today), with room to spare. The bound keeps a crafted header from making the encoding
+/// allocate per input (an "inputs" of 2^31 was a bad_alloc, not an InputError).
+constexpr int64_t kMaxEncodingInputs = 64;
 /// Record counts: 2^62 is far above any dataset and, unlike INT64_MAX, exactly a double, so a float
 /// field at the bound still converts to int64 without overflow.
 constexpr int64_t kMaxCount = int64_t(1) << 62;
@@ -188,7 +192,7 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
     m.encoding.inputs = m.arch.inputs;  // versions 1 and 2: the identity
     if (version >= 3) {
         const JsonReader e = header.at("input_encoding");
-        const int inputs = int(e.at("inputs").integer(1, kMaxInt));
+        const int inputs = int(e.at("inputs").integer(1, kMaxEncodingInputs));
         m.encoding = InputEncoding::fromJson(e.at("components"), inputs);
         if (m.encoding.isIdentity()) m.encoding.inputs = inputs;
         const int features = m.encoding.isIdentity() ? inputs : m.encoding.outputs();
@@ -243,7 +247,7 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
 
     const size_t P = size_t(m.arch.numParams()), in = size_t(m.rawInputs()), out = size_t(m.arch.outputs);
     const size_t E = size_t(m.encoding.isIdentity() ? 0 : m.encoding.numParams());
-    const size_t expected = (P + 2 * in + 2 * out + E) * sizeof(double);
+    const size_t expected = size_t(modelPayloadBytes(m));
     const size_t have = bytes.size() - preamble - hlen;
     const JsonReader payload = header.at("payload");
     const uint64_t declared = payload.at("bytes").unsignedInteger();

@@ -1,7 +1,12 @@
 // The Network panel's input encoding in a bare ImGui context: choosing a named encoding stores its
 // array in the project's network section (and nothing else), drawing never edits the project, and
-// the panel draws every named encoding under both trainers.
+// the panel draws every named encoding under both trainers, and a project array that does not fit the
+// scene's records is shown as a message instead of throwing out of the frame.
+#include <imgui_internal.h>
+
+#include "core/data/record_layout.h"
 #include "core/nn/encoding_presets.h"
+#include "core/util/error.h"
 #include "panels/panels.h"
 #include "panels/project_io.h"
 #include "tests/gui/imgui_fixture.h"
@@ -41,6 +46,34 @@ TEST_F(EncodingPanelTest, ChoosingANamedEncodingStoresItsArray) {
         }
     }
     EXPECT_TRUE(s.requests.empty());
+}
+
+TEST_F(EncodingPanelTest, AnEncodingTheRecordsCannotTakeShowsItsErrorInsteadOfThrowing) {
+    WorkbenchState s;
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-glossy/project.json", error)) << error;
+    // A hash grid reads at most 4 inputs; the glossy scene's BRDF group has more.
+    const nlohmann::json overBrdf = nlohmann::json::parse(R"([{"type": "hash_grid", "inputs": "brdf"}])");
+    const int inputs = RecordLayout::forScene(s.project.scene).inputCount();
+    ASSERT_GT(inputs - 12, 4);
+    ASSERT_THROW(networkEncoding(overBrdf, inputs), SettingError);
+    NetworkSettings n = s.project.networkOrDefault();
+    n.options.encoding = overBrdf;
+    s.project.network = n;
+    for (TrainerType t : {TrainerType::Adam, TrainerType::LevenbergMarquardt}) {
+        setTrainerType(s, t);
+        std::string text;
+        EXPECT_NO_THROW(frame([&] {
+            ImGui::LogToBuffer();
+            drawNetworkPanel(s);
+            text = GImGui->LogBuffer.c_str();
+            ImGui::LogFinish();
+        }));
+        EXPECT_NE(text.find("input encoding: "), std::string::npos) << text;
+        EXPECT_NE(text.find("network.encoding"), std::string::npos) << "the SettingError's message is shown:\n" << text;
+        EXPECT_EQ(text.find("parameters per network"), std::string::npos) << "no count for an encoding that does not fit";
+    }
+    EXPECT_EQ(s.project.networkOrDefault().options.encoding, overBrdf) << "drawing keeps the project's array";
 }
 
 }  // namespace rrf::test::test_encoding_panel
