@@ -351,7 +351,9 @@ TEST(Encoding, FrequencyAndOneBlobInputGradientsMatchFiniteDifferences) {
         if (enc == &blob)
             for (Eigen::Index n = 0; n < x.cols(); ++n)
                 for (int i = 0; i < 3; ++i)
-                    if (std::abs(x(i, n)) > 1) EXPECT_EQ(dX(i, n), 0.0);
+                    if (std::abs(x(i, n)) > 1) {
+                    EXPECT_EQ(dX(i, n), 0.0);
+                }
     }
 }
 
@@ -370,7 +372,9 @@ TEST(Encoding, HashGridInputGradientsMatchFiniteDifferences) {
         EXPECT_GE(expectInputGradientsMatch(dX, num, skip, 1e-6, "hash_grid d=" + std::to_string(d)), 25);
         for (Eigen::Index n = 0; n < x.cols(); ++n)
             for (int i = 0; i < d; ++i)
-                if (std::abs(x(i, n)) > 1) EXPECT_EQ(dX(i, n), 0.0);
+                if (std::abs(x(i, n)) > 1) {
+                    EXPECT_EQ(dX(i, n), 0.0);
+                }
     }
 }
 
@@ -440,7 +444,9 @@ TEST(Encoding, InputEncodingGradientsMatchFiniteDifferencesWithGlobalParameterIn
     int inSecond = 0;
     for (size_t i = 0; i < params.size(); ++i) {
         EXPECT_NEAR(grad[i], numP[i], 1e-9) << "param " << i;
-        if (numP[i] != 0) EXPECT_TRUE(touchedSet.count(int64_t(i))) << "param " << i;
+        if (numP[i] != 0) {
+            EXPECT_TRUE(touchedSet.count(int64_t(i))) << "param " << i;
+        }
     }
     for (int64_t t : touchedSet) {
         EXPECT_GE(t, 0);
