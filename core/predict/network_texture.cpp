@@ -129,10 +129,14 @@ void writeNetwork(TexelWriter& w, const NetworkModel& m) {
         w.padded(out, [&](int j) { return float(b[j]); });
     }
     const VecX<double>& params = m.encodingParams;
-    for (const auto& [descriptor, c] : tables) {
+    for (const auto& table : tables) {
+        // Not a structured binding: C++17 lambdas cannot capture one (clang refuses).
+        const auto descriptor = table.first;
+        const auto* c = table.second;
         w.data()[4 * descriptor + 3] = float(w.texel());
         const size_t n = hashGridLayout(*c).tableFloats();
-        w.padded(int(n), [&](int i) { return params[Eigen::Index(c->paramOffset) + i]; });
+        const Eigen::Index offset = Eigen::Index(c->paramOffset);
+        w.padded(int(n), [&](int i) { return params[offset + i]; });
     }
 }
 
