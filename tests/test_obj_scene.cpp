@@ -25,8 +25,11 @@ using nlohmann::json;
 
 namespace {
 
+/// A directory per test: CTest runs the tests of this file in parallel processes, and a shared
+/// directory let one test's room.obj meet another's room.mtl half-written.
 std::string tempDir() {
-    const std::string dir = ::testing::TempDir() + "rrf_obj_scene_tests";
+    const std::string dir = ::testing::TempDir() + "rrf_obj_scene_tests_" +
+                            ::testing::UnitTest::GetInstance()->current_test_info()->name();
     std::filesystem::create_directories(dir);
     return dir;
 }
