@@ -152,19 +152,11 @@ MlpArch networkArch(const WorkbenchState& state, const NetworkSettings& s, const
     return arch;
 }
 
-/// encodingHasParameters, false for an array no records could take (drawParameterCount shows why).
-bool hasParameters(const nlohmann::json& encoding) {
-    try {
-        return encodingHasParameters(encoding);
-    } catch (const InputError&) {
-        return false;
-    }
-}
-
 /// The encoding combo (the named encodings, plus "custom" when the project's own array is none of
 /// them) and the warning for a trainable encoding under Levenberg–Marquardt.
 void drawEncoding(WorkbenchState& state, const NetworkSettings& s) {
-    const std::string name = encodingPresetName(s.options.encoding);
+    const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state));
+    const std::string& name = view.presetName;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
     if (ImGui::BeginCombo("input encoding", name.empty() ? "custom (the project file's)" : name.c_str())) {
         for (const EncodingPreset& p : encodingPresets()) {
@@ -173,21 +165,20 @@ void drawEncoding(WorkbenchState& state, const NetworkSettings& s) {
         }
         ImGui::EndCombo();
     }
-    if (s.options.trainer.type == TrainerType::LevenbergMarquardt && hasParameters(s.options.encoding))
+    if (s.options.trainer.type == TrainerType::LevenbergMarquardt && view.hasParameters)
         ImGui::TextColored(ImVec4(1.f, .6f, .3f, 1.f),
                            "a hash grid's tables train with Adam only: choose the Adam trainer (LM would refuse)");
 }
 
 void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
-    InputEncoding encoding;
-    try {
-        encoding = networkEncoding(s.options.encoding, inputCount(state));
-    } catch (const InputError& e) {
+    const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state));
+    if (!view.fits) {
         // A project's own array may not fit this scene's records (e.g. a hash grid over more than 4
         // inputs); training would refuse it with this message, so show it in place of the count.
-        ImGui::TextColored(ImVec4(1.f, .4f, .4f, 1.f), "input encoding: %s", e.what());
+        ImGui::TextColored(ImVec4(1.f, .4f, .4f, 1.f), "input encoding: %s", view.error.c_str());
         return;
     }
+    const InputEncoding& encoding = view.encoding;
     const MlpArch arch = networkArch(state, s, encoding);
     const int perObject = s.options.targets == TargetMode::Separate ? 2 : 1;
     const long long table = (long long)encoding.numParams();
@@ -252,10 +243,8 @@ bool setPartition(WorkbenchState& state, const PartitionSettings& partition) {
 }
 
 bool setEncoding(WorkbenchState& state, const std::string& name) {
-    const EncodingPreset* preset = findEncodingPreset(name);
     NetworkSettings s = current(state);
-    if (!preset || s.options.encoding == preset->settings) return false;
-    s.options.encoding = preset->settings;
+    if (!setNamedEncoding(s.options.encoding, name)) return false;
     storeNetwork(state, s);
     return true;
 }
@@ -313,11 +302,8 @@ void drawNetworkPanel(WorkbenchState& state) {
     {
         // The records-per-weight bound counts the MLP's weights only (not an encoding's table entries);
         // unknown (-1) while the encoding does not fit the records (drawParameterCount says why).
-        long long weights = -1;
-        try {
-            weights = (long long)networkArch(state, s, networkEncoding(s.options.encoding, inputCount(state))).numParams();
-        } catch (const InputError&) {
-        }
+        const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state));
+        const long long weights = view.fits ? (long long)networkArch(state, s, view.encoding).numParams() : -1;
         PartitionSettings p = s.options.partition;
         if (drawPartition(p, weights)) setPartition(state, p);
         s = current(state);

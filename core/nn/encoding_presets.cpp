@@ -95,4 +95,29 @@ void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& t
                                              "does not fit in memory)");
 }
 
+EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inputs) {
+    EncodingSettingView v;
+    v.presetName = encodingPresetName(encoding);
+    try {
+        v.hasParameters = encodingHasParameters(encoding);  // as the trainer check sees the array
+    } catch (const InputError&) {
+    }
+    try {
+        v.encoding = networkEncoding(encoding, inputs);
+    } catch (const InputError& e) {
+        v.fits = false;
+        v.error = e.what();
+        v.encoding = InputEncoding();
+        v.encoding.inputs = inputs;
+    }
+    return v;
+}
+
+bool setNamedEncoding(nlohmann::json& encoding, const std::string& name) {
+    const EncodingPreset* preset = findEncodingPreset(name);
+    if (!preset || encoding == preset->settings) return false;
+    encoding = preset->settings;
+    return true;
+}
+
 }  // namespace rrf

@@ -59,4 +59,18 @@ void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& t
 /// True when the array's encoding has trainable parameters (for the panel's warning).
 bool encodingHasParameters(const nlohmann::json& encoding);
 
+/// What a front end shows of an "encoding" setting for records of `inputs` raw inputs, derived from
+/// the array in one place so that views (the Network panel) never read the JSON themselves.
+struct EncodingSettingView {
+    std::string presetName;      ///< the named encoding the array is, or "" (a project's own array)
+    bool fits = true;            ///< false: the array does not fit these records (`error` says why)
+    std::string error;           ///< networkEncoding's message when !fits
+    InputEncoding encoding;      ///< the network's encoding when it fits (else the identity)
+    bool hasParameters = false;  ///< trainable tables (encodingHasParameters; false if the array is invalid)
+};
+EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inputs);
+
+/// Sets `encoding` to the named encoding `name`; false when the name is unknown or it already is.
+bool setNamedEncoding(nlohmann::json& encoding, const std::string& name);
+
 }  // namespace rrf
