@@ -105,7 +105,7 @@ bool drawAdam(AdamConfig& c) {
     }
     int loss = int(c.loss);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
-    if (ImGui::Combo("loss", &loss, "mse\0relative L2\0")) {
+    if (ImGui::Combo("loss", &loss, "mse\0relative L2\0relative L2 (prediction)\0")) {
         c.loss = AdamLoss(loss);
         changed = true;
     }

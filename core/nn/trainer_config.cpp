@@ -17,6 +17,15 @@ constexpr int64_t kMaxEpochs = 100000000;
 
 }  // namespace
 
+const char* adamLossName(AdamLoss loss) {
+    switch (loss) {
+    case AdamLoss::RelativeL2: return "relative_l2";
+    case AdamLoss::RelativeL2Prediction: return "relative_l2_prediction";
+    case AdamLoss::Mse: break;
+    }
+    return "mse";
+}
+
 const char* TrainerConfig::typeName() const {
     return type == TrainerType::Adam ? "adam" : "levenberg_marquardt";
 }
@@ -47,7 +56,11 @@ TrainerConfig TrainerConfig::fromJson(const JsonReader& r) {
         a.beta2 = r.numberOr("beta2", a.beta2, 0.0, 1.0 - 1e-12);
         a.epsilon = r.numberOr("epsilon", a.epsilon, 0.0, 1.0, true);
         a.weightDecay = r.numberOr("weight_decay", a.weightDecay, 0.0, 1.0);
-        a.loss = r.choiceOr("loss", "mse", {"mse", "relative_l2"}) == "relative_l2" ? AdamLoss::RelativeL2 : AdamLoss::Mse;
+        const std::string loss =
+            r.choiceOr("loss", adamLossName(a.loss), {"mse", "relative_l2", "relative_l2_prediction"});
+        a.loss = loss == "relative_l2"              ? AdamLoss::RelativeL2
+                 : loss == "relative_l2_prediction" ? AdamLoss::RelativeL2Prediction
+                                                    : AdamLoss::Mse;
         a.patience = int(r.integerOr("patience", a.patience, 0, kMaxEpochs));
         a.patienceLrFraction = r.numberOr("patience_lr_fraction", a.patienceLrFraction, 0.0, 1.0, true);
         a.errorGoal = r.numberOr("error_goal", a.errorGoal, 0.0, kInf);
@@ -93,7 +106,7 @@ json TrainerConfig::toJson() const {
                     {"beta2", a.beta2},
                     {"epsilon", a.epsilon},
                     {"weight_decay", a.weightDecay},
-                    {"loss", a.loss == AdamLoss::RelativeL2 ? "relative_l2" : "mse"},
+                    {"loss", adamLossName(a.loss)},
                     {"patience", a.patience},
                     {"patience_lr_fraction", a.patienceLrFraction},
                     {"error_goal", a.errorGoal},

@@ -47,9 +47,16 @@ struct LevenbergMarquardtConfig {
 /// Loss minimised by Adam (both on the network's outputs).
 enum class AdamLoss {
     Mse,        ///< mean (pred − y)² in normalised [-1, 1] units
-    RelativeL2  ///< mean (p − y)² / (|y| + 0.01)² in raw units: the error metric's relative term
-                ///< (nn/training_loss.h), so bright and dark radiance count alike
+    RelativeL2,  ///< mean (p − y)² / (|y| + 0.01)² in raw units: the error metric's relative term
+                 ///< (nn/training_loss.h), so bright and dark radiance count alike
+    /// mean (p − y)² / (|p| + 0.01)² with p held constant (tiny-cuda-nn's RelativeL2, Neural Radiance
+    /// Caching): the same weighting without the bias a noisy target in the denominator brings
+    /// (≈ −2σ² of the mean for relative target noise σ; nn/training_loss.h)
+    RelativeL2Prediction
 };
+
+/// The "loss" key's spelling of `loss` ("mse", "relative_l2", "relative_l2_prediction").
+const char* adamLossName(AdamLoss loss);
 
 enum class LrSchedule {
     Constant,  ///< learning_rate throughout
@@ -69,7 +76,7 @@ struct AdamConfig {
     double beta2 = 0.999;             ///< "beta2"
     double epsilon = 1e-8;            ///< "epsilon"
     double weightDecay = 0.0;         ///< "weight_decay": decoupled (AdamW), weights only, not biases
-    AdamLoss loss = AdamLoss::Mse;    ///< "loss": "mse" | "relative_l2"
+    AdamLoss loss = AdamLoss::Mse;    ///< "loss": "mse" | "relative_l2" | "relative_l2_prediction"
     int patience = 30;                ///< "patience": stop after this many counted epochs without a
                                       ///< better validation loss (0 = never stop early); see below
     /// "patience_lr_fraction": an epoch without improvement counts toward patience only when its
