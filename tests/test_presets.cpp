@@ -33,9 +33,9 @@ const PipelinePreset& preset(const char* name) {
 }
 }  // namespace
 
-TEST(Presets, TableListsQuickPaperBest) {
-    EXPECT_EQ(presetNames(), "quick|paper|best");
-    ASSERT_EQ(pipelinePresets().size(), 3u);
+TEST(Presets, TableListsQuickPaperDefaultBest) {
+    EXPECT_EQ(presetNames(), "quick|paper|default|best");
+    ASSERT_EQ(pipelinePresets().size(), 4u);
     EXPECT_EQ(findPreset("paper"), &pipelinePresets()[1]);
     EXPECT_EQ(findPreset("fast"), nullptr);
 }
@@ -78,36 +78,68 @@ TEST(Presets, PaperIsTheSeedReportsSetting) {
     EXPECT_EQ(o.partition.maxLeaves, 1) << "one network per object and target";
 }
 
-TEST(Presets, BestIsTheProjectDefaults) {
-    const Project p = cornellWith("best.json", {{"network", {{"hidden", {8}}}},
-                                                {"trainer", {{"type", "lm"}}},
-                                                {"sampling", {{"grid", {3, 3, 3}}, {"directions", 7}}}});
-    const SamplingSettings s = presetSampling(p, preset("best"));
+TEST(Presets, DefaultIsTheProjectDefaults) {
+    const Project p = cornellWith("default.json", {{"network", {{"hidden", {8}}}},
+                                                   {"trainer", {{"type", "lm"}}},
+                                                   {"prediction", {{"direct_samples", 7}}},
+                                                   {"sampling", {{"grid", {3, 3, 3}}, {"directions", 7}}}});
+    const SamplingSettings s = presetSampling(p, preset("default"));
     EXPECT_EQ(s.nx, 8);
     EXPECT_EQ(s.directions, 300);
     EXPECT_EQ(s.maxSpp, 1024);
-    const ObjectTrainingOptions o = presetNetwork(p, preset("best"));
+    const ObjectTrainingOptions o = presetNetwork(p, preset("default"));
     EXPECT_EQ(o.hidden, (std::vector<int>{20, 10}));
     EXPECT_EQ(o.trainer.type, TrainerType::Adam);
     EXPECT_EQ(o.trainer.adam.loss, AdamLoss::RelativeL2);
     EXPECT_EQ(o.trainer.maxEpochs(), 600);
     EXPECT_EQ(o.partition.maxLeaves, 16);
+    EXPECT_EQ(presetPrediction(p, preset("default")).directSamples, 64);
+}
+
+TEST(Presets, BestIsTheMostAccurateSettingMeasured) {
+    const Project p = cornellWith("best.json", {{"network", {{"hidden", {8}}}},
+                                                {"trainer", {{"type", "lm"}}},
+                                                {"prediction", {{"direct_samples", 7}, {"seed", 3}}},
+                                                {"sampling", {{"grid", {3, 3, 3}}, {"directions", 7}, {"seed", 4}}}});
+    // The README's "best preset" table: the values measured there.
+    const SamplingSettings s = presetSampling(p, preset("best"));
+    EXPECT_EQ(s.nx, 8);
+    EXPECT_EQ(s.directions, 1200);
+    EXPECT_EQ(s.spp, 64);
+    EXPECT_EQ(s.maxSpp, 256);
+    EXPECT_EQ(s.seed, 4u) << "the seed is the user's";
+    const ObjectTrainingOptions o = presetNetwork(p, preset("best"));
+    EXPECT_EQ(o.hidden, (std::vector<int>{32, 32, 32}));
+    EXPECT_EQ(o.activation, Activation::Tanh);
+    EXPECT_EQ(o.trainer.type, TrainerType::Adam);
+    EXPECT_EQ(o.trainer.adam.loss, AdamLoss::RelativeL2);
+    EXPECT_EQ(o.trainer.adam.errorGoal, 0.0);
+    EXPECT_EQ(o.trainer.maxEpochs(), 400);
+    EXPECT_EQ(o.partition.maxLeaves, 1);
+    const PredictionSettings pr = presetPrediction(p, preset("best"));
+    EXPECT_EQ(pr.directSamples, 256);
+    EXPECT_EQ(pr.seed, 3u) << "only the samples change";
 }
 
 TEST(Presets, AppliedPresetIsRecognisedAndOthersAreNot) {
     Project p = cornellWith("apply.json", json::object());
-    // A project without sections runs the defaults: that is "best".
-    EXPECT_EQ(matchingSamplingPreset(p), findPreset("best"));
-    EXPECT_EQ(matchingNetworkPreset(p), findPreset("best"));
+    // A project without sections runs the defaults: that is "default".
+    EXPECT_EQ(matchingSamplingPreset(p), findPreset("default"));
+    EXPECT_EQ(matchingNetworkPreset(p), findPreset("default"));
     applySamplingPreset(p, preset("paper"));
     EXPECT_EQ(matchingSamplingPreset(p), findPreset("paper"));
-    EXPECT_EQ(matchingNetworkPreset(p), findPreset("best")) << "the halves are applied separately";
+    EXPECT_EQ(matchingNetworkPreset(p), findPreset("default")) << "the halves are applied separately";
     applyNetworkPreset(p, preset("paper"));
     EXPECT_EQ(matchingNetworkPreset(p), findPreset("paper"));
     ASSERT_TRUE(p.trainer.has_value());
     EXPECT_EQ(p.trainer->type, TrainerType::LevenbergMarquardt);
     p.sampling->directions = 1199;
     EXPECT_EQ(matchingSamplingPreset(p), nullptr) << "an edited setting is no preset";
+    applyNetworkPreset(p, preset("best"));
+    EXPECT_EQ(p.prediction.directSamples, 256) << "the network half carries the prediction's settings";
+    EXPECT_EQ(matchingNetworkPreset(p), findPreset("best"));
+    p.prediction.directSamples = 64;
+    EXPECT_EQ(matchingNetworkPreset(p), nullptr) << "best's networks with the default's direct light are no preset";
 }
 
 TEST(TimeEstimate, GenerateIsRecordsTimesPathsOverRate) {

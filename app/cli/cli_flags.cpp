@@ -108,6 +108,10 @@ void addPredictionOptions(CLI::App* cmd, PredictionArgs& a) {
                               s.direct = d == "exact" ? PredictionSettings::Direct::Exact : PredictionSettings::Direct::Network;
                           })
         ->check(CLI::IsMember({"network", "exact"}));
+    a.prediction
+        .add<int>(cmd, "--direct-samples", "exact direct light's samples (shadow rays) per pixel and light (default: the project's)",
+                  [](PredictionSettings& s, const int& n) { s.directSamples = n; })
+        ->check(CLI::Range(1, kMaxDirectSamples));
 }
 
 void addExperimentFlags(CLI::App* cmd, ExperimentFlags& flags) {

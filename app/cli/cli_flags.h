@@ -106,10 +106,10 @@ CLI::Option* addVec3Option(CLI::App* cmd, const std::string& flag, std::optional
 struct PredictionArgs {
     std::string input, out;
     int threads = 0, width = -1, height = -1;
-    SettingFlags<PredictionSettings> prediction;  ///< --direct
+    SettingFlags<PredictionSettings> prediction;  ///< --direct, --direct-samples
 };
 
-/// input, --out, --threads, --width, --height and --direct.
+/// input, --out, --threads, --width, --height, --direct and --direct-samples.
 void addPredictionOptions(CLI::App* cmd, PredictionArgs& a);
 
 /// The flags of the commands that generate data and train on it in one run (sweep, pipeline).

@@ -133,7 +133,8 @@ int runPipeline(const PipelineArgs& a) {
     std::printf("[3/4] train: %.1f s -> %s\n", stages.back().second, modelDir.c_str());
     // 4. Evaluation: at the ground truth's light, then at held-out lights.
     const ModelSet models = loadModelSet(modelDir, scene.contentHash());
-    const Predictor predictor(scene, models, a.prediction.applied(p.prediction));
+    // A preset's prediction settings (e.g. best's direct samples) under the command's own flags.
+    const Predictor predictor(scene, models, a.prediction.applied(preset ? presetPrediction(p, *preset) : p.prediction));
     Stopwatch evalClock;
     std::printf("[4/4] evaluate at the ground truth's light:");
     const ReferenceSource groundTruth = [&](size_t, const Vec3&) {

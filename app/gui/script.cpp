@@ -192,7 +192,7 @@ bool Script::execute(Workbench& wb, const json& s) {
         // As choosing a preset in the pipeline bar and clicking "Run pipeline" (the request the
         // button makes). Optional sizes shrink the preset for small scripted runs: they are applied
         // over the preset, and the pipeline then runs with the settings in effect.
-        const std::string name = r.choiceOr("preset", "quick", {"quick", "paper", "best"});
+        const std::string name = r.choiceOr("preset", "quick", {"quick", "paper", "default", "best"});
         const PipelinePreset* preset = findPreset(name);
         applySamplingPreset(st.project, *preset);
         applyNetworkPreset(st.project, *preset);

@@ -11,16 +11,22 @@
 ///   paper  the seed report's setting (docs/design.md §21): grid 15³ × 1200 directions, 64 paths per
 ///          record (fixed), one 20-10 tanh network per object and target, Levenberg–Marquardt with
 ///          at most 1000 epochs — hours on 2 cores;
-///   best   the project defaults (SamplingSettings::projectDefault(), NetworkSettings() with
-///          NetworkSettings::defaultTrainer()), the most accurate setting measured so far (README).
+///   default the project defaults (SamplingSettings::projectDefault(), NetworkSettings() with
+///          NetworkSettings::defaultTrainer()): a few minutes on 2 cores, what a project without
+///          sections runs;
+///   best   the most accurate setting measured (README, issue 16): four times the default's
+///          records at a quarter of their paths each, 32-32-32 tanh networks (one per object),
+///          Adam with relative L2 to the end of a cosine schedule, exact direct light at 256
+///          samples per pixel. Its ≤ 20 minute budget on 2 cores is stated and measured in the README.
 ///
-/// paper and best set every data and network setting except the seeds; quick changes only sizes.
+/// paper, default and best set every data and network setting except the seeds; quick changes only sizes.
 
 #include <string>
 #include <vector>
 
 #include "core/data/sampling_settings.h"
 #include "core/nn/object_training.h"
+#include "core/predict/prediction_settings.h"
 
 namespace rrf {
 
@@ -37,16 +43,19 @@ struct PipelineEvaluationSizes {
 
 /// One row of the preset table.
 struct PipelinePreset {
-    const char* name;     ///< "quick", "paper", "best": the CLI's --preset value and the panels' label
+    const char* name;     ///< "quick", "paper", "default", "best": the CLI's --preset value and the panels' label
     const char* summary;  ///< one line for help texts and tooltips
     /// Changes the data settings in effect (a project's samplingOrDefault()) into the preset's.
     void (*sampling)(SamplingSettings&);
     /// Changes the network and trainer settings in effect (networkOrDefault().options) into the preset's.
     void (*network)(ObjectTrainingOptions&);
+    /// Changes the prediction settings (how exact direct light completes the networks) into the
+    /// preset's; part of the network half (applyNetworkPreset, matchingNetworkPreset).
+    void (*prediction)(PredictionSettings&);
     PipelineEvaluationSizes evaluation;
 };
 
-/// Every preset, in the order menus list them (quick, paper, best).
+/// Every preset, in the order menus list them (quick, paper, default, best).
 const std::vector<PipelinePreset>& pipelinePresets();
 /// The preset named `name`, or null.
 const PipelinePreset* findPreset(const std::string& name);
@@ -57,13 +66,16 @@ std::string presetNames(const char* separator = "|");
 SamplingSettings presetSampling(const Project& project, const PipelinePreset& preset);
 /// The project's network and trainer settings in effect with `preset` applied.
 ObjectTrainingOptions presetNetwork(const Project& project, const PipelinePreset& preset);
+/// The project's prediction settings with `preset` applied.
+PredictionSettings presetPrediction(const Project& project, const PipelinePreset& preset);
 /// Stores presetSampling() as the project's "sampling" section.
 void applySamplingPreset(Project& project, const PipelinePreset& preset);
-/// Stores presetNetwork() as the project's "network" and "trainer" sections.
+/// Stores presetNetwork() as the project's "network" and "trainer" sections and presetPrediction()
+/// as its "prediction" section.
 void applyNetworkPreset(Project& project, const PipelinePreset& preset);
 /// The preset whose data settings are the project's (applying it would change nothing), or null.
 const PipelinePreset* matchingSamplingPreset(const Project& project);
-/// The preset whose network and trainer settings are the project's, or null.
+/// The preset whose network, trainer and prediction settings are the project's, or null.
 const PipelinePreset* matchingNetworkPreset(const Project& project);
 
 }  // namespace rrf
