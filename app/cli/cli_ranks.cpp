@@ -11,6 +11,8 @@
 #include "core/data/cell_split.h"
 #include "core/data/dataset_part.h"
 #include "core/nn/training_part.h"
+#include "core/render/render_rows.h"
+#include "core/scene/accel.h"
 #include "core/nn/training_split.h"
 #include "core/util/byte_stream.h"
 #include "core/util/stopwatch.h"
@@ -125,6 +127,59 @@ GeneratedData generateOnRanks(const DataGenerator& gen, const mpi::Ranks& ranks,
                 "%.2f s)\n",
                 gathered.waitedSeconds, ranks.size(), gathered.joinClock.seconds(), data.seconds);
     return data;
+}
+
+GeneratedData generateOnAllRanks(const DataGenerator& gen, const mpi::Ranks& ranks) {
+    GeneratedData data = generateOnRanks(gen, ranks);
+    if (ranks.size() == 1) return data;
+    std::string bytes = ranks.isRoot() ? encodeGeneratedPart(data) : std::string();
+    ranks.broadcast(bytes);
+    return ranks.isRoot() ? data : decodeGeneratedPart(bytes, "the data from rank 0");
+}
+
+Reference renderOnRanks(const Scene& scene, const Vec3& lp, const RenderOptions& options, const std::string& label,
+                        const mpi::Ranks& ranks) {
+    if (ranks.size() == 1) return renderWithProgress(scene, lp, options, label);
+    RenderOptions mine = options;
+    mine.rowOffset = ranks.rank();
+    mine.rowStride = ranks.size();
+    const int rows = options.height > ranks.rank() ? (options.height - ranks.rank() + ranks.size() - 1) / ranks.size() : 0;
+    std::printf("%s: %s rows y mod %d = %d (%d of %d rows, interleaved)\n", ranks.name().c_str(), label.c_str(), ranks.size(),
+                ranks.rank(), rows, options.height);
+    std::fflush(stdout);
+    Scene moved = scene;
+    if (!moved.lights.empty()) moved.setLightPosition(lp);
+    const Accel accel(moved);
+    Renderer renderer(moved, accel, mine);
+    std::atomic<bool> cancel{false};
+    runWithProgress(
+        label,
+        [&] {
+            while (renderer.progress() < 1.0 && !cancel)
+                if (!renderer.runPass()) break;
+        },
+        [&] { return std::make_pair(renderer.progress(), std::string()); },
+        [&] {
+            cancel = true;
+            renderer.cancel();
+        });
+    if (cancel) {
+        std::fprintf(stderr, "%s: interrupted while rendering the %s\n", ranks.name().c_str(), label.c_str());
+        mpi::stopJobOnError(130);
+    }
+    const RenderState state = renderer.exportState();
+    char summary[160];
+    std::snprintf(summary, sizeof summary, "%s rows in %.2f s", label.c_str(), state.seconds);
+    mpi::GatheredParts<std::string> gathered = mpi::gatherParts<std::string>(
+        ranks, summary, encodeRenderRows(state, ranks.rank(), ranks.size()),
+        [](const std::string& bytes, const std::string&) { return bytes; });
+    if (!ranks.isRoot()) return {};
+    std::vector<std::string> names;
+    for (int r = 0; r < ranks.size(); ++r) names.push_back(mpi::Ranks(r, ranks.size()).name());
+    const Reference joined = referenceOf(Renderer::snapshotOf(joinRenderRows(gathered.parts, names)), moved.lightPosition());
+    std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s\n", gathered.waitedSeconds,
+                ranks.size(), gathered.joinClock.seconds());
+    return joined;
 }
 
 TrainingRun trainOnRanks(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options,

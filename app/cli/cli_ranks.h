@@ -23,6 +23,17 @@ namespace rrf::cli {
 /// one process the data comes back with `cancelled` set.
 GeneratedData generateOnRanks(const DataGenerator& gen, const mpi::Ranks& ranks, int shardK = 0, int shardN = 1);
 
+/// generateOnRanks, then rank 0 sends the joined data to every rank (core/data/dataset_part.h): the
+/// whole data on every rank, for stages after it that every rank runs on all of it.
+GeneratedData generateOnAllRanks(const DataGenerator& gen, const mpi::Ranks& ranks);
+
+/// Renders the reference of `scene` with the light at `lp` (as renderWithProgress, with a progress
+/// line labelled `label`): in an MPI job each rank the rows y with y mod N = its rank, logged, and
+/// rank 0 joins them into the single-process render, bit for bit (core/render/render_rows.h).
+/// Returns the reference on rank 0 and an empty one on the others. Ctrl-C stops the job.
+Reference renderOnRanks(const Scene& scene, const Vec3& lp, const RenderOptions& options, const std::string& label,
+                        const mpi::Ranks& ranks);
+
 /// Trains `samples` with `options` and a progress line (`observer`'s cancel is set on Ctrl-C, so it
 /// must point to `cancel`): in an MPI job each rank its objects, assigned longest first by record
 /// count (core/nn/training_split.h) and logged, and rank 0 joins the parts into the single-process

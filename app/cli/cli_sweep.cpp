@@ -17,7 +17,6 @@
 #include "app/cli/cli_ranks.h"
 #include "app/mpi/gather_parts.h"
 #include "app/mpi/ranks.h"
-#include "core/data/dataset_part.h"
 #include "core/data/record_layout.h"
 #include "core/eval/sweep.h"
 #include "core/eval/sweep_parts.h"
@@ -81,13 +80,7 @@ SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::R
     Reference reference = decodeReference(bytes, "the reference from rank 0");
     std::string().swap(bytes);
     std::shared_ptr<const GeneratedData> data;
-    if (sweepSharesData(o)) {
-        GeneratedData joined = generateOnRanks(DataGenerator(scene, o.sampling), ranks);
-        if (ranks.isRoot()) bytes = encodeGeneratedPart(joined);
-        ranks.broadcast(bytes);
-        data = std::make_shared<const GeneratedData>(ranks.isRoot() ? std::move(joined) : decodeGeneratedPart(bytes, "the dataset from rank 0"));
-        std::string().swap(bytes);
-    }
+    if (sweepSharesData(o)) data = std::make_shared<const GeneratedData>(generateOnAllRanks(DataGenerator(scene, o.sampling), ranks));
     const SweepInputs inputs = sweepInputs(scene, o, std::move(reference), std::move(data));
 
     const std::vector<SweepTask> tasks = sweepTasks(o);
