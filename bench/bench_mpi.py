@@ -35,7 +35,8 @@ Whole commands, wall time of 1 rank against 2 (each rank one thread): a hidden-s
 points (reference at a fixed spp, the path tracer's series and the points as tasks on the ranks, longest
 first by estimated seconds) and a pipeline (ground truth by interleaved rows, data by cells, networks by
 objects, two held-out references by lights), each on a fresh copy of the project; the sweep's CSV is
-compared without its timing columns, the pipeline's dataset and ground truth byte for byte.
+compared without its timing columns, the pipeline's dataset and ground truth byte for byte. The
+sweep's ranks log the CPU seconds of their tasks: the busiest over the mean measures the cost model.
 
 Usage: bench/bench_mpi.py [--rrf build/rrf] [--mpirun mpirun] [--grid 10,10,10] [--dirs 300] [--spp 16]
                           [--epochs 60]
@@ -157,6 +158,7 @@ def main():
     same_sweep = csv_without_times(os.path.join(tmp, "s1", "sweep_hidden.csv")) == \
         csv_without_times(os.path.join(tmp, "s2", "sweep_hidden.csv"))
     shares = re.findall(r"^rank \d/2: sweep (.*?): ([\d.]+)% of the estimated", slog2, re.M)
+    sweep_cpu = rank_times(slog2, r"rank \d/2: ran \d+ sweep task\(s\) in [\d.]+ s \(([\d.]+) s CPU")
     pipe = ["--width", "48", "--height", "48", "--spp", "64", "--held-out", "2", "--noise", "0.2", "--spp-cap", "64",
             "--trainer", "adam"] + data_flags
     pw1, _ = run(mpi(1, ["pipeline", fresh_project("p1")] + pipe + ["--out", os.path.join(tmp, "o1")]), env)
@@ -177,6 +179,9 @@ def main():
                                                  "bytes identical" if same_pipe else "BYTES DIFFER"))
     print("  sweep shares at 2 ranks (estimated seconds, longest first): " +
           "; ".join("%s %s%%" % (what, pct) for what, pct in shares))
+    if sweep_cpu:
+        print("  sweep tasks' CPU s per rank at 2 ranks: %s (busiest / mean %.3f)" % (
+            " ".join("%.2f" % t for t in sweep_cpu), max(sweep_cpu) / (sum(sweep_cpu) / len(sweep_cpu))))
 
     mean = lambda v: sum(v) / len(v)
     print("\nload balance of generate at 2 ranks (busiest part / mean, CPU s): equal cell counts %.3f (%.2f, %.2f), "

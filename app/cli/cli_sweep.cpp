@@ -104,9 +104,11 @@ SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::R
                 share.empty() ? "nothing" : share.c_str(), total > 0 ? 100.0 * own / total : 0.0, total);
     std::fflush(stdout);
     const Stopwatch clock;
+    const double cpuStart = processCpuSeconds();
     const SweepPart part = runSweepTasks(scene, o, inputs, mine);
     char summary[160];
-    std::snprintf(summary, sizeof summary, "ran %zu sweep task(s) in %.2f s", mine.size(), clock.seconds());
+    std::snprintf(summary, sizeof summary, "ran %zu sweep task(s) in %.2f s (%.2f s CPU)", mine.size(), clock.seconds(),
+                  processCpuSeconds() - cpuStart);
     mpi::GatheredParts<SweepPart> gathered = mpi::gatherParts<SweepPart>(ranks, summary, encodeSweepPart(part), decodeSweepPart);
     if (!ranks.isRoot()) return {};
     SweepResult r = joinSweepParts(scene, o, inputs, std::move(gathered.parts));

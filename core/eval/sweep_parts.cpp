@@ -12,13 +12,13 @@ namespace rrf {
 
 namespace {
 
-void writeImage(ByteWriter& out, const Image& image) {
+void writeImageBytes(ByteWriter& out, const Image& image) {
     out.i64(image.width);
     out.i64(image.height);
     out.floats(image.data);
 }
 
-Image readImage(ByteReader& in, const std::string& source) {
+Image readImageBytes(ByteReader& in, const std::string& source) {
     Image image;
     image.width = int(in.i64());
     image.height = int(in.i64());
@@ -28,7 +28,7 @@ Image readImage(ByteReader& in, const std::string& source) {
     return image;
 }
 
-void writeStats(ByteWriter& out, const ErrorStats& s) {
+void writeErrorStats(ByteWriter& out, const ErrorStats& s) {
     out.u64(s.pixels);
     out.u64(s.nonFinite);
     for (double v : {s.rmse, s.relativeRmse, s.mae, s.maxError, s.meanReference, s.rmseNoiseFloor, s.rmseCorrected,
@@ -37,7 +37,7 @@ void writeStats(ByteWriter& out, const ErrorStats& s) {
     out.u64(s.noiseKnown);
 }
 
-ErrorStats readStats(ByteReader& in) {
+ErrorStats readErrorStats(ByteReader& in) {
     ErrorStats s;
     s.pixels = in.u64();
     s.nonFinite = in.u64();
@@ -48,16 +48,16 @@ ErrorStats readStats(ByteReader& in) {
     return s;
 }
 
-void writeRow(ByteWriter& out, const SweepRow& row) {
+void writeSweepRow(ByteWriter& out, const SweepRow& row) {
     out.string(row.setting);
     out.u64(row.stageSeconds.size());
     for (const auto& [stage, seconds] : row.stageSeconds) {
         out.string(stage);
         out.f64(seconds);
     }
-    writeStats(out, row.overall);
+    writeErrorStats(out, row.overall);
     out.u64(row.perObject.size());
-    for (const ErrorStats& s : row.perObject) writeStats(out, s);
+    for (const ErrorStats& s : row.perObject) writeErrorStats(out, s);
     out.i64(row.spp);
     for (double v : {row.oneOffSeconds, row.frameSeconds, row.glslFrameSeconds, row.breakEven.spp, row.breakEven.seconds})
         out.f64(v);
@@ -67,15 +67,15 @@ void writeRow(ByteWriter& out, const SweepRow& row) {
     out.string(std::string(cbor.begin(), cbor.end()));
 }
 
-SweepRow readRow(ByteReader& in, const std::string& source) {
+SweepRow readSweepRow(ByteReader& in, const std::string& source) {
     SweepRow row;
     row.setting = in.string();
     for (uint64_t n = in.u64(); n > 0; --n) {
         std::string stage = in.string();
         row.stageSeconds.push_back({std::move(stage), in.f64()});
     }
-    row.overall = readStats(in);
-    for (uint64_t n = in.u64(); n > 0; --n) row.perObject.push_back(readStats(in));
+    row.overall = readErrorStats(in);
+    for (uint64_t n = in.u64(); n > 0; --n) row.perObject.push_back(readErrorStats(in));
     row.spp = int(in.i64());
     for (double* v : {&row.oneOffSeconds, &row.frameSeconds, &row.glslFrameSeconds, &row.breakEven.spp, &row.breakEven.seconds})
         *v = in.f64();
@@ -94,8 +94,8 @@ SweepRow readRow(ByteReader& in, const std::string& source) {
 
 std::string encodeReference(const Reference& r) {
     ByteWriter out;
-    for (int t = 0; t < kTermCount; ++t) writeImage(out, r.images[t]);
-    for (int t = 0; t < kTermCount; ++t) writeImage(out, r.variances[t]);
+    for (int t = 0; t < kTermCount; ++t) writeImageBytes(out, r.images[t]);
+    for (int t = 0; t < kTermCount; ++t) writeImageBytes(out, r.variances[t]);
     for (float v : {r.lightPosition.x, r.lightPosition.y, r.lightPosition.z}) out.f64(v);
     out.i64(r.spp);
     out.f64(r.seconds);
@@ -107,8 +107,8 @@ std::string encodeReference(const Reference& r) {
 Reference decodeReference(const std::string& bytes, const std::string& source) {
     ByteReader in(bytes, source);
     Reference r;
-    for (int t = 0; t < kTermCount; ++t) r.images[t] = readImage(in, source);
-    for (int t = 0; t < kTermCount; ++t) r.variances[t] = readImage(in, source);
+    for (int t = 0; t < kTermCount; ++t) r.images[t] = readImageBytes(in, source);
+    for (int t = 0; t < kTermCount; ++t) r.variances[t] = readImageBytes(in, source);
     for (float* v : {&r.lightPosition.x, &r.lightPosition.y, &r.lightPosition.z}) *v = float(in.f64());
     r.spp = int(in.i64());
     r.seconds = in.f64();
@@ -124,7 +124,7 @@ std::string encodeSweepPart(const SweepPart& part) {
     for (size_t i = 0; i < part.tasks.size(); ++i) {
         out.i64(part.tasks[i]);
         out.u64(part.rows[i].size());
-        for (const SweepRow& row : part.rows[i]) writeRow(out, row);
+        for (const SweepRow& row : part.rows[i]) writeSweepRow(out, row);
     }
     out.u64(part.cancelled);
     return out.take();
@@ -136,7 +136,7 @@ SweepPart decodeSweepPart(const std::string& bytes, const std::string& source) {
     for (uint64_t n = in.u64(); n > 0; --n) {
         part.tasks.push_back(int(in.i64()));
         std::vector<SweepRow>& rows = part.rows.emplace_back();
-        for (uint64_t k = in.u64(); k > 0; --k) rows.push_back(readRow(in, source));
+        for (uint64_t k = in.u64(); k > 0; --k) rows.push_back(readSweepRow(in, source));
     }
     part.cancelled = in.u64() != 0;
     if (!in.atEnd()) throw std::runtime_error(source + ": bytes left over after the sweep part");
