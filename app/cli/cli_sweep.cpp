@@ -40,10 +40,12 @@ struct SweepArgs : PredictionArgs {
 
 /// The estimated seconds of each task of a checked sweep with `threads` threads, the cost the ranks'
 /// assignment balances (core/project/time_estimate.h, from the settings alone): a path-tracer series
-/// its largest spp × pixels at the reference machine's path rate; a point its training (the midpoint of
-/// estimateTraining's range on the records its data holds at most) plus, where it makes its own data,
-/// the midpoint of estimateGenerate's. Epochs cut short by the error goal, kd-tree growth and the
-/// encodings' cost are not modelled; the prediction is small beside training and left out.
+/// its largest spp × pixels at the reference machine's path rate; a point its training (the low end
+/// of estimateTraining's range, root networks for their max epochs, on the records its data holds at
+/// most: the high end assumes every kd-tree level splits, which the default goal rarely lets happen)
+/// plus, where it makes its own data, the midpoint of estimateGenerate's. Epochs cut short by the
+/// error goal, kd-tree growth and the encodings' cost are not modelled; the prediction is small beside
+/// training and left out.
 std::vector<double> sweepTaskSeconds(const Scene& scene, const SweepOptions& o, int threads) {
     const PathRate rate = PathRate::of(0, threads);
     const int inputs = RecordLayout::forScene(scene).inputCount(), objects = int(scene.objects.size());
@@ -54,7 +56,7 @@ std::vector<double> sweepTaskSeconds(const Scene& scene, const SweepOptions& o, 
             seconds.push_back(double(o.width) * double(o.height) * double(t.maxSpp) / rate.samplesPerSecond);
             continue;
         }
-        double s = mid(estimateTraining(t.training, expectedRecords(t.sampling), objects, inputs, threads));
+        double s = estimateTraining(t.training, expectedRecords(t.sampling), objects, inputs, threads).low;
         if (t.newData) s += mid(estimateGenerate(t.sampling, rate));
         seconds.push_back(s);
     }
