@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Scaling of `rrf generate` and `rrf train` over MPI ranks (issue 17; docs/cluster.md).
+"""Scaling of `rrf generate` and `rrf train` over MPI ranks, and of whole `rrf sweep` and `rrf pipeline` runs (issue 17; docs/cluster.md).
 
 Runs each stage on the bundled Cornell box once as 1 rank and once as 2 ranks (`mpirun -n`), every
 rank with one worker thread (`--threads 1`), so that on a 2-core machine the two runs compare one core
@@ -31,14 +31,23 @@ Load balance of generation, measured: the same grid as two equal cell counts (`-
 one after the other with one thread each) against the ranks' cost-balanced ranges; the imbalance is the
 busier part's CPU seconds over the mean of the two.
 
+Whole commands, wall time of 1 rank against 2 (each rank one thread): a hidden-size sweep of three
+points (reference at a fixed spp, the path tracer's series and the points as tasks on the ranks, longest
+first by estimated seconds) and a pipeline (ground truth by interleaved rows, data by cells, networks by
+objects, two held-out references by lights), each on a fresh copy of the project; the sweep's CSV is
+compared without its timing columns, the pipeline's dataset and ground truth byte for byte. The
+sweep's ranks log the CPU seconds of their tasks: the busiest over the mean measures the cost model.
+
 Usage: bench/bench_mpi.py [--rrf build/rrf] [--mpirun mpirun] [--grid 10,10,10] [--dirs 300] [--spp 16]
                           [--epochs 60]
-Keep the defaults on a shared 2-core machine: the whole bench takes about two minutes.
+Keep the defaults on a shared 2-core machine: the whole bench takes about three minutes.
 """
 import argparse
+import csv
 import os
 import re
 import resource
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -128,12 +137,51 @@ def main():
     max_share = max(shares) / sum(shares) if shares else 1.0
     stages.append(("train", tw1, tc1, tw2, tr2, tj2, records, max_share, None, tcpu1))
 
+    # ---- whole commands: sweep and pipeline ----
+    def fresh_project(name):
+        d = os.path.join(tmp, name)
+        os.makedirs(d)
+        for f in ("project.json", "scene.json"):
+            shutil.copy(os.path.join(os.path.dirname(project), f), d)
+        return os.path.join(d, "project.json")
+
+    def csv_without_times(path):
+        rows = list(csv.reader(open(path)))
+        keep = [i for i, name in enumerate(rows[0]) if "seconds" not in name]
+        return [[r[i] for i in keep] for r in rows]
+
+    data_flags = ["--grid", "6,6,6", "--dirs", "60", "--data-spp", "8", "--epochs", a.epochs, "--threads", "1"]
+    sweep = ["sweep", project, "--what", "hidden", "--values", "5", "10,5", "20,10", "--width", "48", "--height", "48",
+             "--reference-spp", "64", "--trainer", "adam"] + data_flags
+    sw1, _ = run(mpi(1, sweep + ["--out", os.path.join(tmp, "s1")]), env)
+    sw2, slog2 = run(mpi(2, sweep + ["--out", os.path.join(tmp, "s2")]), env)
+    same_sweep = csv_without_times(os.path.join(tmp, "s1", "sweep_hidden.csv")) == \
+        csv_without_times(os.path.join(tmp, "s2", "sweep_hidden.csv"))
+    shares = re.findall(r"^rank \d/2: sweep (.*?): ([\d.]+)% of the estimated", slog2, re.M)
+    sweep_cpu = rank_times(slog2, r"rank \d/2: ran \d+ sweep task\(s\) in [\d.]+ s \(([\d.]+) s CPU")
+    pipe = ["--width", "48", "--height", "48", "--spp", "64", "--held-out", "2", "--noise", "0.2", "--spp-cap", "64",
+            "--trainer", "adam"] + data_flags
+    pw1, _ = run(mpi(1, ["pipeline", fresh_project("p1")] + pipe + ["--out", os.path.join(tmp, "o1")]), env)
+    pw2, _ = run(mpi(2, ["pipeline", fresh_project("p2")] + pipe + ["--out", os.path.join(tmp, "o2")]), env)
+    same_pipe = all(open(os.path.join(tmp, "o1", f), "rb").read() == open(os.path.join(tmp, "o2", f), "rb").read()
+                    for f in ("dataset.rrfd", "ground_truth/global.exr", "held_out/light_1/reference_global.exr"))
+
     print("\n%-9s %9s %9s %8s  %-26s %s" % ("stage", "1 rank s", "2 ranks s", "speed-up", "rank CPU s (1 | 2)",
                                             "output"))
     for name, w1_, c1_, w2_, r2_, _, _, _, same_, _ in stages:
         print("%-9s %9.2f %9.2f %7.2fx  %-26s %s" % (
             name, w1_, w2_, w1_ / w2_, "%.2f | %s" % (c1_, " ".join("%.2f" % t for t in r2_)),
             "" if same_ is None else ("bytes identical" if same_ else "BYTES DIFFER")))
+
+    print("%-9s %9.2f %9.2f %7.2fx  %-26s %s" % ("sweep", sw1, sw2, sw1 / sw2, "-",
+                                                 "rows identical but times" if same_sweep else "ROWS DIFFER"))
+    print("%-9s %9.2f %9.2f %7.2fx  %-26s %s" % ("pipeline", pw1, pw2, pw1 / pw2, "-",
+                                                 "bytes identical" if same_pipe else "BYTES DIFFER"))
+    print("  sweep shares at 2 ranks (estimated seconds, longest first): " +
+          "; ".join("%s %s%%" % (what, pct) for what, pct in shares))
+    if sweep_cpu:
+        print("  sweep tasks' CPU s per rank at 2 ranks: %s (busiest / mean %.3f)" % (
+            " ".join("%.2f" % t for t in sweep_cpu), max(sweep_cpu) / (sum(sweep_cpu) / len(sweep_cpu))))
 
     mean = lambda v: sum(v) / len(v)
     print("\nload balance of generate at 2 ranks (busiest part / mean, CPU s): equal cell counts %.3f (%.2f, %.2f), "

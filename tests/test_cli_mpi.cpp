@@ -1,7 +1,8 @@
-// `mpirun -n 3 rrf generate|train|evaluate` on localhost against the single-process run (issue 17):
-// the dataset byte for byte, the model set's weights (of raw inputs, and with a hash grid's tables)
-// and trees bit for bit (the files' timing fields differ, as between two single-process runs), the
-// evaluation's images byte for byte and its report but for times, and a failing rank (all of them,
+// `mpirun -n 3 rrf generate|train|evaluate|sweep|pipeline` on localhost against the single-process
+// run (issue 17): the dataset byte for byte, the model set's weights (of raw inputs, and with a hash
+// grid's tables) and trees bit for bit (the files' timing fields differ, as between two
+// single-process runs), the evaluation's images byte for byte and its report but for times, a
+// sweep's CSV and JSON but for times, a pipeline's every output, and a failing rank (all of them,
 // or only one before any collective call) ends the job with its message.
 // Compiled only when rrf is built with MPI (CMake sets RRF_MPIEXEC to the launcher).
 #ifdef RRF_MPIEXEC
@@ -12,6 +13,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
+#include <vector>
 #include <string>
 
 #include <unistd.h>
@@ -28,6 +31,8 @@ namespace fs = std::filesystem;
 const std::string kCornell = std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json";
 /// A small run: 64 cells × 30 directions × 4 paths, small networks for a few epochs.
 const std::string kSampling = " --grid 4,4,4 --dirs 30 --spp 4 --seed 3";
+/// The same data for sweep and pipeline, whose --spp and --seed mean the renders'.
+const std::string kExperiment = " --grid 4,4,4 --dirs 30 --data-spp 4";
 const std::string kNetwork = " --hidden 6 --trainer adam --epochs 12 --log-every 0";
 
 /// `rrf <args>` under `mpirun -n <ranks>` on this host: oversubscribed (CI has 2 cores), unbound (each
@@ -119,6 +124,39 @@ void expectSameModels(const std::string& a, const std::string& b, bool encoded) 
     }
 }
 
+/// A CSV without its timing columns (names holding "seconds": stage times, one-off and frame times,
+/// break-even seconds, the curves' times), one string per line.
+std::vector<std::string> csvWithoutTimes(const std::string& text) {
+    std::vector<std::vector<std::string>> cells;
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);) {
+        std::vector<std::string> row;
+        // Quoted settings ("4,4,4") hold commas: split outside quotes only.
+        std::string cell;
+        bool quoted = false;
+        for (char ch : line) {
+            if (ch == '"') quoted = !quoted;
+            if (ch == ',' && !quoted) {
+                row.push_back(cell);
+                cell.clear();
+            } else {
+                cell += ch;
+            }
+        }
+        row.push_back(cell);
+        cells.push_back(row);
+    }
+    std::vector<std::string> out;
+    if (cells.empty()) return out;
+    for (const std::vector<std::string>& row : cells) {
+        std::string kept;
+        for (size_t c = 0; c < row.size() && c < cells[0].size(); ++c)
+            if (cells[0][c].find("seconds") == std::string::npos) kept += row[c] + ",";
+        out.push_back(kept);
+    }
+    return out;
+}
+
 TEST(CliMpi, ThreeRanksGenerateTrainAndEvaluateWhatOneProcessDoes) {
     const fs::path dir = testDir();
     const std::string one = (dir / "one.rrfd").string(), three = (dir / "three.rrfd").string();
@@ -169,6 +207,63 @@ TEST(CliMpi, ThreeRanksGenerateTrainAndEvaluateWhatOneProcessDoes) {
         EXPECT_FALSE(x.empty()) << image;
         EXPECT_TRUE(x == y) << image;
     }
+    fs::remove_all(dir);
+}
+
+TEST(CliMpi, ThreeRanksSweepWhatOneProcessDoes) {
+    const fs::path dir = testDir();
+    // A trainer sweep: the reference from the project's store (rank 0 obtains it and sends it), one
+    // dataset for both points (generated split by cells, sent to every rank), the path tracer's series
+    // and the two points as tasks on the ranks. Same project and output paths for both runs.
+    const std::string project = copyProject(dir / "p");
+    const std::string sweep = "sweep " + project + " --what trainer --values lm adam --width 20 --height 16 --noise 0.3 "
+                              "--spp-cap 8" + kExperiment + " --hidden 6 --epochs 6 --out " + (dir / "s").string();
+    const CliResult s1 = runCli(sweep);
+    ASSERT_EQ(s1.code, 0) << s1.output;
+    fs::rename(dir / "s", dir / "s1");
+    copyProject(dir / "p");
+    const CliResult s3 = runMpi(3, sweep);
+    ASSERT_EQ(s3.code, 0) << s3.output;
+    // Every rank logs its share: the series and each point on one rank.
+    for (const char* share : {"rank 0/3: sweep ", "rank 1/3: sweep ", "rank 2/3: sweep ", "the path tracer's series", "(adam)"})
+        EXPECT_NE(s3.output.find(share), std::string::npos) << share << "\n" << s3.output;
+    for (const char* f : {"sweep_trainer.csv", "sweep_trainer_curves.csv"}) {
+        const std::vector<std::string> a = csvWithoutTimes(readBytes((dir / "s1" / f).string()));
+        EXPECT_GT(a.size(), 2u) << f;
+        EXPECT_EQ(a, csvWithoutTimes(readBytes((dir / "s" / f).string()))) << f;
+    }
+    auto json = [](const fs::path& f) { return withoutTimesAndSources(nlohmann::json::parse(readBytes(f.string()))); };
+    EXPECT_EQ(json(dir / "s1" / "sweep_trainer.json").dump(), json(dir / "s" / "sweep_trainer.json").dump());
+    fs::remove_all(dir);
+}
+
+TEST(CliMpi, ThreeRanksPipelineWhatOneProcessDoes) {
+    const fs::path dir = testDir();
+    // Ground truth by interleaved rows, data by cells, networks by objects, held-out references by
+    // lights; rank 0 writes every file. Same project and output paths for both runs.
+    const std::string project = copyProject(dir / "p");
+    const std::string pipeline = "pipeline " + project + " --width 20 --height 16 --spp 8 --held-out 2 --noise 0.3 "
+                                 "--spp-cap 8" + kExperiment + " --hidden 6 --trainer adam --epochs 8 --out " + (dir / "o").string();
+    const CliResult p1 = runCli(pipeline);
+    ASSERT_EQ(p1.code, 0) << p1.output;
+    fs::rename(dir / "o", dir / "o1");
+    copyProject(dir / "p");
+    const CliResult p3 = runMpi(3, pipeline);
+    ASSERT_EQ(p3.code, 0) << p3.output;
+    for (const char* share : {"rank 2/3: ground truth rows y mod 3 = 2 (5 of 16 rows", "rank 1/3: cells ", "rank 0/3: objects ",
+                              "rank 1/3: references 2 of 2"})
+        EXPECT_NE(p3.output.find(share), std::string::npos) << share << "\n" << p3.output;
+    for (const char* f : {"dataset.rrfd", "ground_truth/global.exr", "ground_truth/variance_indirect.exr",
+                          "evaluation/prediction_global.exr", "held_out/light_1/reference_global.exr",
+                          "held_out/light_0/error_relative_global.exr"}) {
+        const std::string x = readBytes((dir / "o1" / f).string()), y = readBytes((dir / "o" / f).string());
+        EXPECT_FALSE(x.empty()) << f;
+        EXPECT_TRUE(x == y) << f;
+    }
+    expectSameModels((dir / "o1" / "models").string(), (dir / "o" / "models").string(), false);
+    auto json = [](const fs::path& f) { return withoutTimesAndSources(nlohmann::json::parse(readBytes(f.string()))); };
+    for (const char* f : {"evaluation/evaluation.json", "held_out/held_out.json", "ground_truth/render.json"})
+        EXPECT_EQ(json(dir / "o1" / f).dump(), json(dir / "o" / f).dump()) << f;
     fs::remove_all(dir);
 }
 

@@ -8,13 +8,13 @@
 #include <string>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/cli_ranks.h"
 #include "app/cli/cli_evaluation.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "app/mpi/ranks.h"
 #include "core/eval/held_out.h"
 #include "core/nn/model_set.h"
-#include "core/nn/training_split.h"
 #include "core/project/project.h"
 #include "core/project/run_recording.h"
 #include "core/util/error.h"
@@ -68,28 +68,6 @@ void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vecto
     const std::string dir = projectDirectory(p);
     editRuns(a.input, [&](std::vector<Run>& runs) { recordEvaluation(runs, dir, a.models, r); });
     std::printf("recorded the evaluation in the train run of %s in %s\n", a.models.c_str(), a.input.c_str());
-}
-
-/// In an MPI job of more than one rank: this rank renders (or continues) the references of its share
-/// of `lights` into the project's store — light k to rank k mod N (longest first on equal costs),
-/// each rank one reference at a time with all its threads — and all ranks wait for the last.
-/// Rank 0 then evaluates as one process does and finds every reference in the store. The store's
-/// entries are directories written whole, one per light, so ranks never write the same file; the
-/// project's directory must be shared by the ranks (docs/cluster.md).
-void obtainRankReferences(const mpi::Ranks& ranks, const std::vector<Vec3>& lights, const ReferenceSource& source) {
-    const std::vector<int> rankOf = assignLongestFirst(std::vector<uint64_t>(lights.size(), 1), ranks.size());
-    std::string mine;
-    for (size_t k = 0; k < lights.size(); ++k)
-        if (rankOf[k] == ranks.rank()) mine += (mine.empty() ? "" : ", ") + std::to_string(k + 1);
-    std::printf("%s: references %s of %zu (light k to rank k mod %d)\n", ranks.name().c_str(),
-                mine.empty() ? "none" : mine.c_str(), lights.size(), ranks.size());
-    std::fflush(stdout);
-    const Stopwatch clock;
-    for (size_t k = 0; k < lights.size(); ++k)
-        if (rankOf[k] == ranks.rank()) source(k, lights[k]);
-    std::printf("%s: references done in %.2f s\n", ranks.name().c_str(), clock.seconds());
-    std::fflush(stdout);
-    ranks.barrier();
 }
 
 int runEvaluate(EvaluateArgs a) {

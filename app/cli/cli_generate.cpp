@@ -8,16 +8,13 @@
 #include <vector>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/cli_ranks.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
-#include "app/mpi/gather_parts.h"
 #include "app/mpi/ranks.h"
-#include "core/data/cell_split.h"
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
-#include "core/data/dataset_part.h"
 #include "core/project/project.h"
-#include "core/util/byte_stream.h"
 #include "core/util/error.h"
 #include "core/util/stopwatch.h"
 
@@ -30,42 +27,6 @@ struct GenerateArgs {
     int threads = 0;
     SettingFlags<SamplingSettings> sampling;
 };
-
-/// This rank's cells of an MPI job: the grid split into contiguous ranges of near-equal cost, the
-/// predicted records × spp (core/data/cell_split.h), logged with the share of the work they hold.
-/// Rank 0 alone predicts the costs (first hits traced by Embree) and sends them to the others: nodes
-/// with different instruction sets may see a ray graze an edge differently, and ranges computed
-/// apart would then not tile the grid. The split of the same costs is exact integer arithmetic.
-CellRange rankCells(const DataGenerator& gen, const mpi::Ranks& ranks) {
-    const Stopwatch clock;
-    std::string sent;
-    if (ranks.isRoot()) {
-        ByteWriter out;
-        for (uint64_t cost : cellCosts(gen)) out.u64(cost);
-        sent = out.take();
-    }
-    ranks.broadcast(sent);
-    std::vector<uint64_t> costs(sent.size() / sizeof(uint64_t));
-    ByteReader in(sent, "cell costs from rank 0");
-    for (uint64_t& cost : costs) cost = in.u64();
-    const std::vector<CellRange> ranges = splitCellsByCost(costs, ranks.size());
-    const CellRange mine = ranges[size_t(ranks.rank())];
-    uint64_t total = 0, own = 0;
-    for (size_t c = 0; c < costs.size(); ++c) {
-        total += costs[c];
-        if (int(c) >= mine.begin && int(c) < mine.end) own += costs[c];
-    }
-    const uint64_t spp = uint64_t(gen.settings().spp);
-    if (mine.size() == 0)
-        std::printf("%s: no cells (%d ranks for %zu cells)\n", ranks.name().c_str(), ranks.size(), costs.size());
-    else
-        std::printf("%s: cells %d-%d of %zu (%llu records predicted, %.1f%% of the paths; contiguous ranges balanced by "
-                    "predicted records, planned in %.2f s)\n",
-                    ranks.name().c_str(), mine.begin, mine.end - 1, costs.size(), (unsigned long long)(own / spp),
-                    total ? 100.0 * double(own) / double(total) : 0.0, clock.seconds());
-    std::fflush(stdout);
-    return mine;
-}
 
 int runGenerate(const GenerateArgs& a) {
     const Project project = loadProjectOrScene(a.input);
@@ -87,7 +48,6 @@ int runGenerate(const GenerateArgs& a) {
         std::printf("rrf generate: %s, grid %dx%dx%d, %d directions, %d spp, seed %llu, %s\n", a.input.c_str(), s.nx,
                     s.ny, s.nz, s.directions, s.spp, (unsigned long long)s.seed, split.c_str());
     }
-    const CellRange cells = ranks.size() > 1 ? rankCells(gen, ranks) : CellRange{};
     if (s.adaptive() && ranks.isRoot())
         std::printf("adaptive paths per record: %d, doubling up to %d until the relative noise is <= %g\n", s.spp,
                     s.maxSpp, s.noiseTarget);
@@ -97,38 +57,13 @@ int runGenerate(const GenerateArgs& a) {
         std::printf("\n");
     }
     std::fflush(stdout);
-    GeneratorProgress progress;
-    std::atomic<bool> cancel{false};
-    GeneratedData data;
     const double cpuStart = processCpuSeconds();
-    runWithProgress(
-        "generate",
-        [&] {
-            data = ranks.size() > 1 ? gen.runCells(cells.begin, cells.end, ranks.rank(), ranks.size(), &cancel, &progress)
-                                    : gen.run(k, n, &cancel, &progress);
-        },
-        [&] { return std::make_pair(progress.fraction(), std::to_string(progress.records.load()) + " records"); },
-        [&] { cancel = true; });
+    GeneratedData data = generateOnRanks(gen, ranks, k, n);
     if (data.cancelled) {
-        std::fprintf(stderr, "generate: %scancelled, no dataset written (%s untouched)\n",
-                     ranks.size() > 1 ? (ranks.name() + ": ").c_str() : "", a.out.c_str());
-        mpi::stopJobOnError(130);
+        std::fprintf(stderr, "generate: cancelled, no dataset written (%s untouched)\n", a.out.c_str());
         return 130;
     }
-    if (ranks.size() > 1) {
-        // Rank 0 joins the ranks' parts into the single-process run's data (core/data/dataset_part.h).
-        char summary[160];
-        std::snprintf(summary, sizeof summary, "%llu records in %.2f s (%.2f s CPU)", (unsigned long long)data.stats.records,
-                      data.seconds, processCpuSeconds() - cpuStart);
-        mpi::GatheredParts<NamedPart> gathered = mpi::gatherParts<NamedPart>(
-            ranks, summary, encodeGeneratedPart(data),
-            [](const std::string& bytes, const std::string& name) { return NamedPart{name, decodeGeneratedPart(bytes, name)}; });
-        if (!ranks.isRoot()) return 0;
-        data = joinGeneratedParts(std::move(gathered.parts));
-        std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s (slowest rank "
-                    "%.2f s)\n",
-                    gathered.waitedSeconds, ranks.size(), gathered.joinClock.seconds(), data.seconds);
-    }
+    if (!ranks.isRoot()) return 0;
     writeDataset(a.out, data.header, data.sceneHash, data.perObject);
     const GeneratorStats& st = data.stats;
     std::printf("%llu records in %.2f s (%.2f s CPU%s): %srecords/s, %spath samples/s, %srays/s\n",

@@ -1,5 +1,7 @@
 // `rrf pipeline`: ground truth, training data, networks and evaluation (at the ground truth's light
-// and at held-out lights) in one run, with each stage's wall time.
+// and at held-out lights) in one run, with each stage's wall time. Under an MPI launcher every stage
+// splits across the ranks as its own command does (cli_ranks.h) and rank 0 writes every file
+// (docs/cluster.md).
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -16,6 +18,8 @@
 #include "core/project/run_recording.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
+#include "app/cli/cli_ranks.h"
+#include "app/mpi/ranks.h"
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
 #include "core/eval/experiment.h"
@@ -44,6 +48,8 @@ struct PipelineArgs : PredictionArgs {
 };
 
 int runPipeline(const PipelineArgs& a) {
+    const mpi::Ranks& ranks = mpi::ranks();
+    const bool root = ranks.isRoot();
     Stopwatch total;
     const Project p = loadProjectOrScene(a.input);
     refuseOverwritingInputs(a.out, projectInputs(p));
@@ -63,7 +69,7 @@ int runPipeline(const PipelineArgs& a) {
     ReferenceStore store = projectReferenceStore(p);
     NoiseTarget target = noiseTargetFor(p, a.noise, a.sppCap);
     if (sizes.referenceSppCap > 0 && a.sppCap <= 0) target.sppCap = std::min(target.sppCap, sizes.referenceSppCap);
-    {
+    if (root) {
         // What the stages will cost, from the settings (core/project/time_estimate.h).
         const PathRate rate = PathRate::of(0, int(std::thread::hardware_concurrency()));
         const StageEstimate g = estimateGenerate(s, rate);
@@ -73,17 +79,18 @@ int runPipeline(const PipelineArgs& a) {
                     rangeText(tr).c_str(), tr.basis.c_str());
         std::fflush(stdout);
     }
-    makeDirectories(a.out);
-    std::printf("rrf pipeline%s: %s -> %s\n  ground truth %dx%d, %d spp; %s; %d held-out lights (references from %s: "
+    if (root) makeDirectories(a.out);
+    if (root)
+        std::printf("rrf pipeline%s: %s -> %s\n  ground truth %dx%d, %d spp; %s; %d held-out lights (references from %s: "
                 "relative noise <= max(%g, %g x the error), at most %d spp)\n",
                 preset ? (std::string(" --preset ") + preset->name).c_str() : "", a.input.c_str(), a.out.c_str(), ro.width, ro.height, ro.spp,
                 describeExperiment(s, t).c_str(), heldOut, store.dir().c_str(), target.relativeRmse, target.errorFraction,
                 target.sppCap);
     std::vector<std::pair<std::string, double>> stages;
 
-    // 1. Ground truth at the scene's light position.
-    const Reference gt = renderWithProgress(scene, scene.lightPosition(), ro, "ground truth");
-    {
+    // 1. Ground truth at the scene's light position (each rank its interleaved rows in an MPI job).
+    const Reference gt = renderOnRanks(scene, scene.lightPosition(), ro, "ground truth", ranks);
+    if (root) {
         const std::string dir = outputPath(a.out, "ground_truth");
         makeDirectories(dir);
         for (int k = 0; k < kTermCount; ++k)
@@ -103,48 +110,55 @@ int runPipeline(const PipelineArgs& a) {
         stages.push_back({"ground truth", gt.seconds});
         std::printf("[1/4] ground truth: %.1f s -> %s\n", gt.seconds, dir.c_str());
     }
-    // 2. Training data.
+    // 2. Training data (each rank its cells in an MPI job; every rank gets the whole data to train on).
     const DataGenerator generator(scene, s);
-    GeneratorProgress gp;
     std::atomic<bool> cancel{false};
-    GeneratedData data;
-    runWithProgress("generate", [&] { data = generator.run(0, 1, &cancel, &gp); },
-                    [&] { return std::make_pair(gp.fraction(), humanCount(double(gp.records)) + "records"); }, [&] { cancel = true; });
+    const GeneratedData data = generateOnAllRanks(generator, ranks);
     if (data.cancelled) throw std::runtime_error("interrupted while generating data");
     const std::string dataset = outputPath(a.out, "dataset.rrfd");
-    writeDataset(dataset, data.header, data.sceneHash, data.perObject);
-    stages.push_back({"generate", data.seconds});
-    std::printf("[2/4] generate: %llu records in %.1f s -> %s\n", (unsigned long long)data.stats.records,
-                data.seconds, dataset.c_str());
-    // 3. Networks.
+    if (root) {
+        writeDataset(dataset, data.header, data.sceneHash, data.perObject);
+        stages.push_back({"generate", data.seconds});
+        std::printf("[2/4] generate: %llu records in %.1f s -> %s\n", (unsigned long long)data.stats.records, data.seconds,
+                    dataset.c_str());
+    }
+    // 3. Networks (each rank its objects in an MPI job).
     const RecordLayout layout = generator.layout();
     const std::vector<ObjectSamples> samples = samplesFromGenerated(data, scene, layout);
-    TrainingProgress progress;
     ObjectTrainingObserver obs;
     obs.cancel = &cancel;
-    TrainingRun run;
-    runWithProgress("train", [&] { run = trainNetworks(samples, t, obs, &progress); },
-                    [&] { return std::make_pair(progress.fraction(), std::string()); }, [&] { cancel = true; });
-    stages.push_back({"train", run.seconds});
+    const TrainingRun run = trainOnRanks(samples, t, ranks, scene, obs, cancel);
     const std::string modelDir = outputPath(a.out, "models");
-    NetworkSettings network;
-    network.options = t;
-    saveTrainingRun(modelDir, run, network, scene.contentHash(), layout.inputs, {dataset, a.input});
-    std::printf("[3/4] train: %.1f s -> %s\n", stages.back().second, modelDir.c_str());
+    if (root) {
+        stages.push_back({"train", run.seconds});
+        NetworkSettings network;
+        network.options = t;
+        saveTrainingRun(modelDir, run, network, scene.contentHash(), layout.inputs, {dataset, a.input});
+        std::printf("[3/4] train: %.1f s -> %s\n", stages.back().second, modelDir.c_str());
+    }
+    // Every rank loads the models rank 0 saved: the held-out references converge relative to the
+    // model's error (storeSource), so each rank needs the very networks one process would evaluate.
+    // The --out directory must therefore be one all ranks see, as the project's store must be.
+    ranks.barrier();
     // 4. Evaluation: at the ground truth's light, then at held-out lights.
     const ModelSet models = loadModelSet(modelDir, scene.contentHash());
     // A preset's prediction settings (e.g. best's direct samples) under the command's own flags.
     const Predictor predictor(scene, models, a.prediction.applied(preset ? presetPrediction(p, *preset) : p.prediction));
     Stopwatch evalClock;
-    std::printf("[4/4] evaluate at the ground truth's light:");
-    const ReferenceSource groundTruth = [&](size_t, const Vec3&) {
-        return ObtainedReference{gt, {{"fixed_spp", gt.spp}, {"directory", outputPath(a.out, "ground_truth")}}};
-    };
-    evaluateAll(p, predictor, {gt.lightPosition}, groundTruth, outputPath(a.out, "evaluation"), p.render.exposure);
-    std::printf("\nevaluate at %d held-out light positions:\n", heldOut);
-    evaluateAll(p, predictor, heldOutLightPositions(scene.lightRange(), heldOut, uint64_t(a.seed)),
-                storeSource(store, p, predictor, ro.width, ro.height, target, size_t(heldOut)), outputPath(a.out, "held_out"),
-                p.render.exposure);
+    if (root) {
+        std::printf("[4/4] evaluate at the ground truth's light:");
+        const ReferenceSource groundTruth = [&](size_t, const Vec3&) {
+            return ObtainedReference{gt, {{"fixed_spp", gt.spp}, {"directory", outputPath(a.out, "ground_truth")}}};
+        };
+        evaluateAll(p, predictor, {gt.lightPosition}, groundTruth, outputPath(a.out, "evaluation"), p.render.exposure);
+        std::printf("\nevaluate at %d held-out light positions:\n", heldOut);
+    }
+    const std::vector<Vec3> lights = heldOutLightPositions(scene.lightRange(), heldOut, uint64_t(a.seed));
+    const ReferenceSource held = storeSource(store, p, predictor, ro.width, ro.height, target, size_t(heldOut));
+    // In an MPI job the ranks render the held-out references into the store, as rrf evaluate's do.
+    if (ranks.size() > 1) obtainRankReferences(ranks, lights, held);
+    if (!root) return 0;
+    evaluateAll(p, predictor, lights, held, outputPath(a.out, "held_out"), p.render.exposure);
     stages.push_back({"evaluate", evalClock.seconds()});
     std::printf("\n%-14s %10s\n", "stage", "seconds");
     for (const auto& st : stages) std::printf("%-14s %10.2f\n", st.first.c_str(), st.second);

@@ -1,9 +1,12 @@
 // `rrf sweep`: error against wall time while one setting varies (core/eval/sweep.h), written as CSV,
-// JSON and a table.
+// JSON and a table. Under an MPI launcher the ranks share the sweep's tasks and rank 0 writes the
+// files of the single-process run (docs/cluster.md).
+#include <algorithm>
 #include <cstdio>
 #include <iterator>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/cli/cli_common.h"
@@ -11,7 +14,14 @@
 #include "core/project/run_recording.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
+#include "app/cli/cli_ranks.h"
+#include "app/mpi/gather_parts.h"
+#include "app/mpi/ranks.h"
+#include "core/data/record_layout.h"
 #include "core/eval/sweep.h"
+#include "core/eval/sweep_parts.h"
+#include "core/nn/training_split.h"
+#include "core/project/time_estimate.h"
 #include "core/project/project.h"
 #include "core/render/render_outputs.h"
 #include "core/util/stopwatch.h"
@@ -28,7 +38,89 @@ struct SweepArgs : PredictionArgs {
     ExperimentFlags experiment;
 };
 
+/// The estimated seconds of each task of a checked sweep with `threads` threads, the cost the ranks'
+/// assignment balances (core/project/time_estimate.h, from the settings alone): a path-tracer series
+/// its largest spp × pixels at the reference machine's path rate; a point its training (the low end
+/// of estimateTraining's range, root networks for their max epochs, on the records its data holds at
+/// most: the high end assumes every kd-tree level splits, which the default goal rarely lets happen)
+/// plus, where it makes its own data, the midpoint of estimateGenerate's. Epochs cut short by the
+/// error goal, kd-tree growth and the encodings' cost are not modelled; the prediction is small beside
+/// training and left out.
+std::vector<double> sweepTaskSeconds(const Scene& scene, const SweepOptions& o, int threads) {
+    const PathRate rate = PathRate::of(0, threads);
+    const int inputs = RecordLayout::forScene(scene).inputCount(), objects = int(scene.objects.size());
+    auto mid = [](const StageEstimate& e) { return 0.5 * (e.low + e.high); };
+    std::vector<double> seconds;
+    for (const SweepTask& t : sweepTasks(o)) {
+        if (t.series) {
+            seconds.push_back(double(o.width) * double(o.height) * double(t.maxSpp) / rate.samplesPerSecond);
+            continue;
+        }
+        double s = estimateTraining(t.training, expectedRecords(t.sampling), objects, inputs, threads).low;
+        if (t.newData) s += mid(estimateGenerate(t.sampling, rate));
+        seconds.push_back(s);
+    }
+    return seconds;
+}
+
+/// The sweep of an MPI job of more than one rank: rank 0 obtains the reference (store or fixed spp)
+/// and sends it to every rank; a network sweep's shared dataset is generated split by cells, joined on
+/// rank 0 and sent to every rank; the tasks go to the ranks longest first by estimated seconds
+/// (sweepTaskSeconds, assignLongestFirst), each rank runs its own with all its threads, and rank 0
+/// joins the parts into the single-process result. The other ranks return an empty result.
+SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::Ranks& ranks, int threads) {
+    std::string bytes;
+    if (ranks.isRoot()) {
+        const Reference reference = obtainSweepReference(scene, o);
+        if (reference.cancelled || (o.cancel && o.cancel->load())) {
+            std::fprintf(stderr, "%s: sweep cancelled while obtaining the reference\n", ranks.name().c_str());
+            mpi::stopJobOnError(130);
+        }
+        bytes = encodeReference(reference);
+    }
+    ranks.broadcast(bytes);
+    Reference reference = decodeReference(bytes, "the reference from rank 0");
+    std::string().swap(bytes);
+    std::shared_ptr<const GeneratedData> data;
+    if (sweepSharesData(o)) data = std::make_shared<const GeneratedData>(generateOnAllRanks(DataGenerator(scene, o.sampling), ranks));
+    const SweepInputs inputs = sweepInputs(scene, o, std::move(reference), std::move(data));
+
+    const std::vector<SweepTask> tasks = sweepTasks(o);
+    const std::vector<double> seconds = sweepTaskSeconds(scene, o, threads);
+    std::vector<uint64_t> costs;
+    for (double s : seconds) costs.push_back(uint64_t(std::max(0.0, s) * 1e6));  // microseconds: integers for the rule
+    const std::vector<int> rankOf = assignLongestFirst(costs, ranks.size());
+    std::vector<int> mine;
+    std::string points, series;
+    double own = 0, total = 0;
+    for (size_t t = 0; t < tasks.size(); ++t) {
+        total += seconds[t];
+        if (rankOf[t] != ranks.rank()) continue;
+        mine.push_back(int(t));
+        own += seconds[t];
+        if (tasks[t].series) series = o.what == "spp" ? "the spp series" : "the path tracer's series";
+        else points += (points.empty() ? "points " : ", ") + std::to_string(t) + " (" + tasks[t].label + ")";
+    }
+    const std::string share = points + (!points.empty() && !series.empty() ? " and " : "") + series;
+    std::printf("%s: sweep %s: %.1f%% of the estimated %.3g s (longest first by estimated seconds)\n", ranks.name().c_str(),
+                share.empty() ? "nothing" : share.c_str(), total > 0 ? 100.0 * own / total : 0.0, total);
+    std::fflush(stdout);
+    const Stopwatch clock;
+    const double cpuStart = processCpuSeconds();
+    const SweepPart part = runSweepTasks(scene, o, inputs, mine);
+    char summary[160];
+    std::snprintf(summary, sizeof summary, "ran %zu sweep task(s) in %.2f s (%.2f s CPU)", mine.size(), clock.seconds(),
+                  processCpuSeconds() - cpuStart);
+    mpi::GatheredParts<SweepPart> gathered = mpi::gatherParts<SweepPart>(ranks, summary, encodeSweepPart(part), decodeSweepPart);
+    if (!ranks.isRoot()) return {};
+    SweepResult r = joinSweepParts(scene, o, inputs, std::move(gathered.parts));
+    std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s\n", gathered.waitedSeconds,
+                ranks.size(), gathered.joinClock.seconds());
+    return r;
+}
+
 int runSweepCommand(const SweepArgs& a) {
+    const mpi::Ranks& ranks = mpi::ranks();
     const Project p = loadProjectOrScene(a.input);
     auto threads = limitThreads(a.threads);
     SweepOptions o;
@@ -46,15 +138,21 @@ int runSweepCommand(const SweepArgs& a) {
     o.seed = uint64_t(a.seed);
     std::atomic<bool>& interrupted = installInterruptHandler();
     o.cancel = &interrupted;
-    o.log = [](const std::string& m) {
-        std::printf("  %s\n", m.c_str());
+    // In an MPI job every rank logs its own tasks, each line under its name.
+    const std::string who = ranks.size() > 1 ? ranks.name() + ": " : "";
+    o.log = [who](const std::string& m) {
+        std::printf("  %s%s\n", who.c_str(), m.c_str());
         std::fflush(stdout);
     };
-    std::printf("rrf sweep %s: %s, %dx%d; %s\n", a.what.c_str(), a.input.c_str(), o.width, o.height,
-                describeExperiment(o.sampling, o.training).c_str());
+    if (ranks.isRoot())
+        std::printf("rrf sweep %s: %s, %dx%d; %s\n", a.what.c_str(), a.input.c_str(), o.width, o.height,
+                    describeExperiment(o.sampling, o.training).c_str());
     std::fflush(stdout);
     Stopwatch clock;
-    const SweepResult r = runSweep(p.scene, o);
+    const SweepResult r = ranks.size() == 1 ? runSweep(p.scene, o)
+                                            : sweepOnRanks(p.scene, checkedSweepOptions(p.scene, o), ranks,
+                                                           a.threads > 0 ? a.threads : int(std::thread::hardware_concurrency()));
+    if (!ranks.isRoot()) return r.cancelled ? 130 : 0;
     makeDirectories(a.out);
     const std::string base = outputPath(a.out, "sweep_" + a.what);
     writeReported(base + ".csv", sweepCsv(p.scene, r));

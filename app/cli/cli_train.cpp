@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/cli/cli_common.h"
+#include "app/cli/cli_ranks.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "core/data/dataset_file.h"
@@ -21,10 +22,7 @@
 #include "core/project/project.h"
 #include "core/project/run_recording.h"
 #include "app/cli/cli_record.h"
-#include "app/mpi/gather_parts.h"
 #include "app/mpi/ranks.h"
-#include "core/nn/training_part.h"
-#include "core/nn/training_split.h"
 #include "core/util/stopwatch.h"
 #include "core/nn/training_run.h"
 #include "core/nn/training_samples.h"
@@ -62,43 +60,6 @@ std::string fmt(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.4g", v);
     return buf;
-}
-
-/// This rank's objects in an MPI job and the assignment of every object (the positions of
-/// trainingObjectOrder) to ranks.
-struct RankShare {
-    ObjectTrainingOptions options;     ///< the run's options with `objects` this rank's (in order)
-    std::vector<int> rankOfPosition;   ///< rank of each object of trainingObjectOrder
-};
-
-/// Assigns the objects to the ranks by the longest-first rule on record counts and logs this
-/// rank's share (core/nn/training_split.h). One rank: every object, nothing logged.
-RankShare rankShare(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options,
-                    const mpi::Ranks& ranks, const Scene& scene) {
-    RankShare share{options, {}};
-    if (ranks.size() == 1) return share;
-    const std::vector<int> order = trainingObjectOrder(samples, options);
-    const std::vector<uint64_t> costs = trainingCosts(samples, order);
-    share.rankOfPosition = assignLongestFirst(costs, ranks.size());
-    share.options.objects.clear();
-    uint64_t total = 0, own = 0;
-    std::string list;
-    for (size_t p = 0; p < order.size(); ++p) {
-        total += costs[p];
-        if (share.rankOfPosition[p] != ranks.rank()) continue;
-        share.options.objects.push_back(order[p]);
-        own += costs[p];
-        const std::string name = order[p] >= 0 && size_t(order[p]) < scene.objects.size() ? scene.objects[size_t(order[p])].name : "?";
-        list += (list.empty() ? "" : ", ") + std::to_string(order[p]) + " " + name + " (" + std::to_string(costs[p]) + ")";
-    }
-    if (share.options.objects.empty())
-        std::printf("%s: no objects (%d ranks for %zu objects)\n", ranks.name().c_str(), ranks.size(), order.size());
-    else
-        std::printf("%s: objects %s: %llu of %llu records (%.1f%%; longest first by record count)\n", ranks.name().c_str(),
-                    list.c_str(), (unsigned long long)own, (unsigned long long)total,
-                    total ? 100.0 * double(own) / double(total) : 0.0);
-    std::fflush(stdout);
-    return share;
 }
 
 int runTrain(const TrainArgs& a, std::optional<Run> record) {
@@ -140,37 +101,9 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
         std::lock_guard<std::mutex> lock(printMutex);
         std::printf("note: %s\n", m.c_str());
     };
-    TrainingProgress progress;
-    TrainingRun run;
-    const Stopwatch clock;
     const double cpuStart = processCpuSeconds();
-    // In an MPI job this rank trains its share of the objects (core/nn/training_split.h).
-    const RankShare share = rankShare(samples, o, ranks, project.scene);
-    runWithProgress(
-        "train",
-        [&] {
-            if (ranks.size() == 1) run = trainNetworks(samples, o, observer, &progress);
-            else if (!share.options.objects.empty()) run = trainNetworks(samples, share.options, observer, &progress);
-        },
-        [&] { return std::make_pair(progress.fraction(), std::string()); }, [&] { cancel = true; });
-    if (ranks.size() > 1) {
-        char summary[160];
-        std::snprintf(summary, sizeof summary, "trained %d networks in %.2f s (%.2f s CPU)", run.networks, run.seconds,
-                      processCpuSeconds() - cpuStart);
-        mpi::GatheredParts<TrainingRun> gathered =
-            mpi::gatherParts<TrainingRun>(ranks, summary, encodeTrainingPart(run), decodeTrainingPart);
-        if (!ranks.isRoot()) return run.cancelled ? 130 : 0;
-        std::vector<TrainingRun>& decoded = gathered.parts;
-        const double slowest = std::max_element(decoded.begin(), decoded.end(), [](const TrainingRun& x, const TrainingRun& y) {
-                                   return x.seconds < y.seconds;
-                               })->seconds;
-        run = joinTrainingParts(std::move(decoded), share.rankOfPosition, networksPerObject(o));
-        // The job's wall time as rank 0 saw it, from the start of training to the joined models.
-        run.seconds = clock.seconds();
-        std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s (slowest rank "
-                    "%.2f s, %.2f s in all)\n",
-                    gathered.waitedSeconds, ranks.size(), gathered.joinClock.seconds(), slowest, run.seconds);
-    }
+    TrainingRun run = trainOnRanks(samples, o, ranks, project.scene, observer, cancel);
+    if (!ranks.isRoot()) return run.cancelled ? 130 : 0;
     const std::vector<ObjectModel>& trained = run.models;
     const double seconds = run.seconds;
 

@@ -42,14 +42,15 @@ int main(int argc, char** argv) {
     // ranks may run; any other would run N times over and write its outputs N times (docs/cluster.md).
     if (const rrf::mpi::Launch launch = rrf::mpi::launchFromEnvironment(); launch.size > 1 && argc > 1) {
         const std::string command = argv[1];
-        const bool splits = command == "generate" || command == "train" || command == "evaluate";
+        const bool splits = command == "generate" || command == "train" || command == "evaluate" || command == "sweep" ||
+                            command == "pipeline";
         if (!splits || !rrf::mpi::mpiBuilt()) {
             if (launch.rank == 0)
                 std::fprintf(stderr, "rrf: error: %s\n",
                              splits ? "this rrf was built without MPI (configure with -DRRF_WITH_MPI=ON and "
                                       "libopenmpi-dev installed); run one process, or --shard k/n per process and rrf merge"
-                                    : ("'" + command + "' does not split its work across MPI ranks (generate, train and evaluate do); "
-                                                       "run it as one process")
+                                    : ("'" + command + "' does not split its work across MPI ranks (generate, train, evaluate, sweep and "
+                                                       "pipeline do); run it as one process")
                                           .c_str());
             return 2;
         }

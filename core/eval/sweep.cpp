@@ -110,11 +110,13 @@ struct Context {
     const SweepOptions& o;
     std::vector<SweepPoint> points;
     RecordLayout layout;
-    Reference reference;
+    const Reference& reference;
     /// The pixels every error of the sweep is measured over (the reference's G-buffer).
-    FootprintMask footprint;
-    /// The path tracer's series against `reference`, once rendered (the break-even of model rows).
+    const FootprintMask& footprint;
+    /// The path tracer's series against `reference`, once rendered in this process (the break-even
+    /// of model rows; joinSweepParts fills it in where another process rendered the series).
     std::vector<PathTracerPoint> pathTracer;
+    bool pathTracerKnown = false;
     void log(const std::string& m) const {
         if (o.log) o.log(m);
     }
@@ -212,88 +214,86 @@ std::vector<PathTracerPoint> pointsOf(const std::vector<SweepRow>& rows) {
     return points;
 }
 
-void sweepSpp(Context& c, SweepResult& r) {
+
+/// The spp sweep's one task: one progressive render, a snapshot at each value (ascending spp).
+std::vector<SweepRow> sppSeries(Context& c) {
     std::vector<SweepPoint> points = c.points;
     std::stable_sort(points.begin(), points.end(), [](const SweepPoint& a, const SweepPoint& b) { return a.spp < b.spp; });
     std::vector<int> spps;
     std::vector<std::string> settings;
     for (const SweepPoint& p : points) spps.push_back(p.spp), settings.push_back(p.setting);
-    r.rows = pathTracerSeries(c, spps, settings);
-    std::vector<double> xs, ys, ysCorrected;
-    for (const SweepRow& row : r.rows) {
-        xs.push_back(double(row.spp));
-        ys.push_back(row.overall.rmse);
-        ysCorrected.push_back(row.overall.rmseCorrected);
+    std::vector<SweepRow> rows = pathTracerSeries(c, spps, settings);
+    for (const SweepRow& row : rows)
         c.log("spp " + row.setting + ": RMSE " + std::to_string(row.overall.rmse) + " (reference noise floor " +
               noiseFigureText(row.overall.rmseNoiseFloor) + ", corrected " + noiseFigureText(row.overall.rmseCorrected) + ")");
-    }
-    r.extra["loglog_slope_rmse"] = logLogSlope(xs, ys);
-    // Without the reference's noise the curve flattens towards its floor; the corrected slope does not.
-    r.extra["loglog_slope_rmse_corrected"] = noiseFigureJson(logLogSlope(xs, ysCorrected));
+    return rows;
 }
 
-/// Model sweeps: the path tracer's series against the same reference, first, so every model row
-/// gets its break-even as it is measured.
-void sweepPathTracer(Context& c, SweepResult& r) {
-    std::vector<int> spps = c.o.pathTracerSpp;
+/// The ascending, distinct, positive spp of the model sweeps' path tracer series.
+std::vector<int> seriesSpp(const SweepOptions& o) {
+    std::vector<int> spps = o.pathTracerSpp;
     std::sort(spps.begin(), spps.end());
     spps.erase(std::unique(spps.begin(), spps.end()), spps.end());
     spps.erase(std::remove_if(spps.begin(), spps.end(), [](int v) { return v <= 0; }), spps.end());
+    return spps;
+}
+
+/// Model sweeps' task 0: the path tracer's series against the same reference, run first in a part
+/// that holds it, so that part's model rows log their break-even as they are measured.
+std::vector<SweepRow> modelSeries(Context& c) {
     std::vector<std::string> settings;
+    const std::vector<int> spps = seriesSpp(c.o);
     for (int v : spps) settings.push_back(std::to_string(v));
-    r.pathTracer = pathTracerSeries(c, spps, settings);
-    c.pathTracer = pointsOf(r.pathTracer);
-    if (!r.pathTracer.empty())
-        c.log("path tracer: relative RMSE " + noiseFigureText(comparableError(r.pathTracer.front().overall)) + " at " +
-              r.pathTracer.front().setting + " spp, " + noiseFigureText(comparableError(r.pathTracer.back().overall)) + " at " +
-              r.pathTracer.back().setting + " spp" +
-              (std::isnan(r.pathTracer.back().overall.relativeRmseCorrected) ? " (raw: reference noise unknown)" : " (corrected)"));
+    std::vector<SweepRow> rows = pathTracerSeries(c, spps, settings);
+    c.pathTracer = pointsOf(rows);
+    c.pathTracerKnown = true;
+    if (!rows.empty())
+        c.log("path tracer: relative RMSE " + noiseFigureText(comparableError(rows.front().overall)) + " at " +
+              rows.front().setting + " spp, " + noiseFigureText(comparableError(rows.back().overall)) + " at " +
+              rows.back().setting + " spp" +
+              (std::isnan(rows.back().overall.relativeRmseCorrected) ? " (raw: reference noise unknown)" : " (corrected)"));
+    return rows;
 }
 
-/// grid and dirs: new data for each point, then the same networks on each.
-void sweepData(Context& c, SweepResult& r) {
-    for (const SweepPoint& p : c.points) {
-        if (c.cancelled()) return;
-        SweepRow row;
-        row.setting = p.setting;
-        const GeneratedData data = DataGenerator(c.scene, p.sampling).run(0, 1, c.o.cancel);
-        row.stageSeconds.push_back({"generate", data.seconds});
-        uint64_t records = 0;
-        for (const auto& o : data.perObject) records += o.size() / size_t(c.layout.floatsPerRecord());
-        row.extra["records"] = records;
-        row.extra["mean_record_spp"] = records ? double(data.stats.paths) / double(records) : 0.0;
-        row.extra["records_at_spp_cap"] = data.stats.recordsAtSppCap;
-        trainAndEvaluate(c, samplesFromGenerated(data, c.scene, c.layout), c.o.training, data.seconds, row);
-        c.log(r.what + " " + p.setting + ": " + std::to_string(records) + " records, relative RMSE " +
-              std::to_string(row.overall.relativeRmse) + " (noise floor " + noiseFigureText(row.overall.relativeRmseNoiseFloor) +
-              ", corrected " + noiseFigureText(row.overall.relativeRmseCorrected) + "); " + sweepBreakEvenText(row));
-        r.rows.push_back(std::move(row));
-    }
+/// The log line of a model row; its break-even only where this process rendered the series.
+void logModelRow(const Context& c, const std::string& what, const std::string& records, const SweepRow& row) {
+    c.log(what + " " + row.setting + ": " + records + "relative RMSE " + std::to_string(row.overall.relativeRmse) +
+          " (noise floor " + noiseFigureText(row.overall.relativeRmseNoiseFloor) + ", corrected " +
+          noiseFigureText(row.overall.relativeRmseCorrected) + ")" + (c.pathTracerKnown ? "; " + sweepBreakEvenText(row) : ""));
 }
 
-void sweepNetworks(Context& c, SweepResult& r, bool trainers) {
-    const GeneratedData data = DataGenerator(c.scene, c.o.sampling).run(0, 1, c.o.cancel);
-    r.extra["generate_seconds"] = data.seconds;
-    const std::vector<ObjectSamples> samples = samplesFromGenerated(data, c.scene, c.layout);
-    for (const SweepPoint& p : c.points) {
-        if (c.cancelled()) return;
-        SweepRow row;
-        row.setting = p.setting;
-        const TrainingRun run = trainAndEvaluate(c, samples, p.training, data.seconds, row);
-        if (trainers) {
-            // Each network's loss against time, networks in (object, target) order, epochs in order.
-            nlohmann::json curve = nlohmann::json::array();
-            for (const NetworkCurve& n : run.curves)
-                for (const EpochRecord& e : n.epochs)
-                    curve.push_back({{"object", n.objectId}, {"target", n.target}, {"epoch", e.epoch}, {"seconds", e.seconds},
-                                     {"train_loss", e.trainLoss}, {"validation_loss", e.validationLoss}});
-            row.extra["curve"] = curve;
-        }
-        c.log(r.what + " " + p.setting + ": relative RMSE " + std::to_string(row.overall.relativeRmse) + " (noise floor " +
-              noiseFigureText(row.overall.relativeRmseNoiseFloor) + ", corrected " +
-              noiseFigureText(row.overall.relativeRmseCorrected) + "); " + sweepBreakEvenText(row));
-        r.rows.push_back(std::move(row));
+/// grid, dirs and record_spp: new data for the point, then the same networks on it.
+SweepRow dataPoint(const Context& c, const SweepPoint& p) {
+    SweepRow row;
+    row.setting = p.setting;
+    const GeneratedData data = DataGenerator(c.scene, p.sampling).run(0, 1, c.o.cancel);
+    row.stageSeconds.push_back({"generate", data.seconds});
+    uint64_t records = 0;
+    for (const auto& o : data.perObject) records += o.size() / size_t(c.layout.floatsPerRecord());
+    row.extra["records"] = records;
+    row.extra["mean_record_spp"] = records ? double(data.stats.paths) / double(records) : 0.0;
+    row.extra["records_at_spp_cap"] = data.stats.recordsAtSppCap;
+    trainAndEvaluate(c, samplesFromGenerated(data, c.scene, c.layout), c.o.training, data.seconds, row);
+    logModelRow(c, c.o.what, std::to_string(records) + " records, ", row);
+    return row;
+}
+
+/// hidden, trainer, goal, leaves, encoding: the point's networks on the shared dataset's samples.
+SweepRow networkPoint(const Context& c, const SweepPoint& p, const std::vector<ObjectSamples>& samples, double generateSeconds) {
+    SweepRow row;
+    row.setting = p.setting;
+    const TrainingRun run = trainAndEvaluate(c, samples, p.training, generateSeconds, row);
+    if (c.o.what == "trainer") {
+        // Each network's loss against time, networks in (object, target) order, epochs in order.
+        nlohmann::json curve = nlohmann::json::array();
+        for (const NetworkCurve& n : run.curves)
+            for (const EpochRecord& e : n.epochs)
+                curve.push_back({{"object", n.objectId}, {"target", n.target}, {"epoch", e.epoch}, {"seconds", e.seconds},
+                                 {"train_loss", e.trainLoss}, {"validation_loss", e.validationLoss}});
+        row.extra["curve"] = curve;
     }
+    logModelRow(c, c.o.what, "", row);
+    return row;
 }
 
 }  // namespace
@@ -330,15 +330,36 @@ double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
     return (n * sxy - sx * sy) / den;
 }
 
-SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
+SweepOptions checkedSweepOptions(const Scene& scene, const SweepOptions& options) {
     SweepOptions o = options;
     if (o.values.empty()) o.values = defaultSweepValues(o.what);
     else defaultSweepValues(o.what);  // validates the kind
     if (scene.lights.empty()) throw InputError(scene.sourcePath, "/lights", "a sweep needs a light");
-    SweepResult r;
-    r.what = o.what;
-    Context c{scene, o, sweepPoints(o), RecordLayout::forScene(scene), {}, {}, {}};
-    r.lightPosition = heldOutLightPositions(scene.lightRange(), 1, o.seed).front();
+    sweepPoints(o);  // reads every value before anything runs
+    return o;
+}
+
+std::vector<SweepTask> sweepTasks(const SweepOptions& o) {
+    std::vector<SweepTask> tasks;
+    const std::vector<SweepPoint> points = sweepPoints(o);
+    if (o.what == "spp") {
+        SweepTask t{"spp series", true, 0, false, o.sampling, o.training};
+        for (const SweepPoint& p : points) t.maxSpp = std::max(t.maxSpp, p.spp);
+        return {t};
+    }
+    const std::vector<int> spps = seriesSpp(o);
+    tasks.push_back({"path tracer", true, spps.empty() ? 0 : spps.back(), false, o.sampling, o.training});
+    const bool newData = !sweepSharesData(o);
+    for (const SweepPoint& p : points) tasks.push_back({p.setting, false, 0, newData, p.sampling, p.training});
+    return tasks;
+}
+
+Vec3 sweepLightPosition(const Scene& scene, const SweepOptions& o) {
+    return heldOutLightPositions(scene.lightRange(), 1, o.seed).front();
+}
+
+Reference obtainSweepReference(const Scene& scene, const SweepOptions& o) {
+    const Vec3 light = sweepLightPosition(scene, o);
     RenderOptions ro;
     ro.width = o.width;
     ro.height = o.height;
@@ -348,34 +369,53 @@ SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
     if (o.store) {
         RenderSettings rs;
         rs.seed = ro.seed;
-        const ReferenceKey key = ReferenceKey::of(scene, r.lightPosition, ro.width, ro.height, rs);
-        c.reference = o.store->obtain(scene, key, o.referenceTarget, o.cancel, {}, {}, o.log);
-    } else {
-        c.log("reference: " + std::to_string(ro.spp) + " spp at " + std::to_string(ro.width) + "x" + std::to_string(ro.height));
-        c.reference = renderReference(scene, r.lightPosition, ro, o.cancel);
+        const ReferenceKey key = ReferenceKey::of(scene, light, ro.width, ro.height, rs);
+        return o.store->obtain(scene, key, o.referenceTarget, o.cancel, {}, {}, o.log);
     }
-    r.referenceSpp = c.reference.spp;
-    r.referenceSeconds = c.reference.seconds;
-    r.width = o.width;
-    r.height = o.height;
+    if (o.log) o.log("reference: " + std::to_string(ro.spp) + " spp at " + std::to_string(ro.width) + "x" + std::to_string(ro.height));
+    return renderReference(scene, light, ro, o.cancel);
+}
+
+bool sweepSharesData(const SweepOptions& o) {
+    return o.what != "spp" && o.what != "grid" && o.what != "dirs" && o.what != "record_spp";
+}
+
+SweepInputs sweepInputs(const Scene& scene, const SweepOptions& o, Reference reference, std::shared_ptr<const GeneratedData> data) {
+    SweepInputs in;
+    in.reference = std::move(reference);
+    in.data = std::move(data);
     // Every error of the sweep is measured over the pixels of this one mask (the reference's G-buffer,
     // as evaluate() builds it), and the reference's floor over the same pixels is the sweep's floor.
-    {
-        const Accel accel(scene);
-        const PathTracer tracer(scene, accel, Estimator::NEE, 1);
-        c.footprint = footprintMask(buildGBuffer(tracer, c.layout, r.lightPosition, o.width, o.height));
-    }
-    r.relativeNoiseFloor = referenceNoise(c.reference, c.footprint).relativeRmse[int(Term::Global)];
-    if (!c.cancelled()) {
-        if (o.what == "spp") sweepSpp(c, r);
-        else {
-            sweepPathTracer(c, r);
-            if (o.what == "grid" || o.what == "dirs" || o.what == "record_spp") sweepData(c, r);
-            else sweepNetworks(c, r, o.what == "trainer");
+    const Accel accel(scene);
+    const PathTracer tracer(scene, accel, Estimator::NEE, 1);
+    in.footprint = footprintMask(buildGBuffer(tracer, RecordLayout::forScene(scene), sweepLightPosition(scene, o), o.width, o.height));
+    return in;
+}
+
+SweepPart runSweepTasks(const Scene& scene, const SweepOptions& o, const SweepInputs& in, const std::vector<int>& tasks) {
+    Context c{scene, o, sweepPoints(o), RecordLayout::forScene(scene), in.reference, in.footprint, {}, false};
+    const int taskCount = o.what == "spp" ? 1 : 1 + int(c.points.size());
+    SweepPart part;
+    std::vector<ObjectSamples> shared;  // the shared dataset's samples, made once for this part's points
+    for (int t : tasks) {
+        if (t < 0 || t >= taskCount || (!part.tasks.empty() && t <= part.tasks.back()))
+            throw std::invalid_argument("runSweepTasks: task " + std::to_string(t) + " is out of range or out of order");
+        part.tasks.push_back(t);
+        std::vector<SweepRow> rows;
+        if (!c.cancelled()) {
+            if (o.what == "spp") rows = sppSeries(c);
+            else if (t == 0) rows = modelSeries(c);
+            else if (!sweepSharesData(o)) rows.push_back(dataPoint(c, c.points[size_t(t - 1)]));
+            else {
+                if (!in.data) throw std::invalid_argument("runSweepTasks: a " + o.what + " sweep needs the shared dataset");
+                if (shared.empty()) shared = samplesFromGenerated(*in.data, c.scene, c.layout);
+                rows.push_back(networkPoint(c, c.points[size_t(t - 1)], shared, in.data->seconds));
+            }
         }
+        part.rows.push_back(std::move(rows));
     }
-    r.cancelled = c.cancelled();
-    return r;
+    part.cancelled = c.cancelled();
+    return part;
 }
 
 const std::vector<SweepRow>& pathTracerRows(const SweepResult& r) { return r.what == "spp" ? r.rows : r.pathTracer; }

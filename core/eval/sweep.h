@@ -56,7 +56,9 @@
 #include "core/nn/model_set.h"
 #include "core/nn/object_training.h"
 #include "core/predict/predictor.h"
+#include "core/data/data_generator.h"
 #include "core/data/sampling_settings.h"
+#include "core/predict/footprint_mask.h"
 
 namespace rrf {
 
@@ -132,7 +134,72 @@ struct SweepResult {
 std::vector<std::string> defaultSweepValues(const std::string& what);
 
 /// Runs the sweep. Throws SettingError for an unknown kind or a malformed value (before rendering).
+/// One process running every task of the sweep below in order: checkedSweepOptions,
+/// obtainSweepReference, the shared dataset, runSweepTasks(all), joinSweepParts.
 SweepResult runSweep(const Scene& scene, const SweepOptions& options);
+
+// ---- a sweep in tasks, for running them in several processes (`mpirun -n N rrf sweep`, docs/cluster.md) ----
+// runSweep runs the same functions in one process, so any split of the tasks joins into its result:
+// rows, errors and break-evens equal; only the recorded times differ.
+
+/// One task of a sweep. A model sweep's task 0 is the path tracer's series (SweepOptions::pathTracerSpp,
+/// possibly empty), task k ≥ 1 the k-th value (a point: data where it makes its own, training,
+/// prediction, errors); an spp sweep is one task, its series (one progressive render whose snapshots
+/// are the values, which cannot be split by value without rendering the largest spp again).
+struct SweepTask {
+    std::string label;             ///< "path tracer", the value ("20,10"), "spp series"
+    bool series = false;           ///< a path-tracer series (task 0)
+    int maxSpp = 0;                ///< series: the largest spp it renders
+    bool newData = false;          ///< a point that generates its own data (grid, dirs, record_spp)
+    SamplingSettings sampling;     ///< a point's data: its own (newData) or the shared dataset's
+    ObjectTrainingOptions training;  ///< a point's networks
+};
+
+/// `options` with the default values filled in and every value read (SettingError as runSweep), after
+/// checking that the scene has a light (InputError).
+SweepOptions checkedSweepOptions(const Scene& scene, const SweepOptions& options);
+/// The tasks of a checked sweep, in order.
+std::vector<SweepTask> sweepTasks(const SweepOptions& checked);
+/// The held-out light position every point is measured at (heldOutLightPositions(…, 1, seed)).
+Vec3 sweepLightPosition(const Scene& scene, const SweepOptions& checked);
+/// The reference of the sweep: from checked.store converged to its target, or rendered at the fixed
+/// spp; logged through checked.log.
+Reference obtainSweepReference(const Scene& scene, const SweepOptions& checked);
+/// Whether the points train on one dataset generated with checked.sampling (hidden, trainer, goal,
+/// leaves, encoding); the others make their own (grid, dirs, record_spp) or none (spp).
+bool sweepSharesData(const SweepOptions& checked);
+
+/// What every task of a sweep measures against, obtained once.
+struct SweepInputs {
+    Reference reference;
+    /// The pixels every error is measured over: the footprint mask of the reference's G-buffer.
+    FootprintMask footprint;
+    /// The shared dataset when sweepSharesData, else null.
+    std::shared_ptr<const GeneratedData> data;
+};
+/// The inputs of a checked sweep from its reference and (network sweeps) its shared dataset.
+SweepInputs sweepInputs(const Scene& scene, const SweepOptions& checked, Reference reference,
+                        std::shared_ptr<const GeneratedData> data);
+
+/// What some of a sweep's tasks produced.
+struct SweepPart {
+    std::vector<int> tasks;                   ///< the tasks run, ascending
+    std::vector<std::vector<SweepRow>> rows;  ///< per task run: a series' rows, a point's one row; none where cancelled
+    bool cancelled = false;
+};
+
+/// Runs `tasks` (ascending indices into sweepTasks) of a checked sweep, each with all threads, logging
+/// as runSweep does; a point's break-even is logged only when this part also ran the series (task 0).
+/// SweepRow::models is kept (keepModels) but not sent by encodeSweepPart.
+SweepPart runSweepTasks(const Scene& scene, const SweepOptions& checked, const SweepInputs& inputs,
+                        const std::vector<int>& tasks);
+
+/// Joins parts that together ran every task once, in any order, into runSweep's result: rows in the
+/// order of the values (spp: ascending spp), every model row's break-even against the joined series,
+/// the series' fitted slopes, the shared dataset's generate seconds. Throws std::runtime_error naming
+/// the task when one is missing or was run twice.
+SweepResult joinSweepParts(const Scene& scene, const SweepOptions& checked, const SweepInputs& inputs,
+                           std::vector<SweepPart> parts);
 
 /// The path tracer's series of `r`: its rows for an spp sweep, else r.pathTracer.
 const std::vector<SweepRow>& pathTracerRows(const SweepResult& r);

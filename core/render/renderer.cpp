@@ -82,7 +82,9 @@ bool Renderer::runPass() {
 
 void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite,
                           uint64_t& accepted) {
+    const int stride = std::max(1, options_.rowStride);
     for (int y = y0; y < y1; ++y) {
+        if (y % stride != options_.rowOffset) continue;
         for (int x = x0; x < x1; ++x) {
             const uint64_t index = uint64_t(y) * uint64_t(options_.width) + uint64_t(x);
             Pixel& px = pass_[index];

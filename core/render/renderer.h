@@ -39,6 +39,10 @@ struct RenderOptions {
     /// (each pixel carries its own count, so the image stays unbiased); false drops the whole pass,
     /// so the sums end on a pass boundary and an exported state resumes bit-identically.
     bool keepCancelledPass = true;
+    /// Renders only the rows y with y mod rowStride = rowOffset (the others keep no samples): one
+    /// process's share of an image split across processes (core/render/render_rows.h). Each pixel's
+    /// samples are those of the whole render, so the joined rows are the whole render's bits.
+    int rowOffset = 0, rowStride = 1;
 };
 
 /// Per-pixel sums of a render, in double: radiance per term and channel, squares for the variances.
