@@ -99,11 +99,12 @@ TEST(Presets, DefaultIsTheProjectDefaults) {
 TEST(Presets, BestIsTheMostAccurateSettingMeasured) {
     const Project p = cornellWith("best.json", {{"network", {{"hidden", {8}}}},
                                                 {"trainer", {{"type", "lm"}}},
-                                                {"prediction", {{"direct_samples", 7}, {"seed", 3}}},
+                                                {"prediction", {{"direct", "network"}, {"direct_samples", 7}, {"seed", 3}}},
                                                 {"sampling", {{"grid", {3, 3, 3}}, {"directions", 7}, {"seed", 4}}}});
     // The README's "best preset" table: the values measured there.
     const SamplingSettings s = presetSampling(p, preset("best"));
-    EXPECT_EQ(s.nx, 8);
+    EXPECT_EQ(s.nx, 10);
+    EXPECT_EQ(s.nz, 10);
     EXPECT_EQ(s.directions, 1200);
     EXPECT_EQ(s.spp, 64);
     EXPECT_EQ(s.maxSpp, 256);
@@ -114,10 +115,13 @@ TEST(Presets, BestIsTheMostAccurateSettingMeasured) {
     EXPECT_EQ(o.trainer.type, TrainerType::Adam);
     EXPECT_EQ(o.trainer.adam.loss, AdamLoss::RelativeL2);
     EXPECT_EQ(o.trainer.adam.errorGoal, 0.0);
+    EXPECT_EQ(o.trainer.adam.patience, 0) << "no early stop";
     EXPECT_EQ(o.trainer.maxEpochs(), 400);
     EXPECT_EQ(o.partition.maxLeaves, 1);
     const PredictionSettings pr = presetPrediction(p, preset("best"));
     EXPECT_EQ(pr.directSamples, 256);
+    EXPECT_EQ(pr.direct, PredictionSettings::Direct::Exact) << "exact direct light beside the networks";
+    EXPECT_EQ(o.targets, TargetMode::Indirect) << "networks for indirect light only, though the project learned direct light";
     EXPECT_EQ(pr.seed, 3u) << "only the samples change";
 }
 

@@ -5,7 +5,7 @@
 /// nn/model.h (one network) and nn/object_training.h (one network per object).
 ///
 /// Losses reported here are in NORMALISED units (targets mapped to [-1, 1] by mapminmax): the MSE for
-/// levenberg_marquardt and adam/mse, the relative L2 loss for adam/relative_l2. Errors in raw units are
+/// levenberg_marquardt and adam/mse, the relative L2 loss for adam/relative_l2 and adam/relative_l2_prediction. Errors in raw units are
 /// computed by fitNetwork (nn/model.h). Every epoch also reports the validation relative RMSE (raw
 /// units, noise-corrected when the targets' variance is known), the figure the error goal is stated in
 /// (nn/validation_monitor.h).

@@ -14,7 +14,7 @@
 ///   default the project defaults (SamplingSettings::projectDefault(), NetworkSettings() with
 ///          NetworkSettings::defaultTrainer()): a few minutes on 2 cores, what a project without
 ///          sections runs;
-///   best   the most accurate setting measured (README, issue 16): four times the default's
+///   best   the most accurate setting measured (README, issue 16): eight times the default's
 ///          records at a quarter of their paths each, 32-32-32 tanh networks (one per object),
 ///          Adam with relative L2 to the end of a cosine schedule, exact direct light at 256
 ///          samples per pixel. Its ≤ 20 minute budget on 2 cores is stated and measured in the README.
