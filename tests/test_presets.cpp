@@ -116,6 +116,7 @@ TEST(Presets, BestIsTheMostAccurateSettingMeasured) {
     EXPECT_EQ(o.trainer.adam.loss, AdamLoss::RelativeL2);
     EXPECT_EQ(o.trainer.adam.errorGoal, 0.0);
     EXPECT_EQ(o.trainer.adam.patience, 0) << "no early stop";
+    EXPECT_EQ(o.trainer.adam.learningRate, 3e-3);
     EXPECT_EQ(o.trainer.maxEpochs(), 400);
     EXPECT_EQ(o.partition.maxLeaves, 1);
     const PredictionSettings pr = presetPrediction(p, preset("best"));
