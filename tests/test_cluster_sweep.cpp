@@ -7,7 +7,9 @@
 
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/eval/sweep.h"
@@ -74,6 +76,40 @@ TEST(ClusterRender, InterleavedRowsJoinIntoTheWholeRenderBitForBit) {
         ADD_FAILURE() << "parts out of order were accepted";
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find("rank 0: rows 1 mod 3, expected 0 mod 3"), std::string::npos) << e.what();
+    }
+}
+
+TEST(ClusterRender, PartsOfAnotherPassCountOrRowsOutOfRangeAreRefused) {
+    const Scene scene = test::cornellLike(1.f, 16);
+    const Accel accel(scene);
+    RenderOptions o;
+    o.width = 8;
+    o.height = 6;
+    o.spp = 4;
+    o.samplesPerPass = 2;
+    std::vector<std::string> parts;
+    for (int r = 0; r < 2; ++r) {
+        RenderOptions part = o;
+        part.rowOffset = r;
+        part.rowStride = 2;
+        // Part 1 reaches the same 4 spp in 4 passes of 1 sample: not the same render.
+        if (r == 1) part.samplesPerPass = 1;
+        parts.push_back(encodeRenderRows(renderState(scene, accel, part), r, 2));
+    }
+    try {
+        joinRenderRows(parts, {"rank 0", "rank 1"});
+        ADD_FAILURE() << "parts of 2 and 4 passes were joined";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("rank 1: a render of 8x6 at 4 spp in 4 passes, the first part's is 8x6 at 4 spp in 2 passes"),
+                  std::string::npos)
+            << e.what();
+    }
+    // Rows that select nothing (offset outside [0, stride)) or no stride at all are refused.
+    for (const auto& [offset, stride] : std::vector<std::pair<int, int>>{{2, 2}, {-1, 2}, {0, 0}}) {
+        RenderOptions bad = o;
+        bad.rowOffset = offset;
+        bad.rowStride = stride;
+        EXPECT_THROW((Renderer(scene, accel, bad)), std::invalid_argument) << offset << " mod " << stride;
     }
 }
 
