@@ -24,6 +24,7 @@
 #include "core/project/time_estimate.h"
 #include "core/project/project.h"
 #include "core/render/render_outputs.h"
+#include "core/util/byte_stream.h"
 #include "core/util/stopwatch.h"
 
 namespace rrf::cli {
@@ -63,10 +64,28 @@ std::vector<double> sweepTaskSeconds(const Scene& scene, const SweepOptions& o, 
     return seconds;
 }
 
+/// The estimated seconds of each task (sweepTaskSeconds) as rank 0 computes them with its `threads`,
+/// sent to every rank: a rank's thread count (--threads, else its node's cores) scales the estimate,
+/// so ranks on unlike nodes computing apart would assign the tasks differently, and the join would
+/// then miss some. The bits of the doubles travel, so every rank assigns the same.
+std::vector<double> rankTaskSeconds(const Scene& scene, const SweepOptions& o, const mpi::Ranks& ranks, int threads) {
+    std::string sent;
+    if (ranks.isRoot()) {
+        ByteWriter out;
+        for (double s : sweepTaskSeconds(scene, o, threads)) out.f64(s);
+        sent = out.take();
+    }
+    ranks.broadcast(sent);
+    std::vector<double> seconds(sent.size() / sizeof(double));
+    ByteReader in(sent, "task estimates from rank 0");
+    for (double& s : seconds) s = in.f64();
+    return seconds;
+}
+
 /// The sweep of an MPI job of more than one rank: rank 0 obtains the reference (store or fixed spp)
 /// and sends it to every rank; a network sweep's shared dataset is generated split by cells, joined on
 /// rank 0 and sent to every rank; the tasks go to the ranks longest first by estimated seconds
-/// (sweepTaskSeconds, assignLongestFirst), each rank runs its own with all its threads, and rank 0
+/// (rankTaskSeconds, assignLongestFirst), each rank runs its own with all its threads, and rank 0
 /// joins the parts into the single-process result. The other ranks return an empty result.
 SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::Ranks& ranks, int threads) {
     std::string bytes;
@@ -86,7 +105,7 @@ SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::R
     const SweepInputs inputs = sweepInputs(scene, o, std::move(reference), std::move(data));
 
     const std::vector<SweepTask> tasks = sweepTasks(o);
-    const std::vector<double> seconds = sweepTaskSeconds(scene, o, threads);
+    const std::vector<double> seconds = rankTaskSeconds(scene, o, ranks, threads);
     std::vector<uint64_t> costs;
     for (double s : seconds) costs.push_back(uint64_t(std::max(0.0, s) * 1e6));  // microseconds: integers for the rule
     const std::vector<int> rankOf = assignLongestFirst(costs, ranks.size());
