@@ -241,7 +241,8 @@ TEST(CliMpi, RanksWithOtherThreadCountsShareTheSweepAlike) {
     const fs::path dir = testDir();
     // Rank 0 estimates with 1 thread, rank 1 with 64: the training estimate divides by
     // min(threads, networks), the series' by the threads, so ranks estimating apart would order the
-    // tasks differently and the join would miss one. Rank 0's estimates are sent to both.
+    // tasks differently and the join would miss one. Rank 0's estimates are sent to both. The fixed-spp
+    // reference is rendered split by rows and joined into one process's, bit for bit.
     const std::string project = copyProject(dir / "p");
     const std::string sweep = "sweep " + project + " --what trainer --values lm adam --width 20 --height 16 --reference-spp 4" +
                               kExperiment + " --hidden 6 --epochs 4 --out " + (dir / "s").string();
@@ -250,6 +251,7 @@ TEST(CliMpi, RanksWithOtherThreadCountsShareTheSweepAlike) {
     fs::rename(dir / "s", dir / "s1");
     const CliResult r = runMpi(2, sweep + " --threads $((1 + 63 * OMPI_COMM_WORLD_RANK))", true);
     ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("rank 1/2: reference rows y mod 2 = 1 (8 of 16 rows"), std::string::npos) << r.output;
     // Each task on exactly one rank: both ranks quote the same total, and every task is logged once.
     std::vector<std::string> totals;
     for (const char* rank : {"rank 0/2: sweep ", "rank 1/2: sweep "}) {

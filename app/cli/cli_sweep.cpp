@@ -82,14 +82,24 @@ std::vector<double> rankTaskSeconds(const Scene& scene, const SweepOptions& o, c
     return seconds;
 }
 
-/// The sweep of an MPI job of more than one rank: rank 0 obtains the reference (store or fixed spp)
-/// and sends it to every rank; a network sweep's shared dataset is generated split by cells, joined on
-/// rank 0 and sent to every rank; the tasks go to the ranks longest first by estimated seconds
+/// The sweep of an MPI job of more than one rank: the reference is rendered split by rows
+/// (renderOnRanks) at a fixed spp or obtained from the store by rank 0, and rank 0 sends it to every
+/// rank; a network sweep's shared dataset is generated split by cells, joined on rank 0 and sent to
+/// every rank; the tasks go to the ranks longest first by estimated seconds
 /// (rankTaskSeconds, assignLongestFirst), each rank runs its own with all its threads, and rank 0
 /// joins the parts into the single-process result. The other ranks return an empty result.
 SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::Ranks& ranks, int threads) {
     std::string bytes;
-    if (ranks.isRoot()) {
+    if (!o.store) {
+        // A fixed-spp reference: each rank renders its interleaved rows and rank 0 joins them into the
+        // single-process render, bit for bit (renderOnRanks stops the job on Ctrl-C).
+        const RenderOptions ro = sweepReferenceOptions(o);
+        if (ranks.isRoot() && o.log)
+            o.log("reference: " + std::to_string(ro.spp) + " spp at " + std::to_string(ro.width) + "x" + std::to_string(ro.height));
+        const Reference reference = renderOnRanks(scene, sweepLightPosition(scene, o), ro, "reference", ranks);
+        if (ranks.isRoot()) bytes = encodeReference(reference);
+    } else if (ranks.isRoot()) {
+        // From the store: one entry, converged by rank 0 alone (the target is checked on the whole image).
         const Reference reference = obtainSweepReference(scene, o);
         if (reference.cancelled || (o.cancel && o.cancel->load())) {
             std::fprintf(stderr, "%s: sweep cancelled while obtaining the reference\n", ranks.name().c_str());

@@ -358,14 +358,19 @@ Vec3 sweepLightPosition(const Scene& scene, const SweepOptions& o) {
     return heldOutLightPositions(scene.lightRange(), 1, o.seed).front();
 }
 
-Reference obtainSweepReference(const Scene& scene, const SweepOptions& o) {
-    const Vec3 light = sweepLightPosition(scene, o);
+RenderOptions sweepReferenceOptions(const SweepOptions& o) {
     RenderOptions ro;
     ro.width = o.width;
     ro.height = o.height;
     ro.spp = o.referenceSpp > 0 ? o.referenceSpp : (o.what == "spp" ? 1024 : 256);
     ro.samplesPerPass = std::max(1, ro.spp / 16);
     ro.seed = mix64(o.seed ^ 0x5245464552454E43ULL);  // never the seed of the renders it judges
+    return ro;
+}
+
+Reference obtainSweepReference(const Scene& scene, const SweepOptions& o) {
+    const Vec3 light = sweepLightPosition(scene, o);
+    const RenderOptions ro = sweepReferenceOptions(o);
     if (o.store) {
         RenderSettings rs;
         rs.seed = ro.seed;

@@ -162,8 +162,11 @@ SweepOptions checkedSweepOptions(const Scene& scene, const SweepOptions& options
 std::vector<SweepTask> sweepTasks(const SweepOptions& checked);
 /// The held-out light position every point is measured at (heldOutLightPositions(…, 1, seed)).
 Vec3 sweepLightPosition(const Scene& scene, const SweepOptions& checked);
+/// How the sweep's reference is rendered: its size, spp (the fixed spp without a store; the store
+/// converges from the same seed) and seed, which no render it judges uses.
+RenderOptions sweepReferenceOptions(const SweepOptions& checked);
 /// The reference of the sweep: from checked.store converged to its target, or rendered at the fixed
-/// spp; logged through checked.log.
+/// spp (sweepReferenceOptions); logged through checked.log.
 Reference obtainSweepReference(const Scene& scene, const SweepOptions& checked);
 /// Whether the points train on one dataset generated with checked.sampling (hidden, trainer, goal,
 /// leaves, encoding); the others make their own (grid, dirs, record_spp) or none (spp).
