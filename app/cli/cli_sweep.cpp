@@ -117,7 +117,10 @@ SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::R
     const std::vector<SweepTask> tasks = sweepTasks(o);
     const std::vector<double> seconds = rankTaskSeconds(scene, o, ranks, threads);
     std::vector<uint64_t> costs;
-    for (double s : seconds) costs.push_back(uint64_t(std::max(0.0, s) * 1e6));  // microseconds: integers for the rule
+    // Microseconds: integers for the rule, clamped so that an absurd estimate still converts (a
+    // double beyond uint64_t's range would be undefined behaviour); beyond 2^62 µs the order of
+    // tasks no longer matters in practice.
+    for (double s : seconds) costs.push_back(uint64_t(std::clamp(s * 1e6, 0.0, 4.0e18)));
     const std::vector<int> rankOf = assignLongestFirst(costs, ranks.size());
     std::vector<int> mine;
     std::string points, series;
