@@ -23,6 +23,7 @@
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
 #include "core/eval/experiment.h"
+#include "core/nn/training_part.h"
 #include "core/eval/held_out.h"
 #include "core/nn/model_set.h"
 #include "core/nn/training_run.h"
@@ -127,7 +128,7 @@ int runPipeline(const PipelineArgs& a) {
     const std::vector<ObjectSamples> samples = samplesFromGenerated(data, scene, layout);
     ObjectTrainingObserver obs;
     obs.cancel = &cancel;
-    const TrainingRun run = trainOnRanks(samples, t, ranks, scene, obs, cancel);
+    TrainingRun run = trainOnRanks(samples, t, ranks, scene, obs, cancel);
     const std::string modelDir = outputPath(a.out, "models");
     if (root) {
         stages.push_back({"train", run.seconds});
@@ -136,12 +137,17 @@ int runPipeline(const PipelineArgs& a) {
         saveTrainingRun(modelDir, run, network, scene.contentHash(), layout.inputs, {dataset, a.input});
         std::printf("[3/4] train: %.1f s -> %s\n", stages.back().second, modelDir.c_str());
     }
-    // Every rank loads the models rank 0 saved: the held-out references converge relative to the
-    // model's error (storeSource), so each rank needs the very networks one process would evaluate.
-    // The --out directory must therefore be one all ranks see, as the project's store must be.
-    ranks.barrier();
+    // The held-out references converge relative to the model's error (storeSource), so every rank
+    // needs the very networks one process evaluates: rank 0 sends the joined run (weights bit for
+    // bit, core/nn/training_part.h) and each rank builds the set in memory, so only the project's
+    // reference store has to be shared by the ranks, not --out.
+    if (ranks.size() > 1) {
+        std::string bytes = root ? encodeTrainingPart(run) : std::string();
+        ranks.broadcast(bytes);
+        if (!root) run = decodeTrainingPart(bytes, "the networks from rank 0");
+    }
     // 4. Evaluation: at the ground truth's light, then at held-out lights.
-    const ModelSet models = loadModelSet(modelDir, scene.contentHash());
+    const ModelSet models = root ? loadModelSet(modelDir, scene.contentHash()) : modelSetFromTrained(run.models, scene, layout);
     // A preset's prediction settings (e.g. best's direct samples) under the command's own flags.
     const Predictor predictor(scene, models, a.prediction.applied(preset ? presetPrediction(p, *preset) : p.prediction));
     Stopwatch evalClock;
