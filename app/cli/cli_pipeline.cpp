@@ -163,14 +163,15 @@ int runPipeline(const PipelineArgs& a) {
     const ReferenceSource held = storeSource(store, p, predictor, ro.width, ro.height, target, size_t(heldOut));
     // In an MPI job the ranks render the held-out references into the store, as rrf evaluate's do.
     if (ranks.size() > 1) obtainRankReferences(ranks, lights, held);
-    if (!root) return 0;
+    // Interrupted training: every rank holds the joined run, whose flag says whether any rank was.
+    if (!root) return run.cancelled ? 130 : 0;
     evaluateAll(p, predictor, lights, held, outputPath(a.out, "held_out"), p.render.exposure);
     stages.push_back({"evaluate", evalClock.seconds()});
     std::printf("\n%-14s %10s\n", "stage", "seconds");
     for (const auto& st : stages) std::printf("%-14s %10.2f\n", st.first.c_str(), st.second);
     std::printf("%-14s %10.2f\nresults in %s (ground_truth/, dataset.rrfd, models/, evaluation/, held_out/)\n", "total",
                 total.seconds(), a.out.c_str());
-    return cancel ? 130 : 0;
+    return cancel || run.cancelled ? 130 : 0;
 }
 }  // namespace
 

@@ -87,7 +87,8 @@ std::vector<double> rankTaskSeconds(const Scene& scene, const SweepOptions& o, c
 /// rank; a network sweep's shared dataset is generated split by cells, joined on rank 0 and sent to
 /// every rank; the tasks go to the ranks longest first by estimated seconds
 /// (rankTaskSeconds, assignLongestFirst), each rank runs its own with all its threads, and rank 0
-/// joins the parts into the single-process result. The other ranks return an empty result.
+/// joins the parts into the single-process result. The other ranks return an empty result but for
+/// `cancelled`, which says whether any rank was interrupted.
 SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::Ranks& ranks, int threads) {
     std::string bytes;
     if (!o.store) {
@@ -144,10 +145,16 @@ SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::R
     std::snprintf(summary, sizeof summary, "ran %zu sweep task(s) in %.2f s (%.2f s CPU)", mine.size(), clock.seconds(),
                   processCpuSeconds() - cpuStart);
     mpi::GatheredParts<SweepPart> gathered = mpi::gatherParts<SweepPart>(ranks, summary, encodeSweepPart(part), decodeSweepPart);
-    if (!ranks.isRoot()) return {};
-    SweepResult r = joinSweepParts(scene, o, inputs, std::move(gathered.parts));
-    std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s\n", gathered.waitedSeconds,
-                ranks.size(), gathered.joinClock.seconds());
+    SweepResult r;
+    if (ranks.isRoot()) {
+        r = joinSweepParts(scene, o, inputs, std::move(gathered.parts));
+        std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s\n",
+                    gathered.waitedSeconds, ranks.size(), gathered.joinClock.seconds());
+    }
+    // Whether any rank was interrupted, known on rank 0 from the parts: every rank's exit status says it.
+    std::string cancelled = r.cancelled ? "1" : "0";
+    ranks.broadcast(cancelled);
+    r.cancelled = cancelled == "1";
     return r;
 }
 
