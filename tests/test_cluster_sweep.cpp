@@ -14,6 +14,8 @@
 
 #include "core/eval/sweep.h"
 #include "core/eval/sweep_parts.h"
+#include "core/predict/footprint_mask.h"
+#include "core/predict/gbuffer.h"
 #include "core/render/render_rows.h"
 #include "core/scene/accel.h"
 #include "scene_builders.h"
@@ -168,6 +170,18 @@ TEST(ClusterSweep, TasksRunApartJoinIntoTheSingleProcessSweep) {
         expectSameStats(single.pathTracer[i].overall, joined.pathTracer[i].overall, "spp " + single.pathTracer[i].setting);
     EXPECT_TRUE(sameBits(single.relativeNoiseFloor, joined.relativeNoiseFloor));
     EXPECT_TRUE(joined.extra.contains("generate_seconds"));
+    // runSweep is these very functions in one process, so beside it the joined sweep is checked
+    // against what is built apart: the series' spp and the pixels of the footprint mask made
+    // independently from the G-buffer at the sweep's light (every error is over those pixels).
+    ASSERT_EQ(joined.pathTracer.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) EXPECT_EQ(joined.pathTracer[i].spp, 1 << i);
+    const Accel accel(scene);
+    const PathTracer tracer(scene, accel, Estimator::NEE, 1);
+    const FootprintMask mask =
+        footprintMask(buildGBuffer(tracer, RecordLayout::forScene(scene), joined.lightPosition, o.width, o.height));
+    ASSERT_GT(mask.kept.size(), 0u);
+    for (const SweepRow& row : joined.rows) EXPECT_EQ(row.overall.pixels, mask.kept.size()) << row.setting;
+    for (const SweepRow& row : joined.pathTracer) EXPECT_EQ(row.overall.pixels, mask.kept.size()) << row.setting;
 
     // A task left out, or run twice, is refused by name.
     try {

@@ -78,15 +78,14 @@ int runPipeline(const PipelineArgs& a) {
                                                   RecordLayout::forScene(scene).inputCount(), int(std::thread::hardware_concurrency()));
         std::printf("estimated: generate %s (%s); train %s (%s)\n", rangeText(g).c_str(), g.basis.c_str(),
                     rangeText(tr).c_str(), tr.basis.c_str());
+        makeDirectories(a.out);
+        std::printf("rrf pipeline%s: %s -> %s\n  ground truth %dx%d, %d spp; %s; %d held-out lights (references from %s: "
+                    "relative noise <= max(%g, %g x the error), at most %d spp)\n",
+                    preset ? (std::string(" --preset ") + preset->name).c_str() : "", a.input.c_str(), a.out.c_str(), ro.width,
+                    ro.height, ro.spp, describeExperiment(s, t).c_str(), heldOut, store.dir().c_str(), target.relativeRmse,
+                    target.errorFraction, target.sppCap);
         std::fflush(stdout);
     }
-    if (root) makeDirectories(a.out);
-    if (root)
-        std::printf("rrf pipeline%s: %s -> %s\n  ground truth %dx%d, %d spp; %s; %d held-out lights (references from %s: "
-                "relative noise <= max(%g, %g x the error), at most %d spp)\n",
-                preset ? (std::string(" --preset ") + preset->name).c_str() : "", a.input.c_str(), a.out.c_str(), ro.width, ro.height, ro.spp,
-                describeExperiment(s, t).c_str(), heldOut, store.dir().c_str(), target.relativeRmse, target.errorFraction,
-                target.sppCap);
     std::vector<std::pair<std::string, double>> stages;
 
     // 1. Ground truth at the scene's light position (each rank its interleaved rows in an MPI job).

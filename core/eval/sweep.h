@@ -53,6 +53,7 @@
 #include "core/eval/break_even.h"
 #include "core/eval/error_metrics.h"
 #include "core/eval/reference_store.h"
+#include "core/eval/sweep_values.h"
 #include "core/nn/model_set.h"
 #include "core/nn/object_training.h"
 #include "core/predict/predictor.h"
@@ -61,10 +62,6 @@
 #include "core/predict/footprint_mask.h"
 
 namespace rrf {
-
-/// The kinds of sweep (SweepOptions::what), the one list the CLI's --what and the Cost panel offer.
-constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer", "goal", "leaves", "record_spp", "encoding"};
-constexpr int kSweepKindCount = int(sizeof kSweepKinds / sizeof kSweepKinds[0]);
 
 struct SweepOptions {
     std::string what;                 ///< one of kSweepKinds
@@ -128,10 +125,6 @@ struct SweepResult {
     nlohmann::json extra = nlohmann::json::object();  ///< e.g. "loglog_slope_rmse" for spp
     bool cancelled = false;
 };
-
-/// The small default series of each kind (a minute or two on 2 cores at the default sizes). Throws
-/// SettingError naming "sweep dimension" for an unknown kind.
-std::vector<std::string> defaultSweepValues(const std::string& what);
 
 /// Runs the sweep. Throws SettingError for an unknown kind or a malformed value (before rendering).
 /// One process running every task of the sweep below in order: checkedSweepOptions,
