@@ -237,6 +237,41 @@ TEST(CliMpi, ThreeRanksSweepWhatOneProcessDoes) {
     fs::remove_all(dir);
 }
 
+TEST(CliMpi, RanksWithOtherThreadCountsShareTheSweepAlike) {
+    const fs::path dir = testDir();
+    // Rank 0 estimates with 1 thread, rank 1 with 64: the training estimate divides by
+    // min(threads, networks), the series' by the threads, so ranks estimating apart would order the
+    // tasks differently and the join would miss one. Rank 0's estimates are sent to both. The fixed-spp
+    // reference is rendered split by rows and joined into one process's, bit for bit.
+    const std::string project = copyProject(dir / "p");
+    const std::string sweep = "sweep " + project + " --what trainer --values lm adam --width 20 --height 16 --reference-spp 4" +
+                              kExperiment + " --hidden 6 --epochs 4 --out " + (dir / "s").string();
+    const CliResult s1 = runCli(sweep + " --threads 1");
+    ASSERT_EQ(s1.code, 0) << s1.output;
+    fs::rename(dir / "s", dir / "s1");
+    const CliResult r = runMpi(2, sweep + " --threads $((1 + 63 * OMPI_COMM_WORLD_RANK))", true);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("rank 1/2: reference rows y mod 2 = 1 (8 of 16 rows"), std::string::npos) << r.output;
+    // Each task on exactly one rank: both ranks quote the same total, and every task is logged once.
+    std::vector<std::string> totals;
+    for (const char* rank : {"rank 0/2: sweep ", "rank 1/2: sweep "}) {
+        const size_t at = r.output.find(rank);
+        ASSERT_NE(at, std::string::npos) << rank << "\n" << r.output;
+        const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+        totals.push_back(line.substr(line.find("of the estimated")));
+    }
+    EXPECT_EQ(totals[0], totals[1]) << r.output;
+    for (const char* task : {"the path tracer's series", "1 (lm)", "2 (adam)"}) {
+        const size_t first = r.output.find(task);
+        EXPECT_NE(first, std::string::npos) << task << "\n" << r.output;
+        EXPECT_EQ(r.output.find(task, first + 1), std::string::npos) << task << "\n" << r.output;
+    }
+    const std::vector<std::string> a = csvWithoutTimes(readBytes((dir / "s1" / "sweep_trainer.csv").string()));
+    EXPECT_GT(a.size(), 2u);
+    EXPECT_EQ(a, csvWithoutTimes(readBytes((dir / "s" / "sweep_trainer.csv").string())));
+    fs::remove_all(dir);
+}
+
 TEST(CliMpi, ThreeRanksPipelineWhatOneProcessDoes) {
     const fs::path dir = testDir();
     // Ground truth by interleaved rows, data by cells, networks by objects, held-out references by

@@ -7,11 +7,15 @@
 
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/eval/sweep.h"
 #include "core/eval/sweep_parts.h"
+#include "core/predict/footprint_mask.h"
+#include "core/predict/gbuffer.h"
 #include "core/render/render_rows.h"
 #include "core/scene/accel.h"
 #include "scene_builders.h"
@@ -77,6 +81,40 @@ TEST(ClusterRender, InterleavedRowsJoinIntoTheWholeRenderBitForBit) {
     }
 }
 
+TEST(ClusterRender, PartsOfAnotherPassCountOrRowsOutOfRangeAreRefused) {
+    const Scene scene = test::cornellLike(1.f, 16);
+    const Accel accel(scene);
+    RenderOptions o;
+    o.width = 8;
+    o.height = 6;
+    o.spp = 4;
+    o.samplesPerPass = 2;
+    std::vector<std::string> parts;
+    for (int r = 0; r < 2; ++r) {
+        RenderOptions part = o;
+        part.rowOffset = r;
+        part.rowStride = 2;
+        // Part 1 reaches the same 4 spp in 4 passes of 1 sample: not the same render.
+        if (r == 1) part.samplesPerPass = 1;
+        parts.push_back(encodeRenderRows(renderState(scene, accel, part), r, 2));
+    }
+    try {
+        joinRenderRows(parts, {"rank 0", "rank 1"});
+        ADD_FAILURE() << "parts of 2 and 4 passes were joined";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("rank 1: a render of 8x6 at 4 spp in 4 passes, the first part's is 8x6 at 4 spp in 2 passes"),
+                  std::string::npos)
+            << e.what();
+    }
+    // Rows that select nothing (offset outside [0, stride)) or no stride at all are refused.
+    for (const auto& [offset, stride] : std::vector<std::pair<int, int>>{{2, 2}, {-1, 2}, {0, 0}}) {
+        RenderOptions bad = o;
+        bad.rowOffset = offset;
+        bad.rowStride = stride;
+        EXPECT_THROW((Renderer(scene, accel, bad)), std::invalid_argument) << offset << " mod " << stride;
+    }
+}
+
 TEST(ClusterSweep, TasksRunApartJoinIntoTheSingleProcessSweep) {
     const Scene scene = test::cornellLike(1.f, 16);
     SweepOptions o;
@@ -132,6 +170,18 @@ TEST(ClusterSweep, TasksRunApartJoinIntoTheSingleProcessSweep) {
         expectSameStats(single.pathTracer[i].overall, joined.pathTracer[i].overall, "spp " + single.pathTracer[i].setting);
     EXPECT_TRUE(sameBits(single.relativeNoiseFloor, joined.relativeNoiseFloor));
     EXPECT_TRUE(joined.extra.contains("generate_seconds"));
+    // runSweep is these very functions in one process, so beside it the joined sweep is checked
+    // against what is built apart: the series' spp and the pixels of the footprint mask made
+    // independently from the G-buffer at the sweep's light (every error is over those pixels).
+    ASSERT_EQ(joined.pathTracer.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) EXPECT_EQ(joined.pathTracer[i].spp, 1 << i);
+    const Accel accel(scene);
+    const PathTracer tracer(scene, accel, Estimator::NEE, 1);
+    const FootprintMask mask =
+        footprintMask(buildGBuffer(tracer, RecordLayout::forScene(scene), joined.lightPosition, o.width, o.height));
+    ASSERT_GT(mask.kept.size(), 0u);
+    for (const SweepRow& row : joined.rows) EXPECT_EQ(row.overall.pixels, mask.kept.size()) << row.setting;
+    for (const SweepRow& row : joined.pathTracer) EXPECT_EQ(row.overall.pixels, mask.kept.size()) << row.setting;
 
     // A task left out, or run twice, is refused by name.
     try {

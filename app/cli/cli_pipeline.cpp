@@ -23,6 +23,7 @@
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
 #include "core/eval/experiment.h"
+#include "core/nn/training_part.h"
 #include "core/eval/held_out.h"
 #include "core/nn/model_set.h"
 #include "core/nn/training_run.h"
@@ -77,15 +78,14 @@ int runPipeline(const PipelineArgs& a) {
                                                   RecordLayout::forScene(scene).inputCount(), int(std::thread::hardware_concurrency()));
         std::printf("estimated: generate %s (%s); train %s (%s)\n", rangeText(g).c_str(), g.basis.c_str(),
                     rangeText(tr).c_str(), tr.basis.c_str());
+        makeDirectories(a.out);
+        std::printf("rrf pipeline%s: %s -> %s\n  ground truth %dx%d, %d spp; %s; %d held-out lights (references from %s: "
+                    "relative noise <= max(%g, %g x the error), at most %d spp)\n",
+                    preset ? (std::string(" --preset ") + preset->name).c_str() : "", a.input.c_str(), a.out.c_str(), ro.width,
+                    ro.height, ro.spp, describeExperiment(s, t).c_str(), heldOut, store.dir().c_str(), target.relativeRmse,
+                    target.errorFraction, target.sppCap);
         std::fflush(stdout);
     }
-    if (root) makeDirectories(a.out);
-    if (root)
-        std::printf("rrf pipeline%s: %s -> %s\n  ground truth %dx%d, %d spp; %s; %d held-out lights (references from %s: "
-                "relative noise <= max(%g, %g x the error), at most %d spp)\n",
-                preset ? (std::string(" --preset ") + preset->name).c_str() : "", a.input.c_str(), a.out.c_str(), ro.width, ro.height, ro.spp,
-                describeExperiment(s, t).c_str(), heldOut, store.dir().c_str(), target.relativeRmse, target.errorFraction,
-                target.sppCap);
     std::vector<std::pair<std::string, double>> stages;
 
     // 1. Ground truth at the scene's light position (each rank its interleaved rows in an MPI job).
@@ -127,7 +127,7 @@ int runPipeline(const PipelineArgs& a) {
     const std::vector<ObjectSamples> samples = samplesFromGenerated(data, scene, layout);
     ObjectTrainingObserver obs;
     obs.cancel = &cancel;
-    const TrainingRun run = trainOnRanks(samples, t, ranks, scene, obs, cancel);
+    TrainingRun run = trainOnRanks(samples, t, ranks, scene, obs, cancel);
     const std::string modelDir = outputPath(a.out, "models");
     if (root) {
         stages.push_back({"train", run.seconds});
@@ -136,12 +136,17 @@ int runPipeline(const PipelineArgs& a) {
         saveTrainingRun(modelDir, run, network, scene.contentHash(), layout.inputs, {dataset, a.input});
         std::printf("[3/4] train: %.1f s -> %s\n", stages.back().second, modelDir.c_str());
     }
-    // Every rank loads the models rank 0 saved: the held-out references converge relative to the
-    // model's error (storeSource), so each rank needs the very networks one process would evaluate.
-    // The --out directory must therefore be one all ranks see, as the project's store must be.
-    ranks.barrier();
+    // The held-out references converge relative to the model's error (storeSource), so every rank
+    // needs the very networks one process evaluates: rank 0 sends the joined run (weights bit for
+    // bit, core/nn/training_part.h) and each rank builds the set in memory, so only the project's
+    // reference store has to be shared by the ranks, not --out.
+    if (ranks.size() > 1) {
+        std::string bytes = root ? encodeTrainingPart(run) : std::string();
+        ranks.broadcast(bytes);
+        if (!root) run = decodeTrainingPart(bytes, "the networks from rank 0");
+    }
     // 4. Evaluation: at the ground truth's light, then at held-out lights.
-    const ModelSet models = loadModelSet(modelDir, scene.contentHash());
+    const ModelSet models = root ? loadModelSet(modelDir, scene.contentHash()) : modelSetFromTrained(run.models, scene, layout);
     // A preset's prediction settings (e.g. best's direct samples) under the command's own flags.
     const Predictor predictor(scene, models, a.prediction.applied(preset ? presetPrediction(p, *preset) : p.prediction));
     Stopwatch evalClock;
@@ -157,14 +162,15 @@ int runPipeline(const PipelineArgs& a) {
     const ReferenceSource held = storeSource(store, p, predictor, ro.width, ro.height, target, size_t(heldOut));
     // In an MPI job the ranks render the held-out references into the store, as rrf evaluate's do.
     if (ranks.size() > 1) obtainRankReferences(ranks, lights, held);
-    if (!root) return 0;
+    // Interrupted training: every rank holds the joined run, whose flag says whether any rank was.
+    if (!root) return run.cancelled ? 130 : 0;
     evaluateAll(p, predictor, lights, held, outputPath(a.out, "held_out"), p.render.exposure);
     stages.push_back({"evaluate", evalClock.seconds()});
     std::printf("\n%-14s %10s\n", "stage", "seconds");
     for (const auto& st : stages) std::printf("%-14s %10.2f\n", st.first.c_str(), st.second);
     std::printf("%-14s %10.2f\nresults in %s (ground_truth/, dataset.rrfd, models/, evaluation/, held_out/)\n", "total",
                 total.seconds(), a.out.c_str());
-    return cancel ? 130 : 0;
+    return cancel || run.cancelled ? 130 : 0;
 }
 }  // namespace
 

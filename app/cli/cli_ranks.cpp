@@ -12,7 +12,6 @@
 #include "core/data/dataset_part.h"
 #include "core/nn/training_part.h"
 #include "core/render/render_rows.h"
-#include "core/scene/accel.h"
 #include "core/nn/training_split.h"
 #include "core/util/byte_stream.h"
 #include "core/util/stopwatch.h"
@@ -147,27 +146,17 @@ Reference renderOnRanks(const Scene& scene, const Vec3& lp, const RenderOptions&
     std::printf("%s: %s rows y mod %d = %d (%d of %d rows, interleaved)\n", ranks.name().c_str(), label.c_str(), ranks.size(),
                 ranks.rank(), rows, options.height);
     std::fflush(stdout);
-    Scene moved = scene;
-    if (!moved.lights.empty()) moved.setLightPosition(lp);
-    const Accel accel(moved);
-    Renderer renderer(moved, accel, mine);
     std::atomic<bool> cancel{false};
+    std::atomic<double> progress{0.0};
+    LightRender rendered;
     runWithProgress(
-        label,
-        [&] {
-            while (renderer.progress() < 1.0 && !cancel)
-                if (!renderer.runPass()) break;
-        },
-        [&] { return std::make_pair(renderer.progress(), std::string()); },
-        [&] {
-            cancel = true;
-            renderer.cancel();
-        });
-    if (cancel) {
+        label, [&] { rendered = renderAtLight(scene, lp, mine, &cancel, &progress); },
+        [&] { return std::make_pair(progress.load(), std::string()); }, [&] { cancel = true; });
+    if (rendered.cancelled) {
         std::fprintf(stderr, "%s: interrupted while rendering the %s\n", ranks.name().c_str(), label.c_str());
         mpi::stopJobOnError(130);
     }
-    const RenderState state = renderer.exportState();
+    const RenderState& state = rendered.state;
     char summary[160];
     std::snprintf(summary, sizeof summary, "%s rows in %.2f s", label.c_str(), state.seconds);
     mpi::GatheredParts<std::string> gathered = mpi::gatherParts<std::string>(
@@ -176,7 +165,7 @@ Reference renderOnRanks(const Scene& scene, const Vec3& lp, const RenderOptions&
     if (!ranks.isRoot()) return {};
     std::vector<std::string> names;
     for (int r = 0; r < ranks.size(); ++r) names.push_back(mpi::Ranks(r, ranks.size()).name());
-    const Reference joined = referenceOf(Renderer::snapshotOf(joinRenderRows(gathered.parts, names)), moved.lightPosition());
+    const Reference joined = referenceOf(Renderer::snapshotOf(joinRenderRows(gathered.parts, names)), rendered.lightPosition);
     std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s\n", gathered.waitedSeconds,
                 ranks.size(), gathered.joinClock.seconds());
     return joined;

@@ -24,6 +24,7 @@
 #include "core/project/time_estimate.h"
 #include "core/project/project.h"
 #include "core/render/render_outputs.h"
+#include "core/util/byte_stream.h"
 #include "core/util/stopwatch.h"
 
 namespace rrf::cli {
@@ -63,14 +64,43 @@ std::vector<double> sweepTaskSeconds(const Scene& scene, const SweepOptions& o, 
     return seconds;
 }
 
-/// The sweep of an MPI job of more than one rank: rank 0 obtains the reference (store or fixed spp)
-/// and sends it to every rank; a network sweep's shared dataset is generated split by cells, joined on
-/// rank 0 and sent to every rank; the tasks go to the ranks longest first by estimated seconds
-/// (sweepTaskSeconds, assignLongestFirst), each rank runs its own with all its threads, and rank 0
-/// joins the parts into the single-process result. The other ranks return an empty result.
+/// The estimated seconds of each task (sweepTaskSeconds) as rank 0 computes them with its `threads`,
+/// sent to every rank: a rank's thread count (--threads, else its node's cores) scales the estimate,
+/// so ranks on unlike nodes computing apart would assign the tasks differently, and the join would
+/// then miss some. The bits of the doubles travel, so every rank assigns the same.
+std::vector<double> rankTaskSeconds(const Scene& scene, const SweepOptions& o, const mpi::Ranks& ranks, int threads) {
+    std::string sent;
+    if (ranks.isRoot()) {
+        ByteWriter out;
+        for (double s : sweepTaskSeconds(scene, o, threads)) out.f64(s);
+        sent = out.take();
+    }
+    ranks.broadcast(sent);
+    std::vector<double> seconds(sent.size() / sizeof(double));
+    ByteReader in(sent, "task estimates from rank 0");
+    for (double& s : seconds) s = in.f64();
+    return seconds;
+}
+
+/// The sweep of an MPI job of more than one rank: the reference is rendered split by rows
+/// (renderOnRanks) at a fixed spp or obtained from the store by rank 0, and rank 0 sends it to every
+/// rank; a network sweep's shared dataset is generated split by cells, joined on rank 0 and sent to
+/// every rank; the tasks go to the ranks longest first by estimated seconds
+/// (rankTaskSeconds, assignLongestFirst), each rank runs its own with all its threads, and rank 0
+/// joins the parts into the single-process result. The other ranks return an empty result but for
+/// `cancelled`, which says whether any rank was interrupted.
 SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::Ranks& ranks, int threads) {
     std::string bytes;
-    if (ranks.isRoot()) {
+    if (!o.store) {
+        // A fixed-spp reference: each rank renders its interleaved rows and rank 0 joins them into the
+        // single-process render, bit for bit (renderOnRanks stops the job on Ctrl-C).
+        const RenderOptions ro = sweepReferenceOptions(o);
+        if (ranks.isRoot() && o.log)
+            o.log("reference: " + std::to_string(ro.spp) + " spp at " + std::to_string(ro.width) + "x" + std::to_string(ro.height));
+        const Reference reference = renderOnRanks(scene, sweepLightPosition(scene, o), ro, "reference", ranks);
+        if (ranks.isRoot()) bytes = encodeReference(reference);
+    } else if (ranks.isRoot()) {
+        // From the store: one entry, converged by rank 0 alone (the target is checked on the whole image).
         const Reference reference = obtainSweepReference(scene, o);
         if (reference.cancelled || (o.cancel && o.cancel->load())) {
             std::fprintf(stderr, "%s: sweep cancelled while obtaining the reference\n", ranks.name().c_str());
@@ -86,9 +116,12 @@ SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::R
     const SweepInputs inputs = sweepInputs(scene, o, std::move(reference), std::move(data));
 
     const std::vector<SweepTask> tasks = sweepTasks(o);
-    const std::vector<double> seconds = sweepTaskSeconds(scene, o, threads);
+    const std::vector<double> seconds = rankTaskSeconds(scene, o, ranks, threads);
     std::vector<uint64_t> costs;
-    for (double s : seconds) costs.push_back(uint64_t(std::max(0.0, s) * 1e6));  // microseconds: integers for the rule
+    // Microseconds: integers for the rule, clamped so that an absurd estimate still converts (a
+    // double beyond uint64_t's range would be undefined behaviour); beyond 2^62 µs the order of
+    // tasks no longer matters in practice.
+    for (double s : seconds) costs.push_back(uint64_t(std::clamp(s * 1e6, 0.0, 4.0e18)));
     const std::vector<int> rankOf = assignLongestFirst(costs, ranks.size());
     std::vector<int> mine;
     std::string points, series;
@@ -112,10 +145,16 @@ SweepResult sweepOnRanks(const Scene& scene, const SweepOptions& o, const mpi::R
     std::snprintf(summary, sizeof summary, "ran %zu sweep task(s) in %.2f s (%.2f s CPU)", mine.size(), clock.seconds(),
                   processCpuSeconds() - cpuStart);
     mpi::GatheredParts<SweepPart> gathered = mpi::gatherParts<SweepPart>(ranks, summary, encodeSweepPart(part), decodeSweepPart);
-    if (!ranks.isRoot()) return {};
-    SweepResult r = joinSweepParts(scene, o, inputs, std::move(gathered.parts));
-    std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s\n", gathered.waitedSeconds,
-                ranks.size(), gathered.joinClock.seconds());
+    SweepResult r;
+    if (ranks.isRoot()) {
+        r = joinSweepParts(scene, o, inputs, std::move(gathered.parts));
+        std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s\n",
+                    gathered.waitedSeconds, ranks.size(), gathered.joinClock.seconds());
+    }
+    // Whether any rank was interrupted, known on rank 0 from the parts: every rank's exit status says it.
+    std::string cancelled = r.cancelled ? "1" : "0";
+    ranks.broadcast(cancelled);
+    r.cancelled = cancelled == "1";
     return r;
 }
 

@@ -28,13 +28,13 @@ std::string num(double v) {
 }
 }  // namespace
 
-Reference renderReference(const Scene& scene, const Vec3& lightPos, const RenderOptions& options,
-                          const std::atomic<bool>* cancel, std::atomic<double>* progress) {
+LightRender renderAtLight(const Scene& scene, const Vec3& lightPos, const RenderOptions& options, const std::atomic<bool>* cancel,
+                          std::atomic<double>* progress) {
     Scene moved = scene;
     if (!moved.lights.empty()) moved.setLightPosition(lightPos);
     const Accel accel(moved);
     Renderer renderer(moved, accel, options);
-    Reference r;
+    LightRender r;
     r.lightPosition = moved.lightPosition();
     while (renderer.progress() < 1.0) {
         if (cancel && cancel->load()) {
@@ -44,9 +44,15 @@ Reference renderReference(const Scene& scene, const Vec3& lightPos, const Render
         if (!renderer.runPass()) break;
         if (progress) *progress = renderer.progress();
     }
-    const bool cancelled = r.cancelled;
-    r = referenceOf(renderer.snapshot(), moved.lightPosition());
-    r.cancelled = cancelled;
+    r.state = renderer.exportState();
+    return r;
+}
+
+Reference renderReference(const Scene& scene, const Vec3& lightPos, const RenderOptions& options,
+                          const std::atomic<bool>* cancel, std::atomic<double>* progress) {
+    const LightRender rendered = renderAtLight(scene, lightPos, options, cancel, progress);
+    Reference r = referenceOf(Renderer::snapshotOf(rendered.state), rendered.lightPosition);
+    r.cancelled = rendered.cancelled;
     return r;
 }
 

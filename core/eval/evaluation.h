@@ -39,8 +39,23 @@ struct Reference {
 /// seconds, NaN/Inf count, and the variances when the snapshot's are known (empty = unknown).
 Reference referenceOf(const RenderSnapshot& s, const Vec3& lightPosition);
 
+/// A render of a scene with its movable light moved (renderAtLight).
+struct LightRender {
+    RenderState state;          ///< the renderer's committed sums and counters (resumable, joinable by rows)
+    Vec3 lightPosition{0.f};    ///< where the light was (the scene's own when it has none to move)
+    bool cancelled = false;     ///< stopped by `cancel` before the last pass
+};
+
+/// Renders `scene` with the movable light centred at `lightPos` (the scene itself is not modified),
+/// pass by pass to `options.spp`, over the rows `options` select (all, or one process's share:
+/// RenderOptions::rowOffset, core/render/render_rows.h); stops before a pass when `cancel` becomes
+/// true. `progress` (optional) receives the fraction done after every pass. The one render loop of
+/// a reference, whole (renderReference) or split by rows across MPI ranks.
+LightRender renderAtLight(const Scene& scene, const Vec3& lightPos, const RenderOptions& options,
+                          const std::atomic<bool>* cancel = nullptr, std::atomic<double>* progress = nullptr);
+
 /// Renders the reference of `scene` with the movable light centred at `lightPos` (the scene itself is
-/// not modified). `options.seed` keys the noise; stops early when `cancel` becomes true. `progress`
+/// not modified; renderAtLight). `options.seed` keys the noise; stops early when `cancel` becomes true. `progress`
 /// (optional) receives the fraction done after every pass, for a progress line on another thread.
 Reference renderReference(const Scene& scene, const Vec3& lightPos, const RenderOptions& options,
                           const std::atomic<bool>* cancel = nullptr, std::atomic<double>* progress = nullptr);

@@ -4,12 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numeric>
+#include <optional>
 #include <sstream>
 
 #include "core/util/error.h"
 #include "core/eval/evaluation.h"
 #include "core/eval/experiment.h"
 #include "core/eval/held_out.h"
+#include "core/eval/sweep_values.h"
 #include "core/eval/reference_noise.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/network_settings.h"
@@ -18,92 +21,6 @@
 namespace rrf {
 
 namespace {
-
-/// The setting that lists what a sweep compares (front ends map it to their own field or flag).
-const char* const kValuesSetting = "sweep values";
-
-int positiveValue(const std::string& text, const std::string& value, int max, const std::string& expected) {
-    try {
-        size_t used = 0;
-        const int v = std::stoi(text, &used);
-        if (used == text.size() && v > 0 && v <= max) return v;
-    } catch (const std::exception&) {
-    }
-    throw SettingError(kValuesSetting, "'" + value + "': expected " + expected);
-}
-
-/// A number in (0, max], the whole text.
-double positiveNumber(const std::string& text, double max, const std::string& expected) {
-    try {
-        size_t used = 0;
-        const double v = std::stod(text, &used);
-        if (used == text.size() && v > 0 && v <= max) return v;
-    } catch (const std::exception&) {
-    }
-    throw SettingError(kValuesSetting, "'" + text + "': expected " + expected);
-}
-
-/// One setting of the series, read from its value before anything runs, so a bad value costs no
-/// reference render.
-struct SweepPoint {
-    std::string setting;             ///< the value as given: the row's label
-    int spp = 0;                     ///< spp
-    SamplingSettings sampling;       ///< grid, dirs, record_spp
-    ObjectTrainingOptions training;  ///< hidden, trainer, goal, leaves
-};
-
-/// "4,4,4": the grid as --grid and the project's "grid": [4, 4, 4] spell it.
-void readGrid(const std::string& v, SamplingSettings& s) {
-    const std::string expected = "3 integers nx,ny,nz in 1.." + std::to_string(kMaxGridCells) + " (e.g. 4,4,4)";
-    std::vector<int> n;
-    std::istringstream in(v);
-    for (std::string part; std::getline(in, part, ',');) n.push_back(positiveValue(part, v, kMaxGridCells, expected));
-    if (n.size() != 3 || v.back() == ',') throw SettingError(kValuesSetting, "'" + v + "': expected " + expected);
-    s.nx = n[0];
-    s.ny = n[1];
-    s.nz = n[2];
-}
-
-std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
-    std::vector<SweepPoint> points;
-    for (const std::string& v : o.values) {
-        SweepPoint p{v, 0, o.sampling, o.training};
-        if (o.what == "spp") {
-            p.spp = positiveValue(v, v, 1 << 20, "one positive integer (samples per pixel)");
-        } else if (o.what == "grid") {
-            readGrid(v, p.sampling);
-        } else if (o.what == "dirs") {
-            p.sampling.directions = positiveValue(v, v, kMaxDirections, "one positive integer (directions per viewpoint)");
-        } else if (o.what == "hidden") {
-            p.training.hidden = parseHiddenSizes(v, kValuesSetting);
-        } else if (o.what == "goal") {
-            // One figure for both: the trainer stops at it and the kd-tree splits nodes above it.
-            const double goal = positiveNumber(v, 10.0, "an error goal in (0, 10] (validation relative RMSE, e.g. 0.05)");
-            p.training.trainer.lm.errorGoal = p.training.trainer.adam.errorGoal = goal;
-            p.training.partition.goal = goal;
-        } else if (o.what == "leaves") {
-            p.training.partition.maxLeaves = positiveValue(v, v, kMaxPartitionLeaves, "the most leaves per network, 1.." +
-                                                                                        std::to_string(kMaxPartitionLeaves));
-            if (p.training.partition.maxLeaves > 1 && p.training.partition.maxDepth == 0)
-                p.training.partition.maxDepth = PartitionSettings{}.maxDepth;
-        } else if (o.what == "encoding") {
-            p.training.encoding = encodingPresetSettings(v, kValuesSetting);
-            try {
-                checkEncodingTrainer(p.training.encoding, p.training.trainer);
-            } catch (const SettingError& e) {
-                throw SettingError(kValuesSetting, "'" + v + "': " + e.detail());
-            }
-        } else if (o.what == "record_spp") {
-            p.sampling.maxSpp = positiveValue(v, v, kMaxSamplesPerRecord, "the most paths per record, 1.." + std::to_string(kMaxSamplesPerRecord));
-            p.sampling.spp = std::min(p.sampling.spp, p.sampling.maxSpp);
-        } else {
-            if (v != "lm" && v != "adam") throw SettingError(kValuesSetting, "'" + v + "': expected lm or adam");
-            p.training.trainer = p.training.trainer.withType(v);
-        }
-        points.push_back(std::move(p));
-    }
-    return points;
-}
 
 struct Context {
     const Scene& scene;
@@ -298,21 +215,6 @@ SweepRow networkPoint(const Context& c, const SweepPoint& p, const std::vector<O
 
 }  // namespace
 
-std::vector<std::string> defaultSweepValues(const std::string& what) {
-    if (what == "spp") return {"1", "2", "4", "8", "16", "32", "64"};
-    if (what == "grid") return {"2,2,2", "3,3,3", "4,4,4"};
-    if (what == "dirs") return {"50", "100", "200"};
-    if (what == "hidden") return {"5", "10,5", "20,10"};
-    if (what == "trainer") return {"lm", "adam"};
-    if (what == "goal") return {"0.1", "0.05", "0.03"};
-    if (what == "leaves") return {"1", "4", "16"};
-    if (what == "record_spp") return {"64", "256", "1024"};
-    if (what == "encoding") return {"raw", "frequency", "hash_grid"};
-    std::string kinds;
-    for (const char* k : kSweepKinds) kinds += std::string(kinds.empty() ? "" : ", ") + k;
-    throw SettingError("sweep dimension", "expected one of " + kinds + ", got '" + what + "'");
-}
-
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int n = 0;
@@ -358,14 +260,19 @@ Vec3 sweepLightPosition(const Scene& scene, const SweepOptions& o) {
     return heldOutLightPositions(scene.lightRange(), 1, o.seed).front();
 }
 
-Reference obtainSweepReference(const Scene& scene, const SweepOptions& o) {
-    const Vec3 light = sweepLightPosition(scene, o);
+RenderOptions sweepReferenceOptions(const SweepOptions& o) {
     RenderOptions ro;
     ro.width = o.width;
     ro.height = o.height;
     ro.spp = o.referenceSpp > 0 ? o.referenceSpp : (o.what == "spp" ? 1024 : 256);
     ro.samplesPerPass = std::max(1, ro.spp / 16);
     ro.seed = mix64(o.seed ^ 0x5245464552454E43ULL);  // never the seed of the renders it judges
+    return ro;
+}
+
+Reference obtainSweepReference(const Scene& scene, const SweepOptions& o) {
+    const Vec3 light = sweepLightPosition(scene, o);
+    const RenderOptions ro = sweepReferenceOptions(o);
     if (o.store) {
         RenderSettings rs;
         rs.seed = ro.seed;
@@ -421,5 +328,67 @@ SweepPart runSweepTasks(const Scene& scene, const SweepOptions& o, const SweepIn
 const std::vector<SweepRow>& pathTracerRows(const SweepResult& r) { return r.what == "spp" ? r.rows : r.pathTracer; }
 
 std::vector<PathTracerPoint> pathTracerPoints(const SweepResult& r) { return pointsOf(pathTracerRows(r)); }
+
+SweepResult joinSweepParts(const Scene& scene, const SweepOptions& o, const SweepInputs& in, std::vector<SweepPart> parts) {
+    const std::vector<SweepTask> tasks = sweepTasks(o);
+    std::vector<std::optional<std::vector<SweepRow>>> byTask(tasks.size());
+    SweepResult r;
+    for (SweepPart& part : parts) {
+        if (part.rows.size() != part.tasks.size()) throw std::runtime_error("joinSweepParts: a part's rows do not match its tasks");
+        for (size_t i = 0; i < part.tasks.size(); ++i) {
+            const int t = part.tasks[i];
+            if (t < 0 || size_t(t) >= tasks.size()) throw std::runtime_error("joinSweepParts: no task " + std::to_string(t));
+            if (byTask[size_t(t)]) throw std::runtime_error("joinSweepParts: task " + std::to_string(t) + " was run twice");
+            byTask[size_t(t)] = std::move(part.rows[i]);
+        }
+        r.cancelled = r.cancelled || part.cancelled;
+    }
+    for (size_t t = 0; t < tasks.size(); ++t)
+        if (!byTask[t]) throw std::runtime_error("joinSweepParts: task " + std::to_string(t) + " (" + tasks[t].label + ") is missing");
+    r.what = o.what;
+    r.lightPosition = sweepLightPosition(scene, o);
+    r.width = o.width;
+    r.height = o.height;
+    r.referenceSpp = in.reference.spp;
+    r.referenceSeconds = in.reference.seconds;
+    r.relativeNoiseFloor = referenceNoise(in.reference, in.footprint).relativeRmse[int(Term::Global)];
+    if (o.what == "spp") {
+        r.rows = std::move(*byTask[0]);
+        std::vector<double> xs, ys, ysCorrected;
+        for (const SweepRow& row : r.rows) {
+            xs.push_back(double(row.spp));
+            ys.push_back(row.overall.rmse);
+            ysCorrected.push_back(row.overall.rmseCorrected);
+        }
+        r.extra["loglog_slope_rmse"] = logLogSlope(xs, ys);
+        // Without the reference's noise the curve flattens towards its floor; the corrected slope does not.
+        r.extra["loglog_slope_rmse_corrected"] = noiseFigureJson(logLogSlope(xs, ysCorrected));
+        return r;
+    }
+    r.pathTracer = std::move(*byTask[0]);
+    // Every model row's break-even against the series, wherever the series was rendered.
+    const std::vector<PathTracerPoint> series = pathTracerPoints(r);
+    for (size_t t = 1; t < tasks.size(); ++t)
+        for (SweepRow& row : *byTask[t]) {
+            row.breakEven = breakEven(series, comparableError(row.overall));
+            r.rows.push_back(std::move(row));
+        }
+    if (in.data) r.extra["generate_seconds"] = in.data->seconds;
+    return r;
+}
+
+SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
+    const SweepOptions o = checkedSweepOptions(scene, options);
+    Reference reference = obtainSweepReference(scene, o);
+    const bool cancelled = o.cancel && o.cancel->load();
+    std::shared_ptr<const GeneratedData> data;
+    if (sweepSharesData(o) && !cancelled) data = std::make_shared<const GeneratedData>(DataGenerator(scene, o.sampling).run(0, 1, o.cancel));
+    const SweepInputs in = sweepInputs(scene, o, std::move(reference), std::move(data));
+    std::vector<int> all(sweepTasks(o).size());
+    std::iota(all.begin(), all.end(), 0);
+    std::vector<SweepPart> parts;
+    parts.push_back(runSweepTasks(scene, o, in, all));
+    return joinSweepParts(scene, o, in, std::move(parts));
+}
 
 }  // namespace rrf

@@ -53,6 +53,7 @@
 #include "core/eval/break_even.h"
 #include "core/eval/error_metrics.h"
 #include "core/eval/reference_store.h"
+#include "core/eval/sweep_values.h"
 #include "core/nn/model_set.h"
 #include "core/nn/object_training.h"
 #include "core/predict/predictor.h"
@@ -61,10 +62,6 @@
 #include "core/predict/footprint_mask.h"
 
 namespace rrf {
-
-/// The kinds of sweep (SweepOptions::what), the one list the CLI's --what and the Cost panel offer.
-constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer", "goal", "leaves", "record_spp", "encoding"};
-constexpr int kSweepKindCount = int(sizeof kSweepKinds / sizeof kSweepKinds[0]);
 
 struct SweepOptions {
     std::string what;                 ///< one of kSweepKinds
@@ -129,10 +126,6 @@ struct SweepResult {
     bool cancelled = false;
 };
 
-/// The small default series of each kind (a minute or two on 2 cores at the default sizes). Throws
-/// SettingError naming "sweep dimension" for an unknown kind.
-std::vector<std::string> defaultSweepValues(const std::string& what);
-
 /// Runs the sweep. Throws SettingError for an unknown kind or a malformed value (before rendering).
 /// One process running every task of the sweep below in order: checkedSweepOptions,
 /// obtainSweepReference, the shared dataset, runSweepTasks(all), joinSweepParts.
@@ -162,8 +155,11 @@ SweepOptions checkedSweepOptions(const Scene& scene, const SweepOptions& options
 std::vector<SweepTask> sweepTasks(const SweepOptions& checked);
 /// The held-out light position every point is measured at (heldOutLightPositions(…, 1, seed)).
 Vec3 sweepLightPosition(const Scene& scene, const SweepOptions& checked);
+/// How the sweep's reference is rendered: its size, spp (the fixed spp without a store; the store
+/// converges from the same seed) and seed, which no render it judges uses.
+RenderOptions sweepReferenceOptions(const SweepOptions& checked);
 /// The reference of the sweep: from checked.store converged to its target, or rendered at the fixed
-/// spp; logged through checked.log.
+/// spp (sweepReferenceOptions); logged through checked.log.
 Reference obtainSweepReference(const Scene& scene, const SweepOptions& checked);
 /// Whether the points train on one dataset generated with checked.sampling (hidden, trainer, goal,
 /// leaves, encoding); the others make their own (grid, dirs, record_spp) or none (spp).

@@ -1,11 +1,8 @@
-// A sweep's parts: runSweep as one part, the join of several, and their bytes between processes.
+// The bytes a sweep's processes exchange: the reference and the parts (sweep_parts.h).
 #include "core/eval/sweep_parts.h"
 
-#include <numeric>
-#include <optional>
 #include <stdexcept>
 
-#include "core/eval/reference_noise.h"
 #include "core/util/byte_stream.h"
 
 namespace rrf {
@@ -141,68 +138,6 @@ SweepPart decodeSweepPart(const std::string& bytes, const std::string& source) {
     part.cancelled = in.u64() != 0;
     if (!in.atEnd()) throw std::runtime_error(source + ": bytes left over after the sweep part");
     return part;
-}
-
-SweepResult joinSweepParts(const Scene& scene, const SweepOptions& o, const SweepInputs& in, std::vector<SweepPart> parts) {
-    const std::vector<SweepTask> tasks = sweepTasks(o);
-    std::vector<std::optional<std::vector<SweepRow>>> byTask(tasks.size());
-    SweepResult r;
-    for (SweepPart& part : parts) {
-        if (part.rows.size() != part.tasks.size()) throw std::runtime_error("joinSweepParts: a part's rows do not match its tasks");
-        for (size_t i = 0; i < part.tasks.size(); ++i) {
-            const int t = part.tasks[i];
-            if (t < 0 || size_t(t) >= tasks.size()) throw std::runtime_error("joinSweepParts: no task " + std::to_string(t));
-            if (byTask[size_t(t)]) throw std::runtime_error("joinSweepParts: task " + std::to_string(t) + " was run twice");
-            byTask[size_t(t)] = std::move(part.rows[i]);
-        }
-        r.cancelled = r.cancelled || part.cancelled;
-    }
-    for (size_t t = 0; t < tasks.size(); ++t)
-        if (!byTask[t]) throw std::runtime_error("joinSweepParts: task " + std::to_string(t) + " (" + tasks[t].label + ") is missing");
-    r.what = o.what;
-    r.lightPosition = sweepLightPosition(scene, o);
-    r.width = o.width;
-    r.height = o.height;
-    r.referenceSpp = in.reference.spp;
-    r.referenceSeconds = in.reference.seconds;
-    r.relativeNoiseFloor = referenceNoise(in.reference, in.footprint).relativeRmse[int(Term::Global)];
-    if (o.what == "spp") {
-        r.rows = std::move(*byTask[0]);
-        std::vector<double> xs, ys, ysCorrected;
-        for (const SweepRow& row : r.rows) {
-            xs.push_back(double(row.spp));
-            ys.push_back(row.overall.rmse);
-            ysCorrected.push_back(row.overall.rmseCorrected);
-        }
-        r.extra["loglog_slope_rmse"] = logLogSlope(xs, ys);
-        // Without the reference's noise the curve flattens towards its floor; the corrected slope does not.
-        r.extra["loglog_slope_rmse_corrected"] = noiseFigureJson(logLogSlope(xs, ysCorrected));
-        return r;
-    }
-    r.pathTracer = std::move(*byTask[0]);
-    // Every model row's break-even against the series, wherever the series was rendered.
-    const std::vector<PathTracerPoint> series = pathTracerPoints(r);
-    for (size_t t = 1; t < tasks.size(); ++t)
-        for (SweepRow& row : *byTask[t]) {
-            row.breakEven = breakEven(series, comparableError(row.overall));
-            r.rows.push_back(std::move(row));
-        }
-    if (in.data) r.extra["generate_seconds"] = in.data->seconds;
-    return r;
-}
-
-SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
-    const SweepOptions o = checkedSweepOptions(scene, options);
-    Reference reference = obtainSweepReference(scene, o);
-    const bool cancelled = o.cancel && o.cancel->load();
-    std::shared_ptr<const GeneratedData> data;
-    if (sweepSharesData(o) && !cancelled) data = std::make_shared<const GeneratedData>(DataGenerator(scene, o.sampling).run(0, 1, o.cancel));
-    const SweepInputs in = sweepInputs(scene, o, std::move(reference), std::move(data));
-    std::vector<int> all(sweepTasks(o).size());
-    std::iota(all.begin(), all.end(), 0);
-    std::vector<SweepPart> parts;
-    parts.push_back(runSweepTasks(scene, o, in, all));
-    return joinSweepParts(scene, o, in, std::move(parts));
 }
 
 }  // namespace rrf

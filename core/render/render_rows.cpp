@@ -43,10 +43,11 @@ RenderState joinRenderRows(const std::vector<std::string>& parts, const std::vec
             joined.sppDone = int(spp);
             joined.passes = int(passes);
             joined.pixels.resize(size_t(width) * size_t(height));
-        } else if (width != joined.width || height != joined.height || spp != joined.sppDone) {
+        } else if (width != joined.width || height != joined.height || spp != joined.sppDone || passes != joined.passes) {
             throw std::runtime_error(source + ": a render of " + std::to_string(width) + "x" + std::to_string(height) + " at " +
-                                     std::to_string(spp) + " spp, the first part's is " + std::to_string(joined.width) + "x" +
-                                     std::to_string(joined.height) + " at " + std::to_string(joined.sppDone) + " spp");
+                                     std::to_string(spp) + " spp in " + std::to_string(passes) + " passes, the first part's is " +
+                                     std::to_string(joined.width) + "x" + std::to_string(joined.height) + " at " +
+                                     std::to_string(joined.sppDone) + " spp in " + std::to_string(joined.passes) + " passes");
         }
         joined.samples += in.u64();
         joined.rays += in.u64();

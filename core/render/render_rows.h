@@ -20,7 +20,8 @@ std::string encodeRenderRows(const RenderState& state, int offset, int stride);
 /// Joins the parts of one render, part r encoded with offset r and stride parts.size() (`names[r]`
 /// names it in errors), into the whole render's state: every row from its part, the sample, ray and
 /// NaN counters summed, spp and passes the parts' (equal), seconds the longest part's. Throws
-/// std::runtime_error when a part is truncated, has another size, stride or spp, or the wrong offset.
+/// std::runtime_error when a part is truncated, has another size, stride, spp or pass count, or the
+/// wrong offset.
 RenderState joinRenderRows(const std::vector<std::string>& parts, const std::vector<std::string>& names);
 
 }  // namespace rrf

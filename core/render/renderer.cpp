@@ -28,7 +28,13 @@ Renderer::Renderer(const Scene& scene, const Accel& accel, const RenderOptions& 
       options_(options),
       tracer_(scene, accel, options.estimator, options.maxDepth),
       camera_(scene.camera, options.width, options.height),
-      pixels_((requireRenderMemory(options.width, options.height), size_t(options.width) * size_t(options.height))) {}
+      pixels_((requireRenderMemory(options.width, options.height), size_t(options.width) * size_t(options.height))) {
+    // An offset outside [0, stride) would select no row at all: a part that renders nothing and
+    // still counts its passes, which joinRenderRows could not tell from a finished one.
+    if (options.rowStride < 1 || options.rowOffset < 0 || options.rowOffset >= options.rowStride)
+        throw std::invalid_argument("Renderer: rowOffset " + std::to_string(options.rowOffset) + " must be in [0, rowStride " +
+                                    std::to_string(options.rowStride) + ")");
+}
 
 void Renderer::run(const std::function<void(int)>& onPass) {
     while (sppDone_ < options_.spp && !cancelled_) {
@@ -82,9 +88,8 @@ bool Renderer::runPass() {
 
 void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite,
                           uint64_t& accepted) {
-    const int stride = std::max(1, options_.rowStride);
     for (int y = y0; y < y1; ++y) {
-        if (y % stride != options_.rowOffset) continue;
+        if (y % options_.rowStride != options_.rowOffset) continue;
         for (int x = x0; x < x1; ++x) {
             const uint64_t index = uint64_t(y) * uint64_t(options_.width) + uint64_t(x);
             Pixel& px = pass_[index];

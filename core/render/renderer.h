@@ -42,6 +42,7 @@ struct RenderOptions {
     /// Renders only the rows y with y mod rowStride = rowOffset (the others keep no samples): one
     /// process's share of an image split across processes (core/render/render_rows.h). Each pixel's
     /// samples are those of the whole render, so the joined rows are the whole render's bits.
+    /// Requires 1 ≤ rowStride and 0 ≤ rowOffset < rowStride (the Renderer throws otherwise).
     int rowOffset = 0, rowStride = 1;
 };
 
@@ -105,7 +106,8 @@ struct RenderStats {
 
 class Renderer {
 public:
-    /// `scene` and `accel` must outlive the renderer.
+    /// `scene` and `accel` must outlive the renderer. Throws std::invalid_argument when the rows
+    /// are out of range (RenderOptions::rowOffset, rowStride).
     Renderer(const Scene& scene, const Accel& accel, const RenderOptions& options);
 
     /// Runs passes until options.spp samples per pixel are done or cancel() is called.
