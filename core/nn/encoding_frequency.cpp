@@ -1,5 +1,6 @@
 #include "core/nn/encoding_frequency.h"
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -34,11 +35,20 @@ S FrequencyEncoding::angularFrequency(int k) {
 template float FrequencyEncoding::angularFrequency<float>(int);
 template double FrequencyEncoding::angularFrequency<double>(int);
 
+namespace {
+/// ω_0 … ω_{K−1} (angularFrequency), the table forward and backward both read.
+template <typename S>
+std::array<S, FrequencyEncoding::kMaxFrequencies> angularFrequencies(int K) {
+    std::array<S, FrequencyEncoding::kMaxFrequencies> omega{};
+    for (int k = 0; k < K; ++k) omega[size_t(k)] = FrequencyEncoding::angularFrequency<S>(k);
+    return omega;
+}
+}  // namespace
+
 template <typename S>
 void FrequencyEncoding::forwardImpl(const Eigen::Ref<const MatX<S>>& x, Eigen::Ref<MatX<S>> out) const {
     const int K = settings_.frequencies;
-    S omega[kMaxFrequencies];
-    for (int k = 0; k < K; ++k) omega[k] = angularFrequency<S>(k);
+    const auto omega = angularFrequencies<S>(K);
     for (Eigen::Index n = 0; n < x.cols(); ++n) {
         Eigen::Index row = 0;
         for (int j = 0; j < inputDims_; ++j) {
@@ -57,8 +67,7 @@ template <typename S>
 void FrequencyEncoding::backwardInputsImpl(const Eigen::Ref<const MatX<S>>& x, const Eigen::Ref<const MatX<S>>& dOut,
                                            Eigen::Ref<MatX<S>> dX) const {
     const int K = settings_.frequencies;
-    S omega[kMaxFrequencies];
-    for (int k = 0; k < K; ++k) omega[k] = angularFrequency<S>(k);
+    const auto omega = angularFrequencies<S>(K);
     for (Eigen::Index n = 0; n < x.cols(); ++n) {
         Eigen::Index row = 0;
         for (int j = 0; j < inputDims_; ++j) {
