@@ -32,6 +32,7 @@ void drawToolbar(WorkbenchState& state) {
         ImGui::SetTooltip("spp: path tracer vs samples; grid: viewpoint grid; dirs: directions per viewpoint; hidden: network size; trainer: LM vs Adam\n"
                           "goal: error goal (trainer stop and kd-tree split); leaves: kd-tree leaf budget; record_spp: most paths per training record\n"
                           "encoding: the networks' input encoding (raw, frequency, hash grid), with parameters and model bytes per row\n"
+                          "ensemble: networks averaged per leaf (merged into one wider network)\n"
                           "model sweeps also render the path tracer against the same reference, for the break-even");
     ImGui::SameLine();
     if (!state.cost.running) {

@@ -1,4 +1,4 @@
-// Network panel: hidden layers, activation, the input encoding (by name), what the networks predict, the kd-tree partition
+// Network panel: hidden layers, activation, the ensemble size, the input encoding (by name), what the networks predict, the kd-tree partition
 // (Ren et al.'s leaves: goal, depth, leaf budget, records per weight, split axes), the trainer and its
 // parameters (error goal included), and the parameter count of each network. Project::network and Project::trainer are the
 // only copies of these settings: every edit goes through storeNetwork() or storeTrainer(), so editing
@@ -12,6 +12,7 @@
 
 #include "core/data/record_layout.h"
 #include "core/nn/encoding_presets.h"
+#include "core/nn/ensemble.h"
 #include "core/util/error.h"
 #include "panels/clip_check.h"
 #include "panels/panels.h"
@@ -168,6 +169,9 @@ void drawEncoding(WorkbenchState& state, const NetworkSettings& s) {
     if (s.options.trainer.type == TrainerType::LevenbergMarquardt && view.hasParameters)
         ImGui::TextColored(ImVec4(1.f, .6f, .3f, 1.f),
                            "a hash grid's tables train with Adam only: choose the Adam trainer (LM would refuse)");
+    if (s.options.ensemble > 1 && view.hasParameters)
+        ImGui::TextColored(ImVec4(1.f, .6f, .3f, 1.f),
+                           "an ensemble's members cannot share a hash grid's tables: ensemble 1 or a fixed encoding");
 }
 
 void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
@@ -179,7 +183,7 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
         return;
     }
     const InputEncoding& encoding = view.encoding;
-    const MlpArch arch = networkArch(state, s, encoding);
+    const MlpArch arch = ensembleArch(networkArch(state, s, encoding), s.options.ensemble);
     const int perObject = s.options.targets == TargetMode::Separate ? 2 : 1;
     const long long table = (long long)encoding.numParams();
     const long long params = (long long)arch.numParams() + table;
@@ -191,6 +195,9 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
     else
         ImGui::Text("%d inputs -> %s -> %d features -> [%s] -> %d outputs: %lld parameters per network (%lld in the encoding)",
                     inputCount(state), encoding.describe().c_str(), arch.inputs, hidden.c_str(), arch.outputs, params, table);
+    if (s.options.ensemble > 1)
+        ImGui::TextDisabled("(the merged network of an ensemble of %d: block-diagonal layers, %d trainings per network)",
+                            s.options.ensemble, s.options.ensemble);
     ImGui::Text("%d network%s per object, %zu objects: %lld parameters in all", perObject, perObject > 1 ? "s" : "",
                 state.project.scene.objects.size(), params * perObject * (long long)state.project.scene.objects.size());
     if (s.options.trainer.type == TrainerType::LevenbergMarquardt)
@@ -222,6 +229,15 @@ bool resizeHiddenLayer(WorkbenchState& state, int index, int size) {
     size = std::clamp(size, 1, kMaxHiddenSize);
     if (s.options.hidden[size_t(index)] == size) return false;
     s.options.hidden[size_t(index)] = size;
+    storeNetwork(state, s);
+    return true;
+}
+
+bool setEnsemble(WorkbenchState& state, int members) {
+    NetworkSettings s = current(state);
+    members = std::clamp(members, 1, kMaxEnsembleMembers);
+    if (s.options.ensemble == members) return false;
+    s.options.ensemble = members;
     storeNetwork(state, s);
     return true;
 }
@@ -284,6 +300,15 @@ void drawNetworkPanel(WorkbenchState& state) {
         s.options.activation = Activation(activation);
         storeNetwork(state, s);
     }
+    int members = s.options.ensemble;
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6);
+    if (ImGui::InputInt("ensemble", &members, 1, 1)) {
+        setEnsemble(state, members);
+        s = current(state);
+    }
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("networks trained per leaf from different initial weights, merged into one network that "
+                          "predicts their mean (hidden layers that many times wider); each costs a full training");
     // Combo order is TargetMode's order: global, direct, indirect, separate, joint.
     int targets = int(s.options.targets);
     const char* targetItems = "global\0direct\0indirect\0separate (direct + indirect nets)\0joint (6 outputs)\0";

@@ -42,6 +42,9 @@ bool addHiddenLayer(WorkbenchState& state);
 bool removeHiddenLayer(WorkbenchState& state, int index);
 bool resizeHiddenLayer(WorkbenchState& state, int index, int size);
 bool setTrainerType(WorkbenchState& state, TrainerType type);
+/// Networks averaged per leaf (Project::network's "ensemble", nn/ensemble.h), clamped to
+/// 1 … kMaxEnsembleMembers.
+bool setEnsemble(WorkbenchState& state, int members);
 /// Replaces the kd-tree settings (Project::network's "partition" section).
 bool setPartition(WorkbenchState& state, const PartitionSettings& partition);
 /// Sets the networks' input encoding to the named one (nn/encoding_presets.h; Project::network's

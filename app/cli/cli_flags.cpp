@@ -72,6 +72,9 @@ void addNetworkFlags(CLI::App* cmd, SettingFlags<ObjectTrainingOptions>& flags) 
         ->allow_extra_args(false)
         ->check(CLI::Range(1, kMaxHiddenSize))
         ->type_name("N[,N...]");
+    flags.add<int>(cmd, "--ensemble", "networks averaged per leaf (network.ensemble; nn/ensemble.h)",
+                   [](ObjectTrainingOptions& t, const int& n) { t.ensemble = n; })
+        ->check(CLI::Range(1, kMaxEnsembleMembers));
     std::vector<std::string> encodings;
     for (const EncodingPreset& e : encodingPresets()) encodings.push_back(e.name);
     flags.add<std::string>(cmd, "--encoding", "input encoding of every network, by name (network.encoding; default: the project's)",
@@ -150,8 +153,9 @@ void addNoiseTargetFlags(CLI::App* cmd, double& noise, int& sppCap, const std::s
 std::string describeExperiment(const SamplingSettings& s, const ObjectTrainingOptions& t) {
     char buf[256];
     const std::string encoding = encodingPresetName(t.encoding);
-    std::snprintf(buf, sizeof buf, "grid %dx%dx%d, %d directions, %d spp per record; network %s, encoding %s, targets %s, %s, %d epochs",
+    std::snprintf(buf, sizeof buf, "grid %dx%dx%d, %d directions, %d spp per record; network %s%s, encoding %s, targets %s, %s, %d epochs",
                   s.nx, s.ny, s.nz, s.directions, s.spp, nlohmann::json(t.hidden).dump().c_str(),
+                  t.ensemble > 1 ? (" x" + std::to_string(t.ensemble)).c_str() : "",
                   encoding.empty() ? "(the project's)" : encoding.c_str(), targetModeName(t.targets), t.trainer.typeName(),
                   t.trainer.maxEpochs());
     return buf;

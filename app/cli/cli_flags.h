@@ -96,7 +96,7 @@ const CLI::Validator& nonNegative();
 /// --data-spp where --spp is the reference's).
 void addSamplingFlags(CLI::App* cmd, SettingFlags<SamplingSettings>& flags, const std::string& sppFlag);
 
-/// --hidden N,N,..., --encoding NAME (nn/encoding_presets.h), --trainer lm|adam and --epochs N.
+/// --hidden N,N,..., --ensemble K, --encoding NAME (nn/encoding_presets.h), --trainer lm|adam and --epochs N.
 void addNetworkFlags(CLI::App* cmd, SettingFlags<ObjectTrainingOptions>& flags);
 
 /// `flag` x,y,z: exactly three finite numbers, stored in `target` when given.
@@ -115,7 +115,7 @@ void addPredictionOptions(CLI::App* cmd, PredictionArgs& a);
 /// The flags of the commands that generate data and train on it in one run (sweep, pipeline).
 struct ExperimentFlags {
     SettingFlags<SamplingSettings> sampling;     ///< --grid, --dirs, --data-spp
-    SettingFlags<ObjectTrainingOptions> network;  ///< --hidden, --encoding, --trainer, --epochs
+    SettingFlags<ObjectTrainingOptions> network;  ///< --hidden, --ensemble, --encoding, --trainer, --epochs
 };
 
 void addExperimentFlags(CLI::App* cmd, ExperimentFlags& flags);

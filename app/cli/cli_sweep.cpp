@@ -219,7 +219,7 @@ void addSweepCommand(CLI::App& app, int& exitCode) {
                     "grid (as --grid): 2,2,2 4,4,4 6,6,3; dirs (as --dirs): 50 200; hidden (as --hidden): 5 10,5 20,10; "
                     "trainer: lm adam; goal (error goal and kd-tree split goal): 0.1 0.05 0.03; leaves (most kd-tree leaves "
                     "per network): 1 4 16; record_spp (most paths per record): 64 256 1024; encoding (as --encoding): raw frequency "
-                    "hash_grid (default: a small series of each)")
+                    "hash_grid; ensemble (as --ensemble): 1 2 4 (default: a small series of each)")
         ->type_name("VALUE");
     CLI::Option* fixed = cmd->add_option("--reference-spp", a->referenceSpp,
                                          "render the reference at this fixed spp: no noise target, not stored (default: "

@@ -80,9 +80,10 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     if (dropped) std::printf("warning: %llu records with NaN/Inf dropped from %s\n", (unsigned long long)dropped, a.data.c_str());
     const std::string encoding = networkEncoding(o.encoding, data.inputCount()).describe();
     if (ranks.isRoot())
-        std::printf("rrf train: %s on %s (%llu records), hidden %s, %s, encoding %s, targets %s, trainer %s\n", a.input.c_str(),
+        std::printf("rrf train: %s on %s (%llu records), hidden %s, %s%s, encoding %s, targets %s, trainer %s\n", a.input.c_str(),
                 a.data.c_str(), (unsigned long long)data.totalRecords(), nlohmann::json(o.hidden).dump().c_str(),
-                activationName(o.activation), encoding.c_str(), targetModeName(o.targets), o.trainer.typeName());
+                activationName(o.activation), o.ensemble > 1 ? (", ensemble of " + std::to_string(o.ensemble)).c_str() : "",
+                encoding.c_str(), targetModeName(o.targets), o.trainer.typeName());
     std::fflush(stdout);
 
     std::mutex printMutex;

@@ -23,6 +23,8 @@
 ///   encoding the networks' input encoding (network.encoding) by name (nn/encoding_presets.h, e.g.
 ///            "raw", "frequency", "hash_grid"), with the training settings' layers and trainer (one
 ///            dataset); a trainable encoding under Levenberg–Marquardt is refused before anything runs
+///   ensemble networks averaged per leaf (network.ensemble, nn/ensemble.h, e.g. "4"), with the training
+///            settings' layers (one dataset); a trainable encoding is refused before anything runs
 ///
 /// Every model row records its networks' parameters (MLP weights and encoding parameters, all
 /// leaves) and model bytes (the float64 payload of its model files: parameters and scalers).

@@ -62,6 +62,7 @@ std::vector<std::string> defaultSweepValues(const std::string& what) {
     if (what == "leaves") return {"1", "4", "16"};
     if (what == "record_spp") return {"64", "256", "1024"};
     if (what == "encoding") return {"raw", "frequency", "hash_grid"};
+    if (what == "ensemble") return {"1", "2", "4"};
     std::string kinds;
     for (const char* k : kSweepKinds) kinds += std::string(kinds.empty() ? "" : ", ") + k;
     throw SettingError("sweep dimension", "expected one of " + kinds + ", got '" + what + "'");
@@ -93,6 +94,14 @@ std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
             p.training.encoding = encodingPresetSettings(v, kValuesSetting);
             try {
                 checkEncodingTrainer(p.training.encoding, p.training.trainer);
+            } catch (const SettingError& e) {
+                throw SettingError(kValuesSetting, "'" + v + "': " + e.detail());
+            }
+        } else if (o.what == "ensemble") {
+            p.training.ensemble = positiveValue(v, v, kMaxEnsembleMembers, "networks averaged per leaf, 1.." +
+                                                                                std::to_string(kMaxEnsembleMembers));
+            try {
+                checkEnsembleEncoding(p.training.encoding, p.training.ensemble);
             } catch (const SettingError& e) {
                 throw SettingError(kValuesSetting, "'" + v + "': " + e.detail());
             }

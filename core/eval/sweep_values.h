@@ -15,7 +15,7 @@ namespace rrf {
 struct SweepOptions;
 
 /// The kinds of sweep (SweepOptions::what), the one list the CLI's --what and the Cost panel offer.
-constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer", "goal", "leaves", "record_spp", "encoding"};
+constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer", "goal", "leaves", "record_spp", "encoding", "ensemble"};
 constexpr int kSweepKindCount = int(sizeof kSweepKinds / sizeof kSweepKinds[0]);
 
 /// The small default series of each kind (a minute or two on 2 cores at the default sizes). Throws

@@ -95,6 +95,14 @@ void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& t
                                              "does not fit in memory)");
 }
 
+void checkEnsembleEncoding(const nlohmann::json& encoding, int ensemble) {
+    if (ensemble <= 1 || !encodingHasParameters(encoding)) return;
+    throw SettingError("network.ensemble", "the encoding " + networkEncoding(encoding, kEncodingCheckInputs).describe() +
+                                               " has trainable parameters, which the " + std::to_string(ensemble) +
+                                               " members of an ensemble cannot share (they merge into one network only "
+                                               "over one fixed input map); use ensemble 1 or a fixed encoding");
+}
+
 EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inputs) {
     EncodingSettingView v;
     v.presetName = encodingPresetName(encoding);

@@ -56,6 +56,9 @@ InputEncoding networkEncoding(const nlohmann::json& encoding, int inputs);
 /// Throws SettingError naming "network.encoding" when the array has trainable parameters (a hash
 /// grid) and `trainer` is not Adam: Levenberg–Marquardt's JᵀJ over the table entries is out of reach.
 void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& trainer);
+/// Throws SettingError naming "network.ensemble" when `ensemble` > 1 and the array has trainable
+/// parameters: an ensemble's members merge into one network only over one fixed input map (nn/ensemble.h).
+void checkEnsembleEncoding(const nlohmann::json& encoding, int ensemble);
 /// True when the array's encoding has trainable parameters (for the panel's warning).
 bool encodingHasParameters(const nlohmann::json& encoding);
 

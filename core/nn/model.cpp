@@ -1,5 +1,6 @@
 #include "core/nn/model.h"
 
+#include "core/nn/ensemble.h"
 #include "core/util/error.h"
 #include "core/util/relative_error.h"
 
@@ -230,7 +231,8 @@ NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eig
 
 NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, const TrainerConfig& cfg,
                         const Eigen::Ref<const MatX<float>>& inputs, const Eigen::Ref<const MatX<float>>& targets,
-                        const MatX<float>& targetVariance, const TrainObserver& observer, uint64_t stream) {
+                        const MatX<float>& targetVariance, const TrainObserver& observer, uint64_t stream,
+                        int members) {
     arch.validate();
     if (targetVariance.size() > 0 && (targetVariance.rows() != targets.rows() || targetVariance.cols() != targets.cols()))
         throw std::invalid_argument("fitNetwork: the target variance's shape differs from the targets'");
@@ -243,6 +245,11 @@ NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, cons
         throw SettingError("network.encoding", "the encoding " + encoding.describe() +
                                                    " has trainable parameters, which only the adam trainer trains "
                                                    "(trainer.type is " + cfg.typeName() + ")");
+    if (encoded && encoding.numParams() > 0 && members > 1)
+        throw SettingError("network.ensemble", "the encoding " + encoding.describe() +
+                                                   " has trainable parameters, which an ensemble's members cannot share "
+                                                   "(their mean is one network only over one fixed input map); use "
+                                                   "ensemble 1 or a fixed encoding");
     if ((!encoded && inputs.rows() != arch.inputs) || targets.rows() != arch.outputs)
         throw std::invalid_argument("fitNetwork: data has " + std::to_string(inputs.rows()) + " inputs and " +
                                     std::to_string(targets.rows()) + " targets, the network " + arch.describe());
@@ -275,6 +282,7 @@ NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, cons
     if (encoded && encoding.numParams() > 0) {
         model.encodingParams = encoding.initialParams(cfg.seed(), stream);
         model.training = trainAdam(arch, encoding, cfg.adam, d, model.outputScaler, model.params, model.encodingParams, observer);
+        model.training.memberEpochs = model.training.epochs;
     } else {
         // A fixed encoding is a function of the inputs alone: encode once, train the MLP on the features.
         if (encoded)
@@ -283,7 +291,7 @@ NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, cons
                 encoding.forward<float>(nullptr, *x, features);
                 *x = std::move(features);
             }
-        model.training = trainNetwork(arch, cfg, d, model.outputScaler, model.params, observer);
+        model.training = trainEnsemble(model.arch, cfg, d, model.outputScaler, model.params, members, stream, observer);
     }
 
     model.errors.train = rawRmse(model, inputs, targets, split.train);

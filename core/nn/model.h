@@ -144,10 +144,13 @@ NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eig
 /// parameters are encoding.initialParams(seed, stream). A fixed encoding (no parameters) encodes the
 /// normalised data once and trains the MLP on the features with either trainer; a trainable one
 /// (hash grid) trains jointly with Adam (trainAdam) and is a SettingError naming "network.encoding"
-/// under Levenberg–Marquardt.
+/// under Levenberg–Marquardt. `members` > 1 trains an ensemble on the one split and keeps the
+/// network of its mean (nn/ensemble.h; the model's hidden layers are `members` times arch's), which a
+/// trainable encoding cannot join: a SettingError naming "network.ensemble".
 NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, const TrainerConfig& cfg,
                         const Eigen::Ref<const MatX<float>>& inputs, const Eigen::Ref<const MatX<float>>& targets,
-                        const MatX<float>& targetVariance, const TrainObserver& observer = {}, uint64_t stream = 0);
+                        const MatX<float>& targetVariance, const TrainObserver& observer = {}, uint64_t stream = 0,
+                        int members = 1);
 
 /// The bytes saveModel writes for `model` (what loadModel/parseModel read back bit for bit).
 /// Throws std::invalid_argument if the model holds non-finite numbers.

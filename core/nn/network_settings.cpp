@@ -29,7 +29,7 @@ std::vector<int> parseHiddenSizes(const std::string& text, const std::string& se
 }
 
 const std::vector<std::string>& NetworkSettings::keys() {
-    static const std::vector<std::string> k = {"hidden", "activation", "encoding", "targets", "partition"};
+    static const std::vector<std::string> k = {"hidden", "activation", "ensemble", "encoding", "targets", "partition"};
     return k;
 }
 
@@ -43,6 +43,7 @@ NetworkSettings NetworkSettings::fromJson(const JsonReader& r, const NetworkSett
             s.options.hidden.push_back(int(hidden->at(i).integer(1, kMaxHiddenSize)));
     }
     s.options.activation = parseActivation(r.choiceOr("activation", activationName(s.options.activation), {"tanh", "relu"}));
+    s.options.ensemble = int(r.integerOr("ensemble", s.options.ensemble, 1, kMaxEnsembleMembers));
     if (const auto encoding = r.find("encoding")) {
         // Read as every network will read it (errors name the file and the pointer of the bad value);
         // kept as written, since each network builds it for its own records' input count.
@@ -53,12 +54,16 @@ NetworkSettings NetworkSettings::fromJson(const JsonReader& r, const NetworkSett
     s.options.targets = parseTargetMode(r.choiceOr("targets", targetModeName(s.options.targets),
                                                    {"separate", "joint", "global", "direct", "indirect"}));
     if (const auto partition = r.find("partition")) s.options.partition = partitionFromJson(*partition, s.options.partition);
+    if (const auto ensemble = r.find("ensemble"); ensemble && s.options.ensemble > 1 && encodingHasParameters(s.options.encoding))
+        ensemble->fail("an ensemble's members cannot share the trainable tables of the network's encoding (they merge "
+                       "into one network only over one fixed input map): expected 1 with this encoding");
     return s;
 }
 
 nlohmann::json NetworkSettings::networkJson() const {
     return {{"hidden", options.hidden},
             {"activation", activationName(options.activation)},
+            {"ensemble", options.ensemble},
             {"encoding", options.encoding},
             {"targets", targetModeName(options.targets)},
             {"partition", partitionJson(options.partition)}};

@@ -33,6 +33,7 @@ namespace rrf {
 /// CLI's --hidden, sweep values, the Network panel and scripts.
 constexpr int kMaxHiddenSize = 4096;
 constexpr int kMaxPartitionLeaves = 4096;  ///< "partition": {"max_leaves"}
+constexpr int kMaxEnsembleMembers = 16;    ///< "ensemble": networks averaged per leaf
 
 struct NetworkSettings {
     ObjectTrainingOptions options;  ///< hidden sizes, activation, targets, trainer

@@ -1,6 +1,7 @@
 #include "core/nn/object_training.h"
 
 #include "core/nn/encoding_presets.h"
+#include "core/util/error.h"
 
 #include <cmath>
 #include <cstdio>
@@ -214,6 +215,9 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
     checkEncodingTrainer(options.encoding, options.trainer);
     std::vector<InputEncoding> encodings;  // index = job
     for (const Job& job : jobs) encodings.push_back(networkEncoding(options.encoding, job.samples->numInputs));
+    checkEnsembleEncoding(options.encoding, options.ensemble);
+    // Every network is an ensemble of options.ensemble members, each budgeted max_epochs.
+    const int64_t members = options.ensemble;
     auto archFor = [&](const Job& job) {
         MlpArch arch;
         const InputEncoding& encoding = encodings[size_t(&job - jobs.data())];  // job is an element of jobs
@@ -274,7 +278,7 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
             const bool root = task.node == 0;
             if ((observer.onEpoch && root) || observer.onWork)
                 obs.onEpoch = [&, id, target, root](const EpochRecord& r) {
-                    if (observer.onEpoch && root) observer.onEpoch(id, target, r);
+                    if (observer.onEpoch && root && r.member == 0) observer.onEpoch(id, target, r);
                     if (observer.onWork && r.epoch > 0) observer.onWork(1, 0);  // epoch 0 is the initial network
                 };
             if (observer.onMessage) obs.onMessage = [&, who](const std::string& m) { observer.onMessage(who + ": " + m); };
@@ -288,10 +292,10 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
             const MatX<float>& vAll = variancesOf[task.job];
             const MatX<float> v = vAll.size() == 0 || all ? vAll : gatherColumns(vAll, task.records);
             const TrainerConfig& trainer = task.depth == 0 ? options.trainer : leafTrainer;
-            NetworkModel net = fitNetwork(archFor(job), encodings[task.job], trainer, xin, yin, v, obs, stream);
-            // The epochs this network was budgeted but did not need count as done.
-            if (observer.onWork && net.training.epochs < trainer.maxEpochs())
-                observer.onWork(int64_t(trainer.maxEpochs() - net.training.epochs), 0);
+            NetworkModel net = fitNetwork(archFor(job), encodings[task.job], trainer, xin, yin, v, obs, stream, options.ensemble);
+            // The epochs this network's members were budgeted but did not need count as done.
+            const int64_t budget = members * trainer.maxEpochs();
+            if (observer.onWork && net.training.memberEpochs < budget) observer.onWork(budget - net.training.memberEpochs, 0);
             net.objectId = id;
             net.objectName = s.name;
             net.target = target;
@@ -396,7 +400,7 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
             left.node = li;
             right.node = ri;
             b.leaves += 1;
-            if (observer.onWork) observer.onWork(0, 2 * int64_t(leafTrainer.maxEpochs()));
+            if (observer.onWork) observer.onWork(0, 2 * members * int64_t(leafTrainer.maxEpochs()));
             char line[200];
             std::snprintf(line, sizeof line, ": node %d (%lld records) has validation relative error %.4f > goal %.4g: split at %s < %.6g",
                           task.node, (long long)task.records.size(), error[k], part.goal, splitAxisName(plane->axis),

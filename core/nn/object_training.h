@@ -93,6 +93,10 @@ struct PartitionSettings {
 struct ObjectTrainingOptions {
     std::vector<int> hidden{20, 10};
     Activation activation = Activation::Tanh;
+    /// "ensemble": networks trained per leaf from different initial weights and mini-batch orders
+    /// (one split), merged into the one network that predicts their mean (nn/ensemble.h); 1 = one
+    /// network, as Ren et al. Each member costs a full training run.
+    int ensemble = 1;
     /// The "encoding" array (nn/encoding.h, nn/encoding_presets.h); empty = the identity. Each network
     /// gets networkEncoding(encoding, its records' input count); its first layer reads the features.
     nlohmann::json encoding = nlohmann::json::array();
@@ -106,15 +110,15 @@ struct ObjectTrainingOptions {
 /// Progress of all networks. Called concurrently from worker threads: must be thread-safe.
 struct ObjectTrainingObserver {
     /// (object id, target: "global" | "direct" | "indirect" | "joint", record) for the epochs of each
-    /// tree's root network (the object's network when it is not partitioned); the networks of deeper
-    /// nodes report through onMessage when they finish.
+    /// tree's root network (the object's network when it is not partitioned; of an ensemble, its first
+    /// member); the networks of deeper nodes report through onMessage when they finish.
     std::function<void(int, const std::string&, const EpochRecord&)> onEpoch;
     std::function<void(const std::string&)> onMessage;
     /// Work accounting for progress bars, over every network of every tree (roots and split nodes):
     /// (epochs done, epochs added to the budget). Each network is budgeted its trainer's max_epochs
-    /// when it is scheduled (roots before training starts, two children when a node splits); every
-    /// epoch it runs reports (1, 0), and when it stops early the epochs it did not need are reported
-    /// as done, so done reaches the budget exactly when the last network ends.
+    /// (times the ensemble's members) when it is scheduled (roots before training starts, two children
+    /// when a node splits); every epoch it runs reports (1, 0), and when it stops early the epochs it
+    /// did not need are reported as done, so done reaches the budget exactly when the last network ends.
     std::function<void(int64_t, int64_t)> onWork;
     const std::atomic<bool>* cancel = nullptr;
 };

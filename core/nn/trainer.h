@@ -37,6 +37,8 @@ struct EpochRecord {
     double validationRelativeRmse = std::numeric_limits<double>::quiet_NaN();
     /// True when this epoch's validation loss rose, but within the targets' noise (not a failure).
     bool failureWithinNoise = false;
+    /// The ensemble member that ran this epoch (nn/ensemble.h); 0 for a single network.
+    int member = 0;
 };
 
 /// What a training run did.
@@ -61,6 +63,11 @@ struct TrainResult {
     double validationRelativeRmse = std::numeric_limits<double>::quiet_NaN();
     double validationRelativeRmseCorrected = std::numeric_limits<double>::quiet_NaN();
     double validationRelativeNoise = std::numeric_limits<double>::quiet_NaN();
+    /// Networks averaged into the kept weights (nn/ensemble.h) and the epochs all of them ran; the
+    /// history, epochs, best epoch and stop reason are the first member's, every figure above is the
+    /// mean network's.
+    int members = 1;
+    int64_t memberEpochs = 0;
 };
 
 /// Hooks into a running trainer. Both callbacks may be empty; they are called on the training thread,

@@ -66,6 +66,8 @@ void putTraining(ByteWriter& w, const TrainResult& t) {
     w.f64(t.validationRelativeRmse);
     w.f64(t.validationRelativeRmseCorrected);
     w.f64(t.validationRelativeNoise);
+    w.i64(t.members);
+    w.i64(t.memberEpochs);
 }
 
 TrainResult getTraining(ByteReader& r) {
@@ -90,6 +92,8 @@ TrainResult getTraining(ByteReader& r) {
     t.validationRelativeRmse = r.f64();
     t.validationRelativeRmseCorrected = r.f64();
     t.validationRelativeNoise = r.f64();
+    t.members = int(r.i64());
+    t.memberEpochs = r.i64();
     return t;
 }
 

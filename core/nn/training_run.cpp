@@ -18,7 +18,7 @@ double TrainingProgress::fraction() const {
 
 double trainingEpochBudget(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options) {
     const size_t objects = options.objects.empty() ? samples.size() : options.objects.size();
-    return double(objects) * networksPerObject(options) * options.trainer.maxEpochs();
+    return double(objects) * networksPerObject(options) * options.trainer.maxEpochs() * options.ensemble;
 }
 
 TrainingRun trainNetworks(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options,

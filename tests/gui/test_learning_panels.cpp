@@ -93,6 +93,15 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     ASSERT_TRUE(removeHiddenLayer(s, 1));
     EXPECT_FALSE(removeHiddenLayer(s, 0)) << "a network keeps at least one hidden layer";
 
+    EXPECT_EQ(s.project.networkOrDefault().options.ensemble, 1) << "one network unless asked";
+    ASSERT_TRUE(setEnsemble(s, 3));
+    EXPECT_FALSE(setEnsemble(s, 3)) << "no change, nothing stored";
+    EXPECT_EQ(s.project.networkOrDefault().options.ensemble, 3);
+    EXPECT_EQ(s.project.network->networkJson().at("ensemble"), 3);
+    EXPECT_TRUE(setEnsemble(s, 1000)) << "clamped, not refused";
+    EXPECT_EQ(s.project.networkOrDefault().options.ensemble, kMaxEnsembleMembers);
+    ASSERT_TRUE(setEnsemble(s, 1));
+
     EXPECT_EQ(s.project.networkOrDefault().options.trainer.type, TrainerType::Adam) << "the project default";
     ASSERT_TRUE(setTrainerType(s, TrainerType::LevenbergMarquardt));
     EXPECT_FALSE(setTrainerType(s, TrainerType::LevenbergMarquardt)) << "no change, nothing stored";

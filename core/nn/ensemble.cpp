@@ -1,0 +1,162 @@
+#include "core/nn/ensemble.h"
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "core/nn/training_loss.h"
+#include "core/nn/validation_monitor.h"
+#include "core/util/rng.h"
+
+namespace rrf {
+
+MlpArch ensembleArch(const MlpArch& member, int members) {
+    if (members < 1) throw std::invalid_argument("ensembleArch: " + std::to_string(members) + " members (at least 1)");
+    MlpArch a = member;
+    for (int& h : a.hidden) h *= members;
+    return a;
+}
+
+VecX<double> mergeEnsemble(const MlpArch& member, const std::vector<VecX<double>>& params) {
+    if (params.empty()) throw std::invalid_argument("mergeEnsemble: no members");
+    for (const VecX<double>& p : params)
+        if (p.size() != member.numParams())
+            throw std::invalid_argument("mergeEnsemble: a member has " + std::to_string(p.size()) + " parameters, the " +
+                                        member.describe() + " network " + std::to_string(member.numParams()));
+    const int k = int(params.size());
+    const MlpArch merged = ensembleArch(member, k);
+    VecX<double> out = VecX<double>::Zero(merged.numParams());
+    const int last = member.numLayers() - 1;
+    for (int l = 0; l <= last; ++l) {
+        const Eigen::Index in = member.layerInputs(l), outs = member.layerOutputs(l);
+        const Eigen::Index mIn = merged.layerInputs(l), mOut = merged.layerOutputs(l);
+        Eigen::Map<MatX<double>> W(out.data() + merged.weightOffset(l), mOut, mIn);
+        Eigen::Map<VecX<double>> b(out.data() + merged.biasOffset(l), mOut);
+        for (int m = 0; m < k; ++m) {
+            const Eigen::Map<const MatX<double>> w(params[size_t(m)].data() + member.weightOffset(l), outs, in);
+            const Eigen::Map<const VecX<double>> bias(params[size_t(m)].data() + member.biasOffset(l), outs);
+            // Rows: member m's units (all outputs in the last layer). Columns: all inputs in the first
+            // layer, member m's units of the layer below otherwise.
+            const Eigen::Index row = l == last ? 0 : m * outs;
+            const Eigen::Index col = l == 0 ? 0 : m * in;
+            if (l == last) {
+                W.block(row, col, outs, in) = w / double(k);
+                b += bias / double(k);
+            } else {
+                W.block(row, col, outs, in) = w;
+                b.segment(row, outs) = bias;
+            }
+        }
+    }
+    return out;
+}
+
+uint64_t ensembleMemberSeed(uint64_t seed, int member) {
+    constexpr uint64_t kEnsembleStream = 0x454E53454D424C45ULL;  // "ENSEMBLE"
+    return member == 0 ? seed : Rng(seed, kEnsembleStream, uint64_t(member)).nextU64();
+}
+
+namespace {
+
+/// `cfg` with every trainer's seed replaced by `seed` (the split is drawn before, by the caller).
+TrainerConfig withSeed(TrainerConfig cfg, uint64_t seed) {
+    cfg.adam.seed = cfg.lm.seed = seed;
+    return cfg;
+}
+
+/// Normalised outputs of the network on `x` in double, in chunks (the validation monitor's input).
+MatX<double> outputs(const MlpArch& arch, const VecX<float>& w, const MatX<float>& x) {
+    constexpr Eigen::Index kChunk = 4096;
+    MatX<double> out(arch.outputs, x.cols());
+    std::vector<MatX<float>> acts;
+    for (Eigen::Index c = 0; c < x.cols(); c += kChunk) {
+        const Eigen::Index n = std::min(kChunk, x.cols() - c);
+        mlpForward<float>(arch, w.data(), x.middleCols(c, n), acts);
+        out.middleCols(c, n) = acts.back().cast<double>();
+    }
+    return out;
+}
+
+/// Mean loss per entry of normalised outputs `p` against `y` (NaN for an empty set), as the trainers report it.
+double meanLoss(const TrainingLoss<double>& loss, const MatX<double>& p, const MatX<float>& y) {
+    if (y.cols() == 0) return std::numeric_limits<double>::quiet_NaN();
+    return loss.evaluate(p, y.cast<double>(), nullptr, 1.0) / (double(y.cols()) * double(y.rows()));
+}
+
+/// Overwrites the losses and validation figures of `res` with those of the network (arch, params).
+void scoreMerged(TrainResult& res, const MlpArch& arch, const VecX<double>& params, const TrainerConfig& cfg,
+                 const TrainingData& data, const MinMaxScaler& outputScaler) {
+    // Levenberg–Marquardt minimises and reports the normalised MSE; Adam its configured loss.
+    const AdamLoss kind = cfg.type == TrainerType::Adam ? cfg.adam.loss : AdamLoss::Mse;
+    const TrainingLoss<double> loss(kind, outputScaler);
+    const VecX<float> w = params.cast<float>();
+    res.trainLoss = meanLoss(loss, outputs(arch, w, data.xTrain), data.yTrain);
+    res.testLoss = meanLoss(loss, outputs(arch, w, data.xTest), data.yTest);
+    if (data.xValidation.cols() == 0) return;
+    const MatX<double> p = outputs(arch, w, data.xValidation);
+    res.validationLoss = meanLoss(loss, p, data.yValidation);
+    ValidationMonitor monitor(kind, outputScaler, data.yValidation, data.vValidation, cfg.errorGoal());
+    const ValidationEpoch v = monitor.observe(p);
+    res.validationRelativeRmse = v.relativeRmse;
+    res.validationRelativeRmseCorrected = v.relativeRmseCorrected;
+    res.validationRelativeNoise = monitor.relativeNoiseFloor();
+    res.goalReached = v.goalReached;
+}
+
+/// The figure a network is judged by: noise-corrected validation relative RMSE where known.
+double judged(const TrainResult& r) {
+    return std::isfinite(r.validationRelativeRmseCorrected) ? r.validationRelativeRmseCorrected : r.validationRelativeRmse;
+}
+
+}  // namespace
+
+TrainResult trainEnsemble(MlpArch& arch, const TrainerConfig& cfg, const TrainingData& data,
+                          const MinMaxScaler& outputScaler, VecX<double>& params, int members, uint64_t stream,
+                          const TrainObserver& observer) {
+    if (members < 1) throw std::invalid_argument("trainEnsemble: " + std::to_string(members) + " members (at least 1)");
+    std::vector<VecX<double>> kept;
+    std::vector<double> figures;
+    TrainResult first;
+    int64_t epochs = 0;
+    for (int m = 0; m < members; ++m) {
+        if (m > 0 && observer.cancelled()) break;
+        const uint64_t seed = ensembleMemberSeed(cfg.seed(), m);
+        VecX<double> p = m == 0 ? params : initialParams(arch, seed, stream);
+        TrainObserver memberObserver = observer;
+        if (observer.onEpoch)
+            memberObserver.onEpoch = [&observer, m](const EpochRecord& r) {
+                EpochRecord marked = r;
+                marked.member = m;
+                observer.onEpoch(marked);
+            };
+        TrainResult r = trainNetwork(arch, withSeed(cfg, seed), data, outputScaler, p, memberObserver);
+        epochs += r.epochs;
+        if (m > 0 && r.cancelled) break;
+        figures.push_back(judged(r));
+        kept.push_back(std::move(p));
+        if (m == 0) first = std::move(r);
+        else first.seconds += r.seconds;
+    }
+    first.members = int(kept.size());
+    first.memberEpochs = epochs;
+    if (kept.size() == 1) {
+        params = std::move(kept.front());
+        return first;
+    }
+    const MlpArch member = arch;
+    arch = ensembleArch(member, int(kept.size()));
+    params = mergeEnsemble(member, kept);
+    scoreMerged(first, arch, params, cfg, data, outputScaler);
+    std::string line = "ensemble of " + std::to_string(kept.size()) + " " + member.describe() + " networks: members' validation error";
+    for (double f : figures) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, " %.4g", f);
+        line += buf;
+    }
+    char buf[64];
+    std::snprintf(buf, sizeof buf, ", their mean's %.4g", judged(first));
+    first.messages.push_back(line + buf);
+    return first;
+}
+
+}  // namespace rrf
