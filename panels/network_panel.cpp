@@ -110,6 +110,12 @@ bool drawAdam(AdamConfig& c) {
         c.loss = AdamLoss(loss);
         changed = true;
     }
+    if (c.loss == AdamLoss::RelativeL2) {
+        changed |= ImGui::Checkbox("debias targets", &c.debiasTargets);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("raise each noisy target by 2 v / (|y| + 0.01), v its variance, which cancels the low bias of a\n"
+                              "loss weighted by the noisy target itself (about -2 sigma^2: -2 %% at 10 %% record noise)");
+    }
     changed |= inputDouble("weight decay", c.weightDecay, 0.0, 10.0);
     changed |= inputInt("patience (0 = none)", c.patience, 0, 1000000);
     changed |= inputDouble("patience below rate fraction", c.patienceLrFraction, 0.0, 1.0);

@@ -40,8 +40,8 @@ TrainerConfig TrainerConfig::fromJson(const JsonReader& r) {
     const std::string type = r.choiceOr("type", "levenberg_marquardt", {"levenberg_marquardt", "lm", "adam"});
     if (type == "adam") {
         r.checkKeys({"type", "max_epochs", "batch_size", "learning_rate", "min_learning_rate", "schedule", "step_epochs",
-                     "step_gamma", "beta1", "beta2", "epsilon", "weight_decay", "loss", "patience", "patience_lr_fraction",
-                     "error_goal", "max_samples", "seed"});
+                     "step_gamma", "beta1", "beta2", "epsilon", "weight_decay", "loss", "debias_targets", "patience",
+                     "patience_lr_fraction", "error_goal", "max_samples", "seed"});
         c.type = TrainerType::Adam;
         AdamConfig& a = c.adam;
         a.maxEpochs = int(r.integerOr("max_epochs", a.maxEpochs, 0, kMaxEpochs));
@@ -61,6 +61,7 @@ TrainerConfig TrainerConfig::fromJson(const JsonReader& r) {
         a.loss = loss == "relative_l2"              ? AdamLoss::RelativeL2
                  : loss == "relative_l2_prediction" ? AdamLoss::RelativeL2Prediction
                                                     : AdamLoss::Mse;
+        a.debiasTargets = r.booleanOr("debias_targets", a.debiasTargets);
         a.patience = int(r.integerOr("patience", a.patience, 0, kMaxEpochs));
         a.patienceLrFraction = r.numberOr("patience_lr_fraction", a.patienceLrFraction, 0.0, 1.0, true);
         a.errorGoal = r.numberOr("error_goal", a.errorGoal, 0.0, kInf);
@@ -107,6 +108,7 @@ json TrainerConfig::toJson() const {
                     {"epsilon", a.epsilon},
                     {"weight_decay", a.weightDecay},
                     {"loss", adamLossName(a.loss)},
+                    {"debias_targets", a.debiasTargets},
                     {"patience", a.patience},
                     {"patience_lr_fraction", a.patienceLrFraction},
                     {"error_goal", a.errorGoal},

@@ -77,6 +77,10 @@ struct AdamConfig {
     double epsilon = 1e-8;            ///< "epsilon"
     double weightDecay = 0.0;         ///< "weight_decay": decoupled (AdamW), weights only, not biases
     AdamLoss loss = AdamLoss::Mse;    ///< "loss": "mse" | "relative_l2" | "relative_l2_prediction"
+    /// "debias_targets" (relative_l2 only, when the records carry their variance): each training target
+    /// is raised by 2v/(|y| + ε) (debiasedRelativeL2Targets, nn/training_loss.h), which removes the
+    /// first-order low bias of a loss weighted by the noisy target itself.
+    bool debiasTargets = true;
     int patience = 30;                ///< "patience": stop after this many counted epochs without a
                                       ///< better validation loss (0 = never stop early); see below
     /// "patience_lr_fraction": an epoch without improvement counts toward patience only when its

@@ -82,4 +82,22 @@ private:
     Eigen::Array<S, Eigen::Dynamic, 1> invScale_, offset_;
 };
 
+/// Targets for relative_l2 without its noise bias (AdamConfig::debiasTargets). With y = μ + n,
+/// Var(n) = v and w(y) = 1/(|y| + ε)², w(μ + n) ≈ w(μ)(1 − 2 sgn(μ) n/(|μ| + ε) + …), so the minimiser
+/// Σ w y / Σ w of the loss over a record's noise sits at μ − 2 sgn(μ) v/(|μ| + ε) to first order
+/// (−2σ²μ for relative noise σ ≫ ε/μ). Each target raised by its own 2 sgn(y) v/(|y| + ε) moves that
+/// minimiser back to μ; what remains is of order σ⁴. `y` raw targets (outputs × N), `variance` the
+/// variance of each one's Monte Carlo mean, same shape (entries < 0 or NaN: unknown, left as they are).
+/// Measured on the Cornell box (README, "The best preset"): the networks' light on the ceiling was 2 %
+/// low at the records' 10 % noise; with these targets the held-out error fell from 0.0224 to 0.0156.
+inline MatX<float> debiasedRelativeL2Targets(const Eigen::Ref<const MatX<float>>& y, const Eigen::Ref<const MatX<float>>& variance) {
+    MatX<float> out = y;
+    for (Eigen::Index i = 0; i < y.size(); ++i) {
+        const float v = variance.data()[i], t = y.data()[i];
+        if (!(v > 0.f)) continue;
+        out.data()[i] = t + (t < 0.f ? -2.f : 2.f) * v / (std::abs(t) + float(kRelativeEpsilon));
+    }
+    return out;
+}
+
 }  // namespace rrf
