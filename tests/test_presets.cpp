@@ -111,9 +111,11 @@ TEST(Presets, BestIsTheMostAccurateSettingMeasured) {
     EXPECT_EQ(s.seed, 4u) << "the seed is the user's";
     const ObjectTrainingOptions o = presetNetwork(p, preset("best"));
     EXPECT_EQ(o.hidden, (std::vector<int>{32, 32, 32}));
+    EXPECT_EQ(o.ensemble, 2) << "two networks per object, merged";
     EXPECT_EQ(o.activation, Activation::Tanh);
     EXPECT_EQ(o.trainer.type, TrainerType::Adam);
     EXPECT_EQ(o.trainer.adam.loss, AdamLoss::RelativeL2);
+    EXPECT_TRUE(o.trainer.adam.debiasTargets);
     EXPECT_EQ(o.trainer.adam.errorGoal, 0.0);
     EXPECT_EQ(o.trainer.adam.patience, 0) << "no early stop";
     EXPECT_EQ(o.trainer.adam.learningRate, 3e-3);
@@ -186,6 +188,10 @@ TEST(TimeEstimate, LevenbergMarquardtCostsThreeNPSquaredPerEpoch) {
     const StageEstimate t = estimateTraining(o, 700, 7, 3, 2);
     EXPECT_NEAR(t.low, 10 * epoch * 14 / 2, 1e-15);
     EXPECT_NEAR(t.high, 5 * t.low, 1e-15);
+    // An ensemble of 3 trains every network's three members in turn.
+    o.ensemble = 3;
+    EXPECT_NEAR(estimateTraining(o, 700, 7, 3, 2).low, 3 * t.low, 1e-12);
+    EXPECT_NE(estimateTraining(o, 700, 7, 3, 2).basis.find("3 members"), std::string::npos);
 }
 
 TEST(TimeEstimate, AdamCostsNPPerEpoch) {

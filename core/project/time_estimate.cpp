@@ -75,7 +75,9 @@ StageEstimate estimateTraining(const ObjectTrainingOptions& o, double records, i
     arch.outputs = o.targets == TargetMode::Joint ? 6 : 3;
     const double P = double(arch.numParams());
     const int perObject = o.targets == TargetMode::Separate ? 2 : 1;
+    // An ensemble trains each network's members one after another (nn/ensemble.h).
     const int networks = std::max(1, objects) * perObject;
+    const double members = double(std::max(1, o.ensemble));
     // Records spread over the objects; every network of an object sees all of its records.
     const double perNetwork = records / double(std::max(1, objects));
     const TrainerConfig& t = o.trainer;
@@ -97,9 +99,10 @@ StageEstimate estimateTraining(const ObjectTrainingOptions& o, double records, i
     const double parallel = double(std::min(std::max(1, threads), networks));
     const int levels = treeLevels(o.partition);
     StageEstimate e;
-    e.low = double(t.maxEpochs()) * epochSeconds * double(networks) / parallel;
+    e.low = double(t.maxEpochs()) * epochSeconds * double(networks) * members / parallel;
     e.high = e.low * levels;
-    e.basis = format("%.0f networks x <= %.0f epochs of ", networks, t.maxEpochs()) + cost +
+    e.basis = format("%.0f networks x ", networks) + (members > 1 ? format("%.0f members x ", members) : std::string()) +
+              format("<= %.0f epochs of ", t.maxEpochs()) + cost +
               format(", %.0f in parallel", parallel) +
               (levels > 1 ? format("; up to %.0f kd-tree levels", levels) : std::string());
     return e;
