@@ -62,6 +62,15 @@ TrainingData noisyData(int n, double noise, uint64_t seed) {
     return d;
 }
 
+/// A 2-input, 1-output network with two tanh layers of `width`.
+MlpArch twoLayers(int width) {
+    MlpArch arch;
+    arch.inputs = 2;
+    arch.hidden = {width, width};
+    arch.outputs = 1;
+    return arch;
+}
+
 TrainerConfig adam(int epochs) {
     return TrainerConfig::fromJson({{"type", "adam"}, {"max_epochs", epochs}, {"learning_rate", 1e-2},
                                     {"batch_size", 64}, {"error_goal", 0}, {"patience", 0}});
@@ -108,10 +117,7 @@ TEST(Ensemble, RefusesMembersOfAnotherShape) {
 
 TEST(Ensemble, TrainsTheDocumentedMembersOnOneSplit) {
     const TrainingData d = noisyData(400, 0.05, 5);
-    MlpArch arch;
-    arch.inputs = 2;
-    arch.hidden = {6, 6};
-    arch.outputs = 1;
+    const MlpArch arch = twoLayers(6);
     const MinMaxScaler scaler = MinMaxScaler::identity(1);
     const TrainerConfig cfg = adam(15);
     const uint64_t stream = 3;
@@ -157,10 +163,7 @@ TEST(Ensemble, MeanOfNoisyFitsIsCloserToTheTruthThanItsMembers) {
     // Tiny networks fitted to noisy records land in different minima; their mean is closer to the
     // noise-free function than the members are on average (strictly: the members differ).
     const TrainingData d = noisyData(1500, 0.15, 21);
-    MlpArch arch;
-    arch.inputs = 2;
-    arch.hidden = {8, 8};
-    arch.outputs = 1;
+    const MlpArch arch = twoLayers(8);
     const MinMaxScaler scaler = MinMaxScaler::identity(1);
     const TrainerConfig cfg = adam(60);
     const MatX<double> x = randomInputs(2, 2000, 77);
