@@ -206,8 +206,10 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
                             s.options.ensemble, s.options.ensemble);
     ImGui::Text("%d network%s per object, %zu objects: %lld parameters in all", perObject, perObject > 1 ? "s" : "",
                 state.project.scene.objects.size(), params * perObject * (long long)state.project.scene.objects.size());
-    if (s.options.trainer.type == TrainerType::LevenbergMarquardt)
-        ImGui::TextDisabled("LM solves a %lld x %lld system per step", (long long)arch.numParams(), (long long)arch.numParams());
+    if (s.options.trainer.type == TrainerType::LevenbergMarquardt) {
+        const long long member = (long long)networkArch(state, s, encoding).numParams();  // LM trains each member alone
+        ImGui::TextDisabled("LM solves a %lld x %lld system per step", member, member);
+    }
 }
 }  // namespace
 

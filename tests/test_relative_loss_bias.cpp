@@ -140,6 +140,12 @@ TEST(RelativeL2, DebiasedTargetsMoveTheConstantFitToTheMean) {
     MatX<float> unknown = v;
     unknown(0, 0) = -1.f;
     EXPECT_EQ(debiasedRelativeL2Targets(y, unknown)(0, 0), y(0, 0));
+    // Past relative variance 0.25 (σ > 0.5) the first-order formula is out of its range: an outlier
+    // whose estimate says σ = 1 is raised by half its value (plus ε/2), not tripled.
+    MatX<float> wild(1, 1), wildVar(1, 1);
+    wild(0, 0) = 2.f;
+    wildVar(0, 0) = 4.f;
+    EXPECT_NEAR(debiasedRelativeL2Targets(wild, wildVar)(0, 0), 2.f + 0.5f * 2.01f, 1e-5f);
 }
 
 TEST(RelativeL2, NetworkOnNoisyRecordsIsUnbiasedWithDebiasedTargets) {

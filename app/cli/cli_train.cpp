@@ -124,8 +124,7 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
             const NetworkModel& net = m.model.leaves[size_t(l)];
             const TrainResult& t = net.training;
             const std::string target = m.model.leafCount() == 1 ? m.target : m.target + "#" + std::to_string(l);
-            const double rel = std::isfinite(t.validationRelativeRmseCorrected) ? t.validationRelativeRmseCorrected
-                                                                                 : t.validationRelativeRmse;
+            const double rel = t.judgedValidationError();
             std::printf("%-4d %-12s %-9s %9lld %7lld %7d %-11s %-11s %-11s %-10s %8.2f  %s\n", m.objectId, m.objectName.c_str(),
                         target.c_str(), (long long)(t.trainSamples + t.validationSamples + t.testSamples),
                         (long long)net.numParams(), t.epochs, fmt(net.errors.train).c_str(),

@@ -97,7 +97,8 @@ bool Workbench::startTrain(int maxEpochs) {
     std::vector<std::string> names;
     for (const Object& o : state_.project.scene.objects) names.push_back(o.name);
     const ObjectTrainingOptions& o = job.settings.options;
-    const std::string name = std::string("train ") + json(o.hidden).dump() + " " + o.trainer.typeName();
+    const std::string name = std::string("train ") + json(o.hidden).dump() +
+                             (o.ensemble > 1 ? " x" + std::to_string(o.ensemble) : std::string()) + " " + o.trainer.typeName();
     auto live = std::make_shared<TrainingLive>();
     const bool started = trainJob_.start(name, [job, live, names](JobContext& ctx) -> std::optional<TrainingOutcome> {
         TrainingOutcome out = job;
@@ -140,7 +141,7 @@ bool Workbench::startTrain(int maxEpochs) {
         for (const ObjectModel& m : run.models)
             if (!m.skipped) out.leaves += m.model.leafCount();
         for (const ObjectSamples& s : samples) out.records += int64_t(s.size());
-        const int epochLimit = std::max(1, out.settings.options.trainer.maxEpochs());
+        const int epochLimit = std::max(1, out.settings.options.trainer.maxEpochs() * out.settings.options.ensemble);
         out.plannedNetworks = int(trainingEpochBudget(samples, out.settings.options) / epochLimit + 0.5);
         ctx.setStatus(run.networks > 0 ? "models saved" : "no network trained");
         return out;

@@ -67,7 +67,7 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
         params += m.model.numParams();
         leaves += m.model.leafCount();
         for (const NetworkModel& leaf : m.model.leaves) {
-            leafEpochs += leaf.training.epochs;
+            leafEpochs += leaf.training.memberEpochs;  // every member's epochs: the training work
             bytes += modelPayloadBytes(leaf);
         }
     }

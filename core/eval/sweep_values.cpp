@@ -94,6 +94,7 @@ std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
             p.training.encoding = encodingPresetSettings(v, kValuesSetting);
             try {
                 checkEncodingTrainer(p.training.encoding, p.training.trainer);
+                checkEnsembleEncoding(p.training.encoding, p.training.ensemble);
             } catch (const SettingError& e) {
                 throw SettingError(kValuesSetting, "'" + v + "': " + e.detail());
             }

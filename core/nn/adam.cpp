@@ -244,14 +244,7 @@ TrainResult trainAdam(const MlpArch& arch, const InputEncoding& encoding, const 
     res.trainLoss = meanLoss(net, w, e, loss, data.xTrain, data.yTrain, acts);
     res.validationLoss = meanLoss(net, w, e, loss, data.xValidation, data.yValidation, acts);
     res.testLoss = meanLoss(net, w, e, loss, data.xTest, data.yTest, acts);
-    if (hasVal) {
-        ValidationMonitor final(cfg.loss, outputScaler, data.yValidation, data.vValidation, cfg.errorGoal);
-        const ValidationEpoch v = final.observe(predictions(net, w, e, data.xValidation, acts));
-        res.validationRelativeRmse = v.relativeRmse;
-        res.validationRelativeRmseCorrected = v.relativeRmseCorrected;
-        res.validationRelativeNoise = final.relativeNoiseFloor();
-        res.goalReached = v.goalReached;
-    }
+    if (hasVal) recordValidation(res, cfg.loss, outputScaler, data, cfg.errorGoal, predictions(net, w, e, data.xValidation, acts));
     res.seconds = elapsed();
     return res;
 }

@@ -1,5 +1,6 @@
 #include "core/nn/encoding_presets.h"
 
+#include "core/nn/ensemble.h"
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
 
@@ -97,10 +98,8 @@ void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& t
 
 void checkEnsembleEncoding(const nlohmann::json& encoding, int ensemble) {
     if (ensemble <= 1 || !encodingHasParameters(encoding)) return;
-    throw SettingError("network.ensemble", "the encoding " + networkEncoding(encoding, kEncodingCheckInputs).describe() +
-                                               " has trainable parameters, which the " + std::to_string(ensemble) +
-                                               " members of an ensemble cannot share (they merge into one network only "
-                                               "over one fixed input map); use ensemble 1 or a fixed encoding");
+    throw SettingError("network.ensemble",
+                       ensembleEncodingRefusal(networkEncoding(encoding, kEncodingCheckInputs).describe(), ensemble));
 }
 
 EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inputs) {

@@ -1,11 +1,13 @@
 #include "core/nn/ensemble.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "core/nn/training_loss.h"
-#include "core/nn/validation_monitor.h"
 #include "core/util/rng.h"
 
 namespace rrf {
@@ -40,7 +42,8 @@ VecX<double> mergeEnsemble(const MlpArch& member, const std::vector<VecX<double>
             const Eigen::Index row = l == last ? 0 : m * outs;
             const Eigen::Index col = l == 0 ? 0 : m * in;
             if (l == last) {
-                W.block(row, col, outs, in) = w / double(k);
+                // += : with no hidden layers the last layer is also the first, whose columns all members share.
+                W.block(row, col, outs, in) += w / double(k);
                 b += bias / double(k);
             } else {
                 W.block(row, col, outs, in) = w;
@@ -49,6 +52,12 @@ VecX<double> mergeEnsemble(const MlpArch& member, const std::vector<VecX<double>
         }
     }
     return out;
+}
+
+std::string ensembleEncodingRefusal(const std::string& encodingDescription, int members) {
+    return "the encoding " + encodingDescription + " has trainable parameters, which the " + std::to_string(members) +
+           " members of an ensemble cannot share (they merge into one network only over one fixed input map); use "
+           "ensemble 1 or a fixed encoding";
 }
 
 uint64_t ensembleMemberSeed(uint64_t seed, int member) {
@@ -78,7 +87,7 @@ MatX<double> outputs(const MlpArch& arch, const VecX<float>& w, const MatX<float
 }
 
 /// Mean loss per entry of normalised outputs `p` against `y` (NaN for an empty set), as the trainers report it.
-double meanLoss(const TrainingLoss<double>& loss, const MatX<double>& p, const MatX<float>& y) {
+double mergedLoss(const TrainingLoss<double>& loss, const MatX<double>& p, const MatX<float>& y) {
     if (y.cols() == 0) return std::numeric_limits<double>::quiet_NaN();
     return loss.evaluate(p, y.cast<double>(), nullptr, 1.0) / (double(y.cols()) * double(y.rows()));
 }
@@ -90,22 +99,11 @@ void scoreMerged(TrainResult& res, const MlpArch& arch, const VecX<double>& para
     const AdamLoss kind = cfg.type == TrainerType::Adam ? cfg.adam.loss : AdamLoss::Mse;
     const TrainingLoss<double> loss(kind, outputScaler);
     const VecX<float> w = params.cast<float>();
-    res.trainLoss = meanLoss(loss, outputs(arch, w, data.xTrain), data.yTrain);
-    res.testLoss = meanLoss(loss, outputs(arch, w, data.xTest), data.yTest);
-    if (data.xValidation.cols() == 0) return;
+    res.trainLoss = mergedLoss(loss, outputs(arch, w, data.xTrain), data.yTrain);
+    res.testLoss = mergedLoss(loss, outputs(arch, w, data.xTest), data.yTest);
     const MatX<double> p = outputs(arch, w, data.xValidation);
-    res.validationLoss = meanLoss(loss, p, data.yValidation);
-    ValidationMonitor monitor(kind, outputScaler, data.yValidation, data.vValidation, cfg.errorGoal());
-    const ValidationEpoch v = monitor.observe(p);
-    res.validationRelativeRmse = v.relativeRmse;
-    res.validationRelativeRmseCorrected = v.relativeRmseCorrected;
-    res.validationRelativeNoise = monitor.relativeNoiseFloor();
-    res.goalReached = v.goalReached;
-}
-
-/// The figure a network is judged by: noise-corrected validation relative RMSE where known.
-double judged(const TrainResult& r) {
-    return std::isfinite(r.validationRelativeRmseCorrected) ? r.validationRelativeRmseCorrected : r.validationRelativeRmse;
+    res.validationLoss = mergedLoss(loss, p, data.yValidation);
+    recordValidation(res, kind, outputScaler, data, cfg.errorGoal(), p);
 }
 
 }  // namespace
@@ -132,13 +130,21 @@ TrainResult trainEnsemble(MlpArch& arch, const TrainerConfig& cfg, const Trainin
         TrainResult r = trainNetwork(arch, withSeed(cfg, seed), data, outputScaler, p, memberObserver);
         epochs += r.epochs;
         if (m > 0 && r.cancelled) break;
-        figures.push_back(judged(r));
+        figures.push_back(r.judgedValidationError());
         kept.push_back(std::move(p));
         if (m == 0) first = std::move(r);
         else first.seconds += r.seconds;
     }
     first.members = int(kept.size());
     first.memberEpochs = epochs;
+    if (int(kept.size()) < members && !first.cancelled) {
+        // Cancelled after the first member: the kept ensemble is smaller than asked, and says so.
+        first.cancelled = true;
+        first.stopReason = "cancelled";
+        first.messages.push_back("cancelled: " + std::to_string(kept.size()) + " of " + std::to_string(members) +
+                                 " ensemble members trained");
+        if (observer.onMessage) observer.onMessage(first.messages.back());
+    }
     if (kept.size() == 1) {
         params = std::move(kept.front());
         return first;
@@ -154,8 +160,9 @@ TrainResult trainEnsemble(MlpArch& arch, const TrainerConfig& cfg, const Trainin
         line += buf;
     }
     char buf[64];
-    std::snprintf(buf, sizeof buf, ", their mean's %.4g", judged(first));
+    std::snprintf(buf, sizeof buf, ", their mean's %.4g", first.judgedValidationError());
     first.messages.push_back(line + buf);
+    if (observer.onMessage) observer.onMessage(first.messages.back());
     return first;
 }
 

@@ -12,6 +12,7 @@
 /// so prediction (CPU, GLSL, model files) needs nothing new: a merged ensemble is a plain network.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/nn/mlp.h"
@@ -28,6 +29,11 @@ MlpArch ensembleArch(const MlpArch& member, int members);
 /// the mean of the members' outputs, for every input. Each entry of `params` must hold
 /// member.numParams() values; throws std::invalid_argument otherwise or when `params` is empty.
 VecX<double> mergeEnsemble(const MlpArch& member, const std::vector<VecX<double>>& params);
+
+/// Why an ensemble of `members` cannot use the encoding `encodingDescription` (one with trainable
+/// parameters): the text of the SettingError naming "network.ensemble" that training, sweeps and
+/// fitNetwork raise.
+std::string ensembleEncodingRefusal(const std::string& encodingDescription, int members);
 
 /// The seed of ensemble member `member`: the trainer's own seed for member 0 (so a one-member
 /// ensemble is exactly the single network), Rng(seed, kEnsembleStream, member) for the others.

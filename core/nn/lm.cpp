@@ -252,13 +252,8 @@ TrainResult trainLevenbergMarquardt(const MlpArch& arch, const LevenbergMarquard
     res.validationLoss = networkMse(arch, params, data.xValidation, data.yValidation);
     res.testLoss = networkMse(arch, params, data.xTest, data.yTest);
     if (hasVal) {
-        ValidationMonitor final(AdamLoss::Mse, outputScaler, data.yValidation, data.vValidation, cfg.errorGoal);
         mlpForward<double>(arch, params.data(), xVal, acts);
-        const ValidationEpoch v = final.observe(acts.back());
-        res.validationRelativeRmse = v.relativeRmse;
-        res.validationRelativeRmseCorrected = v.relativeRmseCorrected;
-        res.validationRelativeNoise = final.relativeNoiseFloor();
-        res.goalReached = v.goalReached;
+        recordValidation(res, AdamLoss::Mse, outputScaler, data, cfg.errorGoal, acts.back());
     }
     res.seconds = elapsed();
     return res;

@@ -247,10 +247,7 @@ NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, cons
                                                    " has trainable parameters, which only the adam trainer trains "
                                                    "(trainer.type is " + cfg.typeName() + ")");
     if (encoded && encoding.numParams() > 0 && members > 1)
-        throw SettingError("network.ensemble", "the encoding " + encoding.describe() +
-                                                   " has trainable parameters, which an ensemble's members cannot share "
-                                                   "(their mean is one network only over one fixed input map); use "
-                                                   "ensemble 1 or a fixed encoding");
+        throw SettingError("network.ensemble", ensembleEncodingRefusal(encoding.describe(), members));
     if ((!encoded && inputs.rows() != arch.inputs) || targets.rows() != arch.outputs)
         throw std::invalid_argument("fitNetwork: data has " + std::to_string(inputs.rows()) + " inputs and " +
                                     std::to_string(targets.rows()) + " targets, the network " + arch.describe());

@@ -78,6 +78,7 @@ json modelHeader(const NetworkModel& m) {
         {"trainer", m.trainer.toJson()},
         {"training",
          {{"epochs", t.epochs}, {"best_epoch", t.bestEpoch}, {"stop_reason", t.stopReason},
+          {"members", t.members}, {"member_epochs", t.memberEpochs},
           {"cancelled", t.cancelled}, {"seconds", num(t.seconds)},
           {"samples", {{"train", t.trainSamples}, {"validation", t.validationSamples}, {"test", t.testSamples},
                        {"train_used", t.trainSamplesUsed}}},
@@ -214,6 +215,9 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
         r.epochs = int(t.at("epochs").integer(0, kMaxInt));
         r.bestEpoch = int(t.at("best_epoch").integer(-1, kMaxInt));
         r.stopReason = t.at("stop_reason").string();
+        // An ensemble's size and all its members' epochs (nn/ensemble.h); files before them: one network.
+        r.members = int(t.integerOr("members", 1, 1, kMaxInt));
+        r.memberEpochs = t.integerOr("member_epochs", r.epochs, 0, kMaxCount);
         r.cancelled = t.at("cancelled").boolean();
         r.seconds = num(t.value().at("seconds"));
         const JsonReader s = t.at("samples");

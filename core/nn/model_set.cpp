@@ -141,7 +141,7 @@ nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectMode
                                   {"error", num(n.error)},
                                   {"rmse", {{"train", num(net.errors.train)}, {"validation", num(net.errors.validation)},
                                             {"test", num(net.errors.test)}}}});
-                epochs += net.training.epochs;
+                epochs += net.training.memberEpochs;  // every ensemble member's epochs
                 seconds += net.training.seconds;
             }
             models.push_back({{"object", m.objectId},

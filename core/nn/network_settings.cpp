@@ -54,9 +54,6 @@ NetworkSettings NetworkSettings::fromJson(const JsonReader& r, const NetworkSett
     s.options.targets = parseTargetMode(r.choiceOr("targets", targetModeName(s.options.targets),
                                                    {"separate", "joint", "global", "direct", "indirect"}));
     if (const auto partition = r.find("partition")) s.options.partition = partitionFromJson(*partition, s.options.partition);
-    if (const auto ensemble = r.find("ensemble"); ensemble && s.options.ensemble > 1 && encodingHasParameters(s.options.encoding))
-        ensemble->fail("an ensemble's members cannot share the trainable tables of the network's encoding (they merge "
-                       "into one network only over one fixed input map): expected 1 with this encoding");
     return s;
 }
 

@@ -27,6 +27,17 @@ DataSplit splitSamples(size_t n, uint64_t seed, uint64_t stream) {
     return s;
 }
 
+void recordValidation(TrainResult& res, AdamLoss loss, const MinMaxScaler& outputScaler, const TrainingData& data,
+                      double goal, const MatX<double>& predNormalised) {
+    if (data.xValidation.cols() == 0) return;
+    ValidationMonitor monitor(loss, outputScaler, data.yValidation, data.vValidation, goal);
+    const ValidationEpoch v = monitor.observe(predNormalised);
+    res.validationRelativeRmse = v.relativeRmse;
+    res.validationRelativeRmseCorrected = v.relativeRmseCorrected;
+    res.validationRelativeNoise = monitor.relativeNoiseFloor();
+    res.goalReached = v.goalReached;
+}
+
 double networkMse(const MlpArch& arch, const VecX<double>& params, const MatX<float>& x, const MatX<float>& y) {
     if (x.cols() == 0) return std::numeric_limits<double>::quiet_NaN();
     constexpr Eigen::Index kChunk = 4096;

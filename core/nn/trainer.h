@@ -11,6 +11,7 @@
 /// (nn/validation_monitor.h).
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -68,6 +69,12 @@ struct TrainResult {
     /// mean network's.
     int members = 1;
     int64_t memberEpochs = 0;
+
+    /// The figure a network is judged by (error goal, kd-tree splits, the CLI's "valid rel"): the
+    /// noise-corrected validation relative RMSE where the targets' noise is known, else the plain one.
+    double judgedValidationError() const {
+        return std::isfinite(validationRelativeRmseCorrected) ? validationRelativeRmseCorrected : validationRelativeRmse;
+    }
 };
 
 /// Hooks into a running trainer. Both callbacks may be empty; they are called on the training thread,
@@ -148,6 +155,12 @@ TrainResult trainAdam(const MlpArch& arch, const InputEncoding& encoding, const 
 TrainResult trainNetwork(const MlpArch& arch, const TrainerConfig& cfg, const TrainingData& data,
                          const MinMaxScaler& outputScaler, VecX<double>& params,
                          const TrainObserver& observer = {});
+
+/// Sets the kept weights' validation figures in `res` (relative RMSE, its noise-corrected value, the
+/// noise floor, whether `goal` is met) from their normalised predictions on data.xValidation, scored
+/// by a ValidationMonitor with `loss`'s weights. Nothing for an empty validation set.
+void recordValidation(TrainResult& res, AdamLoss loss, const MinMaxScaler& outputScaler, const TrainingData& data,
+                      double goal, const MatX<double>& predNormalised);
 
 /// Mean squared error of the network on normalised data, computed in double in chunks
 /// (NaN for an empty set).
