@@ -111,7 +111,7 @@ TEST(Presets, BestIsTheMostAccurateSettingMeasured) {
     EXPECT_EQ(s.seed, 4u) << "the seed is the user's";
     const ObjectTrainingOptions o = presetNetwork(p, preset("best"));
     EXPECT_EQ(o.hidden, (std::vector<int>{32, 32, 32}));
-    EXPECT_EQ(o.ensemble, 2) << "two networks per object, merged";
+    EXPECT_EQ(o.ensemble, 4) << "four networks per object, merged";
     EXPECT_EQ(o.activation, Activation::Tanh);
     EXPECT_EQ(o.trainer.type, TrainerType::Adam);
     EXPECT_EQ(o.trainer.adam.loss, AdamLoss::RelativeL2);
