@@ -27,6 +27,17 @@ int positiveValue(const std::string& text, const std::string& value, int max, co
 }
 
 /// A number in (0, max], the whole text.
+/// The refusals training would raise before it starts (a trainable encoding under LM or shared by an
+/// ensemble's members), stated against the sweep value `v` that made the settings, before anything runs.
+void refuseUntrainable(const std::string& v, const ObjectTrainingOptions& t) {
+    try {
+        checkEncodingTrainer(t.encoding, t.trainer);
+        checkEnsembleEncoding(t.encoding, t.ensemble);
+    } catch (const SettingError& e) {
+        throw SettingError(kValuesSetting, "'" + v + "': " + e.detail());
+    }
+}
+
 double positiveNumber(const std::string& text, double max, const std::string& expected) {
     try {
         size_t used = 0;
@@ -92,20 +103,11 @@ std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
                 p.training.partition.maxDepth = PartitionSettings{}.maxDepth;
         } else if (o.what == "encoding") {
             p.training.encoding = encodingPresetSettings(v, kValuesSetting);
-            try {
-                checkEncodingTrainer(p.training.encoding, p.training.trainer);
-                checkEnsembleEncoding(p.training.encoding, p.training.ensemble);
-            } catch (const SettingError& e) {
-                throw SettingError(kValuesSetting, "'" + v + "': " + e.detail());
-            }
+            refuseUntrainable(v, p.training);
         } else if (o.what == "ensemble") {
             p.training.ensemble = positiveValue(v, v, kMaxEnsembleMembers, "networks averaged per leaf, 1.." +
                                                                                 std::to_string(kMaxEnsembleMembers));
-            try {
-                checkEnsembleEncoding(p.training.encoding, p.training.ensemble);
-            } catch (const SettingError& e) {
-                throw SettingError(kValuesSetting, "'" + v + "': " + e.detail());
-            }
+            refuseUntrainable(v, p.training);
         } else if (o.what == "record_spp") {
             p.sampling.maxSpp = positiveValue(v, v, kMaxSamplesPerRecord, "the most paths per record, 1.." + std::to_string(kMaxSamplesPerRecord));
             p.sampling.spp = std::min(p.sampling.spp, p.sampling.maxSpp);
