@@ -90,7 +90,7 @@ TEST(CliRender, BadInputsExitNonZeroWithAClearMessage) {
         {"render " + kCornell + " --light-pos a,b,c" + out, "--light-pos"},
         {"render " + kCornell + " --format tiff" + out, "--format"},
         {"render " + kCornell + " --spp -3" + out, "--spp"},
-        {"render " + kCornell + " --mode fast" + out, "--mode"},
+        {"render " + kCornell + " --estimator fast" + out, "--estimator"},
         {"render " + kCornell, "--out"},
         {"frobnicate", "frobnicate"},
     };

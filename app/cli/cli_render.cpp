@@ -49,7 +49,7 @@ int runRender(RenderArgs a) {
     Accel accel(scene);
     Renderer renderer(scene, accel, o);
     std::printf("rrf render: %s, %dx%d, %d spp, %s estimator, seed %llu\n", a.input.c_str(), o.width, o.height, o.spp,
-                o.estimator == Estimator::NEE ? "NEE" : "naive", (unsigned long long)o.seed);
+                estimatorName(renderer.estimatorChoice().estimator), (unsigned long long)o.seed);
     std::printf("effects:\n");
     for (const std::string& line : renderer.tracer().effects().describe()) std::printf("  - %s\n", line.c_str());
     for (const std::string& w : scene.warnings) std::printf("warning: %s\n", w.c_str());
@@ -98,9 +98,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
         ->check(positive());
     r.add<int>(cmd, "--width", "image width", [](RenderSettings& s, const int& n) { s.width = n; })->check(CLI::Range(1, kMaxImageSide));
     r.add<int>(cmd, "--height", "image height", [](RenderSettings& s, const int& n) { s.height = n; })->check(CLI::Range(1, kMaxImageSide));
-    r.add<std::string>(cmd, "--mode", "estimator",
-                       [](RenderSettings& s, const std::string& m) { s.estimator = m == "naive" ? Estimator::Naive : Estimator::NEE; })
-        ->check(CLI::IsMember({"nee", "naive"}));
+    r.add<std::string>(cmd, "--estimator", "light-transport estimator (auto: bdpt where the scene has caustics, else nee)",
+                       [](RenderSettings& s, const std::string& m) { s.estimator = *parseEstimator(m); })
+        ->check(CLI::IsMember({"nee", "naive", "bdpt", "auto"}));
     addVec3Option(cmd, "--light-pos", a->lightPos, "move the light's centre to x,y,z");
     cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(nonNegative());
     r.add<long long>(cmd, "--seed", "random seed", [](RenderSettings& s, const long long& seed) { s.seed = uint64_t(seed); })

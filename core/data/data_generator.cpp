@@ -44,7 +44,9 @@ DataGenerator::DataGenerator(const Scene& scene, const SamplingSettings& setting
       settings_(settings),
       layout_(RecordLayout::forScene(scene)),
       accel_(scene),
-      tracer_(scene, accel_, settings.estimator, settings.maxDepth) {
+      choice_(chooseEstimator(settings.estimator, Effects::derive(scene))),
+      tracer_(scene, accel_, choice_.estimator == Estimator::BDPT ? Estimator::NEE : choice_.estimator, settings.maxDepth) {
+    if (choice_.estimator == Estimator::BDPT) bdpt_ = std::make_unique<BidirectionalTracer>(tracer_, settings.maxDepth);
     if (scene.objects.empty()) throw InputError(scene.sourcePath, "/shapes", "the scene has no objects to generate data for");
     if (scene.lights.empty()) throw InputError(scene.sourcePath, "/lights", "the scene has no light: every record would be black");
 }
@@ -94,7 +96,8 @@ bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const
     for (;;) {
         for (; traced < round; ++traced) {
             Rng rng(ps, recordIndex, uint64_t(traced));
-            const Radiance L = tracer_.shade(hit, wo, movable, rng, counters);
+            const Radiance L =
+                bdpt_ ? bdpt_->shade(hit, wo, movable, rng, counters) : tracer_.shade(hit, wo, movable, rng, counters);
             if (!L.direct.isFinite() || !L.indirect.isFinite()) {
                 ++nonFinite;
                 continue;

@@ -15,11 +15,13 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "core/render/bdpt.h"
 #include "core/render/path_tracer.h"
 #include "core/data/generator_stats.h"
 #include "core/data/record_layout.h"
@@ -99,6 +101,8 @@ public:
 
     const RecordLayout& layout() const { return layout_; }
     const PathTracer& tracer() const { return tracer_; }
+    /// The estimator the records are traced with (settings.estimator, Auto resolved) and why.
+    const EstimatorChoice& estimatorChoice() const { return choice_; }
     /// Region the light centre is drawn from (a single point when the light is fixed).
     Bounds3 lightRegion() const;
 
@@ -107,7 +111,9 @@ private:
     SamplingSettings settings_;
     RecordLayout layout_;
     Accel accel_;
+    EstimatorChoice choice_;
     PathTracer tracer_;
+    std::unique_ptr<BidirectionalTracer> bdpt_;  ///< set when choice_ is BDPT
 };
 
 }  // namespace rrf

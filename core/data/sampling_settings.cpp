@@ -26,9 +26,7 @@ SamplingSettings SamplingSettings::fromJson(const JsonReader& r, const SamplingS
     s.maxDepth = int(r.integerOr("max_depth", s.maxDepth, 1, kMaxSamplingDepth));
     s.seed = r.unsignedOr("seed", s.seed);
     s.fixedLight = r.choiceOr("light", s.fixedLight ? "fixed" : "region", {"region", "fixed"}) == "fixed";
-    s.estimator = r.choiceOr("estimator", s.estimator == Estimator::NEE ? "nee" : "naive", {"nee", "naive"}) == "nee"
-                      ? Estimator::NEE
-                      : Estimator::Naive;
+    s.estimator = *parseEstimator(r.choiceOr("estimator", estimatorName(s.estimator), {"nee", "naive", "bdpt", "auto"}));
     return s;
 }
 
@@ -40,7 +38,7 @@ nlohmann::json SamplingSettings::toJson() const {
             {"noise_target", noiseTarget},
             {"seed", seed},
             {"light", fixedLight ? "fixed" : "region"},
-            {"estimator", estimator == Estimator::NEE ? "nee" : "naive"},
+            {"estimator", estimatorName(estimator)},
             {"max_depth", maxDepth}};
 }
 

@@ -47,7 +47,6 @@ void put(std::string& out, const T& v) {
     out.append(reinterpret_cast<const char*>(&v), sizeof v);
 }
 
-const char* estimatorName(Estimator e) { return e == Estimator::NEE ? "nee" : "naive"; }
 
 std::string num(double v) {
     if (!std::isfinite(v)) return "unknown";
@@ -253,7 +252,8 @@ ReferenceKey ReferenceKey::of(const Scene& scene, const Vec3& lightPosition, int
     k.lightPosition = moved.lightPosition();
     k.width = width > 0 ? width : scene.camera.width;
     k.height = height > 0 ? height : scene.camera.height;
-    k.estimator = render.estimator;
+    // The estimator that runs, not the setting: an "auto" reference is keyed by what auto chose.
+    k.estimator = chooseEstimator(render.estimator, Effects::derive(scene)).estimator;
     k.maxDepth = render.maxDepth;
     k.seed = render.seed;
     return k;
@@ -297,9 +297,9 @@ ReferenceKey ReferenceKey::fromJson(const json& j, const std::string& file, cons
     k.lightPosition = r.at("light_position").vec3();
     k.width = int(r.at("width").integer(1, kMaxImageSide));
     k.height = int(r.at("height").integer(1, kMaxImageSide));
-    const std::string e = r.choiceOr("estimator", "", {"nee", "naive"});
+    const std::string e = r.choiceOr("estimator", "", {"nee", "naive", "bdpt"});
     if (e.empty()) r.fail("missing required field 'estimator'");
-    k.estimator = e == "nee" ? Estimator::NEE : Estimator::Naive;
+    k.estimator = *parseEstimator(e);
     k.maxDepth = int(r.at("max_depth").integer(1, 1 << 16));
     k.seed = r.at("seed").unsignedInteger();
     return k;

@@ -75,6 +75,14 @@ public:
 
     const Effects& effects() const { return effects_; }
     Estimator estimator() const { return estimator_; }
+    /// The BRDF of material `material` (an index into Scene::materials).
+    const Brdf& brdf(int material) const { return brdfs_[size_t(material)]; }
+    /// Material of what `hit` hit (an object's, or an emitter's: -1 for a black emitter).
+    int materialOf(const Hit& hit) const;
+    /// Light `index` of the scene, with the movable one replaced by `movable`.
+    const Light& light(int index, const Light& movable) const {
+        return index == movable_ ? movable : scene_.lights[size_t(index)];
+    }
     const Accel& accel() const { return accel_; }
     const Scene& scene() const { return scene_; }
 
@@ -87,10 +95,6 @@ private:
     Vec3 sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, const Frame& frame, const Vec3& woLocal,
                       const Brdf& brdf, const Light& movable, bool brdfRayFollows, Rng& rng,
                       TraceCounters& counters) const;
-    const Light& light(int index, const Light& movable) const {
-        return index == movable_ ? movable : scene_.lights[size_t(index)];
-    }
-    int materialOf(const Hit& hit) const;
 
     const Scene& scene_;
     const Accel& accel_;

@@ -9,6 +9,36 @@
 
 namespace rrf {
 
+const char* estimatorName(Estimator e) {
+    switch (e) {
+    case Estimator::NEE: return "nee";
+    case Estimator::Naive: return "naive";
+    case Estimator::BDPT: return "bdpt";
+    case Estimator::Auto: return "auto";
+    }
+    return "?";
+}
+
+std::optional<Estimator> parseEstimator(std::string_view name) {
+    for (Estimator e : {Estimator::NEE, Estimator::Naive, Estimator::BDPT, Estimator::Auto})
+        if (name == estimatorName(e)) return e;
+    return std::nullopt;
+}
+
+const char* estimatorNames() { return "nee, naive, bdpt, auto"; }
+
+EstimatorChoice chooseEstimator(Estimator requested, const Effects& effects) {
+    if (requested != Estimator::Auto)
+        return {requested, std::string("requested (") + estimatorName(requested) + ")"};
+    if (effects.caustics)
+        return {Estimator::BDPT, "auto: glossy surfaces (Phong exponent up to " +
+                                     std::to_string(int(effects.maxPhongExponent)) +
+                                     ") can carry light from the emitters to diffuse surfaces (caustics), which the "
+                                     "path tracer finds only by rare BRDF samples"};
+    return {Estimator::NEE, effects.glossy ? "auto: glossy lobes too broad for caustics, the path tracer suffices"
+                                           : "auto: no glossy surfaces, so no caustics; the path tracer suffices"};
+}
+
 RenderSettings parseRenderSettings(const JsonReader& r) {
     r.checkKeys({"spp", "width", "height", "mode", "seed", "max_depth", "exposure"});
     RenderSettings s;
@@ -17,9 +47,9 @@ RenderSettings parseRenderSettings(const JsonReader& r) {
     s.height = int(r.integerOr("height", s.height, 0, kMaxImageSide));
     if (auto mode = r.find("mode")) {
         const std::string m = mode->string();
-        if (m == "nee") s.estimator = Estimator::NEE;
-        else if (m == "naive") s.estimator = Estimator::Naive;
-        else mode->fail("unknown render mode '" + m + "' (known: nee, naive)");
+        const std::optional<Estimator> e = parseEstimator(m);
+        if (!e) mode->fail("unknown render mode '" + m + "' (known: " + estimatorNames() + ")");
+        s.estimator = *e;
     }
     if (auto seed = r.find("seed")) s.seed = seed->unsignedInteger();
     s.maxDepth = int(r.integerOr("max_depth", s.maxDepth, 1, 1 << 16));
@@ -48,7 +78,7 @@ nlohmann::json renderSettingsToJson(const RenderSettings& s) {
     return {{"spp", s.spp},
             {"width", s.width},
             {"height", s.height},
-            {"mode", s.estimator == Estimator::NEE ? "nee" : "naive"},
+            {"mode", estimatorName(s.estimator)},
             {"seed", s.seed},
             {"max_depth", s.maxDepth},
             {"exposure", s.exposure}};

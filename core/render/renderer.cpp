@@ -26,7 +26,9 @@ RenderOptions renderOptionsFor(const Scene& scene, const RenderSettings& s, int 
 Renderer::Renderer(const Scene& scene, const Accel& accel, const RenderOptions& options)
     : scene_(scene),
       options_(options),
-      tracer_(scene, accel, options.estimator, options.maxDepth),
+      choice_(chooseEstimator(options.estimator, Effects::derive(scene))),
+      // BDPT borrows the NEE tracer's intersection, occlusion, BRDFs and lights.
+      tracer_(scene, accel, choice_.estimator == Estimator::BDPT ? Estimator::NEE : choice_.estimator, options.maxDepth),
       camera_(scene.camera, options.width, options.height),
       pixels_((requireRenderMemory(options.width, options.height), size_t(options.width) * size_t(options.height))) {
     // An offset outside [0, stride) would select no row at all: a part that renders nothing and
@@ -34,6 +36,11 @@ Renderer::Renderer(const Scene& scene, const Accel& accel, const RenderOptions& 
     if (options.rowStride < 1 || options.rowOffset < 0 || options.rowOffset >= options.rowStride)
         throw std::invalid_argument("Renderer: rowOffset " + std::to_string(options.rowOffset) + " must be in [0, rowStride " +
                                     std::to_string(options.rowStride) + ")");
+    options_.estimator = choice_.estimator;
+    if (choice_.estimator == Estimator::BDPT) {
+        bdpt_ = std::make_unique<BidirectionalTracer>(tracer_, options.maxDepth);
+        importance_ = std::make_unique<PinholeImportance>(scene.camera, options.width, options.height);
+    }
 }
 
 void Renderer::run(const std::function<void(int)>& onPass) {
@@ -55,13 +62,18 @@ bool Renderer::runPass() {
     const int ts = std::max(1, options_.tileSize);
     // Only this thread writes pixels_, so it may be read here without the lock.
     pass_ = pixels_;
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, options_.height, ts, 0, options_.width, ts),
-                      [&](const tbb::blocked_range2d<int>& r) {
-                          if (cancelled_) return;
-                          Local& l = locals.local();
-                          renderTile(r.cols().begin(), r.rows().begin(), r.cols().end(), r.rows().end(), samples,
-                                     l.counters, l.nonFinite, l.accepted);
-                      });
+    if (bdpt_) {
+        Local& l = locals.local();
+        runBidirectionalPass(samples, l.counters, l.nonFinite, l.accepted);
+    } else {
+        tbb::parallel_for(tbb::blocked_range2d<int>(0, options_.height, ts, 0, options_.width, ts),
+                          [&](const tbb::blocked_range2d<int>& r) {
+                              if (cancelled_) return;
+                              Local& l = locals.local();
+                              renderTile(r.cols().begin(), r.rows().begin(), r.cols().end(), r.rows().end(),
+                                         samples, l.counters, l.nonFinite, l.accepted);
+                          });
+    }
     Local total;
     locals.combine_each([&](const Local& l) {
         total.counters.rays += l.counters.rays;
@@ -86,6 +98,19 @@ bool Renderer::runPass() {
     return true;
 }
 
+void Renderer::addSample(Pixel& px, const Radiance& L) {
+    const Vec3 g = L.global();
+    for (int c = 0; c < 3; ++c) {
+        const double d = L.direct[c], ind = L.indirect[c], glob = g[c];
+        px.direct[c] += d;
+        px.indirect[c] += ind;
+        px.sq[int(Term::Direct)][c] += d * d;
+        px.sq[int(Term::Indirect)][c] += ind * ind;
+        px.sq[int(Term::Global)][c] += glob * glob;
+    }
+    ++px.accepted;
+}
+
 void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite,
                           uint64_t& accepted) {
     for (int y = y0; y < y1; ++y) {
@@ -101,20 +126,74 @@ void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCoun
                     ++nonFinite;
                     continue;
                 }
-                const Vec3 g = L.global();
-                for (int c = 0; c < 3; ++c) {
-                    const double d = L.direct[c], ind = L.indirect[c], glob = g[c];
-                    px.direct[c] += d;
-                    px.indirect[c] += ind;
-                    px.sq[int(Term::Direct)][c] += d * d;
-                    px.sq[int(Term::Indirect)][c] += ind * ind;
-                    px.sq[int(Term::Global)][c] += glob * glob;
-                }
-                ++px.accepted;
+                addSample(px, L);
                 ++accepted;
             }
         }
     }
+}
+
+bool Renderer::runBidirectionalPass(int samples, TraceCounters& counters, uint64_t& nonFinite, uint64_t& accepted) {
+    const int w = options_.width, h = options_.height, ts = std::max(1, options_.tileSize);
+    const int tilesX = (w + ts - 1) / ts, tilesY = (h + ts - 1) / ts;
+    const Light movable = scene_.movableLight >= 0 && scene_.movableLight < int(scene_.lights.size())
+                              ? scene_.lights[size_t(scene_.movableLight)]
+                              : Light{};
+    std::vector<Radiance> own(size_t(w) * size_t(h));
+    std::vector<std::vector<Splat>> splats(size_t(tilesX) * size_t(tilesY));
+    tbb::combinable<TraceCounters> tileCounters;
+    for (int s = 0; s < samples; ++s) {
+        if (cancelled_) return false;
+        // Every pixel is at the same sample index: iterations run in lockstep.
+        const uint64_t sample = pass_.empty() ? 0 : pass_[size_t(options_.rowOffset) * size_t(w)].next;
+        tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1), [&](const tbb::blocked_range<int>& r) {
+            TraceCounters& c = tileCounters.local();
+            for (int tile = r.begin(); tile < r.end(); ++tile) {
+                std::vector<Splat>& out = splats[size_t(tile)];
+                out.clear();
+                const int x0 = (tile % tilesX) * ts, y0 = (tile / tilesX) * ts;
+                for (int y = y0; y < std::min(h, y0 + ts); ++y) {
+                    // A part of an image split by rows still traces every pixel's light path (its
+                    // splats land anywhere) and the camera paths of its own rows only.
+                    const bool mine = y % options_.rowStride == options_.rowOffset;
+                    for (int x = x0; x < std::min(w, x0 + ts); ++x) {
+                        const uint64_t index = uint64_t(y) * uint64_t(w) + uint64_t(x);
+                        Rng rng(options_.seed, index, sample);
+                        Rng lightRng = bdptLightRng(options_.seed, index, sample);
+                        const Radiance L =
+                            bdpt_->tracePixel(camera_, *importance_, x, y, movable, rng, lightRng, c, out, mine);
+                        if (mine) own[index] = L;
+                    }
+                }
+            }
+        });
+        // Splats in tile order, each tile's in pixel order: the same sums for any thread count.
+        for (const std::vector<Splat>& tile : splats)
+            for (const Splat& sp : tile) {
+                own[sp.pixel].direct += sp.L.direct;
+                own[sp.pixel].indirect += sp.L.indirect;
+            }
+        for (int y = options_.rowOffset; y < h; y += options_.rowStride) {
+            for (int x = 0; x < w; ++x) {
+                const size_t index = size_t(y) * size_t(w) + size_t(x);
+                Pixel& px = pass_[index];
+                ++px.next;
+                const Radiance L = own[index];
+                own[index] = Radiance{};
+                if (!L.direct.isFinite() || !L.indirect.isFinite()) {
+                    ++nonFinite;
+                    continue;
+                }
+                addSample(px, L);
+                ++accepted;
+            }
+        }
+    }
+    tileCounters.combine_each([&](const TraceCounters& c) {
+        counters.rays += c.rays;
+        counters.shadowRays += c.shadowRays;
+    });
+    return true;
 }
 
 void Renderer::mergePass() {

@@ -22,6 +22,7 @@
 
 #include "core/scene/camera_rays.h"
 #include "core/util/image.h"
+#include "core/render/bdpt.h"
 #include "core/render/path_tracer.h"
 #include "core/render/term.h"
 
@@ -34,6 +35,8 @@ struct RenderOptions {
     uint64_t seed = 1;
     int maxDepth = 64;
     int samplesPerPass = 1;
+    /// Tiles of the image; with BDPT also the unit in which light-tracing splats are ordered, so it
+    /// is part of what makes a BDPT render (not of what makes a path-traced one).
     int tileSize = 16;
     /// What happens to a pass cut short by cancel(): true keeps the samples of the tiles it finished
     /// (each pixel carries its own count, so the image stays unbiased); false drops the whole pass,
@@ -134,17 +137,27 @@ public:
 
     const PathTracer& tracer() const { return tracer_; }
     const RenderOptions& options() const { return options_; }
+    /// The estimator that runs (options.estimator with Auto resolved) and why.
+    const EstimatorChoice& estimatorChoice() const { return choice_; }
 
 private:
     using Pixel = PixelSums;
     void renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite,
                     uint64_t& accepted);
+    /// BDPT passes: one iteration (a sample of every pixel and width × height light paths) at a
+    /// time, so each pixel's sample includes the light-tracing splats it received in its iteration
+    /// and the variance of the mean stays an estimate over independent iterations.
+    bool runBidirectionalPass(int samples, TraceCounters& counters, uint64_t& nonFinite, uint64_t& accepted);
+    static void addSample(PixelSums& px, const Radiance& L);
     void mergePass();
     static RenderSnapshot snapshotOfPixels(const std::vector<Pixel>& pixels, int width, int height);
 
     const Scene& scene_;
     RenderOptions options_;
+    EstimatorChoice choice_;
     PathTracer tracer_;
+    std::unique_ptr<BidirectionalTracer> bdpt_;  ///< set when choice_ is BDPT
+    std::unique_ptr<PinholeImportance> importance_;
     CameraRays camera_;
     std::vector<Pixel> pixels_;  ///< committed sums: what snapshot() shows
     /// The sums with the pass in progress: a copy of pixels_ that the pass adds its samples to (each

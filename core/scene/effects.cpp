@@ -40,6 +40,7 @@ Effects Effects::derive(const Scene& scene) {
         }
     }
     e.indirect = reflectingSurfaces >= 2 || concave;
+    e.caustics = e.indirect && e.diffuse && e.glossy && e.maxPhongExponent >= kCausticExponent;
     return e;
 }
 
@@ -56,6 +57,7 @@ std::vector<std::string> Effects::describe() const {
         s << "glossy reflection (Phong, exponent up to " << maxPhongExponent << ")";
         out.push_back(s.str());
     }
+    if (caustics) out.push_back("caustics (glossy lobes focus the emitters' light onto diffuse surfaces)");
     if (indirect) {
         std::ostringstream s;
         s << "indirect light (multiple bounces, Russian roulette; max albedo " << maxAlbedo << ")";
@@ -70,7 +72,7 @@ nlohmann::json Effects::toJson() const {
     return {{"diffuse", diffuse},       {"glossy", glossy},
             {"rect_lights", rectLights}, {"triangle_lights", triangleLights}, {"point_lights", pointLights},
             {"reflective_emitters", reflectiveEmitters},
-            {"indirect", indirect},     {"max_albedo", maxAlbedo},
+            {"indirect", indirect},     {"caustics", caustics},     {"max_albedo", maxAlbedo},
             {"max_phong_exponent", maxPhongExponent}, {"description", describe()}};
 }
 

@@ -13,6 +13,11 @@
 
 namespace rrf {
 
+/// The Phong exponent from which a lobe counts as caustic-forming: its width (about √(2/n) rad) is
+/// then under ~0.3 rad, a small part of a diffuse bounce's hemisphere, so a BRDF-sampled path
+/// rarely passes through it towards the light; broader lobes are found by the path tracer's MIS.
+constexpr double kCausticExponent = 20.0;
+
 struct Effects {
     bool diffuse = false;            ///< some material has kd > 0
     bool glossy = false;             ///< some Phong material has ks > 0
@@ -21,6 +26,10 @@ struct Effects {
     bool pointLights = false;        ///< point lights (NEE only: no ray can hit them)
     bool reflectiveEmitters = false; ///< an emitter surface that also reflects (furnace scenes)
     bool indirect = false;           ///< light can bounce between surfaces (≥ 2 reflecting surfaces, or a concave one)
+    /// Glossy lobes narrow enough to focus an emitter's light onto diffuse surfaces, where the path
+    /// tracer finds it only by rare BRDF samples: a Phong material of exponent >= kCausticExponent,
+    /// a diffuse material and indirect light. Estimator "auto" renders such scenes bidirectionally.
+    bool caustics = false;
     float maxAlbedo = 0.f;           ///< largest kd+ks component: how long Russian roulette keeps paths
     double maxPhongExponent = 0.0;
 
