@@ -61,7 +61,7 @@ TEST(Project, LoadsCornellProject) {
     const Project p = loadProjectOrScene(kCornellDir + "/project.json");
     EXPECT_EQ(p.sceneRef, "scene.json");
     EXPECT_EQ(p.render.spp, 64);
-    EXPECT_EQ(p.render.estimator, Estimator::NEE);
+    EXPECT_EQ(p.render.estimator, Estimator::Auto);
     EXPECT_EQ(p.render.width, 0);
     EXPECT_EQ(p.scene.objects.size(), 7u);
     EXPECT_EQ(p.scene.sourcePath, kCornellDir + "/scene.json");
