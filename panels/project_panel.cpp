@@ -33,14 +33,22 @@ void drawRenderSettings(WorkbenchState& state) {
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
     changed |= ImGui::InputInt("samples per pixel", &r.spp, 16, 256);
     if (r.spp < 1) r.spp = 1;
-    int est = r.estimator == Estimator::NEE ? 0 : 1;
+    // In the order of the combo's entries.
+    constexpr Estimator kChoices[] = {Estimator::Auto, Estimator::NEE, Estimator::BDPT, Estimator::Naive};
+    int est = 0;
+    for (int i = 0; i < 4; ++i)
+        if (r.estimator == kChoices[i]) est = i;
     // As wide as its longest entry, so the choice reads in full.
-    ImGui::SetNextItemWidth(ImGui::CalcTextSize("naive (BRDF sampling only)").x + ImGui::GetFrameHeight() +
+    ImGui::SetNextItemWidth(ImGui::CalcTextSize("auto (bidirectional where there are caustics)").x + ImGui::GetFrameHeight() +
                             2 * ImGui::GetStyle().FramePadding.x);
-    if (ImGui::Combo("estimator", &est, "next-event estimation\0naive (BRDF sampling only)\0")) {
-        r.estimator = est == 0 ? Estimator::NEE : Estimator::Naive;
+    if (ImGui::Combo("estimator", &est,
+                     "auto (bidirectional where there are caustics)\0next-event estimation\0bidirectional (BDPT, MIS)\0"
+                     "naive (BRDF sampling only)\0")) {
+        r.estimator = kChoices[est];
         changed = true;
     }
+    const EstimatorChoice used = chooseEstimator(r.estimator, Effects::derive(state.project.scene));
+    ImGui::TextDisabled("runs: %s (%s)", estimatorName(used.estimator), used.reason.c_str());
     int seed = int(r.seed & 0x7fffffff);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
     if (ImGui::InputInt("seed", &seed)) {

@@ -26,6 +26,7 @@ namespace rrf::cli {
 namespace {
 struct EvaluateArgs : PredictionArgs {
     std::string models, reference;
+    std::string estimator;  ///< --estimator of the references (empty: the project's)
     std::optional<Vec3> lightPos;
     int heldOut = 0, spp = -1, sppCap = -1;
     double noise = -1;
@@ -72,7 +73,8 @@ void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vecto
 
 int runEvaluate(EvaluateArgs a) {
     const mpi::Ranks& ranks = mpi::ranks();
-    const Project p = loadProjectOrScene(a.input);
+    Project p = loadProjectOrScene(a.input);
+    applyEstimatorFlag(a.estimator, p.render.estimator);
     std::vector<std::string> inputs = projectInputs(p);
     inputs.push_back(a.models);
     inputs.push_back(a.reference);
@@ -152,6 +154,7 @@ void addEvaluateCommand(CLI::App& app, int& exitCode) {
                            ->check(positive());
     addNoiseTargetFlags(cmd, a->noise, a->sppCap, "the references", "the project's, 4096", true, spp);
     cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());
+    addEstimatorOption(cmd, a->estimator, "the references");
     cmd->add_option("--exposure", a->exposure, "exposure in stops for PNG output");
     cmd->get_option("--out")->required(false)->description("output directory (required unless --record)");
     cmd->add_flag("--record", a->record,

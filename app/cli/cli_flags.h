@@ -95,6 +95,10 @@ const CLI::Validator& nonNegative();
 /// --grid NX,NY,NZ, --dirs N and the paths per record under `sppFlag` (--spp for `rrf generate`,
 /// --data-spp where --spp is the reference's).
 void addSamplingFlags(CLI::App* cmd, SettingFlags<SamplingSettings>& flags, const std::string& sppFlag);
+/// --estimator nee|naive|bdpt|auto into `target` (empty: the project's); `what` names what it renders.
+CLI::Option* addEstimatorOption(CLI::App* cmd, std::string& target, const std::string& what);
+/// The project's render estimator replaced by `flag` when given (a value addEstimatorOption checked).
+void applyEstimatorFlag(const std::string& flag, Estimator& estimator);
 
 /// --hidden N,N,..., --ensemble K, --encoding NAME (nn/encoding_presets.h), --trainer lm|adam and --epochs N.
 void addNetworkFlags(CLI::App* cmd, SettingFlags<ObjectTrainingOptions>& flags);

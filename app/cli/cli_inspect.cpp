@@ -23,7 +23,13 @@ void addInspectCommand(CLI::App& app, int& exitCode) {
             const Project p = loadProjectOrScene(*file);
             std::fputs(formatSceneSummary(p.scene).c_str(), stdout);
             std::fputs("effects:\n", stdout);
-            for (const std::string& line : Effects::derive(p.scene).describe()) std::printf("  %s\n", line.c_str());
+            const Effects effects = Effects::derive(p.scene);
+            for (const std::string& line : effects.describe()) std::printf("  %s\n", line.c_str());
+            const EstimatorChoice render = chooseEstimator(p.render.estimator, effects);
+            const EstimatorChoice records = chooseEstimator(p.samplingOrDefault().estimator, effects);
+            std::printf("estimator: images (render, references) %s: %s\n", estimatorName(render.estimator),
+                        render.reason.c_str());
+            std::printf("estimator: training records %s: %s\n", estimatorName(records.estimator), records.reason.c_str());
             exitCode = 0;
             return;
         }

@@ -42,6 +42,7 @@ namespace {
 struct PipelineArgs : PredictionArgs {
     bool quick = false;
     std::string preset;  ///< empty: the project's settings
+    std::string estimator;  ///< --estimator of the ground truth and references (empty: the project's)
     int spp = -1, heldOut = 0, sppCap = -1;
     double noise = -1;
     long long seed = 1;
@@ -52,7 +53,8 @@ int runPipeline(const PipelineArgs& a) {
     const mpi::Ranks& ranks = mpi::ranks();
     const bool root = ranks.isRoot();
     Stopwatch total;
-    const Project p = loadProjectOrScene(a.input);
+    Project p = loadProjectOrScene(a.input);
+    applyEstimatorFlag(a.estimator, p.render.estimator);
     refuseOverwritingInputs(a.out, projectInputs(p));
     const Scene& scene = p.scene;
     auto threads = limitThreads(a.threads);
@@ -195,6 +197,7 @@ void addPipelineCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--held-out", a->heldOut, "held-out light positions to evaluate")->check(positive());
     addExperimentFlags(cmd, a->experiment);
     cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());
+    addEstimatorOption(cmd, a->estimator, "the ground truth and the references");
     cmd->callback([a, &exitCode] { exitCode = runPipeline(*a); });
 }
 

@@ -21,6 +21,7 @@ namespace rrf::cli {
 namespace {
 struct ReferenceArgs {
     std::string input;
+    std::string estimator;
     std::optional<Vec3> lightPos;
     int heldOut = 0, sppCap = -1, threads = 0, width = -1, height = -1;
     double noise = -1;
@@ -59,7 +60,8 @@ void listEntries(const ReferenceStore& store, uint64_t sceneHash) {
 }
 
 int runReference(const ReferenceArgs& a) {
-    const Project p = loadProjectOrScene(a.input);
+    Project p = loadProjectOrScene(a.input);
+    applyEstimatorFlag(a.estimator, p.render.estimator);
     auto threads = limitThreads(a.threads);
     ReferenceStore store = projectReferenceStore(p);
     const uint64_t hash = p.scene.contentHash();
@@ -100,6 +102,7 @@ void addReferenceCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--width", a->width, "image width (default: the project's)")->check(CLI::Range(1, kMaxImageSide));
     cmd->add_option("--height", a->height, "image height (default: the project's)")->check(CLI::Range(1, kMaxImageSide));
     cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(nonNegative());
+    addEstimatorOption(cmd, a->estimator, "the references");
     cmd->add_flag("--list", a->list, "list the stored references (with --light-pos or --held-out: also render)");
     cmd->add_flag("--prune", a->prune, "remove the references of older versions of the scene and damaged entries");
     cmd->callback([a, &exitCode] { exitCode = runReference(*a); });

@@ -309,6 +309,7 @@ GeneratedData DataGenerator::runCells(int begin, int end, int shardIndex, int sh
         {"noise_layout", layout_.noise},
         {"floats_per_record", fpr},
         {"effects", tracer_.effects().toJson()},
+        {"estimator", {{"used", estimatorName(choice_.estimator)}, {"reason", choice_.reason}}},
         {"shard", {{"index", shardIndex}, {"count", shardCount}, {"cell_begin", begin}, {"cell_end", end}, {"cells_total", cells}}},
         {"objects", objects},
         {"stats", st.toJson()},

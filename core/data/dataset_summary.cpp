@@ -44,6 +44,9 @@ std::string formatDatasetReport(const Dataset& data, const std::vector<ObjectSum
     os << "dataset: " << data.path() << "\n";
     os << "scene hash: " << h.value("scene_hash", "?") << "\n";
     os << "settings: " << h.at("settings").dump() << "\n";
+    // Datasets before the bidirectional tracer name only the setting (nee or naive), which is what ran.
+    if (h.contains("estimator") && h["estimator"].is_object())
+        os << "estimator: " << h["estimator"].value("used", "?") << " (" << h["estimator"].value("reason", "") << ")\n";
     os << "shard: " << h.at("shard").dump() << "\n";
     os << "records: " << data.totalRecords() << " (" << data.floatsPerRecord() << " floats each)\n";
     const GeneratorStats typed = GeneratorStats::fromHeader(h, data.path());
