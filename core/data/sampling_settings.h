@@ -39,7 +39,9 @@ struct SamplingSettings {
     double noiseTarget = 0.05;
     uint64_t seed = 1;
     bool fixedLight = false;        ///< true: every record uses the scene's light position
-    Estimator estimator = Estimator::NEE;
+    /// Auto: bidirectional where glossy lobes form caustics (its records reach the noise target
+    /// far more often there; docs/results.md), the path tracer's NEE elsewhere.
+    Estimator estimator = Estimator::Auto;
     int maxDepth = 64;
 
     int cellCount() const { return nx * ny * nz; }
