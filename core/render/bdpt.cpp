@@ -212,6 +212,18 @@ bool BidirectionalTracer::scatter(std::vector<BdptVertex>& path, Vec3& beta, flo
     return true;
 }
 
+BdptVertex BidirectionalTracer::surfaceVertex(const Hit& hit, const Vec3& beta, const Vec3& wPrev) const {
+    BdptVertex v;
+    v.p = hit.p;
+    v.ng = hit.ng;
+    v.ns = hit.shading();
+    v.material = tracer_.materialOf(hit);
+    v.light = hit.light;
+    v.beta = beta;
+    v.wPrev = wPrev;
+    return v;
+}
+
 void BidirectionalTracer::walk(Ray ray, Vec3 beta, float pdfDir, bool importance, std::vector<BdptVertex>& path,
                                int maxVertices, const Light& movable, Rng& rng, TraceCounters& counters,
                                int bounces) const {
@@ -221,14 +233,7 @@ void BidirectionalTracer::walk(Ray ray, Vec3 beta, float pdfDir, bool importance
         ++counters.rays;
         if (counters.rayLog) counters.rayLog->push_back(ray);
         if (!tracer_.intersect(ray, movable, hit)) return;
-        BdptVertex v;
-        v.p = hit.p;
-        v.ng = hit.ng;
-        v.ns = hit.shading();
-        v.material = tracer_.materialOf(hit);
-        v.light = hit.light;
-        v.beta = beta;
-        v.wPrev = -ray.dir;
+        BdptVertex v = surfaceVertex(hit, beta, -ray.dir);
         v.pdfFwd = toArea(pdfDir, path.back(), v);
         // A light subpath that reaches a black emitter ends without a vertex: nothing connects to it.
         if (importance && v.material < 0) return;

@@ -106,6 +106,8 @@ private:
               const Light& movable, Rng& rng, TraceCounters& counters, int bounces = 0) const;
     /// Samples the BRDF at path.back(): updates `beta` (and the previous vertex's reverse density),
     /// sets the next `ray` and its `pdfDir`; false when the path ends there.
+    /// The surface vertex of `hit`, reached with throughput `beta` from direction `wPrev`.
+    BdptVertex surfaceVertex(const Hit& hit, const Vec3& beta, const Vec3& wPrev) const;
     bool scatter(std::vector<BdptVertex>& path, Vec3& beta, float beta0, int bounces, bool importance, Ray& ray,
                  float& pdfDir, Rng& rng) const;
     void lightSubpath(std::vector<BdptVertex>& path, int maxVertices, const Light& movable, Rng& rng,

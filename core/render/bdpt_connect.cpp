@@ -167,14 +167,7 @@ Radiance BidirectionalTracer::shade(const Hit& hit, const Vec3& wo, const Light&
     Radiance L;
     if (hit.light >= 0) L.direct += tracer_.light(hit.light, movable).emittedTowards(wo);
     const int maxReflections = tracer_.effects().indirect ? maxDepth_ : 1;
-    BdptVertex x;
-    x.p = hit.p;
-    x.ng = hit.ng;
-    x.ns = hit.shading();
-    x.material = tracer_.materialOf(hit);
-    x.light = hit.light;
-    x.beta = Vec3(1.f);
-    x.wPrev = wo;
+    const BdptVertex x = surfaceVertex(hit, Vec3(1.f), wo);
     paths.eye.push_back(x);
     if (x.material < 0) return L;
     Vec3 beta(1.f);
