@@ -40,7 +40,7 @@ asan_skip+='|CliHostile\.RequestsBeyondMemoryAreRefusedWithTheEstimate'
 # statistics tests, and the bit-identical-for-any-thread-count tests of the generator and trainers,
 # whose threads are TBB tasks that TSan cannot check here (see run_tsan) and which take minutes under
 # TSan (Eigen at -O1, every access instrumented); the generator's CLI tests check another process.
-tsan_filter='Renderer.BitIdenticalForAnyThreadCount:Renderer.Cancel*:DataGenerator.Cancelled*'
+tsan_filter='Renderer.BitIdenticalForAnyThreadCount:Bdpt.IdenticalForAnyThreadCount*:Renderer.Cancel*:DataGenerator.Cancelled*'
 tsan_filter+=':LevenbergMarquardt.Cancel*:Adam.Cancel*:ObjectTraining.Cancelled*:TrainingRun.*'
 tsan_filter+=':JobRunner.*:JobSession.*'
 
