@@ -32,6 +32,7 @@ TEST_F(ObjectNetworksPanelTest, SettersStoreOneSettingEachAndEmptyEntriesDisappe
     WorkbenchState s;
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-glossy/project.json", error)) << error;
+    s.project.network.reset();  // the defaults, without the project's own entries
     for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(s); });
     EXPECT_FALSE(s.dirty) << "drawing must not edit the project";
 
@@ -66,6 +67,7 @@ TEST_F(ObjectNetworksPanelTest, RowsSayWhatEachObjectsNetworksReadOrWhyTheyCanno
     WorkbenchState s;
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-glossy/project.json", error)) << error;
+    s.project.network.reset();
     setObjectReflected(s, "tall-box", true);
     setObjectHidden(s, "tall-box", std::vector<int>{24, 12});
     // An entry whose encoding reads the reflected rows while the object does not derive them.
