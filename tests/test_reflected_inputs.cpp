@@ -91,6 +91,19 @@ double lobeError(const DerivedInputs& derived) {
     return relativeRmse(m.predict(xt), yt);
 }
 
+/// A small network behind `encoding` (15 record inputs) fitted for `epochs` on `records` lobe
+/// records; `x` receives the records' inputs.
+NetworkModel smallModel(const InputEncoding& encoding, int records, int hidden, int epochs, uint64_t seed, MatX<float>& x) {
+    MatX<float> y;
+    lobeRecords(records, seed, x, y);
+    MlpArch a;
+    a.inputs = encoding.outputs();
+    a.hidden = {hidden};
+    TrainerConfig t = TrainerConfig().withType(TrainerType::Adam);
+    t.adam.maxEpochs = epochs;
+    return fitNetwork(a, encoding, t, x, y, MatX<float>(), {}, seed);
+}
+
 }  // namespace
 
 TEST(DerivedInputs, ReflectedDirectionIsTheViewMirroredAboutTheNormal) {
@@ -216,14 +229,9 @@ TEST(DerivedInputs, EncodingGradientsOnTheReflectedRowsMatchFiniteDifferences) {
 }
 
 TEST(DerivedInputs, PredictionDerivesTheRowsFromTheRawRecords) {
-    MatX<float> x, y;
-    lobeRecords(400, 4, x, y);
-    MlpArch a;
-    a.inputs = 18;
-    a.hidden = {6};
-    TrainerConfig t = TrainerConfig().withType(TrainerType::Adam);
-    t.adam.maxEpochs = 3;
-    const NetworkModel m = fitNetwork(a, networkEncoding(json::array(), 15, DerivedInputs{true}), t, x, y, MatX<float>(), {}, 5);
+    MatX<float> x;
+    const NetworkModel m = smallModel(networkEncoding(json::array(), 15, DerivedInputs{true}), 400, 6, 3, 5, x);
+    EXPECT_EQ(m.arch.inputs, 18);
     EXPECT_EQ(m.rawInputs(), 15);
     EXPECT_EQ(m.scaledInputs(), 18);
     ASSERT_EQ(m.inputScaler.size(), 18) << "the scaler covers the derived rows";
@@ -242,15 +250,9 @@ TEST(DerivedInputs, PredictionDerivesTheRowsFromTheRawRecords) {
 }
 
 TEST(DerivedInputs, ModelFileRoundTripKeepsTheInputAndOlderFilesReadAsBefore) {
-    MatX<float> x, y;
-    lobeRecords(300, 6, x, y);
+    MatX<float> x;
     const InputEncoding e = parseWith(R"([{"type": "one_blob", "inputs": "reflected", "bins": 6}])", 15, DerivedInputs{true});
-    MlpArch a;
-    a.inputs = e.outputs();
-    a.hidden = {5};
-    TrainerConfig t = TrainerConfig().withType(TrainerType::Adam);
-    t.adam.maxEpochs = 2;
-    const NetworkModel m = fitNetwork(a, e, t, x, y, MatX<float>(), {}, 7);
+    const NetworkModel m = smallModel(e, 300, 5, 2, 7, x);
     const std::string bytes = modelFileBytes(m);
     uint32_t version = 0;
     std::memcpy(&version, bytes.data() + 8, 4);
@@ -263,7 +265,7 @@ TEST(DerivedInputs, ModelFileRoundTripKeepsTheInputAndOlderFilesReadAsBefore) {
     EXPECT_EQ(back.params, m.params);
     EXPECT_EQ(back.predict(x), m.predict(x));
     // The payload holds both scaler vectors over the 18 rows.
-    EXPECT_EQ(modelPayloadBytes(m), int64_t(8 * (a.numParams() + 2 * 18 + 2 * 3)));
+    EXPECT_EQ(modelPayloadBytes(m), int64_t(8 * (m.arch.numParams() + 2 * 18 + 2 * 3)));
     // The version 3 golden file (tests/data/golden) derives nothing.
     const NetworkModel v3 = loadModel(std::string(RRF_SOURCE_DIR) + "/tests/data/golden/small.rrfm");
     EXPECT_FALSE(v3.encoding.derived.any());
@@ -271,14 +273,8 @@ TEST(DerivedInputs, ModelFileRoundTripKeepsTheInputAndOlderFilesReadAsBefore) {
 }
 
 TEST(DerivedInputs, AModelFileWithABadDerivedEntryNamesItsField) {
-    MatX<float> x, y;
-    lobeRecords(50, 8, x, y);
-    MlpArch a;
-    a.inputs = 18;
-    a.hidden = {3};
-    TrainerConfig t = TrainerConfig().withType(TrainerType::Adam);
-    t.adam.maxEpochs = 1;
-    const NetworkModel m = fitNetwork(a, networkEncoding(json::array(), 15, DerivedInputs{true}), t, x, y, MatX<float>(), {}, 9);
+    MatX<float> x;
+    const NetworkModel m = smallModel(networkEncoding(json::array(), 15, DerivedInputs{true}), 50, 3, 1, 9, x);
     // Turning the input off in the header leaves a payload three scaler rows too long: refused, not
     // misread; a value of the wrong type or an unknown key names the field.
     const std::string bytes = modelFileBytes(m);
