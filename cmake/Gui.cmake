@@ -45,6 +45,7 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_honest_figures.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_leaves_panel.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_encoding_panel.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_object_networks_panel.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_workbench_status.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_project_carry.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_runs_compared.cpp

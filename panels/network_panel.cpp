@@ -1,4 +1,5 @@
-// Network panel: hidden layers, activation, the ensemble size, the input encoding (by name), what the networks predict, the kd-tree partition
+// Network panel: hidden layers, activation, the ensemble size, the input encoding (by name), the
+// reflected-direction input and per-object networks (network_objects_panel.cpp), what the networks predict, the kd-tree partition
 // (Ren et al.'s leaves: goal, depth, leaf budget, records per weight, split axes), the trainer and its
 // parameters (error goal included), and the parameter count of each network. Project::network and Project::trainer are the
 // only copies of these settings: every edit goes through storeNetwork() or storeTrainer(), so editing
@@ -27,10 +28,7 @@ constexpr int kMaxLayers = 8;
 NetworkSettings current(const WorkbenchState& state) { return state.project.networkOrDefault(); }
 
 /// Stores the "network" part of `s` (layers, activation, targets).
-void storeNetwork(WorkbenchState& state, const NetworkSettings& s) {
-    state.project.network = s;
-    state.markDirty();
-}
+void storeNetwork(WorkbenchState& state, const NetworkSettings& s) { storeNetworkSettings(state, s); }
 
 /// Stores the trainer of `s`.
 void storeTrainer(WorkbenchState& state, const NetworkSettings& s) {
@@ -152,7 +150,7 @@ bool drawPartition(PartitionSettings& p, long long paramsPerNetwork) {
 /// The MLP of one network under `s`: its first layer reads the encoding's features.
 MlpArch networkArch(const WorkbenchState& state, const NetworkSettings& s, const InputEncoding& encoding) {
     MlpArch arch;
-    arch.inputs = encoding.isIdentity() ? inputCount(state) : encoding.outputs();
+    arch.inputs = encoding.outputs();  // the identity: the record inputs and the derived ones
     arch.hidden = s.options.hidden;
     arch.activation = s.options.activation;
     arch.outputs = s.options.targets == TargetMode::Joint ? 6 : 3;
@@ -162,7 +160,7 @@ MlpArch networkArch(const WorkbenchState& state, const NetworkSettings& s, const
 /// The encoding combo (the named encodings, plus "custom" when the project's own array is none of
 /// them) and the warning for a trainable encoding under Levenberg–Marquardt.
 void drawEncoding(WorkbenchState& state, const NetworkSettings& s) {
-    const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state));
+    const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state), s.options.inputs);
     const std::string& name = view.presetName;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
     if (ImGui::BeginCombo("input encoding", name.empty() ? "custom (the project file's)" : name.c_str())) {
@@ -181,7 +179,7 @@ void drawEncoding(WorkbenchState& state, const NetworkSettings& s) {
 }
 
 void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
-    const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state));
+    const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state), s.options.inputs);
     if (!view.fits) {
         // A project's own array may not fit this scene's records (e.g. a hash grid over more than 4
         // inputs); training would refuse it with this message, so show it in place of the count.
@@ -196,8 +194,8 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
     std::string hidden;
     for (const int h : arch.hidden) hidden += (hidden.empty() ? "" : ", ") + std::to_string(h);
     if (encoding.isIdentity())
-        ImGui::Text("%d inputs -> [%s] -> %d outputs: %lld parameters per network", arch.inputs, hidden.c_str(),
-                    arch.outputs, params);
+        ImGui::Text("%d inputs%s -> [%s] -> %d outputs: %lld parameters per network", arch.inputs,
+                    encoding.derived.any() ? " (with the reflected direction)" : "", hidden.c_str(), arch.outputs, params);
     else
         ImGui::Text("%d inputs -> %s -> %d features -> [%s] -> %d outputs: %lld parameters per network (%lld in the encoding)",
                     inputCount(state), encoding.describe().c_str(), arch.inputs, hidden.c_str(), arch.outputs, params, table);
@@ -206,6 +204,10 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
                             s.options.ensemble, s.options.ensemble);
     ImGui::Text("%d network%s per object, %zu objects: %lld parameters in all", perObject, perObject > 1 ? "s" : "",
                 state.project.scene.objects.size(), params * perObject * (long long)state.project.scene.objects.size());
+    if (!s.options.perObject.empty())
+        ImGui::TextDisabled("(counted with the section's networks; %zu object%s with its own entry differ%s)",
+                            s.options.perObject.size(), s.options.perObject.size() > 1 ? "s" : "",
+                            s.options.perObject.size() > 1 ? "" : "s");
     if (s.options.trainer.type == TrainerType::LevenbergMarquardt) {
         const long long member = (long long)networkArch(state, s, encoding).numParams();  // LM trains each member alone
         ImGui::TextDisabled("LM solves a %lld x %lld system per step", member, member);
@@ -328,6 +330,7 @@ void drawNetworkPanel(WorkbenchState& state) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("per object: one global net, one net per term (separate), or one 6-output net (joint)");
     drawEncoding(state, s);
+    drawObjectNetworks(state, inputCount(state));
     s = current(state);
 
     ImGui::Separator();
@@ -335,7 +338,7 @@ void drawNetworkPanel(WorkbenchState& state) {
     {
         // The records-per-weight bound counts the MLP's weights only (not an encoding's table entries);
         // unknown (-1) while the encoding does not fit the records (drawParameterCount says why).
-        const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state));
+        const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state), s.options.inputs);
         const long long weights = view.fits ? (long long)networkArch(state, s, view.encoding).numParams() : -1;
         PartitionSettings p = s.options.partition;
         if (drawPartition(p, weights)) setPartition(state, p);

@@ -3,6 +3,7 @@
 /// ImGui window (a pane's tab) and edits the WorkbenchState; actions that need the application
 /// (files, jobs, GL) are queued as Requests.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,24 @@ bool setPartition(WorkbenchState& state, const PartitionSettings& partition);
 /// Sets the networks' input encoding to the named one (nn/encoding_presets.h; Project::network's
 /// "encoding"); false for an unknown name or no change.
 bool setEncoding(WorkbenchState& state, const std::string& name);
+/// Stores `s` as Project::network and marks the project dirty (what every edit above ends with).
+void storeNetworkSettings(WorkbenchState& state, const NetworkSettings& s);
+/// Every network's reflected-direction input (Project::network's "inputs": {"reflected"},
+/// nn/derived_inputs.h).
+bool setReflectedInput(WorkbenchState& state, bool on);
+// The entry of object `name` in Project::network's "objects" map (nn/object_network_overrides.h); an
+// entry left with nothing set is removed.
+/// Its reflected input: on, off, or nullopt for the section's.
+bool setObjectReflected(WorkbenchState& state, const std::string& name, std::optional<bool> on);
+/// Its hidden sizes (each clamped to 1 … kMaxHiddenSize), or nullopt for the section's; an empty
+/// list changes nothing.
+bool setObjectHidden(WorkbenchState& state, const std::string& name, std::optional<std::vector<int>> hidden);
+/// Its input encoding by name (nn/encoding_presets.h), or "" for the section's; false for an
+/// unknown name or no change.
+bool setObjectEncoding(WorkbenchState& state, const std::string& name, const std::string& encoding);
+/// The reflected-input checkbox and the per-object table (drawn inside the Network panel; `inputs`:
+/// the records' input count).
+void drawObjectNetworks(WorkbenchState& state, int inputs);
 
 /// The Objects table of an evaluation: per term, one row per object in view or trained (errors with
 /// the reference's noise floor and corrected figure, as evaluate() computed them), with the samples

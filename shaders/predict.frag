@@ -32,8 +32,8 @@ layout(location = RRF_TERM_GLOBAL) out vec4 oGlobal;
 
 const int kWidthMask = (1 << RRF_NET_WIDTH_LOG2) - 1;
 
-vec4 rawIn[5];                 // 20 raw inputs: p, view, light, normal, BRDF parameters, zero-padded
-vec4 scaledIn[5];              // the same scaled by the network's input scaler: x'
+vec4 rawIn[6];                 // 24 raw inputs: p, view, light, normal, BRDF parameters, reflected, zero-padded
+vec4 scaledIn[6];              // the same scaled by the network's input scaler: x'
 vec4 act[RRF_MAX_VEC4];        // activations of the current layer (first: the encoded features)
 vec4 nxt[RRF_MAX_VEC4];        // activations being computed
 
@@ -149,6 +149,17 @@ void main() {
     rawIn[2] = vec4(uLight.z, n);
     rawIn[3] = texel(entry + 1);
     rawIn[4] = texel(entry + 2);
+    rawIn[5] = vec4(0.0);
+    // The derived reflected direction (core/nn/derived_inputs.h) at raw inputs I ... I+2, after the
+    // BRDF parameters, in reflectAboutNormal's float operations. Networks that do not derive it read
+    // these slots through their scaler's zero padding (scale 0), so one array serves every network.
+    int nRecord = int(texel(0).z);
+    float d = n.x * v.x + n.y * v.y + n.z * v.z;
+    float t2 = d + d;
+    for (int i = 0; i < 3; ++i) {
+        int slot = nRecord + i;
+        rawIn[slot >> 2][slot & 3] = t2 * n[i] - v[i];
+    }
 
     // Term rules of core/predict/network_texture.h (the same as core/predict/predictor.cpp).
     vec4 off = texel(entry);

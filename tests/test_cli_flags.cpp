@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -69,6 +70,44 @@ TEST(CliFlags, NeitherSectionGetsTheProjectDefaults) {
     const Project partial = cornellWith("partial.json", {{"sampling", {{"grid", {4, 4, 4}}}}});
     EXPECT_EQ(settingsOf(partial, false).sampling.nx, 4);
     EXPECT_EQ(settingsOf(partial, false).sampling.directions, 300);
+}
+
+}  // namespace test_cli_flags
+
+namespace test_cli_flags {
+
+TEST(CliFlags, NetworkFlagsSetEveryNetworkAndDropThePerObjectEntriesOfTheirSetting) {
+    const Project p = cornellWith("per_object.json",
+                                  json::parse(R"({"network": {"hidden": [20, 10], "objects": {
+                                      "tall-box": {"hidden": [32, 16], "inputs": {"reflected": true}},
+                                      "floor": {"hidden": [8]}}}})"));
+    const ObjectTrainingOptions base = settingsOf(p, false).training;
+    ASSERT_EQ(base.choiceFor("tall-box").hidden, (std::vector<int>{32, 16}));
+    ASSERT_TRUE(base.choiceFor("tall-box").inputs.reflected);
+    ASSERT_FALSE(base.choiceFor("floor").inputs.reflected);
+
+    auto parsed = [&](std::vector<std::string> args) {
+        CLI::App app;
+        cli::SettingFlags<ObjectTrainingOptions> flags;
+        cli::addNetworkFlags(&app, flags);
+        std::reverse(args.begin(), args.end());  // CLI11 parses a vector from its back
+        app.parse(args);
+        return flags.applied(base);
+    };
+    // --reflected: every network's, the tall box's entry keeps only its hidden sizes.
+    const ObjectTrainingOptions off = parsed({"--reflected", "off"});
+    EXPECT_FALSE(off.inputs.reflected);
+    EXPECT_FALSE(off.choiceFor("tall-box").inputs.reflected);
+    EXPECT_EQ(off.choiceFor("tall-box").hidden, (std::vector<int>{32, 16}));
+    const ObjectTrainingOptions on = parsed({"--reflected", "on"});
+    EXPECT_TRUE(on.choiceFor("floor").inputs.reflected);
+    // --hidden: every network's; the floor's entry had nothing else and is gone.
+    const ObjectTrainingOptions hidden = parsed({"--hidden", "12,6"});
+    EXPECT_EQ(hidden.choiceFor("tall-box").hidden, (std::vector<int>{12, 6}));
+    EXPECT_EQ(hidden.choiceFor("floor").hidden, (std::vector<int>{12, 6}));
+    EXPECT_EQ(hidden.perObject.count("floor"), 0u);
+    EXPECT_TRUE(hidden.choiceFor("tall-box").inputs.reflected) << "the entry's other settings stay";
+    EXPECT_THROW(parsed({"--reflected", "maybe"}), CLI::ValidationError);
 }
 
 }  // namespace test_cli_flags

@@ -225,7 +225,7 @@ TEST(NetworkTextureEncodings, DescriptorAndTableLayout) {
     NetworkModel m = featureProbe(scene, enc, {0, 1, 2});
     for (Eigen::Index i = 0; i < m.encodingParams.size(); ++i) m.encodingParams[i] = double(i % 1000) * 0.25;
     const NetworkTexture tex = packNetworkTexture(scene, single(m));
-    EXPECT_EQ(tex.texels[0], 3.f);  // layout version
+    EXPECT_EQ(tex.texels[0], 4.f);  // layout version
     EXPECT_EQ(tex.maxLayerWidth, 18);  // 3 · 2 features + 12 pass-through inputs
     EXPECT_EQ(tex.tableTexels, size_t(3 * 4096 * 2 / 4));
     auto texel = [&](size_t t) { return &tex.texels[4 * t]; };
@@ -235,6 +235,7 @@ TEST(NetworkTextureEncodings, DescriptorAndTableLayout) {
     EXPECT_EQ(texel(n + 1)[0], 1.f);   // one component
     EXPECT_EQ(texel(n + 1)[1], 18.f);  // features
     EXPECT_EQ(texel(n + 1)[2], 12.f);  // pass-through inputs
+    EXPECT_EQ(texel(n + 1)[3], 0.f);   // no derived inputs
     const size_t c = n + 2 + 2 * 4 + 2 * 1;  // after the header texels and the scalers (15 inputs, 3 outputs)
     EXPECT_EQ(std::vector<float>(texel(c), texel(c) + 4), (std::vector<float>{2.f, 3.f, 0.f, 6.f}));
     EXPECT_EQ(std::vector<float>(texel(c + 1), texel(c + 1) + 4), (std::vector<float>{0.f, 1.f, 2.f, 0.f}));
@@ -252,6 +253,55 @@ TEST(NetworkTextureEncodings, DescriptorAndTableLayout) {
     EXPECT_GT(table, c + 8);
     for (Eigen::Index i = 0; i < m.encodingParams.size(); i += 997)
         EXPECT_EQ(tex.texels[4 * table + size_t(i)], float(m.encodingParams[i])) << i;
+}
+
+TEST(NetworkTextureEncodings, ReflectedInputIsFlaggedScaledAndMirrorsPredict) {
+    // The diffuse box (15 record inputs) and the glossy one (19: the reflected rows fill slots 19–21
+    // of the shader's 24), each with the reflected input raw, frequency-encoded and one-blob-encoded
+    // together with the view.
+    const Scene scenes[2] = {test::cornellBox(), loadScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-glossy/scene.json")};
+    const char* encodings[] = {"[]", R"([{"type": "frequency", "inputs": "reflected", "frequencies": 4}])",
+                               R"([{"type": "one_blob", "inputs": ["view", "reflected"], "bins": 8}])"};
+    uint64_t seed = 71;
+    for (const Scene& scene : scenes) {
+        const RecordLayout layout = RecordLayout::forScene(scene);
+        for (const char* e : encodings) {
+            const ModelSet set = test::mixedModelSet(scene, Activation::Tanh, {12, 6}, seed++, json::parse(e), DerivedInputs{true});
+            const NetworkTexture tex = packNetworkTexture(scene, set);
+            auto texel = [&](size_t t) { return &tex.texels[4 * t]; };
+            const size_t n = size_t(texel(size_t(tex.offsets[0][kSlotJoint]) + 1)[1]);  // object 0: a joint net
+            EXPECT_EQ(texel(n)[0], float(layout.inputCount() + 3)) << "scaled inputs: the record's and the reflected";
+            EXPECT_EQ(texel(n + 1)[3], 1.f) << "the reflected flag";
+            test::TestRandom rnd(seed);
+            size_t checked = 0;
+            for (const ObjectNetworks& on : set.objects) {
+                float brdf[8] = {};
+                layout.brdfParameters(scene.materials[size_t(scene.objects[size_t(on.objectId)].material)], brdf);
+                MatX<float> raw(layout.inputCount(), 60);
+                for (int c = 0; c < raw.cols(); ++c) {
+                    const Vec3 nn = rnd.unitVector();
+                    Vec3 v = rnd.unitVector();
+                    if (dot(v, nn) < 0.f) v = -v;
+                    const Vec3 f[4] = {Vec3(rnd.range(-1, 1), rnd.range(-1, 1), rnd.range(-1, 1)), v, scene.lightPosition(), nn};
+                    for (int k = 0; k < 12; ++k) raw(k, c) = f[k / 3][k % 3];
+                    for (int k = 12; k < layout.inputCount(); ++k) raw(k, c) = brdf[k - 12];
+                }
+                const test::CpuTerms ref = test::cpuTerms(on, raw);
+                const MatX<float>* r[3] = {&ref.direct, &ref.indirect, &ref.global};
+                for (int c = 0; c < raw.cols(); ++c) {
+                    const std::array<Vec3, 3> t = evaluateTerms(tex, on.objectId, &raw(0, c));
+                    for (int term = 0; term < 3; ++term)
+                        for (int ch = 0; ch < 3; ++ch) {
+                            ASSERT_TRUE(test::closeEnough(t[size_t(term)][ch], (*r[term])(ch, c)))
+                                << e << " object " << on.objectId << " term " << term << ": packed " << t[size_t(term)][ch]
+                                << " vs predict " << (*r[term])(ch, c);
+                            ++checked;
+                        }
+                }
+            }
+            EXPECT_GT(checked, 1000u);
+        }
+    }
 }
 
 TEST(NetworkTextureEncodings, TablesBeyondTheRowLimitAreRejected) {

@@ -9,6 +9,7 @@
 #include "core/nn/model.h"
 #include "core/nn/object_training.h"
 #include "core/nn/training_samples.h"
+#include "core/util/error.h"
 #include "tests/synthetic_samples.h"
 
 namespace test_nn_objects {
@@ -169,3 +170,36 @@ TEST(ObjectTraining, CancelledBeforeStartIsSkipped) {
 }
 
 }  // namespace test_nn_objects
+
+namespace {
+
+TEST(ObjectTraining, PerObjectEntriesChangeTheirObjectsNetworksOnly) {
+    const std::vector<rrf::ObjectSamples> objs = {rrf::syntheticObject(0, 200), rrf::syntheticObject(1, 200)};
+    rrf::ObjectTrainingOptions o;
+    o.hidden = {4};
+    o.targets = rrf::TargetMode::Indirect;
+    o.trainer = rrf::TrainerConfig().withType(rrf::TrainerType::Adam);
+    o.trainer.adam.maxEpochs = 3;
+    const std::vector<rrf::ObjectModel> plain = rrf::trainObjects(objs, o);
+    rrf::ObjectNetworkOverride entry;
+    entry.hidden = std::vector<int>{6, 3};
+    entry.inputs = rrf::DerivedInputs{true};
+    entry.encoding = nlohmann::json::parse(R"([{"type": "one_blob", "inputs": "reflected", "bins": 4}])");
+    o.perObject["object1"] = entry;
+    o.perObject["not-in-the-data"] = entry;  // names no trained object: changes nothing
+    const std::vector<rrf::ObjectModel> r = rrf::trainObjects(objs, o);
+    ASSERT_EQ(r.size(), 2u);
+    EXPECT_EQ(r[0].model.arch().hidden, std::vector<int>{4});
+    EXPECT_FALSE(r[0].model.encoding().derived.any());
+    EXPECT_EQ(r[0].model.leaves[0].params, plain[0].model.leaves[0].params) << "object 0 trains as without entries";
+    EXPECT_EQ(r[1].model.arch().hidden, (std::vector<int>{6, 3}));
+    EXPECT_TRUE(r[1].model.encoding().derived.reflected);
+    EXPECT_EQ(r[1].model.arch().inputs, 3 * 4 + 14);  // one-blob of the 3 reflected rows, then the 14 record inputs
+    EXPECT_EQ(r[1].model.rawInputs(), 14);
+    // An entry whose encoding names the reflected rows without deriving them is refused by name.
+    entry.inputs = rrf::DerivedInputs{false};
+    o.perObject["object1"] = entry;
+    EXPECT_THROW(rrf::trainObjects(objs, o), rrf::SettingError);
+}
+
+}  // namespace

@@ -226,6 +226,14 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     network.options.hidden = {8, 4, 2};
     network.options.activation = Activation::Relu;
     network.options.targets = TargetMode::Joint;
+    network.options.inputs.reflected = true;
+    network.options.encoding = json::parse(R"([{"type": "frequency", "inputs": "reflected", "frequencies": 2}])");
+    ObjectNetworkOverride tall;
+    tall.hidden = std::vector<int>{16, 8};
+    ObjectNetworkOverride floor;
+    floor.inputs = DerivedInputs{false};
+    floor.encoding = json::array();
+    network.options.perObject = {{"tall-box", tall}, {"floor", floor}};
     network.options.trainer = network.options.trainer.withType("adam");
     network.options.trainer.adam.learningRate = 3e-3;
     network.options.trainer.adam.loss = AdamLoss::RelativeL2;
@@ -258,6 +266,10 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     EXPECT_EQ(q.sampling->toJson(), sampling.toJson());
     ASSERT_TRUE(q.network.has_value());
     EXPECT_EQ(q.network->networkJson(), network.networkJson());
+    EXPECT_EQ(q.network->options.perObject, network.options.perObject);
+    EXPECT_EQ(q.network->options.choiceFor("floor").inputs, DerivedInputs{});
+    EXPECT_EQ(q.network->options.choiceFor("tall-box").hidden, (std::vector<int>{16, 8}));
+    EXPECT_TRUE(q.network->options.choiceFor("tall-box").inputs.reflected) << "the section's";
     ASSERT_TRUE(q.trainer.has_value());
     EXPECT_EQ(q.trainer->toJson(), network.trainerJson());
     EXPECT_EQ(q.networkOrDefault().trainerJson(), network.trainerJson());
@@ -392,6 +404,21 @@ TEST(Project, BadValueInEachSettingsSectionIsReportedAtLoad) {
         {{{"prediction", {{"direct", "magic"}}}}, "/prediction/direct: expected one of \"network\", \"exact\""},
         {{{"prediction", {{"direct_samples", 0}}}}, "/prediction/direct_samples: integer 0 out of range"},
         {{{"name", 3}}, "/name: expected string, got number"},
+        // Derived inputs and per-object networks (nn/derived_inputs.h, nn/object_network_overrides.h).
+        {{{"network", {{"inputs", {{"reflected", "yes"}}}}}}, "/network/inputs/reflected: expected true or false, got string"},
+        {{{"network", {{"encoding", {{{"type", "one_blob"}, {"inputs", "reflected"}}}}}}},
+         "/network/encoding/0/inputs: input group 'reflected' is not an input of this network"},
+        {{{"network", {{"objects", {{"mirror", {{"hidden", {8}}}}}}}}},
+         "/network/objects/mirror: no object named \"mirror\" in the scene (expected one of \"floor\", \"ceiling\""},
+        {{{"network", {{"objects", {{"tall-box", {{"hiden", {8}}}}}}}}}, "/network/objects/tall-box/hiden: unknown key 'hiden' (allowed here: hidden, inputs, encoding)"},
+        {{{"network", {{"objects", {{"tall-box", {{"hidden", {0}}}}}}}}},
+         "/network/objects/tall-box/hidden/0: integer 0 out of range [1, 4096]"},
+        {{{"network", {{"objects", {{"tall-box", {{"encoding", {{{"type", "one_blob"}, {"inputs", "reflected"}}}}}}}}}}},
+         "/network/objects/tall-box/encoding/0/inputs: input group 'reflected' is not an input of this network"},
+        {{{"network", {{"inputs", {{"reflected", true}}},
+                       {"encoding", {{{"type", "one_blob"}, {"inputs", "reflected"}}}},
+                       {"objects", {{"floor", {{"inputs", {{"reflected", false}}}}}}}}}},
+         "/network/objects/floor/inputs: the section's \"encoding\" reads an input this entry turns off"},
     };
     int i = 0;
     for (const auto& [sections, expected] : cases) {

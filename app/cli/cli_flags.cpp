@@ -81,7 +81,11 @@ void applyEstimatorFlag(const std::string& flag, Estimator& estimator) {
 
 void addNetworkFlags(CLI::App* cmd, SettingFlags<ObjectTrainingOptions>& flags) {
     flags.add<std::vector<int>>(cmd, "--hidden", "hidden layer sizes: a list of integers, e.g. 20,10",
-                                [](ObjectTrainingOptions& t, const std::vector<int>& h) { t.hidden = h; })
+                                [](ObjectTrainingOptions& t, const std::vector<int>& h) {
+                                    // Every network: per-object "hidden" entries give way (object_network_overrides.h).
+                                    t.hidden = h;
+                                    dropHiddenOverrides(t.perObject);
+                                })
         ->delimiter(',')
         ->allow_extra_args(false)
         ->check(CLI::Range(1, kMaxHiddenSize))
@@ -92,8 +96,19 @@ void addNetworkFlags(CLI::App* cmd, SettingFlags<ObjectTrainingOptions>& flags) 
     std::vector<std::string> encodings;
     for (const EncodingPreset& e : encodingPresets()) encodings.push_back(e.name);
     flags.add<std::string>(cmd, "--encoding", "input encoding of every network, by name (network.encoding; default: the project's)",
-                           [](ObjectTrainingOptions& t, const std::string& name) { t.encoding = encodingPresetSettings(name); })
+                           [](ObjectTrainingOptions& t, const std::string& name) {
+                               t.encoding = encodingPresetSettings(name);
+                               dropEncodingOverrides(t.perObject);
+                           })
         ->check(CLI::IsMember(encodings));
+    flags.add<std::string>(cmd, "--reflected",
+                           "the view direction reflected about the normal as an input of every network, on or off "
+                           "(network.inputs.reflected; default: the project's)",
+                           [](ObjectTrainingOptions& t, const std::string& v) {
+                               t.inputs.reflected = v == "on";
+                               dropInputsOverrides(t.perObject);
+                           })
+        ->check(CLI::IsMember({"on", "off"}));
     flags.add<std::string>(cmd, "--trainer", "trainer",
                            [](ObjectTrainingOptions& t, const std::string& type) { t.trainer = t.trainer.withType(type); })
         ->check(CLI::IsMember({"lm", "adam"}));
@@ -165,12 +180,13 @@ void addNoiseTargetFlags(CLI::App* cmd, double& noise, int& sppCap, const std::s
 }
 
 std::string describeExperiment(const SamplingSettings& s, const ObjectTrainingOptions& t) {
-    char buf[256];
+    char buf[384];
     const std::string encoding = encodingPresetName(t.encoding);
-    std::snprintf(buf, sizeof buf, "grid %dx%dx%d, %d directions, %d spp per record; network %s%s, encoding %s, targets %s, %s, %d epochs",
+    std::snprintf(buf, sizeof buf, "grid %dx%dx%d, %d directions, %d spp per record; network %s%s, encoding %s%s%s, targets %s, %s, %d epochs",
                   s.nx, s.ny, s.nz, s.directions, s.spp, nlohmann::json(t.hidden).dump().c_str(),
                   t.ensemble > 1 ? (" x" + std::to_string(t.ensemble)).c_str() : "",
-                  encoding.empty() ? "(the project's)" : encoding.c_str(), targetModeName(t.targets), t.trainer.typeName(),
+                  encoding.empty() ? "(the project's)" : encoding.c_str(), t.inputs.reflected ? " +reflected" : "",
+                  t.perObject.empty() ? "" : " (per-object entries)", targetModeName(t.targets), t.trainer.typeName(),
                   t.trainer.maxEpochs());
     return buf;
 }

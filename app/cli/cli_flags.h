@@ -119,7 +119,7 @@ void addPredictionOptions(CLI::App* cmd, PredictionArgs& a);
 /// The flags of the commands that generate data and train on it in one run (sweep, pipeline).
 struct ExperimentFlags {
     SettingFlags<SamplingSettings> sampling;     ///< --grid, --dirs, --data-spp
-    SettingFlags<ObjectTrainingOptions> network;  ///< --hidden, --ensemble, --encoding, --trainer, --epochs
+    SettingFlags<ObjectTrainingOptions> network;  ///< --hidden, --ensemble, --encoding, --reflected, --trainer, --epochs
 };
 
 void addExperimentFlags(CLI::App* cmd, ExperimentFlags& flags);

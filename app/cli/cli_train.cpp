@@ -78,12 +78,19 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     uint64_t dropped = 0;
     const std::vector<ObjectSamples> samples = samplesFromDataset(data, &dropped);
     if (dropped) std::printf("warning: %llu records with NaN/Inf dropped from %s\n", (unsigned long long)dropped, a.data.c_str());
-    const std::string encoding = networkEncoding(o.encoding, data.inputCount()).describe();
-    if (ranks.isRoot())
+    const std::string encoding = networkEncoding(o.encoding, data.inputCount(), o.inputs).describe();
+    if (ranks.isRoot()) {
         std::printf("rrf train: %s on %s (%llu records), hidden %s, %s%s, encoding %s, targets %s, trainer %s\n", a.input.c_str(),
                 a.data.c_str(), (unsigned long long)data.totalRecords(), nlohmann::json(o.hidden).dump().c_str(),
                 activationName(o.activation), o.ensemble > 1 ? (", ensemble of " + std::to_string(o.ensemble)).c_str() : "",
                 encoding.c_str(), targetModeName(o.targets), o.trainer.typeName());
+        // Objects whose "network"/"objects" entry changes their networks say so (nn/object_network_overrides.h).
+        for (const auto& entry : o.perObject) {
+            const ObjectNetworkChoice c = o.choiceFor(entry.first);
+            std::printf("  object %s: hidden %s, encoding %s\n", entry.first.c_str(), nlohmann::json(c.hidden).dump().c_str(),
+                        networkEncoding(c.encoding, data.inputCount(), c.inputs).describe().c_str());
+        }
+    }
     std::fflush(stdout);
 
     std::mutex printMutex;

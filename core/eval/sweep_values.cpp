@@ -91,6 +91,7 @@ std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
             p.sampling.directions = positiveValue(v, v, kMaxDirections, "one positive integer (directions per viewpoint)");
         } else if (o.what == "hidden") {
             p.training.hidden = parseHiddenSizes(v, kValuesSetting);
+            dropHiddenOverrides(p.training.perObject);  // a sweep value is every network's
         } else if (o.what == "goal") {
             // One figure for both: the trainer stops at it and the kd-tree splits nodes above it.
             const double goal = positiveNumber(v, 10.0, "an error goal in (0, 10] (validation relative RMSE, e.g. 0.05)");
@@ -103,6 +104,7 @@ std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
                 p.training.partition.maxDepth = PartitionSettings{}.maxDepth;
         } else if (o.what == "encoding") {
             p.training.encoding = encodingPresetSettings(v, kValuesSetting);
+            dropEncodingOverrides(p.training.perObject);
             refuseUntrainable(v, p.training);
         } else if (o.what == "ensemble") {
             p.training.ensemble = positiveValue(v, v, kMaxEnsembleMembers, "networks averaged per leaf, 1.." +

@@ -92,7 +92,7 @@ TrainResult trainAdam(const MlpArch& arch, const InputEncoding& encoding, const 
     const Eigen::Index P = arch.numParams();
     if (params.size() != P) throw std::invalid_argument("adam: parameter vector has the wrong size");
     EncodedNetwork net{arch, encoding, {}};
-    const Eigen::Index inputs = net.encoded() ? encoding.inputs : arch.inputs;
+    const Eigen::Index inputs = net.encoded() ? encoding.scaledInputs() : arch.inputs;
     const Eigen::Index E = net.encoded() ? Eigen::Index(encoding.numParams()) : 0;
     if (net.encoded() && encoding.outputs() != arch.inputs)
         throw std::invalid_argument("adam: the encoding writes " + std::to_string(encoding.outputs()) +

@@ -57,7 +57,14 @@ const S* offsetParams(const S* params, const EncodingComponent& c) {
 
 }  // namespace
 
-std::vector<int> encodingGroupInputs(const std::string& group, int inputs) {
+std::vector<int> encodingGroupInputs(const std::string& group, int inputs, const DerivedInputs& derived) {
+    if (group == "reflected") {
+        // Derived rows follow the record inputs (nn/derived_inputs.h).
+        if (!derived.reflected)
+            throw std::invalid_argument("input group 'reflected' is not an input of this network (it needs "
+                                        "\"network\": {\"inputs\": {\"reflected\": true}})");
+        return {inputs, inputs + 1, inputs + 2};
+    }
     for (const InputGroup& g : kGroups) {
         if (group != g.name) continue;
         const int size = g.size >= 0 ? g.size : inputs - kGeometryInputs;
@@ -69,7 +76,7 @@ std::vector<int> encodingGroupInputs(const std::string& group, int inputs) {
         return idx;
     }
     throw std::invalid_argument("unknown input group '" + group +
-                                "' (expected \"position\", \"view\", \"light\", \"normal\" or \"brdf\")");
+                                "' (expected \"position\", \"view\", \"light\", \"normal\", \"brdf\" or \"reflected\")");
 }
 
 int InputEncoding::outputs() const {
@@ -85,11 +92,12 @@ int64_t InputEncoding::numParams() const {
 }
 
 std::vector<int> InputEncoding::passThrough() const {
-    std::vector<bool> read(size_t(inputs), false);
+    const int rows = scaledInputs();
+    std::vector<bool> read(size_t(rows), false);
     for (const EncodingComponent& c : components)
         for (int i : c.inputs) read[size_t(i)] = true;
     std::vector<int> rest;
-    for (int i = 0; i < inputs; ++i)
+    for (int i = 0; i < rows; ++i)
         if (!read[size_t(i)]) rest.push_back(i);
     return rest;
 }
@@ -141,7 +149,7 @@ void InputEncoding::backwardParams(const S* params, const EncodingIn<S>& x, cons
 template <typename S>
 void InputEncoding::backwardInputs(const S* params, const EncodingIn<S>& x, const EncodingIn<S>& dFeatures,
                                    MatX<S>& dX) const {
-    dX.setZero(inputs, x.cols());
+    dX.setZero(scaledInputs(), x.cols());
     Eigen::Index row = 0;
     MatX<S> scratch, dXc;
     for (const EncodingComponent& c : components) {
@@ -170,11 +178,12 @@ template void InputEncoding::backwardInputs<float>(const float*, const Eigen::Re
 template void InputEncoding::backwardInputs<double>(const double*, const Eigen::Ref<const MatX<double>>&,
                                                     const Eigen::Ref<const MatX<double>>&, MatX<double>&) const;
 
-InputEncoding InputEncoding::fromJson(const JsonReader& r, int inputs) {
+InputEncoding InputEncoding::fromJson(const JsonReader& r, int inputs, const DerivedInputs& derived) {
     InputEncoding e;
     e.inputs = inputs;
+    e.derived = derived;
     const size_t count = r.requireArray();
-    std::vector<int> encodedBy(size_t(inputs), -1);  // component reading each input, −1: none yet
+    std::vector<int> encodedBy(size_t(e.scaledInputs()), -1);  // component reading each input, −1: none yet
     int64_t offset = 0;
     for (size_t k = 0; k < count; ++k) {
         const JsonReader cr = r.at(k);
@@ -199,7 +208,7 @@ InputEncoding InputEncoding::fromJson(const JsonReader& r, int inputs) {
             const std::string group = gr.string();
             std::vector<int> idx;
             try {
-                idx = encodingGroupInputs(group, inputs);
+                idx = encodingGroupInputs(group, inputs, derived);
             } catch (const std::invalid_argument& err) {
                 gr.fail(err.what());
             }
@@ -245,7 +254,6 @@ nlohmann::json InputEncoding::toJson() const {
 }
 
 std::string InputEncoding::describe() const {
-    if (isIdentity()) return "identity";
     std::string s;
     for (const EncodingComponent& c : components) {
         if (!s.empty()) s += " + ";
@@ -253,6 +261,8 @@ std::string InputEncoding::describe() const {
         for (size_t g = 0; g < c.groups.size(); ++g) s += (g ? "," : "") + c.groups[g];
         s += ")";
     }
+    if (s.empty()) s = "identity";
+    if (derived.any()) s += " +" + derived.describe();
     return s;
 }
 

@@ -2,7 +2,8 @@
 /// Input encodings of a radiance regression network (issue 16; docs/design.md §10a): a fixed or
 /// trainable map from the network's normalised inputs to the features its first layer reads.
 ///
-///     raw record inputs x (12 + n)  --MinMaxScaler-->  x' in [-1, 1]  --InputEncoding-->  features (F)  --MLP-->
+///     raw record inputs x (12 + n)  [+ derived inputs, nn/derived_inputs.h]  --MinMaxScaler-->  x' in [-1, 1]
+///        --InputEncoding-->  features (F)  --MLP-->
 ///
 /// Ren et al. 2013 feed x' itself (the identity encoding, F = 12 + n); later work gets far more
 /// accuracy per weight from encodings (NeRF's frequencies, NRC's one-blob, instant-NGP's hash grid).
@@ -18,12 +19,15 @@
 ///       {"type": "one_blob",  "inputs": "light", "bins": 16}
 ///     ]
 ///
-/// "inputs" names record input groups (RecordLayout): "position" (x' 0–2), "view" (3–5), "light"
-/// (6–8), "normal" (9–11), "brdf" (12 … 12+n−1); a group may be encoded by one component only.
+/// "inputs" names input groups: the record's (RecordLayout) "position" (x' 0–2), "view" (3–5), "light"
+/// (6–8), "normal" (9–11), "brdf" (12 … 12+n−1), and the derived "reflected" (12+n … 12+n+2:
+/// reflect(view, normal), nn/derived_inputs.h), which exists only in a network that derives it
+/// ("network": {"inputs": {"reflected": true}}); a group may be encoded by one component only.
 ///
 /// Feature order (the MLP's input rows; CPU, GLSL and the model file agree on it):
 ///   the components' outputs in list order, each in its own order (documented per encoding), then
-///   every input no component reads, unchanged, in ascending input index.
+///   every input no component reads, unchanged, in ascending input index (derived rows included:
+///   a network with the reflected input and no component on it reads r' as three plain features).
 ///
 /// Trainable parameters (the hash grid's tables) live in one flat float/double vector per network,
 /// component after component (`paramOffset`), beside the MLP's weights; fixed encodings have none.
@@ -35,6 +39,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/nn/derived_inputs.h"
 #include "core/nn/mlp.h"
 #include "core/util/json_reader.h"
 
@@ -87,7 +92,7 @@ public:
 
 /// One configured component: the encoding and the normalised input indices it reads, in order.
 struct EncodingComponent {
-    std::vector<std::string> groups;        ///< as written: "position", "view", "light", "normal", "brdf"
+    std::vector<std::string> groups;        ///< as written: "position", "view", "light", "normal", "brdf", "reflected"
     std::vector<int> inputs;                ///< input indices of those groups, in group order
     std::shared_ptr<const Encoding> encoding;
     int64_t paramOffset = 0;                ///< start of its parameters in the network's encoding vector
@@ -106,12 +111,17 @@ using EncodingIn = Eigen::Ref<const MatX<typename EncodingNoDeduce<S>::type>>;
 /// MLP's initial weights (streams stream·128 + layer, mlp.cpp) for any realistic network stream.
 constexpr uint64_t kEncodingStreamTag = 0x454E434F44450000ULL;
 
-/// The encoding of one network: its components, then pass-through of every other input.
+/// The encoding of one network: its components, then pass-through of every other input. The rows it
+/// reads are the record's inputs followed by the derived ones (nn/derived_inputs.h), normalised.
 struct InputEncoding {
-    int inputs = 0;                            ///< normalised inputs it reads (12 + n)
-    std::vector<EncodingComponent> components; ///< empty: identity (Ren et al.'s raw inputs)
+    int inputs = 0;                            ///< record inputs the network is fed (12 + n)
+    DerivedInputs derived;                     ///< inputs derived from them, rows inputs … scaledInputs()−1
+    std::vector<EncodingComponent> components; ///< empty: identity (Ren et al.'s raw inputs, plus any derived)
 
+    /// No component: the features are x' itself (derived rows included).
     bool isIdentity() const { return components.empty(); }
+    /// Rows of x' the encoding reads: the record inputs and the derived inputs (the input scaler's size).
+    int scaledInputs() const { return inputs + derived.count(); }
     /// Features written (the MLP's input count).
     int outputs() const;
     /// Trainable parameters over all components.
@@ -123,7 +133,7 @@ struct InputEncoding {
     /// weights, which use streams stream·128 + layer of the same seed).
     VecX<double> initialParams(uint64_t seed, uint64_t stream) const;
 
-    /// features (outputs() × N) for normalised inputs x (inputs × N). `params` holds numParams()
+    /// features (outputs() × N) for normalised inputs x (scaledInputs() × N). `params` holds numParams()
     /// entries (may be null when there are none); S is deduced from it, so pass e.g. a
     /// `static_cast<const float*>(nullptr)` for a parameter-free encoding.
     template <typename S>
@@ -133,26 +143,32 @@ struct InputEncoding {
     template <typename S>
     void backwardParams(const S* params, const EncodingIn<S>& x, const EncodingIn<S>& dFeatures, S* grad,
                         std::vector<int64_t>* touched) const;
-    /// dX (inputs × N) = ∂loss/∂x given ∂loss/∂features.
+    /// dX (scaledInputs() × N) = ∂loss/∂x given ∂loss/∂features.
     template <typename S>
     void backwardInputs(const S* params, const EncodingIn<S>& x, const EncodingIn<S>& dFeatures, MatX<S>& dX) const;
 
-    /// Reads an "encoding" array for a network of `inputs` normalised inputs (12 + brdfCount);
-    /// InputError names the reader's file and the JSON pointer of an unknown type or key, a
-    /// wrong value, an unknown or repeated input group. An empty array is the identity.
-    static InputEncoding fromJson(const JsonReader& r, int inputs);
+    /// Reads an "encoding" array for a network of `inputs` record inputs (12 + brdfCount) and the
+    /// `derived` inputs; InputError names the reader's file and the JSON pointer of an unknown type
+    /// or key, a wrong value, an unknown or repeated input group, or "reflected" in a network that
+    /// does not derive it. An empty array is the identity.
+    static InputEncoding fromJson(const JsonReader& r, int inputs, const DerivedInputs& derived = {});
     /// The array, every key of every component written (what a model file stores).
     nlohmann::json toJson() const;
-    /// "identity" or e.g. "hash_grid(position) + frequency(view,normal)", for tables and logs.
+    /// "identity" or e.g. "hash_grid(position) + frequency(view,normal)", for tables and logs; a
+    /// network with derived inputs adds them: "identity +reflected", "one_blob(reflected) +reflected".
     std::string describe() const;
 
-    /// Same components with the same settings (the parameters are not part of an encoding).
-    bool operator==(const InputEncoding& o) const { return toJson() == o.toJson() && inputs == o.inputs; }
+    /// Same components with the same settings and the same derived inputs (the parameters are not
+    /// part of an encoding).
+    bool operator==(const InputEncoding& o) const {
+        return toJson() == o.toJson() && inputs == o.inputs && derived == o.derived;
+    }
     bool operator!=(const InputEncoding& o) const { return !(*this == o); }
 };
 
-/// Input indices of a record input group ("position" → {0,1,2}, "brdf" → {12 … inputs−1}); throws
-/// std::invalid_argument for an unknown name.
-std::vector<int> encodingGroupInputs(const std::string& group, int inputs);
+/// Input indices of an input group for `inputs` record inputs and the `derived` ones ("position" →
+/// {0,1,2}, "brdf" → {12 … inputs−1}, "reflected" → {inputs, inputs+1, inputs+2}); throws
+/// std::invalid_argument for an unknown name or a derived group the network does not derive.
+std::vector<int> encodingGroupInputs(const std::string& group, int inputs, const DerivedInputs& derived = {});
 
 }  // namespace rrf

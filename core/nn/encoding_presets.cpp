@@ -68,14 +68,15 @@ std::string encodingPresetName(const nlohmann::json& encoding) {
     return "";
 }
 
-InputEncoding networkEncoding(const nlohmann::json& encoding, int inputs) {
+InputEncoding networkEncoding(const nlohmann::json& encoding, int inputs, const DerivedInputs& derived) {
     if (encoding.is_null() || (encoding.is_array() && encoding.empty())) {
         InputEncoding identity;
         identity.inputs = inputs;
+        identity.derived = derived;
         return identity;
     }
     try {
-        return InputEncoding::fromJson(JsonReader(encoding, "settings", "/network/encoding"), inputs);
+        return InputEncoding::fromJson(JsonReader(encoding, "settings", "/network/encoding"), inputs, derived);
     } catch (const InputError& e) {
         throw SettingError(kEncodingSetting, e.where() + ": " + e.detail() + " (records of " + std::to_string(inputs) +
                                                  " inputs)");
@@ -85,12 +86,12 @@ InputEncoding networkEncoding(const nlohmann::json& encoding, int inputs) {
 }
 
 bool encodingHasParameters(const nlohmann::json& encoding) {
-    return networkEncoding(encoding, kEncodingCheckInputs).numParams() > 0;
+    return networkEncoding(encoding, kEncodingCheckInputs, kEncodingCheckDerived).numParams() > 0;
 }
 
 void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& trainer) {
     if (trainer.type == TrainerType::Adam || !encodingHasParameters(encoding)) return;
-    throw SettingError(kEncodingSetting, "the encoding " + networkEncoding(encoding, kEncodingCheckInputs).describe() +
+    throw SettingError(kEncodingSetting, "the encoding " + networkEncoding(encoding, kEncodingCheckInputs, kEncodingCheckDerived).describe() +
                                              " has trainable parameters, which only the adam trainer trains (trainer.type is " +
                                              trainer.typeName() + "; Levenberg-Marquardt's J^T J over the table entries "
                                              "does not fit in memory)");
@@ -99,10 +100,10 @@ void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& t
 void checkEnsembleEncoding(const nlohmann::json& encoding, int ensemble) {
     if (ensemble <= 1 || !encodingHasParameters(encoding)) return;
     throw SettingError("network.ensemble",
-                       ensembleEncodingRefusal(networkEncoding(encoding, kEncodingCheckInputs).describe(), ensemble));
+                       ensembleEncodingRefusal(networkEncoding(encoding, kEncodingCheckInputs, kEncodingCheckDerived).describe(), ensemble));
 }
 
-EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inputs) {
+EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inputs, const DerivedInputs& derived) {
     EncodingSettingView v;
     v.presetName = encodingPresetName(encoding);
     try {
@@ -110,12 +111,13 @@ EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inpu
     } catch (const InputError&) {
     }
     try {
-        v.encoding = networkEncoding(encoding, inputs);
+        v.encoding = networkEncoding(encoding, inputs, derived);
     } catch (const InputError& e) {
         v.fits = false;
         v.error = e.what();
         v.encoding = InputEncoding();
         v.encoding.inputs = inputs;
+        v.encoding.derived = derived;
     }
     return v;
 }

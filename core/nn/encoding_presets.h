@@ -48,11 +48,15 @@ std::string encodingPresetName(const nlohmann::json& encoding);
 /// The record inputs a settings check assumes (12 geometric inputs and the 3 diffuse BRDF
 /// parameters every scene has): "encoding" arrays are checked against it when read.
 constexpr int kEncodingCheckInputs = 15;
+/// The derived inputs a check that knows no network assumes (all of them: whether a network derives
+/// the group an array names is checked where its settings are known, NetworkSettings::fromJson).
+constexpr DerivedInputs kEncodingCheckDerived{true};
 
-/// The encoding of a network whose records have `inputs` raw inputs, from an "encoding" array;
-/// the identity (with `inputs`) for an empty one. A wrong array is a SettingError naming
-/// "network.encoding" and what is wrong (e.g. a group this network's records lack).
-InputEncoding networkEncoding(const nlohmann::json& encoding, int inputs);
+/// The encoding of a network whose records have `inputs` raw inputs and which derives `derived`
+/// (nn/derived_inputs.h), from an "encoding" array; the identity (with `inputs` and `derived`) for an
+/// empty one. A wrong array is a SettingError naming "network.encoding" and what is wrong (e.g. a
+/// group this network's records lack, or "reflected" in a network that does not derive it).
+InputEncoding networkEncoding(const nlohmann::json& encoding, int inputs, const DerivedInputs& derived = {});
 /// Throws SettingError naming "network.encoding" when the array has trainable parameters (a hash
 /// grid) and `trainer` is not Adam: Levenberg–Marquardt's JᵀJ over the table entries is out of reach.
 void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& trainer);
@@ -62,7 +66,8 @@ void checkEnsembleEncoding(const nlohmann::json& encoding, int ensemble);
 /// True when the array's encoding has trainable parameters (for the panel's warning).
 bool encodingHasParameters(const nlohmann::json& encoding);
 
-/// What a front end shows of an "encoding" setting for records of `inputs` raw inputs, derived from
+/// What a front end shows of an "encoding" setting for records of `inputs` raw inputs (and the
+/// network's `derived` inputs), derived from
 /// the array in one place so that views (the Network panel) never read the JSON themselves.
 struct EncodingSettingView {
     std::string presetName;      ///< the named encoding the array is, or "" (a project's own array)
@@ -71,7 +76,7 @@ struct EncodingSettingView {
     InputEncoding encoding;      ///< the network's encoding when it fits (else the identity)
     bool hasParameters = false;  ///< trainable tables (encodingHasParameters; false if the array is invalid)
 };
-EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inputs);
+EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inputs, const DerivedInputs& derived = {});
 
 /// Sets `encoding` to the named encoding `name`; false when the name is unknown or it already is.
 bool setNamedEncoding(nlohmann::json& encoding, const std::string& name);

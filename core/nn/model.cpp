@@ -43,9 +43,11 @@ static MatX<S> predictImpl(const NetworkModel& m, const Eigen::Ref<const MatX<S>
     const bool encoded = !m.encoding.isIdentity();
     MatX<S> out(m.arch.outputs, raw.cols()), x, features;
     std::vector<MatX<S>> acts;
+    const DerivedInputs& derived = m.encoding.derived;
     for (Eigen::Index c = 0; c < raw.cols(); c += kPredictChunk) {
         const Eigen::Index nc = std::min(kPredictChunk, raw.cols() - c);
-        x = raw.middleCols(c, nc);
+        if (derived.any()) derived.append<S>(raw.middleCols(c, nc), x);  // from the raw unit vectors
+        else x = raw.middleCols(c, nc);
         m.inputScaler.apply(x);
         if (encoded) m.encoding.forward<S>(e.data(), x, features);
         mlpForward<S>(m.arch, w.data(), encoded ? features : x, acts);
@@ -85,7 +87,13 @@ void NetworkModel::validate() const {
             if (!std::isfinite(encodingParams[i]))
                 throw std::invalid_argument("non-finite encoding parameter at index " + std::to_string(i));
     }
-    const int in = rawInputs();
+    if (encoding.isIdentity() && encoding.derived.any() && encoding.inputs > 0 && encoding.scaledInputs() != arch.inputs)
+        throw std::invalid_argument("the network reads " + std::to_string(arch.inputs) + " inputs, its " +
+                                    std::to_string(encoding.inputs) + " record inputs and " +
+                                    std::to_string(encoding.derived.count()) + " derived inputs are " +
+                                    std::to_string(encoding.scaledInputs()));
+    if (rawInputs() < 1) throw std::invalid_argument("the network reads no record inputs");
+    const int in = scaledInputs();
     if (inputScaler.offset.size() != in || inputScaler.scale.size() != in ||
         outputScaler.offset.size() != arch.outputs || outputScaler.scale.size() != arch.outputs)
         throw std::invalid_argument("model normalisation sizes do not match the architecture");
@@ -110,7 +118,7 @@ PartitionedNetwork::PartitionedNetwork(NetworkModel single)
 int64_t modelPayloadBytes(const NetworkModel& model) {
     const int64_t encoding = model.encoding.isIdentity() ? 0 : model.encoding.numParams();
     return int64_t(sizeof(double)) *
-           (int64_t(model.arch.numParams()) + 2 * int64_t(model.rawInputs()) + 2 * int64_t(model.arch.outputs) + encoding);
+           (int64_t(model.arch.numParams()) + 2 * int64_t(model.scaledInputs()) + 2 * int64_t(model.arch.outputs) + encoding);
 }
 
 int64_t PartitionedNetwork::numParams() const {
@@ -248,9 +256,10 @@ NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, cons
                                                    "(trainer.type is " + cfg.typeName() + ")");
     if (encoded && encoding.numParams() > 0 && members > 1)
         throw SettingError("network.ensemble", ensembleEncodingRefusal(encoding.describe(), members));
-    if ((!encoded && inputs.rows() != arch.inputs) || targets.rows() != arch.outputs)
-        throw std::invalid_argument("fitNetwork: data has " + std::to_string(inputs.rows()) + " inputs and " +
-                                    std::to_string(targets.rows()) + " targets, the network " + arch.describe());
+    if ((!encoded && inputs.rows() + encoding.derived.count() != arch.inputs) || targets.rows() != arch.outputs)
+        throw std::invalid_argument("fitNetwork: data has " + std::to_string(inputs.rows()) + " inputs" +
+                                    (encoding.derived.any() ? " (+" + encoding.derived.describe() + ")" : std::string()) +
+                                    " and " + std::to_string(targets.rows()) + " targets, the network " + arch.describe());
     if (inputs.cols() != targets.cols()) throw std::invalid_argument("fitNetwork: input and target counts differ");
     if (inputs.cols() == 0) throw std::invalid_argument("fitNetwork: no samples");
     if (!inputs.allFinite() || !targets.allFinite())
@@ -269,16 +278,21 @@ NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, cons
     const MatX<float> debiased = debias ? debiasedRelativeL2Targets(targets, targetVariance) : MatX<float>();
     const Eigen::Ref<const MatX<float>> fitTargets = debias ? Eigen::Ref<const MatX<float>>(debiased) : targets;
 
-    model.inputScaler = MinMaxScaler::fit(inputs);
+    // Derived inputs come from the raw records (their unit view and normal), before the scaler that
+    // then normalises them like any other input (nn/derived_inputs.h).
+    MatX<float> withDerived;
+    if (encoding.derived.any()) encoding.derived.append<float>(inputs, withDerived);
+    const Eigen::Ref<const MatX<float>> xs = encoding.derived.any() ? Eigen::Ref<const MatX<float>>(withDerived) : inputs;
+    model.inputScaler = MinMaxScaler::fit(xs);
     model.outputScaler = MinMaxScaler::fit(fitTargets);
 
     const DataSplit split = splitSamples(size_t(inputs.cols()), cfg.seed(), stream);
     TrainingData d;
-    d.xTrain = gather(inputs, split.train);
+    d.xTrain = gather(xs, split.train);
     d.yTrain = gather(fitTargets, split.train);
-    d.xValidation = gather(inputs, split.validation);
+    d.xValidation = gather(xs, split.validation);
     d.yValidation = gather(fitTargets, split.validation);
-    d.xTest = gather(inputs, split.test);
+    d.xTest = gather(xs, split.test);
     d.yTest = gather(fitTargets, split.test);
     for (MatX<float>* x : {&d.xTrain, &d.xValidation, &d.xTest}) model.inputScaler.apply(*x);
     for (MatX<float>* y : {&d.yTrain, &d.yValidation, &d.yTest}) model.outputScaler.apply(*y);
@@ -287,7 +301,7 @@ NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, cons
     model.params = initialParams(arch, cfg.seed(), stream);
     if (encoded && encoding.numParams() > 0) {
         model.encodingParams = encoding.initialParams(cfg.seed(), stream);
-        model.training = trainAdam(arch, encoding, cfg.adam, d, model.outputScaler, model.params, model.encodingParams, observer);
+        model.training = trainAdam(arch, model.encoding, cfg.adam, d, model.outputScaler, model.params, model.encodingParams, observer);
         model.training.memberEpochs = model.training.epochs;
     } else {
         // A fixed encoding is a function of the inputs alone: encode once, train the MLP on the features.

@@ -3,25 +3,28 @@
 /// encoding and its parameters, the trainer settings and the training record, plus fitting from raw
 /// data and the model file format.
 ///
-///     raw inputs (rawInputs()) --inputScaler--> x' in [-1, 1] --encoding--> features (arch.inputs) --MLP-->
+///     raw inputs (rawInputs()) --encoding.derived--> + derived inputs (scaledInputs(); nn/derived_inputs.h)
+///        --inputScaler--> x' in [-1, 1] --encoding--> features (arch.inputs) --MLP-->
 ///
 /// Model file (".rrfm"), little-endian:
 ///
 ///     offset 0   8 bytes   magic "RRFMODEL"
-///     offset 8   u32       format version (3)
+///     offset 8   u32       format version (4)
 ///     offset 12  u32       header length H in bytes
 ///     offset 16  u64       checksum64 (core/data/dataset_file.h) of the H header bytes
 ///     offset 24  H bytes   JSON header (UTF-8): architecture, object, target, trainer settings,
 ///                          input encoding ("input_encoding": {"inputs": raw input count,
-///                          "components": InputEncoding::toJson()}), training record (history, stop
+///                          "derived": DerivedInputs::toJson(), "components": InputEncoding::toJson()}),
+///                          training record (history, stop
 ///                          reason, errors), payload description with the payload's byte count and
 ///                          FNV-1a 64 checksum
 ///     offset 24+H          payload: IEEE-754 float64 values, in this order:
 ///                          params[P], input_offset[in], input_scale[in], output_offset[out], output_scale[out],
 ///                          encoding_params[E]
-///                          (P: the MLP's weights and biases; in: raw inputs; E: encoding.numParams())
+///                          (P: the MLP's weights and biases; in: raw inputs plus derived inputs, the
+///                          scaler's size; E: encoding.numParams())
 ///
-/// Version 2 files (no "input_encoding", no encoding_params) load as the identity encoding; version 1
+/// Version 3 files (no "derived") load without derived inputs, exactly as before. Version 2 files (no "input_encoding", no encoding_params) load as the identity encoding; version 1
 /// files (no header checksum either: the header starts at offset 16) too, their header's integrity
 /// unchecked (a model set of version 3 checksums its files as a whole).
 ///
@@ -47,10 +50,11 @@ struct ModelErrors {
 
 struct NetworkModel {
     MlpArch arch;                  ///< arch.inputs = the encoding's features (the raw inputs for the identity)
-    MinMaxScaler inputScaler, outputScaler;  ///< inputScaler: rawInputs() features
+    MinMaxScaler inputScaler, outputScaler;  ///< inputScaler: scaledInputs() features (raw, then derived)
     VecX<double> params;           ///< flat weights, layout in nn/mlp.h
-    /// Map from the normalised raw inputs to the MLP's inputs; no components = the identity
-    /// (Ren et al.'s raw inputs). A model built in code may leave an identity's `inputs` at 0.
+    /// Map from the normalised raw and derived inputs to the MLP's inputs; no components = the
+    /// identity (Ren et al.'s raw inputs, plus the derived ones). A model built in code may leave an
+    /// identity's `inputs` at 0 when it derives nothing.
     InputEncoding encoding;
     VecX<double> encodingParams;   ///< encoding.numParams() trainable values (hash-grid tables); empty for fixed encodings
     int objectId = -1;             ///< -1 when not tied to a scene object
@@ -67,8 +71,11 @@ struct NetworkModel {
     MatX<double> predictDouble(const Eigen::Ref<const MatX<double>>& rawInputs) const;
     /// Throws std::invalid_argument unless sizes agree and every number is finite.
     void validate() const;
-    /// Raw record inputs the model reads (12 + n): the encoding's inputs, or arch.inputs for the identity.
-    int rawInputs() const { return encoding.isIdentity() ? arch.inputs : encoding.inputs; }
+    /// Raw record inputs the model reads (12 + n): the encoding's inputs, or what the identity's
+    /// first layer reads less the derived inputs.
+    int rawInputs() const { return encoding.isIdentity() ? arch.inputs - encoding.derived.count() : encoding.inputs; }
+    /// Rows the input scaler normalises: the raw inputs, then the derived ones.
+    int scaledInputs() const { return rawInputs() + encoding.derived.count(); }
     /// Trainable numbers: the MLP's weights and biases plus the encoding's parameters.
     int64_t numParams() const { return int64_t(arch.numParams()) + int64_t(encodingParams.size()); }
 };
@@ -140,7 +147,8 @@ NetworkModel fitNetwork(const MlpArch& arch, const TrainerConfig& cfg, const Eig
                         const Eigen::Ref<const MatX<float>>& targets, const MatX<float>& targetVariance,
                         const TrainObserver& observer = {}, uint64_t stream = 0);
 /// The same behind an input encoding: `inputs` has encoding.inputs rows (the raw record inputs) and
-/// arch.inputs must be encoding.outputs() (the identity: inputs.rows()). The encoding's initial
+/// arch.inputs must be encoding.outputs() (the identity: inputs.rows() plus the derived inputs). The
+/// derived inputs (encoding.derived) are computed from the raw records before the scaler is fitted. The encoding's initial
 /// parameters are encoding.initialParams(seed, stream). A fixed encoding (no parameters) encodes the
 /// normalised data once and trains the MLP on the features with either trainer; a trainable one
 /// (hash grid) trains jointly with Adam (trainAdam) and is a SettingError naming "network.encoding"

@@ -21,8 +21,10 @@ using nlohmann::json;
 
 constexpr char kMagic[8] = {'R', 'R', 'F', 'M', 'O', 'D', 'E', 'L'};
 /// Version 2 adds the header's checksum to the preamble, version 3 the input encoding and its
-/// parameters; version 1 and 2 files still load (as the identity encoding).
-constexpr uint32_t kVersion = 3;
+/// parameters, version 4 the derived inputs (nn/derived_inputs.h: "input_encoding"/"derived", and
+/// the input scaler then covers them); version 1 and 2 files still load (as the identity encoding),
+/// version 3 files as networks without derived inputs.
+constexpr uint32_t kVersion = 4;
 constexpr size_t kPreambleV1 = 16;  // magic + version + header length
 constexpr size_t kPreamble = 24;    // ... + checksum64 of the header
 constexpr uint32_t kMaxHeader = 64u << 20;
@@ -73,6 +75,7 @@ json modelHeader(const NetworkModel& m) {
           {"activation", activationName(m.arch.activation)}, {"parameters", m.arch.numParams()}}},
         {"input_encoding",
          {{"inputs", m.rawInputs()},
+          {"derived", m.encoding.derived.toJson()},
           {"components", m.encoding.isIdentity() ? json::array() : m.encoding.toJson()},
           {"parameters", m.encodingParams.size()}}},
         {"trainer", m.trainer.toJson()},
@@ -194,9 +197,13 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
     if (version >= 3) {
         const JsonReader e = header.at("input_encoding");
         const int inputs = int(e.at("inputs").integer(1, kMaxEncodingInputs));
-        m.encoding = InputEncoding::fromJson(e.at("components"), inputs);
-        if (m.encoding.isIdentity()) m.encoding.inputs = inputs;
-        const int features = m.encoding.isIdentity() ? inputs : m.encoding.outputs();
+        // Version 3 files derive nothing; version 4 files always say what they derive.
+        const DerivedInputs derived = version >= 4 ? DerivedInputs::fromJson(e.at("derived")) : DerivedInputs();
+        if (derived.any() && inputs < kNormalInput + 3)
+            fail("header/input_encoding/derived", "derived inputs need the 12 geometric record inputs, the network reads " +
+                                                      std::to_string(inputs));
+        m.encoding = InputEncoding::fromJson(e.at("components"), inputs, derived);
+        const int features = m.encoding.outputs();  // the identity: the raw and derived inputs
         if (features != m.arch.inputs)
             fail("header/input_encoding", "the encoding " + m.encoding.describe() + " writes " + std::to_string(features) +
                                               " features, the " + m.arch.describe() + " network reads " +
@@ -249,7 +256,7 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
         fail("header/training", std::string("bad training record: ") + e.what());
     }
 
-    const size_t P = size_t(m.arch.numParams()), in = size_t(m.rawInputs()), out = size_t(m.arch.outputs);
+    const size_t P = size_t(m.arch.numParams()), in = size_t(m.scaledInputs()), out = size_t(m.arch.outputs);
     const size_t E = size_t(m.encoding.isIdentity() ? 0 : m.encoding.numParams());
     const size_t expected = size_t(modelPayloadBytes(m));
     const size_t have = bytes.size() - preamble - hlen;

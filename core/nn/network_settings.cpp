@@ -28,28 +28,45 @@ std::vector<int> parseHiddenSizes(const std::string& text, const std::string& se
     return sizes;
 }
 
+std::vector<int> hiddenSizesFromJson(const JsonReader& hidden) {
+    if (hidden.requireArray() == 0) hidden.fail("expected a non-empty array of layer sizes");
+    std::vector<int> sizes;
+    for (size_t i = 0; i < hidden.value().size(); ++i) sizes.push_back(int(hidden.at(i).integer(1, kMaxHiddenSize)));
+    return sizes;
+}
+
 const std::vector<std::string>& NetworkSettings::keys() {
-    static const std::vector<std::string> k = {"hidden", "activation", "ensemble", "encoding", "targets", "partition"};
+    static const std::vector<std::string> k = {"hidden",  "activation", "ensemble", "inputs",
+                                               "encoding", "objects",   "targets",  "partition"};
     return k;
 }
 
-NetworkSettings NetworkSettings::fromJson(const JsonReader& r, const NetworkSettings& base) {
+NetworkSettings NetworkSettings::fromJson(const JsonReader& r, const NetworkSettings& base,
+                                          const std::vector<std::string>* sceneObjects) {
     NetworkSettings s = base;
     r.checkKeys(keys());
-    if (const auto hidden = r.find("hidden")) {
-        if (hidden->requireArray() == 0) hidden->fail("expected a non-empty array of layer sizes");
-        s.options.hidden.clear();
-        for (size_t i = 0; i < hidden->value().size(); ++i)
-            s.options.hidden.push_back(int(hidden->at(i).integer(1, kMaxHiddenSize)));
-    }
+    if (const auto hidden = r.find("hidden")) s.options.hidden = hiddenSizesFromJson(*hidden);
     s.options.activation = parseActivation(r.choiceOr("activation", activationName(s.options.activation), {"tanh", "relu"}));
     s.options.ensemble = int(r.integerOr("ensemble", s.options.ensemble, 1, kMaxEnsembleMembers));
+    if (const auto inputs = r.find("inputs")) s.options.inputs = DerivedInputs::fromJson(*inputs);
     if (const auto encoding = r.find("encoding")) {
         // Read as every network will read it (errors name the file and the pointer of the bad value);
         // kept as written, since each network builds it for its own records' input count.
         encoding->requireArray();
-        InputEncoding::fromJson(*encoding, kEncodingCheckInputs);
+        InputEncoding::fromJson(*encoding, kEncodingCheckInputs, s.options.inputs);
         s.options.encoding = encoding->value();
+    } else if (r.has("inputs") && !s.options.encoding.empty()) {
+        // `base`'s encoding must still fit the inputs this section sets.
+        try {
+            InputEncoding::fromJson(JsonReader(s.options.encoding, r.file(), r.pointer() + "/encoding"),
+                                    kEncodingCheckInputs, s.options.inputs);
+        } catch (const InputError& e) {
+            r.at("inputs").fail("the network's encoding reads an input these inputs do not have (" + e.detail() + ")");
+        }
+    }
+    if (const auto objects = r.find("objects")) {
+        s.options.perObject = objectOverridesFromJson(*objects, s.options.sharedChoice());
+        if (sceneObjects) checkOverrideNames(*objects, *sceneObjects);
     }
     s.options.targets = parseTargetMode(r.choiceOr("targets", targetModeName(s.options.targets),
                                                    {"separate", "joint", "global", "direct", "indirect"}));
@@ -61,7 +78,9 @@ nlohmann::json NetworkSettings::networkJson() const {
     return {{"hidden", options.hidden},
             {"activation", activationName(options.activation)},
             {"ensemble", options.ensemble},
+            {"inputs", options.inputs.toJson()},
             {"encoding", options.encoding},
+            {"objects", objectOverridesJson(options.perObject)},
             {"targets", targetModeName(options.targets)},
             {"partition", partitionJson(options.partition)}};
 }

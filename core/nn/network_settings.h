@@ -3,7 +3,9 @@
 /// and the GUI:
 ///
 ///     "network": {"hidden": [20, 10], "activation": "tanh", "targets": "separate",
+///                 "inputs": {"reflected": false},
 ///                 "encoding": [{"type": "hash_grid", "inputs": "position"}],
+///                 "objects": {"tall-box": {"inputs": {"reflected": true}, "hidden": [32, 16]}},
 ///                 "partition": {"goal": 0.05, "max_depth": 8, "max_leaves": 16,
 ///                               "min_records_per_weight": 8, "min_split_gain": 0.1,
 ///                               "split_axes": ["position", "light"]}},
@@ -12,6 +14,9 @@
 /// "partition" sets the kd-tree of networks per object and target (PartitionSettings in
 /// nn/object_training.h); every key is optional, unknown keys are errors, and "max_leaves": 1 (or
 /// "max_depth": 0) trains one network per object.
+/// "inputs" adds derived inputs to every network (nn/derived_inputs.h: "reflected", the view direction
+/// reflected about the normal; absent: none), which "encoding" components may then name as a group.
+/// "objects" changes hidden sizes, inputs and encoding for the named objects (nn/object_network_overrides.h).
 /// "encoding" is the input encoding of every network (nn/encoding.h; [] or absent: the raw inputs),
 /// checked when read against records of kEncodingCheckInputs inputs; nn/encoding_presets.h names
 /// a few. A trainable one (hash grid) needs the adam trainer (checked when training starts).
@@ -68,15 +73,24 @@ struct NetworkSettings {
     static constexpr double kDefaultMinSplitGain = 0.1;
     /// Reads a "network" section over `base`: missing keys keep base's values, and the trainer is
     /// base's (it is the "trainer" section, read by TrainerConfig::fromJson). Throws InputError naming
-    /// the reader's file and the JSON pointer for unknown keys or bad values.
-    static NetworkSettings fromJson(const JsonReader& network, const NetworkSettings& base);
+    /// the reader's file and the JSON pointer for unknown keys or bad values, and, given the scene's
+    /// object names, for an "objects" entry that names none of them.
+    static NetworkSettings fromJson(const JsonReader& network, const NetworkSettings& base,
+                                    const std::vector<std::string>* sceneObjects = nullptr);
     /// fromJson over the project defaults (a project file's section).
-    static NetworkSettings fromJson(const JsonReader& network) { return fromJson(network, NetworkSettings()); }
-    /// The "network" section's keys ("hidden", "activation", "encoding", "targets", "partition").
+    static NetworkSettings fromJson(const JsonReader& network, const std::vector<std::string>* sceneObjects = nullptr) {
+        return fromJson(network, NetworkSettings(), sceneObjects);
+    }
+    /// The "network" section's keys ("hidden", "activation", "ensemble", "inputs", "encoding",
+    /// "objects", "targets", "partition").
     static const std::vector<std::string>& keys();
     nlohmann::json networkJson() const;
     nlohmann::json trainerJson() const { return options.trainer.toJson(); }
 };
+
+/// Reads a "hidden" array: at least one layer size, each 1 … kMaxHiddenSize (InputError naming the
+/// file and pointer otherwise).
+std::vector<int> hiddenSizesFromJson(const JsonReader& hidden);
 
 /// Reads hidden sizes written as text, "20,10" (the spelling of `network.hidden` = [20, 10] outside a
 /// JSON file, e.g. a sweep value); throws SettingError naming `setting` if malformed or out of 1..kMaxHiddenSize.

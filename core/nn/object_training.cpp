@@ -212,17 +212,25 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
 
     const PartitionSettings& part = options.partition;
     auto cancelled = [&] { return observer.cancel && observer.cancel->load(); };
+    // Each object's hidden sizes, inputs and encoding: the section's, or its "objects" entry's.
+    std::vector<ObjectNetworkChoice> choices;  // index = job
+    std::vector<InputEncoding> encodings;      // index = job
     checkEncodingTrainer(options.encoding, options.trainer);
-    std::vector<InputEncoding> encodings;  // index = job
-    for (const Job& job : jobs) encodings.push_back(networkEncoding(options.encoding, job.samples->numInputs));
     checkEnsembleEncoding(options.encoding, options.ensemble);
+    for (const Job& job : jobs) {
+        choices.push_back(options.choiceFor(job.samples->name));
+        const ObjectNetworkChoice& c = choices.back();
+        checkEncodingTrainer(c.encoding, options.trainer);
+        checkEnsembleEncoding(c.encoding, options.ensemble);
+        encodings.push_back(networkEncoding(c.encoding, job.samples->numInputs, c.inputs));
+    }
     // Every network is an ensemble of options.ensemble members, each budgeted max_epochs.
     const int64_t members = options.ensemble;
     auto archFor = [&](const Job& job) {
         MlpArch arch;
-        const InputEncoding& encoding = encodings[size_t(&job - jobs.data())];  // job is an element of jobs
-        arch.inputs = encoding.isIdentity() ? job.samples->numInputs : encoding.outputs();
-        arch.hidden = options.hidden;
+        const size_t j = size_t(&job - jobs.data());  // job is an element of jobs
+        arch.inputs = encodings[j].outputs();  // the identity: the record inputs and the derived ones
+        arch.hidden = choices[j].hidden;
         arch.activation = options.activation;
         arch.outputs = job.target == "joint" ? 6 : 3;
         return arch;

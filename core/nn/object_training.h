@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/nn/model.h"
+#include "core/nn/object_network_overrides.h"
 
 namespace rrf {
 
@@ -100,11 +101,20 @@ struct ObjectTrainingOptions {
     /// The "encoding" array (nn/encoding.h, nn/encoding_presets.h); empty = the identity. Each network
     /// gets networkEncoding(encoding, its records' input count); its first layer reads the features.
     nlohmann::json encoding = nlohmann::json::array();
+    /// The "inputs" object: inputs every network derives from its records (nn/derived_inputs.h).
+    DerivedInputs inputs;
+    /// The "objects" map: hidden sizes, inputs and encoding of named objects (nn/object_network_overrides.h).
+    ObjectNetworkOverrides perObject;
     TargetMode targets = TargetMode::Global;
     TrainerConfig trainer;
     PartitionSettings partition;  ///< default: one network per object and target
     std::vector<int> objects;  ///< object ids to train; empty = all
     bool parallel = true;      ///< train objects concurrently (TBB); results are identical either way
+
+    /// The section's hidden sizes, inputs and encoding (what an object without an override gets).
+    ObjectNetworkChoice sharedChoice() const { return {hidden, inputs, encoding}; }
+    /// Those of the object called `name`: sharedChoice() with its override applied.
+    ObjectNetworkChoice choiceFor(const std::string& name) const { return objectNetworkChoice(sharedChoice(), perObject, name); }
 };
 
 /// Progress of all networks. Called concurrently from worker threads: must be thread-safe.

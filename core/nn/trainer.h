@@ -141,7 +141,7 @@ TrainResult trainAdam(const MlpArch& arch, const AdamConfig& cfg, const Training
                       const MinMaxScaler& outputScaler, VecX<double>& params,
                       const TrainObserver& observer = {});
 /// The same for a network behind an input encoding (nn/encoding.h) whose parameters are trained
-/// jointly with the weights: `data`'s x are the normalised raw inputs (encoding.inputs rows) and
+/// jointly with the weights: `data`'s x are the normalised raw and derived inputs (encoding.scaledInputs() rows) and
 /// arch.inputs = encoding.outputs(). Per batch: encode → MLP forward → loss → MLP backward with
 /// ∂loss/∂features → the encoding's parameter gradient; the weights take the dense Adam step, the
 /// encoding parameters (`encodingParams`, in: initial, out: those of the kept epoch) a sparse one:

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/data/record_layout.h"
+#include "core/nn/derived_inputs.h"
 #include "core/nn/encoding.h"
 #include "core/nn/encoding_hash_grid.h"
 
@@ -13,6 +14,10 @@ namespace rrf {
 namespace {
 
 int vec4s(int n) { return (n + 3) / 4; }
+
+/// Raw input slots of the shader (rawIn[6]): 12 geometric, up to 8 BRDF parameters, 3 derived
+/// (nn/derived_inputs.h) and one of padding.
+constexpr int kRawSlots = 24;
 
 // Texel offsets and counts are stored as floats; integers up to 2^24 are exact in float.
 constexpr size_t kMaxExactInteger = size_t(1) << 24;
@@ -76,7 +81,7 @@ HashGridLayout hashGridLayout(const EncodingComponent& c) {
 /// Writes the encoding section of a network block (layout in network_texture.h) and returns, per
 /// hash-grid component, the texel whose w holds its table's offset (patched when the table is written).
 std::vector<std::pair<size_t, const EncodingComponent*>> writeEncoding(TexelWriter& w, const InputEncoding& e,
-                                                                         int rawInputs) {
+                                                                         int scaledInputs) {
     std::vector<std::pair<size_t, const EncodingComponent*>> tables;
     int first = 0;
     for (const EncodingComponent& c : e.components) {
@@ -99,7 +104,7 @@ std::vector<std::pair<size_t, const EncodingComponent*>> writeEncoding(TexelWrit
     }
     std::vector<int> pass;  // the identity passes every input through
     if (e.isIdentity())
-        for (int i = 0; i < rawInputs; ++i) pass.push_back(i);
+        for (int i = 0; i < scaledInputs; ++i) pass.push_back(i);
     else
         pass = e.passThrough();
     w.padded(int(pass.size()), [&](int i) { return float(pass[size_t(i)]); });
@@ -109,17 +114,18 @@ std::vector<std::pair<size_t, const EncodingComponent*>> writeEncoding(TexelWrit
 void writeNetwork(TexelWriter& w, const NetworkModel& m) {
     const MlpArch& a = m.arch;
     const InputEncoding& enc = m.encoding;
-    const int rawInputs = m.rawInputs();
-    const int passCount = enc.isIdentity() ? rawInputs : int(enc.passThrough().size());
-    w.texel4(float(rawInputs), float(a.outputs), float(a.numLayers()), a.activation == Activation::Relu ? 1.f : 0.f);
-    w.texel4(float(enc.components.size()), float(a.inputs), float(passCount), 0.f);
+    // The scaler covers the raw inputs and the derived ones after them (nn/derived_inputs.h).
+    const int scaledInputs = m.scaledInputs();
+    const int passCount = enc.isIdentity() ? scaledInputs : int(enc.passThrough().size());
+    w.texel4(float(scaledInputs), float(a.outputs), float(a.numLayers()), a.activation == Activation::Relu ? 1.f : 0.f);
+    w.texel4(float(enc.components.size()), float(a.inputs), float(passCount), enc.derived.reflected ? 1.f : 0.f);
     // The shader computes in float what NetworkModel::predict computes in float: the same casts of
     // the double-precision scalers, encoding parameters and weights.
-    w.padded(rawInputs, [&](int i) { return float(m.inputScaler.offset[i]); });
-    w.padded(rawInputs, [&](int i) { return float(m.inputScaler.scale[i]); });
+    w.padded(scaledInputs, [&](int i) { return float(m.inputScaler.offset[i]); });
+    w.padded(scaledInputs, [&](int i) { return float(m.inputScaler.scale[i]); });
     w.padded(a.outputs, [&](int i) { return float(m.outputScaler.offset[i]); });
     w.padded(a.outputs, [&](int i) { return float(m.outputScaler.scale[i]); });
-    const auto tables = writeEncoding(w, enc, rawInputs);
+    const auto tables = writeEncoding(w, enc, scaledInputs);
     for (int l = 0; l < a.numLayers(); ++l) {
         const int in = a.layerInputs(l), out = a.layerOutputs(l);
         w.texel4(float(in), float(out), float(vec4s(in)), 0.f);
@@ -261,7 +267,7 @@ void evaluateNetwork(const TexelReader& r, int base, const float* raw, float* ou
     const int inOff = t, inScale = t + inV, outOff = t + 2 * inV, outScale = t + 2 * inV + outV;
     t += 2 * inV + 2 * outV;
     std::vector<float> a(size_t(4 * vec4s(std::max({r.t.maxLayerWidth, in, features}))), 0.f), b(a.size(), 0.f);
-    float x[20] = {};
+    float x[kRawSlots] = {};
     for (int i = 0; i < in; ++i) x[i] = (raw[i] - r.at(inOff + i / 4, i % 4)) * r.at(inScale + i / 4, i % 4);
     if (comps == 0) {  // identity: the features are x' (the pass-through indices are 0 … in−1)
         std::copy(x, x + in, a.begin());
@@ -307,6 +313,7 @@ NetworkTexture packNetworkTexture(const Scene& scene, const ModelSet& models, in
     tex.inputCount = layout.inputCount();
     tex.offsets.assign(scene.objects.size(), {-1, -1, -1, -1});
     if (tex.inputCount - 12 > 8) throw std::invalid_argument("network texture: more than 8 BRDF parameters");
+    if (tex.inputCount + 3 > kRawSlots) throw std::invalid_argument("network texture: no room for the derived inputs");
 
     // Validate everything before writing, so that a bad model set fails with one clear message.
     int widest = tex.inputCount;
@@ -429,10 +436,13 @@ std::array<Vec3, 3> evaluateTerms(const NetworkTexture& tex, int objectId, const
     std::array<Vec3, 3> terms{Vec3(0.f), Vec3(0.f), Vec3(0.f)};
     if (objectId < 0 || objectId >= tex.objectCount) return terms;
     const TexelReader r{tex};
-    float raw[20] = {};
+    float raw[kRawSlots] = {};
     std::copy(geometricInputs, geometricInputs + 12, raw);
     const float* brdf = r.texel(2 + 3 * objectId);
     for (int i = 12; i < tex.inputCount; ++i) raw[i] = brdf[i - 12];  // texels 2+3o and 3+3o are adjacent
+    // The derived reflected direction follows the record inputs; a network without it reads the
+    // slots through zero scales (the scaler's padding), so every network can share one array.
+    reflectAboutNormal(raw + kViewInput, raw + kNormalInput, raw + tex.inputCount);
     const float* off = r.texel(1 + 3 * objectId);
     float y[8];
     // Non-finite outputs become 0 per 3-vector, as core/predict/predictor.cpp does.

@@ -7,7 +7,7 @@
 /// (t mod width, t div width). A texel is 4 floats. Integers (counts, offsets) are stored as floats,
 /// exact because every one is < 2^24 (packNetworkTexture enforces it).
 ///
-///     texel 0                (version = 3, object count O, network input count I, max layer width)
+///     texel 0                (version = 4, object count O, network input count I, max layer width)
 ///     texels 1 + 3o … 3 + 3o for object o = 0 … O−1:
 ///       1 + 3o               model offsets (direct, indirect, global, joint): texel index of the
 ///                            model's tree block, or −1 when the object has no such network
@@ -21,11 +21,13 @@
 ///                              leaf:     (−1, texel index of the leaf's network block, 0, 0)
 ///       then the leaves' network blocks
 ///     network block at texel N:
-///       N                    (inputs I, outputs, layer count L, activation: 0 = tanh, 1 = ReLU)
+///       N                    (scaled inputs I' = I + derived, outputs, layer count L, activation:
+///                             0 = tanh, 1 = ReLU)
 ///       N + 1                (encoding components C, features F = the first layer's inputs,
-///                             pass-through count P, 0); C = 0: the identity (F = P = I)
-///       next ⌈I/4⌉           input scaler offsets   (mapminmax: x' = (x − offset) · scale)
-///       next ⌈I/4⌉           input scaler scales
+///                             pass-through count P, derived inputs: 1 = reflected, 0 = none);
+///                             C = 0: the identity (F = P = I')
+///       next ⌈I'/4⌉          input scaler offsets   (mapminmax: x' = (x − offset) · scale)
+///       next ⌈I'/4⌉          input scaler scales
 ///       next ⌈out/4⌉         output scaler offsets  (y = y' / scale + offset)
 ///       next ⌈out/4⌉         output scaler scales
 ///       then per encoding component c = 0 … C−1 (nn/encoding.h, in the model's list order):
@@ -47,6 +49,10 @@
 ///       then each hash_grid component's table: its Lh · 2^log2 · Fh trainable parameters in the
 ///         order of nn/encoding.h (float index (l · 2^log2 + entry) · Fh + f), zero-padded to a
 ///         whole texel; entry is the level's dense or hashed index (encoding_hash_grid.h)
+/// Raw inputs x of a pixel: its 12 geometric inputs, its object's I − 12 BRDF parameters, then at
+/// I … I+2 the reflected direction reflect(view, normal) (nn/derived_inputs.h, the same float
+/// operations), which the shader computes for every pixel: a network that derives it has I' = I + 3
+/// and scales those slots, one that does not reads them through its scaler's zero padding as 0.
 /// The encoding features are computed from the scaled inputs x' exactly as InputEncoding::forward
 /// does (same float operations in the same order; sin, cos and exp are the platform's), and the
 /// first layer reads them as it reads x' for the identity. Hash tables make the texture large
@@ -78,8 +84,8 @@ namespace rrf {
 constexpr int kNetworkTextureWidth = 1024;
 /// Version written into texel 0.x, so that a dump of the texture says which layout it follows
 /// (2: every model is a kd-tree block followed by its leaves' networks; 3: every network block
-/// carries its input encoding and hash tables).
-constexpr int kNetworkTextureVersion = 3;
+/// carries its input encoding and hash tables; 4: and its derived inputs, scaled after the raw ones).
+constexpr int kNetworkTextureVersion = 4;
 /// Slots of the per-object offset texel, in texel component order.
 enum NetworkSlot { kSlotDirect = 0, kSlotIndirect = 1, kSlotGlobal = 2, kSlotJoint = 3 };
 

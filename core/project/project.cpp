@@ -70,7 +70,12 @@ void readSections(const JsonReader& root, Project& p) {
     if (const auto name = root.find("name")) p.name = name->string();
     if (const auto render = root.find("render")) p.render = parseRenderSettings(*render);
     if (const auto sampling = root.find("sampling")) p.sampling = SamplingSettings::fromJson(*sampling);
-    if (const auto network = root.find("network")) p.network = NetworkSettings::fromJson(*network);
+    if (const auto network = root.find("network")) {
+        // Per-object network entries are keyed by the scene's object names (loaded already).
+        std::vector<std::string> objectNames;
+        for (const Object& o : p.scene.objects) objectNames.push_back(o.name);
+        p.network = NetworkSettings::fromJson(*network, &objectNames);
+    }
     if (const auto trainer = root.find("trainer")) p.trainer = TrainerConfig::fromJson(*trainer);
     if (const auto prediction = root.find("prediction")) p.prediction = PredictionSettings::fromJson(*prediction);
     if (const auto reference = root.find("reference")) p.reference = ReferenceSettings::fromJson(*reference);

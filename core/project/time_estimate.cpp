@@ -65,8 +65,9 @@ StageEstimate estimateTraining(const ObjectTrainingOptions& o, double records, i
     arch.inputs = std::max(1, inputs);
     try {
         // An input encoding widens the first layer (its own cost per record is not modelled).
-        const InputEncoding encoding = networkEncoding(o.encoding, arch.inputs);
-        if (!encoding.isIdentity()) arch.inputs = encoding.outputs();
+        // (the section's networks; "objects" entries are not modelled)
+        const InputEncoding encoding = networkEncoding(o.encoding, arch.inputs, o.inputs);
+        arch.inputs = encoding.outputs();
     } catch (const InputError&) {
         // An encoding these records cannot take: training will say so; estimate the raw network.
     }

@@ -102,6 +102,22 @@ TEST(GlslEncodings, HashGridOverPositionMatchesCpu) {
     expectEncodedEquivalent(scene, set);
 }
 
+TEST(GlslEncodings, ReflectedInputMatchesCpu) {
+    RRF_REQUIRE_GL();
+    // The shader derives reflect(view, normal) per pixel after the BRDF inputs (core/nn/derived_inputs.h):
+    // the diffuse box (inputs 15–17) with the rows raw and with one-blob over view and reflected,
+    // and the glossy box (19–21, the sixth vec4) with frequencies of the reflected direction.
+    const Scene diffuse = smallCornellBox();
+    expectEncodedEquivalent(diffuse, test::mixedModelSet(diffuse, Activation::Tanh, {16, 8}, 59, json::array(),
+                                                         DerivedInputs{true}));
+    const json blob = json::parse(R"([{"type": "one_blob", "inputs": ["view", "reflected"], "bins": 8}])");
+    expectEncodedEquivalent(diffuse, test::mixedModelSet(diffuse, Activation::Tanh, {16, 8}, 61, blob, DerivedInputs{true}));
+    Scene glossy = loadScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-glossy/scene.json");
+    glossy.camera.width = glossy.camera.height = 64;
+    const json freq = json::parse(R"([{"type": "frequency", "inputs": "reflected", "frequencies": 4}])");
+    expectEncodedEquivalent(glossy, test::mixedModelSet(glossy, Activation::Tanh, {16, 8}, 67, freq, DerivedInputs{true}));
+}
+
 TEST(GlslEncodings, CombinedEncodingsOfPartitionedModelsMatchCpu) {
     RRF_REQUIRE_GL();
     const Scene scene = smallCornellBox();

@@ -41,12 +41,15 @@ private:
     uint64_t s_;
 };
 
-/// A network for `target` of object `objectId` with inputs fitted on the scene's ranges.
+/// A network for `target` of object `objectId` with inputs fitted on the scene's ranges; with
+/// `derived` inputs (nn/derived_inputs.h) it reads them after the record's, scaled on their ranges.
 inline NetworkModel randomNetwork(const Scene& scene, int objectId, const std::string& target, std::vector<int> hidden,
-                                  Activation act, uint64_t seed) {
+                                  Activation act, uint64_t seed, const DerivedInputs& derived = {}) {
     const RecordLayout layout = RecordLayout::forScene(scene);
     NetworkModel m;
-    m.arch.inputs = layout.inputCount();
+    m.encoding.inputs = layout.inputCount();
+    m.encoding.derived = derived;
+    m.arch.inputs = layout.inputCount() + derived.count();
     m.arch.hidden = std::move(hidden);
     m.arch.outputs = target == "joint" ? 6 : 3;
     m.arch.activation = act;
@@ -58,7 +61,7 @@ inline NetworkModel randomNetwork(const Scene& scene, int objectId, const std::s
     const Bounds3 b = scene.bounds();
     const Bounds3 region = scene.lightRegion.empty() ? b : scene.lightRegion;
     const int n = 64;
-    MatX<float> in(m.arch.inputs, n), out(m.arch.outputs, n);
+    MatX<float> in(layout.inputCount(), n), out(m.arch.outputs, n);
     float brdf[8] = {};
     layout.brdfParameters(scene.materials[size_t(scene.objects[size_t(objectId)].material)], brdf);
     for (int c = 0; c < n; ++c) {
@@ -69,11 +72,13 @@ inline NetworkModel randomNetwork(const Scene& scene, int objectId, const std::s
         const Vec3 f[4] = {p, v, l, nn};
         for (int k = 0; k < 12; ++k) in(k, c) = f[k / 3][k % 3];
         // BRDF inputs are constant per object: exercises mapminmax's constant-feature rule.
-        for (int k = 12; k < m.arch.inputs; ++k) in(k, c) = brdf[k - 12];
+        for (int k = 12; k < layout.inputCount(); ++k) in(k, c) = brdf[k - 12];
         // Radiance-like targets: the Cornell box's direct and indirect radiance lie within [0, 1.5].
         for (int k = 0; k < m.arch.outputs; ++k) out(k, c) = rnd.range(0.f, 1.f + 0.1f * float(k));
     }
-    m.inputScaler = MinMaxScaler::fit(in);
+    MatX<float> withDerived;
+    derived.append<float>(in, withDerived);
+    m.inputScaler = MinMaxScaler::fit(withDerived);
     m.outputScaler = MinMaxScaler::fit(out);
     m.validate();
     return m;
@@ -83,9 +88,10 @@ inline NetworkModel randomNetwork(const Scene& scene, int objectId, const std::s
 /// first layer sized for the encoding's features, hash tables uniform in [−1, 1] (far larger than a
 /// fresh instant-NGP table, so that every table entry read moves the outputs).
 inline NetworkModel encodedNetwork(const Scene& scene, int objectId, const std::string& target, std::vector<int> hidden,
-                                   Activation act, uint64_t seed, const nlohmann::json& encoding) {
-    NetworkModel m = randomNetwork(scene, objectId, target, std::move(hidden), act, seed);
-    m.encoding = InputEncoding::fromJson(JsonReader(encoding, "test encoding"), int(m.inputScaler.size()));
+                                   Activation act, uint64_t seed, const nlohmann::json& encoding,
+                                   const DerivedInputs& derived = {}) {
+    NetworkModel m = randomNetwork(scene, objectId, target, std::move(hidden), act, seed, derived);
+    m.encoding = InputEncoding::fromJson(JsonReader(encoding, "test encoding"), m.rawInputs(), derived);
     m.arch.inputs = m.encoding.outputs();
     m.params = initialParams(m.arch, seed, uint64_t(objectId) * 4 + uint64_t(target.size()));
     TestRandom rnd(seed * 977 + uint64_t(objectId));
@@ -100,8 +106,10 @@ inline NetworkModel encodedNetwork(const Scene& scene, int objectId, const std::
 /// indirect (global net used); direct only.
 /// With `encoding` (an "encoding" array, nn/encoding.h), every network reads its inputs through it
 /// (encodedNetwork).
+/// With `derived` inputs, every network derives them (randomNetwork).
 inline ModelSet mixedModelSet(const Scene& scene, Activation act = Activation::Tanh, std::vector<int> hidden = {20, 10},
-                              uint64_t seed = 7, const nlohmann::json& encoding = nlohmann::json::array()) {
+                              uint64_t seed = 7, const nlohmann::json& encoding = nlohmann::json::array(),
+                              const DerivedInputs& derived = {}) {
     static const std::vector<std::vector<std::string>> mixes = {
         {"joint"}, {"direct", "indirect"}, {"global"}, {"global", "direct", "indirect"}, {"global", "indirect"}, {"direct"}};
     ModelSet set;
@@ -111,8 +119,8 @@ inline ModelSet mixedModelSet(const Scene& scene, Activation act = Activation::T
         on.objectId = o.id;
         on.name = o.name;
         for (const std::string& t : mixes[size_t(o.id) % mixes.size()])
-            on.byTarget[t] = encoding.empty() ? randomNetwork(scene, o.id, t, hidden, act, seed)
-                                              : encodedNetwork(scene, o.id, t, hidden, act, seed, encoding);
+            on.byTarget[t] = encoding.empty() ? randomNetwork(scene, o.id, t, hidden, act, seed, derived)
+                                              : encodedNetwork(scene, o.id, t, hidden, act, seed, encoding, derived);
         set.objects.push_back(std::move(on));
     }
     return set;
