@@ -17,24 +17,18 @@
 #include "core/scene/obj_text_scan.h"
 #include "core/scene/scene_json.h"
 #include "core/util/error.h"
+#include "tests/test_dirs.h"
 
 namespace test_obj_text_scan {
 
 using namespace rrf;
+using namespace rrf::test;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-fs::path testDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const fs::path dir = fs::temp_directory_path() / ("rrf_obj_scan_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path testDir() { return freshTestDir("rrf_obj_scan"); }
 
 const char* const kGoodMtl = "newmtl white\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0 0 0\nKe 10 8 6\n";
 

@@ -24,6 +24,7 @@
 #include "scene_builders.h"
 #include "tests/file_size_limit.h"
 #include "tests/model_builders.h"
+#include "tests/test_dirs.h"
 
 namespace test_output_errors {
 
@@ -33,15 +34,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-fs::path testDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const fs::path dir = fs::temp_directory_path() / ("rrf_output_errors_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path testDir() { return freshTestDir("rrf_output_errors"); }
 
 std::string readText(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);

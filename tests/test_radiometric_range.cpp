@@ -25,6 +25,7 @@
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
 #include "scene_builders.h"
+#include "tests/test_dirs.h"
 
 namespace test_radiometric_range {
 
@@ -35,15 +36,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-fs::path testDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const fs::path dir = fs::temp_directory_path() / ("rrf_radiometric_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path testDir() { return freshTestDir("rrf_radiometric"); }
 
 /// A floor under a rect light and a point light, written to `dir`/scene.json; returns the path.
 std::string writeScene(const fs::path& dir, const json& changes) {
