@@ -27,6 +27,7 @@
 #include "core/util/rng.h"
 #include "core/util/temp_files.h"
 #include "scene_builders.h"
+#include "tests/model_builders.h"
 
 namespace test_atomic_sets {
 
@@ -82,37 +83,10 @@ int countEntries(const fs::path& dir, const std::string& prefix) {
 
 // ---- model sets ---------------------------------------------------------------------------------
 
-constexpr int kInputs = 3;
+constexpr int kInputs = kTinyModelInputs;
 
-/// A 3-4-3 network of object `id` fitted for 2 epochs to data drawn with `seed`.
-ObjectModel tinyModel(int id, uint64_t seed) {
-    MlpArch a;
-    a.inputs = kInputs;
-    a.hidden = {4};
-    a.outputs = 3;
-    MatX<float> x(kInputs, 40), y(3, 40);
-    for (int c = 0; c < 40; ++c) {
-        Rng rng(seed, uint64_t(c));
-        for (int r = 0; r < kInputs; ++r) x(r, c) = rng.uniform();
-        for (int r = 0; r < 3; ++r) y(r, c) = rng.uniform() + float(id);
-    }
-    NetworkModel net = fitNetwork(a, TrainerConfig::fromJson({{"max_epochs", 2}}), x, y);
-    net.objectId = id;
-    net.objectName = "object " + std::to_string(id);
-    net.target = "global";
-    ObjectModel m;
-    m.objectId = id;
-    m.objectName = net.objectName;
-    m.target = "global";
-    m.model = PartitionedNetwork(std::move(net));
-    return m;
-}
-
-std::vector<ObjectModel> modelSet(uint64_t seed, int objects = 2) {
-    std::vector<ObjectModel> set;
-    for (int id = 0; id < objects; ++id) set.push_back(tinyModel(id, seed * 10 + uint64_t(id)));
-    return set;
-}
+/// Object models as in a trained set (tests/model_builders.h).
+std::vector<ObjectModel> modelSet(uint64_t seed, int objects = 2) { return tinyModelSet(seed, objects); }
 
 const std::vector<std::string> kLayout(kInputs, "x");
 

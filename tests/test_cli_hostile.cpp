@@ -67,6 +67,13 @@ rrf::test::CliResult runCliWithin4GiB(const std::string& args) {
     return rrf::test::runShell(cmd);
 }
 
+/// `rrf args` on a "disk" of `kib` KiB per file (`ulimit -f`; SIGXFSZ ignored, as a full disk
+/// raises none): writes beyond it fail with EFBIG where ENOSPC would.
+rrf::test::CliResult runCliOnFullDisk(int kib, const std::string& args) {
+    const std::string cmd = "trap '' XFSZ; ulimit -f " + std::to_string(kib) + "; exec " + std::string(RRF_CLI_PATH) + " " + args + " 2>&1";
+    return rrf::test::runShell(cmd);
+}
+
 }  // namespace
 
 TEST(CliHostile, CoordinatesBeyondTheRayRangeExitWithTheFieldAndRange) {
@@ -154,6 +161,73 @@ TEST(CliHostile, CtrlCStopsOneHugeCellWithinASecond) {
     EXPECT_EQ(WEXITSTATUS(status), 130) << err;
     EXPECT_LT(seconds, 1.0) << err;
     EXPECT_FALSE(fs::exists(out));
+    fs::remove_all(dir);
+}
+
+TEST(CliHostile, FullDiskNamesTheOutputAndWhatWasKeptNeverATemporary) {
+    // Issue 31: `rrf render` on a full disk named `/…/.render.32701.0.tmp/global.exr`.
+    const fs::path dir = testDir();
+    const std::string scene = writeScene(dir, "scene.json");
+    const std::string out = (dir / "o").string();
+    ASSERT_EQ(runCli("render " + scene + " --spp 2 --out " + out).code, 0);
+    const std::string before = readText(dir / "o" / "global.exr");
+    const auto render = runCliOnFullDisk(8, "render " + scene + " --spp 2 --width 128 --height 128 --out " + out);
+    EXPECT_EQ(render.code, 1) << render.output;
+    EXPECT_TRUE(contains(render.output, out + "/global.exr: write failed: File too large; the previous contents of '" + out +
+                                            "' are kept"))
+        << render.output;
+    EXPECT_EQ(readText(dir / "o" / "global.exr"), before);
+
+    const std::string data = (dir / "d.rrfd").string();
+    const auto generate = runCliOnFullDisk(4, "generate " + scene + " --grid 2,2,2 --dirs 50 --spp 2 --out " + data);
+    EXPECT_EQ(generate.code, 1) << generate.output;
+    EXPECT_TRUE(contains(generate.output, data + ": write failed: File too large; no file was created")) << generate.output;
+    for (const auto* r : {&render, &generate}) EXPECT_FALSE(contains(r->output, ".tmp")) << r->output;
+    for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().filename().string()[0], '.') << e.path();
+    fs::remove_all(dir);
+}
+
+TEST(CliHostile, ObjAndMtlNumbersOutOfRangeExitBeforeAnyWork) {
+    const fs::path dir = testDir();
+    std::ofstream(dir / "room.mtl") << "newmtl white\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0 0 0\nKe 1e30 1e30 1e30\n";
+    const std::string obj = "mtllib room.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -0.2 1 -0.2\nv 0.2 1 -0.2\n"
+                            "v 0.2 1 0.2\nv -0.2 1 0.2\nusemtl white\nf 1 4 3 2\nusemtl lamp\nf 5 6 7 8\n";
+    std::ofstream(dir / "room.obj") << obj;
+    const fs::path scene = dir / "scene.json";
+    std::ofstream(scene) << R"({"camera": {"eye": [0, 0.5, 3], "target": [0, 0.5, 0], "fov_y": 40, "width": 8, "height": 8},
+                                "shapes": [{"type": "obj", "file": "room.obj"}]})";
+    const auto ke = runCli("render " + scene.string() + " --spp 1 --out " + (dir / "o").string());
+    EXPECT_EQ(ke.code, 1) << ke.output;
+    EXPECT_TRUE(contains(ke.output, "room.mtl' line 5: material 'lamp': Ke must lie in [0, 1e+10]")) << ke.output;
+    EXPECT_FALSE(contains(ke.output, "rendered")) << "refused before the render: " << ke.output;
+
+    std::ofstream(dir / "room.mtl") << "newmtl white\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n";
+    std::ofstream(dir / "room.obj") << std::string(obj).replace(obj.find("v 1 0 -1"), 8, "v nan 0 -1");
+    const auto nan = runCli("generate " + scene.string() + " --grid 1,1,1 --dirs 4 --out " + (dir / "d.rrfd").string());
+    EXPECT_EQ(nan.code, 1) << nan.output;
+    EXPECT_TRUE(contains(nan.output, "room.obj' line 3: v x coordinate 'nan' is not a finite number")) << nan.output;
+    EXPECT_FALSE(fs::exists(dir / "o"));
+    EXPECT_FALSE(fs::exists(dir / "d.rrfd"));
+    fs::remove_all(dir);
+}
+
+TEST(CliHostile, CgroupMemoryLimitBoundsTheRequests) {
+    // A container or job limited to 64 MiB by its cgroup (files under RRF_MEMORY_INFO_ROOT, as
+    // core/util/memory_budget.h reads them): a render of 2048 x 2048 pixels (1.6 GiB) is refused.
+    const fs::path dir = testDir();
+    const fs::path root = dir / "root";
+    fs::create_directories(root / "proc/self");
+    fs::create_directories(root / "sys/fs/cgroup/job");
+    std::ofstream(root / "proc/meminfo") << "MemAvailable:   67108864 kB\n";
+    std::ofstream(root / "proc/self/cgroup") << "0::/job\n";
+    std::ofstream(root / "sys/fs/cgroup/cgroup.controllers") << "memory\n";
+    std::ofstream(root / "sys/fs/cgroup/job/memory.max") << 64 * 1024 * 1024 << "\n";
+    const std::string scene = writeScene(dir, "scene.json");
+    const auto r = rrf::test::runShell("RRF_MEMORY_INFO_ROOT=" + root.string() + " " + RRF_CLI_PATH + " render " + scene +
+                                       " --spp 1 --width 2048 --height 2048 --out " + (dir / "o").string() + " 2>&1");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_TRUE(contains(r.output, "a 2048 x 2048 render needs about 1.6 GiB of memory")) << r.output;
+    EXPECT_TRUE(contains(r.output, "but only 64 MiB is available")) << r.output;
     fs::remove_all(dir);
 }
 

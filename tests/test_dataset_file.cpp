@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -18,12 +17,12 @@
 #include <string>
 #include <vector>
 
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include "core/data/dataset_file.h"
 #include "core/data/dataset_summary.h"
 #include "core/nn/training_samples.h"
+#include "tests/file_size_limit.h"
 
 namespace test_dataset_file {
 
@@ -371,21 +370,18 @@ TEST(DatasetFile, FailedWriteLeavesNoTemporaryFileAndKeepsThePreviousFile) {
     // removed and the previous dataset is untouched.
     std::vector<std::vector<float>> big(2);
     big[0].assign(4 * 4096, 1.f);  // 64 KiB of payload
-    rlimit saved{};
-    ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
-    auto* const oldHandler = std::signal(SIGXFSZ, SIG_IGN);
-    rlimit small = saved;
-    small.rlim_cur = 8192;
-    ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
     bool threw = false;
-    try {
-        writeDataset(path, smallHeader(), kSceneHash, big);
-    } catch (const std::runtime_error& e) {
-        threw = true;
-        EXPECT_TRUE(contains(e.what(), path)) << e.what();
+    {
+        const rrf::test::FileSizeLimit limit(8192);
+        ASSERT_TRUE(limit.active());
+        try {
+            writeDataset(path, smallHeader(), kSceneHash, big);
+        } catch (const std::runtime_error& e) {
+            threw = true;
+            EXPECT_TRUE(contains(e.what(), path + ": write failed: File too large; the previous file is kept")) << e.what();
+            EXPECT_FALSE(contains(e.what(), ".tmp")) << "names the temporary file: " << e.what();
+        }
     }
-    ::setrlimit(RLIMIT_FSIZE, &saved);
-    std::signal(SIGXFSZ, oldHandler);
     EXPECT_TRUE(threw);
     EXPECT_EQ(tempFiles(dir), 0);
     EXPECT_EQ(readBytes(path), before);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/scene/coordinate_range.h"
+#include "core/scene/radiometric_range.h"
 
 namespace rrf {
 
@@ -23,7 +24,7 @@ MaterialOverride readMaterialOverride(const JsonReader& r, std::vector<std::stri
     MaterialOverride m;
     if (const auto kd = r.find("kd")) m.kd = kd->vec3();
     if (const auto ks = r.find("ks")) m.ks = ks->vec3();
-    if (const auto ex = r.find("exponent")) m.exponent = float(ex->number(0.0, 1e30));
+    if (const auto ex = r.find("exponent")) m.exponent = float(ex->number(0.0, double(kMaxPhongExponent)));
     return m;
 }
 }  // namespace
@@ -122,6 +123,10 @@ bool enforceEnergyConservation(Material& m, bool kdEdited) {
     fix(m.kd.z, m.ks.z);
     if (!std::isfinite(m.exponent) || m.exponent < 0.f) {
         m.exponent = 1.f;
+        changed = true;
+    } else if (m.exponent > kMaxPhongExponent) {
+        // Beyond it the lobe's (n+2)/(2π) takes samples out of float range (radiometric_range.h).
+        m.exponent = kMaxPhongExponent;
         changed = true;
     }
     return changed;

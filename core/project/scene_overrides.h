@@ -49,8 +49,9 @@ void applySceneOverrides(const SceneOverrides& overrides, Scene& scene, std::vec
                          const std::string& where = "/scene_overrides");
 
 /// Keeps kd + ks ≤ 1 per channel (energy conservation) by lowering the coefficient the user did not
-/// just edit (ks when `kdEdited`, kd otherwise), and clamps both to [0, 1]. Returns true if anything
-/// changed.
+/// just edit (ks when `kdEdited`, kd otherwise), and clamps both to [0, 1] and the exponent to
+/// [0, kMaxPhongExponent] (core/scene/radiometric_range.h; a non-finite one becomes 1). Returns true
+/// if anything changed.
 bool enforceEnergyConservation(Material& m, bool kdEdited);
 
 /// Clamps `p` into the scene's light region. When the region is empty `p` is kept as it is, unless

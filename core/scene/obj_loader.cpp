@@ -10,71 +10,24 @@
 
 #include <tiny_obj_loader.h>
 
+#include "core/scene/obj_text_scan.h"
+#include "core/scene/radiometric_range.h"
 #include "core/util/error.h"
 #include "core/util/memory_budget.h"
 
 namespace rrf {
 
 namespace {
-/// Splits tinyobjloader's newline-separated message text.
+/// Splits tinyobjloader's newline-separated message text. Its "Degenerated face found\n." per
+/// face of fewer than 3 corners (so ".Degenerated face found" from the second on) is left out: the
+/// text scan counts those faces and names the first one's line.
 void appendLines(const std::string& text, const std::string& prefix, std::vector<std::string>& out) {
     std::istringstream in(text);
     std::string line;
-    while (std::getline(in, line))
-        if (!line.empty()) out.push_back(prefix + line);
-}
-
-/// What the line scan found: the statements tinyobjloader reports without a line number.
-struct LineScan {
-    struct Named {
-        size_t line;
-        std::string name;
-    };
-    std::vector<Named> mtllibs, usemtls;
-    size_t badLine = 0;  ///< first face line with an index out of range (0 = none)
-    std::string badWhat;
-};
-
-/// One pass over the text: counts `v`/`vn` as they come and checks every face corner's position
-/// and normal index against them (1 … count, or −count … −1 relative to the vertices so far; an
-/// index may not name a vertex defined later, as tinyobjloader resolves relative indices early).
-LineScan scanLines(const std::string& path) {
-    LineScan scan;
-    std::ifstream in(path);
-    std::string line;
-    long long positions = 0, normals = 0;
-    for (size_t number = 1; std::getline(in, line); ++number) {
-        std::istringstream words(line);
-        std::string key;
-        words >> key;
-        if (key == "v") ++positions;
-        else if (key == "vn") ++normals;
-        else if (key == "mtllib" || key == "usemtl") {
-            std::string name;
-            std::getline(words >> std::ws, name);
-            while (!name.empty() && (name.back() == '\r' || name.back() == ' ' || name.back() == '\t')) name.pop_back();
-            (key == "mtllib" ? scan.mtllibs : scan.usemtls).push_back({number, name});
-        } else if (key == "f" && scan.badLine == 0) {
-            std::string corner;
-            while (words >> corner) {
-                // Corner forms: v, v/t, v//n, v/t/n.
-                const size_t s1 = corner.find('/');
-                const size_t s2 = s1 == std::string::npos ? s1 : corner.find('/', s1 + 1);
-                auto bad = [&](const std::string& text, long long count, const char* what, const char* plural) {
-                    if (text.empty()) return false;
-                    const long long i = std::atoll(text.c_str());
-                    if (i != 0 && i <= count && -i <= count) return false;
-                    scan.badLine = number;
-                    scan.badWhat = std::string(what) + " index " + text + " is out of range: " + std::to_string(count) +
-                                   " " + (count == 1 ? what : plural) + " defined so far";
-                    return true;
-                };
-                if (bad(corner.substr(0, s1), positions, "vertex", "vertices")) break;
-                if (s2 != std::string::npos && bad(corner.substr(s2 + 1), normals, "normal", "normals")) break;
-            }
-        }
+    while (std::getline(in, line)) {
+        const std::string bare = !line.empty() && line[0] == '.' ? line.substr(1) : line;
+        if (!bare.empty() && bare != "Degenerated face found") out.push_back(prefix + line);
     }
-    return scan;
 }
 
 std::string fileLine(const std::string& path, size_t line) { return "OBJ file '" + path + "' line " + std::to_string(line); }
@@ -105,22 +58,38 @@ ObjFile loadObjFile(const std::string& objPath, const std::string& sceneFile, co
     const uint64_t fileBytes = uint64_t(std::filesystem::file_size(objPath, ec));
     requireMemory(2 * fileBytes, "twice the OBJ file's " + formatBytes(fileBytes), sceneFile, where);
 
-    const LineScan scan = scanLines(objPath);
-    if (scan.badLine) throw InputError(sceneFile, where, fileLine(objPath, scan.badLine) + ": " + scan.badWhat);
+    const ObjScanContext ctx{sceneFile, where};
+    const ObjTextScan scan = scanObjText(objPath, ctx);
     const std::string dir = std::filesystem::path(objPath).parent_path().string();
+    // tinyobjloader looks for a library as <search path><name>, the search path ending in '/'.
+    const std::string searchPath = dir.empty() ? "./" : dir + "/";
     if (requireMaterials)
-        for (const LineScan::Named& lib : scan.mtllibs) {
-            const std::filesystem::path p = std::filesystem::path(dir.empty() ? "." : dir) / lib.name;
-            if (!std::filesystem::is_regular_file(p, ec))
+        for (const ObjTextScan::Library& lib : scan.mtllibs) {
+            // tinyobjloader loads the first name of the line it can open; those are the texts it reads.
+            bool found = false;
+            std::string tried;
+            for (const std::string& name : lib.names) {
+                const std::string p = searchPath + name;
+                tried += (tried.empty() ? "'" : ", '") + p + "'";
+                if (!std::filesystem::is_regular_file(p, ec)) continue;
+                scanMtlText(p, ctx);
+                found = true;
+                break;
+            }
+            if (!found) {
+                std::string names;
+                for (const std::string& name : lib.names) names += (names.empty() ? "'" : " '") + name + "'";
                 throw InputError(sceneFile, where,
-                                 fileLine(objPath, lib.line) + ": material library '" + lib.name + "' not found (looked for '" +
-                                     p.string() + "'); give the shape a \"material\" to ignore the OBJ's materials");
+                                 fileLine(objPath, lib.line) + ": material library " + (names.empty() ? "''" : names) +
+                                     " not found (looked for " + (tried.empty() ? "a file name" : tried) +
+                                     "); give the shape a \"material\" to ignore the OBJ's materials");
+            }
         }
 
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;  // emitting quads become rect lights; the scene builder triangulates the rest
     config.vertex_color = false;
-    config.mtl_search_path = dir.empty() ? "./" : dir + "/";
+    config.mtl_search_path = searchPath;
     tinyobj::ObjReader reader;
     if (!reader.ParseFromFile(objPath, config)) {
         std::string err = reader.Error();
@@ -130,6 +99,10 @@ ObjFile loadObjFile(const std::string& objPath, const std::string& sceneFile, co
 
     ObjFile file;
     appendLines(reader.Warning(), objPath + ": ", file.warnings);
+    if (scan.degenerateFaces > 0)
+        file.warnings.push_back("OBJ file '" + objPath + "': skipped " + std::to_string(scan.degenerateFaces) + " face" +
+                                (scan.degenerateFaces == 1 ? "" : "s") + " with fewer than 3 vertices (the first on line " +
+                                std::to_string(scan.firstDegenerateLine) + ")");
     for (const tinyobj::material_t& m : reader.GetMaterials()) {
         ObjMaterial om;
         om.name = m.name;
@@ -137,17 +110,18 @@ ObjFile loadObjFile(const std::string& objPath, const std::string& sceneFile, co
         om.ks = Vec3(m.specular[0], m.specular[1], m.specular[2]);
         om.ke = Vec3(m.emission[0], m.emission[1], m.emission[2]);
         om.ns = float(m.shininess);
-        for (const Vec3& c : {om.kd, om.ks, om.ke})
-            for (int i = 0; i < 3; ++i)
-                if (!(std::isfinite(c[i]) && c[i] >= 0.f))
-                    throw InputError(sceneFile, where, "OBJ file '" + objPath + "': material '" + m.name +
-                                                           "' has a colour component that is negative or not finite");
-        if (!(std::isfinite(om.ns) && om.ns >= 0.f))
-            throw InputError(sceneFile, where, "OBJ file '" + objPath + "': material '" + m.name + "' has Ns < 0 or not finite");
+        // The MTL scan has refused bad numbers with their line; this catches whatever tinyobjloader
+        // read differently from the scan (a library the scan did not see), without a line.
+        std::string why = emissionProblem(om.ke, "Ke");
+        for (const Vec3& c : {om.kd, om.ks})
+            if (why.empty() && !(c.isFinite() && c.minComponent() >= 0.f)) why = "Kd or Ks is negative or not finite";
+        if (why.empty()) why = exponentProblem(om.ns, "Ns");
+        if (requireMaterials && !why.empty())
+            throw InputError(sceneFile, where, "OBJ file '" + objPath + "': material '" + m.name + "': " + why);
         file.materials.push_back(om);
     }
     if (requireMaterials)
-        for (const LineScan::Named& use : scan.usemtls) {
+        for (const ObjTextScan::Named& use : scan.usemtls) {
             const auto defined = [&](const std::string& n) {
                 return std::any_of(file.materials.begin(), file.materials.end(), [&](const ObjMaterial& m) { return m.name == n; }) ||
                        std::find(knownMaterials.begin(), knownMaterials.end(), n) != knownMaterials.end();
@@ -185,8 +159,7 @@ ObjFile loadObjFile(const std::string& objPath, const std::string& sceneFile, co
                 allNormals.push_back(true);
             }
             ObjPart& part = file.parts[it->second];
-            if (n < 3) {
-                file.warnings.push_back(objPath + ": skipped a face with " + std::to_string(n) + " vertices in '" + group + "'");
+            if (n < 3) {  // tinyobjloader drops these itself; the scan's warning counts them
                 offset += n;
                 continue;
             }

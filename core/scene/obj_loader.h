@@ -2,8 +2,9 @@
 /// Wavefront OBJ + MTL reading for scene files (tinyobjloader). The file is read into parts — one
 /// per group (`o`/`g`) and material, or one per material — whose faces stay polygons as written, so
 /// that the scene builder (scene_json.cpp) can turn emitting quads into rect lights and everything
-/// else into triangles. tinyobjloader reports no line numbers for bad face indices or unknown
-/// materials, so a line scan of the text finds the line a problem is on and errors name it.
+/// else into triangles. tinyobjloader reads bad numbers as 0 and reports no line numbers for bad
+/// face indices or unknown materials, so a line scan of the OBJ and MTL text
+/// (core/scene/obj_text_scan.h) checks them first and errors name the line.
 
 #include <cstdint>
 #include <string>
@@ -39,11 +40,14 @@ struct ObjPart {
 struct ObjFile {
     std::vector<ObjMaterial> materials;
     std::vector<ObjPart> parts;
-    std::vector<std::string> warnings;  ///< the OBJ parser's non-fatal remarks
+    /// The OBJ parser's non-fatal remarks, and the count of faces with fewer than 3 vertices
+    /// (skipped) with the first one's line.
+    std::vector<std::string> warnings;
 };
 
-/// Loads `objPath` with its MTL libraries. Errors (missing or unreadable file, a face index out of
-/// range, non-finite coordinates, no faces; with `requireMaterials` also a missing MTL library or a
+/// Loads `objPath` with its MTL libraries. Errors (missing or unreadable file, a `v`/`vn` number
+/// that is not a finite float or missing, a face index out of range, no faces; with
+/// `requireMaterials` also a missing MTL library, a bad Kd/Ks/Ke/Ns (core/scene/obj_text_scan.h) or a
 /// `usemtl` of a material no library defines, unless `knownMaterials` has it) throw
 /// InputError(sceneFile, where, ...) naming the OBJ file and, where there is one, its line, so the
 /// message points at the scene entry that named the OBJ file as well as the OBJ text.

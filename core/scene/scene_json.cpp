@@ -14,6 +14,7 @@
 #include "core/scene/coordinate_range.h"
 #include "core/scene/light_region.h"
 #include "core/scene/obj_loader.h"
+#include "core/scene/radiometric_range.h"
 #include "core/scene/scene_builder.h"
 #include "core/scene/scene_parse.h"
 #include "core/scene/transform.h"
@@ -85,7 +86,7 @@ Material parseMaterial(const JsonReader& r, const std::string& name) {
         m.ks = nonNegativeColor(r.at("ks"), "ks");
         const JsonReader e = r.at("exponent");
         m.exponent = e.floatValue();
-        if (m.exponent < 0) e.fail("Phong exponent must be >= 0, got " + formatNumber(m.exponent));
+        if (const std::string why = exponentProblem(m.exponent, "exponent"); !why.empty()) e.fail(why);
     } else {
         r.at("type").fail("unknown material type '" + type + "' (known: lambert, phong)");
     }
@@ -283,7 +284,10 @@ struct SceneBuilder : SceneBuildState {
             const double size = std::max(DVec(l.edge1).dot(DVec(l.edge1)), DVec(l.edge2).dot(DVec(l.edge2)));
             if (!(area > kDegenerateArea * size) || !(area > 0))
                 r.fail("rect light has zero area (edge1 and edge2 are zero or parallel)");
+            if (const std::string why = lightSizeProblem(l.edge1, l.edge2); !why.empty()) r.fail("light '" + l.name + "': " + why);
             l.radiance = nonNegativeColor(r.at("radiance"), "radiance");
+            if (const std::string why = emissionProblem(l.radiance, "radiance"); !why.empty())
+                r.at("radiance").fail("light '" + l.name + "': " + why);
             l.oneSided = r.booleanOr("one_sided", true);
             // Emitters are black unless they name a material (reflective emitters, e.g. furnace tests).
             if (auto m = r.find("material")) l.material = lookupMaterial(*m);
@@ -292,6 +296,8 @@ struct SceneBuilder : SceneBuildState {
             l.type = Light::Type::Point;
             l.position = r.at("position").vec3();
             l.intensity = nonNegativeColor(r.at("intensity"), "intensity");
+            if (const std::string why = emissionProblem(l.intensity, "intensity"); !why.empty())
+                r.at("intensity").fail("light '" + l.name + "': " + why);
         } else {
             r.at("type").fail("unknown light type '" + type + "' (known: rect, point)");
         }

@@ -6,6 +6,7 @@
 
 #include "core/scene/coordinate_range.h"
 #include "core/scene/obj_loader.h"
+#include "core/scene/radiometric_range.h"
 #include "core/scene/scene_builder.h"
 #include "core/scene/scene_parse.h"
 #include "core/util/json_reader.h"
@@ -27,9 +28,11 @@ int mtlMaterial(SceneBuildState& b, const JsonReader& r, const ObjMaterial* m, c
         mat.ks = m->ks;
         mat.exponent = m->ns;
         mat.type = m->ks.isZero() ? Material::Type::Lambert : Material::Type::Phong;
-        const float sum = (m->kd + m->ks).maxComponent();
-        if (sum > 1.f + float(kEnergySlack)) {
-            const float s = 1.f / sum;
+        // In double: Kd and Ks near FLT_MAX would sum to infinity in float and scale to black.
+        double sum = 0;
+        for (int i = 0; i < 3; ++i) sum = std::max(sum, double(m->kd[i]) + double(m->ks[i]));
+        if (sum > 1 + kEnergySlack) {
+            const float s = float(1 / sum);
             mat.kd = m->kd * s;
             mat.ks = m->ks * s;
             b.scene.warnings.push_back(r.file() + ": " + r.pointer() + ": material '" + name + "' of '" + objPath +
@@ -80,6 +83,7 @@ void addObjFileShapes(SceneBuildState& b, const JsonReader& r, bool emitters, st
             b.scene.warnings.push_back(r.file() + ": " + r.pointer() + ": emitting faces of '" + o.name +
                                        "' are plain surfaces: the scene's \"lights\" replace the OBJ's emitters");
         size_t first = 0, lightCount = 0;
+        size_t tinyEmitters = 0;  // emitting faces too small to be lights (radiometric_range.h)
         std::vector<Light> partLights;
         for (size_t f = 0; f < part.faceSizes.size(); first += part.faceSizes[f++]) {
             const size_t n = part.faceSizes[f];
@@ -100,7 +104,8 @@ void addObjFileShapes(SceneBuildState& b, const JsonReader& r, bool emitters, st
                     l.corner = a;
                     l.edge1 = flip ? d - a : b - a;
                     l.edge2 = flip ? b - a : d - a;
-                    if (l.area() > 0.f) partLights.push_back(l);
+                    if (lightSizeProblem(l.edge1, l.edge2).empty()) partLights.push_back(l);
+                    else ++tinyEmitters;
                     continue;
                 }
             }
@@ -117,9 +122,15 @@ void addObjFileShapes(SceneBuildState& b, const JsonReader& r, bool emitters, st
                 l.corner = o.positions[tris[i]];
                 l.edge1 = o.positions[tris[i + 1]] - l.corner;
                 l.edge2 = o.positions[tris[i + 2]] - l.corner;
-                if (l.area() > 0.f) partLights.push_back(l);
+                if (lightSizeProblem(l.edge1, l.edge2).empty()) partLights.push_back(l);
+                else ++tinyEmitters;
             }
         }
+        if (tinyEmitters > 0)
+            b.scene.warnings.push_back(r.file() + ": " + r.pointer() + ": dropped " + std::to_string(tinyEmitters) +
+                                       " emitting face" + (tinyEmitters == 1 ? "" : "s") + " of '" + o.name +
+                                       "' with |edge1 x edge2| below " + formatNumber(kMinLightCross) +
+                                       " (zero area, or too small for a float normal)");
         for (Light& l : partLights) {
             l.name = partLights.size() == 1 ? o.name : o.name + "." + std::to_string(lightCount);
             ++lightCount;

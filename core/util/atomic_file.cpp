@@ -7,7 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <fcntl.h>
 #include <unistd.h>
+
+#include "core/util/error.h"
 
 namespace rrf {
 
@@ -15,13 +18,29 @@ namespace {
 std::string errnoText() { return std::strerror(errno); }
 }  // namespace
 
+bool syncDirectory(const std::string& dir) {
+    const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
+    if (fd < 0) return false;
+    const bool ok = ::fsync(fd) == 0;
+    ::close(fd);
+    return ok;
+}
+
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+    std::error_code ec;
+    existed_ = std::filesystem::exists(path_, ec);
     // Leftovers of killed writers of the same target go first, so kills do not pile up copies.
     removeStaleTemporaryFiles(path_);
     temp_ = temporaryFileFor(path_);
     file_ = std::fopen(temp_.c_str(), "wb");
-    if (!file_) throw std::runtime_error(path_ + ": cannot create temporary file '" + temp_ + "': " + errnoText());
+    // The temporary lies beside the destination: what stops it (no such directory, no permission,
+    // no space) stops the destination too, so the error is the destination's.
+    if (!file_) fail("cannot write the file: " + errnoText());
     slot_ = registerTemporaryFile(temp_);
+}
+
+void AtomicFile::fail(const std::string& problem) const {
+    throw OutputError(path_, problem, existed_ ? "the previous file is kept" : "no file was created");
 }
 
 AtomicFile::~AtomicFile() {
@@ -31,22 +50,24 @@ AtomicFile::~AtomicFile() {
 }
 
 void AtomicFile::write(const void* data, size_t bytes) {
-    if (!file_) throw std::runtime_error(path_ + ": write after commit");
-    if (bytes && std::fwrite(data, 1, bytes, file_) != bytes)
-        throw std::runtime_error(path_ + ": write failed: " + errnoText());
+    if (!file_) throw std::logic_error(path_ + ": write after commit");
+    if (bytes && std::fwrite(data, 1, bytes, file_) != bytes) fail("write failed: " + errnoText());
 }
 
 void AtomicFile::commit() {
-    if (!file_) throw std::runtime_error(path_ + ": commit called twice");
+    if (!file_) throw std::logic_error(path_ + ": commit called twice");
     bool ok = std::fflush(file_) == 0 && ::fsync(::fileno(file_)) == 0;
-    const std::string err = ok ? "" : errnoText();
-    ok = (std::fclose(file_) == 0) && ok;
+    std::string err = ok ? "" : errnoText();
+    const bool closed = std::fclose(file_) == 0;
+    if (ok && !closed) err = errnoText();
     file_ = nullptr;
-    if (!ok) throw std::runtime_error(path_ + ": flushing '" + temp_ + "' failed: " + err);
+    // Buffered bytes reach the disk here, so a full disk usually shows up now rather than in write().
+    if (!(ok && closed)) fail("write failed: " + err);
     crashPoint("commit " + std::filesystem::path(path_).filename().string());
-    if (std::rename(temp_.c_str(), path_.c_str()) != 0)
-        throw std::runtime_error(path_ + ": rename from '" + temp_ + "' failed: " + errnoText());
+    if (std::rename(temp_.c_str(), path_.c_str()) != 0) fail("cannot replace the file: " + errnoText());
     committed_ = true;
+    // Best effort (see syncDirectory): the file is complete and in place either way.
+    syncDirectory(std::filesystem::path(path_).parent_path().string());
 }
 
 void writeFileAtomically(const std::string& path, const std::string& bytes) {

@@ -10,6 +10,8 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
 #include "core/util/temp_files.h"
 
 #ifndef RENAME_EXCHANGE
@@ -21,14 +23,6 @@ namespace rrf {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// Makes a rename inside `dir` durable (best effort: not every file system supports it).
-void syncDirectory(const fs::path& dir) {
-    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
-    if (fd < 0) return;
-    ::fsync(fd);
-    ::close(fd);
-}
 
 /// Exchanges two paths atomically; false with errno set where the kernel or file system cannot.
 bool exchange(const fs::path& a, const fs::path& b) {
@@ -69,6 +63,33 @@ void carryOver(const fs::path& from, const fs::path& to, const std::function<boo
         if (copyError) fail(from, "cannot keep '" + name + "' (not part of the set) in the new directory: " + copyError.message());
     }
     if (ec) fail(from, "cannot list the directory: " + ec.message());
+}
+
+/// `text` with every occurrence of the staging directory's path replaced by the target's, so that a
+/// message about a file being written into the new set names the file the user will look for.
+std::string namingTarget(std::string text, const std::string& staging, const std::string& target) {
+    for (size_t at = text.find(staging); at != std::string::npos; at = text.find(staging, at + target.size()))
+        text.replace(at, staging.size(), target);
+    return text;
+}
+
+/// Rethrows what `fill` threw with the target's paths for the staging directory's and what the
+/// failed replacement kept: OutputError and InputError keep their type (callers tell them apart),
+/// other runtime errors (an image refused by its encoder) become std::runtime_error; anything else
+/// (a logic error, bad_alloc) propagates as it is.
+[[noreturn]] void rethrowNamingTarget(const std::string& staging, const std::string& target, bool replacing) {
+    const std::string kept =
+        replacing ? "the previous contents of '" + target + "' are kept" : "'" + target + "' was not created";
+    try {
+        throw;
+    } catch (const OutputError& e) {
+        throw OutputError(namingTarget(e.path(), staging, target), namingTarget(e.problem(), staging, target), kept);
+    } catch (const InputError& e) {
+        throw InputError(namingTarget(e.file(), staging, target), namingTarget(e.where(), staging, target),
+                         namingTarget(e.detail(), staging, target) + "; " + kept);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(namingTarget(e.what(), staging, target) + "; " + kept);
+    }
 }
 
 }  // namespace
@@ -120,26 +141,32 @@ void replaceDirectory(const std::string& targetPath, const std::function<bool(co
 
     const fs::path staging = temporaryDirectoryFor(target.string(), "tmp");
     fs::create_directory(staging, ec);
-    if (ec) fail(targetPath, "cannot create the temporary directory '" + staging.string() + "': " + ec.message());
+    // The new set is built beside the target: what stops that (permissions, space) stops the target.
+    if (ec)
+        throw OutputError(targetPath, "cannot write into its directory: " + ec.message(),
+                          replacing ? "the previous contents are kept" : "it was not created");
     try {
         fill(staging.string());
         if (replacing) carryOver(target, staging, isMember);
-        syncDirectory(staging);
+        syncDirectory(staging.string());
     } catch (...) {
         fs::remove_all(staging, ec);
-        throw;
+        // The user's spelling of the target (less trailing separators), not the resolved path.
+        std::string shown = targetPath;
+        while (shown.size() > 1 && shown.back() == '/') shown.pop_back();
+        rethrowNamingTarget(staging.string(), shown, replacing);
     }
     crashPoint("replace " + name + ": before swap");
     if (!replacing) {
         if (std::rename(staging.c_str(), target.c_str()) == 0) {
-            syncDirectory(parent);
+            syncDirectory(parent.string());
             return;
         }
         // A target that another writer created meanwhile (ENOTEMPTY) is exchanged like an old set.
         if (errno != ENOTEMPTY && errno != EEXIST) {
             const std::string err = std::strerror(errno);
             fs::remove_all(staging, ec);
-            fail(targetPath, "cannot move the new set into place: " + err);
+            fail(targetPath, "cannot move the new set into place: " + err + "; it was not created");
         }
     }
     if (exchange(staging, target)) {
@@ -151,7 +178,7 @@ void replaceDirectory(const std::string& targetPath, const std::function<bool(co
         if (std::rename(target.c_str(), aside.c_str()) != 0) {
             const std::string err = std::strerror(errno);
             fs::remove_all(staging, ec);
-            fail(targetPath, "cannot move the old set aside: " + err);
+            fail(targetPath, "cannot move the old set aside (it is kept): " + err);
         }
         crashPoint("replace " + name + ": between renames");
         if (std::rename(staging.c_str(), target.c_str()) != 0) {
@@ -161,14 +188,14 @@ void replaceDirectory(const std::string& targetPath, const std::function<bool(co
             fail(targetPath, "cannot move the new set into place (the old one is kept): " + err);
         }
         fs::remove_all(aside, ec);
-        syncDirectory(parent);
+        syncDirectory(parent.string());
         return;
     } else {
         const std::string err = std::strerror(errno);
         fs::remove_all(staging, ec);
         fail(targetPath, "cannot swap the new set into place (the old one is kept): " + err);
     }
-    syncDirectory(parent);
+    syncDirectory(parent.string());
     // After an exchange `staging` holds the old set.
     fs::remove_all(staging, ec);
 }

@@ -27,7 +27,11 @@ namespace rrf {
 /// directory belongs to the set (and is dropped) rather than being kept. Throws std::runtime_error
 /// naming the directory if the target is not a directory, is the current working directory or
 /// contains it (it cannot be swapped away under the process), or a step fails; the old set is then
-/// untouched. What `fill` throws propagates after the temporary directory is removed.
+/// untouched. What `fill` throws propagates after the temporary directory is removed, its message
+/// naming the target instead of the temporary directory (`out/gt/global.exr: write failed: No
+/// space left on device; the previous contents of 'out/gt' are kept`): OutputError and InputError
+/// keep their type, other std::runtime_errors become std::runtime_error, anything else is rethrown
+/// as it is. The parent directory is fsynced after the swap (core/util/atomic_file.h's syncDirectory).
 void replaceDirectory(const std::string& target, const std::function<bool(const std::string& name)>& isMember,
                       const std::function<void(const std::string& staging)>& fill);
 

@@ -36,4 +36,22 @@ public:
     const std::string& setting() const { return where(); }
 };
 
+/// An output that could not be written (a full disk, a file size limit, no permission): names the
+/// output the user asked for — never the temporary file or directory the write went through
+/// (core/util/atomic_file.h, directory_replace.h) — what failed, and what is there now
+/// ("<path>: write failed: No space left on device; the previous file is kept").
+class OutputError : public std::runtime_error {
+public:
+    OutputError(const std::string& path, const std::string& problem, const std::string& kept)
+        : std::runtime_error(path + ": " + problem + (kept.empty() ? "" : "; " + kept)), path_(path), problem_(problem),
+          kept_(kept) {}
+
+    const std::string& path() const { return path_; }
+    const std::string& problem() const { return problem_; }
+    const std::string& kept() const { return kept_; }
+
+private:
+    std::string path_, problem_, kept_;
+};
+
 }  // namespace rrf

@@ -1,0 +1,26 @@
+#pragma once
+/// A fresh directory per test for tests that write real files: CTest runs each test in its own
+/// process, possibly in parallel, so the directory is named after the test and the process.
+
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+namespace rrf::test {
+
+/// `<temp>/<prefix>_<test name>_<pid>`, emptied and created.
+inline std::filesystem::path freshTestDir(const std::string& prefix) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / (prefix + "_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+/// True if `part` occurs in `s` (messages are checked for the parts that matter).
+inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace rrf::test
