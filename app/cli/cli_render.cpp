@@ -23,7 +23,7 @@ struct RenderArgs {
     std::optional<Vec3> lightPos;
     int threads = 0;
     bool record = false;
-    SettingFlags<RenderSettings> render;  ///< --spp, --width, --height, --mode, --seed, --exposure
+    SettingFlags<RenderSettings> render;  ///< --spp, --width, --height, --estimator, --seed, --exposure
 };
 
 int runRender(RenderArgs a) {

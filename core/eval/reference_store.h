@@ -60,7 +60,7 @@ struct ReferenceKey {
     /// A 16-hex-digit digest of every field: the entry's directory name.
     std::string id() const;
     /// {"scene_hash", "camera_hash" (16 hex digits), "light_position", "width", "height", "estimator"
-    /// ("nee"|"naive"), "max_depth", "seed"}.
+    /// ("nee"|"naive"|"bdpt": the estimator that ran, never "auto"), "max_depth", "seed"}.
     nlohmann::json toJson() const;
     /// The key written by toJson(); throws InputError naming `file` and the pointer below `pointer`.
     static ReferenceKey fromJson(const nlohmann::json& j, const std::string& file, const std::string& pointer);

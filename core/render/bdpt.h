@@ -104,10 +104,10 @@ private:
     /// leaves the scene, reaches maxVertices, or a BRDF sample or Russian roulette ends it.
     void walk(Ray ray, Vec3 beta, float pdfDir, bool importance, std::vector<BdptVertex>& path, int maxVertices,
               const Light& movable, Rng& rng, TraceCounters& counters, int bounces = 0) const;
-    /// Samples the BRDF at path.back(): updates `beta` (and the previous vertex's reverse density),
-    /// sets the next `ray` and its `pdfDir`; false when the path ends there.
     /// The surface vertex of `hit`, reached with throughput `beta` from direction `wPrev`.
     BdptVertex surfaceVertex(const Hit& hit, const Vec3& beta, const Vec3& wPrev) const;
+    /// Samples the BRDF at path.back(): updates `beta` (and the previous vertex's reverse density),
+    /// sets the next `ray` and its `pdfDir`; false when the path ends there.
     bool scatter(std::vector<BdptVertex>& path, Vec3& beta, float beta0, int bounces, bool importance, Ray& ray,
                  float& pdfDir, Rng& rng) const;
     void lightSubpath(std::vector<BdptVertex>& path, int maxVertices, const Light& movable, Rng& rng,

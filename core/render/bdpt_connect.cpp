@@ -175,7 +175,8 @@ Radiance BidirectionalTracer::shade(const Hit& hit, const Vec3& wo, const Light&
     float pdfDir = 0.f;
     if (scatter(paths.eye, beta, 1.f, 0, false, ray, pdfDir, rng))
         walk(ray, beta, pdfDir, false, paths.eye, maxReflections + 1, movable, rng, counters, 1);
-    lightSubpath(paths.light, maxReflections + 1, movable, rng, counters);
+    // A record's paths reflect at its own point, so their light subpaths need one vertex less.
+    lightSubpath(paths.light, maxReflections, movable, rng, counters);
     const Radiance c = connect(paths, nullptr, movable, rng, counters, nullptr);
     L.direct += c.direct;
     L.indirect += c.indirect;

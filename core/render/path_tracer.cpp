@@ -2,11 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace rrf {
 
 PathTracer::PathTracer(const Scene& scene, const Accel& accel, Estimator estimator, int maxDepth)
     : scene_(scene), accel_(accel), estimator_(estimator), maxDepth_(std::max(1, maxDepth)) {
+    // Only NEE and naive are path tracing; BDPT and Auto resolved elsewhere would run as naive here.
+    if (estimator != Estimator::NEE && estimator != Estimator::Naive)
+        throw std::invalid_argument(std::string("PathTracer: estimator '") + estimatorName(estimator) +
+                                    "' is not a path tracer's (nee or naive)");
     effects_ = Effects::derive(scene);
     for (const Material& m : scene.materials) brdfs_.emplace_back(m);
     for (size_t i = 0; i < scene.lights.size(); ++i) {

@@ -145,7 +145,9 @@ bool Renderer::runBidirectionalPass(int samples, TraceCounters& counters, uint64
     for (int s = 0; s < samples; ++s) {
         if (cancelled_) return false;
         // Every pixel is at the same sample index: iterations run in lockstep.
-        const uint64_t sample = pass_.empty() ? 0 : pass_[size_t(options_.rowOffset) * size_t(w)].next;
+        // (a part may own no row at all: then its iterations count from the spp done).
+        const uint64_t sample = options_.rowOffset < h ? pass_[size_t(options_.rowOffset) * size_t(w)].next
+                                                       : uint64_t(sppDone_) + uint64_t(s);
         tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1), [&](const tbb::blocked_range<int>& r) {
             TraceCounters& c = tileCounters.local();
             for (int tile = r.begin(); tile < r.end(); ++tile) {

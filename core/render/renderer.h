@@ -31,7 +31,8 @@ namespace rrf {
 struct RenderOptions {
     int width = 256, height = 256;
     int spp = 64;
-    Estimator estimator = Estimator::NEE;
+    /// Auto: the renderer resolves it from the scene's effects (chooseEstimator), as the project does.
+    Estimator estimator = Estimator::Auto;
     uint64_t seed = 1;
     int maxDepth = 64;
     int samplesPerPass = 1;
