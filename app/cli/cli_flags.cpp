@@ -65,14 +65,14 @@ void addSamplingFlags(CLI::App* cmd, SettingFlags<SamplingSettings>& flags, cons
         ->check(CLI::Range(1, kMaxSamplesPerRecord));
     flags.add<std::string>(cmd, "--record-estimator", "estimator of the training records (nee, naive, bdpt, auto)",
                            [](SamplingSettings& s, const std::string& m) { s.estimator = *parseEstimator(m); })
-        ->check(CLI::IsMember({"nee", "naive", "bdpt", "auto"}));
+        ->check(CLI::IsMember(estimatorChoices()));
 }
 
 CLI::Option* addEstimatorOption(CLI::App* cmd, std::string& target, const std::string& what) {
     return cmd
         ->add_option("--estimator", target,
                      "estimator of " + what + " (auto: bdpt where glossy lobes form caustics, else nee; default: the project's)")
-        ->check(CLI::IsMember({"nee", "naive", "bdpt", "auto"}));
+        ->check(CLI::IsMember(estimatorChoices()));
 }
 
 void applyEstimatorFlag(const std::string& flag, Estimator& estimator) {

@@ -100,7 +100,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     r.add<int>(cmd, "--height", "image height", [](RenderSettings& s, const int& n) { s.height = n; })->check(CLI::Range(1, kMaxImageSide));
     r.add<std::string>(cmd, "--estimator", "light-transport estimator (auto: bdpt where the scene has caustics, else nee)",
                        [](RenderSettings& s, const std::string& m) { s.estimator = *parseEstimator(m); })
-        ->check(CLI::IsMember({"nee", "naive", "bdpt", "auto"}));
+        ->check(CLI::IsMember(estimatorChoices()));
     addVec3Option(cmd, "--light-pos", a->lightPos, "move the light's centre to x,y,z");
     cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(nonNegative());
     r.add<long long>(cmd, "--seed", "random seed", [](RenderSettings& s, const long long& seed) { s.seed = uint64_t(seed); })

@@ -27,6 +27,11 @@ std::optional<Estimator> parseEstimator(std::string_view name) {
 
 const char* estimatorNames() { return "nee, naive, bdpt, auto"; }
 
+const std::vector<std::string>& estimatorChoices() {
+    static const std::vector<std::string> names = {"nee", "naive", "bdpt", "auto"};
+    return names;
+}
+
 EstimatorChoice chooseEstimator(Estimator requested, const Effects& effects) {
     if (requested != Estimator::Auto)
         return {requested, std::string("requested (") + estimatorName(requested) + ")"};

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -26,6 +27,8 @@ const char* estimatorName(Estimator e);
 std::optional<Estimator> parseEstimator(std::string_view name);
 /// "nee, naive, bdpt, auto", for messages and help texts.
 const char* estimatorNames();
+/// {"nee", "naive", "bdpt", "auto"}: the values a setting or flag may take (readers' choice lists).
+const std::vector<std::string>& estimatorChoices();
 
 /// The estimator that runs and why (printed by the CLI, recorded in render.json and datasets).
 struct EstimatorChoice {
