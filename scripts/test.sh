@@ -4,7 +4,7 @@
 #            tests included (under Xvfb);
 #   asan     clang build with AddressSanitizer + UndefinedBehaviorSanitizer running the core tests and
 #            the fuzz targets' seeds (CI's clang build);
-#   fuzz     each libFuzzer target (scene, project, dataset, model parsers) for RRF_FUZZ_SECONDS;
+#   fuzz     each libFuzzer target (scene, project, dataset, model, image, OBJ readers) for RRF_FUZZ_SECONDS;
 #   tsan     clang ThreadSanitizer build of the threaded tests.
 # (the last three: scripts/sanitize.sh, docs/design.md §22). RRF_SANITIZE_JOBS=0 runs the release job
 # only, for a quick local check. Every build is a unity build (cmake/Unity.cmake): CI builds from

@@ -211,6 +211,29 @@ TEST(CliHostile, ObjAndMtlNumbersOutOfRangeExitBeforeAnyWork) {
     fs::remove_all(dir);
 }
 
+TEST(CliHostile, NonFiniteNumbersOnTheCommandLineAreRefusedBeforeAnyWork) {
+    // CLI11 converts "nan" and "inf" to numbers its range checks let through: --exposure nan used to
+    // render the whole image before the PNG encoder refused it, naming the temporary directory.
+    const fs::path dir = testDir();
+    const std::string scene = writeScene(dir, "scene.json");
+    const struct {
+        std::string args, message;
+    } cases[] = {
+        {"render " + scene + " --spp 1 --format png --exposure nan --out " + (dir / "o").string(), "--exposure: expected a finite number, got 'nan'"},
+        {"reference " + scene + " --noise nan", "--noise: expected a finite number, got 'nan'"},
+        {"generate " + scene + " --noise-target inf --out " + (dir / "d.rrfd").string(), "--noise-target: expected a finite number, got 'inf'"},
+    };
+    for (const auto& c : cases) {
+        const auto r = runCli(c.args);
+        EXPECT_EQ(r.code, 1) << c.args << "\n" << r.output;
+        EXPECT_TRUE(contains(r.output, c.message)) << c.args << "\n" << r.output;
+        EXPECT_FALSE(contains(r.output, "rendered")) << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "o"));
+    EXPECT_FALSE(fs::exists(dir / "references"));
+    fs::remove_all(dir);
+}
+
 TEST(CliHostile, CgroupMemoryLimitBoundsTheRequests) {
     // A container or job limited to 64 MiB by its cgroup (files under RRF_MEMORY_INFO_ROOT, as
     // core/util/memory_budget.h reads them): a render of 2048 x 2048 pixels (1.6 GiB) is refused.

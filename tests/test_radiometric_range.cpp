@@ -17,6 +17,7 @@
 #include "core/predict/exact_direct.h"
 #include "core/project/scene_overrides.h"
 #include "core/render/render_outputs.h"
+#include "core/render/render_settings.h"
 #include "core/render/renderer.h"
 #include "core/render/term.h"
 #include "core/scene/accel.h"
@@ -153,11 +154,15 @@ TEST(RadiometricRange, AtTheBoundsEveryImageOfARenderAndExactDirectLightStayFini
     const int sharp = addPhong(scene, Vec3(0.2f), Vec3(0.8f), kMaxPhongExponent, "sharp");
     scene.objects.back().material = sharp;  // the block
     const Accel accel(scene);
-    const RenderSnapshot at = render(scene, accel, Estimator::NEE, 16);
-    EXPECT_EQ(at.nonFinite, 0u);
-    for (Term t : kTerms) {
-        EXPECT_EQ(at.image(t).nonFiniteCount(), 0u) << termName(t);
-        EXPECT_EQ(at.varianceOf(t).nonFiniteCount(), 0u) << termName(t);
+    // Every estimator: NEE's Le·f·G, the naive estimator's β·Le, and bidirectional light tracing's
+    // splats, which multiply by the camera's importance too.
+    for (const Estimator e : {Estimator::NEE, Estimator::Naive, Estimator::BDPT}) {
+        const RenderSnapshot at = render(scene, accel, e, 16);
+        EXPECT_EQ(at.nonFinite, 0u) << estimatorName(e);
+        for (Term t : kTerms) {
+            EXPECT_EQ(at.image(t).nonFiniteCount(), 0u) << estimatorName(e) << " " << termName(t);
+            EXPECT_EQ(at.varianceOf(t).nonFiniteCount(), 0u) << estimatorName(e) << " " << termName(t);
+        }
     }
     const PathTracer tracer(scene, accel, Estimator::NEE);
     const ExactDirect exact(tracer, 256, 7);

@@ -155,7 +155,7 @@ void addEvaluateCommand(CLI::App& app, int& exitCode) {
     addNoiseTargetFlags(cmd, a->noise, a->sppCap, "the references", "the project's, 4096", true, spp);
     cmd->add_option("--seed", a->seed, "seed of the held-out light positions")->check(nonNegative());
     addEstimatorOption(cmd, a->estimator, "the references");
-    cmd->add_option("--exposure", a->exposure, "exposure in stops for PNG output");
+    cmd->add_option("--exposure", a->exposure, "exposure in stops for PNG output")->check(finiteNumber());
     cmd->get_option("--out")->required(false)->description("output directory (required unless --record)");
     cmd->add_flag("--record", a->record,
                   "add the evaluation's metrics to the project's train run that made --models, as the workbench does "

@@ -34,6 +34,8 @@ CLI::Validator atLeast(long long min, const char* what, const char* name) {
 }
 }  // namespace
 
+const CLI::Validator& finiteNumber() { return kFinite; }
+
 const CLI::Validator& positive() {
     static const CLI::Validator v = atLeast(1, "a positive integer", "POSITIVE");
     return v;
@@ -170,6 +172,7 @@ void addNoiseTargetFlags(CLI::App* cmd, double& noise, int& sppCap, const std::s
                                      "relative RMSE noise (global term) " + which + " must reach (default: the project's "
                                      "\"reference\" section, 0.01" +
                                          std::string(relaxedByError ? "; or a quarter of the measured error when that is larger)" : ")"))
+                         ->check(kFinite)
                          ->check(CLI::Range(1e-6, 10.0));
     CLI::Option* c = cmd->add_option("--spp-cap", sppCap, "most samples per pixel of " + which + " (default: " + capDefault + ")")
                          ->check(CLI::Range(2, 1 << 24));

@@ -87,6 +87,11 @@ private:
     std::vector<std::function<void(Settings&)>> setters_;
 };
 
+/// A finite number (each element of a list): CLI11 converts "nan" and "inf" to floating values that
+/// its Range and PositiveNumber checks let through, since every comparison with NaN is false.
+/// Check it before a range.
+const CLI::Validator& finiteNumber();
+
 /// Positive and non-negative integers, with a readable message (CLI11's PositiveNumber prints the
 /// largest double as its range).
 const CLI::Validator& positive();

@@ -104,6 +104,7 @@ void addGenerateCommand(CLI::App& app, int& exitCode) {
         ->check(CLI::Range(1, kMaxSamplesPerRecord));
     a->sampling.add<double>(cmd, "--noise-target", "adaptive sampling: relative noise a record is sampled down to",
                             [](SamplingSettings& s, const double& t) { s.noiseTarget = t; })
+        ->check(finiteNumber())
         ->check(CLI::PositiveNumber);
     cmd->add_option("--threads", a->threads, "worker threads (0 = all cores)")->check(nonNegative());
     addCheckedOption<std::vector<int>>(

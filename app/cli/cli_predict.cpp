@@ -71,7 +71,7 @@ void addPredictCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--models", a->models, "model directory (rrf train --out)")->required();
     addVec3Option(cmd, "--light-pos", a->lightPos, "light centre x,y,z (default: the scene's)");
     cmd->add_option("--frames", a->frames, "frames to time (best is reported)")->check(positive());
-    cmd->add_option("--exposure", a->exposure, "exposure in stops for PNG output");
+    cmd->add_option("--exposure", a->exposure, "exposure in stops for PNG output")->check(finiteNumber());
     cmd->callback([a, &exitCode] { exitCode = runPredict(*a); });
 }
 

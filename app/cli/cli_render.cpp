@@ -107,7 +107,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
         ->check(nonNegative());
     cmd->add_option("--format", a->format, "image format")->check(CLI::IsMember({"exr", "pfm", "png"}));
     r.add<float>(cmd, "--exposure", "exposure in stops for PNG output (default: the project's)",
-                 [](RenderSettings& s, const float& stops) { s.exposure = stops; });
+                 [](RenderSettings& s, const float& stops) { s.exposure = stops; })
+        ->check(finiteNumber());
     cmd->add_flag("--record", a->record, recordHelp("a render run"));
     cmd->callback([a, &exitCode] { exitCode = runRender(*a); });
 }

@@ -75,8 +75,8 @@ std::string namingTarget(std::string text, const std::string& staging, const std
 
 /// Rethrows what `fill` threw with the target's paths for the staging directory's and what the
 /// failed replacement kept: OutputError and InputError keep their type (callers tell them apart),
-/// other runtime errors (an image refused by its encoder) become std::runtime_error; anything else
-/// (a logic error, bad_alloc) propagates as it is.
+/// other runtime errors (an image refused by its encoder) become std::runtime_error and invalid
+/// arguments std::invalid_argument; anything else (bad_alloc, a logic error) propagates as it is.
 [[noreturn]] void rethrowNamingTarget(const std::string& staging, const std::string& target, bool replacing) {
     const std::string kept =
         replacing ? "the previous contents of '" + target + "' are kept" : "'" + target + "' was not created";
@@ -89,6 +89,9 @@ std::string namingTarget(std::string text, const std::string& staging, const std
                          namingTarget(e.detail(), staging, target) + "; " + kept);
     } catch (const std::runtime_error& e) {
         throw std::runtime_error(namingTarget(e.what(), staging, target) + "; " + kept);
+    } catch (const std::invalid_argument& e) {
+        // An encoder's refused argument (a non-finite exposure) names the file it was writing too.
+        throw std::invalid_argument(namingTarget(e.what(), staging, target) + "; " + kept);
     }
 }
 

@@ -30,8 +30,9 @@ namespace rrf {
 /// untouched. What `fill` throws propagates after the temporary directory is removed, its message
 /// naming the target instead of the temporary directory (`out/gt/global.exr: write failed: No
 /// space left on device; the previous contents of 'out/gt' are kept`): OutputError and InputError
-/// keep their type, other std::runtime_errors become std::runtime_error, anything else is rethrown
-/// as it is. The parent directory is fsynced after the swap (core/util/atomic_file.h's syncDirectory).
+/// keep their type, other std::runtime_errors become std::runtime_error and std::invalid_arguments
+/// std::invalid_argument, anything else is rethrown as it is. The parent directory is fsynced after
+/// the swap (core/util/atomic_file.h's syncDirectory).
 void replaceDirectory(const std::string& target, const std::function<bool(const std::string& name)>& isMember,
                       const std::function<void(const std::string& staging)>& fill);
 

@@ -14,18 +14,17 @@
 
 #include <tinyexr.h>
 
-// stb is compiled into this file only, with internal linkage, so another translation unit (the GUI,
-// say) can carry its own copy of stb without duplicate symbols.
-#define STB_IMAGE_STATIC
-#define STBI_NO_STDIO
-#define STB_IMAGE_IMPLEMENTATION
-#include <stb_image.h>
+// stb_image_write is compiled into this file only, with internal linkage, so another translation
+// unit (the GUI, say) can carry its own copy of stb without duplicate symbols; stb_image, the
+// reader, is core/util/stb_reader.cpp's.
 #define STB_IMAGE_WRITE_STATIC
 #define STBI_WRITE_NO_STDIO
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
 
 #include "core/util/atomic_file.h"
+#include "core/util/memory_budget.h"
+#include "core/util/stb_reader.h"
 
 namespace rrf {
 
@@ -151,6 +150,14 @@ Image decodeExr(const std::string& bytes, const std::string& name) {
     const char* err = nullptr;
     if (ParseEXRHeaderFromMemory(&header, &version, mem, bytes.size(), &err) != TINYEXR_SUCCESS)
         fail(name, "invalid OpenEXR header: " + takeExrError(err));
+
+    // tinyexr allocates every channel's plane for the header's data window before it reads a pixel
+    // (up to 256 GB by its own limit), so a header of a few bytes could ask for all of memory.
+    const int64_t exrWidth = int64_t(header.data_window.max_x) - header.data_window.min_x + 1,
+                  exrHeight = int64_t(header.data_window.max_y) - header.data_window.min_y + 1;
+    if (exrWidth <= 0 || exrHeight <= 0)
+        fail(name, "OpenEXR data window is empty (" + std::to_string(exrWidth) + "x" + std::to_string(exrHeight) + ")");
+    requireDecodeMemory(exrWidth, exrHeight, 4 * int64_t(std::max(header.num_channels, 0)), name);
 
     int chan[3] = {findExrChannel(header, "R"), findExrChannel(header, "G"), findExrChannel(header, "B")};
     if (chan[0] < 0 || chan[1] < 0 || chan[2] < 0) {
@@ -307,39 +314,6 @@ std::string encodePng(const Image& img, float exposureStops, const std::string& 
     return out;
 }
 
-Image decodeStb(const std::string& bytes, const std::string& name) {
-    if (bytes.size() > size_t(INT_MAX)) fail(name, "file too large for the 8-bit image decoder");
-    const auto* mem = reinterpret_cast<const stbi_uc*>(bytes.data());
-    const int len = int(bytes.size());
-    int w = 0, h = 0, comp = 0;
-    if (stbi_is_hdr_from_memory(mem, len)) {
-        std::unique_ptr<float, void (*)(void*)> px(stbi_loadf_from_memory(mem, len, &w, &h, &comp, 3), stbi_image_free);
-        if (!px) fail(name, std::string("cannot decode image: ") + stbi_failure_reason());
-        Image img(w, h);
-        std::memcpy(img.data.data(), px.get(), img.data.size() * sizeof(float));
-        return img;
-    }
-    if (stbi_is_16_bit_from_memory(mem, len)) {
-        std::unique_ptr<stbi_us, void (*)(void*)> px(stbi_load_16_from_memory(mem, len, &w, &h, &comp, 3),
-                                                     stbi_image_free);
-        if (!px) fail(name, std::string("cannot decode image: ") + stbi_failure_reason());
-        Image img(w, h);
-        for (size_t i = 0; i < img.data.size(); ++i) img.data[i] = srgbToLinear(float(px.get()[i]) / 65535.f);
-        return img;
-    }
-    std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load_from_memory(mem, len, &w, &h, &comp, 3), stbi_image_free);
-    if (!px)
-        fail(name, std::string("not an EXR, PFM or image format stb_image can decode (") + stbi_failure_reason() + ")");
-    static const std::array<float, 256> table = [] {
-        std::array<float, 256> t{};
-        for (int i = 0; i < 256; ++i) t[size_t(i)] = srgbToLinear(float(i) / 255.f);
-        return t;
-    }();
-    Image img(w, h);
-    for (size_t i = 0; i < img.data.size(); ++i) img.data[i] = table[px.get()[i]];
-    return img;
-}
-
 }  // namespace
 
 ImageFormat imageFormatFromName(const std::string& name) {
@@ -402,7 +376,7 @@ Image decodeImage(const std::string& bytes, const std::string& name) {
             head += std::isprint(static_cast<unsigned char>(bytes[i])) ? bytes[i] : '?';
         fail(name, "not a PFM file: magic '" + head + "', expected 'PF' (colour) or 'Pf' (greyscale)");
     }
-    return decodeStb(bytes, name);
+    return decodeStbImage(bytes, name);
 }
 
 Image readImage(const std::string& path) { return decodeImage(readFile(path), path); }

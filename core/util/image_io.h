@@ -9,8 +9,9 @@
 ///    Image itself is top row first). Reading accepts both byte orders and colour "PF" or
 ///    greyscale "Pf". The magnitude of the scale field is ignored, as common tools do.
 ///  - PNG: tone-mapped for display: value · 2^exposure, clamped to [0, 1], exact sRGB curve, 8 bit
-///    with rounding. Reading decodes any 8- or 16-bit image stb_image understands (PNG, JPEG,
-///    BMP, TGA, ...) through the sRGB curve back to linear; Radiance .hdr is read as linear.
+///    with rounding. Reading decodes 8- and 16-bit PNG, JPEG, BMP and TGA through stb_image
+///    (core/util/stb_reader.h) through the sRGB curve back to linear; Radiance .hdr is read as
+///    linear. GIF, PSD, PIC and PNM are not read.
 ///
 /// All writes are atomic (core/util/atomic_file.h): a reader never sees a half-written image, and a
 /// refused or failed write leaves neither the destination nor a temporary file behind.
@@ -44,7 +45,9 @@ void writeImage(const std::string& path, const Image& image, ImageFormat format,
 
 /// Reads an EXR, PFM or 8/16-bit image (format from the file's magic bytes, not its name).
 /// Throws std::runtime_error naming the file and what is wrong for missing, truncated or malformed
-/// files; never allocates more than the file's size can justify.
+/// files. A PFM must hold the pixels its header declares; an EXR's or stb format's declared size,
+/// which compressed data need not back, is checked against the memory budget
+/// (core/util/memory_budget.h) before the decoder allocates for it (an InputError naming the file).
 Image readImage(const std::string& path);
 
 /// In-memory encoders behind writeImage(), for callers that store images inside other files.

@@ -162,6 +162,15 @@ void requireMemory(uint64_t estimate, const std::string& what, const std::string
     if (!why.empty()) throw InputError(file, where, why);
 }
 
+void requireDecodeMemory(int64_t width, int64_t height, int64_t decoderBytesPerPixel, const std::string& file) {
+    const uint64_t perPixel = uint64_t(std::max<int64_t>(decoderBytesPerPixel, 0) + 12);
+    const uint64_t pixels = saturatingProduct(uint64_t(std::max<int64_t>(width, 0)), uint64_t(std::max<int64_t>(height, 0)));
+    requireMemory(saturatingProduct(pixels, perPixel),
+                  "decoding " + std::to_string(width) + " x " + std::to_string(height) + " pixels x " + std::to_string(perPixel) +
+                      " bytes",
+                  file, "");
+}
+
 uint64_t saturatingProduct(uint64_t a, uint64_t b, uint64_t c) {
     uint64_t ab = 0, abc = 0;
     if (__builtin_mul_overflow(a, b, &ab) || __builtin_mul_overflow(ab, c, &abc)) return kUnknown;

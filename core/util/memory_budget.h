@@ -47,6 +47,13 @@ std::string memoryShortfall(uint64_t estimate, uint64_t available, const std::st
 /// availableMemoryBytes(). `what` says what the estimate counts ("2000 × 2000 pixels × 328 bytes").
 void requireMemory(uint64_t estimate, const std::string& what, const std::string& file, const std::string& where);
 
+/// Throws InputError(file, "", ...) when decoding a `width` x `height` image needs more memory than is
+/// available: `decoderBytesPerPixel` for the decoder's own planes plus the 12 bytes per pixel of the
+/// RGB float Image. Image headers state sizes that compressed data need not back (a PNG or EXR of a
+/// few bytes can declare 16384 x 16384 pixels, which tinyexr and stb_image allocate before they
+/// read any data), so the readers check the header's size first.
+void requireDecodeMemory(int64_t width, int64_t height, int64_t decoderBytesPerPixel, const std::string& file);
+
 /// a × b × c saturating at UINT64_MAX instead of wrapping (estimates of absurd requests stay absurd).
 uint64_t saturatingProduct(uint64_t a, uint64_t b, uint64_t c = 1);
 
