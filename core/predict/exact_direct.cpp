@@ -47,7 +47,7 @@ ExactDirect::Sums ExactDirect::traceSamples(const Light& l, int areaIndex, const
     static_assert(ShadowCasters::kBatch == Accel::kPacket, "one chunk of samples is one packet of rays");
     constexpr int K = ShadowCasters::kBatch;
     const Accel& accel = tracer_.accel();
-    const bool glossy = !brdf.ks.isZero(), nee = glossy && !options_.glossyQuadrature;
+    const bool glossy = !brdf.ks.isZero();
     // Each Rng gives two numbers per area light in scene order: skip those of the lights before.
     auto skip = [&](Rng& rng) {
         for (int k = 0; k < 2 * areaIndex; ++k) rng.uniform();
@@ -117,24 +117,15 @@ ExactDirect::Sums ExactDirect::traceSamples(const Light& l, int areaIndex, const
         for (int k = 0; k < K; ++k)
             valid[k] = k < count && dist2[k] > 0.f && cosTheta[k] > 0.f && cosL[k] > 0.f ? -1 : 0;
         alignas(16) float g[K] = {};
-        if (nee) {
-            for (int k = 0; k < K; ++k) g[k] = valid[k] ? powCos(ca[k], brdf.n) : 0.f;
-        } else if (glossy) {
-            // cos^e α in float as the shader (only the ratio's weights use it; the NEE of the
-            // estimator before kept the double powCos).
+        if (glossy) {
+            // cos^e α in float, as the shader: only the glossy ratio's weights use it.
             const Eigen::Map<const Lanes> c(ca);
             const Lanes lobe = brdf.n == 0.f ? Lanes::Ones().eval() : (brdf.n * c.max(1e-30f).log()).exp().eval();
             Lanes::Map(g) = (c > 0.f).select(lobe, 0.f);
         }
         alignas(16) int32_t blocked[K], traced[K];
         for (int k = 0; k < K; ++k) traced[k] = valid[k] & (tmax[k] > 0.f ? -1 : 0);  // else visible without a ray
-        if (!options_.packets) {
-            for (int k = 0; k < K; ++k) {
-                if (!valid[k]) continue;
-                const Vec3 x = l.pointAt(u[k], v[k]);
-                blocked[k] = visible(p, n, x, movable, c) ? 0 : -1;
-            }
-        } else if (casters) {
+        if (casters) {
             alignas(16) float end[K];
             for (int k = 0; k < K; ++k) end[k] = traced[k] ? tmax[k] / dist[k] : -1.f;
             ShadowCasters::blocked(*casters, origin, dx, dy, dz, end, blocked);
@@ -168,7 +159,6 @@ ExactDirect::Sums ExactDirect::traceSamples(const Light& l, int areaIndex, const
             if (blocked[k]) continue;
             sums.fv += f[k];
             sums.gv += g[k] * f[k];
-            if (nee) sums.nee += brdf.ks * ((brdf.n + 2.f) * kInv2Pi * g[k]) * f[k];
         }
     }
     return sums;
@@ -203,20 +193,14 @@ Vec3 ExactDirect::radiance(const Vec3& p, const Vec3& n, const Vec3& wo, int obj
         Vec3 centroid;
         ClippedLight clipped;
         const double omega = projectedSolidAngle(l, p, n, &centroid, &clipped);
-        // Nothing of the light above the horizon: no diffuse light, and no sample could carry glossy
-        // light (the estimator before this one kept the samples' NEE sum; it is zero but for rounding).
-        if (!(omega > 0.0) && (options_.glossyQuadrature || !glossy)) continue;
-        const float lobeIntegral =
-            glossy && options_.glossyQuadrature ? phongLobeIntegral(l, p, n, mirror, brdf.n) : 0.f;
-        if (!diffuse && options_.glossyQuadrature && !(lobeIntegral > 0.f)) continue;
+        if (!(omega > 0.0)) continue;  // nothing of the light above the horizon
+        const float lobeIntegral = glossy ? phongLobeIntegral(l, p, n, mirror, brdf.n) : 0.f;
+        if (!diffuse && !(lobeIntegral > 0.f)) continue;
 
         float rd = 0.f, rg = 0.f;
-        Vec3 nee(0.f);
         bool known = false;
         ShadowCasters::Casters casters;
-        // The proofs fix the ratios; next-event estimation needs the samples' sums themselves.
-        const bool useCasters = options_.proofs && omega > 0.0 && (options_.glossyQuadrature || !glossy);
-        if (useCasters) {
+        if (options_.proofs) {
             casters_.find(origin, n, clipped, object, int(li), movable, counters, casters);
             if (casters.verdict == ShadowCasters::Casters::Verdict::Unoccluded) {
                 rd = rg = 1.f;
@@ -228,19 +212,15 @@ Vec3 ExactDirect::radiance(const Vec3& p, const Vec3& n, const Vec3& wo, int obj
             }
         }
         if (!known) {
-            const bool segments = useCasters && casters.verdict == ShadowCasters::Casters::Verdict::Segments;
+            const bool segments = options_.proofs && casters.verdict == ShadowCasters::Casters::Verdict::Segments;
             const Sums s = traceSamples(l, r, p, n, mirror, brdf, movable, segments ? &casters : nullptr, pixel, counters);
             if (settled) ++(segments ? settled->segments : settled->rays);
             if (s.f > 0.f) rd = s.fv / s.f;
-            else if (omega > 0.0 && (diffuse || glossy)) rd = visible(p, n, centroid, movable, counters) ? 1.f : 0.f;
+            else rd = visible(p, n, centroid, movable, counters) ? 1.f : 0.f;
             rg = s.g > 0.f ? s.gv / s.g : rd;
-            nee = s.nee;
         }
-        if (omega > 0.0 && diffuse) L += brdf.kd * l.radiance * float(omega * double(kInvPi) * double(rd));
-        if (glossy) {
-            if (options_.glossyQuadrature) L += l.radiance * brdf.ks * ((brdf.n + 2.f) * kInv2Pi * lobeIntegral * rg);
-            else L += l.radiance * nee * (l.area() / float(samples_));
-        }
+        if (diffuse) L += brdf.kd * l.radiance * float(omega * double(kInvPi) * double(rd));
+        if (glossy) L += l.radiance * brdf.ks * ((brdf.n + 2.f) * kInv2Pi * lobeIntegral * rg);
     }
     return L;
 }

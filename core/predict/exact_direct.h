@@ -66,14 +66,10 @@ struct SampleGrid {
 
 class ExactDirect {
 public:
-    /// The estimator's parts that can be switched off, so that bench/bench_direct.cpp measures the
-    /// estimator this one replaced (all false: every sample traced one ray at a time, glossy light by
-    /// next-event estimation (1/N) Σ_j Le f_s(ω_j) f_j A V_j over the same samples) and the tests can
-    /// check that the proofs change no pixel.
     struct Options {
-        bool proofs = true;            ///< settle receivers by their ShadowCasters (else every ray to Embree)
-        bool glossyQuadrature = true;  ///< glossy = Le ks (e+2)/(2π) G R_g (else next-event estimation)
-        bool packets = true;           ///< shadow rays in packets of 16 (else one by one)
+        /// Settle receivers by their ShadowCasters (else every sample ray goes to Embree): off only
+        /// to check that the casters change no estimate (tests) and to time them (bench_direct).
+        bool proofs = true;
     };
 
     /// `tracer` (its scene, accelerator and movable light) must outlive this. `samples` ≥ 1.
@@ -98,10 +94,9 @@ public:
     uint64_t streamSeed() const { return seed_; }
 
 private:
-    /// The sums of one area light's N samples: Σf, Σf·V, Σg·f, Σg·f·V, and the NEE glossy sum.
+    /// The sums of one area light's N samples: Σf, Σf·V, Σg·f, Σg·f·V.
     struct Sums {
         float f = 0.f, fv = 0.f, g = 0.f, gv = 0.f;
-        Vec3 nee{0.f};
     };
     /// `casters`: answer the rays with ShadowCasters::blocked (verdict Segments); null: Embree.
     Sums traceSamples(const Light& l, int areaIndex, const Vec3& p, const Vec3& n, const Vec3& mirror,
