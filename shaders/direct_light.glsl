@@ -166,6 +166,140 @@ float dsProjectedSolidAngle(vec3 c, vec3 e1, vec3 e2, bool triangle, bool oneSid
 
 float dsPowCos(float c, float e) { return c <= 0.0 ? 0.0 : (e == 0.0 ? 1.0 : exp(e * log(c))); }
 
+// ---- rrf::phongLobeIntegral (core/predict/phong_lobe_integral.h): G = ∫_light cos^e α cosθ dω over
+// the lobe's footprint on the light, closed form when the light holds the whole lobe, else an
+// iterated 8-point Gauss–Legendre rule with panels split at the mirror ray's hit.
+const float kLobeNode[8] = float[8](-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
+                                    -0.1834346424956498, 0.1834346424956498, 0.5255324099163290,
+                                    0.7966664774136267, 0.9602898564975363);
+const float kLobeWeight[8] = float[8](0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+                                      0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
+                                      0.2223810344533745, 0.1012285362903763);
+const float kTwoPiD = 6.283185307179586;
+
+struct LobeSetup {
+    vec3 q0, e1, e2;   // x − p = q0 + u e1 + v e2
+    float a0, a1, a2;  // r·(x − p)
+    vec3 p0, p1, p2;   // component of x − p across r
+    vec3 n, ln;        // receiver normal, unit light normal
+    float e;
+    bool oneSided;
+};
+
+float dsLobeIntegrand(LobeSetup s, float u, float v) {
+    float rd = (s.a0 + u * s.a1) + v * s.a2;
+    vec3 d = (s.q0 + s.e1 * u) + s.e2 * v;
+    float dist2 = dot(d, d);
+    float inv = 1.0 / sqrt(dist2);
+    float cosT = dot(s.n, d) * inv;
+    float cosL = -dot(s.ln, d) * inv;
+    if (!s.oneSided) cosL = abs(cosL);
+    if (!(rd > 0.0 && cosT > 0.0 && cosL > 0.0)) return 0.0;
+    vec3 a = (s.p0 + s.p1 * u) + s.p2 * v;
+    float sin2 = min(dot(a, a) / dist2, 1.0 - 1e-7);
+    float lc = sin2 < 1e-3 ? -sin2 * (1.0 + sin2 * (0.5 + sin2 * (1.0 / 3.0))) : log(1.0 - sin2);
+    float lobe = s.e == 0.0 ? 1.0 : exp(0.5 * s.e * lc);
+    return lobe * cosT * cosL / dist2;
+}
+
+// Inserts x into the sorted breaks b[0..m) when it lies strictly inside (b[0], b[m−1]).
+void dsAddBreak(inout float b[4], inout int m, float x) {
+    if (!(x > b[0] && x < b[m - 1])) return;
+    int k = m;
+    while (k > 0 && b[k - 1] > x) {
+        b[k] = b[k - 1];
+        --k;
+    }
+    b[k] = x;
+    ++m;
+}
+
+float dsPhongLobeIntegral(vec3 c, vec3 e1, vec3 e2, bool triangle, bool oneSided, vec3 p, vec3 n, vec3 r, float e) {
+    vec3 nl = cross(e1, e2);
+    float area2 = length(nl);
+    if (!(area2 > 0.0)) return 0.0;
+    LobeSetup s;
+    s.q0 = c - p;
+    s.e1 = e1;
+    s.e2 = e2;
+    s.n = n;
+    s.ln = nl / area2;
+    s.e = e;
+    s.oneSided = oneSided;
+    if (oneSided && dot(s.q0, nl) >= 0.0) return 0.0;
+    s.a0 = dot(r, s.q0);
+    s.a1 = dot(r, e1);
+    s.a2 = dot(r, e2);
+    s.p0 = s.q0 - r * s.a0;
+    s.p1 = e1 - r * s.a1;
+    s.p2 = e2 - r * s.a2;
+
+    float u0 = 0.0, u1 = 1.0, v0 = 0.0, v1 = 1.0;
+    // rrf::lobeFootprintTan2: τ² with cos^e α = ε = 1e-6·2π/(e+2) on the cone; unbounded for wide lobes.
+    float x = e > 0.0 ? -2.0 * log(1e-6 * kTwoPiD / (e + 2.0)) / e : 100.0;
+    if (x <= 80.0) {
+        float tau2 = x < 1e-3 ? x * (1.0 + 0.5 * x) : exp(x) - 1.0;
+        float A = tau2 * s.a1 * s.a1 - dot(s.p1, s.p1);
+        float B = tau2 * s.a1 * s.a2 - dot(s.p1, s.p2);
+        float C = tau2 * s.a2 * s.a2 - dot(s.p2, s.p2);
+        float D = tau2 * s.a0 * s.a1 - dot(s.p0, s.p1);
+        float E = tau2 * s.a0 * s.a2 - dot(s.p0, s.p2);
+        float F = tau2 * s.a0 * s.a0 - dot(s.p0, s.p0);
+        float det = A * C - B * B;
+        if (A < 0.0 && C < 0.0 && det > 0.0) {
+            float uc = (B * E - C * D) / det, vc = (B * D - A * E) / det;
+            float qc = D * uc + E * vc + F;
+            if (s.a0 + s.a1 * uc + s.a2 * vc <= 0.0 || !(qc > 0.0)) return 0.0;
+            float hu = sqrt(qc * -C / det), hv = sqrt(qc * -A / det);
+            float nr = dot(n, r);
+            bool inside = uc - hu > 0.0 && vc - hv > 0.0 &&
+                          (triangle ? (uc + hu) + (vc + hv) < 1.0 : uc + hu < 1.0 && vc + hv < 1.0);
+            if (inside && nr > 0.0 && nr * nr > tau2 / (1.0 + tau2)) return kTwoPiD * nr / (e + 2.0);
+            u0 = max(u0, uc - hu);
+            u1 = min(u1, uc + hu);
+            v0 = max(v0, vc - hv);
+            v1 = min(v1, vc + hv);
+            if (!(u0 < u1) || !(v0 < v1)) return 0.0;
+        }
+    }
+    float ur = -1.0, vr = -1.0;
+    float denom = dot(r, nl);
+    if (denom != 0.0) {
+        float t = dot(s.q0, nl) / denom;
+        if (t > 0.0) {
+            vec3 q = r * t - s.q0;
+            float nn = dot(nl, nl);
+            ur = dot(cross(q, e2), nl) / nn;
+            vr = dot(cross(e1, q), nl) / nn;
+        }
+    }
+    float ub[4] = float[4](u0, u1, 0.0, 0.0);
+    int mu = 2;
+    dsAddBreak(ub, mu, ur);
+    if (triangle) dsAddBreak(ub, mu, 1.0 - v1);
+    float sum = 0.0;
+    for (int pu = 0; pu + 1 < mu; ++pu) {
+        float hu = 0.5 * (ub[pu + 1] - ub[pu]), cu = 0.5 * (ub[pu + 1] + ub[pu]);
+        for (int i = 0; i < 8; ++i) {
+            float u = cu + hu * kLobeNode[i];
+            float top = triangle ? min(v1, 1.0 - u) : v1;
+            if (!(top > v0)) continue;
+            float vb[4] = float[4](v0, top, 0.0, 0.0);
+            int mv = 2;
+            dsAddBreak(vb, mv, vr);
+            float inner = 0.0;
+            for (int pv = 0; pv + 1 < mv; ++pv) {
+                float hv = 0.5 * (vb[pv + 1] - vb[pv]), cv = 0.5 * (vb[pv + 1] + vb[pv]);
+                float panel = 0.0;
+                for (int j = 0; j < 8; ++j) panel += kLobeWeight[j] * dsLobeIntegrand(s, u, cv + hv * kLobeNode[j]);
+                inner += hv * panel;
+            }
+            sum += hu * kLobeWeight[i] * inner;
+        }
+    }
+    return sum * area2;
+}
+
 const int kMaxDirectRectLights = 8;
 
 // Direct radiance leaving p (normal n facing wo) of `object` towards wo; `pixel` = y·width + x with
@@ -182,14 +316,15 @@ vec3 rrfExactDirect(vec3 p, vec3 n, vec3 wo, int object, uint pixel) {
     uvec2 key = rngPixelKey(pixel);
     vec2 shift[kMaxDirectRectLights];
     float sumF[kMaxDirectRectLights], sumFV[kMaxDirectRectLights];
-    vec3 gsum[kMaxDirectRectLights];
+    float sumG[kMaxDirectRectLights], sumGV[kMaxDirectRectLights];  // Σ g f, Σ g f V: the glossy ratio
     rngStart(key, 0xFFFFFFFFu);  // rrf::kShiftSample
     for (int r = 0; r < rects; ++r) {
         float su = rngUniform();
         shift[r] = vec2(su, rngUniform());
         sumF[r] = 0.0;
         sumFV[r] = 0.0;
-        gsum[r] = vec3(0.0);
+        sumG[r] = 0.0;
+        sumGV[r] = 0.0;
     }
     int samples = uDirectGrid.x, cols = uDirectGrid.y, rows = uDirectGrid.z;
     for (int s = 0; s < samples; ++s) {
@@ -219,11 +354,13 @@ vec3 rrfExactDirect(vec3 p, vec3 n, vec3 wo, int object, uint pixel) {
             if (c.w < 0.5) cosL = abs(cosL);
             if (cosL <= 0.0) continue;
             float f = cosTheta * cosL / dist2;
+            float g = glossy ? dsPowCos(dot(mirror, wi), e) : 0.0;
             bool vis = dsVisible(p, n, x);
             sumF[r] += f;
+            sumG[r] += g * f;
             if (vis) {
                 sumFV[r] += f;
-                if (glossy) gsum[r] += ks * ((e + 2.0) * kInv2PiD * dsPowCos(dot(mirror, wi), e)) * f;
+                sumGV[r] += g * f;
             }
         }
     }
@@ -234,11 +371,15 @@ vec3 rrfExactDirect(vec3 p, vec3 n, vec3 wo, int object, uint pixel) {
         vec4 c = dsTexel(t), a1 = dsTexel(t + 1), a2 = dsTexel(t + 2), le = dsTexel(t + 3);
         vec3 clippedCentre;
         float omega = dsProjectedSolidAngle(c.xyz, a1.xyz, a2.xyz, a2.w > 0.5, c.w > 0.5, p, n, clippedCentre);
-        if (omega > 0.0 && any(notEqual(kd, vec3(0.0)))) {
-            float ratio = sumF[r] > 0.0 ? sumFV[r] / sumF[r] : (dsVisible(p, n, clippedCentre) ? 1.0 : 0.0);
-            L += kd * le.rgb * (omega * kInvPiD * ratio);
+        if (!(omega > 0.0)) continue;
+        float ratio = sumF[r] > 0.0 ? sumFV[r] / sumF[r] : (dsVisible(p, n, clippedCentre) ? 1.0 : 0.0);
+        L += kd * le.rgb * (omega * kInvPiD * ratio);
+        if (glossy) {
+            // Unshadowed glossy light by quadrature, times the lobe-weighted visibility ratio.
+            float lobe = dsPhongLobeIntegral(c.xyz, a1.xyz, a2.xyz, a2.w > 0.5, c.w > 0.5, p, n, mirror, e);
+            float glossyRatio = sumG[r] > 0.0 ? sumGV[r] / sumG[r] : ratio;
+            L += le.rgb * ks * ((e + 2.0) * kInv2PiD * lobe * glossyRatio);
         }
-        if (glossy) L += le.rgb * gsum[r] * (a1.w / float(samples));
     }
     for (int k = 0; k < int(counts.y); ++k) {
         int t = int(first.y) + 2 * k;

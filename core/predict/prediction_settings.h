@@ -22,7 +22,9 @@ constexpr int kMaxDirectSamples = 65536;
 struct PredictionSettings {
     enum class Direct { Network, Exact };
     Direct direct = Direct::Exact;    ///< "direct": "exact" | "network"
-    int directSamples = 64;           ///< "direct_samples": light samples (shadow rays) per pixel and rect light
+    /// "direct_samples": light samples per pixel and area light (their shadow rays are traced only
+    /// where the shadow casters cannot settle them, core/predict/shadow_casters.h)
+    int directSamples = 64;
     uint64_t seed = 1;                ///< "seed": keys the exact direct light's samples
 
     /// Reads the section (missing keys keep their defaults). Throws InputError naming the reader's

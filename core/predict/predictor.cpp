@@ -204,27 +204,16 @@ Prediction Predictor::predict(const GBuffer& gb) const {
         const ExactDirect direct(tracer_, settings_.directSamples, settings_.seed);
         std::vector<char> hasGlobalNet(scene_.objects.size(), 0);
         for (const Job& job : jobs) hasGlobalNet[job.object] = job.plan.global.ok();
-        std::vector<uint64_t> rowBad(size_t(gb.height), 0);
-        tbb::parallel_for(0, gb.height, [&](int y) {
-            TraceCounters counters;
+        const Image d = direct.image(gb, movable, pr.nonFinite);
+        for (int y = 0; y < gb.height; ++y)
             for (int x = 0; x < gb.width; ++x) {
-                const size_t i = size_t(y) * size_t(gb.width) + size_t(x);
-                const int id = gb.object[i];
-                if (id < 0) continue;
-                const float* r = gb.input(i);
-                Vec3 d = direct.radiance(Vec3(r[0], r[1], r[2]), Vec3(r[9], r[10], r[11]), Vec3(r[3], r[4], r[5]), id,
-                                         movable, i, counters);
-                if (!d.isFinite()) {
-                    ++rowBad[size_t(y)];
-                    d = Vec3(0.f);
-                }
-                pr.images[int(Term::Direct)].set(x, y, d);
+                const int id = gb.object[size_t(y) * size_t(gb.width) + size_t(x)];
+                if (id < 0) continue;  // emitter pixels keep their emission
+                pr.images[int(Term::Direct)].set(x, y, d.at(x, y));
                 // A global net already holds the direct light; add exact direct light only where none did.
                 if (!hasGlobalNet[size_t(id)])
-                    pr.images[int(Term::Global)].set(x, y, pr.images[int(Term::Global)].at(x, y) + d);
+                    pr.images[int(Term::Global)].set(x, y, pr.images[int(Term::Global)].at(x, y) + d.at(x, y));
             }
-        });
-        for (uint64_t b : rowBad) pr.nonFinite += b;
         pr.directSeconds = since(t0);
     }
     return pr;

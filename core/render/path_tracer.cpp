@@ -84,6 +84,14 @@ bool PathTracer::occluded(const Ray& ray, const Light& movable) const {
     return accel_.occluded(ray);
 }
 
+void PathTracer::occludedPacket(const Ray* rays, int count, const Light& movable, bool* blocked) const {
+    accel_.occludedPacket(rays, count, blocked);
+    if (movable_ < 0 || !movable.isArea()) return;
+    float t;
+    for (int i = 0; i < count; ++i)
+        if (!blocked[i] && intersectAreaLight(rays[i], movable, rays[i].tmax, t)) blocked[i] = true;
+}
+
 
 int PathTracer::materialOf(const Hit& hit) const {
     // Moving a light never changes its material, so the scene's copy answers for the movable one too.

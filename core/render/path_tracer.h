@@ -70,6 +70,9 @@ public:
     /// True if anything (static geometry or the movable area light) lies along `ray` in
     /// [tmin, tmax]: the shadow-ray test of NEE, also used by exact direct light in prediction.
     bool occluded(const Ray& ray, const Light& movable) const;
+    /// occluded() for `count` ≤ Accel::kPacket rays at once, the static scene as one Embree packet
+    /// (Accel::occludedPacket): blocked[i] = occluded(rays[i], movable).
+    void occludedPacket(const Ray* rays, int count, const Light& movable, bool* blocked) const;
     /// Copy of the movable light with its centre at `p` (shape and emission unchanged).
     Light movableLightAt(const Vec3& p) const;
 

@@ -176,4 +176,33 @@ bool Accel::occluded(const Ray& ray) const {
     return r.tfar < 0.f;  // Embree sets tfar = -inf on a hit
 }
 
+void Accel::occludedPacket(const Ray* rays, int count, bool* blocked) const {
+    if (count <= 0) return;
+    if (count > kPacket) throw std::invalid_argument("Accel::occludedPacket: more than 16 rays");
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) RTCRay16 r;
+    alignas(64) int valid[kPacket];
+    for (int i = 0; i < kPacket; ++i) {
+        // Lanes past `count` repeat ray 0 but are masked off (valid = 0), so Embree never reads garbage.
+        const Ray& ray = rays[i < count ? i : 0];
+        valid[i] = i < count ? -1 : 0;
+        r.org_x[i] = ray.origin.x;
+        r.org_y[i] = ray.origin.y;
+        r.org_z[i] = ray.origin.z;
+        r.dir_x[i] = ray.dir.x;
+        r.dir_y[i] = ray.dir.y;
+        r.dir_z[i] = ray.dir.z;
+        r.tnear[i] = ray.tmin;
+        r.tfar[i] = ray.tmax;
+        r.time[i] = 0.f;
+        r.mask[i] = 0xFFFFFFFFu;
+        r.id[i] = unsigned(i);
+        r.flags[i] = 0;
+    }
+    rtcOccluded16(valid, scene_, &ctx, &r);
+    for (int i = 0; i < count; ++i) blocked[i] = r.tfar[i] < 0.f;  // Embree sets tfar = -inf on a hit
+}
+
 }  // namespace rrf

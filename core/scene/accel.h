@@ -55,6 +55,13 @@ public:
     bool intersect(const Ray& ray, Hit& hit) const;
     /// True if anything lies in [ray.tmin, ray.tmax].
     bool occluded(const Ray& ray) const;
+    /// occluded() for `count` ≤ kPacket rays at once (blocked[i] = occluded(rays[i])), traced as one
+    /// Embree packet marked coherent: the shadow rays of one receiver to one light leave from the same
+    /// origin towards nearby points, so the packet shares its traversal and runs several times faster
+    /// than the rays one by one (bench/bench_direct.cpp). Same answers as occluded() up to the edge
+    /// cases of two watertight ray tests.
+    static constexpr int kPacket = 16;
+    void occludedPacket(const Ray* rays, int count, bool* blocked) const;
 
     /// Ray offset scale for self-intersection avoidance: a hit point p is moved by
     /// offset(p) along the normal. Relative to both the point's magnitude and the scene's size so

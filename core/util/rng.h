@@ -27,9 +27,14 @@ public:
     static constexpr uint64_t kGamma = 0x9E3779B97F4A7C15ULL;
 
     /// Stream for (seed, stream, sample). Distinct triples give independent-looking sequences.
-    constexpr Rng(uint64_t seed, uint64_t stream, uint64_t sample = 0)
-        : state_(mix64(mix64(mix64(seed + kGamma) ^ (stream + 0x632BE59BD9B4E019ULL)) ^
-                       (sample + 0x8CB92BA72F3D8DD7ULL))) {}
+    constexpr Rng(uint64_t seed, uint64_t stream, uint64_t sample = 0) : state_(keyed(streamKey(seed, stream), sample)) {}
+
+    /// The part of the key that depends on (seed, stream) only, so that a loop over one stream's
+    /// samples hashes it once: Rng::ofStream(streamKey(seed, stream), sample) == Rng(seed, stream, sample).
+    static constexpr uint64_t streamKey(uint64_t seed, uint64_t stream) {
+        return mix64(mix64(seed + kGamma) ^ (stream + 0x632BE59BD9B4E019ULL));
+    }
+    static constexpr Rng ofStream(uint64_t key, uint64_t sample) { return Rng(keyed(key, sample)); }
 
     constexpr uint64_t nextU64() {
         state_ += kGamma;
@@ -45,6 +50,8 @@ public:
     constexpr uint32_t uniformInt(uint32_t n) { return uint32_t((uint64_t(nextU32()) * n) >> 32); }
 
 private:
+    explicit constexpr Rng(uint64_t state) : state_(state) {}
+    static constexpr uint64_t keyed(uint64_t key, uint64_t sample) { return mix64(key ^ (sample + 0x8CB92BA72F3D8DD7ULL)); }
     uint64_t state_;
 };
 

@@ -17,6 +17,7 @@
 #include "app/gl/glsl_predictor.h"
 #include "core/predict/exact_direct.h"
 #include "core/predict/predictor.h"
+#include "core/scene/scene_json.h"
 #include "tests/gl/gl_test_env.h"
 #include "tests/gl/test_models.h"
 
@@ -90,6 +91,32 @@ TEST(GlslDirect, ExactDirectMatchesCpuCornellBox) {
             EXPECT_LE(double(c.beyondRounding), 0.005 * double(c.compared));
             EXPECT_LT(c.meanRelative, 1e-4);
         }
+    }
+}
+
+TEST(GlslDirect, GlossyLobesMatchCpu) {
+    // The glossy Cornell box, its back wall sharpened to exponent 300 so that the lamp's highlight
+    // near its top exercises the lobe quadrature's footprint, closed form and panels; the boxes'
+    // lobes (100, 1000) miss the lamp or graze it. Same bound as the Lambert scene.
+    RRF_REQUIRE_GL();
+    Scene scene = loadScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-glossy/scene.json");
+    for (Material& m : scene.materials)
+        if (m.name == "glossy-back") m.exponent = 300.f;
+    scene.camera.width = scene.camera.height = 64;
+    const ModelSet set = test::mixedModelSet(scene);
+    GlslPredictor gp(scene, set);
+    const PredictionSettings s = exactSettings(16, 4);
+    gp.setPrediction(s);
+    EXPECT_TRUE(gp.directLightNote().empty()) << gp.directLightNote();
+    for (const Vec3& light : {scene.lightPosition(), scene.lightRegion.lo}) {
+        gp.setLightPosition(light);
+        gp.render();
+        const DirectComparison c = compareWithCpu(scene, gp, s);
+        std::printf("  glossy: %zu pixels, %zu beyond rounding, mean relative %.3g, max %.3g\n", c.compared,
+                    c.beyondRounding, c.meanRelative, c.maxRelative);
+        EXPECT_GT(c.compared, size_t(0.8 * 64 * 64));
+        EXPECT_LE(double(c.beyondRounding), 0.005 * double(c.compared));
+        EXPECT_LT(c.meanRelative, 1e-4);
     }
 }
 
