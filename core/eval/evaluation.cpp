@@ -179,6 +179,8 @@ nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
          {{"gbuffer_seconds", e.gbufferSeconds},
           {"inference_seconds", p.inferenceSeconds},
           {"exact_direct_seconds", p.directSeconds},
+          {"gather_seconds", p.gatherSeconds},
+          {"pixels_gathered", p.pixelsGathered},
           {"pixels_predicted", p.pixelsPredicted},
           {"pixels_without_network", p.pixelsWithoutNetwork},
           {"objects_without_network", p.objectsWithoutNetwork},

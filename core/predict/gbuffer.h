@@ -64,4 +64,10 @@ struct GBuffer {
 /// Parallel over rows (oneTBB); the result does not depend on the thread count.
 GBuffer buildGBuffer(const PathTracer& tracer, const RecordLayout& layout, const Vec3& lightPos, int width, int height);
 
+/// The same records for arbitrary rays (width = rays.size(), height = 1; empty rays give 0 × 0):
+/// sample i is what rays[i] hits, its view direction −rays[i].dir. A ray with tmax ≤ tmin is not
+/// traced (the sample stays background). The glossy gather's secondary hits (core/predict/glossy_gather.h).
+GBuffer buildGBufferFromRays(const PathTracer& tracer, const RecordLayout& layout, const Vec3& lightPos,
+                             const std::vector<Ray>& rays);
+
 }  // namespace rrf

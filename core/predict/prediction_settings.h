@@ -1,11 +1,14 @@
 #pragma once
 /// Settings of CPU prediction (the project's "prediction" section), shared by the CLI and the GUI:
 ///
-///     "prediction": {"direct": "exact", "direct_samples": 64, "seed": 1}
+///     "prediction": {"direct": "exact", "direct_samples": 64, "seed": 1,
+///                    "gather": {"min_exponent": 50, "lobe_samples": 64, "diffuse_samples": 64,
+///                               "direct_samples": 16}}
 ///
 /// "direct": "exact" (the default) computes direct light per pixel (core/predict/exact_direct.h) and
 /// uses the networks for indirect light only, as Ren et al. 2013; "network" takes the direct term from
-/// the networks too (the seed report's variant).
+/// the networks too (the seed report's variant). "gather" traces the indirect light of sharply glossy surfaces one bounce
+/// further (core/predict/glossy_gather.h); "min_exponent": 0 turns it off.
 
 #include <cstdint>
 
@@ -17,6 +20,8 @@ namespace rrf {
 
 /// Largest "direct_samples" (each value is 1 … this).
 constexpr int kMaxDirectSamples = 65536;
+/// Largest "lobe_samples" and "diffuse_samples" of the glossy gather.
+constexpr int kMaxGatherSamples = 4096;
 
 /// The project's "prediction" section.
 struct PredictionSettings {
@@ -26,6 +31,20 @@ struct PredictionSettings {
     /// where the shadow casters cannot settle them, core/predict/shadow_casters.h)
     int directSamples = 64;
     uint64_t seed = 1;                ///< "seed": keys the exact direct light's samples
+    /// "gather": the glossy gather (core/predict/glossy_gather.h).
+    struct Gather {
+        /// Phong materials with an exponent at least this are gathered; 0: none.
+        double minExponent = 50.0;
+        int lobeSamples = 64;     ///< "lobe_samples": directions from the Phong lobe per pixel
+        int diffuseSamples = 64;  ///< "diffuse_samples": cosine-hemisphere directions per pixel
+        int directSamples = 16;   ///< "direct_samples": exact direct light samples at each secondary point
+        /// "second_lobe_samples", "second_diffuse_samples": a secondary point on a gathered object
+        /// (a mirror seen in a mirror) gathers once more with these; its own secondary points use
+        /// their networks. 0 and 0: the first bounce's secondary points all use their networks.
+        int secondLobeSamples = 8;
+        int secondDiffuseSamples = 4;
+        bool on() const { return minExponent > 0.0 && lobeSamples + diffuseSamples > 0; }
+    } gather;
 
     /// Reads the section (missing keys keep their defaults). Throws InputError naming the reader's
     /// file and the JSON pointer for unknown keys or bad values.

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/predict/exact_direct.h"
+#include "core/predict/glossy_gather.h"
 #include "core/util/error.h"
 
 namespace rrf {
@@ -108,6 +109,57 @@ std::vector<std::string> Predictor::describe() const {
 }
 
 Prediction Predictor::predict(const GBuffer& gb) const {
+    Prediction pr = predictTerms(gb, settings_.directSamples);
+    if (settings_.gather.on()) gather(gb, pr, 0);
+    return pr;
+}
+
+void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth) const {
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool exact = settings_.direct == PredictionSettings::Direct::Exact;
+    const PredictionSettings::Gather& g = settings_.gather;
+    // The second bounce's streams differ from the first's (seed + 1): its pixel keys are batch indices.
+    const GlossyGather gatherer(tracer_, layout_, depth == 0 ? g.lobeSamples : g.secondLobeSamples,
+                                depth == 0 ? g.diffuseSamples : g.secondDiffuseSamples, settings_.seed + uint64_t(depth));
+    if (gatherer.raysPerPixel() == 0) return;
+    // Pixels per batch: bounds the secondary buffer (raysPerPixel records each) and keeps batch
+    // boundaries independent of the thread count.
+    const size_t chunk = std::max<size_t>(1, (size_t(1) << 18) / size_t(std::max(1, gatherer.raysPerPixel())));
+    for (size_t id = 0; id < gb.pixelsByObject.size(); ++id) {
+        const std::vector<uint32_t>& px = gb.pixelsByObject[id];
+        if (px.empty()) continue;
+        const Object& obj = scene_.objects[id];
+        if (!GlossyGather::applies(scene_.materials[size_t(obj.material)], float(settings_.gather.minExponent))) continue;
+        const ObjectNetworks* o = models_.find(int(id));
+        if (!o || o->byTarget.empty()) continue;
+        const ObjectPlan plan = planFor(*o, exact);
+        // Only where the global image is direct + indirect (a global network holds both at once).
+        if (plan.global.ok() || !(plan.exactDirect || plan.direct.ok())) continue;
+        for (size_t b = 0; b < px.size(); b += chunk) {
+            const size_t n = std::min(chunk, px.size() - b);
+            const GlossyGather::Batch batch = gatherer.trace(gb, px.data() + b, n);
+            Prediction secondary = predictTerms(batch.secondary, g.directSamples);
+            if (depth == 0) gather(batch.secondary, secondary, 1);
+            pr.nonFinite += secondary.nonFinite;
+            const Image& radiance = secondary.image(Term::Global);
+            for (size_t j = 0; j < n; ++j) {
+                const uint32_t i = px[b + j];
+                const int x = int(i % uint32_t(gb.width)), y = int(i / uint32_t(gb.width));
+                Vec3 ind = gatherer.gathered(batch, radiance, j);
+                if (!ind.isFinite()) {
+                    ++pr.nonFinite;
+                    ind = Vec3(0.f);
+                }
+                pr.images[int(Term::Indirect)].set(x, y, ind);
+                pr.images[int(Term::Global)].set(x, y, pr.images[int(Term::Direct)].at(x, y) + ind);
+            }
+            pr.pixelsGathered += n;
+        }
+    }
+    if (depth == 0) pr.gatherSeconds = since(t0);
+}
+
+Prediction Predictor::predictTerms(const GBuffer& gb, int directSamples) const {
     Prediction pr;
     for (Image& im : pr.images) im = Image(gb.width, gb.height);
     pr.leaf.assign(size_t(gb.width) * size_t(gb.height), -1);
@@ -201,7 +253,7 @@ Prediction Predictor::predict(const GBuffer& gb) const {
     if (exact) {
         t0 = std::chrono::steady_clock::now();
         const Light movable = tracer_.movableLightAt(gb.lightPosition);
-        const ExactDirect direct(tracer_, settings_.directSamples, settings_.seed);
+        const ExactDirect direct(tracer_, directSamples, settings_.seed);
         std::vector<char> hasGlobalNet(scene_.objects.size(), 0);
         for (const Job& job : jobs) hasGlobalNet[job.object] = job.plan.global.ok();
         const Image d = direct.image(gb, movable, pr.nonFinite);

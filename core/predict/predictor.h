@@ -19,6 +19,10 @@
 /// pixels cannot get is reported unavailable (the image still holds what could be predicted).
 /// Non-finite network outputs are replaced by 0 and counted, never written.
 ///
+/// Pixels of sharply glossy objects (PredictionSettings::gather) take their indirect light from the
+/// glossy gather instead of their own network: one more bounce, then the networks and exact direct
+/// light where it lands (core/predict/glossy_gather.h).
+///
 /// Deterministic: batches are fixed chunks of each object's pixels in ascending order, so the images
 /// are bit-identical for any thread count.
 
@@ -51,6 +55,10 @@ struct Prediction {
     std::vector<int> leaf;
     double inferenceSeconds = 0.0;       ///< network evaluation
     double directSeconds = 0.0;          ///< exact direct light (0 in network mode)
+    /// Glossy gather (core/predict/glossy_gather.h): pixels whose indirect light was gathered, and
+    /// the time it took (secondary rays, networks and exact direct light there).
+    uint64_t pixelsGathered = 0;
+    double gatherSeconds = 0.0;
 
     const Image& image(Term t) const { return images[int(t)]; }
 };
@@ -78,6 +86,13 @@ public:
     std::vector<std::string> describe() const;
 
 private:
+    /// The networks and exact direct light (with `directSamples`) over `gb`, without the gather.
+    Prediction predictTerms(const GBuffer& gb, int directSamples) const;
+    /// Replaces the indirect (and global) term of gathered objects' pixels (core/predict/glossy_gather.h).
+    /// `depth` 0 for the camera's pixels, 1 for the gather's secondary points (which gather once
+    /// more, with PredictionSettings::Gather's second-bounce sample counts, and no further).
+    void gather(const GBuffer& gb, Prediction& pr, int depth) const;
+
     const Scene& scene_;
     const ModelSet& models_;
     PredictionSettings settings_;

@@ -1,0 +1,96 @@
+#include "core/predict/glossy_gather.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "core/predict/exact_direct.h"
+#include "core/util/warp.h"
+
+namespace rrf {
+
+namespace {
+/// Point s of an n-sample jittered grid over the unit square, shifted toroidally by (su, sv).
+void gridPoint(int s, const SampleGrid& g, Rng& rng, float su, float sv, float& u, float& v) {
+    const int col = s % g.cols, row = s / g.cols;
+    u = (float(col) + rng.uniform()) / float(g.cols) + su;
+    v = (float(row) + rng.uniform()) / float(g.rows) + sv;
+    if (u >= 1.f) u -= 1.f;
+    if (v >= 1.f) v -= 1.f;
+    u = std::min(u, 0x1.fffffep-1f);
+    v = std::min(v, 0x1.fffffep-1f);
+}
+}  // namespace
+
+GlossyGather::GlossyGather(const PathTracer& tracer, const RecordLayout& layout, int lobeSamples, int diffuseSamples,
+                           uint64_t seed)
+    : tracer_(tracer),
+      layout_(layout),
+      lobeSamples_(std::max(0, lobeSamples)),
+      diffuseSamples_(std::max(0, diffuseSamples)),
+      seed_(mix64(seed ^ kGlossyGatherStream)) {}
+
+GlossyGather::Batch GlossyGather::trace(const GBuffer& gb, const uint32_t* pixels, size_t count) const {
+    const Scene& scene = tracer_.scene();
+    const size_t per = size_t(raysPerPixel());
+    std::vector<Ray> rays(count * per);
+    Batch b;
+    b.weight.assign(rays.size(), Vec3(0.f));
+    const SampleGrid lobeGrid(std::max(1, lobeSamples_)), diffuseGrid(std::max(1, diffuseSamples_));
+    tbb::parallel_for(size_t(0), count, [&](size_t j) {
+        const uint32_t i = pixels[j];
+        const int object = gb.object[i];
+        if (object < 0) return;
+        const Material& m = scene.materials[size_t(scene.objects[size_t(object)].material)];
+        const float* in = gb.input(i);
+        const Vec3 p(in[0], in[1], in[2]), wo(in[3], in[4], in[5]);
+        const Vec3 n = gb.normal[i];
+        const Frame frame(n);
+        const Vec3 woLocal = frame.toLocal(wo);
+        if (woLocal.z <= 0.f) return;
+        const Frame lobe(reflect(woLocal, Vec3(0, 0, 1)));
+        const Vec3 ks = m.type == Material::Type::Phong ? m.ks : Vec3(0.f);
+        const uint64_t key = Rng::streamKey(seed_, i);
+        Rng shiftRng = Rng::ofStream(key, kShiftSample);
+        const float su = shiftRng.uniform(), sv = shiftRng.uniform(), du = shiftRng.uniform(), dv = shiftRng.uniform();
+        for (size_t k = 0; k < per; ++k) {
+            Rng rng = Rng::ofStream(key, k);
+            const bool glossy = k < size_t(lobeSamples_);
+            float u, v;
+            Vec3 wl, w;
+            if (glossy) {
+                gridPoint(int(k), lobeGrid, rng, su, sv, u, v);
+                wl = lobe.toWorld(samplePhongLobe(u, v, m.exponent));
+                if (wl.z <= 0.f) continue;
+                w = ks * ((m.exponent + 2.f) / (m.exponent + 1.f) * wl.z / float(lobeSamples_));
+            } else {
+                gridPoint(int(k) - lobeSamples_, diffuseGrid, rng, du, dv, u, v);
+                wl = sampleCosineHemisphere(u, v);
+                if (wl.z <= 0.f) continue;
+                w = m.kd / float(diffuseSamples_);
+            }
+            if (w.isZero()) continue;
+            const Vec3 dir = normalize(frame.toWorld(wl));
+            Ray& r = rays[j * per + k];
+            r.origin = tracer_.accel().spawnOrigin(p, n, dir);
+            r.dir = dir;
+            b.weight[j * per + k] = w;
+        }
+    });
+    // Untraced rays (zero weight) are marked empty so buildGBufferFromRays skips them.
+    for (size_t k = 0; k < rays.size(); ++k)
+        if (b.weight[k].isZero()) rays[k].tmax = 0.f;
+    b.secondary = buildGBufferFromRays(tracer_, layout_, gb.lightPosition, rays);
+    return b;
+}
+
+Vec3 GlossyGather::gathered(const Batch& b, const Image& radiance, size_t j) const {
+    const size_t per = size_t(raysPerPixel());
+    Vec3 sum(0.f);
+    for (size_t k = j * per; k < (j + 1) * per; ++k)
+        if (b.secondary.object[k] >= 0) sum += b.weight[k] * radiance.at(int(k), 0);
+    return sum;
+}
+
+}  // namespace rrf

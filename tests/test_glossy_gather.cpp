@@ -1,0 +1,183 @@
+// Glossy gather (core/predict/glossy_gather.h): the gathered indirect light against the closed form
+// of a Phong plane in a box of constant radiance, the switch, determinism, the project section.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "core/predict/glossy_gather.h"
+#include "core/predict/predictor.h"
+#include "core/util/error.h"
+#include "core/util/json_reader.h"
+#include "scene_builders.h"
+
+namespace test_glossy_gather {
+
+using namespace rrf;
+using namespace rrf::test;
+
+namespace {
+constexpr float kExponent = 200.f;
+const Vec3 kFloorKd(0.2f, 0.25f, 0.3f), kFloorKs(0.5f, 0.4f, 0.3f), kWall(0.6f, 0.5f, 0.4f);
+
+/// The closed cube [-1, 1]³: a Phong floor (object 0) and five white walls (object 1), lit by a
+/// point light (no emitter for a gather ray to reach). The camera sits under the ceiling looking
+/// straight down with a 4° field, so every pixel sees the floor within 2° of normal incidence.
+Scene glossyFloorBox(int size) {
+    Scene s;
+    const int glossy = addPhong(s, kFloorKd, kFloorKs, kExponent, "glossy");
+    const int white = addLambert(s, kWall, "white");
+    std::vector<QuadSpec> faces = inwardCubeFaces(1.f);
+    const QuadSpec floor = faces[2];
+    faces.erase(faces.begin() + 2);
+    addQuads(s, {floor}, glossy, "floor");
+    addQuads(s, faces, white, "walls");
+    addPointLight(s, Vec3(0.3f, 0.5f, 0.2f), Vec3(2.f));
+    s.camera.eye = Vec3(0, 0.95f, 0);
+    s.camera.target = Vec3(0, -1, 0);
+    s.camera.up = Vec3(0, 0, -1);
+    s.camera.fovYDegrees = 4.f;
+    s.camera.width = s.camera.height = size;
+    return s;
+}
+
+/// ReLU network whose outputs copy inputs `rows` exactly (relu(x) − relu(−x) = x), identity scalers.
+NetworkModel copyInputNet(int inputs, const std::vector<int>& rows) {
+    NetworkModel m;
+    m.arch.inputs = inputs;
+    m.arch.outputs = int(rows.size());
+    m.arch.activation = Activation::Relu;
+    m.arch.hidden = {2 * int(rows.size())};
+    m.params = VecX<double>::Zero(m.arch.numParams());
+    const int h = m.arch.hidden[0];
+    for (size_t o = 0; o < rows.size(); ++o) {
+        m.params[m.arch.weightOffset(0) + Eigen::Index(2 * o) + Eigen::Index(h) * rows[o]] = 1.0;
+        m.params[m.arch.weightOffset(0) + Eigen::Index(2 * o + 1) + Eigen::Index(h) * rows[o]] = -1.0;
+        m.params[m.arch.weightOffset(1) + Eigen::Index(o) + Eigen::Index(rows.size()) * Eigen::Index(2 * o)] = 1.0;
+        m.params[m.arch.weightOffset(1) + Eigen::Index(o) + Eigen::Index(rows.size()) * Eigen::Index(2 * o + 1)] = -1.0;
+    }
+    m.inputScaler = MinMaxScaler::identity(inputs);
+    m.outputScaler = MinMaxScaler::identity(m.arch.outputs);
+    m.validate();
+    return m;
+}
+
+/// Every object: direct and indirect networks that both answer the albedo kd (BRDF inputs 12..14),
+/// so the radiance leaving any wall towards anything is 2·kd exactly.
+ModelSet albedoModels(const Scene& s) {
+    ModelSet set;
+    const RecordLayout layout = RecordLayout::forScene(s);
+    set.inputLayout = layout.inputs;
+    for (const Object& o : s.objects) {
+        ObjectNetworks n;
+        n.objectId = o.id;
+        n.name = o.name;
+        n.byTarget.emplace("direct", copyInputNet(layout.inputCount(), {12, 13, 14}));
+        n.byTarget.emplace("indirect", copyInputNet(layout.inputCount(), {12, 13, 14}));
+        set.objects.push_back(std::move(n));
+    }
+    return set;
+}
+
+PredictionSettings settings(const nlohmann::json& section) {
+    return PredictionSettings::fromJson(JsonReader(section, "p.json", "/prediction"));
+}
+}  // namespace
+
+// Under normal incidence ∫ ks (e+2)/(2π) cos^e α cosθ dω = ks (the lobe about the normal holds its
+// energy) and ∫ kd/π cosθ dω = kd, so a floor that sees 2·kd_wall everywhere gathers
+// 2·kd_wall·(kd + ks). The walls are Lambert: they keep their network's kd.
+TEST(GlossyGather, PhongPlaneInABoxOfConstantRadianceGathersItsAlbedo) {
+    const Scene s = glossyFloorBox(8);
+    const ModelSet models = albedoModels(s);
+    const Predictor pred(s, models, settings({{"direct", "network"}, {"gather", {{"min_exponent", 50}}}}));
+    const GBuffer g = pred.gbuffer(s.lightPosition(), 8, 8);
+    const Prediction out = pred.predict(g);
+    EXPECT_EQ(out.nonFinite, 0u);
+    EXPECT_EQ(out.pixelsGathered, g.pixelsByObject[0].size());
+    ASSERT_EQ(g.pixelsByObject[0].size(), 64u);
+    const Vec3 expected = 2.f * kWall * (kFloorKd + kFloorKs);
+    for (uint32_t i : g.pixelsByObject[0]) {
+        const Vec3 got = out.image(Term::Indirect).at(int(i % 8), int(i / 8));
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], 3e-3 * expected[c]) << "pixel " << i << " channel " << c;
+        EXPECT_EQ(out.image(Term::Global).at(int(i % 8), int(i / 8)), kFloorKd + got);
+    }
+}
+
+// Only the lobe's term, only the diffuse term: each lobe is sampled on its own, so each term alone
+// is its part of the albedo.
+TEST(GlossyGather, EachLobeGathersItsOwnPart) {
+    const Scene s = glossyFloorBox(4);
+    const ModelSet models = albedoModels(s);
+    for (const bool lobeOnly : {true, false}) {
+        const Predictor pred(s, models,
+                             settings({{"direct", "network"},
+                                       {"gather", {{"lobe_samples", lobeOnly ? 32 : 0}, {"diffuse_samples", lobeOnly ? 0 : 32}}}}));
+        const GBuffer g = pred.gbuffer(s.lightPosition(), 4, 4);
+        const Prediction out = pred.predict(g);
+        const Vec3 expected = 2.f * kWall * (lobeOnly ? kFloorKs : kFloorKd);
+        for (uint32_t i : g.pixelsByObject[0]) {
+            const Vec3 got = out.image(Term::Indirect).at(int(i % 4), int(i / 4));
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], 3e-3 * expected[c]) << (lobeOnly ? "lobe" : "diffuse");
+        }
+    }
+}
+
+// Below the threshold (or with "min_exponent": 0) nothing is gathered and the images are the
+// networks' own; the walls' pixels never change.
+TEST(GlossyGather, ThresholdAndSwitch) {
+    const Scene s = glossyFloorBox(8);
+    const ModelSet models = albedoModels(s);
+    const Predictor off(s, models, settings({{"direct", "network"}, {"gather", {{"min_exponent", 0}}}}));
+    const Predictor above(s, models, settings({{"direct", "network"}, {"gather", {{"min_exponent", 201}}}}));
+    const Predictor on(s, models, settings({{"direct", "network"}}));
+    const GBuffer g = off.gbuffer(s.lightPosition(), 8, 8);
+    const Prediction a = off.predict(g), b = above.predict(g), c = on.predict(g);
+    EXPECT_EQ(a.pixelsGathered, 0u);
+    EXPECT_EQ(b.pixelsGathered, 0u);
+    EXPECT_GT(c.pixelsGathered, 0u);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            EXPECT_EQ(a.image(Term::Indirect).at(x, y), b.image(Term::Indirect).at(x, y));
+            if (g.object[size_t(y) * 8 + size_t(x)] == 0) EXPECT_EQ(a.image(Term::Indirect).at(x, y), kFloorKd);
+        }
+}
+
+// Exact direct light at the secondary points, the second bounce and any thread count: the same image.
+TEST(GlossyGather, SameImageForAnyThreadCount) {
+    const Scene s = glossyFloorBox(12);
+    const ModelSet models = albedoModels(s);
+    const Predictor pred(s, models, settings({{"gather", {{"lobe_samples", 16}, {"diffuse_samples", 8}}}}));
+    const GBuffer g = pred.gbuffer(s.lightPosition(), 12, 12);
+    Prediction one, two;
+    {
+        tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+        one = pred.predict(g);
+    }
+    {
+        tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+        two = pred.predict(g);
+    }
+    EXPECT_GT(one.pixelsGathered, 0u);
+    for (int t = 0; t < kTermCount; ++t)
+        for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 12; ++x) ASSERT_EQ(one.images[t].at(x, y), two.images[t].at(x, y));
+}
+
+TEST(GlossyGather, SectionReadsWritesAndRefuses) {
+    const PredictionSettings d;
+    EXPECT_TRUE(d.gather.on());
+    const PredictionSettings r = settings(d.toJson());
+    EXPECT_EQ(r.toJson(), d.toJson());
+    const PredictionSettings s = settings({{"gather", {{"min_exponent", 0}}}});
+    EXPECT_FALSE(s.gather.on());
+    EXPECT_THROW(settings({{"gather", {{"lobe", 3}}}}), InputError);
+    EXPECT_THROW(settings({{"gather", {{"lobe_samples", -1}}}}), InputError);
+    EXPECT_THROW(settings({{"gather", {{"min_exponent", "high"}}}}), InputError);
+    try {
+        settings({{"gather", {{"diffuse_samples", 1e9}}}});
+        FAIL() << "expected an InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("/prediction/gather/diffuse_samples"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace test_glossy_gather
