@@ -331,6 +331,7 @@ void drawNetworkPanel(WorkbenchState& state) {
         ImGui::SetTooltip("per object: one global net, one net per term (separate), or one 6-output net (joint)");
     drawEncoding(state, s);
     drawObjectNetworks(state, inputCount(state));
+    drawGlossyGather(state);
     s = current(state);
 
     ImGui::Separator();

@@ -69,6 +69,13 @@ bool setObjectEncoding(WorkbenchState& state, const std::string& name, const std
 /// The reflected-input checkbox and the per-object table (drawn inside the Network panel; `inputs`:
 /// the records' input count).
 void drawObjectNetworks(WorkbenchState& state, int inputs);
+/// The project's glossy gather ("prediction": {"gather"}, core/predict/glossy_gather.h): values
+/// clamped to their ranges; false when nothing changed.
+bool setGlossyGather(WorkbenchState& state, const PredictionSettings::Gather& gather);
+/// The names of the objects `prediction` gathers, comma-separated ("" for none).
+std::string gatheredObjects(const Scene& scene, const PredictionSettings& prediction);
+/// The gather's switch, threshold and sample counts, and which objects it takes (in the Network panel).
+void drawGlossyGather(WorkbenchState& state);
 
 /// The Objects table of an evaluation: per term, one row per object in view or trained (errors with
 /// the reference's noise floor and corrected figure, as evaluate() computed them), with the samples

@@ -1,11 +1,15 @@
 // Glossy gather (core/predict/glossy_gather.h): the gathered indirect light against the closed form
 // of a Phong plane in a box of constant radiance, the switch, determinism, the project section.
+#include <filesystem>
+#include <fstream>
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include "core/predict/glossy_gather.h"
 #include "core/predict/predictor.h"
 #include "core/util/error.h"
+#include "core/project/project.h"
 #include "core/util/json_reader.h"
 #include "scene_builders.h"
 
@@ -178,6 +182,45 @@ TEST(GlossyGather, SectionReadsWritesAndRefuses) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("/prediction/gather/diffuse_samples"), std::string::npos) << e.what();
     }
+}
+
+}  // namespace test_glossy_gather
+
+namespace test_glossy_gather {
+
+// "objects" gathers a diffuse receiver by name; the project refuses a name the scene lacks.
+TEST(GlossyGather, NamedObjectsAreGatheredAndCheckedAgainstTheScene) {
+    const Scene s = glossyFloorBox(4);
+    const PredictionSettings named = settings({{"gather", {{"min_exponent", 0}, {"objects", {"walls"}}}}});
+    EXPECT_FALSE(GlossyGather::gathers(s, s.objects[0], named)) << "the exponent rule is off";
+    EXPECT_TRUE(GlossyGather::gathers(s, s.objects[1], named));
+    EXPECT_TRUE(gatherApplies(s, named));
+    EXPECT_FALSE(gatherApplies(s, settings({{"gather", {{"min_exponent", 0}}}})));
+
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / "rrf_glossy_gather_tests";
+    fs::create_directories(dir);
+    fs::copy_file(fs::path(RRF_SOURCE_DIR) / "projects/cornell-glossy/scene.json", dir / "scene.json",
+                  fs::copy_options::overwrite_existing);
+    std::ofstream(dir / "project.json") << R"({"rrf_project": 1, "scene": "scene.json",
+        "prediction": {"gather": {"objects": ["ceiling", "celing"]}}})";
+    try {
+        loadProjectOrScene((dir / "project.json").string());
+        FAIL() << "expected an InputError";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("/prediction/gather/objects/1"), std::string::npos) << what;
+        EXPECT_NE(what.find("celing"), std::string::npos) << what;
+        EXPECT_NE(what.find("project.json"), std::string::npos) << what;
+    }
+    std::ofstream(dir / "project.json") << R"({"rrf_project": 1, "scene": "scene.json",
+        "prediction": {"gather": {"objects": ["ceiling"]}}})";
+    const Project p = loadProjectOrScene((dir / "project.json").string());
+    ASSERT_EQ(p.prediction.gather.objects, std::vector<std::string>{"ceiling"});
+    int gathered = 0;
+    for (const Object& o : p.scene.objects) gathered += GlossyGather::gathers(p.scene, o, p.prediction);
+    EXPECT_EQ(gathered, 3) << "ceiling by name, short and tall box by exponent";
+    fs::remove_all(dir);
 }
 
 }  // namespace test_glossy_gather

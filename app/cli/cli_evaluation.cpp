@@ -148,9 +148,11 @@ std::vector<Evaluation> evaluateAll(const Project& p, const Predictor& predictor
         const std::string table = evaluationTable(p.scene, e);
         writeFileAtomically(outputPath(dir, "evaluation.txt"), table);
         std::printf("\n%s", table.c_str());
-        std::printf("prediction: G-buffer %.1f ms, networks %.1f ms, exact direct %.1f ms; reference %d spp, %.2f s; files in %s\n",
+        std::printf("prediction: G-buffer %.1f ms, networks %.1f ms, exact direct %.1f ms, glossy gather %.1f ms (%llu pixels); "
+                    "reference %d spp, %.2f s; files in %s\n",
                     1e3 * e.gbufferSeconds, 1e3 * e.prediction.inferenceSeconds, 1e3 * e.prediction.directSeconds,
-                    e.referenceSpp, e.referenceSeconds, dir.c_str());
+                    1e3 * e.prediction.gatherSeconds, (unsigned long long)e.prediction.pixelsGathered, e.referenceSpp,
+                    e.referenceSeconds, dir.c_str());
         for (const std::string& why : e.prediction.unavailableWhy) std::printf("unavailable: %s\n", why.c_str());
         reports.push_back(report);
     }

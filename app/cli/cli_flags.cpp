@@ -146,6 +146,16 @@ void addPredictionOptions(CLI::App* cmd, PredictionArgs& a) {
         .add<int>(cmd, "--direct-samples", "exact direct light's samples (shadow rays) per pixel and light (default: the project's)",
                   [](PredictionSettings& s, const int& n) { s.directSamples = n; })
         ->check(CLI::Range(1, kMaxDirectSamples));
+    a.prediction
+        .add<std::string>(cmd, "--gather",
+                          "glossy gather: sharply glossy objects' indirect light traced one bounce further, on (the "
+                          "project's threshold, or Phong exponent 50 if it has none) or off (default: the project's)",
+                          [](PredictionSettings& s, const std::string& v) {
+                              const double on = s.gather.minExponent > 0.0 ? s.gather.minExponent
+                                                                           : PredictionSettings().gather.minExponent;
+                              s.gather.minExponent = v == "on" ? on : 0.0;
+                          })
+        ->check(CLI::IsMember({"on", "off"}));
 }
 
 void addExperimentFlags(CLI::App* cmd, ExperimentFlags& flags) {

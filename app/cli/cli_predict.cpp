@@ -40,7 +40,7 @@ int runPredict(const PredictArgs& a) {
     // The G-buffer and prediction images need less per pixel than a render; its estimate bounds them.
     requireRenderMemory(ro.width, ro.height);
     // Best of N frames: the first pays for page faults and thread start-up.
-    double bestG = 1e30, bestN = 1e30, bestD = 1e30;
+    double bestG = 1e30, bestN = 1e30, bestD = 1e30, bestGather = 1e30;
     Prediction pr;
     for (int f = 0; f < std::max(1, a.frames); ++f) {
         Stopwatch g;
@@ -49,6 +49,7 @@ int runPredict(const PredictArgs& a) {
         pr = predictor.predict(gb);
         bestN = std::min(bestN, pr.inferenceSeconds);
         bestD = std::min(bestD, pr.directSeconds);
+        bestGather = std::min(bestGather, pr.gatherSeconds);
     }
     for (const std::string& f : writePredictionImages(a.out, pr, a.exposure)) std::printf("wrote %s\n", f.c_str());
     for (const std::string& why : pr.unavailableWhy) std::printf("unavailable: %s\n", why.c_str());
@@ -56,10 +57,15 @@ int runPredict(const PredictArgs& a) {
         std::printf("%zu visible objects have no network: %llu pixels black\n", pr.objectsWithoutNetwork.size(),
                     (unsigned long long)pr.pixelsWithoutNetwork);
     if (pr.nonFinite) std::printf("warning: %llu non-finite values kept out of the images\n", (unsigned long long)pr.nonFinite);
-    std::printf("%dx%d, light at (%.3f, %.3f, %.3f), direct light %s: %.2f ms per frame (G-buffer %.2f ms, networks %.2f ms%s), "
+    const std::string gathered =
+        pr.pixelsGathered ? ", glossy gather " + std::to_string(1e3 * bestGather) + " ms for " +
+                                std::to_string(pr.pixelsGathered) + " pixels"
+                          : std::string();
+    std::printf("%dx%d, light at (%.3f, %.3f, %.3f), direct light %s: %.2f ms per frame (G-buffer %.2f ms, networks %.2f ms%s%s), "
                 "best of %d\n", ro.width, ro.height, lp.x, lp.y, lp.z, predictor.settings().directName(),
-                1e3 * (bestG + bestN + bestD), 1e3 * bestG, 1e3 * bestN,
-                bestD > 0 ? (", exact direct " + std::to_string(1e3 * bestD) + " ms").c_str() : "", std::max(1, a.frames));
+                1e3 * (bestG + bestN + bestD + (pr.pixelsGathered ? bestGather : 0.0)), 1e3 * bestG, 1e3 * bestN,
+                bestD > 0 ? (", exact direct " + std::to_string(1e3 * bestD) + " ms").c_str() : "", gathered.c_str(),
+                std::max(1, a.frames));
     return 0;
 }
 }  // namespace

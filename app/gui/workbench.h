@@ -166,6 +166,8 @@ private:
     void trainingFinished(TrainingOutcome& outcome);
     /// Brings the middle view's prediction up to date with the scene's light (GLSL now, or a CPU job).
     void refreshPrediction();
+    /// The CPU prediction as a job (the fallback path, and the glossy gather after a GLSL frame).
+    void startCpuPrediction(const Camera& camera);
     bool predictRunning() const;
     /// Adds the CPU prediction's images to an export directory (no-op without models).
     bool exportPrediction(const std::string& dir);

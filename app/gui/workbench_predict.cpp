@@ -8,6 +8,7 @@
 
 #include "app/gui/prediction_draft.h"
 #include "core/eval/evaluation.h"
+#include "core/predict/glossy_gather.h"
 #include "core/predict/predictor.h"
 #include "core/project/run_recording.h"
 #include "core/util/stopwatch.h"
@@ -22,6 +23,7 @@ namespace fs = std::filesystem;
 struct TimedPrediction {
     Prediction prediction;
     double seconds = 0;
+    Vec3 light{0.f};  ///< the light it was predicted for: a frame for a light that moved on is dropped
 };
 
 namespace {
@@ -97,17 +99,28 @@ void Workbench::refreshPrediction() {
         predictedOnce_ = true;
         draftShown_ = draft;
         if (draft) draftTime_ = std::chrono::steady_clock::now();
+        // The glossy gather runs on the CPU only (core/predict/glossy_gather.h): the GLSL frame shows
+        // the networks' own indirect light on the gathered objects until the CPU frame replaces it.
+        const bool gather = !draft && gatherApplies(scene, state_.project.prediction);
         panels::ImageSet& p = state_.prediction;
         for (Term t : kTerms) p.term(t) = std::move(images[int(t)]);
-        p.label = draft ? "Prediction (GLSL, draft while the light moves)" : "Prediction (GLSL)";
+        p.label = draft    ? "Prediction (GLSL, draft while the light moves)"
+                  : gather ? "Prediction (GLSL; the glossy gather follows on the CPU)"
+                           : "Prediction (GLSL)";
         p.withoutNetwork = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
         p.touch();
+        if (gather) startCpuPrediction(camera);
         return;
     }
+    startCpuPrediction(camera);
+}
+
+void Workbench::startCpuPrediction(const Camera& camera) {
     if (predictRunning()) {
         predictPending_ = true;  // the light moved again: predict once more when this one is done
         return;
     }
+    const Scene& scene = state_.project.scene;
     const PredictionSettings settings = state_.project.prediction;
     auto shared = std::make_shared<const Scene>(scene);
     const std::shared_ptr<const ModelSet> models = live_.models();
@@ -118,7 +131,7 @@ void Workbench::refreshPrediction() {
         const Stopwatch clock;
         const Predictor predictor(*shared, *models, settings);
         const GBuffer gb = predictor.gbuffer(light, camera.width, camera.height);
-        TimedPrediction p{predictor.predict(gb), 0.0};
+        TimedPrediction p{predictor.predict(gb), 0.0, light};
         p.seconds = clock.seconds();
         ctx.setProgress(1.0);
         return p;
@@ -158,11 +171,13 @@ bool Workbench::predictRunning() const { return predictJob_.running(); }
 
 void Workbench::pollPredict() {
     predictJob_.poll([&](TimedPrediction& timed) {
+        // A frame for a light that has moved on since would show the old light's image.
+        if (!(timed.light == state_.project.scene.lightPosition())) return;
         Prediction& prediction = timed.prediction;
         noteFrameSeconds("frame_seconds", timed.seconds);
         panels::ImageSet& p = state_.prediction;
         for (Term t : kTerms) p.term(t) = std::move(prediction.images[int(t)]);
-        p.label = "Prediction (CPU)";
+        p.label = prediction.pixelsGathered ? "Prediction (CPU, glossy gather)" : "Prediction (CPU)";
         if (live_.loaded())
             p.withoutNetwork = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
         p.touch();

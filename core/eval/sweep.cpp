@@ -53,12 +53,12 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
     const Predictor predictor(c.scene, models, c.o.prediction);
     const Evaluation e = evaluate(predictor, c.reference);
     row.stageSeconds.push_back({"gbuffer", e.gbufferSeconds});
-    row.stageSeconds.push_back({"predict", e.prediction.inferenceSeconds + e.prediction.directSeconds});
+    row.stageSeconds.push_back({"predict", e.prediction.inferenceSeconds + e.prediction.directSeconds + e.prediction.gatherSeconds});
     row.overall = e.term(Term::Global).overall;
     row.perObject = e.term(Term::Global).perObject;
     // What the model costs: once, its data and training; per frame, a G-buffer and the networks.
     row.oneOffSeconds = generateSeconds + run.seconds;
-    row.frameSeconds = e.gbufferSeconds + e.prediction.inferenceSeconds + e.prediction.directSeconds;
+    row.frameSeconds = e.gbufferSeconds + e.prediction.inferenceSeconds + e.prediction.directSeconds + e.prediction.gatherSeconds;
     row.breakEven = breakEven(c.pathTracer, comparableError(row.overall));
     if (c.o.keepModels) row.models = std::make_shared<const ModelSet>(models);
     int64_t params = 0, leaves = 0, leafEpochs = 0, bytes = 0;

@@ -23,6 +23,19 @@ void gridPoint(int s, const SampleGrid& g, Rng& rng, float su, float sv, float& 
 }
 }  // namespace
 
+bool GlossyGather::gathers(const Scene& scene, const Object& o, const PredictionSettings& settings) {
+    const PredictionSettings::Gather& g = settings.gather;
+    if (g.lobeSamples + g.diffuseSamples <= 0) return false;
+    if (applies(scene.materials[size_t(o.material)], float(g.minExponent))) return true;
+    return std::find(g.objects.begin(), g.objects.end(), o.name) != g.objects.end();
+}
+
+bool gatherApplies(const Scene& scene, const PredictionSettings& settings) {
+    for (const Object& o : scene.objects)
+        if (GlossyGather::gathers(scene, o, settings)) return true;
+    return false;
+}
+
 GlossyGather::GlossyGather(const PathTracer& tracer, const RecordLayout& layout, int lobeSamples, int diffuseSamples,
                            uint64_t seed)
     : tracer_(tracer),

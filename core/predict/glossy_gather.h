@@ -1,5 +1,5 @@
 #pragma once
-/// Glossy gather (docs/design.md §13.2): the indirect light of a sharply glossy surface is traced one
+/// Glossy gather (docs/design.md §13, "Glossy gather"): the indirect light of a sharply glossy surface is traced one
 /// bounce further and taken from the radiance regression functions where those rays land, instead of
 /// being asked of the surface's own network.
 ///
@@ -11,7 +11,8 @@
 /// Neural Radiance Caching (Müller et al. 2021) after one bounce: query the cache where the footprint
 /// is wide, not where the lobe is sharp.
 ///
-/// Estimator, per pixel x of an object whose material is Phong with exponent ≥ min_exponent:
+/// Estimator, per pixel x of an object whose material is Phong with exponent ≥ min_exponent (or
+/// that "objects" names):
 ///   L_ind(x) ≈ 1/Ns Σ_s ks (e+2)/(e+1) cosθ_s · L(y_s)  +  1/Nd Σ_d kd · L(y_d)
 /// with ω_s drawn from the Phong lobe around the mirror direction and ω_d from the cosine hemisphere
 /// (each lobe sampled on its own, so both terms are exact in expectation and the diffuse part's noise
@@ -28,6 +29,7 @@
 #include <vector>
 
 #include "core/predict/gbuffer.h"
+#include "core/predict/prediction_settings.h"
 #include "core/render/brdf.h"
 #include "core/render/path_tracer.h"
 #include "core/util/image.h"
@@ -37,16 +39,22 @@ namespace rrf {
 /// The stream id mixed into the prediction seed for the gather's directions ("GATHERGL").
 constexpr uint64_t kGlossyGatherStream = 0x474154484552474CULL;
 
+/// True if `settings` gather the indirect light of at least one object of `scene`.
+bool gatherApplies(const Scene& scene, const PredictionSettings& settings);
+
 class GlossyGather {
 public:
     /// `tracer` must outlive this. `lobeSamples`, `diffuseSamples` ≥ 0 (0 drops that lobe's term).
     GlossyGather(const PathTracer& tracer, const RecordLayout& layout, int lobeSamples, int diffuseSamples,
                  uint64_t seed);
 
-    /// True for materials the gather applies to: Phong with exponent ≥ minExponent (> 0).
+    /// True for materials the exponent rule gathers: Phong with exponent ≥ minExponent (> 0).
     static bool applies(const Material& m, float minExponent) {
         return minExponent > 0.f && m.type == Material::Type::Phong && m.exponent >= minExponent;
     }
+    /// True if `settings` gather object `o` of `scene`: by its material's exponent, or by name
+    /// ("gather": {"objects": [...]}, e.g. a diffuse receiver of caustics).
+    static bool gathers(const Scene& scene, const Object& o, const PredictionSettings& settings);
 
     /// The secondary rays of `count` pixels of `gb` (their indices in `pixels`): raysPerPixel() per
     /// pixel, pixel j's at [j·raysPerPixel(), (j+1)·raysPerPixel()), with the weight each one's

@@ -11,6 +11,8 @@
 /// further (core/predict/glossy_gather.h); "min_exponent": 0 turns it off.
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -43,6 +45,10 @@ struct PredictionSettings {
         /// their networks. 0 and 0: the first bounce's secondary points all use their networks.
         int secondLobeSamples = 8;
         int secondDiffuseSamples = 4;
+        /// "objects": names of objects gathered whatever their material (a diffuse receiver of
+        /// caustics); the project checks them against the scene.
+        std::vector<std::string> objects;
+        /// The exponent rule is on (objects may be named besides).
         bool on() const { return minExponent > 0.0 && lobeSamples + diffuseSamples > 0; }
     } gather;
 

@@ -110,7 +110,7 @@ std::vector<std::string> Predictor::describe() const {
 
 Prediction Predictor::predict(const GBuffer& gb) const {
     Prediction pr = predictTerms(gb, settings_.directSamples);
-    if (settings_.gather.on()) gather(gb, pr, 0);
+    if (gatherApplies(scene_, settings_)) gather(gb, pr, 0);
     return pr;
 }
 
@@ -129,7 +129,7 @@ void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth) const {
         const std::vector<uint32_t>& px = gb.pixelsByObject[id];
         if (px.empty()) continue;
         const Object& obj = scene_.objects[id];
-        if (!GlossyGather::applies(scene_.materials[size_t(obj.material)], float(settings_.gather.minExponent))) continue;
+        if (!GlossyGather::gathers(scene_, obj, settings_)) continue;
         const ObjectNetworks* o = models_.find(int(id));
         if (!o || o->byTarget.empty()) continue;
         const ObjectPlan plan = planFor(*o, exact);

@@ -90,9 +90,14 @@ void bestNetwork(ObjectTrainingOptions& t) {
 }
 // Exact direct light at 256 samples: at 64 its noise (direct relative RMSE 0.016; 0.0075 at 256)
 // adds 0.008 in quadrature to the global error, which at 0.02 is too much.
+// The glossy gather with twice the default directions: what it adds to the error is the Monte Carlo
+// noise of its directions (docs/results.md), which twice the directions halve in variance, at twice
+// the frame time.
 void bestPrediction(PredictionSettings& p) {
     defaultPrediction(p);
     p.directSamples = 256;
+    p.gather.lobeSamples = 2 * PredictionSettings().gather.lobeSamples;
+    p.gather.diffuseSamples = 2 * PredictionSettings().gather.diffuseSamples;
 }
 
 /// A network section with `o`'s layers, activation, targets and partition (the trainer is separate).

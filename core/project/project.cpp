@@ -77,7 +77,22 @@ void readSections(const JsonReader& root, Project& p) {
         p.network = NetworkSettings::fromJson(*network, &objectNames);
     }
     if (const auto trainer = root.find("trainer")) p.trainer = TrainerConfig::fromJson(*trainer);
-    if (const auto prediction = root.find("prediction")) p.prediction = PredictionSettings::fromJson(*prediction);
+    if (const auto prediction = root.find("prediction")) {
+        p.prediction = PredictionSettings::fromJson(*prediction);
+        // The gather's "objects" are the scene's object names (loaded already).
+        for (size_t i = 0; i < p.prediction.gather.objects.size(); ++i) {
+            const std::string& name = p.prediction.gather.objects[i];
+            bool known = false;
+            std::string list;
+            for (const Object& o : p.scene.objects) {
+                known = known || o.name == name;
+                list += (list.empty() ? "\"" : ", \"") + o.name + "\"";
+            }
+            if (!known)
+                prediction->at("gather").at("objects").at(i).fail("no object named \"" + name +
+                                                                  "\" in the scene (expected one of " + list + ")");
+        }
+    }
     if (const auto reference = root.find("reference")) p.reference = ReferenceSettings::fromJson(*reference);
     if (const auto runs = root.find("runs")) p.runs = readRuns(*runs, p.warnings);
     if (const auto layout = root.find("layout")) p.layout = PaneLayout::fromJson(*layout, p.warnings);

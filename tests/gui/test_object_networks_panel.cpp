@@ -86,3 +86,33 @@ TEST_F(ObjectNetworksPanelTest, RowsSayWhatEachObjectsNetworksReadOrWhyTheyCanno
 }
 
 }  // namespace rrf::test::test_object_networks_panel
+
+namespace rrf::test::test_object_networks_panel {
+
+// The glossy gather's controls: the glossy box gathers its near-mirror and its tall box (exponents
+// 1000 and 100, not the back wall's 10); the setter clamps, stores the prediction section and marks
+// the project; the panel names the gathered objects; switched off, none.
+TEST_F(ObjectNetworksPanelTest, GlossyGatherNamesItsObjectsAndStoresTheSection) {
+    WorkbenchState s;
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-glossy/project.json", error)) << error;
+    EXPECT_EQ(gatheredObjects(s.project.scene, s.project.prediction), "short-box, tall-box");
+    const std::string text = panelText(s);
+    EXPECT_NE(text.find("short-box, tall-box"), std::string::npos) << text;
+    EXPECT_FALSE(s.dirty);
+
+    PredictionSettings::Gather g = s.project.prediction.gather;
+    EXPECT_FALSE(setGlossyGather(s, g)) << "nothing changed";
+    g.minExponent = 500;
+    g.lobeSamples = 1 << 30;
+    ASSERT_TRUE(setGlossyGather(s, g));
+    EXPECT_TRUE(s.dirty);
+    EXPECT_EQ(s.project.prediction.gather.lobeSamples, kMaxGatherSamples) << "clamped";
+    EXPECT_EQ(gatheredObjects(s.project.scene, s.project.prediction), "short-box");
+    g.minExponent = 0;
+    ASSERT_TRUE(setGlossyGather(s, g));
+    EXPECT_EQ(gatheredObjects(s.project.scene, s.project.prediction), "");
+    EXPECT_NE(panelText(s).find("no object is gathered"), std::string::npos);
+}
+
+}  // namespace rrf::test::test_object_networks_panel

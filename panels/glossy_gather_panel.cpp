@@ -1,0 +1,75 @@
+// The Network panel's glossy gather (core/predict/glossy_gather.h): which objects take their indirect
+// light from one more bounce instead of their own network, and how many directions each pixel
+// gathers. The settings are the project's "prediction": {"gather"} section, so the CLI and a saved
+// project predict the same way.
+
+#include <algorithm>
+#include <string>
+
+#include <imgui.h>
+
+#include "core/predict/glossy_gather.h"
+#include "panels/panels.h"
+
+namespace rrf::panels {
+
+bool setGlossyGather(WorkbenchState& state, const PredictionSettings::Gather& gather) {
+    PredictionSettings::Gather g = gather;
+    g.minExponent = std::clamp(g.minExponent, 0.0, 1e6);
+    g.lobeSamples = std::clamp(g.lobeSamples, 0, kMaxGatherSamples);
+    g.diffuseSamples = std::clamp(g.diffuseSamples, 0, kMaxGatherSamples);
+    g.directSamples = std::clamp(g.directSamples, 1, kMaxDirectSamples);
+    const PredictionSettings::Gather& old = state.project.prediction.gather;
+    if (g.minExponent == old.minExponent && g.lobeSamples == old.lobeSamples && g.diffuseSamples == old.diffuseSamples &&
+        g.directSamples == old.directSamples)
+        return false;
+    state.project.prediction.gather.minExponent = g.minExponent;
+    state.project.prediction.gather.lobeSamples = g.lobeSamples;
+    state.project.prediction.gather.diffuseSamples = g.diffuseSamples;
+    state.project.prediction.gather.directSamples = g.directSamples;
+    state.markDirty();
+    return true;
+}
+
+std::string gatheredObjects(const Scene& scene, const PredictionSettings& prediction) {
+    std::string names;
+    for (const Object& o : scene.objects)
+        if (GlossyGather::gathers(scene, o, prediction)) names += (names.empty() ? "" : ", ") + o.name;
+    return names;
+}
+
+void drawGlossyGather(WorkbenchState& state) {
+    PredictionSettings::Gather g = state.project.prediction.gather;
+    if (!ImGui::TreeNodeEx("Glossy gather (prediction)", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    bool on = g.minExponent > 0.0;
+    bool changed = false;
+    if (ImGui::Checkbox("gather sharply glossy objects", &on)) {
+        g.minExponent = on ? PredictionSettings().gather.minExponent : 0.0;
+        changed = true;
+    }
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("a near-mirror's indirect light is the scene seen in the mirror: trace one more bounce\n"
+                          "and take exact direct light + the networks where it lands, instead of the object's own network");
+    if (on) {
+        float minExponent = float(g.minExponent);
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+        if (ImGui::InputFloat("from Phong exponent", &minExponent, 0.f, 0.f, "%.0f")) {
+            g.minExponent = std::max(1.0, double(minExponent));
+            changed = true;
+        }
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+        changed |= ImGui::InputInt("lobe directions", &g.lobeSamples);
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+        changed |= ImGui::InputInt("diffuse directions", &g.diffuseSamples);
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+        changed |= ImGui::InputInt("light samples there", &g.directSamples);
+    }
+    if (changed) setGlossyGather(state, g);
+    const std::string names = gatheredObjects(state.project.scene, state.project.prediction);
+    ImGui::TextWrapped("%s", names.empty() ? "no object is gathered: every object's indirect light is its network's"
+                                           : ("gathered (CPU prediction; the GLSL view shows their networks until the "
+                                              "CPU frame arrives): " + names).c_str());
+    ImGui::TreePop();
+}
+
+}  // namespace rrf::panels
