@@ -28,6 +28,7 @@ bool setGlossyGather(WorkbenchState& state, const PredictionSettings::Gather& ga
     state.project.prediction.gather.diffuseSamples = g.diffuseSamples;
     state.project.prediction.gather.directSamples = g.directSamples;
     state.markDirty();
+    state.request(Command::PredictionChanged);
     return true;
 }
 

@@ -35,8 +35,27 @@ void leftOutColour(Footprint reason, int x, int y, uint8_t rgba[4]) {
     rgba[3] = 255;
 }
 
+std::string comparisonBlocked(const ImageSet& groundTruth, const ImageSet& compared) {
+    if (!groundTruth.stamp || !compared.stamp || *groundTruth.stamp == *compared.stamp) return "";
+    const ImageStamp& g = *groundTruth.stamp;
+    const ImageStamp& c = *compared.stamp;
+    char buf[256];
+    if (g.sceneHash != c.sceneHash) return "waiting for the ground truth of the edited scene";
+    if (!(g.light == c.light)) {
+        std::snprintf(buf, sizeof buf, "waiting for the ground truth of the light at (%.3f, %.3f, %.3f): the one shown is of (%.3f, %.3f, %.3f)",
+                      double(c.light.x), double(c.light.y), double(c.light.z), double(g.light.x), double(g.light.y),
+                      double(g.light.z));
+        return buf;
+    }
+    std::snprintf(buf, sizeof buf, "waiting for a ground truth of %dx%d: the one shown is %dx%d", c.width, c.height, g.width,
+                  g.height);
+    return buf;
+}
+
 ViewErrorStats viewErrorStats(const ImageSet& groundTruth, const ImageSet& compared, Term t) {
     ViewErrorStats out;
+    out.waiting = comparisonBlocked(groundTruth, compared);
+    if (!out.waiting.empty()) return out;
     const Image& ref = groundTruth.term(t);
     const Image& cmp = compared.term(t);
     const FootprintMask* mask = groundTruth.footprint.get();
@@ -164,7 +183,9 @@ void ViewModel::update(WorkbenchState& s) {
         else if (error) falseColourRgba(img, s.view.errorMax, idsFor(img), k.selected, s.reference().footprint.get(), d.rgba);
         else toneMapRgba(img, s.view.exposure, idsFor(img), k.selected, d.rgba);
     };
-    if (errorChanged) error_ = viewErrorMap(ref, cmp, s.view.metric);
+    // Never an error map against the ground truth of another light, scene or size.
+    const bool blocked = !comparisonBlocked(s.reference(), s.compared()).empty();
+    if (errorChanged) error_ = blocked ? Image() : viewErrorMap(ref, cmp, s.view.metric);
     if (sourcesChanged) stats_ = viewErrorStats(s.reference(), s.compared(), s.view.term);
     s.view.errorStats = stats_;
     fill(views_[kReference], ref, false);

@@ -33,6 +33,11 @@ Image viewErrorMap(const Image& groundTruth, const Image& compared, ErrorMapKind
 /// image of the ground truth's size.
 ViewErrorStats viewErrorStats(const ImageSet& groundTruth, const ImageSet& compared, Term t);
 
+/// Why `compared` must not be measured against `groundTruth`: "" when they may be (same stamp, or
+/// one of them unstamped), else what the view waits for, e.g. "waiting for the ground truth of the
+/// light at (0.10, 0.87, -0.10): the one shown is of (0.00, 0.87, -0.10)".
+std::string comparisonBlocked(const ImageSet& groundTruth, const ImageSet& compared);
+
 /// Tints `rgba` (the compared view) half-way towards a colour per (object, leaf), so the kd-tree
 /// cells show; pixels with leaf −1 stay as they are. Sizes must agree (else nothing changes).
 void tintByLeaf(const std::vector<int>& objectIds, const std::vector<int>& pixelLeaf, std::vector<uint8_t>& rgba);

@@ -197,6 +197,10 @@ void drawErrorFigures(const WorkbenchState& state) {
         ImGui::TextDisabled("Run pair: the error map is |B - A|, prediction against prediction (no noise floor).");
         return;
     }
+    if (!f.waiting.empty()) {
+        ImGui::TextWrapped("Error figures: %s.", f.waiting.c_str());
+        return;
+    }
     if (!f.valid) {
         ImGui::TextDisabled(state.groundTruth.footprint ? "Error figures: need a compared image of the ground truth's size."
                                                         : "Error figures: need the ground truth's footprint mask (render it).");

@@ -16,6 +16,7 @@
 #include "core/eval/error_metrics.h"
 #include "core/predict/footprint_mask.h"
 #include "core/render/term.h"
+#include "core/util/vec3.h"
 #include "core/scene/accel.h"
 #include "core/data/generator_stats.h"
 #include "core/util/image.h"
@@ -40,6 +41,7 @@ enum class Command {
     StartRender,
     CancelRender,
     SceneChanged,     ///< materials or the light changed: rebuild and restart the ground truth
+    PredictionChanged,  ///< the project's prediction settings changed: predict again (same ground truth)
     Generate,         ///< generate the training dataset with the project's sampling settings
     CancelGenerate,
     Train,            ///< train the project's networks on the dataset (a run is recorded)
@@ -68,8 +70,23 @@ struct Request {
 };
 
 /// Direct, indirect and global images of one source (a render, a run, a prediction).
+/// What a set of images was made for: the light's centre, the scene (Scene::contentHash, which
+/// leaves the light out) and the size. Two sets compare only when their stamps agree.
+struct ImageStamp {
+    Vec3 light{0.f};
+    uint64_t sceneHash = 0;
+    int width = 0, height = 0;
+    bool operator==(const ImageStamp& o) const {
+        return light == o.light && sceneHash == o.sceneHash && width == o.width && height == o.height;
+    }
+    bool operator!=(const ImageStamp& o) const { return !(*this == o); }
+};
+
 struct ImageSet {
     Image direct, indirect, global;
+    /// What the images were made for (ground truth, live predictions); none for images whose origin is
+    /// not known (a run's stored images), which compare with anything of their size.
+    std::optional<ImageStamp> stamp;
     /// Per-pixel, per-channel variance of the mean of each term (index int(Term)): a render's own
     /// noise (the ground truth's snapshots carry it). Empty for sources without it (runs,
     /// predictions): noise floors against them are unknown.
@@ -98,6 +115,9 @@ struct ImageSet {
 /// viewErrorStats in panels/view_model.h, which fills it).
 struct ViewErrorStats {
     bool valid = false;    ///< false without a footprint mask or a compared image of the same size
+    /// Non-empty when the two sets were made for different lights, scenes or sizes: what the view
+    /// waits for instead of showing an error against the wrong ground truth.
+    std::string waiting;
     ErrorStats stats;      ///< over the footprint mask's kept pixels, with the ground truth's noise
     FootprintCounts left;  ///< object pixels the mask leaves out, per reason
 };

@@ -1,7 +1,8 @@
 #pragma once
-/// Small trained model sets for the tests of files that hold them (model sets replaced as a whole,
-/// their refusals, a full disk): networks of 3 inputs, 4 hidden units and 3 outputs, fitted for 2
-/// epochs, so they are real trained models but cost milliseconds.
+/// Small models for the tests: trained model sets for the tests of files that hold them (model sets
+/// replaced as a whole, their refusals, a full disk): networks of 3 inputs, 4 hidden units and 3
+/// outputs, fitted for 2 epochs, so they are real trained models but cost milliseconds; and networks
+/// built by hand whose outputs are known exactly (the prediction tests).
 
 #include <cstdint>
 #include <string>
@@ -47,6 +48,30 @@ inline std::vector<ObjectModel> tinyModelSet(uint64_t seed, int objects = 2) {
     std::vector<ObjectModel> set;
     for (int id = 0; id < objects; ++id) set.push_back(tinyModel(id, seed * 10 + uint64_t(id)));
     return set;
+}
+
+/// ReLU network in → 2·outputs → outputs with relu(x_k) − relu(−x_k) = x_k exactly on every output
+/// row (`rows[o]` = which input output o copies). Identity scalers, so raw in = raw out.
+inline NetworkModel copyInputNet(int inputs, const std::vector<int>& rows) {
+    NetworkModel m;
+    m.arch.inputs = inputs;
+    m.arch.outputs = int(rows.size());
+    m.arch.activation = Activation::Relu;
+    m.arch.hidden = {2 * int(rows.size())};
+    m.params = VecX<double>::Zero(m.arch.numParams());
+    const int h = m.arch.hidden[0];
+    for (size_t o = 0; o < rows.size(); ++o) {
+        // W0 is h × inputs column-major: entry (r, c) at r + h·c.
+        m.params[m.arch.weightOffset(0) + Eigen::Index(2 * o) + Eigen::Index(h) * rows[o]] = 1.0;
+        m.params[m.arch.weightOffset(0) + Eigen::Index(2 * o + 1) + Eigen::Index(h) * rows[o]] = -1.0;
+        // W1 is outputs × h: entry (o, 2o) = 1, (o, 2o+1) = -1.
+        m.params[m.arch.weightOffset(1) + Eigen::Index(o) + Eigen::Index(rows.size()) * Eigen::Index(2 * o)] = 1.0;
+        m.params[m.arch.weightOffset(1) + Eigen::Index(o) + Eigen::Index(rows.size()) * Eigen::Index(2 * o + 1)] = -1.0;
+    }
+    m.inputScaler = MinMaxScaler::identity(inputs);
+    m.outputScaler = MinMaxScaler::identity(m.arch.outputs);
+    m.validate();
+    return m;
 }
 
 }  // namespace rrf::test

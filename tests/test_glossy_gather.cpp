@@ -11,6 +11,7 @@
 #include "core/util/error.h"
 #include "core/project/project.h"
 #include "core/util/json_reader.h"
+#include "model_builders.h"
 #include "scene_builders.h"
 
 namespace test_glossy_gather {
@@ -41,27 +42,6 @@ Scene glossyFloorBox(int size) {
     s.camera.fovYDegrees = 4.f;
     s.camera.width = s.camera.height = size;
     return s;
-}
-
-/// ReLU network whose outputs copy inputs `rows` exactly (relu(x) − relu(−x) = x), identity scalers.
-NetworkModel copyInputNet(int inputs, const std::vector<int>& rows) {
-    NetworkModel m;
-    m.arch.inputs = inputs;
-    m.arch.outputs = int(rows.size());
-    m.arch.activation = Activation::Relu;
-    m.arch.hidden = {2 * int(rows.size())};
-    m.params = VecX<double>::Zero(m.arch.numParams());
-    const int h = m.arch.hidden[0];
-    for (size_t o = 0; o < rows.size(); ++o) {
-        m.params[m.arch.weightOffset(0) + Eigen::Index(2 * o) + Eigen::Index(h) * rows[o]] = 1.0;
-        m.params[m.arch.weightOffset(0) + Eigen::Index(2 * o + 1) + Eigen::Index(h) * rows[o]] = -1.0;
-        m.params[m.arch.weightOffset(1) + Eigen::Index(o) + Eigen::Index(rows.size()) * Eigen::Index(2 * o)] = 1.0;
-        m.params[m.arch.weightOffset(1) + Eigen::Index(o) + Eigen::Index(rows.size()) * Eigen::Index(2 * o + 1)] = -1.0;
-    }
-    m.inputScaler = MinMaxScaler::identity(inputs);
-    m.outputScaler = MinMaxScaler::identity(m.arch.outputs);
-    m.validate();
-    return m;
 }
 
 /// Every object: direct and indirect networks that both answer the albedo kd (BRDF inputs 12..14),
@@ -106,6 +86,49 @@ TEST(GlossyGather, PhongPlaneInABoxOfConstantRadianceGathersItsAlbedo) {
     }
 }
 
+// The second bounce: the walls gathered by name (Lambert, kd = c like the floor's), so a floor ray
+// lands on a wall that gathers again, whose own rays land where the networks answer 2c. A wall then
+// sends c (its direct network) + c·2c (its gathered indirect light) and the floor gathers
+// (kd + ks)·(c + 2c²).
+TEST(GlossyGather, SecondBounceGathersAgainWhereTheFirstLands) {
+    Scene s = glossyFloorBox(4);
+    const float c = 0.5f;
+    s.materials[0].kd = Vec3(c);
+    s.materials[1].kd = Vec3(c);
+    const ModelSet models = albedoModels(s);
+    const Predictor pred(s, models, settings({{"direct", "network"}, {"gather", {{"objects", {"walls"}}}}}));
+    const GBuffer g = pred.gbuffer(s.lightPosition(), 4, 4);
+    const Prediction out = pred.predict(g);
+    const Vec3 expected = (Vec3(c) + kFloorKs) * (c + 2.f * c * c);
+    for (uint32_t i : g.pixelsByObject[0]) {
+        const Vec3 got = out.image(Term::Indirect).at(int(i % 4), int(i / 4));
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch], expected[ch], 3e-3 * expected[ch]);
+    }
+    // Without the second bounce the walls' rays answer their networks: (kd + ks)·2c.
+    const Predictor once(s, models,
+                         settings({{"direct", "network"},
+                                   {"gather", {{"objects", {"walls"}}, {"second_lobe_samples", 0}, {"second_diffuse_samples", 0}}}}));
+    const Prediction flat = once.predict(g);
+    const Vec3 one = (Vec3(c) + kFloorKs) * (2.f * c);
+    for (uint32_t i : g.pixelsByObject[0])
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(flat.image(Term::Indirect).at(int(i % 4), int(i / 4))[ch], one[ch], 3e-3 * one[ch]);
+}
+
+// More pixels than one batch (the secondary buffer's rows, batch seeds): the closed form still holds.
+TEST(GlossyGather, ManyBatchesKeepTheClosedForm) {
+    const Scene s = glossyFloorBox(96);
+    const ModelSet models = albedoModels(s);
+    const Predictor pred(s, models, settings({{"direct", "network"}}));
+    const GBuffer g = pred.gbuffer(s.lightPosition(), 96, 96);
+    const Prediction out = pred.predict(g);
+    ASSERT_GT(out.pixelsGathered * 128u, uint64_t(1) << 18) << "the test must span several batches";
+    const Vec3 expected = 2.f * kWall * (kFloorKd + kFloorKs);
+    for (uint32_t i : g.pixelsByObject[0]) {
+        const Vec3 got = out.image(Term::Indirect).at(int(i % 96), int(i / 96));
+        for (int ch = 0; ch < 3; ++ch) ASSERT_NEAR(got[ch], expected[ch], 3e-3 * expected[ch]) << "pixel " << i;
+    }
+}
+
 // Only the lobe's term, only the diffuse term: each lobe is sampled on its own, so each term alone
 // is its part of the albedo.
 TEST(GlossyGather, EachLobeGathersItsOwnPart) {
@@ -141,7 +164,9 @@ TEST(GlossyGather, ThresholdAndSwitch) {
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) {
             EXPECT_EQ(a.image(Term::Indirect).at(x, y), b.image(Term::Indirect).at(x, y));
-            if (g.object[size_t(y) * 8 + size_t(x)] == 0) EXPECT_EQ(a.image(Term::Indirect).at(x, y), kFloorKd);
+            if (g.object[size_t(y) * 8 + size_t(x)] == 0) {
+                EXPECT_EQ(a.image(Term::Indirect).at(x, y), kFloorKd);
+            }
         }
 }
 
@@ -173,6 +198,7 @@ TEST(GlossyGather, SectionReadsWritesAndRefuses) {
     EXPECT_EQ(r.toJson(), d.toJson());
     const PredictionSettings s = settings({{"gather", {{"min_exponent", 0}}}});
     EXPECT_FALSE(s.gather.on());
+    EXPECT_TRUE(settings({{"gather", {{"min_exponent", 0}, {"objects", {"walls"}}}}}).gather.on()) << "named objects";
     EXPECT_THROW(settings({{"gather", {{"lobe", 3}}}}), InputError);
     EXPECT_THROW(settings({{"gather", {{"lobe_samples", -1}}}}), InputError);
     EXPECT_THROW(settings({{"gather", {{"min_exponent", "high"}}}}), InputError);

@@ -9,37 +9,15 @@
 #include "core/predict/predictor.h"
 #include "core/util/json_reader.h"
 #include "core/project/project.h"
+#include "model_builders.h"
 
 namespace test_predictor {
 
 using namespace rrf;
+using rrf::test::copyInputNet;
 
 namespace {
 const std::string kCornell = std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json";
-
-/// ReLU network in → 2 → outputs with relu(x_k) − relu(−x_k) = x_k exactly on every output row
-/// (`rows[o]` = which input output o copies). Identity scalers, so raw in = raw out.
-NetworkModel copyInputNet(int inputs, const std::vector<int>& rows) {
-    NetworkModel m;
-    m.arch.inputs = inputs;
-    m.arch.outputs = int(rows.size());
-    m.arch.activation = Activation::Relu;
-    m.arch.hidden = {2 * int(rows.size())};
-    m.params = VecX<double>::Zero(m.arch.numParams());
-    const int h = m.arch.hidden[0];
-    for (size_t o = 0; o < rows.size(); ++o) {
-        // W0 is h × inputs column-major: entry (r, c) at r + h·c.
-        m.params[m.arch.weightOffset(0) + Eigen::Index(2 * o) + Eigen::Index(h) * rows[o]] = 1.0;
-        m.params[m.arch.weightOffset(0) + Eigen::Index(2 * o + 1) + Eigen::Index(h) * rows[o]] = -1.0;
-        // W1 is outputs × h: entry (o, 2o) = 1, (o, 2o+1) = -1.
-        m.params[m.arch.weightOffset(1) + Eigen::Index(o) + Eigen::Index(rows.size()) * Eigen::Index(2 * o)] = 1.0;
-        m.params[m.arch.weightOffset(1) + Eigen::Index(o) + Eigen::Index(rows.size()) * Eigen::Index(2 * o + 1)] = -1.0;
-    }
-    m.inputScaler = MinMaxScaler::identity(inputs);
-    m.outputScaler = MinMaxScaler::identity(m.arch.outputs);
-    m.validate();
-    return m;
-}
 
 /// Every object gets the networks `make(objectId)` returns.
 template <typename F>

@@ -149,11 +149,13 @@ void addPredictionOptions(CLI::App* cmd, PredictionArgs& a) {
     a.prediction
         .add<std::string>(cmd, "--gather",
                           "glossy gather: sharply glossy objects' indirect light traced one bounce further, on (the "
-                          "project's threshold, or Phong exponent 50 if it has none) or off (default: the project's)",
+                          "project's threshold, or Phong exponent 50 if it has none) or off (none gathered, named "
+                          "objects neither; default: the project's)",
                           [](PredictionSettings& s, const std::string& v) {
                               const double on = s.gather.minExponent > 0.0 ? s.gather.minExponent
                                                                            : PredictionSettings().gather.minExponent;
                               s.gather.minExponent = v == "on" ? on : 0.0;
+                              if (v == "off") s.gather.objects.clear();
                           })
         ->check(CLI::IsMember({"on", "off"}));
 }

@@ -387,6 +387,7 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
             case Command::RunPipeline: startPipeline(r.path); break;
             case Command::CancelPipeline: cancelPipeline(); break;
             case Command::SceneChanged: sceneEdited = true; break;  // many edits in a frame: one restart
+            case Command::PredictionChanged: refreshPrediction(); break;
             case Command::SaveRun: saveRun(); break;
             case Command::ReopenRun: reopenRun(r.index); break;
             case Command::CompareRun: compareRun(r.index); break;

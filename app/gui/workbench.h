@@ -121,8 +121,11 @@ public:
     bool busy() const;
     /// The UI thread's frame times (the window loop adds each frame's work time).
     FrameStats& frameStats() { return frameStats_; }
-    /// The live prediction's recent frame times (seconds; GLSL on the UI thread, else CPU jobs).
-    const std::vector<double>& predictionSeconds() const { return frameSeconds_; }
+    /// The live prediction's recent frame times (seconds): GLSL frames on the UI thread where the
+    /// GLSL path runs, else the CPU jobs'.
+    const std::vector<double>& predictionSeconds() const {
+        return frameSeconds_[live_.usesGlsl() ? kGlslFrames : kCpuFrames];
+    }
     /// The recent draft frames' prediction times while the light was dragged (seconds).
     const std::vector<double>& draftSeconds() const { return draftSeconds_; }
 
@@ -199,6 +202,7 @@ private:
     std::shared_ptr<RenderSession> render_;  ///< the current ground truth's render (snapshots, outputs)
     JobSession<void> renderJob_{jobs_, JobKind::Render, state_.log};
     uint64_t renderRevision_ = 0;
+    panels::ImageStamp renderStamp_;  ///< what the current render's images are of (light, scene, size)
     JobSession<GeneratedDataset> generateJob_{jobs_, JobKind::Generate, state_.log};
     std::shared_ptr<TrainingLive> trainLive_;  ///< loss curves of the running training, for the plot
     JobSession<TrainingOutcome> trainJob_{jobs_, JobKind::Train, state_.log};
@@ -207,8 +211,11 @@ private:
     JobSession<TimedPrediction> predictJob_{jobs_, JobKind::Predict, state_.log};
     /// Recent per-frame prediction times of the loaded models (seconds), whose median is recorded
     /// in their training run (runs table: "frame ms").
-    std::vector<double> frameSeconds_;
-    size_t framesSinceRecorded_ = 0;  ///< frames noted since the median was last recorded in the run
+    /// Recent frame times per kind (a GLSL frame and the CPU frame after it are different figures),
+    /// and the frames noted since each median was last recorded in the run.
+    static constexpr int kGlslFrames = 0, kCpuFrames = 1;
+    std::vector<double> frameSeconds_[2];
+    size_t framesSinceRecorded_[2] = {0, 0};
     void noteFrameSeconds(const char* key, double seconds);
     bool predictPending_ = false;  ///< the light moved while a CPU prediction ran
     /// Light-drag drafts (app/gui/prediction_draft.h): the light position of the last GLSL frame,

@@ -34,6 +34,15 @@ bool Workbench::startEvaluate() {
         state_.notify(panels::LogLevel::Error, "Training", "evaluate: no ground truth yet; render first");
         return false;
     }
+    // The ground truth the views show may be of a light that has moved since (its render restarts):
+    // an evaluation against it would report the wrong light's error.
+    if (const auto& stamp = state_.groundTruth.stamp;
+        stamp && (!(stamp->light == state_.project.scene.lightPosition()) ||
+                  stamp->sceneHash != state_.project.scene.contentHash())) {
+        state_.notify(panels::LogLevel::Error, "Training",
+                      "evaluate: the ground truth shown is of another light or scene; wait for its render of this one");
+        return false;
+    }
     const PredictionSettings settings = state_.project.prediction;
     auto scene = std::make_shared<const Scene>(state_.project.scene);
     const std::shared_ptr<const ModelSet> models = live_.models();

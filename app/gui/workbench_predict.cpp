@@ -24,6 +24,7 @@ struct TimedPrediction {
     Prediction prediction;
     double seconds = 0;
     Vec3 light{0.f};  ///< the light it was predicted for: a frame for a light that moved on is dropped
+    panels::ImageStamp stamp;  ///< light, scene and size it was predicted for
 };
 
 namespace {
@@ -49,8 +50,10 @@ bool Workbench::loadModels(const std::string& dir, std::shared_ptr<const ModelSe
     if (!glslError.empty())
         state_.log.warning("GLSL prediction unavailable, using the CPU predictor (slower): " + glslError);
     state_.training.modelsDir = dir;
-    frameSeconds_.clear();
-    framesSinceRecorded_ = 0;
+    for (int k = 0; k < 2; ++k) {
+        frameSeconds_[k].clear();
+        framesSinceRecorded_[k] = 0;
+    }
     predictedOnce_ = draftShown_ = false;  // the first frame of new models is a full one
     state_.leaves = panels::leavesOf(*live_.models());
     state_.view.compareSource = panels::CompareSource::Prediction;
@@ -108,6 +111,7 @@ void Workbench::refreshPrediction() {
                   : gather ? "Prediction (GLSL; the glossy gather follows on the CPU)"
                            : "Prediction (GLSL)";
         p.withoutNetwork = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
+        p.stamp = panels::ImageStamp{light, scene.contentHash(), camera.width, camera.height};
         p.touch();
         if (gather) startCpuPrediction(camera);
         return;
@@ -131,7 +135,8 @@ void Workbench::startCpuPrediction(const Camera& camera) {
         const Stopwatch clock;
         const Predictor predictor(*shared, *models, settings);
         const GBuffer gb = predictor.gbuffer(light, camera.width, camera.height);
-        TimedPrediction p{predictor.predict(gb), 0.0, light};
+        TimedPrediction p{predictor.predict(gb), 0.0, light,
+                          panels::ImageStamp{light, shared->contentHash(), camera.width, camera.height}};
         p.seconds = clock.seconds();
         ctx.setProgress(1.0);
         return p;
@@ -156,13 +161,15 @@ void Workbench::noteFrameSeconds(const char* key, double seconds) {
     // The median of the last few frames: the first GLSL frame also compiles and uploads, and a
     // single frame is noisy; the figure lands in the models' training run for the runs table.
     constexpr size_t kFrames = 9;
-    frameSeconds_.push_back(seconds);
-    if (frameSeconds_.size() > kFrames) frameSeconds_.erase(frameSeconds_.begin());
+    const int kind = std::string(key) == "glsl_frame_seconds" ? kGlslFrames : kCpuFrames;
+    std::vector<double>& frames = frameSeconds_[kind];
+    frames.push_back(seconds);
+    if (frames.size() > kFrames) frames.erase(frames.begin());
     // Finding the run resolves its paths on the file system: once per kFrames frames, not per
     // frame of a light drag (and at once for the first, single CPU frames).
-    if (++framesSinceRecorded_ < kFrames && frameSeconds_.size() > 1) return;
-    framesSinceRecorded_ = 0;
-    std::vector<double> sorted = frameSeconds_;
+    if (++framesSinceRecorded_[kind] < kFrames && frames.size() > 1) return;
+    framesSinceRecorded_[kind] = 0;
+    std::vector<double> sorted = frames;
     std::sort(sorted.begin(), sorted.end());
     recordFrameSeconds(state_.project.runs, projectDir(), live_.dir(), key, sorted[sorted.size() / 2]);
 }
@@ -171,13 +178,16 @@ bool Workbench::predictRunning() const { return predictJob_.running(); }
 
 void Workbench::pollPredict() {
     predictJob_.poll([&](TimedPrediction& timed) {
-        // A frame for a light that has moved on since would show the old light's image.
-        if (!(timed.light == state_.project.scene.lightPosition())) return;
+        // Beside the GLSL view (the glossy gather's frame), a frame for a light that has moved on
+        // would replace the newer GLSL frame with the old light's image; the CPU-only view shows
+        // what it has (its stamp keeps the error figures honest).
+        if (live_.usesGlsl() && !(timed.light == state_.project.scene.lightPosition())) return;
         Prediction& prediction = timed.prediction;
         noteFrameSeconds("frame_seconds", timed.seconds);
         panels::ImageSet& p = state_.prediction;
         for (Term t : kTerms) p.term(t) = std::move(prediction.images[int(t)]);
         p.label = prediction.pixelsGathered ? "Prediction (CPU, glossy gather)" : "Prediction (CPU)";
+        p.stamp = timed.stamp;
         if (live_.loaded())
             p.withoutNetwork = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
         p.touch();

@@ -214,6 +214,8 @@ bool Workbench::reopenRun(int index) {
     }
     sceneChanged(false);
     set.label = "Run '" + run.name + "'";
+    set.stamp = panels::ImageStamp{state_.project.scene.lightPosition(), state_.project.scene.contentHash(), set.global.width,
+                                   set.global.height};
     set.touch();
     state_.groundTruth = std::move(set);
     state_.render = panels::RenderProgress{};

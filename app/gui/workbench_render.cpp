@@ -27,6 +27,8 @@ bool Workbench::startRender() {
     if (!started) return false;
     render_ = session;
     renderRevision_ = 0;
+    renderStamp_ = panels::ImageStamp{state_.project.scene.lightPosition(), state_.project.scene.contentHash(),
+                                      options.width, options.height};
     state_.render = panels::RenderProgress{};
     state_.render.running = true;
     state_.render.targetSpp = options.spp;
@@ -52,6 +54,7 @@ void Workbench::pollRender() {
             for (Term t : kTerms) gt.variances[int(t)] = snap->varianceKnown() ? snap->varianceOf(t) : Image();
             gt.footprint = render_->footprint();
             gt.label = "ground truth";
+            gt.stamp = renderStamp_;
             gt.touch();
             state_.render.spp = snap->sppCompleted;
             state_.render.relativeNoise = noise;

@@ -1,5 +1,6 @@
 #include "core/predict/gbuffer.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
@@ -26,6 +27,7 @@ GBuffer emptyBuffer(const PathTracer& tracer, const RecordLayout& layout, const 
     g.emitted.assign(n, Vec3(0.f));
     g.normal.assign(n, Vec3(0.f));
     g.distance.assign(n, 0.f);
+    g.geometricNormal.assign(n, Vec3(0.f));
     return g;
 }
 
@@ -46,6 +48,7 @@ void writeSample(const PathTracer& tracer, const RecordLayout& layout, const Lig
     g.object[i] = hit.object;
     const Vec3 ns = hit.shading();
     g.normal[i] = dot(wo, ns) >= 0.f ? ns : -ns;  // as RecordLayout::writeInputs flips it
+    g.geometricNormal[i] = dot(wo, hit.ng) >= 0.f ? hit.ng : -hit.ng;
     g.distance[i] = hit.t;                         // ray.dir is unit
     layout.writeInputs(hit.p, wo, g.lightPosition, ns,
                        scene.materials[size_t(scene.objects[size_t(hit.object)].material)],
@@ -84,7 +87,10 @@ GBuffer buildGBuffer(const PathTracer& tracer, const RecordLayout& layout, const
 
 GBuffer buildGBufferFromRays(const PathTracer& tracer, const RecordLayout& layout, const Vec3& lightPos,
                              const std::vector<Ray>& rays) {
-    GBuffer g = emptyBuffer(tracer, layout, lightPos, int(rays.size()), rays.empty() ? 0 : 1);
+    // Rows of kRaysPerRow: the passes over a buffer (exact direct light) run in parallel over rows.
+    const size_t width = std::min(rays.size(), kRaysPerRow);
+    const size_t height = width ? (rays.size() + width - 1) / width : 0;
+    GBuffer g = emptyBuffer(tracer, layout, lightPos, int(width), int(height));
     const Light movable = movableOf(tracer, g);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i)

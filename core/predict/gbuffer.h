@@ -43,6 +43,9 @@ struct GBuffer {
     /// Distance from the eye to the hit point along the centre ray for object pixels, 0 elsewhere.
     /// The footprint mask measures depth steps relative to it.
     std::vector<float> distance;
+    /// Unit geometric normal flipped to the viewer's side (object pixels; 0 elsewhere): where rays
+    /// leaving the surface start and which side they leave on (the glossy gather).
+    std::vector<Vec3> geometricNormal;
     /// Pixel indices of every object (index = object id, ascending pixel order): the masks of the
     /// per-object error statistics and the batches of the predictor.
     std::vector<std::vector<uint32_t>> pixelsByObject;
@@ -64,9 +67,12 @@ struct GBuffer {
 /// Parallel over rows (oneTBB); the result does not depend on the thread count.
 GBuffer buildGBuffer(const PathTracer& tracer, const RecordLayout& layout, const Vec3& lightPos, int width, int height);
 
-/// The same records for arbitrary rays (width = rays.size(), height = 1; empty rays give 0 × 0):
-/// sample i is what rays[i] hits, its view direction −rays[i].dir. A ray with tmax ≤ tmin is not
-/// traced (the sample stays background). The glossy gather's secondary hits (core/predict/glossy_gather.h).
+/// Rays per row of buildGBufferFromRays' buffer.
+constexpr size_t kRaysPerRow = 1024;
+/// The same records for arbitrary rays: sample i (pixel i of a buffer kRaysPerRow wide, the last row
+/// padded with background; empty rays give 0 × 0) is what rays[i] hits, its view direction
+/// −rays[i].dir. A ray with tmax ≤ tmin is not traced (the sample stays background). The glossy
+/// gather's secondary hits (core/predict/glossy_gather.h).
 GBuffer buildGBufferFromRays(const PathTracer& tracer, const RecordLayout& layout, const Vec3& lightPos,
                              const std::vector<Ray>& rays);
 

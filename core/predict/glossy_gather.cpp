@@ -25,7 +25,7 @@ void gridPoint(int s, const SampleGrid& g, Rng& rng, float su, float sv, float& 
 
 bool GlossyGather::gathers(const Scene& scene, const Object& o, const PredictionSettings& settings) {
     const PredictionSettings::Gather& g = settings.gather;
-    if (g.lobeSamples + g.diffuseSamples <= 0) return false;
+    if (!g.on()) return false;
     if (applies(scene.materials[size_t(o.material)], float(g.minExponent))) return true;
     return std::find(g.objects.begin(), g.objects.end(), o.name) != g.objects.end();
 }
@@ -58,7 +58,7 @@ GlossyGather::Batch GlossyGather::trace(const GBuffer& gb, const uint32_t* pixel
         const Material& m = scene.materials[size_t(scene.objects[size_t(object)].material)];
         const float* in = gb.input(i);
         const Vec3 p(in[0], in[1], in[2]), wo(in[3], in[4], in[5]);
-        const Vec3 n = gb.normal[i];
+        const Vec3 n = gb.normal[i], ng = gb.geometricNormal[i];
         const Frame frame(n);
         const Vec3 woLocal = frame.toLocal(wo);
         if (woLocal.z <= 0.f) return;
@@ -85,8 +85,11 @@ GlossyGather::Batch GlossyGather::trace(const GBuffer& gb, const uint32_t* pixel
             }
             if (w.isZero()) continue;
             const Vec3 dir = normalize(frame.toWorld(wl));
+            // Above the shading normal but into the surface (smooth meshes): no light comes from
+            // there, as a path tracer ends such paths.
+            if (dot(dir, ng) <= 0.f) continue;
             Ray& r = rays[j * per + k];
-            r.origin = tracer_.accel().spawnOrigin(p, n, dir);
+            r.origin = tracer_.accel().spawnOrigin(p, ng, dir);
             r.dir = dir;
             b.weight[j * per + k] = w;
         }
@@ -101,8 +104,9 @@ GlossyGather::Batch GlossyGather::trace(const GBuffer& gb, const uint32_t* pixel
 Vec3 GlossyGather::gathered(const Batch& b, const Image& radiance, size_t j) const {
     const size_t per = size_t(raysPerPixel());
     Vec3 sum(0.f);
+    const size_t w = size_t(std::max(1, b.secondary.width));
     for (size_t k = j * per; k < (j + 1) * per; ++k)
-        if (b.secondary.object[k] >= 0) sum += b.weight[k] * radiance.at(int(k), 0);
+        if (b.secondary.object[k] >= 0) sum += b.weight[k] * radiance.at(int(k % w), int(k / w));
     return sum;
 }
 

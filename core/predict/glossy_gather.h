@@ -17,13 +17,15 @@
 /// with ω_s drawn from the Phong lobe around the mirror direction and ω_d from the cosine hemisphere
 /// (each lobe sampled on its own, so both terms are exact in expectation and the diffuse part's noise
 /// does not ride on the sharp lobe's samples), each lobe's (u, v) on a jittered grid shifted per pixel
-/// (Cranley–Patterson), as exact direct light does. L(y) = exact direct light at y towards x (with
-/// `direct_samples` light samples) + y's indirect network; a ray that reaches an emitter or escapes
+/// (Cranley–Patterson), as exact direct light does. L(y) = direct light at y towards x (exact, with
+/// `direct_samples` light samples; the direct network under "direct": "network") + y's indirect
+/// network, or y's own gather when y is on a gathered object (one level); a ray that reaches an emitter or escapes
 /// adds nothing (light seen directly is x's direct term). Lobe samples below the surface add nothing.
 ///
 /// Random numbers: sample k of pixel i draws from Rng(seed', i, k), its shift from
 /// Rng(seed', i, kShiftSample), seed' = mix64(seed ^ kGlossyGatherStream): the same image for any
-/// thread count. The secondary points' exact direct light is keyed by their own index in the batch.
+/// thread count. The secondary points are keyed by their index in their batch, under a seed of
+/// their own per (level, object, batch) (Predictor::gather).
 
 #include <cstdint>
 #include <vector>

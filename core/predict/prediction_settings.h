@@ -8,7 +8,8 @@
 /// "direct": "exact" (the default) computes direct light per pixel (core/predict/exact_direct.h) and
 /// uses the networks for indirect light only, as Ren et al. 2013; "network" takes the direct term from
 /// the networks too (the seed report's variant). "gather" traces the indirect light of sharply glossy surfaces one bounce
-/// further (core/predict/glossy_gather.h); "min_exponent": 0 turns it off.
+/// further (core/predict/glossy_gather.h); "min_exponent": 0 turns the exponent rule off, and with no
+/// "objects" named the gather.
 
 #include <cstdint>
 #include <string>
@@ -48,8 +49,8 @@ struct PredictionSettings {
         /// "objects": names of objects gathered whatever their material (a diffuse receiver of
         /// caustics); the project checks them against the scene.
         std::vector<std::string> objects;
-        /// The exponent rule is on (objects may be named besides).
-        bool on() const { return minExponent > 0.0 && lobeSamples + diffuseSamples > 0; }
+        /// Anything is gathered: the exponent rule or named objects, with directions to gather.
+        bool on() const { return (minExponent > 0.0 || !objects.empty()) && lobeSamples + diffuseSamples > 0; }
     } gather;
 
     /// Reads the section (missing keys keep their defaults). Throws InputError naming the reader's

@@ -109,18 +109,17 @@ std::vector<std::string> Predictor::describe() const {
 }
 
 Prediction Predictor::predict(const GBuffer& gb) const {
-    Prediction pr = predictTerms(gb, settings_.directSamples);
-    if (gatherApplies(scene_, settings_)) gather(gb, pr, 0);
+    Prediction pr = predictTerms(gb, settings_.directSamples, settings_.seed);
+    if (gatherApplies(scene_, settings_)) gather(gb, pr, 0, settings_.seed);
     return pr;
 }
 
-void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth) const {
+void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth, uint64_t seed) const {
     const auto t0 = std::chrono::steady_clock::now();
     const bool exact = settings_.direct == PredictionSettings::Direct::Exact;
     const PredictionSettings::Gather& g = settings_.gather;
-    // The second bounce's streams differ from the first's (seed + 1): its pixel keys are batch indices.
     const GlossyGather gatherer(tracer_, layout_, depth == 0 ? g.lobeSamples : g.secondLobeSamples,
-                                depth == 0 ? g.diffuseSamples : g.secondDiffuseSamples, settings_.seed + uint64_t(depth));
+                                depth == 0 ? g.diffuseSamples : g.secondDiffuseSamples, seed);
     if (gatherer.raysPerPixel() == 0) return;
     // Pixels per batch: bounds the secondary buffer (raysPerPixel records each) and keeps batch
     // boundaries independent of the thread count.
@@ -138,8 +137,11 @@ void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth) const {
         for (size_t b = 0; b < px.size(); b += chunk) {
             const size_t n = std::min(chunk, px.size() - b);
             const GlossyGather::Batch batch = gatherer.trace(gb, px.data() + b, n);
-            Prediction secondary = predictTerms(batch.secondary, g.directSamples);
-            if (depth == 0) gather(batch.secondary, secondary, 1);
+            // The secondary points are keyed by their index in the batch: a stream of their own per
+            // (level, object, batch), so no two batches share random numbers.
+            const uint64_t batchSeed = mix64(seed ^ mix64((uint64_t(depth + 1) << 56) ^ (uint64_t(id) << 32) ^ uint64_t(b)));
+            Prediction secondary = predictTerms(batch.secondary, g.directSamples, batchSeed);
+            if (depth == 0) gather(batch.secondary, secondary, 1, mix64(batchSeed ^ kGlossyGatherStream));
             pr.nonFinite += secondary.nonFinite;
             const Image& radiance = secondary.image(Term::Global);
             for (size_t j = 0; j < n; ++j) {
@@ -159,7 +161,7 @@ void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth) const {
     if (depth == 0) pr.gatherSeconds = since(t0);
 }
 
-Prediction Predictor::predictTerms(const GBuffer& gb, int directSamples) const {
+Prediction Predictor::predictTerms(const GBuffer& gb, int directSamples, uint64_t seed) const {
     Prediction pr;
     for (Image& im : pr.images) im = Image(gb.width, gb.height);
     pr.leaf.assign(size_t(gb.width) * size_t(gb.height), -1);
@@ -253,7 +255,7 @@ Prediction Predictor::predictTerms(const GBuffer& gb, int directSamples) const {
     if (exact) {
         t0 = std::chrono::steady_clock::now();
         const Light movable = tracer_.movableLightAt(gb.lightPosition);
-        const ExactDirect direct(tracer_, directSamples, settings_.seed);
+        const ExactDirect direct(tracer_, directSamples, seed);
         std::vector<char> hasGlobalNet(scene_.objects.size(), 0);
         for (const Job& job : jobs) hasGlobalNet[job.object] = job.plan.global.ok();
         const Image d = direct.image(gb, movable, pr.nonFinite);

@@ -86,12 +86,14 @@ public:
     std::vector<std::string> describe() const;
 
 private:
-    /// The networks and exact direct light (with `directSamples`) over `gb`, without the gather.
-    Prediction predictTerms(const GBuffer& gb, int directSamples) const;
+    /// The networks and exact direct light (with `directSamples`, keyed by `seed`) over `gb`, without
+    /// the gather.
+    Prediction predictTerms(const GBuffer& gb, int directSamples, uint64_t seed) const;
     /// Replaces the indirect (and global) term of gathered objects' pixels (core/predict/glossy_gather.h).
     /// `depth` 0 for the camera's pixels, 1 for the gather's secondary points (which gather once
     /// more, with PredictionSettings::Gather's second-bounce sample counts, and no further).
-    void gather(const GBuffer& gb, Prediction& pr, int depth) const;
+    /// `seed` keys its directions: the prediction's seed for the camera's pixels, one per batch below.
+    void gather(const GBuffer& gb, Prediction& pr, int depth, uint64_t seed) const;
 
     const Scene& scene_;
     const ModelSet& models_;

@@ -57,6 +57,8 @@ void keepPrediction(PredictionSettings&) {}
 void defaultPrediction(PredictionSettings& p) {
     p.direct = PredictionSettings::Direct::Exact;
     p.directSamples = PredictionSettings().directSamples;
+    p.gather.lobeSamples = PredictionSettings().gather.lobeSamples;
+    p.gather.diffuseSamples = PredictionSettings().gather.diffuseSamples;
 }
 
 // best (README, "The best preset"): what the measurements on the Cornell box found most accurate
@@ -119,7 +121,7 @@ const std::vector<PipelinePreset>& pipelinePresets() {
         {"default", "the project defaults: grid 8^3 x 300 directions, adaptive paths, 20-10 networks, Adam",
          defaultSampling, defaultNetwork, defaultPrediction, {64, 0, 0, 2, 0}},
         {"best", "the most accurate setting measured: grid 10^3 x 1200 directions, 256 paths, four merged 32-32-32 "
-                 "networks per object, 256 direct samples",
+                 "networks per object, 256 direct samples, a glossy gather of 128 + 128 directions",
          bestSampling, bestNetwork, bestPrediction, {64, 0, 0, 2, 0}},
     };
     return presets;

@@ -149,6 +149,55 @@ TEST(HonestFigures, ViewsFiguresAreThoseOfEvaluate) {
     EXPECT_EQ(noiseFigureText(s.view.errorStats.stats.relativeRmseNoiseFloor), "unknown");
 }
 
+// Issue 29: while the light moves (or the scene or size changes), the ground truth shown is of the old
+// one: no figure and no error map against it; the view says what it waits for; the same light again
+// (the new ground truth) gives the figures back. Unstamped images (a run's) compare as before.
+TEST(HonestFigures, NoErrorAgainstTheGroundTruthOfAnotherLight) {
+    const Fixture f;
+    WorkbenchState s;
+    f.fill(s);
+    const ImageStamp at{f.reference.lightPosition, f.scene.contentHash(), kSize, kSize};
+    s.groundTruth.stamp = at;
+    s.prediction.stamp = at;
+    s.groundTruth.touch();
+    s.prediction.touch();
+    ViewModel vm;
+    vm.update(s);
+    ASSERT_TRUE(s.view.errorStats.valid);
+    EXPECT_TRUE(s.view.errorStats.waiting.empty());
+    EXPECT_FALSE(vm.image(ViewModel::kError).rgba.empty());
+
+    ImageStamp moved = at;
+    moved.light = at.light + Vec3(0.1f, 0.f, 0.f);
+    s.prediction.stamp = moved;  // the prediction follows the dragged light at once
+    s.prediction.touch();
+    vm.update(s);
+    EXPECT_FALSE(s.view.errorStats.valid);
+    EXPECT_NE(s.view.errorStats.waiting.find("waiting for the ground truth of the light"), std::string::npos)
+        << s.view.errorStats.waiting;
+    EXPECT_TRUE(vm.image(ViewModel::kError).rgba.empty()) << "no error map against the old light's image";
+
+    ImageStamp edited = at;
+    edited.sceneHash ^= 1;
+    s.prediction.stamp = edited;
+    s.prediction.touch();
+    vm.update(s);
+    EXPECT_NE(s.view.errorStats.waiting.find("edited scene"), std::string::npos);
+
+    s.groundTruth.stamp = moved;  // the render of the new light arrives
+    s.prediction.stamp = moved;
+    s.groundTruth.touch();
+    s.prediction.touch();
+    vm.update(s);
+    EXPECT_TRUE(s.view.errorStats.valid);
+    EXPECT_FALSE(vm.image(ViewModel::kError).rgba.empty());
+
+    s.groundTruth.stamp.reset();  // a re-opened run's images: origin unknown
+    s.groundTruth.touch();
+    vm.update(s);
+    EXPECT_TRUE(s.view.errorStats.valid);
+}
+
 TEST(HonestFigures, ObjectsTableIsEvaluatesWithNoiseColumns) {
     const Fixture f;
     const EvaluationInfo info = evaluationInfo(f.evaluation, f.scene, f.models);

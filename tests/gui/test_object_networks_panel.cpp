@@ -107,6 +107,8 @@ TEST_F(ObjectNetworksPanelTest, GlossyGatherNamesItsObjectsAndStoresTheSection) 
     g.lobeSamples = 1 << 30;
     ASSERT_TRUE(setGlossyGather(s, g));
     EXPECT_TRUE(s.dirty);
+    ASSERT_FALSE(s.requests.empty());
+    EXPECT_EQ(s.requests.back().command, Command::PredictionChanged) << "the view predicts again";
     EXPECT_EQ(s.project.prediction.gather.lobeSamples, kMaxGatherSamples) << "clamped";
     EXPECT_EQ(gatheredObjects(s.project.scene, s.project.prediction), "short-box");
     g.minExponent = 0;
