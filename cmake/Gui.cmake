@@ -116,6 +116,14 @@ if(RRF_BUILD_TESTS)
                    ${CMAKE_SOURCE_DIR}/projects/cornell-box ${CMAKE_BINARY_DIR}/gui_test_pipeline 3
                    ${CMAKE_SOURCE_DIR}/tests/gui/session_pipeline.json)
   set_tests_properties(gui_pipeline PROPERTIES ENVIRONMENT "RRF_GUI_SIZE=1280x720" TIMEOUT 600)
+  # The glossy gather in the workbench (issue 26): on the glossy box the GLSL frame is followed by the
+  # CPU frame with the gather, after training and after the light moves, and the Views' error figures
+  # are against a ground truth of the same light.
+  add_test(NAME gui_glossy_gather
+           COMMAND ${RRF_GUI_RUNNER} $<TARGET_FILE:rrf-workbench> $<TARGET_FILE:rrf_gui_shotcheck>
+                   ${CMAKE_SOURCE_DIR}/projects/cornell-glossy ${CMAKE_BINARY_DIR}/gui_test_glossy_gather 1
+                   ${CMAKE_SOURCE_DIR}/tests/gui/session_glossy_gather.json)
+  set_tests_properties(gui_glossy_gather PROPERTIES ENVIRONMENT "RRF_GUI_SIZE=1280x720" TIMEOUT 600)
   # A first start without a project works in the per-user workspace; the bundled project stays clean.
   add_test(NAME gui_first_start_workspace
            COMMAND ${CMAKE_SOURCE_DIR}/tests/gui/run_first_start.sh $<TARGET_FILE:rrf-workbench>

@@ -58,7 +58,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"check", {"runs", "ground_truth_spp_min", "errors", "compare", "dataset", "prediction", "evaluated",
                        "train_runs", "sweeps", "unsaved_prompt", "dirty", "stopped_runs", "prediction_partial",
                        "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped", "pipeline_done",
-                       "pipeline_stopped"}},
+                       "pipeline_stopped", "prediction_label", "error_waiting"}},
         };
     }();
     return keys;
@@ -343,6 +343,12 @@ bool Script::execute(Workbench& wb, const json& s) {
         flag("dataset", !st.dataset.path.empty(), "dataset state");
         flag("compare", !st.compare.empty(), "compare view state");
         flag("prediction", !st.prediction.empty(), "prediction view state");
+        // prediction_label: text the prediction view's label must contain (e.g. "glossy gather").
+        if (const auto v = r.find("prediction_label"))
+            require(st.prediction.label.find(v->string()) != std::string::npos,
+                    "the prediction's label is \"" + st.prediction.label + "\"");
+        // error_waiting: the Views withhold their error figures until a ground truth of this light.
+        flag("error_waiting", !st.view.errorStats.waiting.empty(), "error figures' waiting state");
         count("sweeps", st.cost.sweeps.size(), "sweeps");
         flag("evaluated", st.evaluation.valid, "evaluation state");
         size_t trained = 0;
