@@ -222,6 +222,12 @@ TEST(GlossyGather, NamedObjectsAreGatheredAndCheckedAgainstTheScene) {
     EXPECT_TRUE(GlossyGather::gathers(s, s.objects[1], named));
     EXPECT_TRUE(gatherApplies(s, named));
     EXPECT_FALSE(gatherApplies(s, settings({{"gather", {{"min_exponent", 0}}}})));
+    // With networks: an object with only a global network keeps it (nothing to add gathered light to).
+    ModelSet models = albedoModels(s);
+    EXPECT_EQ(gatheredObjects(s, models, named), std::vector<int>{1});
+    models.objects[1].byTarget.clear();
+    models.objects[1].byTarget.emplace("global", rrf::test::copyInputNet(RecordLayout::forScene(s).inputCount(), {12, 13, 14}));
+    EXPECT_TRUE(gatheredObjects(s, models, named).empty());
 
     namespace fs = std::filesystem;
     const fs::path dir = fs::temp_directory_path() / "rrf_glossy_gather_tests";

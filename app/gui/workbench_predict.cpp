@@ -104,7 +104,7 @@ void Workbench::refreshPrediction() {
         if (draft) draftTime_ = std::chrono::steady_clock::now();
         // The glossy gather runs on the CPU only (core/predict/glossy_gather.h): the GLSL frame shows
         // the networks' own indirect light on the gathered objects until the CPU frame replaces it.
-        const bool gather = !draft && gatherApplies(scene, state_.project.prediction);
+        const bool gather = !draft && !gatheredObjects(scene, *live_.models(), state_.project.prediction).empty();
         panels::ImageSet& p = state_.prediction;
         for (Term t : kTerms) p.term(t) = std::move(images[int(t)]);
         p.label = draft    ? "Prediction (GLSL, draft while the light moves)"

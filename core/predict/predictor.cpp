@@ -54,6 +54,20 @@ const PartitionedNetwork* overlayTree(const ObjectPlan& p) {
 }
 }  // namespace
 
+std::vector<int> gatheredObjects(const Scene& scene, const ModelSet& models, const PredictionSettings& settings) {
+    std::vector<int> ids;
+    const bool exact = settings.direct == PredictionSettings::Direct::Exact;
+    for (const Object& obj : scene.objects) {
+        if (!GlossyGather::gathers(scene, obj, settings)) continue;
+        const ObjectNetworks* o = models.find(obj.id);
+        if (!o || o->byTarget.empty()) continue;
+        const ObjectPlan plan = planFor(*o, exact);
+        if (plan.global.ok() || !(plan.exactDirect || plan.direct.ok())) continue;
+        ids.push_back(obj.id);
+    }
+    return ids;
+}
+
 std::vector<int> Predictor::leaves(const GBuffer& gb) const {
     std::vector<int> leaf(size_t(gb.width) * size_t(gb.height), -1);
     const bool exact = settings_.direct == PredictionSettings::Direct::Exact;
@@ -73,7 +87,8 @@ Predictor::Predictor(const Scene& scene, const ModelSet& models, const Predictio
       settings_(settings),
       layout_(RecordLayout::forScene(scene)),
       accel_(scene),
-      tracer_(scene, accel_, Estimator::NEE, 1) {
+      tracer_(scene, accel_, Estimator::NEE, 1),
+      gathered_(gatheredObjects(scene, models, settings)) {
     if (!models.inputLayout.empty() && models.inputLayout != layout_.inputs)
         throw InputError(models.dir, "/input_layout", "the networks' input layout differs from this scene's record layout");
     for (const ObjectNetworks& o : models.objects)
@@ -110,13 +125,12 @@ std::vector<std::string> Predictor::describe() const {
 
 Prediction Predictor::predict(const GBuffer& gb) const {
     Prediction pr = predictTerms(gb, settings_.directSamples, settings_.seed);
-    if (gatherApplies(scene_, settings_)) gather(gb, pr, 0, settings_.seed);
+    if (!gathered_.empty()) gather(gb, pr, 0, settings_.seed);
     return pr;
 }
 
 void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth, uint64_t seed) const {
     const auto t0 = std::chrono::steady_clock::now();
-    const bool exact = settings_.direct == PredictionSettings::Direct::Exact;
     const PredictionSettings::Gather& g = settings_.gather;
     const GlossyGather gatherer(tracer_, layout_, depth == 0 ? g.lobeSamples : g.secondLobeSamples,
                                 depth == 0 ? g.diffuseSamples : g.secondDiffuseSamples, seed);
@@ -124,16 +138,10 @@ void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth, uint64_t se
     // Pixels per batch: bounds the secondary buffer (raysPerPixel records each) and keeps batch
     // boundaries independent of the thread count.
     const size_t chunk = std::max<size_t>(1, (size_t(1) << 18) / size_t(std::max(1, gatherer.raysPerPixel())));
-    for (size_t id = 0; id < gb.pixelsByObject.size(); ++id) {
+    for (const int object : gathered_) {
+        const size_t id = size_t(object);
+        if (id >= gb.pixelsByObject.size()) continue;
         const std::vector<uint32_t>& px = gb.pixelsByObject[id];
-        if (px.empty()) continue;
-        const Object& obj = scene_.objects[id];
-        if (!GlossyGather::gathers(scene_, obj, settings_)) continue;
-        const ObjectNetworks* o = models_.find(int(id));
-        if (!o || o->byTarget.empty()) continue;
-        const ObjectPlan plan = planFor(*o, exact);
-        // Only where the global image is direct + indirect (a global network holds both at once).
-        if (plan.global.ok() || !(plan.exactDirect || plan.direct.ok())) continue;
         for (size_t b = 0; b < px.size(); b += chunk) {
             const size_t n = std::min(chunk, px.size() - b);
             const GlossyGather::Batch batch = gatherer.trace(gb, px.data() + b, n);

@@ -63,6 +63,12 @@ struct Prediction {
     const Image& image(Term t) const { return images[int(t)]; }
 };
 
+/// The objects whose pixels `settings` gather with `models` (ascending ids): the glossy gather's rule
+/// (GlossyGather::gathers) and a network plan whose global image is direct + indirect (an object
+/// with only a global network, or without networks, keeps what it has). Predictor::predict gathers
+/// exactly these; the workbench asks it whether a CPU frame should follow the GLSL one.
+std::vector<int> gatheredObjects(const Scene& scene, const ModelSet& models, const PredictionSettings& settings);
+
 class Predictor {
 public:
     /// `scene` and `models` must outlive the predictor. Models are matched to objects by id; their
@@ -101,6 +107,7 @@ private:
     RecordLayout layout_;
     Accel accel_;
     PathTracer tracer_;  ///< NEE, one bounce: primary rays and exact direct light
+    std::vector<int> gathered_;  ///< gatheredObjects(): the objects whose indirect light is gathered
 };
 
 }  // namespace rrf
