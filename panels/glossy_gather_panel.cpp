@@ -32,7 +32,7 @@ bool setGlossyGather(WorkbenchState& state, const PredictionSettings::Gather& ga
     return true;
 }
 
-std::string gatheredObjects(const Scene& scene, const PredictionSettings& prediction) {
+std::string gatheredObjectNames(const Scene& scene, const PredictionSettings& prediction) {
     std::string names;
     for (const Object& o : scene.objects)
         if (GlossyGather::gathers(scene, o, prediction)) names += (names.empty() ? "" : ", ") + o.name;
@@ -66,7 +66,7 @@ void drawGlossyGather(WorkbenchState& state) {
         changed |= ImGui::InputInt("light samples there", &g.directSamples);
     }
     if (changed) setGlossyGather(state, g);
-    const std::string names = gatheredObjects(state.project.scene, state.project.prediction);
+    const std::string names = gatheredObjectNames(state.project.scene, state.project.prediction);
     ImGui::TextWrapped("%s", names.empty() ? "no object is gathered: every object's indirect light is its network's"
                                            : ("gathered (CPU prediction; the GLSL view shows their networks until the "
                                               "CPU frame arrives): " + names).c_str());

@@ -73,7 +73,7 @@ void drawObjectNetworks(WorkbenchState& state, int inputs);
 /// clamped to their ranges; false when nothing changed.
 bool setGlossyGather(WorkbenchState& state, const PredictionSettings::Gather& gather);
 /// The names of the objects `prediction` gathers, comma-separated ("" for none).
-std::string gatheredObjects(const Scene& scene, const PredictionSettings& prediction);
+std::string gatheredObjectNames(const Scene& scene, const PredictionSettings& prediction);
 /// The gather's switch, threshold and sample counts, and which objects it takes (in the Network panel).
 void drawGlossyGather(WorkbenchState& state);
 

@@ -64,15 +64,17 @@ nlohmann::json objectOverridesJson(const ObjectNetworkOverrides& overrides) {
     return j;
 }
 
+void requireSceneObjectName(const JsonReader& at, const std::string& name, const std::vector<std::string>& sceneObjects) {
+    for (const std::string& n : sceneObjects)
+        if (n == name) return;
+    std::string list;
+    for (const std::string& n : sceneObjects) list += (list.empty() ? "" : ", ") + ("\"" + n + "\"");
+    at.fail("no object named \"" + name + "\" in the scene (expected one of " + list + ")");
+}
+
 void checkOverrideNames(const JsonReader& objects, const std::vector<std::string>& sceneObjects) {
-    for (auto it = objects.value().begin(); it != objects.value().end(); ++it) {
-        bool known = false;
-        for (const std::string& n : sceneObjects) known = known || n == it.key();
-        if (known) continue;
-        std::string list;
-        for (const std::string& n : sceneObjects) list += (list.empty() ? "" : ", ") + ("\"" + n + "\"");
-        objects.at(it.key()).fail("no object named \"" + it.key() + "\" in the scene (expected one of " + list + ")");
-    }
+    for (auto it = objects.value().begin(); it != objects.value().end(); ++it)
+        requireSceneObjectName(objects.at(it.key()), it.key(), sceneObjects);
 }
 
 namespace {

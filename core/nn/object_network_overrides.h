@@ -69,6 +69,9 @@ ObjectNetworkOverrides objectOverridesFromJson(const JsonReader& objects, const 
 /// The map with every entry's keys (empty entries left out).
 nlohmann::json objectOverridesJson(const ObjectNetworkOverrides& overrides);
 
+/// Throws InputError at `at` (its file and pointer) unless `name` is one of `sceneObjects`, listing
+/// them: "no object named \"x\" in the scene (expected one of \"a\", \"b\")".
+void requireSceneObjectName(const JsonReader& at, const std::string& name, const std::vector<std::string>& sceneObjects);
 /// Throws InputError naming `objects`' file and /…/objects/<name> for the first entry whose name is
 /// not in `sceneObjects`, listing them.
 void checkOverrideNames(const JsonReader& objects, const std::vector<std::string>& sceneObjects);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/nn/object_network_overrides.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
@@ -70,28 +71,16 @@ void readSections(const JsonReader& root, Project& p) {
     if (const auto name = root.find("name")) p.name = name->string();
     if (const auto render = root.find("render")) p.render = parseRenderSettings(*render);
     if (const auto sampling = root.find("sampling")) p.sampling = SamplingSettings::fromJson(*sampling);
-    if (const auto network = root.find("network")) {
-        // Per-object network entries are keyed by the scene's object names (loaded already).
-        std::vector<std::string> objectNames;
-        for (const Object& o : p.scene.objects) objectNames.push_back(o.name);
-        p.network = NetworkSettings::fromJson(*network, &objectNames);
-    }
+    // Per-object network entries and the gather's "objects" are the scene's object names (loaded already).
+    std::vector<std::string> objectNames;
+    for (const Object& o : p.scene.objects) objectNames.push_back(o.name);
+    if (const auto network = root.find("network")) p.network = NetworkSettings::fromJson(*network, &objectNames);
     if (const auto trainer = root.find("trainer")) p.trainer = TrainerConfig::fromJson(*trainer);
     if (const auto prediction = root.find("prediction")) {
         p.prediction = PredictionSettings::fromJson(*prediction);
-        // The gather's "objects" are the scene's object names (loaded already).
-        for (size_t i = 0; i < p.prediction.gather.objects.size(); ++i) {
-            const std::string& name = p.prediction.gather.objects[i];
-            bool known = false;
-            std::string list;
-            for (const Object& o : p.scene.objects) {
-                known = known || o.name == name;
-                list += (list.empty() ? "\"" : ", \"") + o.name + "\"";
-            }
-            if (!known)
-                prediction->at("gather").at("objects").at(i).fail("no object named \"" + name +
-                                                                  "\" in the scene (expected one of " + list + ")");
-        }
+        for (size_t i = 0; i < p.prediction.gather.objects.size(); ++i)
+            requireSceneObjectName(prediction->at("gather").at("objects").at(i), p.prediction.gather.objects[i],
+                                   objectNames);
     }
     if (const auto reference = root.find("reference")) p.reference = ReferenceSettings::fromJson(*reference);
     if (const auto runs = root.find("runs")) p.runs = readRuns(*runs, p.warnings);

@@ -96,7 +96,7 @@ TEST_F(ObjectNetworksPanelTest, GlossyGatherNamesItsObjectsAndStoresTheSection) 
     WorkbenchState s;
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-glossy/project.json", error)) << error;
-    EXPECT_EQ(gatheredObjects(s.project.scene, s.project.prediction), "short-box, tall-box");
+    EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "short-box, tall-box");
     const std::string text = panelText(s);
     EXPECT_NE(text.find("short-box, tall-box"), std::string::npos) << text;
     EXPECT_FALSE(s.dirty);
@@ -110,10 +110,10 @@ TEST_F(ObjectNetworksPanelTest, GlossyGatherNamesItsObjectsAndStoresTheSection) 
     ASSERT_FALSE(s.requests.empty());
     EXPECT_EQ(s.requests.back().command, Command::PredictionChanged) << "the view predicts again";
     EXPECT_EQ(s.project.prediction.gather.lobeSamples, kMaxGatherSamples) << "clamped";
-    EXPECT_EQ(gatheredObjects(s.project.scene, s.project.prediction), "short-box");
+    EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "short-box");
     g.minExponent = 0;
     ASSERT_TRUE(setGlossyGather(s, g));
-    EXPECT_EQ(gatheredObjects(s.project.scene, s.project.prediction), "");
+    EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "");
     EXPECT_NE(panelText(s).find("no object is gathered"), std::string::npos);
 }
 
