@@ -19,14 +19,16 @@ bool setGlossyGather(WorkbenchState& state, const PredictionSettings::Gather& ga
     g.lobeSamples = std::clamp(g.lobeSamples, 0, kMaxGatherSamples);
     g.diffuseSamples = std::clamp(g.diffuseSamples, 0, kMaxGatherSamples);
     g.directSamples = std::clamp(g.directSamples, 1, kMaxDirectSamples);
+    g.causticSamples = std::clamp(g.causticSamples, 0, kMaxGatherSamples);
     const PredictionSettings::Gather& old = state.project.prediction.gather;
     if (g.minExponent == old.minExponent && g.lobeSamples == old.lobeSamples && g.diffuseSamples == old.diffuseSamples &&
-        g.directSamples == old.directSamples)
+        g.directSamples == old.directSamples && g.causticSamples == old.causticSamples)
         return false;
     state.project.prediction.gather.minExponent = g.minExponent;
     state.project.prediction.gather.lobeSamples = g.lobeSamples;
     state.project.prediction.gather.diffuseSamples = g.diffuseSamples;
     state.project.prediction.gather.directSamples = g.directSamples;
+    state.project.prediction.gather.causticSamples = g.causticSamples;
     state.markDirty();
     state.request(Command::PredictionChanged);
     return true;
@@ -64,6 +66,11 @@ void drawGlossyGather(WorkbenchState& state) {
         changed |= ImGui::InputInt("diffuse directions", &g.diffuseSamples);
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
         changed |= ImGui::InputInt("light samples there", &g.directSamples);
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+        changed |= ImGui::InputInt("caustic samples", &g.causticSamples);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("light a gathered pixel receives diffusely by way of a polished face, sampled from the\n"
+                              "light per face plane (0: left to the diffuse directions, which find it as fireflies)");
     }
     if (changed) setGlossyGather(state, g);
     const std::string names = gatheredObjectNames(state.project.scene, state.project.prediction);

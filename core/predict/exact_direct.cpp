@@ -165,11 +165,12 @@ ExactDirect::Sums ExactDirect::traceSamples(const Light& l, int areaIndex, const
 }
 
 Vec3 ExactDirect::radiance(const Vec3& p, const Vec3& n, const Vec3& wo, int object, const Light& movable,
-                           uint64_t pixel, TraceCounters& counters, ShadowCasters::Counts* settled) const {
+                           uint64_t pixel, TraceCounters& counters, ShadowCasters::Counts* settled, bool gloss) const {
     const Scene& scene = tracer_.scene();
     const int mat = scene.objects[size_t(object)].material;
     if (mat < 0) return Vec3(0.f);
-    const Brdf& brdf = brdfs_[size_t(mat)];
+    Brdf brdf = brdfs_[size_t(mat)];
+    if (!gloss) brdf.ks = Vec3(0.f);
     const bool diffuse = !brdf.kd.isZero(), glossy = !brdf.ks.isZero();
     const Vec3 mirror = reflect(wo, n);
     const Vec3 origin = tracer_.accel().spawnOrigin(p, n, n);  // every shadow ray's origin
@@ -238,8 +239,9 @@ Image ExactDirect::image(const GBuffer& gb, const Light& movable, uint64_t& nonF
             const int id = gb.object[i];
             if (id < 0) continue;
             const float* r = gb.input(i);
+            const bool gloss = gb.directWithoutGloss.empty() || !gb.directWithoutGloss[i];
             Vec3 d = radiance(Vec3(r[0], r[1], r[2]), Vec3(r[9], r[10], r[11]), Vec3(r[3], r[4], r[5]), id, movable, i,
-                              c, &rowSettled[size_t(y)]);
+                              c, &rowSettled[size_t(y)], gloss);
             if (!d.isFinite()) {
                 ++rowBad[size_t(y)];
                 d = Vec3(0.f);

@@ -79,12 +79,14 @@ public:
     /// Direct radiance leaving the surface point p of object `object` towards wo (unit), with n the
     /// unit normal on wo's side, the movable light as `movable` (PathTracer::movableLightAt) and
     /// `pixel` the random-number stream. May be non-finite only for non-finite input. `settled`
-    /// (optional) counts how each area light's shadow rays were decided.
+    /// (optional) counts how each area light's shadow rays were decided. `gloss` false leaves out
+    /// the material's glossy lobe (GBuffer::directWithoutGloss).
     Vec3 radiance(const Vec3& p, const Vec3& n, const Vec3& wo, int object, const Light& movable, uint64_t pixel,
-                  TraceCounters& counters, ShadowCasters::Counts* settled = nullptr) const;
+                  TraceCounters& counters, ShadowCasters::Counts* settled = nullptr, bool gloss = true) const;
 
     /// radiance() at every object pixel of `gb` (pixel key y·width + x, wo towards the camera as the
-    /// G-buffer stores it), rows in parallel; other pixels 0. Non-finite values become 0 and are
+    /// G-buffer stores it, without gloss where GBuffer::directWithoutGloss says), rows in parallel;
+    /// other pixels 0. Non-finite values become 0 and are
     /// counted in `nonFinite`. The same image for any thread count.
     Image image(const GBuffer& gb, const Light& movable, uint64_t& nonFinite, ShadowCasters::Counts* settled = nullptr,
                 TraceCounters* counters = nullptr) const;

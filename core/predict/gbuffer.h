@@ -46,6 +46,10 @@ struct GBuffer {
     /// Unit geometric normal flipped to the viewer's side (object pixels; 0 elsewhere): where rays
     /// leaving the surface start and which side they leave on (the glossy gather).
     std::vector<Vec3> geometricNormal;
+    /// Per pixel, or empty for none: exact direct light here leaves out the material's glossy lobe,
+    /// because that light reaches the pixel's receiver as a caustic sampled from the light
+    /// (core/predict/glossy_caustics.h). Only the glossy gather's secondary points set it.
+    std::vector<uint8_t> directWithoutGloss;
     /// Pixel indices of every object (index = object id, ascending pixel order): the masks of the
     /// per-object error statistics and the batches of the predictor.
     std::vector<std::vector<uint32_t>> pixelsByObject;

@@ -44,7 +44,8 @@ GlossyGather::GlossyGather(const PathTracer& tracer, const RecordLayout& layout,
       diffuseSamples_(std::max(0, diffuseSamples)),
       seed_(mix64(seed ^ kGlossyGatherStream)) {}
 
-GlossyGather::Batch GlossyGather::trace(const GBuffer& gb, const uint32_t* pixels, size_t count) const {
+GlossyGather::Batch GlossyGather::trace(const GBuffer& gb, const uint32_t* pixels, size_t count,
+                                        const GlossyCaustics* caustics) const {
     const Scene& scene = tracer_.scene();
     const size_t per = size_t(raysPerPixel());
     std::vector<Ray> rays(count * per);
@@ -98,6 +99,12 @@ GlossyGather::Batch GlossyGather::trace(const GBuffer& gb, const uint32_t* pixel
     for (size_t k = 0; k < rays.size(); ++k)
         if (b.weight[k].isZero()) rays[k].tmax = 0.f;
     b.secondary = buildGBufferFromRays(tracer_, layout_, gb.lightPosition, rays);
+    if (caustics && caustics->anyCaster()) {
+        b.secondary.directWithoutGloss.assign(b.secondary.pixelCount(), 0);
+        for (size_t k = 0; k < rays.size(); ++k)
+            if (k % per >= size_t(lobeSamples_) && caustics->casts(b.secondary.object[k]))
+                b.secondary.directWithoutGloss[k] = 1;
+    }
     return b;
 }
 

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "core/predict/gbuffer.h"
+#include "core/predict/glossy_caustics.h"
 #include "core/predict/prediction_settings.h"
 #include "core/render/brdf.h"
 #include "core/render/path_tracer.h"
@@ -65,7 +66,9 @@ public:
         GBuffer secondary;           ///< what the rays hit (buildGBufferFromRays)
         std::vector<Vec3> weight;    ///< per ray
     };
-    Batch trace(const GBuffer& gb, const uint32_t* pixels, size_t count) const;
+    /// With `caustics`, the cosine rays that land on a caster leave out its glossy direct light
+    /// (GBuffer::directWithoutGloss): GlossyCaustics carries it.
+    Batch trace(const GBuffer& gb, const uint32_t* pixels, size_t count, const GlossyCaustics* caustics = nullptr) const;
 
     /// L_ind of pixel j of the batch from the radiance towards it at each secondary sample
     /// (`radiance`: the secondary prediction's global image, width = rays); emitter and background

@@ -3,7 +3,7 @@
 ///
 ///     "prediction": {"direct": "exact", "direct_samples": 64, "seed": 1,
 ///                    "gather": {"min_exponent": 50, "lobe_samples": 64, "diffuse_samples": 64,
-///                               "direct_samples": 16}}
+///                               "direct_samples": 16, "caustic_samples": 64}}
 ///
 /// "direct": "exact" (the default) computes direct light per pixel (core/predict/exact_direct.h) and
 /// uses the networks for indirect light only, as Ren et al. 2013; "network" takes the direct term from
@@ -46,6 +46,10 @@ struct PredictionSettings {
         /// their networks. 0 and 0: the first bounce's secondary points all use their networks.
         int secondLobeSamples = 8;
         int secondDiffuseSamples = 4;
+        /// "caustic_samples": light samples per caster plane for the glossy light that the camera's
+        /// gathered pixels receive diffusely by way of a glossy face (core/predict/glossy_caustics.h),
+        /// instead of from their cosine rays; 0: the cosine rays carry it. Exact direct light only.
+        int causticSamples = 64;
         /// "objects": names of objects gathered whatever their material (a diffuse receiver of
         /// caustics); the project checks them against the scene.
         std::vector<std::string> objects;

@@ -1,6 +1,7 @@
 #include "core/predict/predictor.h"
 
 #include <chrono>
+#include <memory>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
@@ -135,16 +136,41 @@ void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth, uint64_t se
     const GlossyGather gatherer(tracer_, layout_, depth == 0 ? g.lobeSamples : g.secondLobeSamples,
                                 depth == 0 ? g.diffuseSamples : g.secondDiffuseSamples, seed);
     if (gatherer.raysPerPixel() == 0) return;
+    // The camera's gathered pixels take the diffuse part of glossy light from the light's side
+    // (core/predict/glossy_caustics.h); the second bounce keeps it in its cosine rays.
+    std::unique_ptr<GlossyCaustics> caustics;
+    if (depth == 0 && g.causticSamples > 0 && g.diffuseSamples > 0 &&
+        settings_.direct == PredictionSettings::Direct::Exact) {
+        caustics = std::make_unique<GlossyCaustics>(tracer_, g.causticSamples, float(g.minExponent), seed);
+        if (!caustics->anyCaster()) caustics.reset();
+    }
+    const Light movable = tracer_.movableLightAt(gb.lightPosition);
     // Pixels per batch: bounds the secondary buffer (raysPerPixel records each) and keeps batch
     // boundaries independent of the thread count.
     const size_t chunk = std::max<size_t>(1, (size_t(1) << 18) / size_t(std::max(1, gatherer.raysPerPixel())));
     for (const int object : gathered_) {
         const size_t id = size_t(object);
         if (id >= gb.pixelsByObject.size()) continue;
+        // Objects gathered by name (diffuse receivers of caustics) gather for the camera only: seen
+        // in a mirror, their own network's light is what the second bounce's few cosine rays would
+        // give, without the caustic fireflies those rays would find.
+        if (depth > 0 && !GlossyGather::applies(scene_.materials[size_t(scene_.objects[id].material)], float(g.minExponent)))
+            continue;
         const std::vector<uint32_t>& px = gb.pixelsByObject[id];
         for (size_t b = 0; b < px.size(); b += chunk) {
             const size_t n = std::min(chunk, px.size() - b);
-            const GlossyGather::Batch batch = gatherer.trace(gb, px.data() + b, n);
+            const GlossyGather::Batch batch = gatherer.trace(gb, px.data() + b, n, caustics.get());
+            std::vector<Vec3> caustic(caustics ? n : 0, Vec3(0.f));
+            if (caustics) {
+                const Vec3 kd = scene_.materials[size_t(scene_.objects[id].material)].kd;
+                tbb::parallel_for(size_t(0), n, [&](size_t j) {
+                    const uint32_t i = px[b + j];
+                    const float* in = gb.input(i);
+                    TraceCounters counters;
+                    caustic[j] = caustics->radiance(Vec3(in[0], in[1], in[2]), gb.normal[i], gb.geometricNormal[i], kd,
+                                                    object, movable, i, counters);
+                });
+            }
             // The secondary points are keyed by their index in the batch: a stream of their own per
             // (level, object, batch), so no two batches share random numbers.
             const uint64_t batchSeed = mix64(seed ^ mix64((uint64_t(depth + 1) << 56) ^ (uint64_t(id) << 32) ^ uint64_t(b)));
@@ -156,6 +182,7 @@ void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth, uint64_t se
                 const uint32_t i = px[b + j];
                 const int x = int(i % uint32_t(gb.width)), y = int(i / uint32_t(gb.width));
                 Vec3 ind = gatherer.gathered(batch, radiance, j);
+                if (caustics) ind += caustic[j];
                 if (!ind.isFinite()) {
                     ++pr.nonFinite;
                     ind = Vec3(0.f);

@@ -59,6 +59,7 @@ void defaultPrediction(PredictionSettings& p) {
     p.directSamples = PredictionSettings().directSamples;
     p.gather.lobeSamples = PredictionSettings().gather.lobeSamples;
     p.gather.diffuseSamples = PredictionSettings().gather.diffuseSamples;
+    p.gather.causticSamples = PredictionSettings().gather.causticSamples;
 }
 
 // best (README, "The best preset"): what the measurements on the Cornell box found most accurate
@@ -100,6 +101,7 @@ void bestPrediction(PredictionSettings& p) {
     p.directSamples = 256;
     p.gather.lobeSamples = 2 * PredictionSettings().gather.lobeSamples;
     p.gather.diffuseSamples = 2 * PredictionSettings().gather.diffuseSamples;
+    p.gather.causticSamples = 2 * PredictionSettings().gather.causticSamples;
 }
 
 /// A network section with `o`'s layers, activation, targets and partition (the trainer is separate).
@@ -121,7 +123,7 @@ const std::vector<PipelinePreset>& pipelinePresets() {
         {"default", "the project defaults: grid 8^3 x 300 directions, adaptive paths, 20-10 networks, Adam",
          defaultSampling, defaultNetwork, defaultPrediction, {64, 0, 0, 2, 0}},
         {"best", "the most accurate setting measured: grid 10^3 x 1200 directions, 256 paths, four merged 32-32-32 "
-                 "networks per object, 256 direct samples, a glossy gather of 128 + 128 directions",
+                 "networks per object, 256 direct samples, a glossy gather of 128 + 128 directions and 128 caustic samples",
          bestSampling, bestNetwork, bestPrediction, {64, 0, 0, 2, 0}},
     };
     return presets;

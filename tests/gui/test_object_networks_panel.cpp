@@ -96,23 +96,28 @@ TEST_F(ObjectNetworksPanelTest, GlossyGatherNamesItsObjectsAndStoresTheSection) 
     WorkbenchState s;
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-glossy/project.json", error)) << error;
-    EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "short-box, tall-box");
+    EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "ceiling, short-box, tall-box")
+        << "the project names the ceiling; the boxes by their exponent";
     const std::string text = panelText(s);
-    EXPECT_NE(text.find("short-box, tall-box"), std::string::npos) << text;
+    EXPECT_NE(text.find("ceiling, short-box, tall-box"), std::string::npos) << text;
     EXPECT_FALSE(s.dirty);
 
     PredictionSettings::Gather g = s.project.prediction.gather;
     EXPECT_FALSE(setGlossyGather(s, g)) << "nothing changed";
     g.minExponent = 500;
     g.lobeSamples = 1 << 30;
+    g.causticSamples = -3;
     ASSERT_TRUE(setGlossyGather(s, g));
     EXPECT_TRUE(s.dirty);
     ASSERT_FALSE(s.requests.empty());
     EXPECT_EQ(s.requests.back().command, Command::PredictionChanged) << "the view predicts again";
     EXPECT_EQ(s.project.prediction.gather.lobeSamples, kMaxGatherSamples) << "clamped";
-    EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "short-box");
+    EXPECT_EQ(s.project.prediction.gather.causticSamples, 0) << "clamped";
+    EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "ceiling, short-box");
     g.minExponent = 0;
     ASSERT_TRUE(setGlossyGather(s, g));
+    EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "ceiling") << "named, whatever the rule";
+    s.project.prediction.gather.objects.clear();
     EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "");
     EXPECT_NE(panelText(s).find("no object is gathered"), std::string::npos);
 }
