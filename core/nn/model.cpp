@@ -1,5 +1,6 @@
 #include "core/nn/model.h"
 
+#include "core/nn/block_forward.h"
 #include "core/nn/ensemble.h"
 #include "core/nn/training_loss.h"
 #include "core/util/error.h"
@@ -41,6 +42,8 @@ static MatX<S> predictImpl(const NetworkModel& m, const Eigen::Ref<const MatX<S>
     const VecX<S> w = m.params.cast<S>();
     const VecX<S> e = m.encodingParams.cast<S>();
     const bool encoded = !m.encoding.isIdentity();
+    // A merged ensemble (nn/ensemble.h) runs member by member: K·h² per hidden layer, not K²·h².
+    const int members = blockMembers<S>(m.arch, w.data());
     MatX<S> out(m.arch.outputs, raw.cols()), x, features;
     std::vector<MatX<S>> acts;
     const DerivedInputs& derived = m.encoding.derived;
@@ -50,7 +53,7 @@ static MatX<S> predictImpl(const NetworkModel& m, const Eigen::Ref<const MatX<S>
         else x = raw.middleCols(c, nc);
         m.inputScaler.apply(x);
         if (encoded) m.encoding.forward<S>(e.data(), x, features);
-        mlpForward<S>(m.arch, w.data(), encoded ? features : x, acts);
+        blockForward<S>(m.arch, members, w.data(), encoded ? features : x, acts);
         m.outputScaler.invert(acts.back());
         out.middleCols(c, nc) = acts.back();
     }
