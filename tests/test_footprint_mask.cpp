@@ -263,6 +263,13 @@ TEST(FootprintMask, ExactDirectLightOfTheShortBoxMatchesItsReferenceWithinNoise)
 
     // The old rule: object pixels whose 4-neighbours all show the same object.
     const GBuffer g = pred.gbuffer(kLight, w, h);
+
+    // A prediction made once and compared again (the reference store's measured error while a
+    // reference converges): the same figures as evaluate(); a reference of another size is refused.
+    const Evaluation again = evaluatePrediction(g, e.prediction, ref);
+    EXPECT_EQ(again.term(Term::Direct).perObject[size_t(box)].relativeRmse, kept.relativeRmse);
+    EXPECT_EQ(again.term(Term::Global).overall.relativeRmse, e.term(Term::Global).overall.relativeRmse);
+    EXPECT_THROW(evaluatePrediction(pred.gbuffer(kLight, w / 2, h), e.prediction, ref), std::invalid_argument);
     std::vector<uint32_t> oldMask;
     for (uint32_t i : g.pixelsByObject[size_t(box)]) {
         const int x = int(i % uint32_t(w)), y = int(i / uint32_t(w));

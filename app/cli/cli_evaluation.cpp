@@ -60,10 +60,24 @@ std::pair<int, int> referenceSize(const Project& p, int width, int height) {
             pick(height, p.reference.height, p.render.height, p.scene.camera.height)};
 }
 
-double measuredGlobalError(const Predictor& predictor, const Reference& reference) {
-    const Evaluation e = evaluate(predictor, reference);
+namespace {
+double globalErrorOf(const Evaluation& e) {
     const ErrorStats& g = e.term(Term::Global).overall;
     return std::isfinite(g.relativeRmseCorrected) ? g.relativeRmseCorrected : g.relativeRmse;
+}
+}  // namespace
+
+double measuredGlobalError(const Predictor& predictor, const Reference& reference) {
+    return globalErrorOf(evaluate(predictor, reference));
+}
+
+double MeasuredErrorOfOnePrediction::operator()(const Reference& reference) {
+    const Image& ref = reference.image(Term::Global);
+    if (!gb_ || gb_->width != ref.width || gb_->height != ref.height || !(gb_->lightPosition == reference.lightPosition)) {
+        gb_ = predictor_.gbuffer(reference.lightPosition, ref.width, ref.height);
+        prediction_ = predictor_.predict(*gb_);
+    }
+    return globalErrorOf(evaluatePrediction(*gb_, prediction_, reference));
 }
 
 ObtainedReference obtainWithProgress(ReferenceStore& store, const Project& p, const Vec3& lp, int width, int height,
@@ -117,7 +131,7 @@ ReferenceSource storeSource(ReferenceStore& store, const Project& p, const Predi
                             const NoiseTarget& target, size_t lightCount) {
     return [&store, &p, &predictor, width, height, target, lightCount](size_t k, const Vec3& light) {
         return obtainWithProgress(
-            store, p, light, width, height, target, [&predictor](const Reference& r) { return measuredGlobalError(predictor, r); },
+            store, p, light, width, height, target, MeasuredErrorOfOnePrediction(predictor),
             "reference " + std::to_string(k + 1) + "/" + std::to_string(lightCount));
     };
 }

@@ -4,6 +4,7 @@
 /// or at a fixed spp, and per-light maps, JSON and tables with a held-out summary.
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,20 @@ ObtainedReference obtainWithProgress(ReferenceStore& store, const Project& p, co
 /// relative RMSE of `predictor` against the reference so far, noise-corrected where the noise is
 /// known (the raw figure would count the reference's own noise as the model's error).
 double measuredGlobalError(const Predictor& predictor, const Reference& reference);
+
+/// measuredGlobalError for one light while its reference converges: the prediction is made at the
+/// first call and compared with every later state of the reference (a glossy gather's CPU frame
+/// takes seconds; the reference store asks after every pass).
+class MeasuredErrorOfOnePrediction {
+public:
+    explicit MeasuredErrorOfOnePrediction(const Predictor& predictor) : predictor_(predictor) {}
+    double operator()(const Reference& reference);
+
+private:
+    const Predictor& predictor_;
+    std::optional<GBuffer> gb_;
+    Prediction prediction_;
+};
 
 /// Where evaluateAll gets the reference of light `k` at position `light`.
 using ReferenceSource = std::function<ObtainedReference(size_t k, const Vec3& light)>;

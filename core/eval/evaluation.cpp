@@ -124,16 +124,26 @@ Reference loadReference(const std::string& dir) {
 Evaluation evaluate(const Predictor& predictor, const Reference& reference) {
     const Image& ref = reference.image(Term::Global);
     if (ref.empty()) throw std::invalid_argument("evaluate: the reference has no pixels");
+    const auto t0 = std::chrono::steady_clock::now();
+    const GBuffer gb = predictor.gbuffer(reference.lightPosition, ref.width, ref.height);
+    const double gbufferSeconds = since(t0);
+    Evaluation e = evaluatePrediction(gb, predictor.predict(gb), reference);
+    e.gbufferSeconds = gbufferSeconds;
+    return e;
+}
+
+Evaluation evaluatePrediction(const GBuffer& gb, Prediction prediction, const Reference& reference) {
+    const Image& ref = reference.image(Term::Global);
+    if (ref.empty()) throw std::invalid_argument("evaluate: the reference has no pixels");
+    if (ref.width != gb.width || ref.height != gb.height)
+        throw std::invalid_argument("evaluate: the prediction's size is not the reference's");
     Evaluation e;
     e.lightPosition = reference.lightPosition;
     e.referenceSeconds = reference.seconds;
     e.referenceSpp = reference.spp;
     e.referenceNonFinite = reference.nonFinite;
     e.referenceNoiseKnown = !reference.variance(Term::Global).empty();
-    const auto t0 = std::chrono::steady_clock::now();
-    const GBuffer gb = predictor.gbuffer(reference.lightPosition, ref.width, ref.height);
-    e.gbufferSeconds = since(t0);
-    e.prediction = predictor.predict(gb);
+    e.prediction = std::move(prediction);
     e.objectIds = gb.object;
     // Pixels whose footprint may cover more than one surface are left out and counted: the
     // reference's box filter mixes surfaces there, which a pixel-centre prediction cannot reproduce

@@ -95,6 +95,10 @@ struct Evaluation {
 /// Builds the G-buffer at the reference's light position and size, predicts and compares.
 /// Throws std::invalid_argument if the reference has no pixels.
 Evaluation evaluate(const Predictor& predictor, const Reference& reference);
+/// evaluate() for a prediction already made over `gb` (the reference's light position and size):
+/// the comparison only, no network or ray work. A reference that converges pass by pass is
+/// compared with one prediction this way (the measured error its noise target follows).
+Evaluation evaluatePrediction(const GBuffer& gb, Prediction prediction, const Reference& reference);
 
 /// Report of one evaluation: settings, timings, NaN/Inf counts, errors per term and object (each with
 /// the reference's noise floor and the noise-corrected figures, null when unknown).
