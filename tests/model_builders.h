@@ -12,6 +12,8 @@
 #include "core/nn/model.h"
 #include "core/nn/model_set.h"
 #include "core/nn/trainer_config.h"
+#include "core/data/record_layout.h"
+#include "core/scene/scene.h"
 #include "core/util/rng.h"
 
 namespace rrf::test {
@@ -72,6 +74,22 @@ inline NetworkModel copyInputNet(int inputs, const std::vector<int>& rows) {
     m.outputScaler = MinMaxScaler::identity(m.arch.outputs);
     m.validate();
     return m;
+}
+
+/// For every object of `s`, networks of each target in `targets` that answer the first three BRDF
+/// inputs (the diffuse albedo kd, record inputs 12..14): radiance kd per term, whatever the light.
+inline ModelSet albedoModels(const Scene& s, const std::vector<std::string>& targets) {
+    ModelSet set;
+    const RecordLayout layout = RecordLayout::forScene(s);
+    set.inputLayout = layout.inputs;
+    for (const Object& o : s.objects) {
+        ObjectNetworks n;
+        n.objectId = o.id;
+        n.name = o.name;
+        for (const std::string& t : targets) n.byTarget.emplace(t, copyInputNet(layout.inputCount(), {12, 13, 14}));
+        set.objects.push_back(std::move(n));
+    }
+    return set;
 }
 
 }  // namespace rrf::test

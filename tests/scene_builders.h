@@ -194,6 +194,42 @@ inline double polygonIrradiance(const Light& l, const Vec3& pf, const Vec3& nf) 
     return 0.5 * double(l.radiance.x) * std::fabs(sum);
 }
 
+/// The caustic case of a near-mirror: a glossy floor quad (y = 0, facing +y, x ∈ [fx0, fx0 + fw],
+/// z ∈ [−fd/2, fd/2], Phong with kd 0, ks `ks`, exponent `e`) reflects a downward 0.2 × 0.2 light of
+/// radiance `le` at y = 1 onto a diffuse ceiling of albedo `rho` beside it (y = 1, x ∈ [0, 2], z ∈
+/// [−2, 2], facing −y): the ceiling sees the light only by way of the floor. Objects: 0 the mirror,
+/// 1 the ceiling. The camera looks up at the ceiling from (0.5, 0.6, 0), 60°, size × size.
+inline Scene mirrorCausticScene(float e, float ks, float rho, float le, int size, float fx0 = -3.f, float fw = 6.f,
+                                float fd = 6.f) {
+    Scene s;
+    const int mirror = addPhong(s, Vec3(0.f), Vec3(ks), e, "mirror");
+    const int white = addLambert(s, Vec3(rho), "ceiling");
+    addQuads(s, {{{fx0, 0, -0.5f * fd}, {0, 0, fd}, {fw, 0, 0}}}, mirror, "mirror");  // +y
+    addQuads(s, {{{0.f, 1, -2}, {2, 0, 0}, {0, 0, 4}}}, white, "ceiling");            // -y
+    addRectLight(s, Vec3(-0.6f, 1.f, -0.1f), Vec3(0.2f, 0, 0), Vec3(0, 0, 0.2f), Vec3(le));  // faces -y
+    s.camera.eye = Vec3(0.5f, 0.6f, 0.f);
+    s.camera.target = Vec3(0.5f, 1.f, 0.f);
+    s.camera.up = Vec3(0, 0, 1);
+    s.camera.fovYDegrees = 60.f;
+    s.camera.width = s.camera.height = size;
+    return s;
+}
+
+/// ∫ cos³θ / d² dA over mirrorCausticScene's light mirrored to y = −1, seen from the ceiling point p
+/// (midpoint rule, n × n): a mirror of lobe energy ks cosθ makes the ceiling's radiance
+/// ρ/π · ks · Le · this (cosθ at the ceiling, at the mirror and at the image are the same angle).
+inline double mirroredLightIntegral(const Vec3& p, int n = 64) {
+    double e = 0;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const double qx = -0.6 + 0.2 * (i + 0.5) / n, qz = -0.1 + 0.2 * (j + 0.5) / n, qy = -1.0;
+            const double dx = qx - p.x, dy = qy - p.y, dz = qz - p.z;
+            const double d2 = dx * dx + dy * dy + dz * dz, cy = std::fabs(dy) / std::sqrt(d2);
+            e += cy * cy * cy / d2 * (0.04 / (n * n));
+        }
+    return e;
+}
+
 /// Running mean and variance (Welford), in double.
 struct RunningStat {
     uint64_t n = 0;

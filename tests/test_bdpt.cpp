@@ -170,18 +170,8 @@ TEST(Bdpt, CausticOfANearMirrorMatchesTheMirroredLightsIrradiance) {
     // For a lobe this narrow the mirror reflects ks · L · cosθ along the mirror direction, so the
     // ceiling's irradiance is E = ks Le ∫_image ω_y² dω over the light's mirror image (y = −1), the
     // ceiling's radiance ρ/π · E. Depth 2 keeps paths of the caustic only (light, mirror, ceiling).
-    Scene s;
     const float rho = 0.7f, ks = 0.9f, le = 10.f;
-    const int mirror = addPhong(s, Vec3(0.f), Vec3(ks), 1e4f, "mirror");
-    const int white = addLambert(s, Vec3(rho), "ceiling");
-    addQuads(s, {{{-3, 0, -3}, {0, 0, 6}, {6, 0, 0}}}, mirror, "mirror");      // +y
-    addQuads(s, {{{0.f, 1, -2}, {2, 0, 0}, {0, 0, 4}}}, white, "ceiling");     // -y
-    addRectLight(s, Vec3(-0.6f, 1.f, -0.1f), Vec3(0.2f, 0, 0), Vec3(0, 0, 0.2f), Vec3(le));  // faces -y
-    s.camera.eye = Vec3(0.5f, 0.6f, 0.f);
-    s.camera.target = Vec3(0.5f, 1.f, 0.f);
-    s.camera.up = Vec3(0, 0, 1);
-    s.camera.fovYDegrees = 60.f;
-    s.camera.width = s.camera.height = 32;
+    const Scene s = mirrorCausticScene(1e4f, ks, rho, le, 32);
     const Accel accel(s);
     RenderOptions o = bdptOptions(s, 1024);
     o.maxDepth = 2;
@@ -195,16 +185,7 @@ TEST(Bdpt, CausticOfANearMirrorMatchesTheMirroredLightsIrradiance) {
             const Ray r = rays.generate(x, y, 0.5f, 0.5f);
             const float t = (1.f - r.origin.y) / r.dir.y;
             const Vec3 p = r.origin + r.dir * t;
-            double e = 0;
-            const int n = 64;
-            for (int i = 0; i < n; ++i)
-                for (int j = 0; j < n; ++j) {
-                    const double qx = -0.6 + 0.2 * (i + 0.5) / n, qz = -0.1 + 0.2 * (j + 0.5) / n, qy = -1.0;
-                    const double dx = qx - p.x, dy = qy - p.y, dz = qz - p.z;
-                    const double d2 = dx * dx + dy * dy + dz * dz, cy = std::fabs(dy) / std::sqrt(d2);
-                    e += cy * cy * cy / d2 * (0.04 / (n * n));
-                }
-            sumExpected += rho / kPi * ks * le * e;
+            sumExpected += rho / kPi * ks * le * mirroredLightIntegral(p);
             const size_t k = 3 * (size_t(y) * 32 + size_t(x));
             sumImage += snap.global.data[k];
             sumVar += snap.variance.data[k];

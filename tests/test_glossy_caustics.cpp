@@ -21,22 +21,8 @@ using namespace rrf::test;
 namespace {
 constexpr float kRho = 0.7f, kKs = 0.9f, kLe = 10.f;
 
-/// A glossy floor quad (y = 0, facing +y, x ∈ [fx0, fx0 + fw], z ∈ [−fd/2, fd/2]) reflects a downward
-/// 0.2 × 0.2 light at y = 1 onto a diffuse ceiling beside it (y = 1, x ∈ [0, 2], facing −y): the
-/// ceiling sees the light only by way of the floor. As tests/test_bdpt.cpp's caustic case.
 Scene mirrorScene(float exponent, float fx0 = -3.f, float fw = 6.f, float fd = 6.f) {
-    Scene s;
-    const int mirror = addPhong(s, Vec3(0.f), Vec3(kKs), exponent, "mirror");
-    const int white = addLambert(s, Vec3(kRho), "ceiling");
-    addQuads(s, {{{fx0, 0, -0.5f * fd}, {0, 0, fd}, {fw, 0, 0}}}, mirror, "mirror");  // +y
-    addQuads(s, {{{0.f, 1, -2}, {2, 0, 0}, {0, 0, 4}}}, white, "ceiling");            // -y
-    addRectLight(s, Vec3(-0.6f, 1.f, -0.1f), Vec3(0.2f, 0, 0), Vec3(0, 0, 0.2f), Vec3(kLe));  // faces -y
-    s.camera.eye = Vec3(0.5f, 0.6f, 0.f);
-    s.camera.target = Vec3(0.5f, 1.f, 0.f);
-    s.camera.up = Vec3(0, 0, 1);
-    s.camera.fovYDegrees = 60.f;
-    s.camera.width = s.camera.height = 16;
-    return s;
+    return mirrorCausticScene(exponent, kKs, kRho, kLe, 16, fx0, fw, fd);
 }
 
 /// Mean and standard error of the caustic at p over `keys` pixel keys.
@@ -74,7 +60,8 @@ double faceQuadrature(const Scene& s, const Vec3& p, float exponent, float fx0, 
 }  // namespace
 
 // For a lobe this narrow the face reflects ks · Le · cosθ along the mirror direction, so the
-// ceiling's radiance is ρ/π · ks Le ∫_image cos²θ dω over the light's mirror image (y = −1).
+// ceiling's radiance is ρ/π · ks Le ∫_image cos²θ dω over the light's mirror image (y = −1)
+// (tests/scene_builders.h, mirroredLightIntegral).
 TEST(GlossyCaustics, NearMirrorMatchesTheMirroredLightsIrradiance) {
     const Scene s = mirrorScene(1e4f);
     const Accel accel(s);
@@ -83,16 +70,7 @@ TEST(GlossyCaustics, NearMirrorMatchesTheMirroredLightsIrradiance) {
     ASSERT_TRUE(caustics.casts(0));
     ASSERT_FALSE(caustics.casts(1));
     for (const Vec3 p : {Vec3(0.2f, 1.f, 0.f), Vec3(0.9f, 1.f, 0.6f), Vec3(1.8f, 1.f, -1.2f)}) {
-        double e = 0;
-        const int n = 128;
-        for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j) {
-                const double qx = -0.6 + 0.2 * (i + 0.5) / n, qz = -0.1 + 0.2 * (j + 0.5) / n, qy = -1.0;
-                const double dx = qx - p.x, dy = qy - p.y, dz = qz - p.z;
-                const double d2 = dx * dx + dy * dy + dz * dz, cy = std::fabs(dy) / std::sqrt(d2);
-                e += cy * cy * cy / d2 * (0.04 / (n * n));
-            }
-        const double expected = kRho / kPi * kKs * kLe * e;
+        const double expected = kRho / kPi * kKs * kLe * mirroredLightIntegral(p, 128);
         double mean, sigma;
         causticStats(caustics, s, p, 256, mean, sigma);
         EXPECT_LT(sigma, 0.01 * expected) << "the test must see a 3 % error";
@@ -128,16 +106,7 @@ TEST(GlossyCaustics, FiniteLobesAndAClippingFaceMatchAQuadratureOverTheFace) {
 // cosine rays that leave it out plus the caustic sampled from the light. Both estimate one integral.
 TEST(GlossyCaustics, GatherFromTheLightSideEqualsTheCosineRays) {
     const Scene s = mirrorScene(200.f);
-    ModelSet models;
-    const RecordLayout layout = RecordLayout::forScene(s);
-    models.inputLayout = layout.inputs;
-    for (const Object& o : s.objects) {
-        ObjectNetworks n;
-        n.objectId = o.id;
-        n.name = o.name;
-        n.byTarget.emplace("indirect", copyInputNet(layout.inputCount(), {12, 13, 14}));
-        models.objects.push_back(std::move(n));
-    }
+    const ModelSet models = albedoModels(s, {"indirect"});
     auto ceiling = [&](int diffuse, int caustic) {
         const nlohmann::json section = {
             {"direct", "exact"},

@@ -46,20 +46,7 @@ Scene glossyFloorBox(int size) {
 
 /// Every object: direct and indirect networks that both answer the albedo kd (BRDF inputs 12..14),
 /// so the radiance leaving any wall towards anything is 2·kd exactly.
-ModelSet albedoModels(const Scene& s) {
-    ModelSet set;
-    const RecordLayout layout = RecordLayout::forScene(s);
-    set.inputLayout = layout.inputs;
-    for (const Object& o : s.objects) {
-        ObjectNetworks n;
-        n.objectId = o.id;
-        n.name = o.name;
-        n.byTarget.emplace("direct", copyInputNet(layout.inputCount(), {12, 13, 14}));
-        n.byTarget.emplace("indirect", copyInputNet(layout.inputCount(), {12, 13, 14}));
-        set.objects.push_back(std::move(n));
-    }
-    return set;
-}
+ModelSet albedoModels(const Scene& s) { return rrf::test::albedoModels(s, {"direct", "indirect"}); }
 
 PredictionSettings settings(const nlohmann::json& section) {
     return PredictionSettings::fromJson(JsonReader(section, "p.json", "/prediction"));
