@@ -75,9 +75,12 @@ Vec3 GlossyCaustics::radiance(const Vec3& p, const Vec3& n, const Vec3& ng, cons
     uint64_t unit = 0;  // (plane, light) pairs in scene order: their random numbers
     for (size_t o = 0; o < planes_.size(); ++o) {
         const float e = exponent_[o];
+        if (int(o) == self) {  // a face never lights its own object here; keep the streams of the rest
+            unit += planes_[o].size() * scene.lights.size();
+            continue;
+        }
         for (const Plane& plane : planes_[o]) {
             for (size_t li = 0; li < scene.lights.size(); ++li, ++unit) {
-                if (int(o) == self) continue;
                 Vec3 m = plane.m;
                 float c = plane.c;
                 float hx = dot(m, p) - c;
@@ -86,8 +89,9 @@ Vec3 GlossyCaustics::radiance(const Vec3& p, const Vec3& n, const Vec3& ng, cons
                     c = -c;
                     hx = -hx;
                 }
-                // On the plane (a face's own pixels, a coplanar receiver): no path through it.
-                if (!(hx > 1e-4f * accel.offset(p) + 1e-7f)) continue;
+                // On the plane, to the rays' offset (a coplanar receiver: the floor under a box's
+                // bottom face): no path reflects there.
+                if (!(hx > 4.f * accel.offset(p))) continue;
                 const Light& l = int(li) == scene.movableLight ? movable : scene.lights[li];
                 const bool area = l.isArea();
                 const int count = area ? samples_ : 1;
