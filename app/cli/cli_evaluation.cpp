@@ -73,7 +73,8 @@ double measuredGlobalError(const Predictor& predictor, const Reference& referenc
 
 double MeasuredErrorOfOnePrediction::operator()(const Reference& reference) {
     const Image& ref = reference.image(Term::Global);
-    if (!gb_ || gb_->width != ref.width || gb_->height != ref.height || !(gb_->lightPosition == reference.lightPosition)) {
+    if (!gb_ || gb_->width != ref.width || gb_->height != ref.height || !(light_ == reference.lightPosition)) {
+        light_ = reference.lightPosition;
         gb_ = predictor_.gbuffer(reference.lightPosition, ref.width, ref.height);
         prediction_ = predictor_.predict(*gb_);
     }

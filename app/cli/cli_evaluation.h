@@ -65,6 +65,7 @@ public:
 
 private:
     const Predictor& predictor_;
+    Vec3 light_{0.f};  ///< the light position the prediction was made for (the G-buffer may store another)
     std::optional<GBuffer> gb_;
     Prediction prediction_;
 };

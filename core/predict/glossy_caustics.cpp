@@ -19,7 +19,8 @@ constexpr uint64_t kShiftBase = 0xFFFF0000ULL;
 
 std::vector<GlossyCaustics::Plane> GlossyCaustics::planesOf(const Object& o) {
     std::vector<Plane> planes;
-    if (o.kind == Object::Kind::Sphere) return planes;
+    // Smooth shading turns the lobe about interpolated normals, not the face's plane.
+    if (o.kind == Object::Kind::Sphere || o.smooth()) return planes;
     const size_t per = size_t(o.verticesPerPrimitive());
     Bounds3 b = o.bounds();
     const float scale = std::max(1e-6f, length(b.hi - b.lo));
@@ -61,6 +62,13 @@ GlossyCaustics::GlossyCaustics(const PathTracer& tracer, int samples, float minE
         exponent_[i] = m.exponent;
         anyCaster_ = anyCaster_ || !planes_[i].empty();
     }
+}
+
+void GlossyCaustics::exclude(int object) {
+    if (object < 0 || size_t(object) >= planes_.size()) return;
+    planes_[size_t(object)].clear();
+    anyCaster_ = false;
+    for (const std::vector<Plane>& p : planes_) anyCaster_ = anyCaster_ || !p.empty();
 }
 
 Vec3 GlossyCaustics::radiance(const Vec3& p, const Vec3& n, const Vec3& ng, const Vec3& kd, int self,

@@ -27,12 +27,14 @@
 /// (GBuffer::directWithoutGloss), so each path is counted once.
 ///
 /// Casters: objects whose material is Phong with ks > 0 and exponent ≥ the gather's min_exponent,
-/// made of at most kMaxCasterPlanes planes (boxes, quads, flat meshes): every point of the object
-/// lies on one of them. A curved mesh's glossy light stays with the cosine rays.
+/// made of at most kMaxCasterPlanes planes (boxes, quads, flat-shaded meshes): every point of the
+/// object lies on one of them. A curved or smooth-shaded mesh's glossy light stays with the cosine
+/// rays, and so does light an object reflects onto itself (the receiver's own object casts nothing
+/// onto it).
 ///
-/// Random numbers: sample s of plane k of pixel i draws from Rng(seed', i, k·N + s), the light
-/// grid's shift from Rng(seed', i, kShiftSample), seed' = mix64(seed ^ kGlossyCausticStream): the
-/// same estimate for any thread count.
+/// Random numbers: sample s of (plane, light) pair u of pixel i draws from Rng(seed', i, u·N + s), the
+/// light grid's shift from Rng(seed', i, 0xFFFF0000 + u), seed' = mix64(seed ^ kGlossyCausticStream):
+/// the same estimate for any thread count.
 
 #include <cstdint>
 #include <vector>
@@ -57,6 +59,8 @@ public:
         return object >= 0 && size_t(object) < planes_.size() && !planes_[size_t(object)].empty();
     }
     bool anyCaster() const { return anyCaster_; }
+    /// Object `object` casts no caustics here (its points' light comes whole from elsewhere).
+    void exclude(int object);
 
     /// C(x) above towards the viewer for a receiver at p with unit normal n (on the viewer's side),
     /// unit geometric normal ng on that side, diffuse albedo kd, of object `self` (never its own

@@ -101,9 +101,12 @@ GlossyGather::Batch GlossyGather::trace(const GBuffer& gb, const uint32_t* pixel
     b.secondary = buildGBufferFromRays(tracer_, layout_, gb.lightPosition, rays);
     if (caustics && caustics->anyCaster()) {
         b.secondary.directWithoutGloss.assign(b.secondary.pixelCount(), 0);
-        for (size_t k = 0; k < rays.size(); ++k)
-            if (k % per >= size_t(lobeSamples_) && caustics->casts(b.secondary.object[k]))
+        // Cosine rays onto another caster; light an object reflects onto itself stays with its rays.
+        for (size_t k = 0; k < rays.size(); ++k) {
+            const int hit = b.secondary.object[k];
+            if (k % per >= size_t(lobeSamples_) && hit != gb.object[pixels[k / per]] && caustics->casts(hit))
                 b.secondary.directWithoutGloss[k] = 1;
+        }
     }
     return b;
 }

@@ -142,6 +142,14 @@ void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth, uint64_t se
     if (depth == 0 && g.causticSamples > 0 && g.diffuseSamples > 0 &&
         settings_.direct == PredictionSettings::Direct::Exact) {
         caustics = std::make_unique<GlossyCaustics>(tracer_, g.causticSamples, float(g.minExponent), seed);
+        // A caster's glossy direct light is taken out of the cosine rays only where exact direct
+        // light computes it there: a global network (or none) answers for its points whole.
+        for (const Object& obj : scene_.objects) {
+            if (!caustics->casts(obj.id)) continue;
+            const ObjectNetworks* o = models_.find(obj.id);
+            const ObjectPlan plan = o ? planFor(*o, true) : ObjectPlan{};
+            if (!o || o->byTarget.empty() || plan.global.ok()) caustics->exclude(obj.id);
+        }
         if (!caustics->anyCaster()) caustics.reset();
     }
     const Light movable = tracer_.movableLightAt(gb.lightPosition);
@@ -166,6 +174,8 @@ void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth, uint64_t se
                 tbb::parallel_for(size_t(0), n, [&](size_t j) {
                     const uint32_t i = px[b + j];
                     const float* in = gb.input(i);
+                    // As the cosine rays: nothing is gathered where the view is below the shading normal.
+                    if (dot(gb.normal[i], Vec3(in[3], in[4], in[5])) <= 0.f) return;
                     TraceCounters counters;
                     caustic[j] = caustics->radiance(Vec3(in[0], in[1], in[2]), gb.normal[i], gb.geometricNormal[i], kd,
                                                     object, movable, i, counters);
