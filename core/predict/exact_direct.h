@@ -38,6 +38,7 @@
 /// Shadow rays are the path tracer's (Embree plus the movable light), from Accel::spawnOrigin,
 /// stopping short of the light sample as PathTracer's NEE does.
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -62,6 +63,17 @@ constexpr uint64_t kShiftSample = 0xFFFFFFFFULL;
 struct SampleGrid {
     int cols = 1, rows = 1;
     explicit SampleGrid(int samples);
+    /// Sample s's point on the unit square: its cell (s mod cols, s div cols) jittered by two numbers
+    /// of `rng` (u, then v), shifted toroidally by (su, sv), kept below 1. The glossy gather's
+    /// directions and caustic light samples use it; traceSamples repeats it lane by lane.
+    void point(int s, Rng& rng, float su, float sv, float& u, float& v) const {
+        u = (float(s % cols) + rng.uniform()) / float(cols) + su;
+        v = (float(s / cols) + rng.uniform()) / float(rows) + sv;
+        if (u >= 1.f) u -= 1.f;
+        if (v >= 1.f) v -= 1.f;
+        u = std::min(u, 0x1.fffffep-1f);
+        v = std::min(v, 0x1.fffffep-1f);
+    }
 };
 
 class ExactDirect {

@@ -111,11 +111,9 @@ Vec3 GlossyCaustics::radiance(const Vec3& p, const Vec3& n, const Vec3& ng, cons
                     Rng rng = Rng::ofStream(key, unit * uint64_t(samples_) + uint64_t(s));
                     Vec3 lp = l.position;
                     if (area) {
-                        float u = (float(s % grid.cols) + rng.uniform()) / float(grid.cols) + su;
-                        float v = (float(s / grid.cols) + rng.uniform()) / float(grid.rows) + sv;
-                        if (u >= 1.f) u -= 1.f;
-                        if (v >= 1.f) v -= 1.f;
-                        lp = l.pointAt(std::min(u, 0x1.fffffep-1f), std::min(v, 0x1.fffffep-1f));
+                        float u, v;
+                        grid.point(s, rng, su, sv, u, v);
+                        lp = l.pointAt(u, v);
                     }
                     const float g1u = rng.uniform(), g2u = rng.uniform();
                     const float hl = dot(m, lp) - c;

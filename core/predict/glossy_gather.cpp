@@ -10,18 +10,6 @@
 
 namespace rrf {
 
-namespace {
-/// Point s of an n-sample jittered grid over the unit square, shifted toroidally by (su, sv).
-void gridPoint(int s, const SampleGrid& g, Rng& rng, float su, float sv, float& u, float& v) {
-    const int col = s % g.cols, row = s / g.cols;
-    u = (float(col) + rng.uniform()) / float(g.cols) + su;
-    v = (float(row) + rng.uniform()) / float(g.rows) + sv;
-    if (u >= 1.f) u -= 1.f;
-    if (v >= 1.f) v -= 1.f;
-    u = std::min(u, 0x1.fffffep-1f);
-    v = std::min(v, 0x1.fffffep-1f);
-}
-}  // namespace
 
 bool GlossyGather::gathers(const Scene& scene, const Object& o, const PredictionSettings& settings) {
     const PredictionSettings::Gather& g = settings.gather;
@@ -74,12 +62,12 @@ GlossyGather::Batch GlossyGather::trace(const GBuffer& gb, const uint32_t* pixel
             float u, v;
             Vec3 wl, w;
             if (glossy) {
-                gridPoint(int(k), lobeGrid, rng, su, sv, u, v);
+                lobeGrid.point(int(k), rng, su, sv, u, v);
                 wl = lobe.toWorld(samplePhongLobe(u, v, m.exponent));
                 if (wl.z <= 0.f) continue;
                 w = ks * ((m.exponent + 2.f) / (m.exponent + 1.f) * wl.z / float(lobeSamples_));
             } else {
-                gridPoint(int(k) - lobeSamples_, diffuseGrid, rng, du, dv, u, v);
+                diffuseGrid.point(int(k) - lobeSamples_, rng, du, dv, u, v);
                 wl = sampleCosineHemisphere(u, v);
                 if (wl.z <= 0.f) continue;
                 w = m.kd / float(diffuseSamples_);
