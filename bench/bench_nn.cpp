@@ -2,13 +2,14 @@
 //
 //   bench_nn [--quick]
 //
-// Rows: Eigen float/double GEMM (the yardstick), one Levenberg–Marquardt epoch against the
-// 3·N·P² flop estimate, Adam training and batched inference for the 20-10 and 64-64-64 networks,
+// Rows: Eigen float/double GEMM of every kernel the CPU supports (nn/mlp_kernel.h; the fastest is the
+// machine's GEMM, the yardstick), one Levenberg–Marquardt epoch against the 3·N·P² flop estimate,
+// Adam training and batched inference for the 20-10, 32-32-32 and 64-64-64 networks on every kernel,
 // and encoded networks (issue 16: hash grid, frequency and one-blob inputs into 64-64-64 ReLU):
 // their forward and forward+backward passes on 1024-sample batches, with the encoding's share of the
 // time in a second table.
-// Targets (issue 4): Adam and inference ≥ 30 % of the float GEMM rate of one core, LM epoch ≤ 2× the
-// estimate at that rate. Every figure is the fastest of several repetitions (the machine is shared).
+// Targets (issue 4): Adam and inference ≥ 30 % of the machine's float GEMM rate on one core, LM epoch
+// ≤ 2× the estimate at that rate. Every figure is the fastest of several repetitions (the machine is shared).
 // Everything runs on synthetic data; no files are read or written.
 #include <chrono>
 #include <cstdio>
@@ -20,6 +21,7 @@
 
 #include "bench/bench_args.h"
 #include "core/nn/encoding.h"
+#include "core/nn/mlp_kernel.h"
 #include "core/nn/model.h"
 #include "core/util/json_reader.h"
 #include "core/util/rng.h"
@@ -32,15 +34,16 @@ double now() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+/// GEMM rate of kernel `k`'s build of Eigen (nn/mlp_kernel.h): the yardstick for that instruction set.
 template <typename S>
-double gemmGflops(int n, double minSeconds) {
+double gemmGflops(MlpKernel k, int n, double minSeconds) {
     MatX<S> a = MatX<S>::Random(n, n), b = MatX<S>::Random(n, n), c(n, n);
-    c.noalias() = a * b;  // warm-up
+    mlpKernelGemm(k, n, a.data(), b.data(), c.data());  // warm-up
     double best = 1e30;
     const double t0 = now();
     do {
         const double t1 = now();
-        c.noalias() = a * b;
+        mlpKernelGemm(k, n, a.data(), b.data(), c.data());
         best = std::min(best, now() - t1);
     } while (now() - t0 < minSeconds);
     if (c(0, 0) == S(12345)) std::printf(" ");  // keep the product observable
@@ -94,12 +97,18 @@ struct Row {
 };
 
 std::vector<Row> g_rows;
-double g_gemmF = 0, g_gemmD = 0;
+double g_gemmF = 0, g_gemmD = 0;  // the machine's: the fastest kernel's GEMM
+std::vector<double> g_kernelGemmF(3, 0.0), g_kernelGemmD(3, 0.0);
 double g_minT = 1.0;
 
-/// Samples the float GEMM rate again. The machine is shared and its load changes by 2× within a
-/// minute, so the yardstick is the best rate seen over the whole run, sampled between measurements.
-void sampleYardstick() { g_gemmF = std::max(g_gemmF, gemmGflops<float>(1024, 0.25 * g_minT)); }
+/// Samples the float GEMM rate of the kernel in use again. The machine is shared and its load changes
+/// by 2× within a minute, so each yardstick is the best rate seen over the whole run, sampled between
+/// measurements; the machine's GEMM is the fastest kernel's.
+void sampleYardstick() {
+    double& k = g_kernelGemmF[size_t(mlpKernel())];
+    k = std::max(k, gemmGflops<float>(mlpKernel(), 1024, 0.25 * g_minT));
+    g_gemmF = std::max(g_gemmF, k);
+}
 
 /// Time share of the encoding inside an encoded network's passes (printed under the main table).
 struct EncodingShare {
@@ -222,11 +231,20 @@ int main(int argc, char** argv) {
     g_minT = quick ? 0.3 : 1.0;
     const int cores = tbb::info::default_concurrency();
 
-    std::printf("bench_nn: %d hardware threads, Eigen %d.%d.%d, SIMD %s\n", cores, EIGEN_WORLD_VERSION,
-                EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION, Eigen::SimdInstructionSetsInUse());
-    sampleYardstick();
-    g_gemmD = gemmGflops<double>(1024, g_minT);
-    sampleYardstick();
+    const MlpKernel chosen = mlpKernel();
+    std::printf("bench_nn: %d hardware threads, Eigen %d.%d.%d, portable build SIMD %s; kernels:", cores,
+                EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION, Eigen::SimdInstructionSetsInUse());
+    for (MlpKernel k : supportedMlpKernels())
+        std::printf(" %s%s", mlpKernelName(k), k == chosen ? " (chosen)" : "");
+    std::printf("\n");
+    // Every kernel's GEMM first: the machine's GEMM (the fastest) is the yardstick of every row.
+    for (MlpKernel k : supportedMlpKernels()) {
+        setMlpKernel(k);
+        sampleYardstick();
+        g_kernelGemmD[size_t(k)] = gemmGflops<double>(k, 1024, g_minT);
+        g_gemmD = std::max(g_gemmD, g_kernelGemmD[size_t(k)]);
+    }
+    setMlpKernel(chosen);
 
     // ---- Levenberg–Marquardt: one epoch at the default max_samples ------------------------------
     {
@@ -251,7 +269,10 @@ int main(int argc, char** argv) {
     }
 
     // ---- Adam training and inference --------------------------------------------------------------
-    for (const MlpArch& a : {arch({20, 10}), arch({64, 64, 64})}) {
+    // Every supported kernel, on the default network, the best preset's and a wide one.
+    for (MlpKernel kernel : supportedMlpKernels())
+    for (const MlpArch& a : {arch({20, 10}), arch({32, 32, 32}), arch({64, 64, 64})}) {
+        setMlpKernel(kernel);
         const Eigen::Index n = quick ? 50000 : 200000;
         TrainingData d = syntheticData(a, n);
         for (int batch : {256, 1024}) {
@@ -265,7 +286,7 @@ int main(int argc, char** argv) {
             const double sps = double(n) / perEpoch;
             const double gf = sps * adamFlopsPerSample(a) / 1e9;
             char cfgText[64];
-            std::snprintf(cfgText, sizeof cfgText, "%s B=%d 1T", a.describe().c_str(), batch);
+            std::snprintf(cfgText, sizeof cfgText, "%s B=%d 1T %s", a.describe().c_str(), batch, mlpKernelName(kernel));
             g_rows.push_back({"Adam training", cfgText, sps, "samples/s", gf, 1});
             sampleYardstick();
         }
@@ -285,11 +306,12 @@ int main(int argc, char** argv) {
         const double sps = double(n) / best;
         const double gf = sps * 2.0 * a.macsPerSample() / 1e9;
         char cfgText[64];
-        std::snprintf(cfgText, sizeof cfgText, "%s 1T", a.describe().c_str());
+        std::snprintf(cfgText, sizeof cfgText, "%s 1T %s", a.describe().c_str(), mlpKernelName(kernel));
         g_rows.push_back({"Inference (predict)", cfgText, sps, "samples/s", gf, 1});
         sampleYardstick();
     }
-    // ---- encoded networks (issue 16) ---------------------------------------------------------------
+    setMlpKernel(chosen);
+    // ---- encoded networks (issue 16), on the chosen kernel -----------------------------------------
     {
         const EncodedNetwork nets[] = {
             encodedNetwork("hash L16 T2^14 F2", R"([{"type": "hash_grid", "inputs": "position"}])", {64, 64, 64}),
@@ -300,11 +322,19 @@ int main(int argc, char** argv) {
         };
         for (const EncodedNetwork& e : nets) benchEncoded(e, 1024);
     }
-    g_rows.insert(g_rows.begin(), {{"Eigen GEMM float", "1024^3, 1 core (best seen)", g_gemmF, "GFLOP/s", g_gemmF, 0},
-                                   {"Eigen GEMM double", "1024^3, 1 core", g_gemmD, "GFLOP/s", g_gemmD, 0}});
+    std::vector<Row> gemms;
+    for (MlpKernel k : supportedMlpKernels()) {
+        const std::string cfg = std::string("1024^3, 1 core, ") + mlpKernelName(k);
+        gemms.push_back({"Eigen GEMM float", cfg + " (best seen)", g_kernelGemmF[size_t(k)], "GFLOP/s",
+                         g_kernelGemmF[size_t(k)], 0});
+        gemms.push_back({"Eigen GEMM double", cfg, g_kernelGemmD[size_t(k)], "GFLOP/s", g_kernelGemmD[size_t(k)], 0});
+    }
+    g_rows.insert(g_rows.begin(), gemms.begin(), gemms.end());
     printTable();
-    std::printf("\nGFLOP/s counts useful multiply-adds only (2 flops each); 'of GEMM' is relative to the float "
-                "GEMM of one core.\n");
+    std::printf("\nGFLOP/s counts useful multiply-adds only (2 flops each); 'of GEMM' is relative to the machine's "
+                "float GEMM on one core (the fastest kernel's, %.1f GFLOP/s); LM and encoded rows run on the "
+                "chosen kernel (%s).\n",
+                g_gemmF, mlpKernelName(chosen));
     std::printf("Encoded networks: GFLOP/s counts the MLP only (forward 2, forward+backward 6 flops per "
                 "multiply-add); the encoding's time is overhead on it:\n\n");
     std::printf("| %-38s | %-48s | %16s | %16s |\n", "network", "encoding", "share of forward", "share of fwd+bwd");

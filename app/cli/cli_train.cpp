@@ -16,6 +16,7 @@
 #include "app/cli/commands.h"
 #include "core/data/dataset_file.h"
 #include "core/util/error.h"
+#include "core/nn/mlp_kernel.h"
 #include "core/nn/model_set.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/network_settings.h"
@@ -80,10 +81,11 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     if (dropped) std::printf("warning: %llu records with NaN/Inf dropped from %s\n", (unsigned long long)dropped, a.data.c_str());
     const std::string encoding = networkEncoding(o.encoding, data.inputCount(), o.inputs).describe();
     if (ranks.isRoot()) {
-        std::printf("rrf train: %s on %s (%llu records), hidden %s, %s%s, encoding %s, targets %s, trainer %s\n", a.input.c_str(),
-                a.data.c_str(), (unsigned long long)data.totalRecords(), nlohmann::json(o.hidden).dump().c_str(),
+        std::printf("rrf train: %s on %s (%llu records), hidden %s, %s%s, encoding %s, targets %s, trainer %s, kernel %s\n",
+                a.input.c_str(), a.data.c_str(), (unsigned long long)data.totalRecords(), nlohmann::json(o.hidden).dump().c_str(),
                 activationName(o.activation), o.ensemble > 1 ? (", ensemble of " + std::to_string(o.ensemble)).c_str() : "",
-                encoding.c_str(), targetModeName(o.targets), o.trainer.typeName());
+                encoding.c_str(), targetModeName(o.targets), o.trainer.typeName(),
+                mlpKernelDescription(mlpKernel()).c_str());
         // Objects whose "network"/"objects" entry changes their networks say so (nn/object_network_overrides.h).
         for (const auto& entry : o.perObject) {
             const ObjectNetworkChoice c = o.choiceFor(entry.first);

@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/nn/mlp_isa.h"
+#include "core/nn/mlp_kernel.h"
 #include "core/util/rng.h"
 
 namespace rrf {
@@ -168,6 +170,26 @@ void multiplyByDerivative(Activation act, const MatX<S>& a, MatX<S>& d) {
         d.array() *= (a.array() > S(0)).template cast<S>();
 }
 
+#ifdef RRF_MLP_ISA
+/// The arch's layers as the instruction-set passes take them (nn/mlp_isa.h).
+struct IsaLayers {
+    std::vector<int> inputs, outputs;
+    std::vector<std::ptrdiff_t> weight, bias;
+    mlp_isa::Layers layers;
+
+    explicit IsaLayers(const MlpArch& arch) {
+        for (int l = 0; l < arch.numLayers(); ++l) {
+            inputs.push_back(arch.layerInputs(l));
+            outputs.push_back(arch.layerOutputs(l));
+            weight.push_back(arch.weightOffset(l));
+            bias.push_back(arch.biasOffset(l));
+        }
+        layers = {arch.numLayers(), inputs.data(), outputs.data(), weight.data(), bias.data(),
+                  arch.activation == Activation::Tanh ? 1 : 0};
+    }
+};
+#endif
+
 }  // namespace
 
 template <typename S>
@@ -175,6 +197,21 @@ void mlpForward(const MlpArch& arch, const S* params, const Eigen::Ref<const Mat
                 std::vector<MatX<S>>& acts) {
     const int L = arch.numLayers();
     acts.resize(size_t(L));
+#ifdef RRF_MLP_ISA
+    if (const MlpKernel k = mlpKernel(); k != MlpKernel::Portable) {
+        const IsaLayers net(arch);
+        std::vector<S*> a(static_cast<size_t>(L));
+        for (int l = 0; l < L; ++l) {
+            acts[size_t(l)].resize(arch.layerOutputs(l), x.cols());
+            a[size_t(l)] = acts[size_t(l)].data();
+        }
+        if (k == MlpKernel::Avx512)
+            mlp_isa::avx512::forward(net.layers, params, x.data(), x.outerStride(), x.cols(), a.data());
+        else
+            mlp_isa::avx2::forward(net.layers, params, x.data(), x.outerStride(), x.cols(), a.data());
+        return;
+    }
+#endif
     for (int l = 0; l < L; ++l) {
         const int in = arch.layerInputs(l), out = arch.layerOutputs(l);
         ConstMap<S> W(params + arch.weightOffset(l), out, in);
@@ -202,6 +239,25 @@ void mlpBackward(const MlpArch& arch, const S* params, const Eigen::Ref<const Ma
     const int L = arch.numLayers();
     deltas.resize(size_t(L));
     deltas[size_t(L - 1)] = dOut;
+#ifdef RRF_MLP_ISA
+    if (const MlpKernel k = mlpKernel(); k != MlpKernel::Portable) {
+        const IsaLayers net(arch);
+        std::vector<const S*> a(static_cast<size_t>(L));
+        std::vector<S*> d(static_cast<size_t>(L));
+        for (int l = 0; l < L; ++l) {
+            if (l + 1 < L) deltas[size_t(l)].resize(arch.layerOutputs(l), x.cols());
+            a[size_t(l)] = acts[size_t(l)].data();
+            d[size_t(l)] = deltas[size_t(l)].data();
+        }
+        if (dInputs) dInputs->resize(arch.inputs, x.cols());
+        S* di = dInputs ? dInputs->data() : nullptr;
+        if (k == MlpKernel::Avx512)
+            mlp_isa::avx512::backward(net.layers, params, x.data(), x.outerStride(), x.cols(), a.data(), d.data(), grad, di);
+        else
+            mlp_isa::avx2::backward(net.layers, params, x.data(), x.outerStride(), x.cols(), a.data(), d.data(), grad, di);
+        return;
+    }
+#endif
     for (int l = L - 1; l >= 0; --l) {
         const int in = arch.layerInputs(l), out = arch.layerOutputs(l);
         const MatX<S>& d = deltas[size_t(l)];

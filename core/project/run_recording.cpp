@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "core/nn/mlp_kernel.h"
 #include "core/util/error.h"
 #include "core/util/text_format.h"
 
@@ -93,6 +94,8 @@ void setTrainRun(Run& run, const std::string& projectDir, TrainRecord r) {
     run.settings = json{{"network", r.settings.networkJson()}, {"trainer", r.settings.trainerJson()},
                         {"dataset", projectRelative(projectDir, r.dataset)}, {"scene_hash", hexString(r.sceneHash)}};
     if (r.sampling) run.settings["sampling"] = r.sampling->toJson();
+    // The process trains with one kernel (nn/mlp_kernel.h); a model reproduces bit for bit on it only.
+    run.settings["kernel"] = mlpKernelName(mlpKernel());
     int epochs = 0;
     for (const LossCurve& c : r.curves)
         for (const LossPoint& p : c.points) epochs = std::max(epochs, p.epoch);

@@ -66,7 +66,8 @@ struct TrainRecord {
 /// The loss curves of a training run as a run stores them ("?" for a network without an object name).
 std::vector<LossCurve> lossCurves(const std::vector<NetworkCurve>& curves);
 
-/// Fills a "train" run: settings {network, trainer, dataset, scene_hash, sampling}, the per-network
+/// Fills a "train" run: settings {network, trainer, dataset, scene_hash, sampling, kernel (the MLP
+/// kernel this process trains with, nn/mlp_kernel.h)}, the per-network
 /// curves and their aggregate loss, metrics {networks, skipped, epochs, and when known
 /// planned_networks, leaves, records; stopped when the user stopped it}, timings {train, generate} and models.json as the first
 /// artifact (the workbench loads the models from its directory).

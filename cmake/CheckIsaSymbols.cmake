@@ -1,0 +1,45 @@
+# CTest isa_symbols: the instruction-set builds of the MLP passes (core/nn/mlp_isa.h) may define
+# global or weak symbols only in their own namespaces (rrf::mlp_isa::<isa>, Eigen renamed
+# rrf_eigen_<isa>). Any other such symbol is an inline function or template compiled with AVX2 or
+# AVX-512 that the linker may pick for the portable code's callers, which would then fail with an
+# illegal instruction on a CPU without them.
+#   cmake -DRRF_NM=<nm> -DRRF_LIBRARY=<librrf_core.a> -P CheckIsaSymbols.cmake
+execute_process(COMMAND ${RRF_NM} -A --defined-only ${RRF_LIBRARY} OUTPUT_VARIABLE out RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "isa_symbols: ${RRF_NM} failed on ${RRF_LIBRARY}")
+endif()
+string(REPLACE "\n" ";" lines "${out}")
+set(bad "")
+foreach(isa avx2 avx512)
+  set(found 0)
+  foreach(line IN LISTS lines)
+    if(NOT line MATCHES ":mlp_isa_${isa}\\.cpp\\.o:[0-9a-f]* ([A-Za-z]) (.*)$")
+      continue()
+    endif()
+    set(type "${CMAKE_MATCH_1}")
+    set(name "${CMAKE_MATCH_2}")
+    # Local symbols (t, d, b, r, n, ...) cannot be shared; 'u' (unique global) and capitals can.
+    if(type MATCHES "^[a-tv-z]$")
+      continue()
+    endif()
+    if(name MATCHES "rrf_eigen_${isa}|7mlp_isa${isa}|7mlp_isa[0-9]+${isa}")
+      if(name MATCHES "^_ZN3rrf7mlp_isa[0-9]+${isa}(7forward|8backward)")
+        math(EXPR found "${found} + 1")
+      endif()
+      continue()
+    endif()
+    # The personality routine's reference is data (a pointer to libstdc++'s), not code.
+    if(name STREQUAL "DW.ref.__gxx_personality_v0")
+      continue()
+    endif()
+    list(APPEND bad "mlp_isa_${isa}.cpp.o: ${type} ${name}")
+  endforeach()
+  if(NOT found EQUAL 4)
+    list(APPEND bad "mlp_isa_${isa}.cpp.o: expected its 4 passes (forward, backward for float and double), found ${found}")
+  endif()
+endforeach()
+if(bad)
+  string(REPLACE ";" "\n  " text "${bad}")
+  message(FATAL_ERROR "isa_symbols: symbols outside the instruction-set namespaces:\n  ${text}")
+endif()
+message(STATUS "isa_symbols: ok")
