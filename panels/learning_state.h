@@ -104,7 +104,9 @@ struct PairedObjectRow {
 };
 
 /// Columns of the Objects table, also the sort keys.
-/// Each RMSE comes with the ground truth's noise floor and the corrected (noise subtracted) figure.
+/// Each RMSE comes with the ground truth's noise floor and the corrected (noise subtracted) figure;
+/// bias is the signed relative mean (the RMSE's spread has no sign), relMSE and SMAPE are the
+/// literature's figures (core/eval/error_metrics.h).
 enum class ObjectColumn {
     Object,
     Rmse,
@@ -113,6 +115,10 @@ enum class ObjectColumn {
     RelativeRmse,
     RelativeNoiseFloor,
     RelativeCorrected,
+    Bias,
+    RelMse,
+    RelMseCorrected,
+    Smape,
     Mae,
     Max,
     Pixels,

@@ -20,8 +20,10 @@
 namespace rrf::panels {
 
 namespace {
-const char* const kColumnNames[] = {"object",   "RMSE",     "RMSE noise floor", "RMSE corrected", "rel. RMSE",
-                                    "rel. noise floor", "rel. corrected", "MAE", "max", "pixels", "samples", "train s"};
+const char* const kColumnNames[] = {"object",         "RMSE",    "RMSE noise floor",   "RMSE corrected", "rel. RMSE",
+                                    "rel. noise floor", "rel. corrected", "bias", "relMSE", "relMSE corrected",
+                                    "SMAPE",          "MAE",     "max",              "pixels",         "samples",
+                                    "train s"};
 static_assert(sizeof kColumnNames / sizeof kColumnNames[0] == size_t(ObjectColumn::Count), "one name per column");
 
 double key(const ObjectErrorRow& r, ObjectColumn c) {
@@ -32,6 +34,10 @@ double key(const ObjectErrorRow& r, ObjectColumn c) {
         case ObjectColumn::RelativeRmse: return r.stats.relativeRmse;
         case ObjectColumn::RelativeNoiseFloor: return r.stats.relativeRmseNoiseFloor;
         case ObjectColumn::RelativeCorrected: return r.stats.relativeRmseCorrected;
+        case ObjectColumn::Bias: return r.stats.signedRelativeMean;
+        case ObjectColumn::RelMse: return r.stats.relMse;
+        case ObjectColumn::RelMseCorrected: return r.stats.relMseCorrected;
+        case ObjectColumn::Smape: return r.stats.smape;
         case ObjectColumn::Mae: return r.stats.mae;
         case ObjectColumn::Max: return r.stats.maxError;
         case ObjectColumn::Pixels: return double(r.stats.pixels);
@@ -41,9 +47,10 @@ double key(const ObjectErrorRow& r, ObjectColumn c) {
     }
 }
 
-/// The six RMSE figures in column order.
-std::array<double, 6> rmseFigures(const ErrorStats& s) {
-    return {s.rmse, s.rmseNoiseFloor, s.rmseCorrected, s.relativeRmse, s.relativeRmseNoiseFloor, s.relativeRmseCorrected};
+/// The figures from RMSE to SMAPE in column order (unknown noise figures read "unknown").
+std::array<double, 10> rmseFigures(const ErrorStats& s) {
+    return {s.rmse,   s.rmseNoiseFloor, s.rmseCorrected,     s.relativeRmse, s.relativeRmseNoiseFloor, s.relativeRmseCorrected,
+            s.signedRelativeMean, s.relMse, s.relMseCorrected, s.smape};
 }
 
 /// An optional figure in CSV: empty when unknown, so a reader sees a missing value, never 0.
@@ -137,7 +144,8 @@ std::vector<ObjectErrorRow> sortedObjectRows(const std::vector<ObjectErrorRow>& 
 std::string objectRowsCsv(const std::vector<ObjectErrorRow>& rows, const char* term) {
     // The noise columns follow the older ones, so readers of the earlier layout keep their columns.
     std::string csv = "term,object_id,object,rmse,relative_rmse,mae,max,pixels,samples,train_seconds,rmse_noise_floor,"
-                      "rmse_corrected,relative_rmse_noise_floor,relative_rmse_corrected\n";
+                      "rmse_corrected,relative_rmse_noise_floor,relative_rmse_corrected,signed_relative_mean,relmse,"
+                      "relmse_noise_floor,relmse_corrected,smape\n";
     char buf[256];
     for (const ObjectErrorRow& r : rows) {
         std::snprintf(buf, sizeof buf, ",%.9g,%.9g,%.9g,%.9g,%llu,%llu,%.6g", r.stats.rmse, r.stats.relativeRmse,
@@ -145,7 +153,10 @@ std::string objectRowsCsv(const std::vector<ObjectErrorRow>& rows, const char* t
                       r.trainSeconds);
         csv += std::string(term) + "," + std::to_string(r.objectId) + "," + csvQuote(r.name) + buf + "," +
                csvNumber(r.stats.rmseNoiseFloor) + "," + csvNumber(r.stats.rmseCorrected) + "," +
-               csvNumber(r.stats.relativeRmseNoiseFloor) + "," + csvNumber(r.stats.relativeRmseCorrected) + "\n";
+               csvNumber(r.stats.relativeRmseNoiseFloor) + "," + csvNumber(r.stats.relativeRmseCorrected) + "," +
+               csvNumber(r.stats.signedRelativeMean) + "," + csvNumber(r.stats.relMse) + "," +
+               csvNumber(r.stats.relMseNoiseFloor) + "," + csvNumber(r.stats.relMseCorrected) + "," +
+               csvNumber(r.stats.smape) + "\n";
     }
     return csv;
 }
@@ -257,6 +268,12 @@ void drawObjectsPanel(WorkbenchState& state) {
                 ImGui::SetTooltip("noise floor: the error the ground truth's own Monte Carlo noise gives\n(a perfect prediction's expected error); unknown without its variance");
             else if (col == ObjectColumn::RmseCorrected || col == ObjectColumn::RelativeCorrected)
                 ImGui::SetTooltip("corrected (noise subtracted): sqrt(max(0, mean(d^2 - Var(ref))))\nan estimate of the error against the noise-free truth");
+            else if (col == ObjectColumn::Bias)
+                ImGui::SetTooltip("bias: mean d / (|ref| + 0.01), signed (> 0: the prediction is above the ground truth);\nthe RMSE is the spread, this is the offset");
+            else if (col == ObjectColumn::RelMse || col == ObjectColumn::RelMseCorrected)
+                ImGui::SetTooltip("relMSE: mean d^2 / (ref^2 + 0.01), tev's relative squared error (no root);\ncorrected: the ground truth's variance subtracted");
+            else if (col == ObjectColumn::Smape)
+                ImGui::SetTooltip("SMAPE: mean |d| / (|pred| + |ref| + 0.01), in [0, 1]; not noise-corrected");
         }
     ObjectsView& v = state.objectsView;
     if (ImGuiTableSortSpecs* specs = ImGui::TableGetSortSpecs()) {

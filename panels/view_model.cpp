@@ -15,9 +15,9 @@ bool dimmed(const std::vector<int>* ids, int selected, size_t i) {
     return ids && selected >= 0 && i < ids->size() && (*ids)[i] != selected;
 }
 
-void falseColourRgba(const Image& error, float hi, const std::vector<int>* ids, int selected, const FootprintMask* mask,
-                     std::vector<uint8_t>& rgba) {
-    const Image fc = falseColor(error, 0.f, std::max(hi, 1e-12f));
+void falseColourRgba(const Image& error, ErrorMapKind kind, float hi, const std::vector<int>* ids, int selected,
+                     const FootprintMask* mask, std::vector<uint8_t>& rgba) {
+    const Image fc = errorMapColour(error, kind, hi);
     toneMapRgba(fc, 0.f, ids, selected, rgba);
     if (!mask || mask->width != error.width || mask->height != error.height) return;
     for (int y = 0; y < error.height; ++y)
@@ -180,7 +180,7 @@ void ViewModel::update(WorkbenchState& s) {
         d.height = img.height;
         d.revision = ++counter_;
         if (img.empty()) d.rgba.clear();
-        else if (error) falseColourRgba(img, s.view.errorMax, idsFor(img), k.selected, s.reference().footprint.get(), d.rgba);
+        else if (error) falseColourRgba(img, s.view.metric, s.view.errorMax, idsFor(img), k.selected, s.reference().footprint.get(), d.rgba);
         else toneMapRgba(img, s.view.exposure, idsFor(img), k.selected, d.rgba);
     };
     // Never an error map against the ground truth of another light, scene or size.

@@ -223,19 +223,33 @@ void drawLegend(const ViewState& v, float width) {
     const ImVec2 p = ImGui::GetCursorScreenPos();
     const float h = ImGui::GetFontSize() * 0.8f;
     const int steps = 32;
+    // A signed map runs from -scale (blue: below the ground truth) through 0 to +scale (red: above).
+    const bool isSigned = errorMapIsSigned(v.metric);
     for (int i = 0; i < steps; ++i) {
-        const Vec3 c0 = viridis(float(i) / steps), c1 = viridis(float(i + 1) / steps);
+        const float t0 = float(i) / steps, t1 = float(i + 1) / steps;
+        const Vec3 c0 = isSigned ? coolWarm(2 * t0 - 1) : viridis(t0), c1 = isSigned ? coolWarm(2 * t1 - 1) : viridis(t1);
         auto col = [](const Vec3& c) {
             return ImGui::ColorConvertFloat4ToU32(ImVec4(linearToSrgb(c.x), linearToSrgb(c.y), linearToSrgb(c.z), 1.f));
         };
-        const float x0 = p.x + width * float(i) / steps, x1 = p.x + width * float(i + 1) / steps;
+        const float x0 = p.x + width * t0, x1 = p.x + width * t1;
         dl->AddRectFilledMultiColor(ImVec2(x0, p.y), ImVec2(x1, p.y + h), col(c0), col(c1), col(c1), col(c0));
     }
     ImGui::Dummy(ImVec2(width, h));
-    ImGui::Text("0");
-    char hi[32];
-    std::snprintf(hi, sizeof hi, "%.3g", v.errorMax);
-    ImGui::SameLine(std::max(0.f, width - ImGui::CalcTextSize(hi).x));
+    char lo[48], hi[48];
+    if (isSigned) {
+        std::snprintf(lo, sizeof lo, "-%.3g below", v.errorMax);
+        std::snprintf(hi, sizeof hi, "above +%.3g", v.errorMax);
+    } else {
+        std::snprintf(lo, sizeof lo, "0");
+        std::snprintf(hi, sizeof hi, "%.3g", v.errorMax);
+    }
+    const float x = ImGui::GetCursorPosX();
+    ImGui::TextUnformatted(lo);
+    if (isSigned) {
+        ImGui::SameLine(x + std::max(0.f, 0.5f * (width - ImGui::CalcTextSize("0").x)));
+        ImGui::TextUnformatted("0");
+    }
+    ImGui::SameLine(x + std::max(0.f, width - ImGui::CalcTextSize(hi).x));
     ImGui::TextUnformatted(hi);
 }
 

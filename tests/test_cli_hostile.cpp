@@ -187,6 +187,21 @@ TEST(CliHostile, FullDiskNamesTheOutputAndWhatWasKeptNeverATemporary) {
     fs::remove_all(dir);
 }
 
+TEST(CliHostile, UnknownKernelIsRefusedBeforeAnyWork) {
+    const fs::path dir = testDir();
+    const std::string scene = writeScene(dir, "room.json");
+    const fs::path out = dir / "out";
+    const auto r = rrf::test::runShell("RRF_MLP_KERNEL=sse9 " + std::string(RRF_CLI_PATH) + " pipeline " + scene +
+                                       " --preset quick --out " + out.string() + " 2>&1");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_TRUE(contains(r.output, "RRF_MLP_KERNEL=sse9: expected portable, avx2 or avx512")) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << "nothing was started";
+    // The portable kernel runs everywhere: naming it is accepted.
+    const auto ok = rrf::test::runShell("RRF_MLP_KERNEL=portable " + std::string(RRF_CLI_PATH) + " inspect " + scene + " 2>&1");
+    EXPECT_EQ(ok.code, 0) << ok.output;
+    fs::remove_all(dir);
+}
+
 TEST(CliHostile, ObjAndMtlNumbersOutOfRangeExitBeforeAnyWork) {
     const fs::path dir = testDir();
     std::ofstream(dir / "room.mtl") << "newmtl white\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0 0 0\nKe 1e30 1e30 1e30\n";

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/eval/error_metrics.h"
+#include "core/util/image.h"
 #include "tests/image_builders.h"
 
 namespace test_error_metrics {
@@ -125,6 +126,58 @@ TEST(ErrorMetrics, PixelErrorIsTheMapAtThatPixel) {
     EXPECT_NEAR(pixelError(pred.at(0, 0), ref.at(0, 0), ErrorMapKind::Absolute), (0.3 + 0.2 + 0.0) / 3.0, 1e-6);
     EXPECT_NEAR(pixelError(pred.at(0, 0), ref.at(0, 0), ErrorMapKind::Relative), (0.3 / 0.81 + 0.2 / 0.21) / 3.0, 1e-6);
     EXPECT_NEAR(pixelError(pred.at(0, 0), ref.at(0, 0), ErrorMapKind::Squared), (0.09 + 0.04) / 3.0, 1e-6);
+}
+
+TEST(ErrorMetrics, SignedRelMseAndSmapeKnownAnswers) {
+    // Pixel 0: ref 1, pred 0.98 (2 % low); pixel 1: ref 0.5, pred 0.6 (above). Per channel, equal.
+    const Image ref = make(2, 1, {Vec3(1.f), Vec3(0.5f)});
+    const Image pred = make(2, 1, {Vec3(0.98f), Vec3(0.6f)});
+    const ErrorStats s = errorStats(pred, ref);
+    const double d0 = double(0.98f) - 1.0, d1 = double(0.6f) - double(0.5f);
+    EXPECT_NEAR(s.signedRelativeMean, (d0 / 1.01 + d1 / 0.51) / 2, 1e-9);
+    EXPECT_NEAR(s.relMse, (d0 * d0 / 1.01 + d1 * d1 / 0.26) / 2, 1e-9);
+    EXPECT_NEAR(s.smape, (-d0 / (0.98 + 1.0 + 0.01) + d1 / (0.6 + 0.5 + 0.01)) / 2, 1e-6);
+    // A uniform 2 % low bias: the signed mean says −0.02 (to the 0.01 offset), the RMSE only its size.
+    const Image low = make(2, 1, {Vec3(0.98f), Vec3(0.49f)});
+    const ErrorStats b = errorStats(low, ref);
+    EXPECT_NEAR(b.signedRelativeMean, (-0.02 / 1.01 - 0.01 / 0.51) / 2, 1e-6);
+    EXPECT_LT(b.signedRelativeMean, 0.0);
+    EXPECT_NEAR(b.relativeRmse, std::fabs(b.signedRelativeMean), 1e-3);
+    // Swapping prediction and reference leaves SMAPE unchanged (symmetric) and flips the sign of d.
+    EXPECT_NEAR(errorStats(ref, pred).smape, s.smape, 1e-9);
+    const Image signedMap = errorMap(pred, ref, ErrorMapKind::Signed);
+    EXPECT_NEAR(signedMap.at(0, 0).x, d0 / 1.01, 1e-6);
+    EXPECT_NEAR(errorMap(ref, pred, ErrorMapKind::Signed).at(1, 0).x, -d1 / double(0.61f), 1e-6);
+    EXPECT_NEAR(errorMap(pred, ref, ErrorMapKind::RelativeSquared).at(1, 0).x, d1 * d1 / 0.26, 1e-6);
+    EXPECT_NEAR(errorMap(pred, ref, ErrorMapKind::Smape).at(1, 0).x, d1 / 1.11, 1e-6);
+    const nlohmann::json j = s.toJson();
+    EXPECT_DOUBLE_EQ(j["signed_relative_mean"].get<double>(), s.signedRelativeMean);
+    EXPECT_DOUBLE_EQ(j["relmse"].get<double>(), s.relMse);
+    EXPECT_DOUBLE_EQ(j["smape"].get<double>(), s.smape);
+    EXPECT_TRUE(j["relmse_corrected"].is_null());  // no variance given
+}
+
+TEST(ErrorMetrics, SignedMapsAreScaledByMagnitudeAndCentredOnZero) {
+    // A signed map's scale is the p99 of |value|: −3 counts as much as +3.
+    const Image map = make(4, 1, {Vec3(-3.f), Vec3(1.f), Vec3(0.f), Vec3(2.f)});
+    EXPECT_FLOAT_EQ(errorMapScale(map, ErrorMapKind::Signed), 3.f);
+    EXPECT_FLOAT_EQ(errorMapScale(map, ErrorMapKind::Absolute), 2.f);
+    EXPECT_TRUE(errorMapIsSigned(ErrorMapKind::Signed));
+    EXPECT_FALSE(errorMapIsSigned(ErrorMapKind::Relative));
+    const Image c = errorMapColour(map, ErrorMapKind::Signed, 3.f);
+    // Zero is the map's neutral centre (equal channels), below is blue, above is red.
+    EXPECT_FLOAT_EQ(c.at(2, 0).x, c.at(2, 0).y);
+    EXPECT_FLOAT_EQ(c.at(2, 0).y, c.at(2, 0).z);
+    EXPECT_GT(c.at(0, 0).z, c.at(0, 0).x);
+    EXPECT_GT(c.at(3, 0).x, c.at(3, 0).z);
+    // The ends are Moreland's cool-warm ends, values beyond the scale clamp to them.
+    EXPECT_NEAR(linearToSrgb(coolWarm(-1.f).z), 192 / 255.f, 1e-5);
+    EXPECT_NEAR(linearToSrgb(coolWarm(5.f).x), 180 / 255.f, 1e-5);
+    EXPECT_EQ(coolWarm(-7.f).z, coolWarm(-1.f).z);
+    // Non-finite stays visible (magenta), a zero or bad scale is refused by the image function.
+    const Image nanMap = make(1, 1, {Vec3(NAN)});
+    EXPECT_EQ(errorMapColour(nanMap, ErrorMapKind::Signed, 1.f).at(0, 0).y, 0.f);
+    EXPECT_THROW(signedFalseColor(map, 0.f), std::invalid_argument);
 }
 
 TEST(ErrorMetrics, MapKindNamesRoundTrip) {

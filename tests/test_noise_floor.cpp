@@ -147,6 +147,14 @@ TEST(NoiseFloor, FormulasOnKnownImages) {
     EXPECT_EQ(raw.relativeRmse, s.relativeRmse);
     EXPECT_EQ(raw.mae, s.mae);
     EXPECT_EQ(raw.maxError, s.maxError);
+    // relMSE (tev's d² / (ref² + 0.01), no root): floor and corrected by the same rule.
+    const double q0 = 1.0 / 1.01, q1 = 1.0 / 0.01;
+    EXPECT_NEAR(s.relMse, (d0 * d0 * q0 + d1 * d1 * q1) / 2, 1e-6);
+    EXPECT_NEAR(s.relMseNoiseFloor, (v0 * q0 + v1 * q1) / 2, 1e-6);
+    // Pixel 1's variance outweighs its error here too: the sum is negative and clamps at 0.
+    EXPECT_LT(d0 * d0 * q0 + d1 * d1 * q1 - v0 * q0 - v1 * q1, 0.0);
+    EXPECT_EQ(s.relMseCorrected, 0.0);
+    EXPECT_NEAR(errorStatsWithNoise(pred, ref, var, {0u}).relMseCorrected, (d0 * d0 - v0) * q0, 1e-6);
     // Over a mask: only pixel 0.
     const ErrorStats one = errorStatsWithNoise(pred, ref, var, {0u});
     EXPECT_NEAR(one.relativeRmseCorrected, std::sqrt((d0 * d0 - v0) * w0), 1e-6);
@@ -199,6 +207,36 @@ TEST(NoiseFloor, CorrectedRecoversTheErrorOfSyntheticNoise) {
     EXPECT_NEAR(s.rmseCorrected * s.rmseCorrected, std::max(0.0, q.q), 1e-9) << "the test's Q is the metric's";
     EXPECT_NEAR(q.q, exact.rmse * exact.rmse, 5 * q.se);
     EXPECT_NEAR(s.rmseNoiseFloor, std::sqrt(meanWeighted(var, ref, all, false)), 1e-6);
+}
+
+TEST(NoiseFloor, CorrectedRelMseRecoversTheErrorOfSyntheticNoise) {
+    // As above with the reference's relative sd σ = 0.02 (a converged reference) and a 3 % error e:
+    // the noise adds about half the squared error to the raw figure; the corrected one finds the
+    // truth's. Its weight 1 / (r² + ε) uses the noisy reference r = t(1 + σz), which correlates with
+    // d = t(e − σz): to second order E[(d² − v) w] ≈ (e² + 4eσ²) / t², a bias of 4σ²/e ≈ 5 % here,
+    // which is why it needs a reference whose relative noise is well under the error.
+    const int w = 64, h = 64;
+    Image truth(w, h), ref(w, h), var(w, h), pred(w, h);
+    Rng rng(11, 0);
+    for (size_t k = 0; k < truth.data.size(); ++k) {
+        const double t = 0.2 + 1.8 * rng.uniform();
+        const double sd = 0.02 * t;
+        const double u1 = std::max(1e-12, double(rng.uniform())), u2 = rng.uniform();
+        const double z = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+        truth.data[k] = float(t);
+        ref.data[k] = float(t + sd * z);
+        var.data[k] = float(sd * sd);
+        pred.data[k] = float(1.03 * t);
+    }
+    const ErrorStats s = errorStatsWithNoise(pred, ref, var);
+    const ErrorStats exact = errorStats(pred, truth);
+    EXPECT_GT(s.relMse, 1.3 * exact.relMse) << "the noise shows in the raw figure";
+    EXPECT_NEAR(s.relMseCorrected, exact.relMse * (1 + 4 * 0.02 * 0.02 / 0.03), 0.02 * exact.relMse);
+    EXPECT_NEAR(s.relMseNoiseFloor, s.relMse - s.relMseCorrected, 1e-12);
+    // The bias (signed relative mean) has the same second-order term: E[1/r] = (1 + σ²)/t, so it
+    // reads (1 + e)(1 + σ²) − 1 ≈ e + σ², here 0.0304 for the truth's 0.03.
+    EXPECT_NEAR(exact.signedRelativeMean, 0.03, 0.002);
+    EXPECT_NEAR(s.signedRelativeMean, (1.0 + exact.signedRelativeMean) * (1 + 0.02 * 0.02) - 1, 0.001);
 }
 
 TEST(NoiseFloor, RendererKeepsTheVarianceOfEveryTerm) {

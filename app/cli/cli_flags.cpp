@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/nn/mlp_kernel.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/network_settings.h"
 #include "core/project/presets.h"
@@ -197,12 +198,12 @@ void addNoiseTargetFlags(CLI::App* cmd, double& noise, int& sppCap, const std::s
 std::string describeExperiment(const SamplingSettings& s, const ObjectTrainingOptions& t) {
     char buf[384];
     const std::string encoding = encodingPresetName(t.encoding);
-    std::snprintf(buf, sizeof buf, "grid %dx%dx%d, %d directions, %d spp per record; network %s%s, encoding %s%s%s, targets %s, %s, %d epochs",
+    std::snprintf(buf, sizeof buf, "grid %dx%dx%d, %d directions, %d spp per record; network %s%s, encoding %s%s%s, targets %s, %s, %d epochs, kernel %s",
                   s.nx, s.ny, s.nz, s.directions, s.spp, nlohmann::json(t.hidden).dump().c_str(),
                   t.ensemble > 1 ? (" x" + std::to_string(t.ensemble)).c_str() : "",
                   encoding.empty() ? "(the project's)" : encoding.c_str(), t.inputs.reflected ? " +reflected" : "",
                   t.perObject.empty() ? "" : " (per-object entries)", targetModeName(t.targets), t.trainer.typeName(),
-                  t.trainer.maxEpochs());
+                  t.trainer.maxEpochs(), mlpKernelDescription(mlpKernel()).c_str());
     return buf;
 }
 

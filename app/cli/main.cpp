@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/nn/mlp_kernel.h"
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "app/mpi/ranks.h"
@@ -60,6 +61,9 @@ int main(int argc, char** argv) {
         // whole job through MPI_Abort (stopJobOnError) instead of exiting alone while the others wait
         // in a collective call: srun, unlike mpirun, keeps them waiting unless --kill-on-bad-exit.
         if (rrf::mpi::launchFromEnvironment().size > 1) rrf::mpi::ranks();
+        // The MLP kernel is chosen now, so an RRF_MLP_KERNEL this CPU cannot run is refused before
+        // any work (nn/mlp_kernel.h).
+        rrf::mlpKernel();
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         // app.exit prints CLI11's message (or the help, which exits 0); a bad flag is bad input like

@@ -265,7 +265,7 @@ bool Workbench::exportImages(const std::string& dir) {
         const Image& err = viewModel_.error();
         if (!err.empty()) {
             writeImage((fs::path(dir) / "error.exr").string(), err, ImageFormat::EXR);
-            writeImage((fs::path(dir) / "error.png").string(), falseColor(err, 0.f, state_.view.errorMax), ImageFormat::PNG);
+            writeImage((fs::path(dir) / "error.png").string(), errorMapColour(err, state_.view.metric, state_.view.errorMax), ImageFormat::PNG);
         }
         if (!exportPrediction(dir)) return false;
     } catch (const std::exception& e) {

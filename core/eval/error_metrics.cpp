@@ -18,6 +18,12 @@ void checkSizes(const Image& a, const Image& b) {
 
 /// d / (|ref| + 0.01): the relative error of one channel, shared by the maps and the statistics.
 double relativeDifference(double d, double ref) { return d / (std::fabs(ref) + kRelativeEpsilon); }
+/// 1 / (ref² + 0.01): tev's relative squared error's weight of d².
+double relMseWeight(double ref) { return 1.0 / (ref * ref + kRelativeEpsilon); }
+/// |d| / (|pred| + |ref| + 0.01): the symmetric absolute percentage error of one channel.
+double smapeTerm(double pred, double ref) {
+    return std::fabs(pred - ref) / (std::fabs(pred) + std::fabs(ref) + kRelativeEpsilon);
+}
 
 /// Sums over the pixels of a mask, in pixel order. `variance` (may be null) is the reference's per-pixel
 /// variance of the mean; with it the sums of the noise floor and the corrected error are kept too.
@@ -26,7 +32,8 @@ struct Accumulator {
     const Image& reference;
     const Image* variance;
     double sq = 0, rel = 0, abs = 0, max = 0, ref = 0;
-    double var = 0, relVar = 0;  ///< Σ v and Σ v / (|ref| + 0.01)²
+    double bias = 0, relSq = 0, smape = 0;  ///< Σ d / (|ref| + 0.01), Σ d² / (ref² + 0.01), Σ SMAPE terms
+    double var = 0, relVar = 0, relSqVar = 0;  ///< Σ v, Σ v / (|ref| + 0.01)² and Σ v / (ref² + 0.01)
     uint64_t pixels = 0, bad = 0;
 
     void add(size_t i) {
@@ -47,6 +54,9 @@ struct Accumulator {
             const double rd = relativeDifference(d, double(b[c]));
             sq += d * d;
             rel += rd * rd;
+            bias += rd;
+            relSq += d * d * relMseWeight(double(b[c]));
+            smape += smapeTerm(double(a[c]), double(b[c]));
             abs += std::fabs(d);
             max = std::max(max, std::fabs(d));
             ref += double(b[c]);
@@ -55,6 +65,7 @@ struct Accumulator {
                 const double w = relativeDifference(1.0, double(b[c]));
                 var += double(v[c]);
                 relVar += double(v[c]) * w * w;
+                relSqVar += double(v[c]) * relMseWeight(double(b[c]));
             }
         }
         ++pixels;
@@ -64,7 +75,9 @@ struct Accumulator {
         s.pixels = pixels;
         s.nonFinite = bad;
         s.noiseKnown = variance != nullptr;
-        if (s.noiseKnown) s.rmseNoiseFloor = s.rmseCorrected = s.relativeRmseNoiseFloor = s.relativeRmseCorrected = 0;
+        if (s.noiseKnown)
+            s.rmseNoiseFloor = s.rmseCorrected = s.relativeRmseNoiseFloor = s.relativeRmseCorrected = s.relMseNoiseFloor =
+                s.relMseCorrected = 0;
         if (pixels == 0) return s;
         const double n = 3.0 * double(pixels);
         s.rmse = std::sqrt(sq / n);
@@ -72,6 +85,9 @@ struct Accumulator {
         s.mae = abs / n;
         s.maxError = max;
         s.meanReference = ref / n;
+        s.signedRelativeMean = bias / n;
+        s.relMse = relSq / n;
+        s.smape = smape / n;
         if (s.noiseKnown) {
             // mean(d² − v) = mean d² − mean v: the sums are subtracted once, then clamped at 0 (the
             // estimate of a squared error can fall below 0 where the prediction is within the noise).
@@ -79,6 +95,8 @@ struct Accumulator {
             s.relativeRmseNoiseFloor = std::sqrt(relVar / n);
             s.rmseCorrected = std::sqrt(std::max(0.0, (sq - var) / n));
             s.relativeRmseCorrected = std::sqrt(std::max(0.0, (rel - relVar) / n));
+            s.relMseNoiseFloor = relSqVar / n;
+            s.relMseCorrected = std::max(0.0, (relSq - relSqVar) / n);
         }
         return s;
     }
@@ -115,11 +133,16 @@ ErrorStats allPixelStats(const Image& prediction, const Image& reference, const 
 
 }  // namespace
 
+bool errorMapIsSigned(ErrorMapKind k) { return k == ErrorMapKind::Signed; }
+
 const char* errorMapName(ErrorMapKind k) {
     switch (k) {
     case ErrorMapKind::Absolute: return "absolute";
     case ErrorMapKind::Relative: return "relative";
     case ErrorMapKind::Squared: return "squared";
+    case ErrorMapKind::Signed: return "signed";
+    case ErrorMapKind::RelativeSquared: return "relmse";
+    case ErrorMapKind::Smape: return "smape";
     }
     return "?";
 }
@@ -135,6 +158,9 @@ const char* errorMapFormula(ErrorMapKind k) {
     case ErrorMapKind::Absolute: return "mean_c |d_c|";
     case ErrorMapKind::Relative: return "mean_c |d_c| / (|ref_c| + 0.01)";
     case ErrorMapKind::Squared: return "mean_c d_c^2";
+    case ErrorMapKind::Signed: return "mean_c d_c / (|ref_c| + 0.01)";
+    case ErrorMapKind::RelativeSquared: return "mean_c d_c^2 / (ref_c^2 + 0.01)";
+    case ErrorMapKind::Smape: return "mean_c |d_c| / (|pred_c| + |ref_c| + 0.01)";
     }
     return "?";
 }
@@ -148,6 +174,11 @@ nlohmann::json ErrorStats::toJson() const {
             {"relative_rmse", relativeRmse},
             {"relative_rmse_noise_floor", noiseFigureJson(relativeRmseNoiseFloor)},
             {"relative_rmse_corrected", noiseFigureJson(relativeRmseCorrected)},
+            {"signed_relative_mean", signedRelativeMean},
+            {"relmse", relMse},
+            {"relmse_noise_floor", noiseFigureJson(relMseNoiseFloor)},
+            {"relmse_corrected", noiseFigureJson(relMseCorrected)},
+            {"smape", smape},
             {"mae", mae},
             {"max_error", maxError},
             {"mean_reference", meanReference}};
@@ -185,6 +216,9 @@ float pixelError(const Vec3& prediction, const Vec3& reference, ErrorMapKind kin
         case ErrorMapKind::Absolute: v += std::fabs(d); break;
         case ErrorMapKind::Relative: v += std::fabs(relativeDifference(d, double(reference[c]))); break;
         case ErrorMapKind::Squared: v += d * d; break;
+        case ErrorMapKind::Signed: v += relativeDifference(d, double(reference[c])); break;
+        case ErrorMapKind::RelativeSquared: v += d * d * relMseWeight(double(reference[c])); break;
+        case ErrorMapKind::Smape: v += smapeTerm(double(prediction[c]), double(reference[c])); break;
         }
     }
     // A NaN or Inf input propagates into v: the map keeps it visible (NaN) instead of a number.
@@ -222,6 +256,18 @@ float percentile(const Image& scalar, double q) {
     const size_t k = std::min(v.size() - 1, size_t(std::ceil(q * double(v.size()))) - (q > 0 ? 1 : 0));
     std::nth_element(v.begin(), v.begin() + long(k), v.end());
     return v[k];
+}
+
+float errorMapScale(const Image& map, ErrorMapKind k) {
+    if (!errorMapIsSigned(k)) return percentile(map, 0.99);
+    Image magnitude = map;
+    for (float& v : magnitude.data) v = std::fabs(v);
+    return percentile(magnitude, 0.99);
+}
+
+Image errorMapColour(const Image& map, ErrorMapKind k, float scale) {
+    const float s = std::isfinite(scale) ? std::max(scale, 1e-12f) : 1e-12f;
+    return errorMapIsSigned(k) ? signedFalseColor(map, s) : falseColor(map, 0.f, s);
 }
 
 Image finiteMap(const Image& map, uint64_t& replaced) {

@@ -207,15 +207,16 @@ nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
 
 std::string evaluationTable(const Scene& scene, const Evaluation& e) {
     std::ostringstream out;
-    char line[320];
+    char line[420];
     std::snprintf(line, sizeof line, "light at (%.3f, %.3f, %.3f), reference %d spp, reference noise %s\n", e.lightPosition.x,
                   e.lightPosition.y, e.lightPosition.z, e.referenceSpp,
                   e.referenceNoiseKnown ? "known (per-pixel variance of the mean)" : "unknown (no variance images)");
     out << line;
     // Each error comes with the reference's noise floor (what the reference's noise alone gives) and
     // the corrected figure (the error against the noise-free truth); see core/eval/error_metrics.h.
-    std::snprintf(line, sizeof line, "%-9s %-14s %8s %10s %11s %10s %10s %11s %10s %10s %10s %10s\n", "term", "object",
-                  "pixels", "RMSE", "noise floor", "corrected", "rel.RMSE", "noise floor", "corrected", "MAE", "max", "mean ref");
+    std::snprintf(line, sizeof line, "%-9s %-14s %8s %10s %11s %10s %10s %11s %10s %10s %10s %10s %10s %10s %10s\n", "term",
+                  "object", "pixels", "RMSE", "noise floor", "corrected", "rel.RMSE", "noise floor", "corrected", "bias",
+                  "relMSE", "SMAPE", "MAE", "max", "mean ref");
     out << line;
     for (int t = 0; t < kTermCount; ++t) {
         const TermErrors& te = e.terms[t];
@@ -225,11 +226,12 @@ std::string evaluationTable(const Scene& scene, const Evaluation& e) {
             continue;
         }
         auto row = [&](const std::string& name, const ErrorStats& s) {
-            std::snprintf(line, sizeof line, "%-9s %-14s %8llu %10s %11s %10s %10s %11s %10s %10s %10s %10s\n",
+            std::snprintf(line, sizeof line, "%-9s %-14s %8llu %10s %11s %10s %10s %11s %10s %10s %10s %10s %10s %10s %10s\n",
                           termName(Term(t)), name.substr(0, 14).c_str(), (unsigned long long)s.pixels, num(s.rmse).c_str(),
                           noiseFigureText(s.rmseNoiseFloor).c_str(), noiseFigureText(s.rmseCorrected).c_str(),
                           num(s.relativeRmse).c_str(), noiseFigureText(s.relativeRmseNoiseFloor).c_str(),
-                          noiseFigureText(s.relativeRmseCorrected).c_str(), num(s.mae).c_str(), num(s.maxError).c_str(),
+                          noiseFigureText(s.relativeRmseCorrected).c_str(), num(s.signedRelativeMean).c_str(),
+                          num(s.relMse).c_str(), num(s.smape).c_str(), num(s.mae).c_str(), num(s.maxError).c_str(),
                           num(s.meanReference).c_str());
             out << line;
         };
@@ -238,7 +240,8 @@ std::string evaluationTable(const Scene& scene, const Evaluation& e) {
         row("ALL OBJECTS", te.overall);
     }
     out << "noise floor: the error the reference's own Monte Carlo noise gives; corrected: the error with that noise "
-           "subtracted (sqrt(max(0, mean(d^2 - Var(ref))))), an estimate against the noise-free truth\n";
+           "subtracted (sqrt(max(0, mean(d^2 - Var(ref))))), an estimate against the noise-free truth; bias: mean "
+           "d / (|ref| + 0.01), signed; relMSE: mean d^2 / (ref^2 + 0.01); SMAPE: mean |d| / (|pred| + |ref| + 0.01)\n";
     const Prediction& p = e.prediction;
     if (!p.objectsWithoutNetwork.empty())
         out << "objects without a network (shown black): " << p.objectsWithoutNetwork.size() << " objects, "
@@ -279,10 +282,11 @@ nlohmann::json writeEvaluationImages(const std::string& dir, const Evaluation& e
             uint64_t replaced = 0;
             writeImage(base + ".exr", finiteMap(map, replaced), ImageFormat::EXR);
             nonFinite += replaced;
-            // [0, p99]: a few edge pixels (box filter vs pixel centre) must not wash out the scale.
-            const float hi = percentile(map, 0.99);
-            writeImage(base + ".png", falseColor(map, 0.f, hi), ImageFormat::PNG);
-            ranges[std::string(errorMapName(k)) + "_" + term] = {0.0, hi};
+            // [0, p99]: a few edge pixels (box filter vs pixel centre) must not wash out the scale;
+            // a signed map over ±p99 of |value|, centred at 0.
+            const float hi = errorMapScale(map, k);
+            writeImage(base + ".png", errorMapColour(map, k, hi), ImageFormat::PNG);
+            ranges[std::string(errorMapName(k)) + "_" + term] = {errorMapIsSigned(k) ? -double(hi) : 0.0, double(hi)};
             files.push_back(base + ".exr");
             files.push_back(base + ".png");
         }

@@ -29,7 +29,8 @@ void writeErrorStats(ByteWriter& out, const ErrorStats& s) {
     out.u64(s.pixels);
     out.u64(s.nonFinite);
     for (double v : {s.rmse, s.relativeRmse, s.mae, s.maxError, s.meanReference, s.rmseNoiseFloor, s.rmseCorrected,
-                     s.relativeRmseNoiseFloor, s.relativeRmseCorrected})
+                     s.relativeRmseNoiseFloor, s.relativeRmseCorrected, s.signedRelativeMean, s.relMse,
+                     s.relMseNoiseFloor, s.relMseCorrected, s.smape})
         out.f64(v);
     out.u64(s.noiseKnown);
 }
@@ -39,7 +40,8 @@ ErrorStats readErrorStats(ByteReader& in) {
     s.pixels = in.u64();
     s.nonFinite = in.u64();
     for (double* v : {&s.rmse, &s.relativeRmse, &s.mae, &s.maxError, &s.meanReference, &s.rmseNoiseFloor, &s.rmseCorrected,
-                      &s.relativeRmseNoiseFloor, &s.relativeRmseCorrected})
+                      &s.relativeRmseNoiseFloor, &s.relativeRmseCorrected, &s.signedRelativeMean, &s.relMse,
+                      &s.relMseNoiseFloor, &s.relMseCorrected, &s.smape})
         *v = in.f64();
     s.noiseKnown = in.u64() != 0;
     return s;

@@ -87,6 +87,32 @@ Vec3 viridis(float t) {
     return c;
 }
 
+Vec3 coolWarm(float t) {
+    // Moreland (2009), "Diverging Color Maps for Scientific Visualization": the cool-warm map's ends
+    // and centre in sRGB, interpolated in linear RGB through the centre. Both halves have the same
+    // lightness profile, so a bias of +x and −x stand out equally.
+    static const float cool[3] = {59 / 255.f, 76 / 255.f, 192 / 255.f}, mid[3] = {221 / 255.f, 221 / 255.f, 221 / 255.f},
+                       warm[3] = {180 / 255.f, 4 / 255.f, 38 / 255.f};
+    t = std::clamp(std::isfinite(t) ? t : 0.f, -1.f, 1.f);
+    const float* end = t < 0 ? cool : warm;
+    const float a = std::fabs(t);
+    Vec3 c;
+    for (int ch = 0; ch < 3; ++ch) c[ch] = (1 - a) * srgbToLinear(mid[ch]) + a * srgbToLinear(end[ch]);
+    return c;
+}
+
+Image signedFalseColor(const Image& scalar, float range) {
+    if (!std::isfinite(range) || !(range > 0))
+        throw std::invalid_argument("signedFalseColor: invalid range " + std::to_string(range) + " (need finite > 0)");
+    Image out(scalar.width, scalar.height);
+    for (int y = 0; y < scalar.height; ++y)
+        for (int x = 0; x < scalar.width; ++x) {
+            const float v = scalar.at(x, y).x;
+            out.set(x, y, std::isfinite(v) ? coolWarm(v / range) : Vec3(1.f, 0.f, 1.f));
+        }
+    return out;
+}
+
 Image falseColor(const Image& scalar, float lo, float hi) {
     if (!std::isfinite(lo) || !std::isfinite(hi) || hi < lo)
         throw std::invalid_argument("falseColor: invalid range [" + std::to_string(lo) + ", " +

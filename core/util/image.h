@@ -63,6 +63,14 @@ Image falseColor(const Image& scalar, float lo, float hi);
 /// The viridis colour (linear RGB) for t in [0, 1] (clamped); the map behind falseColor().
 Vec3 viridis(float t);
 
+/// False colour for a signed scalar (first channel) on [−range, range]: Moreland's cool-warm
+/// diverging map (blue below zero, near-white at zero, red above; values beyond ±range at the ends),
+/// linear RGB, magenta for non-finite inputs as falseColor(). Throws std::invalid_argument unless
+/// range is finite and > 0.
+Image signedFalseColor(const Image& scalar, float range);
+/// The cool-warm colour (linear RGB) for t in [−1, 1] (clamped); the map behind signedFalseColor().
+Vec3 coolWarm(float t);
+
 /// The exact sRGB transfer functions (IEC 61966-2-1 piecewise curves), for values in [0, 1].
 float srgbToLinear(float c);
 float linearToSrgb(float c);
