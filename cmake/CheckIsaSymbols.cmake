@@ -13,23 +13,26 @@ set(bad "")
 foreach(isa avx2 avx512)
   set(found 0)
   foreach(line IN LISTS lines)
-    if(NOT line MATCHES ":mlp_isa_${isa}\\.cpp\\.o:[0-9a-f]* ([A-Za-z]) (.*)$")
+    # GNU nm prints "lib.a:obj.o:ADDR T name", llvm-nm "lib.a:obj.o: ADDR T name".
+    if(NOT line MATCHES ":mlp_isa_${isa}\\.cpp\\.o: ?[0-9a-f]* (.) (.*)$")
       continue()
     endif()
     set(type "${CMAKE_MATCH_1}")
     set(name "${CMAKE_MATCH_2}")
-    # Local symbols (t, d, b, r, n, ...) cannot be shared; 'u' (unique global) and capitals can.
-    if(type MATCHES "^[a-tv-z]$")
+    # Local symbols (t, d, b, r, s, g, a, n) and debugging entries cannot be shared; everything else
+    # can: capitals, 'u' (unique global), 'i' (ifunc), 'v'/'w' and unknown types ('?').
+    if(type MATCHES "^[abdgnrstN-]$")
       continue()
     endif()
-    if(name MATCHES "rrf_eigen_${isa}|7mlp_isa${isa}|7mlp_isa[0-9]+${isa}")
+    if(name MATCHES "rrf_eigen_${isa}|7mlp_isa[0-9]+${isa}")
       if(name MATCHES "^_ZN3rrf7mlp_isa[0-9]+${isa}(7forward|8backward)")
         math(EXPR found "${found} + 1")
       endif()
       continue()
     endif()
-    # The personality routine's reference is data (a pointer to libstdc++'s), not code.
-    if(name STREQUAL "DW.ref.__gxx_personality_v0")
+    # The personality routine's reference is data (a pointer to libstdc++'s), not code; so are
+    # type-info objects and their names.
+    if(name MATCHES "^DW\\.ref\\.__g(xx|cc)_personality_v0$" OR name MATCHES "^_ZT[IS]")
       continue()
     endif()
     list(APPEND bad "mlp_isa_${isa}.cpp.o: ${type} ${name}")

@@ -213,7 +213,7 @@ TEST(NoiseFloor, CorrectedRelMseRecoversTheErrorOfSyntheticNoise) {
     // As above with the reference's relative sd σ = 0.02 (a converged reference) and a 3 % error e:
     // the noise adds about half the squared error to the raw figure; the corrected one finds the
     // truth's. Its weight 1 / (r² + ε) uses the noisy reference r = t(1 + σz), which correlates with
-    // d = t(e − σz): to second order E[(d² − v) w] ≈ (e² + 4eσ²) / t², a bias of 4σ²/e ≈ 5 % here,
+    // d = t(e − σz): to second order (ε ≪ t²) E[(d² − v) w] ≈ e² + 4eσ², a bias of 4σ²/e ≈ 5 % here,
     // which is why it needs a reference whose relative noise is well under the error.
     const int w = 64, h = 64;
     Image truth(w, h), ref(w, h), var(w, h), pred(w, h);

@@ -13,6 +13,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/nn/mlp_kernel.h"
 #include "app/gui/script.h"
 #include "app/gui/user_config.h"
 #include "app/gui/user_workspace.h"
@@ -94,6 +95,8 @@ int main(int argc, char** argv) {
     // so say so (and where it looked) before opening a window.
     std::string dataDir;
     try {
+        // The MLP kernel now, so an RRF_MLP_KERNEL this CPU cannot run stops here, not in a job.
+        rrf::mlpKernel();
         dataDir = rrf::dataDir().string();
         if (args.project.empty()) {
             // The bundled project is read-only data: work happens in the user's workspace copy.

@@ -273,7 +273,10 @@ bool Script::execute(Workbench& wb, const json& s) {
             st.view.term = *parseTerm(t);
         }
         if (r.has("metric")) {
-            const std::string m = r.choiceOr("metric", "", {"absolute", "relative", "squared"});
+            static_assert(std::size(kErrorMapKinds) == 6, "every error map kind is a script choice");
+            const std::string m = r.choiceOr("metric", "", {errorMapName(kErrorMapKinds[0]), errorMapName(kErrorMapKinds[1]),
+                                                            errorMapName(kErrorMapKinds[2]), errorMapName(kErrorMapKinds[3]),
+                                                            errorMapName(kErrorMapKinds[4]), errorMapName(kErrorMapKinds[5])});
             st.view.metric = *parseErrorMapKind(m);
         }
         st.view.exposure = r.floatOr("exposure", st.view.exposure);

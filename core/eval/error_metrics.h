@@ -26,8 +26,8 @@
 ///                    (an unbiased estimate of the squared error against the truth, clamped at 0)
 ///    over the same pixels, and for relMSE  noise floor mean v / (ref² + 0.01), corrected
 ///    max(0, mean (d² − v) / (ref² + 0.01)) (a mean of squares, no root, as tev reports it; its
-///    weight uses the noisy reference too, which correlates with d: about 4σ²/e too high for a
-///    relative error e and relative noise σ). The signed mean is not corrected: it reads about σ²
+///    weight uses the noisy reference too, which correlates with d: off by about 4σ²/e relative,
+///    for a relative error e of either sign and relative noise σ, where ε ≪ ref²). The signed mean is not corrected: it reads about σ²
 ///    high (E[1/r] = (1 + σ²)/t), negligible for a converged reference. SMAPE has no correction
 ///    (it is not a mean of squares) and reads high by the reference's noise. The absolute figure is unbiased. The relative one is so to first order in
 ///    the reference's relative noise σ/(|ref| + 0.01): its weight uses the noisy reference, which
