@@ -180,24 +180,34 @@ TEST(NoiseFloor, UnknownWithoutVarianceNeverZero) {
     EXPECT_EQ(bad.nonFinite, 1u);
 }
 
-TEST(NoiseFloor, CorrectedRecoversTheErrorOfSyntheticNoise) {
-    // 4096 pixels of truth t ∈ [0.2, 2]; the reference is t plus Gaussian noise of known variance
-    // (relative sd 0.2, as a 64-spp render), the prediction t·1.03. The corrected RMSE must find the
-    // 3 % error that the raw RMSE buries under the noise.
+/// 64×64 pixels of truth t ∈ [0.2, 2]; the reference is t plus Gaussian noise of relative sd
+/// `relativeSd` with its variance known, the prediction t·1.03 (a 3 % error).
+struct NoisyReference {
+    Image truth, ref, var, pred;
+};
+NoisyReference noisyReference(double relativeSd, uint64_t seed) {
     const int w = 64, h = 64;
-    Image truth(w, h), ref(w, h), var(w, h), pred(w, h);
-    Rng rng(7, 0);
-    for (size_t k = 0; k < truth.data.size(); ++k) {
+    NoisyReference n{Image(w, h), Image(w, h), Image(w, h), Image(w, h)};
+    Rng rng(seed, 0);
+    for (size_t k = 0; k < n.truth.data.size(); ++k) {
         const double t = 0.2 + 1.8 * rng.uniform();
-        const double sd = 0.2 * t;
+        const double sd = relativeSd * t;
         // Box–Muller.
         const double u1 = std::max(1e-12, double(rng.uniform())), u2 = rng.uniform();
         const double z = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
-        truth.data[k] = float(t);
-        ref.data[k] = float(t + sd * z);
-        var.data[k] = float(sd * sd);
-        pred.data[k] = float(1.03 * t);
+        n.truth.data[k] = float(t);
+        n.ref.data[k] = float(t + sd * z);
+        n.var.data[k] = float(sd * sd);
+        n.pred.data[k] = float(1.03 * t);
     }
+    return n;
+}
+
+TEST(NoiseFloor, CorrectedRecoversTheErrorOfSyntheticNoise) {
+    // Relative sd 0.2, as a 64-spp render: the corrected RMSE must find the 3 % error that the raw
+    // RMSE buries under the noise.
+    const NoisyReference n = noisyReference(0.2, 7);
+    const Image &truth = n.truth, &ref = n.ref, &var = n.var, &pred = n.pred;
     const ErrorStats s = errorStatsWithNoise(pred, ref, var);
     const ErrorStats exact = errorStats(pred, truth);
     std::vector<uint32_t> all(truth.pixelCount());
@@ -210,24 +220,13 @@ TEST(NoiseFloor, CorrectedRecoversTheErrorOfSyntheticNoise) {
 }
 
 TEST(NoiseFloor, CorrectedRelMseRecoversTheErrorOfSyntheticNoise) {
-    // As above with the reference's relative sd σ = 0.02 (a converged reference) and a 3 % error e:
+    // The reference's relative sd σ = 0.02 (a converged reference) and a 3 % error e:
     // the noise adds about half the squared error to the raw figure; the corrected one finds the
     // truth's. Its weight 1 / (r² + ε) uses the noisy reference r = t(1 + σz), which correlates with
     // d = t(e − σz): to second order (ε ≪ t²) E[(d² − v) w] ≈ e² + 4eσ², a bias of 4σ²/e ≈ 5 % here,
     // which is why it needs a reference whose relative noise is well under the error.
-    const int w = 64, h = 64;
-    Image truth(w, h), ref(w, h), var(w, h), pred(w, h);
-    Rng rng(11, 0);
-    for (size_t k = 0; k < truth.data.size(); ++k) {
-        const double t = 0.2 + 1.8 * rng.uniform();
-        const double sd = 0.02 * t;
-        const double u1 = std::max(1e-12, double(rng.uniform())), u2 = rng.uniform();
-        const double z = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
-        truth.data[k] = float(t);
-        ref.data[k] = float(t + sd * z);
-        var.data[k] = float(sd * sd);
-        pred.data[k] = float(1.03 * t);
-    }
+    const NoisyReference n = noisyReference(0.02, 11);
+    const Image &truth = n.truth, &ref = n.ref, &var = n.var, &pred = n.pred;
     const ErrorStats s = errorStatsWithNoise(pred, ref, var);
     const ErrorStats exact = errorStats(pred, truth);
     EXPECT_GT(s.relMse, 1.3 * exact.relMse) << "the noise shows in the raw figure";
