@@ -141,6 +141,9 @@ TEST(ImageDecodeLimits, InputsReachingStbBugsAreRefusedAndValidImagesRead) {
         {"regressions/image/hdr-without-pixels.hdr", "image has no pixels ("},
         {"regressions/image/bmp-of-width-0.bmp", "image has no pixels (0x3)"},
         {"regressions/image/png-empty-first-idat.png", "PNG image data begins with an empty IDAT chunk"},
+        // A fuzz input whose second IDAT claims 1.3 GB: stb reallocated 2 GiB before reading it.
+        {"regressions/image/png-idat-claiming-1.3-gb-in-351-bytes.png",
+         "PNG IDAT chunk at byte 80 declares 1315333667 bytes, but only 263 follow"},
         // stb takes FF fill bytes before SOI for a JPEG too, so the Huffman check must.
         {"regressions/image/jpeg-fill-byte-before-soi-huffman-overflow.jpg", "JPEG Huffman table holds 568 codes"},
         {"regressions/image/tga-declaring-28m-pixels-in-45-bytes.tga", "TGA declares 656 x 42793 pixels, more than its 45 bytes"},

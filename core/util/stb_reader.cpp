@@ -177,16 +177,23 @@ std::string declaredSizeProblem(const std::string& bytes, long width, long heigh
            std::to_string(long(kPixelsPerByte[f])) + " per byte): a truncated or corrupt file";
 }
 
-std::string pngEmptyDataProblem(const std::string& bytes) {
+std::string pngChunkProblem(const std::string& bytes) {
     // Chunks as stb reads them: length, type, data, CRC, up to IEND.
     StbCursor c{bytes, 8};
+    bool sawData = false;
     while (!c.atEnd()) {
         const uint32_t length = uint32_t(c.peek(0)) << 24 | c.peek(1) << 16 | c.peek(2) << 8 | c.peek(3);
         const std::string type{char(c.peek(4)), char(c.peek(5)), char(c.peek(6)), char(c.peek(7))};
         if (type == "IEND") break;
         if (type == "IDAT") {
-            if (length > 0) return "";
-            return "PNG image data begins with an empty IDAT chunk, which this build's stb_image (2.27) cannot read";
+            if (length == 0 && !sawData)
+                return "PNG image data begins with an empty IDAT chunk, which this build's stb_image (2.27) cannot read";
+            // stb grows its buffer to the chunk's declared length before it reads the chunk.
+            const size_t left = bytes.size() - std::min(bytes.size(), c.pos + 8);
+            if (size_t(length) > left)
+                return "PNG IDAT chunk at byte " + std::to_string(c.pos) + " declares " + std::to_string(length) +
+                       " bytes, but only " + std::to_string(left) + " follow (a truncated or corrupt file)";
+            sawData = true;
         }
         c.pos += 12 + size_t(length);
     }
@@ -196,7 +203,7 @@ std::string pngEmptyDataProblem(const std::string& bytes) {
 std::string stbInputProblem(const std::string& bytes) {
     switch (stbFormatOf(bytes)) {
         case StbFormat::Jpeg: return jpegHuffmanProblem(bytes);
-        case StbFormat::Png: return pngEmptyDataProblem(bytes);
+        case StbFormat::Png: return pngChunkProblem(bytes);
         case StbFormat::Hdr: return hdrRunLengthProblem(bytes);
         default: return "";
     }
