@@ -21,7 +21,7 @@
 
 #include "bench/bench_args.h"
 #include "core/eval/evaluation.h"
-#include "core/eval/experiment.h"
+#include "core/pipeline/experiment.h"
 #include "core/nn/network_settings.h"
 #include "core/predict/predictor.h"
 #include "core/project/project.h"

@@ -30,7 +30,7 @@
 
 #include "bench/bench_args.h"
 #include "core/eval/reference_store.h"
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 #include "core/project/project.h"
 
 using namespace rrf;

@@ -1,7 +1,7 @@
 # Layering check for core/: every stage folder may include only itself and the stages below it.
 # Run as a CTest test (core_layering): cmake -DRRF_ROOT=<source dir> -P cmake/CheckLayers.cmake
 #
-#   util < scene < render < data < nn < predict < eval < project
+#   util < scene < render < data < nn < predict < eval < project < pipeline
 #
 # and nothing in core/ may include app/, panels/, tests/ or GL/GLFW/ImGui headers; every quoted
 # include names its path from the source root ("core/<stage>/…"; <…> system and library includes are
@@ -11,7 +11,7 @@ if(NOT RRF_ROOT)
   message(FATAL_ERROR "CheckLayers.cmake: pass -DRRF_ROOT=<source dir>")
 endif()
 
-set(stages util scene render data nn predict eval project)
+set(stages util scene render data nn predict eval project pipeline)
 file(GLOB_RECURSE files RELATIVE ${RRF_ROOT} ${RRF_ROOT}/core/*.h ${RRF_ROOT}/core/*.cpp)
 set(problems "")
 foreach(f ${files})
@@ -55,3 +55,21 @@ if(problems)
 endif()
 list(LENGTH files n)
 message(STATUS "core/ layering: ${n} files, every include goes to the same or a lower stage")
+
+# Only core/pipeline chains stages (docs/design.md §2): outside core/nn, which defines it, and
+# core/pipeline, no program or library file calls trainNetworks (tests may).
+file(GLOB_RECURSE callers RELATIVE ${RRF_ROOT} ${RRF_ROOT}/core/*.cpp ${RRF_ROOT}/core/*.h ${RRF_ROOT}/app/*.cpp
+     ${RRF_ROOT}/app/*.h ${RRF_ROOT}/panels/*.cpp ${RRF_ROOT}/panels/*.h ${RRF_ROOT}/bench/*.cpp)
+set(chained "")
+foreach(f ${callers})
+  if(f MATCHES "^core/(nn|pipeline)/")
+    continue()
+  endif()
+  file(STRINGS ${RRF_ROOT}/${f} calls REGEX "trainNetworks[ \t]*\\(")
+  if(calls)
+    string(APPEND chained "  ${f}: calls trainNetworks; train through core/pipeline/train_stage.h\n")
+  endif()
+endforeach()
+if(chained)
+  message(FATAL_ERROR "stages chained outside core/pipeline:\n${chained}")
+endif()

@@ -1,4 +1,4 @@
-// Cost panel: what accuracy costs in time, comparably. Each sweep of this session (core/eval/sweep.h,
+// Cost panel: what accuracy costs in time, comparably. Each sweep of this session (core/pipeline/sweep.h,
 // run as a job) measures every point against one reference at one resolution, so its series compare:
 //   - the path tracer: error against render time (one circle per spp, labelled with its spp);
 //   - the models: error against the one-off cost (data + training; filled squares, connected) and
@@ -17,7 +17,7 @@
 
 #include <imgui.h>
 
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 #include "panels/panels.h"
 #include "panels/plot.h"
 

@@ -133,7 +133,7 @@ struct ObjectsView {
 };
 
 /// One point of the Cost panel. All points of one sweep are measured against one reference at one
-/// resolution (core/eval/sweep.h), so they compare; the error is comparableError() (the relative
+/// resolution (core/pipeline/sweep.h), so they compare; the error is comparableError() (the relative
 /// RMSE of the global term with the reference's noise subtracted; raw when that noise is unknown).
 struct CostPoint {
     static constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
@@ -174,7 +174,7 @@ struct CostInfo {
 };
 
 struct CostView {
-    int what = 0;                ///< index into kSweepKinds (core/eval/sweep.h)
+    int what = 0;                ///< index into kSweepKinds (core/pipeline/sweep.h)
     /// The project's runs are each evaluated against their own ground truth, so they do not compare
     /// with the sweeps' points: shown only on request.
     bool showRuns = false;

@@ -1,5 +1,5 @@
 // Preset choices (Sampling, Network) and the one-click pipeline bar, with the estimates of
-// core/project/time_estimate.h and what they were computed from.
+// core/pipeline/time_estimate.h and what they were computed from.
 #include "panels/pipeline_controls.h"
 
 #include <algorithm>

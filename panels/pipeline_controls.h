@@ -2,11 +2,11 @@
 /// Presets and the one-click pipeline in the workbench: the preset choices of the Sampling and
 /// Network panels (each with its estimated time and the estimate's basis), and the pipeline bar
 /// (preset, Run / Stop, one progress display: overall fraction, current stage, ETA). The presets
-/// and estimates are core's (core/project/presets.h, core/project/time_estimate.h); these functions
+/// and estimates are core's (core/pipeline/presets.h, core/pipeline/time_estimate.h); these functions
 /// only choose and show them, and ask the application to run the pipeline with a Request.
 
-#include "core/project/presets.h"
-#include "core/project/time_estimate.h"
+#include "core/pipeline/presets.h"
+#include "core/pipeline/time_estimate.h"
 #include "panels/workbench_state.h"
 
 namespace rrf::panels {

@@ -7,7 +7,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "core/project/run_summary.h"
+#include "core/pipeline/run_summary.h"
 #include "panels/panels.h"
 #include "panels/status_text.h"
 

@@ -5,7 +5,7 @@
 
 #include <imgui.h>
 
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 
 namespace rrf::panels {
 

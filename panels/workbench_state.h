@@ -50,7 +50,7 @@ enum class Command {
     ExportObjectsCsv, ///< path: the Objects table as CSV (empty path: ask)
     RunSweep,         ///< path: what to sweep ("spp", "grid", "dirs", "hidden", "trainer")
     CancelSweep,
-    RunPipeline,      ///< path: a preset name (core/project/presets.h): render, generate, train, evaluate
+    RunPipeline,      ///< path: a preset name (core/pipeline/presets.h): render, generate, train, evaluate
     CancelPipeline,   ///< stop the pipeline's running stage (within a second) and the stages after it
     SaveRun,          ///< record the current ground truth as a run
     ReopenRun,        ///< index: restore the run's settings and show its images as the ground truth
@@ -181,7 +181,7 @@ struct Notice {
 
 /// The one-click pipeline (render → generate → train → evaluate) as its progress display shows it.
 struct PipelineInfo {
-    std::string preset = "quick";  ///< the preset the next run applies (core/project/presets.h)
+    std::string preset = "quick";  ///< the preset the next run applies (core/pipeline/presets.h)
     bool running = false;
     std::string stage;             ///< "render", "generate", "train", "evaluate" while running
     int stageIndex = 0;            ///< 0..3, the stage's place in the pipeline

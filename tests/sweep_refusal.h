@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 #include "core/util/error.h"
 
 namespace rrf::test {

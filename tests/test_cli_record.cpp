@@ -1,5 +1,5 @@
 // `rrf render|train|evaluate --record` through the real executable: the run lands in the project's
-// "runs" section with the fields the workbench records (core/project/run_recording.h), its files
+// "runs" section with the fields the workbench records (core/pipeline/run_recording.h), its files
 // under <project dir>/runs/<id>/, and the project loads back with every artifact the run names
 // present — what the workbench needs to list, re-open and compare it.
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #include "core/project/project.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 
 #include "tests/cli_runner.h"
 

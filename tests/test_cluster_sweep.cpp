@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/eval/sweep.h"
-#include "core/eval/sweep_parts.h"
+#include "core/pipeline/sweep.h"
+#include "core/pipeline/sweep_parts.h"
 #include "core/predict/footprint_mask.h"
 #include "core/predict/gbuffer.h"
 #include "core/render/render_rows.h"

@@ -1,4 +1,4 @@
-// What accuracy costs (core/eval/break_even.h, core/eval/sweep.h): the break-even read off a path
+// What accuracy costs (core/eval/break_even.h, core/pipeline/sweep.h): the break-even read off a path
 // tracer series with a known closed form, the error a comparison uses, and the sweep's reports with
 // the cost columns; a small real sweep measures every point over one footprint mask against one
 // reference and renders the path tracer's series for a model sweep.
@@ -9,7 +9,7 @@
 #include <string>
 
 #include "core/eval/break_even.h"
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 #include "core/predict/footprint_mask.h"
 #include "core/predict/gbuffer.h"
 #include "core/scene/accel.h"

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/eval/experiment.h"
+#include "core/pipeline/experiment.h"
 #include "core/eval/held_out.h"
 #include "core/project/project.h"
 

@@ -1,11 +1,11 @@
-// Sweeps over the networks' input encoding (core/eval/sweep.h kind "encoding"): names are checked,
+// Sweeps over the networks' input encoding (core/pipeline/sweep.h kind "encoding"): names are checked,
 // and a trainable encoding under Levenberg–Marquardt refused, before anything renders; each row
 // reports its parameters (encoding tables included) and model bytes.
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 #include "core/nn/encoding_presets.h"
 #include "core/util/error.h"
 #include "scene_builders.h"

@@ -7,12 +7,12 @@
 
 #include <gtest/gtest.h>
 
-#include "core/eval/experiment.h"
+#include "core/pipeline/experiment.h"
 #include "core/eval/held_out.h"
 #include "core/project/project.h"
 #include "core/util/rng.h"
 #include "core/util/stopwatch.h"
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 
 namespace test_end_to_end {
 

@@ -6,8 +6,8 @@
 #include <atomic>
 #include <cmath>
 
-#include "core/eval/sweep.h"
-#include "core/eval/sweep_values.h"
+#include "core/pipeline/sweep.h"
+#include "core/pipeline/sweep_values.h"
 #include "core/nn/ensemble.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/model.h"

@@ -1,4 +1,4 @@
-// Sweeps over the settings of partitioned, goal-driven training (core/eval/sweep.h kinds "goal",
+// Sweeps over the settings of partitioned, goal-driven training (core/pipeline/sweep.h kinds "goal",
 // "leaves", "record_spp"): bad values name the setting before anything renders, and each kind changes
 // what it says — more leaves where the budget allows, earlier stops for a looser goal, more paths per
 // record for a larger max_spp.
@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 #include "core/util/error.h"
 #include "scene_builders.h"
 #include "sweep_refusal.h"

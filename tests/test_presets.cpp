@@ -1,4 +1,4 @@
-// The preset table (core/project/presets.h) and the stage time estimates (core/project/time_estimate.h).
+// The preset table (core/pipeline/presets.h) and the stage time estimates (core/pipeline/time_estimate.h).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,10 +9,10 @@
 
 #include "cli_runner.h"
 #include "core/nn/network_settings.h"
-#include "core/project/presets.h"
+#include "core/pipeline/presets.h"
 #include "core/project/project.h"
 #include "project_builders.h"
-#include "core/project/time_estimate.h"
+#include "core/pipeline/time_estimate.h"
 
 namespace test_presets {
 

@@ -1,4 +1,4 @@
-// Sweep values (core/eval/sweep.h): one setting per value, spelled as the project and the CLI spell
+// Sweep values (core/pipeline/sweep.h): one setting per value, spelled as the project and the CLI spell
 // it ("4,4,4" for a grid, "20,10" for hidden sizes); a bad value or kind is a SettingError that
 // names the setting, raised before any rendering; settings with commas stay one CSV field.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/data/data_generator.h"
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 #include "core/util/error.h"
 #include "scene_builders.h"
 

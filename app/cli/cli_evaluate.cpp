@@ -16,7 +16,7 @@
 #include "core/eval/held_out.h"
 #include "core/nn/model_set.h"
 #include "core/project/project.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "core/util/error.h"
 #include "core/util/stopwatch.h"
 #include "core/render/render_outputs.h"

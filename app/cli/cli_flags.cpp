@@ -9,7 +9,7 @@
 #include "core/nn/mlp_kernel.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/network_settings.h"
-#include "core/project/presets.h"
+#include "core/pipeline/presets.h"
 #include "core/project/project.h"
 
 namespace rrf::cli {

@@ -22,7 +22,7 @@
 #include "core/data/sampling_settings.h"
 #include "core/nn/object_training.h"
 #include "core/predict/prediction_settings.h"
-#include "core/project/presets.h"
+#include "core/pipeline/presets.h"
 #include "core/util/vec3.h"
 
 namespace rrf {
@@ -138,7 +138,7 @@ void addNoiseTargetFlags(CLI::App* cmd, double& noise, int& sppCap, const std::s
                          const std::string& capDefault, bool relaxedByError, CLI::Option* fixedSpp = nullptr);
 
 /// Data and network settings of the pipeline and of sweeps: the project's sections (its defaults
-/// where absent), changed by `preset` when given (core/project/presets.h), then the flags.
+/// where absent), changed by `preset` when given (core/pipeline/presets.h), then the flags.
 void experimentSettings(const Project& p, const ExperimentFlags& flags, const PipelinePreset* preset, SamplingSettings& s,
                         ObjectTrainingOptions& t);
 /// The "quick" row of the preset table (`--quick`, the sweeps' sizes).

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/cli/cli_common.h"
+#include "core/pipeline/generate_stage.h"
 #include "app/cli/cli_ranks.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
@@ -58,13 +59,17 @@ int runGenerate(const GenerateArgs& a) {
     }
     std::fflush(stdout);
     const double cpuStart = processCpuSeconds();
-    GeneratedData data = generateOnRanks(gen, ranks, k, n);
+    GenerateRequest request;
+    request.datasetPath = a.out;
+    request.generate = [&](const DataGenerator& g) { return generateOnRanks(g, ranks, k, n); };
+    request.writes = ranks.isRoot();
+    const GenerateOutcome outcome = generateStage(gen, request, {});
+    const GeneratedData& data = outcome.data;
     if (data.cancelled) {
         std::fprintf(stderr, "generate: cancelled, no dataset written (%s untouched)\n", a.out.c_str());
         return 130;
     }
     if (!ranks.isRoot()) return 0;
-    writeDataset(a.out, data.header, data.sceneHash, data.perObject);
     const GeneratorStats& st = data.stats;
     std::printf("%llu records in %.2f s (%.2f s CPU%s): %srecords/s, %spath samples/s, %srays/s\n",
                 (unsigned long long)st.records, data.seconds, processCpuSeconds() - cpuStart,

@@ -171,40 +171,38 @@ Reference renderOnRanks(const Scene& scene, const Vec3& lp, const RenderOptions&
     return joined;
 }
 
-TrainingRun trainOnRanks(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options,
-                         const mpi::Ranks& ranks, const Scene& scene, const ObjectTrainingObserver& observer,
-                         std::atomic<bool>& cancel) {
-    TrainingProgress progress;
-    TrainingRun run;
-    const Stopwatch clock;
-    const double cpuStart = processCpuSeconds();
-    // In an MPI job this rank trains its share of the objects (core/nn/training_split.h).
-    const RankShare share = rankShare(samples, options, ranks, scene);
-    runWithProgress(
-        "train",
-        [&] {
-            if (ranks.size() == 1) run = trainNetworks(samples, options, observer, &progress);
-            else if (!share.options.objects.empty()) run = trainNetworks(samples, share.options, observer, &progress);
-        },
-        [&] { return std::make_pair(progress.fraction(), std::string()); }, [&] { cancel = true; });
-    if (ranks.size() == 1) return run;
+ObjectTrainingOptions RankTraining::mine(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options) {
+    clock_ = Stopwatch();
+    cpuStart_ = processCpuSeconds();
+    RankShare share = rankShare(samples, options, ranks_, scene_);
+    rankOfPosition_ = std::move(share.rankOfPosition);
+    return share.options;
+}
+
+TrainingRun RankTraining::join(TrainingRun run, const ObjectTrainingOptions& options) {
     char summary[160];
     std::snprintf(summary, sizeof summary, "trained %d networks in %.2f s (%.2f s CPU)", run.networks, run.seconds,
-                  processCpuSeconds() - cpuStart);
+                  processCpuSeconds() - cpuStart_);
     mpi::GatheredParts<TrainingRun> gathered =
-        mpi::gatherParts<TrainingRun>(ranks, summary, encodeTrainingPart(run), decodeTrainingPart);
-    if (!ranks.isRoot()) return run;
+        mpi::gatherParts<TrainingRun>(ranks_, summary, encodeTrainingPart(run), decodeTrainingPart);
+    if (!ranks_.isRoot()) return run;
     std::vector<TrainingRun>& decoded = gathered.parts;
     const double slowest = std::max_element(decoded.begin(), decoded.end(), [](const TrainingRun& x, const TrainingRun& y) {
                                return x.seconds < y.seconds;
                            })->seconds;
-    run = joinTrainingParts(std::move(decoded), share.rankOfPosition, networksPerObject(options));
+    run = joinTrainingParts(std::move(decoded), rankOfPosition_, networksPerObject(options));
     // The job's wall time as rank 0 saw it, from the start of training to the joined models.
-    run.seconds = clock.seconds();
+    run.seconds = clock_.seconds();
     std::printf("rank 0 waited %.2f s for the other ranks, then gathered and joined %d parts in %.2f s (slowest rank "
                 "%.2f s, %.2f s in all)\n",
-                gathered.waitedSeconds, ranks.size(), gathered.joinClock.seconds(), slowest, run.seconds);
+                gathered.waitedSeconds, ranks_.size(), gathered.joinClock.seconds(), slowest, run.seconds);
     return run;
+}
+
+TrainingShare* rankTrainingOrNull(std::optional<RankTraining>& storage, const mpi::Ranks& ranks, const Scene& scene) {
+    if (ranks.size() == 1) return nullptr;
+    storage.emplace(ranks, scene);
+    return &*storage;
 }
 
 void obtainRankReferences(const mpi::Ranks& ranks, const std::vector<Vec3>& lights, const ReferenceSource& source) {

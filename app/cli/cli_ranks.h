@@ -6,12 +6,15 @@
 /// collective: all ranks call it, in the same order.
 
 #include <atomic>
+#include <optional>
 #include <vector>
 
 #include "app/mpi/ranks.h"
 #include "app/cli/cli_evaluation.h"
 #include "core/data/data_generator.h"
 #include "core/nn/training_run.h"
+#include "core/pipeline/train_stage.h"
+#include "core/util/stopwatch.h"
 
 namespace rrf::cli {
 
@@ -34,14 +37,29 @@ GeneratedData generateOnAllRanks(const DataGenerator& gen, const mpi::Ranks& ran
 Reference renderOnRanks(const Scene& scene, const Vec3& lp, const RenderOptions& options, const std::string& label,
                         const mpi::Ranks& ranks);
 
-/// Trains `samples` with `options` and a progress line (`observer`'s cancel is set on Ctrl-C, so it
-/// must point to `cancel`): in an MPI job each rank its objects, assigned longest first by record
-/// count (core/nn/training_split.h) and logged, and rank 0 joins the parts into the single-process
-/// run, weights bit for bit (core/nn/training_part.h), its seconds the wall time from the start to
-/// the joined run. Returns the whole run on rank 0, the rank's own part on the others.
-TrainingRun trainOnRanks(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options,
-                         const mpi::Ranks& ranks, const Scene& scene, const ObjectTrainingObserver& observer,
-                         std::atomic<bool>& cancel);
+/// The ranks' share of a training (core/pipeline/train_stage.h): in an MPI job each rank trains its
+/// objects, assigned longest first by record count (core/nn/training_split.h) and logged, and rank 0
+/// joins the parts into the single-process run, weights bit for bit (core/nn/training_part.h), its
+/// seconds the wall time from the start to the joined run. join returns the whole run on rank 0, the
+/// rank's own part on the others; rank 0 alone saves.
+class RankTraining : public TrainingShare {
+public:
+    RankTraining(const mpi::Ranks& ranks, const Scene& scene) : ranks_(ranks), scene_(scene) {}
+    ObjectTrainingOptions mine(const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& options) override;
+    TrainingRun join(TrainingRun run, const ObjectTrainingOptions& options) override;
+    bool saves() const override { return ranks_.isRoot(); }
+
+private:
+    const mpi::Ranks& ranks_;
+    const Scene& scene_;
+    std::vector<int> rankOfPosition_;
+    Stopwatch clock_;
+    double cpuStart_ = 0;
+};
+
+/// The share of a training for this process: a RankTraining in an MPI job of more than one rank,
+/// else none (null: one process trains everything).
+TrainingShare* rankTrainingOrNull(std::optional<RankTraining>& storage, const mpi::Ranks& ranks, const Scene& scene);
 
 /// In an MPI job of more than one rank: this rank renders (or continues) the references of its share
 /// of `lights` into the project's store — light k to rank k mod N (longest first on equal costs),

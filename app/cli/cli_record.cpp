@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "core/project/project.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "core/util/error.h"
 
 namespace rrf::cli {

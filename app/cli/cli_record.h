@@ -1,6 +1,6 @@
 #pragma once
 /// `--record` on rrf render/train/evaluate: the command's work becomes a run of the project, as the
-/// workbench records it (core/project/run_recording.h). Off by default: the CLI rewrites a user's
+/// workbench records it (core/pipeline/run_recording.h). Off by default: the CLI rewrites a user's
 /// project file only when asked.
 
 #include <optional>

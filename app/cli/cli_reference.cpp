@@ -10,7 +10,7 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_evaluation.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "core/eval/held_out.h"

@@ -12,7 +12,7 @@
 #include "core/render/render_outputs.h"
 #include "core/render/renderer.h"
 #include "core/project/project.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "app/cli/cli_record.h"
 
 namespace rrf::cli {

@@ -1,4 +1,4 @@
-// `rrf sweep`: error against wall time while one setting varies (core/eval/sweep.h), written as CSV,
+// `rrf sweep`: error against wall time while one setting varies (core/pipeline/sweep.h), written as CSV,
 // JSON and a table. Under an MPI launcher the ranks share the sweep's tasks and rank 0 writes the
 // files of the single-process run (docs/cluster.md).
 #include <algorithm>
@@ -11,17 +11,17 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_evaluation.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "app/cli/cli_ranks.h"
 #include "app/mpi/gather_parts.h"
 #include "app/mpi/ranks.h"
 #include "core/data/record_layout.h"
-#include "core/eval/sweep.h"
-#include "core/eval/sweep_parts.h"
+#include "core/pipeline/sweep.h"
+#include "core/pipeline/sweep_parts.h"
 #include "core/nn/training_split.h"
-#include "core/project/time_estimate.h"
+#include "core/pipeline/time_estimate.h"
 #include "core/project/project.h"
 #include "core/render/render_outputs.h"
 #include "core/util/byte_stream.h"
@@ -40,7 +40,7 @@ struct SweepArgs : PredictionArgs {
 };
 
 /// The estimated seconds of each task of a checked sweep with `threads` threads, the cost the ranks'
-/// assignment balances (core/project/time_estimate.h, from the settings alone): a path-tracer series
+/// assignment balances (core/pipeline/time_estimate.h, from the settings alone): a path-tracer series
 /// its largest spp × pixels at the reference machine's path rate; a point its training (the low end
 /// of estimateTraining's range, root networks for their max epochs, on the records its data holds at
 /// most: the high end assumes every kd-tree level splits, which the default goal rarely lets happen)

@@ -21,12 +21,13 @@
 #include "core/nn/encoding_presets.h"
 #include "core/nn/network_settings.h"
 #include "core/project/project.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
+#include "core/pipeline/train_stage.h"
+#include "app/cli/cli_stage.h"
 #include "app/cli/cli_record.h"
 #include "app/mpi/ranks.h"
 #include "core/util/stopwatch.h"
 #include "core/nn/training_run.h"
-#include "core/nn/training_samples.h"
 
 namespace rrf::cli {
 
@@ -76,13 +77,12 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     auto threads = limitThreads(a.threads);
 
     const Dataset data(a.data, true, project.scene.contentHash());
-    uint64_t dropped = 0;
-    const std::vector<ObjectSamples> samples = samplesFromDataset(data, &dropped);
-    if (dropped) std::printf("warning: %llu records with NaN/Inf dropped from %s\n", (unsigned long long)dropped, a.data.c_str());
-    const std::string encoding = networkEncoding(o.encoding, data.inputCount(), o.inputs).describe();
+    const int datasetInputs = data.inputCount();
+    const std::string encoding = networkEncoding(o.encoding, datasetInputs, o.inputs).describe();
     if (ranks.isRoot()) {
         std::printf("rrf train: %s on %s (%llu records), hidden %s, %s%s, encoding %s, targets %s, trainer %s, kernel %s\n",
-                a.input.c_str(), a.data.c_str(), (unsigned long long)data.totalRecords(), nlohmann::json(o.hidden).dump().c_str(),
+                a.input.c_str(), a.data.c_str(), (unsigned long long)data.totalRecords(),
+                nlohmann::json(o.hidden).dump().c_str(),
                 activationName(o.activation), o.ensemble > 1 ? (", ensemble of " + std::to_string(o.ensemble)).c_str() : "",
                 encoding.c_str(), targetModeName(o.targets), o.trainer.typeName(),
                 mlpKernelDescription(mlpKernel()).c_str());
@@ -90,16 +90,14 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
         for (const auto& entry : o.perObject) {
             const ObjectNetworkChoice c = o.choiceFor(entry.first);
             std::printf("  object %s: hidden %s, encoding %s\n", entry.first.c_str(), nlohmann::json(c.hidden).dump().c_str(),
-                        networkEncoding(c.encoding, data.inputCount(), c.inputs).describe().c_str());
+                        networkEncoding(c.encoding, datasetInputs, c.inputs).describe().c_str());
         }
     }
     std::fflush(stdout);
 
     std::mutex printMutex;
-    std::atomic<bool> cancel{false};
-    ObjectTrainingObserver observer;
-    observer.cancel = &cancel;
-    observer.onEpoch = [&](int id, const std::string& target, const EpochRecord& r) {
+    StageObserver observer;
+    observer.epoch = [&](int id, const std::string& target, const EpochRecord& r) {
         if (a.logEvery <= 0 || r.epoch % a.logEvery != 0) return;
         std::lock_guard<std::mutex> lock(printMutex);
         std::printf("object %d %-10s %-8s epoch %4d  train %-10s validation %-10s step %-9s %7.2f s\n", id,
@@ -107,17 +105,26 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
                     fmt(r.validationLoss).c_str(), fmt(r.step).c_str(), r.seconds);
         std::fflush(stdout);
     };
-    observer.onMessage = [&](const std::string& m) {
+    observer.message = [&](const std::string& m) {
         std::lock_guard<std::mutex> lock(printMutex);
         std::printf("note: %s\n", m.c_str());
+        std::fflush(stdout);
     };
+    TrainRequest request;
+    request.settings = settings;
+    request.sampling = project.sampling;
+    request.sceneHash = project.scene.contentHash();
+    request.modelsDir = a.out;
+    request.provenance = {a.data, a.input};
+    std::optional<RankTraining> rankTraining;
+    request.share = rankTrainingOrNull(rankTraining, ranks, project.scene);
     const double cpuStart = processCpuSeconds();
-    TrainingRun run = trainOnRanks(samples, o, ranks, project.scene, observer, cancel);
+    TrainOutcome outcome;
+    runStage("train", [&](const StageObserver& obs) { outcome = trainFromDataset(data, request, obs); }, observer);
+    const TrainingRun& run = outcome.run;
     if (!ranks.isRoot()) return run.cancelled ? 130 : 0;
     const std::vector<ObjectModel>& trained = run.models;
     const double seconds = run.seconds;
-
-    saveTrainingRun(a.out, run, settings, project.scene.contentHash(), data.inputLayout(), {a.data, a.input});
 
     // "valid rel" is the figure the error goal and the kd-tree's splits are stated in (noise-corrected
     // validation relative RMSE where the targets' noise is known); "stop" says why each network ended.
@@ -144,9 +151,7 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     std::printf("trained in %.2f s (%.2f s CPU%s)%s; wrote %s/models.json\n", seconds, processCpuSeconds() - cpuStart,
                 ranks.size() > 1 ? " of rank 0" : "", run.cancelled ? " (stopped early by Ctrl-C)" : "", a.out.c_str());
     if (record && run.networks > 0) {
-        TrainRecord r{settings, project.sampling, a.data, a.out, project.scene.contentHash(),
-                      lossCurves(run.curves), run.networks, run.skipped, run.seconds, std::nullopt};
-        setTrainRun(*record, projectDirectory(project), std::move(r));
+        setTrainRun(*record, projectDirectory(project), std::move(outcome.record));
         finishRecording(a.input, *record);
     } else if (record) {
         std::printf("no network was trained; no run recorded\n");

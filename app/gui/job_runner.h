@@ -20,7 +20,7 @@
 
 namespace rrf {
 
-/// Predict: the CPU fallback of the live prediction; Sweep: a cost-of-accuracy series (core/eval/sweep.h).
+/// Predict: the CPU fallback of the live prediction; Sweep: a cost-of-accuracy series (core/pipeline/sweep.h).
 /// Compare: two runs' models predicted (and judged) side by side; it loads its own models and copies
 /// the ground truth, so it conflicts only with another comparison. Overlay: the Views' leaf overlay
 /// (a leaf lookup per pixel of the loaded models), reading shared models only.

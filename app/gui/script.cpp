@@ -10,8 +10,8 @@
 
 #include "app/gui/workbench.h"
 #include "core/nn/network_settings.h"
-#include "core/project/presets.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/presets.h"
+#include "core/pipeline/run_recording.h"
 #include "core/project/scene_edits.h"
 #include "core/util/json_reader.h"
 #include "panels/clip_check.h"

@@ -99,7 +99,7 @@ public:
     bool evaluateRunning() const;
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
     bool exportObjectsCsv(const std::string& path);
-    /// The one-click pipeline: applies `preset` (core/project/presets.h) to the project's data and
+    /// The one-click pipeline: applies `preset` (core/pipeline/presets.h) to the project's data and
     /// network settings, then renders the ground truth (or keeps a finished one), generates the
     /// dataset, trains and evaluates, one job after the other, each the same job its own button
     /// starts. state().pipeline shows one progress display (overall fraction weighted by the stages'
@@ -112,7 +112,7 @@ public:
     /// Stops the running stage's job (its job stops within a second) and the stages after it.
     void cancelPipeline();
     bool pipelineRunning() const { return pipeline_.stage != PipelineStage::Idle; }
-    /// Runs a cost sweep of one of the kinds in kSweepKinds (core/eval/sweep.h) with interactive sizes.
+    /// Runs a cost sweep of one of the kinds in kSweepKinds (core/pipeline/sweep.h) with interactive sizes.
     bool startSweep(const std::string& what);
     bool sweepRunning() const;
 

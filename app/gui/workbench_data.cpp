@@ -5,6 +5,7 @@
 #include <future>
 
 #include "core/data/data_generator.h"
+#include "core/pipeline/generate_stage.h"
 #include "core/data/dataset_file.h"
 #include "core/data/record_layout.h"
 #include "core/data/sampling_settings.h"
@@ -39,21 +40,15 @@ bool Workbench::startGenerate() {
     const bool started = generateJob_.start(name, [scene, settings, out](JobContext& ctx) -> std::optional<GeneratedDataset> {
         ctx.setStatus("preparing");
         const DataGenerator gen(*scene, settings);
-        GeneratorProgress progress;
-        // The generator blocks its caller; an inner thread lets this one report progress.
-        auto result = std::async(std::launch::async, [&] { return gen.run(0, 1, &ctx.cancelFlag(), &progress); });
-        while (result.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready) {
-            ctx.setProgress(progress.fraction());
-            ctx.setStatus(std::to_string(progress.records.load()) + " records");
-        }
-        GeneratedData data = result.get();
-        if (data.cancelled) {
-            ctx.setStatus("cancelled; no file written");
-            return std::nullopt;
-        }
-        std::error_code ec;
-        fs::create_directories(fs::path(out).parent_path(), ec);
-        writeDataset(out, data.header, data.sceneHash, data.perObject);
+        StageObserver observer;
+        observer.cancel = &ctx.cancelFlag();
+        observer.progress = [&](double f) { ctx.setProgress(f); };
+        observer.status = [&](const std::string& s) { ctx.setStatus(s); };
+        GenerateRequest request;
+        request.datasetPath = out;
+        GenerateOutcome generated = generateStage(gen, request, observer);
+        if (!generated.written) return std::nullopt;  // cancelled: the stage wrote nothing
+        GeneratedData& data = generated.data;
         GeneratedDataset written;
         written.path = out;
         written.stats = std::move(data.stats);
@@ -62,8 +57,6 @@ bool Workbench::startGenerate() {
         written.inputCount = gen.layout().inputCount();
         written.settings = settings;
         written.sceneHash = scene->contentHash();
-        ctx.setProgress(1.0);
-        ctx.setStatus("written");
         return written;
     });
     if (!started) return false;

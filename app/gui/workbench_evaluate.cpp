@@ -8,7 +8,7 @@
 #include "core/util/atomic_file.h"
 #include "core/util/stopwatch.h"
 #include "core/eval/evaluation.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "panels/panels.h"
 
 namespace rrf {

@@ -9,7 +9,7 @@
 #include "core/eval/evaluation.h"
 #include "core/nn/model_set.h"
 #include "core/predict/predictor.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "panels/panels.h"
 #include "panels/view_model.h"
 

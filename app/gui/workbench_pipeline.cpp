@@ -1,7 +1,7 @@
 // Workbench: the one-click pipeline. It chains the jobs the panels' own buttons start (render,
 // generate, train, evaluate: workbench_render/data/train/evaluate.cpp), advancing when a stage's job
 // delivered its result, and publishes one progress display in state().pipeline:
-//  - overall fraction: the stages weighted by their estimates (core/project/time_estimate.h; the
+//  - overall fraction: the stages weighted by their estimates (core/pipeline/time_estimate.h; the
 //    geometric middle of each estimate's range), the current one by its job's progress;
 //  - ETA: the current stage's time left (extrapolated from its progress once it has some) plus the
 //    later stages' estimates scaled by how the finished stages compared with theirs.
@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/project/presets.h"
+#include "core/pipeline/presets.h"
 #include "panels/pipeline_controls.h"
 
 namespace rrf {

@@ -10,7 +10,7 @@
 #include "core/eval/evaluation.h"
 #include "core/predict/glossy_gather.h"
 #include "core/predict/predictor.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "core/util/stopwatch.h"
 #include "panels/panels.h"
 #include "panels/view_model.h"

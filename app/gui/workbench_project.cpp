@@ -6,7 +6,7 @@
 #include "core/util/image_io.h"
 #include "core/nn/network_settings.h"
 #include "panels/project_io.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "core/project/scene_edits.h"
 #include "core/util/json_reader.h"
 

@@ -1,4 +1,4 @@
-// Workbench: the "Run sweep" job of the Cost panel (core/eval/sweep.h) with sizes small enough for an
+// Workbench: the "Run sweep" job of the Cost panel (core/pipeline/sweep.h) with sizes small enough for an
 // interactive session. Every point of a sweep is measured against one reference at one resolution;
 // model sweeps include the path tracer's series (1…256 spp) against that reference, so each model has
 // its break-even. When the job is done the UI thread — the one with the window's GL context — times
@@ -13,9 +13,9 @@
 
 #include "app/gl/glsl_predictor.h"
 #include "core/data/sampling_settings.h"
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 #include "core/nn/network_settings.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "core/util/atomic_file.h"
 #include "core/util/stopwatch.h"
 

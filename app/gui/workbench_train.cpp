@@ -1,5 +1,5 @@
 // Workbench: the training job. It reads the dataset, trains one network per object (and target)
-// with core/nn/training_run on a worker, publishes every network's epoch records under a mutex for
+// through core/pipeline/train_stage on a worker, publishes every network's epoch records under a mutex for
 // the live loss plot, saves the models into <project dir>/runs/<run>/models and records a "train" run.
 #include "app/gui/workbench.h"
 
@@ -10,9 +10,8 @@
 #include "core/data/dataset_file.h"
 #include "core/nn/model_set.h"
 #include "core/nn/network_settings.h"
-#include "core/nn/training_run.h"
-#include "core/nn/training_samples.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
+#include "core/pipeline/train_stage.h"
 #include "core/util/stopwatch.h"
 #include "core/util/text_format.h"
 #include "panels/plot.h"
@@ -39,13 +38,7 @@ struct TrainingOutcome {
     std::string dataset, project, modelsDir, runId;
     NetworkSettings settings;
     uint64_t sceneHash = 0;
-    std::vector<LossCurve> curves;  ///< ordered by (object, target)
-    double seconds = 0;
-    int networks = 0, skipped = 0;
-    bool stopped = false;  ///< the user stopped it: the models are a partial set
-    int plannedNetworks = 0;
-    int leaves = 0;        ///< kd-tree leaves over the trained models
-    int64_t records = 0;   ///< training records read
+    TrainRecord record;  ///< what the run records (core/pipeline/train_stage.h)
     /// The saved models read back on the worker (a complete run only), so that making them the
     /// live prediction does not read weights on the UI thread.
     std::shared_ptr<const ModelSet> models;
@@ -100,19 +93,22 @@ bool Workbench::startTrain(int maxEpochs) {
     const std::string name = std::string("train ") + json(o.hidden).dump() +
                              (o.ensemble > 1 ? " x" + std::to_string(o.ensemble) : std::string()) + " " + o.trainer.typeName();
     auto live = std::make_shared<TrainingLive>();
-    const bool started = trainJob_.start(name, [job, live, names](JobContext& ctx) -> std::optional<TrainingOutcome> {
+    TrainRequest request;
+    request.settings = job.settings;
+    request.sampling = state_.project.sampling;
+    request.sceneHash = job.sceneHash;
+    request.modelsDir = job.modelsDir;
+    request.provenance = {job.dataset, job.project};
+    request.readBack = true;
+    const bool started = trainJob_.start(name, [job, request, live, names](JobContext& ctx) -> std::optional<TrainingOutcome> {
         TrainingOutcome out = job;
-        ctx.setStatus("reading the dataset");
-        const Dataset data(out.dataset, true, out.sceneHash);
-        uint64_t dropped = 0;
-        const std::vector<ObjectSamples> samples = samplesFromDataset(data, &dropped);
-        if (dropped) ctx.post(std::to_string(dropped) + " records with NaN/Inf dropped from the dataset");
-        TrainingProgress progress;
         const Stopwatch clock;
-        ObjectTrainingObserver observer;
+        StageObserver observer;
         observer.cancel = &ctx.cancelFlag();
-        observer.onEpoch = [&](int object, const std::string& target, const EpochRecord& r) {
-            ctx.setProgress(progress.fraction());
+        observer.progress = [&](double f) { ctx.setProgress(f); };
+        observer.status = [&](const std::string& s) { ctx.setStatus(s); };
+        observer.message = [&](const std::string& m) { ctx.post(m); };
+        observer.epoch = [&](int object, const std::string& target, const EpochRecord& r) {
             std::lock_guard<std::mutex> lock(live->mutex);
             auto [it, added] = live->curveIndex.emplace(std::make_pair(object, target), live->curves.size());
             if (added)
@@ -124,26 +120,11 @@ bool Workbench::startTrain(int maxEpochs) {
             live->seconds = clock.seconds();
             ++live->revision;
         };
-        observer.onMessage = [&](const std::string& m) { ctx.post(m); };
-        ctx.setStatus("training");
-        TrainingRun run = trainNetworks(samples, out.settings.options, observer, &progress);
-        if (run.networks > 0) {
-            ctx.setStatus("saving the models");
-            saveTrainingRun(out.modelsDir, run, out.settings, out.sceneHash, data.inputLayout(), {out.dataset, out.project});
-            // Read back as the prediction will load them (the files are what the run records).
-            if (!run.cancelled) out.models = std::make_shared<const ModelSet>(loadModelSet(out.modelsDir, out.sceneHash));
-        }
-        out.curves = lossCurves(run.curves);
-        out.seconds = run.seconds;
-        out.networks = run.networks;
-        out.skipped = run.skipped;
-        out.stopped = run.cancelled;
-        for (const ObjectModel& m : run.models)
-            if (!m.skipped) out.leaves += m.model.leafCount();
-        for (const ObjectSamples& s : samples) out.records += int64_t(s.size());
-        const int epochLimit = std::max(1, out.settings.options.trainer.maxEpochs() * out.settings.options.ensemble);
-        out.plannedNetworks = int(trainingEpochBudget(samples, out.settings.options) / epochLimit + 0.5);
-        ctx.setStatus(run.networks > 0 ? "models saved" : "no network trained");
+        observer.setStatus("reading the dataset");
+        const Dataset data(out.dataset, true, out.sceneHash);
+        TrainOutcome trained = trainFromDataset(data, request, observer);
+        out.record = std::move(trained.record);
+        out.models = std::move(trained.models);
         return out;
     });
     if (!started) return false;
@@ -178,30 +159,28 @@ void Workbench::pollTrain() {
 }
 
 void Workbench::trainingFinished(TrainingOutcome& s) {
-    if (!s.stopped) state_.training.progress = 1.0;
-    state_.training.stopped = s.stopped;
-    state_.training.networks = s.networks;
-    state_.training.plannedNetworks = s.plannedNetworks;
+    TrainRecord& record = s.record;
+    if (!record.stopped) state_.training.progress = 1.0;
+    state_.training.stopped = record.stopped;
+    state_.training.networks = record.networks;
+    state_.training.plannedNetworks = record.plannedNetworks;
     state_.training.partialRun = -1;
-    if (s.networks == 0) {
+    if (record.networks == 0) {
         state_.notify(panels::LogLevel::Error, "Training", "train: no network was trained (see the Log); nothing saved");
         return;
     }
     Run run = beginRun(state_.project.runs, "train");
     run.id = run.name = s.runId;  // the models were saved under runs/<runId>/ when the job started
     auto rel = [&](const std::string& p) { return projectRelative(projectDir(), p); };
-    state_.training.curves = s.curves;
-    TrainRecord record{s.settings, state_.project.sampling, s.dataset, s.modelsDir, s.sceneHash, std::move(s.curves),
-                       s.networks, s.skipped, s.seconds, std::nullopt};
+    state_.training.curves = record.curves;
     if (state_.dataset.path == s.dataset && state_.dataset.seconds > 0) record.generateSeconds = state_.dataset.seconds;
-    record.stopped = s.stopped;
-    record.plannedNetworks = s.plannedNetworks;
-    record.leaves = s.leaves;
-    record.records = s.records;
+    const bool stopped = record.stopped;
+    const int networks = record.networks;
+    const double seconds = record.seconds;
     setTrainRun(run, projectDir(), std::move(record));
     state_.project.runs.push_back(run);
     state_.markDirty();
-    if (s.stopped) {
+    if (stopped) {
         // A partial model set would leave the untrained objects without a prediction: the live view
         // keeps the last complete set; the Training panel offers the partial one.
         state_.training.partialRun = int(state_.project.runs.size()) - 1;
@@ -211,7 +190,7 @@ void Workbench::trainingFinished(TrainingOutcome& s) {
                            " (Training panel: \"Use the partial models\")");
         return;
     }
-    state_.log.info("trained " + std::to_string(s.networks) + " networks in " + std::to_string(int(s.seconds + 0.5)) +
+    state_.log.info("trained " + std::to_string(networks) + " networks in " + std::to_string(int(seconds + 0.5)) +
                     " s; models in " + rel(s.modelsDir) + ", run '" + run.name + "' recorded");
     loadModels(s.modelsDir, std::move(s.models));
     ++trainingsCompleted_;

@@ -2,7 +2,7 @@
 /// The break-even between the path tracer and a learned model (docs/design.md §15): how many samples
 /// per pixel, and how many seconds, the path tracer needs to reach a model's error against the same
 /// reference at the same resolution. Read off the path tracer's own measured series (error against
-/// spp and render time, core/eval/sweep.h) by interpolation in log-log space, where Monte Carlo
+/// spp and render time, core/pipeline/sweep.h) by interpolation in log-log space, where Monte Carlo
 /// error is a straight line (error ∝ spp^−½): between two measured points the power law through them
 /// is exact for such a series. Beyond the measured range the least-squares log-log line of the whole
 /// series is extended, and the result says so.

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "core/project/project_files.h"
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "panels/project_io.h"
 
 namespace rrf::test::test_project_carry {

@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/project/run_recording.h"
-#include "core/project/run_summary.h"
+#include "core/pipeline/run_recording.h"
+#include "core/pipeline/run_summary.h"
 #include "panels/panels.h"
 
 namespace rrf::test::test_runs_compared {

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 #include "panels/panels.h"
 #include "panels/project_io.h"
 #include "panels/status_text.h"

@@ -1,4 +1,4 @@
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,13 +10,14 @@
 
 #include "core/util/error.h"
 #include "core/eval/evaluation.h"
-#include "core/eval/experiment.h"
+#include "core/pipeline/experiment.h"
 #include "core/eval/held_out.h"
-#include "core/eval/sweep_values.h"
+#include "core/pipeline/sweep_values.h"
 #include "core/eval/reference_noise.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/network_settings.h"
 #include "core/nn/training_run.h"
+#include "core/pipeline/train_stage.h"
 
 namespace rrf {
 
@@ -44,9 +45,11 @@ struct Context {
 /// Returns the training run (its curves feed the trainer sweep).
 TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>& samples, const ObjectTrainingOptions& t,
                              double generateSeconds, SweepRow& row) {
-    ObjectTrainingObserver observer;
+    StageObserver observer;
     observer.cancel = c.o.cancel;
-    TrainingRun run = trainNetworks(samples, t, observer);
+    TrainRequest request;
+    request.settings.options = t;
+    TrainingRun run = trainStage(samples, request, observer).run;
     const std::vector<ObjectModel>& trained = run.models;
     row.stageSeconds.push_back({"train", run.seconds});
     const ModelSet models = modelSetFromTrained(trained, c.scene, c.layout);

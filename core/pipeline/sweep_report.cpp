@@ -1,4 +1,4 @@
-// The reports of a sweep (core/eval/sweep.h): CSV, training-curve CSV, JSON and the readable table.
+// The reports of a sweep (core/pipeline/sweep.h): CSV, training-curve CSV, JSON and the readable table.
 // Every model row carries its cost columns (one-off and per-frame seconds) and its break-even against
 // the path tracer's series of the same sweep (core/eval/break_even.h).
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <limits>
 #include <sstream>
 
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 
 namespace rrf {
 

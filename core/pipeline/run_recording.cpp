@@ -1,4 +1,4 @@
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // The bytes a sweep's processes exchange: the reference and the parts (sweep_parts.h).
-#include "core/eval/sweep_parts.h"
+#include "core/pipeline/sweep_parts.h"
 
 #include <stdexcept>
 

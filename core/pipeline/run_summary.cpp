@@ -1,6 +1,6 @@
-#include "core/project/run_summary.h"
+#include "core/pipeline/run_summary.h"
 
-#include "core/project/run_recording.h"
+#include "core/pipeline/run_recording.h"
 
 namespace rrf {
 

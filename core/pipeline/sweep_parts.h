@@ -1,12 +1,12 @@
 #pragma once
 /// The bytes a sweep's processes exchange when its tasks run apart (`mpirun -n N rrf sweep`,
-/// core/eval/sweep.h, docs/cluster.md): the reference rank 0 obtains for every rank, and each rank's
+/// core/pipeline/sweep.h, docs/cluster.md): the reference rank 0 obtains for every rank, and each rank's
 /// SweepPart for rank 0 to join (joinSweepParts). Numbers keep their exact bits
 /// (core/util/byte_stream.h), so a joined sweep writes the files of one process but for its times.
 
 #include <string>
 
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 
 namespace rrf {
 

@@ -1,4 +1,4 @@
-#include "core/project/time_estimate.h"
+#include "core/pipeline/time_estimate.h"
 
 #include <algorithm>
 #include <cmath>

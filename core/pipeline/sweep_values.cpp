@@ -1,10 +1,10 @@
 // The values of a sweep read into settings, and each kind's default series (sweep_values.h).
-#include "core/eval/sweep_values.h"
+#include "core/pipeline/sweep_values.h"
 
 #include <algorithm>
 #include <sstream>
 
-#include "core/eval/sweep.h"
+#include "core/pipeline/sweep.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/network_settings.h"
 #include "core/util/error.h"

@@ -1,5 +1,5 @@
 #pragma once
-/// The values a sweep compares (core/eval/sweep.h): the kinds, each kind's default series, and every
+/// The values a sweep compares (core/pipeline/sweep.h): the kinds, each kind's default series, and every
 /// value read into the settings it replaces before anything runs, so a bad value costs no reference
 /// render. A value is spelled as outside a JSON file everywhere else (integers, comma-separated
 /// lists); a bad one throws SettingError naming "sweep values", an unknown kind "sweep dimension".

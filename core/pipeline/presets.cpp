@@ -1,4 +1,4 @@
-#include "core/project/presets.h"
+#include "core/pipeline/presets.h"
 
 #include "core/nn/network_settings.h"
 #include "core/project/project.h"

@@ -55,7 +55,7 @@
 #include "core/eval/break_even.h"
 #include "core/eval/error_metrics.h"
 #include "core/eval/reference_store.h"
-#include "core/eval/sweep_values.h"
+#include "core/pipeline/sweep_values.h"
 #include "core/nn/model_set.h"
 #include "core/nn/object_training.h"
 #include "core/predict/predictor.h"

@@ -1,4 +1,4 @@
-#include "core/eval/experiment.h"
+#include "core/pipeline/experiment.h"
 
 #include "core/nn/training_samples.h"
 
