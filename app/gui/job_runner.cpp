@@ -52,6 +52,15 @@ void JobContext::onCancel(std::function<void()> hook) {
     if (cancel_.load() && cancelHook_) cancelHook_();  // cancelled before the hook was installed
 }
 
+StageObserver JobContext::stageObserver() {
+    StageObserver o;
+    o.cancel = &cancel_;
+    o.progress = [this](double f) { setProgress(f); };
+    o.status = [this](const std::string& st) { setStatus(st); };
+    o.message = [this](const std::string& m) { post(m); };
+    return o;
+}
+
 void JobContext::post(const std::string& line) {
     std::lock_guard<std::mutex> lock(mutex_);
     messages_.push_back(line);

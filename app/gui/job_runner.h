@@ -18,6 +18,8 @@
 #include <thread>
 #include <vector>
 
+#include "core/pipeline/stage_observer.h"
+
 namespace rrf {
 
 /// Predict: the CPU fallback of the live prediction; Sweep: a cost-of-accuracy series (core/pipeline/sweep.h).
@@ -44,6 +46,9 @@ public:
     void post(const std::string& line);
     /// The lines posted since the last call, oldest first.
     std::vector<std::string> takeMessages();
+    /// An observer for a core/pipeline stage run by this job: its cancel flag, progress, status and
+    /// notes are this context's (the caller may add the epoch callback).
+    StageObserver stageObserver();
 
 private:
     friend class JobRunner;

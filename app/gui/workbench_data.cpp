@@ -2,7 +2,6 @@
 #include "app/gui/workbench.h"
 
 #include <filesystem>
-#include <future>
 
 #include "core/data/data_generator.h"
 #include "core/pipeline/generate_stage.h"
@@ -40,13 +39,9 @@ bool Workbench::startGenerate() {
     const bool started = generateJob_.start(name, [scene, settings, out](JobContext& ctx) -> std::optional<GeneratedDataset> {
         ctx.setStatus("preparing");
         const DataGenerator gen(*scene, settings);
-        StageObserver observer;
-        observer.cancel = &ctx.cancelFlag();
-        observer.progress = [&](double f) { ctx.setProgress(f); };
-        observer.status = [&](const std::string& s) { ctx.setStatus(s); };
         GenerateRequest request;
         request.datasetPath = out;
-        GenerateOutcome generated = generateStage(gen, request, observer);
+        GenerateOutcome generated = generateStage(gen, request, ctx.stageObserver());
         if (!generated.written) return std::nullopt;  // cancelled: the stage wrote nothing
         GeneratedData& data = generated.data;
         GeneratedDataset written;

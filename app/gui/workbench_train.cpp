@@ -35,9 +35,7 @@ struct TrainingLive {
 /// A finished training job: where its models went and what the run did (models themselves stay on
 /// the worker; they are on disk).
 struct TrainingOutcome {
-    std::string dataset, project, modelsDir, runId;
-    NetworkSettings settings;
-    uint64_t sceneHash = 0;
+    std::string dataset, modelsDir, runId;
     TrainRecord record;  ///< what the run records (core/pipeline/train_stage.h)
     /// The saved models read back on the worker (a complete run only), so that making them the
     /// live prediction does not read weights on the UI thread.
@@ -77,37 +75,31 @@ bool Workbench::startTrain(int maxEpochs) {
     }
     TrainingOutcome job;
     job.dataset = datasetPath();
-    job.project = state_.project.path;
     if (job.dataset.empty()) {
         state_.notify(panels::LogLevel::Error, "Training", "train: no dataset yet; generate one in the Sampling panel");
         return false;
     }
-    job.settings = state_.project.networkOrDefault();
-    if (maxEpochs > 0) job.settings.options.trainer.lm.maxEpochs = job.settings.options.trainer.adam.maxEpochs = maxEpochs;
-    job.sceneHash = state_.project.scene.contentHash();
     job.runId = newRunId(state_.project.runs, "train");
     job.modelsDir = (fs::path(projectDir()) / "runs" / job.runId / "models").string();
+    TrainRequest request;
+    request.settings = state_.project.networkOrDefault();
+    auto& trainer = request.settings.options.trainer;
+    if (maxEpochs > 0) trainer.lm.maxEpochs = trainer.adam.maxEpochs = maxEpochs;
+    request.sampling = state_.project.sampling;
+    request.sceneHash = state_.project.scene.contentHash();
+    request.modelsDir = job.modelsDir;
+    request.provenance = {job.dataset, state_.project.path};
+    request.readBack = true;
     std::vector<std::string> names;
     for (const Object& o : state_.project.scene.objects) names.push_back(o.name);
-    const ObjectTrainingOptions& o = job.settings.options;
+    const ObjectTrainingOptions& o = request.settings.options;
     const std::string name = std::string("train ") + json(o.hidden).dump() +
                              (o.ensemble > 1 ? " x" + std::to_string(o.ensemble) : std::string()) + " " + o.trainer.typeName();
     auto live = std::make_shared<TrainingLive>();
-    TrainRequest request;
-    request.settings = job.settings;
-    request.sampling = state_.project.sampling;
-    request.sceneHash = job.sceneHash;
-    request.modelsDir = job.modelsDir;
-    request.provenance = {job.dataset, job.project};
-    request.readBack = true;
     const bool started = trainJob_.start(name, [job, request, live, names](JobContext& ctx) -> std::optional<TrainingOutcome> {
         TrainingOutcome out = job;
         const Stopwatch clock;
-        StageObserver observer;
-        observer.cancel = &ctx.cancelFlag();
-        observer.progress = [&](double f) { ctx.setProgress(f); };
-        observer.status = [&](const std::string& s) { ctx.setStatus(s); };
-        observer.message = [&](const std::string& m) { ctx.post(m); };
+        StageObserver observer = ctx.stageObserver();
         observer.epoch = [&](int object, const std::string& target, const EpochRecord& r) {
             std::lock_guard<std::mutex> lock(live->mutex);
             auto [it, added] = live->curveIndex.emplace(std::make_pair(object, target), live->curves.size());
@@ -121,7 +113,7 @@ bool Workbench::startTrain(int maxEpochs) {
             ++live->revision;
         };
         observer.setStatus("reading the dataset");
-        const Dataset data(out.dataset, true, out.sceneHash);
+        const Dataset data(out.dataset, true, request.sceneHash);
         TrainOutcome trained = trainFromDataset(data, request, observer);
         out.record = std::move(trained.record);
         out.models = std::move(trained.models);

@@ -18,9 +18,14 @@ namespace rrf {
 namespace {
 std::string pipelineFile(const std::string& dir, const std::string& name) { return (std::filesystem::path(dir) / name).string(); }
 
-std::string stageLine(const char* format, const std::string& a, double seconds, const std::string& b) {
-    char buf[600];
-    std::snprintf(buf, sizeof buf, format, a.c_str(), seconds, b.c_str());
+/// "[k/4] <stage>: <what> -> <where>", the line each stage ends with.
+std::string stageLine(int k, const std::string& what, const std::string& where) {
+    return "[" + std::to_string(k) + "/4] " + what + " -> " + where;
+}
+
+std::string secondsText(double s) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f s", s);
     return buf;
 }
 
@@ -62,7 +67,7 @@ PipelineOutcome runPipeline(const Project& project, const PipelineRequest& reque
     if (writes) {
         writeGroundTruth(gtDir, gt, ro, project.render.exposure);
         outcome.stageSeconds.push_back({"ground truth", gt.seconds});
-        notes.note(stageLine("[1/4] ground truth: %s%.1f s -> %s", "", gt.seconds, gtDir));
+        notes.note(stageLine(1, "ground truth: " + secondsText(gt.seconds), gtDir));
     }
 
     // 2. Training data (every process gets the whole of it to train on).
@@ -78,8 +83,8 @@ PipelineOutcome runPipeline(const Project& project, const PipelineRequest& reque
     if (data.data.cancelled) throw std::runtime_error("interrupted while generating data");
     if (writes) {
         outcome.stageSeconds.push_back({"generate", data.data.seconds});
-        notes.note(stageLine("[2/4] generate: %s records in %.1f s -> %s", std::to_string(data.data.stats.records),
-                        data.data.seconds, dataset));
+        notes.note(stageLine(2, "generate: " + std::to_string(data.data.stats.records) + " records in " +
+                                    secondsText(data.data.seconds), dataset));
     }
 
     // 3. Networks.
@@ -99,7 +104,7 @@ PipelineOutcome runPipeline(const Project& project, const PipelineRequest& reque
     outcome.cancelled = networks.cancelled;
     if (writes) {
         outcome.stageSeconds.push_back({"train", networks.seconds});
-        notes.note(stageLine("[3/4] train: %s%.1f s -> %s", "", networks.seconds, modelDir));
+        notes.note(stageLine(3, "train: " + secondsText(networks.seconds), modelDir));
     }
     if (processes.shareNetworks) processes.shareNetworks(networks);
 

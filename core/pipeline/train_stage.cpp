@@ -62,7 +62,6 @@ TrainOutcome trainStage(const std::vector<ObjectSamples>& samples, const TrainRe
 }
 
 TrainOutcome trainFromDataset(const Dataset& data, TrainRequest request, const StageObserver& observer) {
-    observer.setStatus("reading the dataset");
     uint64_t dropped = 0;
     const std::vector<ObjectSamples> samples = samplesFromDataset(data, &dropped);
     if (dropped) observer.note(std::to_string(dropped) + " records with NaN/Inf dropped from " + request.provenance.dataset);
