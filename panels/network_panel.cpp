@@ -18,6 +18,7 @@
 #include "panels/clip_check.h"
 #include "panels/panels.h"
 #include "panels/pipeline_controls.h"
+#include "panels/status_text.h"
 
 namespace rrf::panels {
 
@@ -236,7 +237,7 @@ bool removeHiddenLayer(WorkbenchState& state, int index) {
 bool resizeHiddenLayer(WorkbenchState& state, int index, int size) {
     NetworkSettings s = current(state);
     if (index < 0 || index >= int(s.options.hidden.size())) return false;
-    size = std::clamp(size, 1, kMaxHiddenSize);
+    size = clampWithNotice(state, "Network", "a hidden layer's size", size, 1, kMaxHiddenSize);
     if (s.options.hidden[size_t(index)] == size) return false;
     s.options.hidden[size_t(index)] = size;
     storeNetwork(state, s);
@@ -281,6 +282,7 @@ void drawNetworkPanel(WorkbenchState& state) {
         return;
     }
     drawNetworkPresets(state);
+    if (state.notice && state.notice->panel == "Network") drawNotice(state);
     NetworkSettings s = current(state);
 
     ImGui::TextUnformatted("Hidden layers");

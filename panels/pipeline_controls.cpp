@@ -9,7 +9,9 @@
 
 #include <imgui.h>
 
+#include "core/data/data_generator.h"
 #include "core/data/record_layout.h"
+#include "core/util/memory_budget.h"
 
 namespace rrf::panels {
 
@@ -68,6 +70,16 @@ StageEstimate dataEstimate(const WorkbenchState& state, const SamplingSettings& 
     return estimateGenerate(s, pathRateOf(state), recordsPerRayOf(state));
 }
 
+std::string generateRefusal(const WorkbenchState& state, const SamplingSettings& s) {
+    const int floats = RecordLayout::forScene(state.project.scene).floatsPerRecord();
+    const uint64_t cells = saturatingProduct(uint64_t(std::max(s.nx, 0)), uint64_t(std::max(s.ny, 0)), uint64_t(std::max(s.nz, 0)));
+    const std::string why =
+        memoryShortfall(DataGenerator::memoryEstimate(s, floats, cells), state.availableMemory,
+                        std::to_string(cells) + " cells x " + std::to_string(s.directions) + " directions x " +
+                            std::to_string(floats) + " floats per record, if every ray makes a record");
+    return why.empty() ? why : "the dataset " + why + "; choose a smaller grid or fewer directions";
+}
+
 StageEstimate trainingEstimate(const WorkbenchState& state, const SamplingSettings& s, const ObjectTrainingOptions& o) {
     const Scene& scene = state.project.scene;
     return estimateTraining(o, expectedRecords(s, recordsPerRayOf(state)), int(scene.objects.size()),
@@ -104,29 +116,73 @@ void drawNetworkPresets(WorkbenchState& state) {
     drawEstimateLine("training time", trainingEstimate(state, s, state.project.networkOrDefault().options));
 }
 
+const char* const kProjectSettingsLabel = "project settings";
+
+std::string pipelineChoiceLabel(const std::string& preset) { return preset.empty() ? kProjectSettingsLabel : preset; }
+
+std::string pipelineExpectation(const WorkbenchState& state, const std::string& presetName, bool brief) {
+    const PipelinePreset* preset = presetName.empty() ? matchingPreset(state.project) : findPreset(presetName);
+    if (preset) return brief ? preset->expectationShort : preset->expectation;
+    return brief ? "custom settings"
+                 : "custom settings: no preset's figures apply; the run's own evaluation (Objects, Runs) says how good it is";
+}
+
+namespace {
+/// The bar's choice: the project's settings as the Sampling and Network panels show them (the
+/// default: what a new user runs is what the panels say), or a preset applied first.
+void drawPipelineChoice(WorkbenchState& state) {
+    PipelineInfo& p = state.pipeline;
+    const std::string current = pipelineChoiceLabel(p.preset);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 9);
+    if (!ImGui::BeginCombo("##pipeline-preset", current.c_str())) return;
+    auto item = [&](const std::string& name, const std::vector<StageEstimate>& stages) {
+        const StageEstimate e = total(stages);
+        const std::string text = pipelineChoiceLabel(name) + "  (" + rangeText(e) + "; " + pipelineExpectation(state, name, true) + ")";
+        if (ImGui::Selectable(text.c_str(), name == p.preset)) p.preset = name;
+        if (ImGui::IsItemHovered()) {
+            const PipelinePreset* preset = findPreset(name);
+            ImGui::SetTooltip("%s\nexpect: %s\nestimate: %s",
+                              preset ? preset->summary : "the settings the Sampling and Network panels show, unchanged",
+                              pipelineExpectation(state, name, false).c_str(), e.basis.c_str());
+        }
+    };
+    item("", pipelineEstimates(state, nullptr));
+    for (const PipelinePreset& preset : pipelinePresets()) item(preset.name, pipelineEstimates(state, &preset));
+    ImGui::EndCombo();
+}
+}  // namespace
+
 void drawPipelineBar(WorkbenchState& state) {
     PipelineInfo& p = state.pipeline;
+    const PipelinePreset* preset = findPreset(p.preset);
     if (p.running) {
         if (ImGui::Button("Stop pipeline")) state.request(Command::CancelPipeline);
     } else {
-        ImGui::BeginDisabled(!state.hasProject);
+        const std::string refusal =
+            state.hasProject ? generateRefusal(state, preset ? presetSampling(state.project, *preset) : state.project.samplingOrDefault())
+                             : std::string();
+        ImGui::BeginDisabled(!state.hasProject || !refusal.empty());
         if (ImGui::Button("Run pipeline")) state.request(Command::RunPipeline, p.preset);
         ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-            const PipelinePreset* preset = findPreset(p.preset);
             const std::string estimate =
-                preset && state.hasProject ? "\nestimated " + rangeText(total(pipelineEstimates(state, preset))) : std::string();
-            ImGui::SetTooltip("render, generate, train and evaluate with the chosen preset's settings%s", estimate.c_str());
+                state.hasProject ? "\nestimated " + rangeText(total(pipelineEstimates(state, preset))) +
+                                       "\nexpect: " + pipelineExpectation(state, p.preset, false)
+                                 : std::string();
+            if (!refusal.empty()) ImGui::SetTooltip("cannot run: %s", refusal.c_str());
+            else
+                ImGui::SetTooltip("render, generate, train and evaluate with %s%s",
+                                  preset ? "the chosen preset's settings" : "the project's settings", estimate.c_str());
         }
     }
     ImGui::SameLine();
-    const PipelinePreset* current = findPreset(p.preset);
     ImGui::BeginDisabled(p.running || !state.hasProject);
-    const PipelinePreset* chosen = presetCombo("##pipeline-preset", current, [&](const PipelinePreset& preset) {
-        return state.hasProject ? total(pipelineEstimates(state, &preset)) : StageEstimate{};
-    });
+    if (state.hasProject) drawPipelineChoice(state);
+    else {
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 9);
+        if (ImGui::BeginCombo("##pipeline-preset", pipelineChoiceLabel(p.preset).c_str())) ImGui::EndCombo();
+    }
     ImGui::EndDisabled();
-    if (chosen) p.preset = chosen->name;
     ImGui::SameLine();
     if (p.running) {
         char overlay[96];
@@ -139,6 +195,11 @@ void drawPipelineBar(WorkbenchState& state) {
         ImGui::ProgressBar(float(p.fraction), ImVec2(ImGui::GetFontSize() * 16, 0), overlay);
     } else if (!p.outcome.empty()) {
         ImGui::TextDisabled("pipeline %s", p.outcome.c_str());
+    } else if (state.hasProject) {
+        // What the next run gives, in sight before the click: a smoke test says so.
+        const std::string brief = pipelineExpectation(state, p.preset, true);
+        ImGui::TextDisabled("expect %s, %s", brief.c_str(), rangeText(total(pipelineEstimates(state, preset))).c_str());
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", pipelineExpectation(state, p.preset, false).c_str());
     }
 }
 

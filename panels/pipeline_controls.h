@@ -21,9 +21,21 @@ double recordsPerRayOf(const WorkbenchState& state);
 StageEstimate dataEstimate(const WorkbenchState& state, const SamplingSettings& s);
 /// Training time of `o` on the data `s` makes, for the open project.
 StageEstimate trainingEstimate(const WorkbenchState& state, const SamplingSettings& s, const ObjectTrainingOptions& o);
+/// Why a generation with `s` cannot run on this machine (its record memory bound exceeds the memory
+/// available, in the generator's own words), or "" when it can: the Generate and Run pipeline buttons
+/// are disabled with this reason instead of failing in the Log after a click.
+std::string generateRefusal(const WorkbenchState& state, const SamplingSettings& s);
 /// The four stages of the pipeline under `preset` (null: the settings in effect), in order: render,
 /// generate, train, evaluate.
 std::vector<StageEstimate> pipelineEstimates(const WorkbenchState& state, const PipelinePreset* preset);
+
+/// The pipeline bar's name for a choice: the preset's name, "project settings" for "" (the settings
+/// in effect, the bar's default).
+std::string pipelineChoiceLabel(const std::string& preset);
+/// What to expect from running the pipeline with `preset` ("" = the settings in effect: the
+/// expectation of the preset they equal, else a note that custom settings have no preset figures);
+/// `brief` gives the bar's few words, else the sentence of the tooltips.
+std::string pipelineExpectation(const WorkbenchState& state, const std::string& preset, bool brief);
 
 /// Sampling panel: the preset choice (applies the preset's data half) and its estimated time.
 void drawSamplingPresets(WorkbenchState& state);

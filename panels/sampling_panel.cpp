@@ -110,6 +110,14 @@ void drawSamplingPanel(WorkbenchState& state) {
     }
     changed |= ImGui::Checkbox("fixed light (ignore the light region)", &s.fixedLight);
     if (changed) {
+        // A typed value outside a field's range is kept at the bound, and the Sampling panel says so.
+        const char* panel = "Sampling";
+        s.nx = clampWithNotice(state, panel, "the grid's cells per axis", s.nx, 1, kMaxGridCells);
+        s.ny = clampWithNotice(state, panel, "the grid's cells per axis", s.ny, 1, kMaxGridCells);
+        s.nz = clampWithNotice(state, panel, "the grid's cells per axis", s.nz, 1, kMaxGridCells);
+        s.directions = clampWithNotice(state, panel, "directions", s.directions, 1, kMaxDirections);
+        s.spp = clampWithNotice(state, panel, "paths per record (first round)", s.spp, 1, kMaxSamplesPerRecord);
+        s.maxSpp = clampWithNotice(state, panel, "max paths per record", s.maxSpp, 1, kMaxSamplesPerRecord);
         state.project.sampling = s;
         state.markDirty();
     }
@@ -120,7 +128,16 @@ void drawSamplingPanel(WorkbenchState& state) {
     drawEstimate(state, s);
 
     if (!state.dataset.running) {
+        // Refused at the button, before any work: the reason stays in sight while the settings change.
+        const std::string refusal = generateRefusal(state, s);
+        ImGui::BeginDisabled(!refusal.empty());
         if (ImGui::Button("Generate dataset")) state.request(Command::Generate);
+        ImGui::EndDisabled();
+        if (!refusal.empty()) {
+            ImGui::PushTextWrapPos(0.f);
+            ImGui::TextColored(ImVec4(1.f, 0.45f, 0.4f, 1.f), "Cannot generate: %s", refusal.c_str());
+            ImGui::PopTextWrapPos();
+        }
     } else {
         if (ImGui::Button("Stop generating")) state.request(Command::CancelGenerate);
         ImGui::SameLine();

@@ -1,6 +1,7 @@
 // Status words of jobs and results (see status_text.h).
 #include "panels/status_text.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include <imgui.h>
@@ -49,10 +50,22 @@ std::string withoutNetworkText(const ImageSet& set, const Scene& scene) {
     return t + "): a partial model set";
 }
 
+int clampWithNotice(WorkbenchState& state, const char* panel, const std::string& what, int value, int lo, int hi) {
+    const int kept = std::clamp(value, lo, hi);
+    if (kept != value)
+        state.notify(LogLevel::Warning, panel,
+                     what + " is " + std::to_string(lo) + " ... " + std::to_string(hi) + "; " + std::to_string(value) +
+                         " was set to " + std::to_string(kept));
+    return kept;
+}
+
 void drawNotice(WorkbenchState& state, bool wrap) {
     if (!state.notice) return;
     const Notice& n = *state.notice;
-    const ImVec4 colour = n.level == LogLevel::Error ? ImVec4(1.f, 0.45f, 0.4f, 1.f) : ImVec4(1.f, 0.8f, 0.3f, 1.f);
+    // Errors red, warnings amber, a finished action (saved, exported, written) green.
+    const ImVec4 colour = n.level == LogLevel::Error     ? ImVec4(1.f, 0.45f, 0.4f, 1.f)
+                          : n.level == LogLevel::Warning ? ImVec4(1.f, 0.8f, 0.3f, 1.f)
+                                                         : ImVec4(0.55f, 0.9f, 0.55f, 1.f);
     ImGui::PushID("##notice");
     const bool dismiss = ImGui::SmallButton("Dismiss");
     ImGui::SameLine();

@@ -33,4 +33,9 @@ std::string withoutNetworkText(const ImageSet& set, const Scene& scene);
 /// the text at the window's edge (panels); else one line with the whole text on hover (status bar).
 void drawNotice(WorkbenchState& state, bool wrap = true);
 
+/// `value` clamped to [lo, hi]; a value outside (typed into a field) also makes a warning notice on
+/// `panel` that names the setting, its bounds and what was kept ("hidden layer size is 1 ... 1024;
+/// 0 was set to 1"), so no bound is applied silently.
+int clampWithNotice(WorkbenchState& state, const char* panel, const std::string& what, int value, int lo, int hi);
+
 }  // namespace rrf::panels

@@ -181,7 +181,9 @@ struct Notice {
 
 /// The one-click pipeline (render → generate → train → evaluate) as its progress display shows it.
 struct PipelineInfo {
-    std::string preset = "quick";  ///< the preset the next run applies (core/pipeline/presets.h)
+    /// The preset the next run applies (core/pipeline/presets.h); "" (the default) runs the project's
+    /// settings as the Sampling and Network panels show them, unchanged.
+    std::string preset;
     bool running = false;
     std::string stage;             ///< "render", "generate", "train", "evaluate" while running
     int stageIndex = 0;            ///< 0..3, the stage's place in the pipeline
@@ -230,6 +232,10 @@ struct WorkbenchState {
     ViewState view;
     /// GL textures of the three views, set by the application (null in tests: nothing is drawn).
     ImTextureID viewTextures[3] = {nullptr, nullptr, nullptr};
+
+    /// Bytes this process may still allocate (core/util/memory_budget.h), refreshed by the
+    /// application about once a second so controls can refuse a run that cannot fit before it starts.
+    uint64_t availableMemory = UINT64_MAX;
 
     int compareRun = -1;  ///< index into project.runs shown in the compare view, -1 = none
     RunPair runPair;

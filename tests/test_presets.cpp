@@ -149,6 +149,28 @@ TEST(Presets, AppliedPresetIsRecognisedAndOthersAreNot) {
     EXPECT_EQ(matchingNetworkPreset(p), nullptr) << "best's networks with the default's direct light are no preset";
 }
 
+TEST(Presets, BothHalvesMatchingNameThePresetWhoseExpectationApplies) {
+    Project p = cornellWith("matching.json", json::object());
+    EXPECT_EQ(matchingPreset(p), findPreset("default")) << "a project without sections runs the default preset's settings";
+    applySamplingPreset(p, preset("best"));
+    EXPECT_EQ(matchingPreset(p), nullptr) << "best's data with the default's networks is no preset";
+    applyNetworkPreset(p, preset("best"));
+    EXPECT_EQ(matchingPreset(p), findPreset("best"));
+    // The glossy box's own sections (a reflected input on one object) are custom settings.
+    const Project glossy = loadProjectOrScene(RRF_SOURCE_DIR "/projects/cornell-glossy/project.json");
+    EXPECT_EQ(matchingPreset(glossy), nullptr);
+}
+
+TEST(Presets, EveryPresetSaysWhatToExpectAndQuickThatItIsASmokeTest) {
+    for (const PipelinePreset& p : pipelinePresets()) {
+        EXPECT_GT(std::string(p.expectation).size(), 20u) << p.name;
+        EXPECT_FALSE(std::string(p.expectationShort).empty()) << p.name;
+    }
+    EXPECT_NE(std::string(preset("quick").expectation).find("smoke test"), std::string::npos);
+    EXPECT_NE(std::string(preset("quick").expectationShort).find("smoke test"), std::string::npos);
+    EXPECT_EQ(std::string(preset("default").expectation).find("smoke test"), std::string::npos);
+}
+
 TEST(TimeEstimate, GenerateIsRecordsTimesPathsOverRate) {
     SamplingSettings s;
     s.nx = 2, s.ny = 3, s.nz = 4;

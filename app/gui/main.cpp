@@ -153,8 +153,9 @@ int main(int argc, char** argv) {
 
             const std::string requested = wb.takeScreenshotRequest();
             if (!requested.empty()) {
-                if (writeScreenshot(window, requested, error)) wb.state().log.info("screenshot written to " + requested);
-                else wb.state().log.error("screenshot: " + error);
+                if (writeScreenshot(window, requested, error))
+                    wb.state().notify(rrf::panels::LogLevel::Info, "", "screenshot written to " + requested);
+                else wb.state().notify(rrf::panels::LogLevel::Error, "", "screenshot: " + error);
             }
             const bool last = automated && scriptDone && ++framesDrawn >= args.frames;
             if (last && !args.screenshot.empty()) {

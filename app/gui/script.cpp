@@ -15,6 +15,7 @@
 #include "core/project/scene_edits.h"
 #include "core/util/json_reader.h"
 #include "panels/clip_check.h"
+#include "panels/pipeline_controls.h"
 
 namespace rrf {
 
@@ -149,7 +150,7 @@ bool Script::execute(Workbench& wb, const json& s) {
                           : on == "train_epoch"   ? wb.trainRunning() && st.training.epoch < 1
                           : on == "pipeline"      ? wb.pipelineRunning()
                           : on == "train_running" ? !wb.trainRunning()
-                                                  : !wb.jobs().idle();
+                                                  : !wb.jobs().idle() || wb.evaluationPending();
         if (busy) {
             const double limit = r.numberOr("timeout_s", 300, 0, 1e9);
             const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart_).count();
@@ -192,10 +193,12 @@ bool Script::execute(Workbench& wb, const json& s) {
         // As choosing a preset in the pipeline bar and clicking "Run pipeline" (the request the
         // button makes). Optional sizes shrink the preset for small scripted runs: they are applied
         // over the preset, and the pipeline then runs with the settings in effect.
-        const std::string name = r.choiceOr("preset", "quick", {"quick", "paper", "default", "best"});
-        const PipelinePreset* preset = findPreset(name);
-        applySamplingPreset(st.project, *preset);
-        applyNetworkPreset(st.project, *preset);
+        // Without "preset": the bar's default, the project's settings unchanged.
+        const std::string name = r.has("preset") ? r.choiceOr("preset", "", {"quick", "paper", "default", "best"}) : "";
+        if (const PipelinePreset* preset = findPreset(name)) {
+            applySamplingPreset(st.project, *preset);
+            applyNetworkPreset(st.project, *preset);
+        }
         json sampling = sectionOf(r, {"preset", "epochs", "hidden"});
         if (!sampling.empty())
             st.project.sampling = SamplingSettings::fromJson(JsonReader(sampling, r.file(), r.pointer()),
@@ -211,7 +214,7 @@ bool Script::execute(Workbench& wb, const json& s) {
             st.project.trainer = t;
         }
         st.markDirty();
-        require(wb.runPipeline(name), "the pipeline could not start (see the log)");
+        require(wb.runPipeline(panels::pipelineChoiceLabel(name)), "the pipeline could not start (see the log)");
     } else if (what == "stop_pipeline") {
         st.request(panels::Command::CancelPipeline);
     } else if (what == "measure_frames") {

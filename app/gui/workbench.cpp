@@ -8,6 +8,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "core/util/memory_budget.h"
 #include "panels/panels.h"
 #include "panels/pipeline_controls.h"
 #include "panels/status_text.h"
@@ -107,6 +108,14 @@ void Workbench::logFinishedJobs() {
     }
 }
 
+void Workbench::refreshAvailableMemory() {
+    // A few small /proc and cgroup reads, once a second: the controls' refusals follow the machine.
+    const auto now = std::chrono::steady_clock::now();
+    if (now - memoryCheckedAt_ < std::chrono::seconds(1) && state_.availableMemory != UINT64_MAX) return;
+    memoryCheckedAt_ = now;
+    state_.availableMemory = availableMemoryBytes();
+}
+
 void Workbench::frame() {
     // Ended jobs are logged first, so their results' lines follow "... finished after N s".
     logFinishedJobs();
@@ -114,10 +123,12 @@ void Workbench::frame() {
     pollGenerate();
     pollTrain();
     pollEvaluate();
+    pollEvaluateAfterTrain();
     pollPredict();
     pollSweep();
     pollRunPair();
     pollPipeline();
+    refreshAvailableMemory();
     finishDraft();
     drawHost();
     drawModals();

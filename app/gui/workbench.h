@@ -97,6 +97,9 @@ public:
     /// Compares the prediction with the ground truth per object and term (fills the Objects panel).
     bool startEvaluate();
     bool evaluateRunning() const;
+    /// A manual training finished and its models wait to be evaluated (once the ground truth of the
+    /// current light is rendered), so every run gets its error without pressing Evaluate.
+    bool evaluationPending() const { return evaluateAfterTrain_; }
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
     bool exportObjectsCsv(const std::string& path);
     /// The one-click pipeline: applies `preset` (core/pipeline/presets.h) to the project's data and
@@ -150,6 +153,11 @@ private:
     void pollGenerate();
     void pollTrain();
     void pollEvaluate();
+    /// Starts the evaluation a manual training asked for when its ground truth is ready, or says why
+    /// it cannot be made (a notice on the Training panel).
+    void pollEvaluateAfterTrain();
+    /// state().availableMemory from the machine, about once a second.
+    void refreshAvailableMemory();
     void pollPredict();
     void pollSweep();
     /// Moves the pipeline to its next stage once the current one delivered, publishes its progress.
@@ -239,6 +247,8 @@ private:
     /// Results each kind of job delivered so far: the pipeline advances when its stage's count grew
     /// and fails when the job ended without one (stopped, refused, failed).
     uint64_t datasetsDelivered_ = 0, trainingsCompleted_ = 0, evaluationsDelivered_ = 0;
+    bool evaluateAfterTrain_ = false;  ///< see evaluationPending()
+    std::chrono::steady_clock::time_point memoryCheckedAt_{};
     struct PipelineRun {
         PipelineStage stage = PipelineStage::Idle;
         uint64_t mark = 0;                  ///< the stage's delivery count when it started

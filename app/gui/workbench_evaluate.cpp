@@ -80,6 +80,28 @@ bool Workbench::startEvaluate() {
     return true;
 }
 
+void Workbench::pollEvaluateAfterTrain() {
+    if (!evaluateAfterTrain_ || evaluateRunning() || pipelineRunning()) return;
+    // A render of the current light still running (or restarting after an edit) is waited for: its
+    // finished image is the reference the evaluation needs.
+    if (renderRunning() || restartRender_) return;
+    evaluateAfterTrain_ = false;
+    const auto& stamp = state_.groundTruth.stamp;
+    std::string why;
+    if (!live_.loaded()) why = "no complete model set is loaded";
+    else if (state_.groundTruth.empty() || state_.render.cancelled)
+        why = "there is no finished ground truth of the current light (Render, then Evaluate)";
+    else if (stamp && (!(stamp->light == state_.project.scene.lightPosition()) ||
+                       stamp->sceneHash != state_.project.scene.contentHash()))
+        why = "the ground truth shown is of another light or scene (Render, then Evaluate)";
+    if (!why.empty()) {
+        state_.notify(panels::LogLevel::Warning, "Training", "the trained models were not evaluated: " + why);
+        return;
+    }
+    state_.log.info("evaluating the trained models against the ground truth of the current light");
+    startEvaluate();
+}
+
 void Workbench::pollEvaluate() {
     state_.evaluation.running = evaluateRunning();
     evaluateJob_.poll([&](EvaluationOutcome& out) {
@@ -111,7 +133,7 @@ void Workbench::pollEvaluate() {
 bool Workbench::exportObjectsCsv(const std::string& path) {
     const panels::EvaluationInfo& e = state_.evaluation;
     if (!e.valid) {
-        state_.log.error("export table: evaluate first");
+        state_.notify(panels::LogLevel::Error, "Objects", "export table: evaluate first");
         return false;
     }
     const int t = int(state_.view.term);
@@ -119,10 +141,10 @@ bool Workbench::exportObjectsCsv(const std::string& path) {
     try {
         writeFileAtomically(path, panels::objectRowsCsv(rows, termName(state_.view.term)));
     } catch (const std::exception& ex) {
-        state_.log.error(std::string("export table: ") + ex.what());
+        state_.notify(panels::LogLevel::Error, "Objects", std::string("export table: ") + ex.what());
         return false;
     }
-    state_.log.info("per-object error table written to " + path);
+    state_.notify(panels::LogLevel::Info, "", "per-object error table written to " + path);
     return true;
 }
 

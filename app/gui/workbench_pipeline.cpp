@@ -36,6 +36,8 @@ std::string Workbench::pipelineRefusal() const {
 }
 
 bool Workbench::startPipeline(const std::string& presetName) {
+    // "" is the bar's default: the project's settings as the panels show them, nothing applied.
+    if (presetName.empty()) return runPipeline(panels::pipelineChoiceLabel(presetName));
     const PipelinePreset* preset = findPreset(presetName);
     const std::string why = preset ? pipelineRefusal() : "unknown preset '" + presetName + "' (" + presetNames(", ") + ")";
     if (!why.empty()) {
@@ -64,7 +66,7 @@ bool Workbench::runPipeline(const std::string& label) {
     state_.pipeline.preset = label;
     state_.pipeline.running = true;
     state_.pipeline.outcome.clear();
-    state_.log.info("pipeline started (" + label + "; estimated render " + rangeText(estimates[0]) + ", generate " +
+    state_.log.info("pipeline started (" + label + ", expect " + panels::pipelineExpectation(state_, "", false) + "; estimated render " + rangeText(estimates[0]) + ", generate " +
                     rangeText(estimates[1]) + ", train " + rangeText(estimates[2]) + ", evaluate " + rangeText(estimates[3]) + ")");
     // A finished ground truth of the current scene is kept: the pipeline starts with the data then.
     const bool groundTruthDone = !renderRunning() && !state_.groundTruth.empty() && !state_.render.cancelled &&

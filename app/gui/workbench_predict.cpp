@@ -245,7 +245,7 @@ bool Workbench::exportPrediction(const std::string& dir) {
             predictor.gbuffer(state_.project.scene.lightPosition(), camera.width, camera.height));
         writePredictionImages(dir, p, state_.view.exposure);
     } catch (const std::exception& e) {
-        state_.log.error(std::string("export prediction: ") + e.what());
+        state_.notify(panels::LogLevel::Error, "", std::string("export prediction: ") + e.what());
         return false;
     }
     return true;

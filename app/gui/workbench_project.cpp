@@ -84,6 +84,7 @@ bool Workbench::saveProject(const std::string& requested) {
     fs::remove(autosavePath(path), ec);  // the real file is now at least as new
     recent_.add(path);
     state_.recent = recent_.paths();
+    state_.notify(panels::LogLevel::Info, "", "saved " + path);
     return true;
 }
 
@@ -252,11 +253,11 @@ bool Workbench::loadTrainRun(const Run& run, int index) {
 
 bool Workbench::exportImages(const std::string& dir) {
     if (!render_ || !render_->latest()) {
-        state_.log.error("export images: nothing rendered yet");
+        state_.notify(panels::LogLevel::Error, "", "export images: nothing rendered yet");
         return false;
     }
     if (renderRunning()) {
-        state_.log.error("export images: the render is still running; wait for it or stop it first");
+        state_.notify(panels::LogLevel::Error, "", "export images: the render is still running; wait for it or stop it first");
         return false;
     }
     try {
@@ -269,10 +270,10 @@ bool Workbench::exportImages(const std::string& dir) {
         }
         if (!exportPrediction(dir)) return false;
     } catch (const std::exception& e) {
-        state_.log.error(std::string("export images: ") + e.what());
+        state_.notify(panels::LogLevel::Error, "", std::string("export images: ") + e.what());
         return false;
     }
-    state_.log.info("exported images (EXR and PNG) to " + dir);
+    state_.notify(panels::LogLevel::Info, "", "exported images (EXR and PNG) to " + dir);
     return true;
 }
 

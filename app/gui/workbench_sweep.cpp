@@ -199,10 +199,10 @@ void Workbench::pollSweep() {
             writeFileAtomically(out.outBase + ".csv", sweepCsv(*out.scene, r));
             writeFileAtomically(out.outBase + ".json", sweepJson(*out.scene, r).dump(2));
         } catch (const std::exception& e) {
-            state_.log.error(std::string("sweep: writing the results failed: ") + e.what());
+            state_.notify(panels::LogLevel::Error, "Cost", std::string("sweep: writing the results failed: ") + e.what());
             return;
         }
-        state_.log.info("sweep written to " + out.outBase + ".csv and .json");
+        state_.notify(panels::LogLevel::Info, "", "sweep written to " + out.outBase + ".csv and .json");
     });
 }
 

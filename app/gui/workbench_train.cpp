@@ -186,6 +186,8 @@ void Workbench::trainingFinished(TrainingOutcome& s) {
                     " s; models in " + rel(s.modelsDir) + ", run '" + run.name + "' recorded");
     loadModels(s.modelsDir, std::move(s.models));
     ++trainingsCompleted_;
+    // The pipeline evaluates as its own stage; a manual training is evaluated here (issue 29 item 8).
+    if (!pipelineRunning()) evaluateAfterTrain_ = true;
 }
 
 }  // namespace rrf

@@ -135,9 +135,13 @@ bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const
 }
 
 uint64_t DataGenerator::memoryEstimate(uint64_t cells) const {
-    const uint64_t recordBytes = saturatingProduct(uint64_t(settings_.directions), uint64_t(layout_.floatsPerRecord()),
-                                                   sizeof(float));
-    const uint64_t perCell = recordBytes + sizeof(CellOutput) + uint64_t(settings_.directions) * sizeof(int32_t);
+    return memoryEstimate(settings_, layout_.floatsPerRecord(), cells);
+}
+
+uint64_t DataGenerator::memoryEstimate(const SamplingSettings& settings, int floatsPerRecord, uint64_t cells) {
+    const uint64_t directions = uint64_t(std::max(settings.directions, 0));
+    const uint64_t recordBytes = saturatingProduct(directions, uint64_t(std::max(floatsPerRecord, 0)), sizeof(float));
+    const uint64_t perCell = recordBytes + sizeof(CellOutput) + saturatingProduct(directions, sizeof(int32_t));
     return saturatingProduct(cells, perCell);
 }
 

@@ -98,6 +98,9 @@ public:
     /// a record (its floats and object id) plus the per-cell bookkeeping. run() refuses with a
     /// SettingError naming "grid and directions" when it exceeds the memory available.
     uint64_t memoryEstimate(uint64_t cells) const;
+    /// The same bound before a generator exists (a scene's RecordLayout::floatsPerRecord() and the
+    /// settings), so a front end can refuse at the control instead of after starting the job.
+    static uint64_t memoryEstimate(const SamplingSettings& settings, int floatsPerRecord, uint64_t cells);
 
     const RecordLayout& layout() const { return layout_; }
     const PathTracer& tracer() const { return tracer_; }

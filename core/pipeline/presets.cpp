@@ -117,14 +117,23 @@ const std::vector<PipelinePreset>& pipelinePresets() {
     // The CLI's `rrf pipeline` evaluation under each preset: quick renders a small ground truth and
     // one held-out light with references capped at 1024 spp; the others use the project's sizes.
     static const std::vector<PipelinePreset> presets = {
-        {"quick", "about a minute on 2 cores: grid 5^3, 150 directions, 16 paths per record, 50 epochs",
+        {"quick", "a smoke test of the whole pipeline in about a minute: grid 5^3, 150 directions, 16 paths per record, 50 epochs",
+         "a smoke test, not a result: the prediction is visibly wrong (dark faces, tinted walls); held-out relative "
+         "RMSE about 0.24 on the Cornell box",
+         "smoke test, error ~0.24",
          quickSampling, quickNetwork, keepPrediction, {32, 128, 128, 1, 1024}},
         {"paper", "the seed report's setting: grid 15^3 x 1200 directions, 64 paths, 20-10 networks, LM 1000 epochs",
+         "the seed report's setting, for comparison with it: hours on 2 cores; its networks also learn the direct light",
+         "the report's setting, hours",
          paperSampling, paperNetwork, keepPrediction, {64, 0, 0, 2, 0}},
         {"default", "the project defaults: grid 8^3 x 300 directions, adaptive paths, 20-10 networks, Adam",
+         "a prediction that looks right: held-out relative RMSE about 0.04 on the Cornell box and on the glossy box",
+         "error ~0.04",
          defaultSampling, defaultNetwork, defaultPrediction, {64, 0, 0, 2, 0}},
         {"best", "the most accurate setting measured: grid 10^3 x 1200 directions, 256 paths, four merged 32-32-32 "
                  "networks per object, 256 direct samples, a glossy gather of 128 + 256 directions and 256 caustic samples",
+         "the most accurate measured: held-out relative RMSE about 0.013 on the Cornell box, 0.02 on the glossy box",
+         "error ~0.013-0.02",
          bestSampling, bestNetwork, bestPrediction, {64, 0, 0, 2, 0}},
     };
     return presets;
@@ -134,6 +143,11 @@ const PipelinePreset* findPreset(const std::string& name) {
     for (const PipelinePreset& p : pipelinePresets())
         if (name == p.name) return &p;
     return nullptr;
+}
+
+const PipelinePreset* matchingPreset(const Project& project) {
+    const PipelinePreset* data = matchingSamplingPreset(project);
+    return data && data == matchingNetworkPreset(project) ? data : nullptr;
 }
 
 std::string presetNames(const char* separator) {

@@ -45,6 +45,12 @@ struct PipelineEvaluationSizes {
 struct PipelinePreset {
     const char* name;     ///< "quick", "paper", "default", "best": the CLI's --preset value and the panels' label
     const char* summary;  ///< one line for help texts and tooltips
+    /// What a user should expect from it, accuracy first: the held-out figure measured on the bundled
+    /// projects (docs/results.md, "What each preset gives") and what the prediction looks like, so
+    /// the one-click pipeline never leaves a smoke test's image to pass for a result.
+    const char* expectation;
+    /// The same in a few words for the pipeline bar: "~0.04 held-out error", "smoke test (~0.24)".
+    const char* expectationShort;
     /// Changes the data settings in effect (a project's samplingOrDefault()) into the preset's.
     void (*sampling)(SamplingSettings&);
     /// Changes the network and trainer settings in effect (networkOrDefault().options) into the preset's.
@@ -59,6 +65,9 @@ struct PipelinePreset {
 const std::vector<PipelinePreset>& pipelinePresets();
 /// The preset named `name`, or null.
 const PipelinePreset* findPreset(const std::string& name);
+/// The preset both halves of whose settings the project has (applying it would change nothing, so its
+/// expectation is the settings in effect's), or null for custom settings.
+const PipelinePreset* matchingPreset(const Project& project);
 /// The names joined by `separator` ("quick|paper|best"), for help texts and error messages.
 std::string presetNames(const char* separator = "|");
 

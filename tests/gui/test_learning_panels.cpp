@@ -90,6 +90,14 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     EXPECT_FALSE(resizeHiddenLayer(s, 5, 8)) << "no such layer";
     EXPECT_TRUE(resizeHiddenLayer(s, 1, 100000)) << "sizes are clamped, not refused";
     EXPECT_EQ(s.project.networkOrDefault().options.hidden[1], 4096);
+    ASSERT_TRUE(s.notice.has_value()) << "a clamp is said, not silent";
+    EXPECT_EQ(s.notice->panel, "Network");
+    EXPECT_NE(s.notice->text.find("1 ... 4096; 100000 was set to 4096"), std::string::npos) << s.notice->text;
+    s.notice.reset();
+    ASSERT_TRUE(resizeHiddenLayer(s, 1, 0));
+    EXPECT_EQ(s.project.networkOrDefault().options.hidden[1], 1);
+    ASSERT_TRUE(s.notice.has_value());
+    EXPECT_NE(s.notice->text.find("0 was set to 1"), std::string::npos) << s.notice->text;
     ASSERT_TRUE(removeHiddenLayer(s, 1));
     EXPECT_FALSE(removeHiddenLayer(s, 0)) << "a network keeps at least one hidden layer";
 

@@ -44,6 +44,52 @@ TEST_F(PipelineControls, RunButtonRequestsTheChosenPresetAndStopCancels) {
     EXPECT_EQ(s.requests[0].command, Command::CancelPipeline);
 }
 
+TEST_F(PipelineControls, DefaultRunsTheProjectSettingsAndSaysWhatToExpect) {
+    WorkbenchState s;
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, kCornell, error)) << error;
+    // Nothing changed, as a new user starts it: the project's settings run (not a smoke-test preset).
+    EXPECT_EQ(s.pipeline.preset, "");
+    EXPECT_EQ(pipelineChoiceLabel(s.pipeline.preset), "project settings");
+    mouse(10, 8, false);
+    frame([&] { drawPipelineBar(s); });
+    mouse(10, 8, true);
+    frame([&] { drawPipelineBar(s); });
+    mouse(10, 8, false);
+    frame([&] { drawPipelineBar(s); });
+    ASSERT_EQ(s.requests.size(), 1u);
+    EXPECT_EQ(s.requests[0].command, Command::RunPipeline);
+    EXPECT_EQ(s.requests[0].path, "");
+    // The bundled Cornell box's settings are the default preset's, so its figure is what to expect.
+    EXPECT_EQ(pipelineExpectation(s, "", true), findPreset("default")->expectationShort);
+    EXPECT_NE(pipelineExpectation(s, "quick", true).find("smoke test"), std::string::npos);
+    EXPECT_NE(pipelineExpectation(s, "quick", false).find("not a result"), std::string::npos);
+    // An edited setting is custom: no preset's figure is claimed for it.
+    s.project.sampling = s.project.samplingOrDefault();
+    s.project.sampling->directions = 299;
+    EXPECT_EQ(pipelineExpectation(s, "", true), "custom settings");
+    EXPECT_NE(pipelineExpectation(s, "", false).find("no preset's figures apply"), std::string::npos);
+}
+
+TEST_F(PipelineControls, RunIsRefusedAtTheButtonWhenTheDataCannotFit) {
+    WorkbenchState s;
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, kCornell, error)) << error;
+    s.availableMemory = uint64_t(64) << 20;  // 64 MiB
+    SamplingSettings huge = s.project.samplingOrDefault();
+    huge.nx = huge.ny = huge.nz = 1000;
+    const std::string why = generateRefusal(s, huge);
+    EXPECT_NE(why.find("1000000000 cells"), std::string::npos) << why;
+    EXPECT_NE(why.find("64 MiB"), std::string::npos) << why;
+    EXPECT_EQ(generateRefusal(s, s.project.samplingOrDefault()), "") << "the default's 8^3 x 300 records fit in 64 MiB";
+    s.project.sampling = huge;
+    for (bool down : {false, true, false}) {
+        mouse(10, 8, down);
+        frame([&] { drawPipelineBar(s); });
+    }
+    EXPECT_TRUE(s.requests.empty()) << "Run pipeline is disabled while the data cannot fit";
+}
+
 TEST_F(PipelineControls, RunButtonIsDisabledWithoutAProject) {
     WorkbenchState s;
     mouse(10, 8, false);
