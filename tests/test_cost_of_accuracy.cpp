@@ -137,6 +137,30 @@ TEST(SweepReports, CarryCostColumnsAndThePathTracerSeries) {
     EXPECT_NE(table.find("the path tracer needs 64 spp / 0.64 s"), std::string::npos) << table;
 }
 
+TEST(SweepRun, ProgressMovesWithTheWorkAndNeverGoesBack) {
+    const Scene scene = test::cornellLike(1.f, 16);
+    SweepOptions o;
+    o.what = "hidden";
+    o.values = {"3", "4"};
+    o.width = o.height = 8;
+    o.referenceSpp = 4;
+    o.pathTracerSpp = {1, 2};
+    o.sampling.nx = o.sampling.ny = o.sampling.nz = 1;
+    o.sampling.directions = 10;
+    o.sampling.spp = 2;
+    o.training.trainer.lm.maxEpochs = 1;
+    std::vector<double> seen;
+    o.progress = [&](double f) { seen.push_back(f); };
+    runSweep(scene, o);
+    // Start, the reference, the shared dataset, then the path tracer's series and two points: three
+    // equal shares of what is left.
+    const double r = kSweepReferenceShare, d = r + kSweepDataShare;
+    const std::vector<double> expected = {0, r, d, d + (1 - d) / 3, d + 2 * (1 - d) / 3, 1};
+    ASSERT_EQ(seen.size(), expected.size());
+    for (size_t i = 0; i < seen.size(); ++i) EXPECT_NEAR(seen[i], expected[i], 1e-12) << i;
+    for (size_t i = 1; i < seen.size(); ++i) EXPECT_GE(seen[i], seen[i - 1]);
+}
+
 TEST(SweepRun, EveryPointUsesOneFootprintMaskAndModelSweepsRenderThePathTracer) {
     const Scene scene = test::cornellLike(1.f, 16);
     SweepOptions o;

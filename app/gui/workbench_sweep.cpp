@@ -150,13 +150,13 @@ bool Workbench::startSweep(const std::string& what) {
         ReferenceStore store(storeDir);
         opt.store = &store;
         opt.cancel = &ctx.cancelFlag();
-        int lines = 0;
-        const double expected = double(opt.values.empty() ? defaultSweepValues(opt.what).size() : opt.values.size()) + 2;
         opt.log = [&](const std::string& line) {
             ctx.setStatus(line);
-            ctx.setProgress(std::min(0.99, ++lines / (2.0 * expected)));
             ctx.post(line);
         };
+        // The sweep's own fraction (reference, data, one share per task), never decreasing; the
+        // last percent is left to the GLSL timing and the files written after it returns.
+        opt.progress = [&](double f) { ctx.setProgress(std::min(0.99, f)); };
         SweepOutcome out;
         out.result = runSweep(*scene, opt);
         if (out.result.cancelled) return std::nullopt;

@@ -273,14 +273,15 @@ RenderOptions sweepReferenceOptions(const SweepOptions& o) {
     return ro;
 }
 
-Reference obtainSweepReference(const Scene& scene, const SweepOptions& o) {
+Reference obtainSweepReference(const Scene& scene, const SweepOptions& o,
+                               const std::function<void(const ReferenceProgress&)>& progress) {
     const Vec3 light = sweepLightPosition(scene, o);
     const RenderOptions ro = sweepReferenceOptions(o);
     if (o.store) {
         RenderSettings rs;
         rs.seed = ro.seed;
         const ReferenceKey key = ReferenceKey::of(scene, light, ro.width, ro.height, rs);
-        return o.store->obtain(scene, key, o.referenceTarget, o.cancel, {}, {}, o.log);
+        return o.store->obtain(scene, key, o.referenceTarget, o.cancel, progress, {}, o.log);
     }
     if (o.log) o.log("reference: " + std::to_string(ro.spp) + " spp at " + std::to_string(ro.width) + "x" + std::to_string(ro.height));
     return renderReference(scene, light, ro, o.cancel);
@@ -302,7 +303,8 @@ SweepInputs sweepInputs(const Scene& scene, const SweepOptions& o, Reference ref
     return in;
 }
 
-SweepPart runSweepTasks(const Scene& scene, const SweepOptions& o, const SweepInputs& in, const std::vector<int>& tasks) {
+SweepPart runSweepTasks(const Scene& scene, const SweepOptions& o, const SweepInputs& in, const std::vector<int>& tasks,
+                        const std::function<void(int)>& taskDone) {
     Context c{scene, o, sweepPoints(o), RecordLayout::forScene(scene), in.reference, in.footprint, {}, false};
     const int taskCount = o.what == "spp" ? 1 : 1 + int(c.points.size());
     SweepPart part;
@@ -323,6 +325,7 @@ SweepPart runSweepTasks(const Scene& scene, const SweepOptions& o, const SweepIn
             }
         }
         part.rows.push_back(std::move(rows));
+        if (taskDone) taskDone(int(part.tasks.size()));
     }
     part.cancelled = c.cancelled();
     return part;
@@ -382,15 +385,27 @@ SweepResult joinSweepParts(const Scene& scene, const SweepOptions& o, const Swee
 
 SweepResult runSweep(const Scene& scene, const SweepOptions& options) {
     const SweepOptions o = checkedSweepOptions(scene, options);
-    Reference reference = obtainSweepReference(scene, o);
+    // Progress never goes back: the reference's own estimate can (its noise estimate is noisy).
+    double reported = 0;
+    auto report = [&](double f) {
+        if (!o.progress) return;
+        reported = std::max(reported, std::clamp(f, 0.0, 1.0));
+        o.progress(reported);
+    };
+    report(0);
+    Reference reference =
+        obtainSweepReference(scene, o, [&](const ReferenceProgress& p) { report(kSweepReferenceShare * p.fraction); });
+    report(kSweepReferenceShare);
     const bool cancelled = o.cancel && o.cancel->load();
     std::shared_ptr<const GeneratedData> data;
     if (sweepSharesData(o) && !cancelled) data = std::make_shared<const GeneratedData>(DataGenerator(scene, o.sampling).run(0, 1, o.cancel));
+    const double start = kSweepReferenceShare + kSweepDataShare;
+    report(start);
     const SweepInputs in = sweepInputs(scene, o, std::move(reference), std::move(data));
     std::vector<int> all(sweepTasks(o).size());
     std::iota(all.begin(), all.end(), 0);
     std::vector<SweepPart> parts;
-    parts.push_back(runSweepTasks(scene, o, in, all));
+    parts.push_back(runSweepTasks(scene, o, in, all, [&](int done) { report(start + (1 - start) * done / double(all.size())); }));
     return joinSweepParts(scene, o, in, std::move(parts));
 }
 

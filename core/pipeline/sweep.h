@@ -86,7 +86,16 @@ struct SweepOptions {
     bool keepModels = false;
     const std::atomic<bool>* cancel = nullptr;
     std::function<void(const std::string&)> log;  ///< progress lines (may be empty)
+    /// The fraction of runSweep's work done, in [0, 1] and never decreasing (may be empty): the
+    /// reference's convergence first (kSweepReferenceShare of the whole), then the shared dataset,
+    /// then one equal share per task (the path tracer's series, each point), so a front end's
+    /// progress bar and ETA move with the work instead of with the count of log lines.
+    std::function<void(double)> progress;
 };
+
+/// The share of a sweep's progress its reference takes (converging it is often the longest part on
+/// a fresh scene; a stored one is reused at once) and the share of the shared dataset.
+constexpr double kSweepReferenceShare = 0.3, kSweepDataShare = 0.1;
 
 struct SweepRow {
     static constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
@@ -162,7 +171,9 @@ Vec3 sweepLightPosition(const Scene& scene, const SweepOptions& checked);
 RenderOptions sweepReferenceOptions(const SweepOptions& checked);
 /// The reference of the sweep: from checked.store converged to its target, or rendered at the fixed
 /// spp (sweepReferenceOptions); logged through checked.log.
-Reference obtainSweepReference(const Scene& scene, const SweepOptions& checked);
+/// `progress`, if given, receives the store's convergence reports (not called without a store).
+Reference obtainSweepReference(const Scene& scene, const SweepOptions& checked,
+                               const std::function<void(const ReferenceProgress&)>& progress = {});
 /// Whether the points train on one dataset generated with checked.sampling (hidden, trainer, goal,
 /// leaves, encoding); the others make their own (grid, dirs, record_spp) or none (spp).
 bool sweepSharesData(const SweepOptions& checked);
@@ -188,9 +199,10 @@ struct SweepPart {
 
 /// Runs `tasks` (ascending indices into sweepTasks) of a checked sweep, each with all threads, logging
 /// as runSweep does; a point's break-even is logged only when this part also ran the series (task 0).
-/// SweepRow::models is kept (keepModels) but not sent by encodeSweepPart.
+/// SweepRow::models is kept (keepModels) but not sent by encodeSweepPart. `taskDone`, if given, is
+/// called with the number of this part's tasks finished after each one.
 SweepPart runSweepTasks(const Scene& scene, const SweepOptions& checked, const SweepInputs& inputs,
-                        const std::vector<int>& tasks);
+                        const std::vector<int>& tasks, const std::function<void(int)>& taskDone = {});
 
 /// Joins parts that together ran every task once, in any order, into runSweep's result: rows in the
 /// order of the values (spp: ascending spp), every model row's break-even against the joined series,
