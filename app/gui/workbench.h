@@ -27,6 +27,7 @@ struct TrainingLive;
 struct EvaluationOutcome;
 struct TimedPrediction;
 struct SweepOutcome;
+struct SweepResult;
 struct PairOutcome;
 struct LeafOverlay;
 
@@ -118,6 +119,9 @@ public:
     /// Runs a cost sweep of one of the kinds in kSweepKinds (core/pipeline/sweep.h) with interactive sizes.
     bool startSweep(const std::string& what);
     bool sweepRunning() const;
+    /// The Cost panel's series of the project's sweeps on disk (<project dir>/sweeps/*.json), as they
+    /// were when they finished: called when a project is opened.
+    void restoreSweeps();
 
     /// True while something changes without input (a job or the pipeline runs, a mouse button is
     /// held): the window then redraws at its frame rate, otherwise it waits for events.
@@ -160,6 +164,8 @@ private:
     void refreshAvailableMemory();
     void pollPredict();
     void pollSweep();
+    /// Adds `r`'s series to the Cost panel, named "sweep <what>" (" #n" for the n-th of a kind).
+    void addSweepSeries(const SweepResult& r);
     /// Moves the pipeline to its next stage once the current one delivered, publishes its progress.
     void pollPipeline();
     enum class PipelineStage { Idle, Render, Generate, Train, Evaluate };

@@ -54,6 +54,7 @@ bool Workbench::openProject(const std::string& path) {
         if (fs::exists(models / "models.json", ec)) loadModels(models.string());
         break;
     }
+    restoreSweeps();
     sceneChanged(true);
     lastAutosave_ = std::chrono::steady_clock::now();
     return true;

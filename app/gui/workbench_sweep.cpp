@@ -14,6 +14,7 @@
 #include "app/gl/glsl_predictor.h"
 #include "core/data/sampling_settings.h"
 #include "core/pipeline/sweep.h"
+#include "core/pipeline/sweep_file.h"
 #include "core/nn/network_settings.h"
 #include "core/pipeline/run_recording.h"
 #include "core/util/atomic_file.h"
@@ -108,6 +109,33 @@ std::vector<panels::CostSeries> costSeries(const SweepResult& r, const std::stri
 
 bool Workbench::sweepRunning() const { return sweepJob_.running(); }
 
+void Workbench::addSweepSeries(const SweepResult& r) {
+    int earlier = 0;
+    for (const panels::CostSeries& s : state_.cost.sweeps)
+        if (s.kind != panels::CostKind::PathTracer || r.what == "spp")
+            earlier += s.name == "sweep " + r.what || s.name.rfind("sweep " + r.what + " #", 0) == 0;
+    const std::string name = "sweep " + r.what + (earlier ? " #" + std::to_string(earlier + 1) : "");
+    for (panels::CostSeries& s : costSeries(r, name)) state_.cost.sweeps.push_back(std::move(s));
+}
+
+void Workbench::restoreSweeps() {
+    // What the project's sweeps wrote (pollSweep below), read back in the order they ran; a file that
+    // cannot be read is named in the Log and left out, the others still come back.
+    const std::vector<std::string> files = sweepFilesIn((fs::path(projectDir()) / "sweeps").string());
+    int restored = 0;
+    for (const std::string& file : files) {
+        try {
+            const SweepResult r = readSweepFile(file);
+            if (r.cancelled) continue;
+            addSweepSeries(r);
+            ++restored;
+        } catch (const std::exception& e) {
+            state_.log.warning(std::string("sweep not restored: ") + e.what());
+        }
+    }
+    if (restored > 0) state_.log.info("restored " + std::to_string(restored) + " sweep(s) from " + projectRelative(projectDir(), (fs::path(projectDir()) / "sweeps").string()));
+}
+
 bool Workbench::startSweep(const std::string& what) {
     if (!state_.hasProject) {
         state_.log.error("sweep: no project is open");
@@ -187,12 +215,7 @@ void Workbench::pollSweep() {
             }
             row.models.reset();
         }
-        int earlier = 0;
-        for (const panels::CostSeries& s : state_.cost.sweeps)
-            if (s.kind != panels::CostKind::PathTracer || r.what == "spp")
-                earlier += s.name == "sweep " + r.what || s.name.rfind("sweep " + r.what + " #", 0) == 0;
-        const std::string name = "sweep " + r.what + (earlier ? " #" + std::to_string(earlier + 1) : "");
-        for (panels::CostSeries& s : costSeries(r, name)) state_.cost.sweeps.push_back(std::move(s));
+        addSweepSeries(r);
         state_.focusTab = "Cost";
         try {
             fs::create_directories(fs::path(out.outBase).parent_path());

@@ -92,6 +92,9 @@ struct ErrorStats {
     /// "relmse_noise_floor", "relmse_corrected", "smape", "mae", "max_error", "mean_reference"};
     /// the noise figures are null when unknown.
     nlohmann::json toJson() const;
+    /// Reads what toJson() wrote (null noise figures → unknown, noiseKnown from them). Throws
+    /// InputError naming `file` and the member's pointer for a missing or mistyped member.
+    static ErrorStats fromJson(const nlohmann::json& j, const std::string& file, const std::string& pointer);
 
     static constexpr double kUnknownNoise = std::numeric_limits<double>::quiet_NaN();
 };
