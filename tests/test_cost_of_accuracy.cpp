@@ -14,6 +14,7 @@
 #include "core/predict/gbuffer.h"
 #include "core/scene/accel.h"
 #include "scene_builders.h"
+#include "sweep_builders.h"
 
 namespace test_cost_of_accuracy {
 
@@ -139,16 +140,7 @@ TEST(SweepReports, CarryCostColumnsAndThePathTracerSeries) {
 
 TEST(SweepRun, ProgressMovesWithTheWorkAndNeverGoesBack) {
     const Scene scene = test::cornellLike(1.f, 16);
-    SweepOptions o;
-    o.what = "hidden";
-    o.values = {"3", "4"};
-    o.width = o.height = 8;
-    o.referenceSpp = 4;
-    o.pathTracerSpp = {1, 2};
-    o.sampling.nx = o.sampling.ny = o.sampling.nz = 1;
-    o.sampling.directions = 10;
-    o.sampling.spp = 2;
-    o.training.trainer.lm.maxEpochs = 1;
+    SweepOptions o = test::tinyHiddenSweep({"3", "4"});
     std::vector<double> seen;
     o.progress = [&](double f) { seen.push_back(f); };
     runSweep(scene, o);

@@ -11,6 +11,7 @@
 #include "core/pipeline/sweep_file.h"
 #include "core/util/error.h"
 #include "scene_builders.h"
+#include "sweep_builders.h"
 #include "test_dirs.h"
 
 namespace test_sweep_file {
@@ -41,19 +42,7 @@ void expectSameRow(const SweepRow& a, const SweepRow& b) {
     EXPECT_EQ(a.extra, b.extra);
 }
 
-SweepResult tinySweep(const Scene& scene) {
-    SweepOptions o;
-    o.what = "hidden";
-    o.values = {"3"};
-    o.width = o.height = 8;
-    o.referenceSpp = 4;
-    o.pathTracerSpp = {1, 2};
-    o.sampling.nx = o.sampling.ny = o.sampling.nz = 1;
-    o.sampling.directions = 10;
-    o.sampling.spp = 2;
-    o.training.trainer.lm.maxEpochs = 1;
-    return runSweep(scene, o);
-}
+SweepResult tinySweep(const Scene& scene) { return runSweep(scene, test::tinyHiddenSweep({"3"})); }
 }  // namespace
 
 TEST(SweepFile, ReadsBackWhatTheSweepWrote) {

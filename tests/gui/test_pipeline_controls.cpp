@@ -13,23 +13,23 @@ namespace {
 const std::string kCornell = RRF_SOURCE_DIR "/projects/cornell-box/project.json";
 }  // namespace
 
-using PipelineControls = ImGuiFixture;
+/// The bar alone at (0, 0), clicked where its first widget (Run / Stop pipeline) is.
+class PipelineControls : public ImGuiFixture {
+protected:
+    void clickRunButton(WorkbenchState& s) {
+        for (bool down : {false, true, false}) {
+            mouse(10, 8, down);
+            frame([&] { drawPipelineBar(s); });
+        }
+    }
+};
 
 TEST_F(PipelineControls, RunButtonRequestsTheChosenPresetAndStopCancels) {
     WorkbenchState s;
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, kCornell, error)) << error;
     s.pipeline.preset = "paper";
-    // The bar alone at (0, 0): its first widget is the Run button.
-    auto click = [&] {
-        mouse(10, 8, false);
-        frame([&] { drawPipelineBar(s); });
-        mouse(10, 8, true);
-        frame([&] { drawPipelineBar(s); });
-        mouse(10, 8, false);
-        frame([&] { drawPipelineBar(s); });
-    };
-    click();
+    clickRunButton(s);
     ASSERT_EQ(s.requests.size(), 1u);
     EXPECT_EQ(s.requests[0].command, Command::RunPipeline);
     EXPECT_EQ(s.requests[0].path, "paper");
@@ -39,7 +39,7 @@ TEST_F(PipelineControls, RunButtonRequestsTheChosenPresetAndStopCancels) {
     s.pipeline.stageIndex = 2;
     s.pipeline.fraction = 0.5;
     s.pipeline.etaSeconds = 30;
-    click();
+    clickRunButton(s);
     ASSERT_EQ(s.requests.size(), 1u);
     EXPECT_EQ(s.requests[0].command, Command::CancelPipeline);
 }
@@ -51,12 +51,7 @@ TEST_F(PipelineControls, DefaultRunsTheProjectSettingsAndSaysWhatToExpect) {
     // Nothing changed, as a new user starts it: the project's settings run (not a smoke-test preset).
     EXPECT_EQ(s.pipeline.preset, "");
     EXPECT_EQ(pipelineChoiceLabel(s.pipeline.preset), "project settings");
-    mouse(10, 8, false);
-    frame([&] { drawPipelineBar(s); });
-    mouse(10, 8, true);
-    frame([&] { drawPipelineBar(s); });
-    mouse(10, 8, false);
-    frame([&] { drawPipelineBar(s); });
+    clickRunButton(s);
     ASSERT_EQ(s.requests.size(), 1u);
     EXPECT_EQ(s.requests[0].command, Command::RunPipeline);
     EXPECT_EQ(s.requests[0].path, "");
@@ -83,21 +78,13 @@ TEST_F(PipelineControls, RunIsRefusedAtTheButtonWhenTheDataCannotFit) {
     EXPECT_NE(why.find("64 MiB"), std::string::npos) << why;
     EXPECT_EQ(generateRefusal(s, s.project.samplingOrDefault()), "") << "the default's 8^3 x 300 records fit in 64 MiB";
     s.project.sampling = huge;
-    for (bool down : {false, true, false}) {
-        mouse(10, 8, down);
-        frame([&] { drawPipelineBar(s); });
-    }
+    clickRunButton(s);
     EXPECT_TRUE(s.requests.empty()) << "Run pipeline is disabled while the data cannot fit";
 }
 
 TEST_F(PipelineControls, RunButtonIsDisabledWithoutAProject) {
     WorkbenchState s;
-    mouse(10, 8, false);
-    frame([&] { drawPipelineBar(s); });
-    mouse(10, 8, true);
-    frame([&] { drawPipelineBar(s); });
-    mouse(10, 8, false);
-    frame([&] { drawPipelineBar(s); });
+    clickRunButton(s);
     EXPECT_TRUE(s.requests.empty());
 }
 
