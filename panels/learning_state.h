@@ -70,6 +70,9 @@ struct ObjectErrorRow {
     int objectId = -1;
     std::string name;
     ErrorStats stats;
+    /// Mean HDR-FLIP over the object's compared pixels (core/eval/flip_evaluation.h): global term
+    /// rows only, NaN for the other terms or without FLIP figures.
+    double flip = std::numeric_limits<double>::quiet_NaN();
     uint64_t samples = 0;        ///< training records of the object (all its networks)
     double trainSeconds = 0.0;   ///< training time of the object's networks
 };
@@ -92,6 +95,12 @@ struct EvaluationInfo {
     std::vector<ObjectErrorRow> rows[kTermCount];
     ErrorStats overall[kTermCount];
     bool available[kTermCount] = {false, false, false};
+    /// FLIP of the global term over all compared object pixels (NaN without FLIP figures): mean
+    /// HDR-FLIP, its noise floor (the ground truth against itself plus a draw of its noise; NaN
+    /// when its variance is unknown) and mean LDR-FLIP.
+    double flipHdr = std::numeric_limits<double>::quiet_NaN();
+    double flipNoiseFloor = std::numeric_limits<double>::quiet_NaN();
+    double flipLdr = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// One object of two runs compared side by side (Objects panel while the Views show a run pair):
@@ -106,7 +115,7 @@ struct PairedObjectRow {
 /// Columns of the Objects table, also the sort keys.
 /// Each RMSE comes with the ground truth's noise floor and the corrected (noise subtracted) figure;
 /// bias is the signed relative mean (the RMSE's spread has no sign), relMSE and SMAPE are the
-/// literature's figures (core/eval/error_metrics.h).
+/// literature's figures (core/eval/error_metrics.h); FLIP the perceptual one (HDR-FLIP, global term).
 enum class ObjectColumn {
     Object,
     Rmse,
@@ -119,6 +128,7 @@ enum class ObjectColumn {
     RelMse,
     RelMseCorrected,
     Smape,
+    Flip,
     Mae,
     Max,
     Pixels,

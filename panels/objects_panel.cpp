@@ -22,7 +22,7 @@ namespace rrf::panels {
 namespace {
 const char* const kColumnNames[] = {"object",         "RMSE",    "RMSE noise floor",   "RMSE corrected", "rel. RMSE",
                                     "rel. noise floor", "rel. corrected", "bias", "relMSE", "relMSE corrected",
-                                    "SMAPE",          "MAE",     "max",              "pixels",         "samples",
+                                    "SMAPE",          "FLIP",    "MAE",     "max",              "pixels",         "samples",
                                     "train s"};
 static_assert(sizeof kColumnNames / sizeof kColumnNames[0] == size_t(ObjectColumn::Count), "one name per column");
 
@@ -38,6 +38,7 @@ double key(const ObjectErrorRow& r, ObjectColumn c) {
         case ObjectColumn::RelMse: return r.stats.relMse;
         case ObjectColumn::RelMseCorrected: return r.stats.relMseCorrected;
         case ObjectColumn::Smape: return r.stats.smape;
+        case ObjectColumn::Flip: return r.flip;
         case ObjectColumn::Mae: return r.stats.mae;
         case ObjectColumn::Max: return r.stats.maxError;
         case ObjectColumn::Pixels: return double(r.stats.pixels);
@@ -51,6 +52,15 @@ double key(const ObjectErrorRow& r, ObjectColumn c) {
 std::array<double, 10> rmseFigures(const ErrorStats& s) {
     return {s.rmse,   s.rmseNoiseFloor, s.rmseCorrected,     s.relativeRmse, s.relativeRmseNoiseFloor, s.relativeRmseCorrected,
             s.signedRelativeMean, s.relMse, s.relMseCorrected, s.smape};
+}
+
+/// The FLIP cell: the figure, or "-" where there is none (a term other than global, or an
+/// evaluation without FLIP figures).
+std::string flipText(double v) {
+    if (std::isnan(v)) return "-";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
 }
 
 /// An optional figure in CSV: empty when unknown, so a reader sees a missing value, never 0.
@@ -89,6 +99,9 @@ void drawHeader(WorkbenchState& state) {
         ImGui::TextDisabled("noise floor: the error the ground truth's own noise gives; corrected (noise subtracted): "
                             "the error against the noise-free truth");
         ImGui::TextDisabled("%s", e.footprint.describe().c_str());
+        if (!std::isnan(e.flipHdr))
+            ImGui::TextDisabled("FLIP (global term): HDR-FLIP %.4g (noise floor %s), LDR-FLIP %.4g", e.flipHdr,
+                                noiseFigureText(e.flipNoiseFloor).c_str(), e.flipLdr);
     }
 }
 }  // namespace
@@ -112,6 +125,12 @@ EvaluationInfo evaluationInfo(const Evaluation& e, const Scene& scene, const Mod
             }
             t.first = std::max<uint64_t>(t.first, records);
         }
+    const FlipEvaluation& f = e.flip;
+    if (f.available && f.hdr.pixels) {
+        info.flipHdr = f.hdr.mean;
+        info.flipNoiseFloor = f.hdrNoiseFloor;
+        info.flipLdr = f.ldr.mean;
+    }
     for (Term t : kTerms) {
         const TermErrors& te = e.term(t);
         info.available[int(t)] = te.available;
@@ -122,6 +141,8 @@ EvaluationInfo evaluationInfo(const Evaluation& e, const Scene& scene, const Mod
             row.objectId = int(id);
             row.name = scene.objects[id].name;
             row.stats = te.perObject[id];
+            if (t == Term::Global && f.available && id < f.hdrPerObject.size() && f.hdrPerObject[id].pixels)
+                row.flip = f.hdrPerObject[id].mean;
             if (training.count(int(id))) row.samples = training[int(id)].first, row.trainSeconds = training[int(id)].second;
             info.rows[int(t)].push_back(row);
         }
@@ -145,7 +166,7 @@ std::string objectRowsCsv(const std::vector<ObjectErrorRow>& rows, const char* t
     // The noise columns follow the older ones, so readers of the earlier layout keep their columns.
     std::string csv = "term,object_id,object,rmse,relative_rmse,mae,max,pixels,samples,train_seconds,rmse_noise_floor,"
                       "rmse_corrected,relative_rmse_noise_floor,relative_rmse_corrected,signed_relative_mean,relmse,"
-                      "relmse_noise_floor,relmse_corrected,smape\n";
+                      "relmse_noise_floor,relmse_corrected,smape,flip\n";
     char buf[256];
     for (const ObjectErrorRow& r : rows) {
         std::snprintf(buf, sizeof buf, ",%.9g,%.9g,%.9g,%.9g,%llu,%llu,%.6g", r.stats.rmse, r.stats.relativeRmse,
@@ -156,7 +177,7 @@ std::string objectRowsCsv(const std::vector<ObjectErrorRow>& rows, const char* t
                csvNumber(r.stats.relativeRmseNoiseFloor) + "," + csvNumber(r.stats.relativeRmseCorrected) + "," +
                csvNumber(r.stats.signedRelativeMean) + "," + csvNumber(r.stats.relMse) + "," +
                csvNumber(r.stats.relMseNoiseFloor) + "," + csvNumber(r.stats.relMseCorrected) + "," +
-               csvNumber(r.stats.smape) + "\n";
+               csvNumber(r.stats.smape) + "," + csvNumber(r.flip) + "\n";
     }
     return csv;
 }
@@ -274,6 +295,9 @@ void drawObjectsPanel(WorkbenchState& state) {
                 ImGui::SetTooltip("relMSE: mean d^2 / (ref^2 + 0.01), tev's relative squared error (no root);\ncorrected: the ground truth's variance subtracted");
             else if (col == ObjectColumn::Smape)
                 ImGui::SetTooltip("SMAPE: mean |d| / (|pred| + |ref| + 0.01), in [0, 1]; not noise-corrected");
+            else if (col == ObjectColumn::Flip)
+                ImGui::SetTooltip("FLIP: mean HDR-FLIP (Andersson et al.), the perceived difference in [0, 1], over the\n"
+                                  "reference's exposure range; global term only (\"-\" for the others)");
         }
     ObjectsView& v = state.objectsView;
     if (ImGuiTableSortSpecs* specs = ImGui::TableGetSortSpecs()) {
@@ -297,6 +321,8 @@ void drawObjectsPanel(WorkbenchState& state) {
             ImGui::TableNextColumn();
             ImGui::TextUnformatted(noiseFigureText(value).c_str());
         }
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(flipText(r.flip).c_str());
         for (double value : {r.stats.mae, r.stats.maxError}) {
             ImGui::TableNextColumn();
             ImGui::Text("%.4g", value);
@@ -316,6 +342,8 @@ void drawObjectsPanel(WorkbenchState& state) {
         ImGui::TableNextColumn();
         ImGui::TextDisabled("%s", noiseFigureText(value).c_str());
     }
+    ImGui::TableNextColumn();
+    ImGui::TextDisabled("%s", flipText(state.view.term == Term::Global ? e.flipHdr : std::nan("")).c_str());
     for (double value : {o.mae, o.maxError}) {
         ImGui::TableNextColumn();
         ImGui::TextDisabled("%.4g", value);

@@ -15,9 +15,10 @@ bool dimmed(const std::vector<int>* ids, int selected, size_t i) {
     return ids && selected >= 0 && i < ids->size() && (*ids)[i] != selected;
 }
 
-void falseColourRgba(const Image& error, ErrorMapKind kind, float hi, const std::vector<int>* ids, int selected,
+/// The error view's RGBA: `fc` (the map in false colour), dimmed outside the selected object, with
+/// the pixels the footprint mask leaves out drawn as leftOutColour.
+void falseColourRgba(const Image& error, const Image& fc, const std::vector<int>* ids, int selected,
                      const FootprintMask* mask, std::vector<uint8_t>& rgba) {
-    const Image fc = errorMapColour(error, kind, hi);
     toneMapRgba(fc, 0.f, ids, selected, rgba);
     if (!mask || mask->width != error.width || mask->height != error.height) return;
     for (int y = 0; y < error.height; ++y)
@@ -161,12 +162,14 @@ void ViewModel::update(WorkbenchState& s) {
     k.selected = s.view.highlight ? s.view.selectedObject : -1;
     k.ids = s.objectIds.size();
     k.leaves = s.view.leafOverlay ? s.leaves.revision : 0;
+    k.flip = s.view.flip;
+    k.flipRevision = s.view.flip ? s.view.flipMap.revision : 0;
     if (k == key_) {
         s.view.errorStats = stats_;
         return;
     }
     const bool sourcesChanged = k.gt != key_.gt || k.cmp != key_.cmp || k.source != key_.source || k.term != key_.term;
-    const bool errorChanged = sourcesChanged || k.metric != key_.metric;
+    const bool errorChanged = sourcesChanged || k.metric != key_.metric || k.flip != key_.flip || k.flipRevision != key_.flipRevision;
     key_ = k;
 
     const Image& ref = s.reference().term(s.view.term);
@@ -180,12 +183,19 @@ void ViewModel::update(WorkbenchState& s) {
         d.height = img.height;
         d.revision = ++counter_;
         if (img.empty()) d.rgba.clear();
-        else if (error) falseColourRgba(img, s.view.metric, s.view.errorMax, idsFor(img), k.selected, s.reference().footprint.get(), d.rgba);
+        else if (error)
+            falseColourRgba(img, s.view.flip ? flipColour(img) : errorMapColour(img, s.view.metric, s.view.errorMax), idsFor(img),
+                            k.selected, s.reference().footprint.get(), d.rgba);
         else toneMapRgba(img, s.view.exposure, idsFor(img), k.selected, d.rgba);
     };
     // Never an error map against the ground truth of another light, scene or size.
     const bool blocked = !comparisonBlocked(s.reference(), s.compared()).empty();
-    if (errorChanged) error_ = blocked ? Image() : viewErrorMap(ref, cmp, s.view.metric);
+    // FLIP is computed on a worker (panels/workbench_state.h, FlipViewMap): shown only when it was
+    // made from exactly the images on screen.
+    if (errorChanged)
+        error_ = blocked ? Image()
+                 : s.view.flip ? (s.view.flipMap.matches(k.gt, k.cmp, k.term) ? s.view.flipMap.map : Image())
+                               : viewErrorMap(ref, cmp, s.view.metric);
     if (sourcesChanged) stats_ = viewErrorStats(s.reference(), s.compared(), s.view.term);
     s.view.errorStats = stats_;
     fill(views_[kReference], ref, false);

@@ -4,6 +4,8 @@
 /// false-colour error map between them; all as 8-bit RGBA ready for texture upload. Results are
 /// cached and recomputed only when an input changed, so calling update() every frame is cheap.
 ///
+/// With ViewState::flip the error view shows the HDR-FLIP map the application computed for exactly
+/// these images (ViewState::flipMap; nothing until it has), in magma over [0, 1].
 /// The error map is core's errorMap(compared, groundTruth, kind) (core/eval/error_metrics.h: per
 /// channel, averaged over R, G, B), so a pixel of the Views error is the value `rrf evaluate` and the
 /// Objects table are built from. Object pixels the ground truth's footprint mask leaves out
@@ -104,9 +106,12 @@ private:
         int selected = -2;
         size_t ids = 0;
         uint64_t leaves = 0;  ///< LeavesInfo::revision when the leaf overlay is on, else 0
+        bool flip = false;
+        uint64_t flipRevision = 0;  ///< FlipViewMap::revision while the FLIP map is shown, else 0
         bool operator==(const Key& o) const {
             return gt == o.gt && cmp == o.cmp && source == o.source && term == o.term && metric == o.metric && exposure == o.exposure &&
-                   errorMax == o.errorMax && selected == o.selected && ids == o.ids && leaves == o.leaves;
+                   errorMax == o.errorMax && selected == o.selected && ids == o.ids && leaves == o.leaves && flip == o.flip &&
+                   flipRevision == o.flipRevision;
         }
     };
     Key key_;

@@ -51,6 +51,17 @@ const char* errorMapLabel(ErrorMapKind k) {
     return labels[size_t(k)].c_str();
 }
 
+/// The error combo's entry for the FLIP map.
+constexpr const char* kFlipLabel = "FLIP: HDR-FLIP, perceived difference in [0, 1]";
+
+/// The label of the error view's map: FLIP or the per-pixel metric.
+const char* errorViewLabel(const ViewState& v) { return v.flip ? kFlipLabel : errorMapLabel(v.metric); }
+
+/// True when the FLIP map on hand was computed from the images on screen.
+bool flipShown(const WorkbenchState& state) {
+    return state.view.flip && state.view.flipMap.matches(state.reference().revision, state.compared().revision, state.view.term);
+}
+
 /// Screen mapping of one view: image pixel q ↦ centre + (q − imageCentre − pan) · scale.
 struct ViewRect {
     ImVec2 min, max, centre;
@@ -105,17 +116,29 @@ void drawToolbar(WorkbenchState& state) {
     ImGui::SetNextItemWidth(w);
     ImGui::SliderFloat("exposure", &v.exposure, -8.f, 8.f, "%+.1f EV");
     // The error combo is as wide as its longest entry's preview needs, so the metric is readable.
-    const float metricW = ImGui::CalcTextSize(errorMapLabel(v.metric)).x + ImGui::GetFrameHeight() +
+    const float metricW = ImGui::CalcTextSize(errorViewLabel(v)).x + ImGui::GetFrameHeight() +
                           2 * ImGui::GetStyle().FramePadding.x;
     sameLineIfFits(labelledWidth(metricW, "error"));
     ImGui::SetNextItemWidth(metricW);
-    enumCombo("error", v.metric, kErrorMapKinds, errorMapLabel);
+    // The per-pixel metrics, then FLIP (a map of the whole image, computed on a worker).
+    if (ImGui::BeginCombo("error", errorViewLabel(v))) {
+        for (ErrorMapKind k : kErrorMapKinds) {
+            const bool selected = !v.flip && k == v.metric;
+            if (ImGui::Selectable(errorMapLabel(k), selected)) v.metric = k, v.flip = false;
+        }
+        if (ImGui::Selectable(kFlipLabel, v.flip)) v.flip = true;
+        ImGui::EndCombo();
+    }
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("per channel, averaged over R, G, B (d = compared - ground truth):\nthe metric rrf evaluate and the Objects table report");
+        ImGui::SetTooltip(v.flip ? "HDR-FLIP (Andersson et al. 2020, 2021): the perceived difference, max over the ground truth's\n"
+                                   "exposure range, in magma over [0, 1]; the FLIP rrf evaluate reports"
+                                 : "per channel, averaged over R, G, B (d = compared - ground truth):\nthe metric rrf evaluate and the Objects table report");
     sameLineIfFits(labelledWidth(w, "scale max"));
     ImGui::SetNextItemWidth(w);
+    ImGui::BeginDisabled(v.flip);  // FLIP has its own scale, [0, 1]
     ImGui::DragFloat("scale max", &v.errorMax, v.errorMax * 0.01f + 1e-6f, 1e-6f, 1e6f, "%.3g",
                      ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    ImGui::EndDisabled();
     sameLineIfFits(labelledWidth(box, "highlight"));
     ImGui::Checkbox("highlight", &v.highlight);
     sameLineIfFits(labelledWidth(box, "leaves"));
@@ -177,11 +200,15 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
             }
         }
     } else {
+        const Image& gt = state.reference().term(v.term);
+        const Image& cmp = state.compared().term(v.term);
+        const bool flipPending = v.flip && !gt.empty() && cmp.width == gt.width && cmp.height == gt.height;
         const char* msg = index == ViewModel::kCompared
                               ? (state.view.compareSource == CompareSource::Prediction
                                      ? "No prediction yet: generate a dataset\n(Sampling) and train (Training)."
                                      : "No run compared: \"Compare\" a run\nin the Project panel.")
-                              : index == ViewModel::kError ? "Error map: needs a compared image\nof the same size."
+                              : index == ViewModel::kError ? (flipPending ? "FLIP: computing the map\nof these images..."
+                                                                          : "Error map: needs a compared image\nof the same size.")
                                                            : "No ground truth yet: press Render.";
         dl->AddText(ImVec2(pos.x + 8, pos.y + 8), IM_COL32(160, 160, 160, 255), msg);
     }
@@ -216,6 +243,19 @@ void drawErrorFigures(const WorkbenchState& state) {
         ImGui::SetTooltip("the figures rrf evaluate reports for all objects (per channel, footprint mask's pixels);\n"
                           "noise floor: what the ground truth's own noise gives; corrected: that noise subtracted");
     ImGui::TextDisabled("hatched: %s", f.left.describe().c_str());
+    if (!state.view.flip) return;
+    const FlipViewMap& m = state.view.flipMap;
+    if (!flipShown(state)) {
+        ImGui::TextDisabled("FLIP: computing the map of these images...");
+        return;
+    }
+    ImGui::Text("HDR-FLIP %llu pixels: mean %.4g, weighted median %.4g (quartiles %.4g, %.4g), max %.4g",
+                (unsigned long long)m.stats.pixels, m.stats.mean, m.stats.weightedMedian, m.stats.weightedFirstQuartile,
+                m.stats.weightedThirdQuartile, m.stats.max);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%d exposures from %.2f to %.2f stops (from the ground truth alone, so runs compare);\n"
+                          "the ground truth's own noise is in this figure: rrf evaluate and the Objects table give its floor",
+                          m.range.count, m.range.start, m.range.stop);
 }
 
 void drawLegend(const ViewState& v, float width) {
@@ -224,10 +264,11 @@ void drawLegend(const ViewState& v, float width) {
     const float h = ImGui::GetFontSize() * 0.8f;
     const int steps = 32;
     // A signed map runs from -scale (blue: below the ground truth) through 0 to +scale (red: above).
-    const bool isSigned = errorMapIsSigned(v.metric);
+    const bool isSigned = !v.flip && errorMapIsSigned(v.metric);
+    auto colour = [&](float t) { return v.flip ? magma(t) : isSigned ? coolWarm(2 * t - 1) : viridis(t); };
     for (int i = 0; i < steps; ++i) {
         const float t0 = float(i) / steps, t1 = float(i + 1) / steps;
-        const Vec3 c0 = isSigned ? coolWarm(2 * t0 - 1) : viridis(t0), c1 = isSigned ? coolWarm(2 * t1 - 1) : viridis(t1);
+        const Vec3 c0 = colour(t0), c1 = colour(t1);
         auto col = [](const Vec3& c) {
             return ImGui::ColorConvertFloat4ToU32(ImVec4(linearToSrgb(c.x), linearToSrgb(c.y), linearToSrgb(c.z), 1.f));
         };
@@ -241,7 +282,7 @@ void drawLegend(const ViewState& v, float width) {
         std::snprintf(hi, sizeof hi, "above +%.3g", v.errorMax);
     } else {
         std::snprintf(lo, sizeof lo, "0");
-        std::snprintf(hi, sizeof hi, "%.3g", v.errorMax);
+        std::snprintf(hi, sizeof hi, "%.3g", v.flip ? 1.f : v.errorMax);
     }
     const float x = ImGui::GetCursorPosX();
     ImGui::TextUnformatted(lo);
@@ -280,7 +321,10 @@ void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp
         ImGui::Text("  compared (%.4g, %.4g, %.4g)", c.x, c.y, c.z);
         if (cmp.width == ref.width && cmp.height == ref.height) {
             ImGui::SameLine();
-            ImGui::Text("  error %.4g", pixelError(c, r, v.metric));
+            if (!v.flip) ImGui::Text("  error %.4g", pixelError(c, r, v.metric));
+            else if (flipShown(state) && v.hoverX < state.view.flipMap.map.width && v.hoverY < state.view.flipMap.map.height)
+                ImGui::Text("  FLIP %.4g", state.view.flipMap.map.at(v.hoverX, v.hoverY).x);
+            else ImGui::TextDisabled("  FLIP computing");
             const FootprintMask* mask = state.groundTruth.footprint.get();
             const size_t i = size_t(v.hoverY) * size_t(ref.width) + size_t(v.hoverX);
             if (mask && mask->width == ref.width && mask->height == ref.height && !mask->isKept(i)) {
@@ -314,7 +358,7 @@ void drawViewsPanel(WorkbenchState& state) {
     else std::snprintf(gtTitle, sizeof gtTitle, "Ground truth (%s, %d spp)", termName(state.view.term), state.render.spp);
     const std::string cmpTitle = compared.empty() ? std::string(state.view.compareSource == CompareSource::Run ? "Compared run" : "Prediction")
                                                   : compared.label;
-    const std::string errTitle = std::string(pair ? "Difference B vs A: " : "Error: ") + errorMapLabel(state.view.metric);
+    const std::string errTitle = std::string(pair ? "Difference B vs A: " : "Error: ") + errorViewLabel(state.view);
 
     ImVec2 hover(-1, -1);
     bool over = drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
@@ -323,7 +367,8 @@ void drawViewsPanel(WorkbenchState& state) {
     if (!layout.grid) ImGui::SameLine();
     static const Image kNoImage;
     const bool comparable = !cmp.empty() && cmp.width == ref.width && cmp.height == ref.height;
-    over |= drawView(state, ViewModel::kError, errTitle.c_str(), comparable ? ref : kNoImage, size, hover);
+    const bool errorShown = comparable && (!state.view.flip || flipShown(state));
+    over |= drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
     state.view.hoverX = over ? int(hover.x) : -1;
     state.view.hoverY = over ? int(hover.y) : -1;
 

@@ -14,6 +14,7 @@
 #include <imgui.h>
 
 #include "core/eval/error_metrics.h"
+#include "core/eval/flip.h"
 #include "core/predict/footprint_mask.h"
 #include "core/render/term.h"
 #include "core/util/vec3.h"
@@ -122,12 +123,30 @@ struct ViewErrorStats {
     FootprintCounts left;  ///< object pixels the mask leaves out, per reason
 };
 
+/// The Views' FLIP map: HDR-FLIP (core/eval/flip.h) of the compared image's term against the
+/// ground truth's over the ground truth's exposure range, computed on a worker by the application
+/// for the image revisions and term it names, which the view shows only while they are the ones on
+/// screen (an older map is never shown against newer images).
+struct FlipViewMap {
+    uint64_t groundTruth = 0, compared = 0;  ///< the ImageSet revisions it was computed from (0: none yet)
+    Term term = Term::Global;
+    Image map;                 ///< HDR-FLIP per pixel, in [0, 1]
+    FlipExposureRange range;   ///< from the ground truth's image
+    FlipStats stats;           ///< over the ground truth's footprint mask's kept pixels
+    uint64_t revision = 0;     ///< changes whenever a new map arrives
+    bool computing = false;    ///< a FLIP job runs
+    bool matches(uint64_t gt, uint64_t cmp, Term t) const { return revision && groundTruth == gt && compared == cmp && term == t; }
+};
+
 /// Display settings of the three side-by-side views.
 struct ViewState {
     Term term = Term::Global;   ///< the radiance term the views show
     /// The error map between the compared image and the ground truth: core's per-pixel metric
     /// (core/eval/error_metrics.h, mean over R, G, B), the quantity `rrf evaluate` reports.
     ErrorMapKind metric = ErrorMapKind::Relative;
+    /// The error view shows the perceptual HDR-FLIP map (flipMap) instead of `metric`.
+    bool flip = false;
+    FlipViewMap flipMap;        ///< published by the application while `flip` is on
     float exposure = 0.f;       ///< stops
     float errorMax = 0.25f;     ///< top of the false-colour scale
     float zoom = 1.f;           ///< view pixels per image pixel, relative to fitting the pane

@@ -59,7 +59,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"check", {"runs", "ground_truth_spp_min", "errors", "compare", "dataset", "prediction", "evaluated",
                        "train_runs", "sweeps", "unsaved_prompt", "dirty", "stopped_runs", "prediction_partial",
                        "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped", "pipeline_done",
-                       "pipeline_stopped", "prediction_label", "error_waiting"}},
+                       "pipeline_stopped", "prediction_label", "error_waiting", "flip_evaluated"}},
         };
     }();
     return keys;
@@ -145,8 +145,10 @@ bool Script::execute(Workbench& wb, const json& s) {
         }
         // train_epoch: until the running training has reported its first epoch (to stop it mid-run).
         // pipeline: until the one-click pipeline has ended; train_running: until a training runs.
-        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running"});
-        const bool busy = on == "render"          ? wb.renderRunning()
+        // flip: until the Views' FLIP map of the images on screen has arrived.
+        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running", "flip"});
+        const bool busy = on == "flip" ? !st.view.flipMap.matches(st.reference().revision, st.compared().revision, st.view.term)
+                          : on == "render"        ? wb.renderRunning()
                           : on == "train_epoch"   ? wb.trainRunning() && st.training.epoch < 1
                           : on == "pipeline"      ? wb.pipelineRunning()
                           : on == "train_running" ? !wb.trainRunning()
@@ -276,11 +278,13 @@ bool Script::execute(Workbench& wb, const json& s) {
             st.view.term = *parseTerm(t);
         }
         if (r.has("metric")) {
+            // Every error map kind, and "flip" for the Views' FLIP map.
             static_assert(std::size(kErrorMapKinds) == 6, "every error map kind is a script choice");
             const std::string m = r.choiceOr("metric", "", {errorMapName(kErrorMapKinds[0]), errorMapName(kErrorMapKinds[1]),
                                                             errorMapName(kErrorMapKinds[2]), errorMapName(kErrorMapKinds[3]),
-                                                            errorMapName(kErrorMapKinds[4]), errorMapName(kErrorMapKinds[5])});
-            st.view.metric = *parseErrorMapKind(m);
+                                                            errorMapName(kErrorMapKinds[4]), errorMapName(kErrorMapKinds[5]), "flip"});
+            st.view.flip = m == "flip";
+            if (!st.view.flip) st.view.metric = *parseErrorMapKind(m);
         }
         st.view.exposure = r.floatOr("exposure", st.view.exposure);
         st.view.errorMax = r.floatOr("error_max", st.view.errorMax);
@@ -357,6 +361,8 @@ bool Script::execute(Workbench& wb, const json& s) {
         flag("error_waiting", !st.view.errorStats.waiting.empty(), "error figures' waiting state");
         count("sweeps", st.cost.sweeps.size(), "sweeps");
         flag("evaluated", st.evaluation.valid, "evaluation state");
+        // flip_evaluated: the last evaluation has FLIP figures (global term, finite mean).
+        flag("flip_evaluated", st.evaluation.valid && std::isfinite(st.evaluation.flipHdr), "evaluation's FLIP state");
         size_t trained = 0;
         for (const Run& run : st.project.runs) trained += run.kind == "train" && !run.curves.empty();
         count("train_runs", trained, "training runs with loss curves");

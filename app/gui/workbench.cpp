@@ -89,7 +89,8 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 
 void Workbench::dropJobs() {
     for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &generateJob_, &trainJob_, &evaluateJob_,
-                                                                      &predictJob_, &sweepJob_, &pairJob_, &overlayJob_})
+                                                                      &predictJob_, &sweepJob_, &pairJob_, &overlayJob_,
+                                                                      &flipJob_})
         job->drop();
     render_.reset();
     trainLive_.reset();
@@ -128,6 +129,7 @@ void Workbench::frame() {
     pollSweep();
     pollRunPair();
     pollPipeline();
+    updateFlipMap();
     refreshAvailableMemory();
     finishDraft();
     drawHost();

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <tuple>
 
 #include "app/gui/frame_stats.h"
 #include "app/gui/gl_texture.h"
@@ -95,6 +96,9 @@ public:
     bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr);
     /// Recomputes the Views leaf overlay (leaf per pixel) when it is on and the prediction changed.
     void updateLeafOverlay();
+    /// The Views' FLIP map while it is selected: one worker at a time for the images on screen
+    /// (app/gui/workbench_flip.cpp).
+    void updateFlipMap();
     /// Compares the prediction with the ground truth per object and term (fills the Objects panel).
     bool startEvaluate();
     bool evaluateRunning() const;
@@ -249,6 +253,11 @@ private:
     /// The Views' leaf overlay, computed on a worker (a G-buffer and a leaf lookup per pixel).
     JobSession<LeafOverlay> overlayJob_{jobs_, JobKind::Overlay, state_.log};
     uint64_t overlayFor_ = 0;  ///< the prediction revision the last overlay job was started for
+    /// The Views' FLIP map (HDR-FLIP of the compared image against the ground truth), on a worker.
+    JobSession<panels::FlipViewMap> flipJob_{jobs_, JobKind::Overlay, state_.log};
+    /// What the last FLIP job was started for (ground truth and compared revisions, term).
+    std::tuple<uint64_t, uint64_t, Term> flipFor_{0, 0, Term::Global};
+    uint64_t flipMaps_ = 0;  ///< FLIP maps delivered (their revisions)
     LivePrediction live_;
     /// Results each kind of job delivered so far: the pipeline advances when its stage's count grew
     /// and fails when the job ended without one (stopped, refused, failed).

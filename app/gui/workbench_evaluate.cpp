@@ -65,7 +65,8 @@ bool Workbench::startEvaluate() {
         const Stopwatch clock;
         ctx.setStatus("predicting");
         const Predictor predictor(*scene, *models, settings);
-        const Evaluation e = evaluate(predictor, *reference);
+        Evaluation e = evaluate(predictor, *reference);
+        e.flip = flipEvaluation(e, *reference);
         EvaluationOutcome out;
         out.info = panels::evaluationInfo(e, *scene, *models);
         out.info.referenceSpp = reference->spp;

@@ -176,7 +176,7 @@ nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
         }
         terms[termName(Term(t))] = {{"available", te.available}, {"overall", te.overall.toJson()}, {"objects", objects}};
     }
-    return {
+    nlohmann::json report = {
         {"light_position", vec(e.lightPosition)},
         {"footprint_mask", e.footprint.counts.toJson()},
         {"reference",
@@ -203,6 +203,12 @@ nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
          "(|ref|+0.01)^2), an estimate of the error against the noise-free truth"},
         {"terms", terms},
     };
+    if (e.flip.available) {
+        std::vector<std::string> names;
+        for (const auto& o : scene.objects) names.push_back(o.name);
+        report["flip"] = flipJson(e.flip, names);
+    }
+    return report;
 }
 
 std::string evaluationTable(const Scene& scene, const Evaluation& e) {
@@ -242,6 +248,26 @@ std::string evaluationTable(const Scene& scene, const Evaluation& e) {
     out << "noise floor: the error the reference's own Monte Carlo noise gives; corrected: the error with that noise "
            "subtracted (sqrt(max(0, mean(d^2 - Var(ref))))), an estimate against the noise-free truth; bias: mean "
            "d / (|ref| + 0.01), signed; relMSE: mean d^2 / (ref^2 + 0.01); SMAPE: mean |d| / (|pred| + |ref| + 0.01)\n";
+    if (e.flip.available) {
+        const FlipEvaluation& f = e.flip;
+        std::snprintf(line, sizeof line,
+                      "FLIP (global term, %.1f pixels per degree; HDR over %d exposures %.2f to %.2f stops)\n%-14s %8s %10s %11s %10s %10s %10s %10s\n",
+                      f.settings.pixelsPerDegree, f.range.count, f.range.start, f.range.stop, "object", "pixels", "HDR-FLIP",
+                      "noise floor", "w.median", "w.Q1", "w.Q3", "LDR-FLIP");
+        out << line;
+        auto flipRow = [&](const std::string& name, const FlipStats& s, const std::string& floor, const std::string& ldr) {
+            std::snprintf(line, sizeof line, "%-14s %8llu %10s %11s %10s %10s %10s %10s\n", name.substr(0, 14).c_str(),
+                          (unsigned long long)s.pixels, num(s.mean).c_str(), floor.c_str(), num(s.weightedMedian).c_str(),
+                          num(s.weightedFirstQuartile).c_str(), num(s.weightedThirdQuartile).c_str(), ldr.c_str());
+            out << line;
+        };
+        for (size_t id = 0; id < f.hdrPerObject.size(); ++id)
+            if (f.hdrPerObject[id].pixels)
+                flipRow(id < scene.objects.size() ? scene.objects[id].name : std::to_string(id), f.hdrPerObject[id], "", "");
+        flipRow("ALL OBJECTS", f.hdr, noiseFigureText(f.hdrNoiseFloor), num(f.ldr.mean));
+        out << "FLIP: mean per-pixel perceived difference in [0, 1] (w. = weighted by the error, as the FLIP tools "
+               "pool it); noise floor: the reference against itself plus one draw of its own noise\n";
+    }
     const Prediction& p = e.prediction;
     if (!p.objectsWithoutNetwork.empty())
         out << "objects without a network (shown black): " << p.objectsWithoutNetwork.size() << " objects, "
@@ -291,6 +317,18 @@ nlohmann::json writeEvaluationImages(const std::string& dir, const Evaluation& e
             files.push_back(base + ".png");
         }
     }
+    if (e.flip.available)
+        for (const auto& [name, map] : {std::pair<const char*, const Image*>{"flip_hdr_global", &e.flip.hdrMap},
+                                        std::pair<const char*, const Image*>{"flip_ldr_global", &e.flip.ldrMap}}) {
+            const std::string base = (fs::path(dir) / name).string();
+            uint64_t replaced = 0;
+            writeImage(base + ".exr", finiteMap(*map, replaced), ImageFormat::EXR);
+            nonFinite += replaced;
+            writeImage(base + ".png", flipColour(*map), ImageFormat::PNG);  // magma over [0, 1], FLIP's own scale
+            ranges[name] = {0.0, 1.0};
+            files.push_back(base + ".exr");
+            files.push_back(base + ".png");
+        }
     return {{"files", files}, {"false_colour_ranges", ranges}, {"non_finite_map_pixels", nonFinite}};
 }
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/eval/error_metrics.h"
+#include "core/eval/flip_evaluation.h"
 #include "core/predict/footprint_mask.h"
 #include "core/predict/predictor.h"
 #include "core/render/term.h"
@@ -89,6 +90,9 @@ struct Evaluation {
     int referenceSpp = 0;
     uint64_t referenceNonFinite = 0;
     bool referenceNoiseKnown = false;  ///< the reference carried its variance (noise floors are numbers)
+    /// FLIP of the global term (core/eval/flip_evaluation.h); not available unless the caller ran
+    /// flipEvaluation (the CLI's evaluation stage and the workbench's Evaluate do; sweeps do not).
+    FlipEvaluation flip;
     const TermErrors& term(Term t) const { return terms[int(t)]; }
 };
 
@@ -101,15 +105,18 @@ Evaluation evaluate(const Predictor& predictor, const Reference& reference);
 Evaluation evaluatePrediction(const GBuffer& gb, Prediction prediction, const Reference& reference);
 
 /// Report of one evaluation: settings, timings, NaN/Inf counts, errors per term and object (each with
-/// the reference's noise floor and the noise-corrected figures, null when unknown).
+/// the reference's noise floor and the noise-corrected figures, null when unknown), and "flip"
+/// (flipJson) when the FLIP figures were computed.
 nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e);
 /// Fixed-width table: one row per term and object, then the overall row of each term; RMSE and
-/// relative RMSE each with "noise floor" and "corrected" columns ("unknown" without the variance).
+/// relative RMSE each with "noise floor" and "corrected" columns ("unknown" without the variance);
+/// then the FLIP figures when computed.
 std::string evaluationTable(const Scene& scene, const Evaluation& e);
 
 /// Writes into `dir`: prediction_<term>.exr/.png, reference_<term>.exr, error_<kind>_<term>.exr (float
 /// maps, non-finite pixels zeroed and counted) and error_<kind>_<term>.png (viridis over [0, p99] of
-/// the map, the range recorded in the returned JSON). Unavailable terms are skipped.
+/// the map, the range recorded in the returned JSON). Unavailable terms are skipped. With the FLIP
+/// figures: flip_hdr_global and flip_ldr_global (.exr, and .png in magma over [0, 1]).
 /// Returns {"files": [...], "ranges": {...}, "non_finite_map_pixels": n}.
 nlohmann::json writeEvaluationImages(const std::string& dir, const Evaluation& e, const Reference& reference,
                                      float exposureStops = 0.f);

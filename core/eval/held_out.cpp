@@ -1,6 +1,7 @@
 #include "core/eval/held_out.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -69,7 +70,18 @@ HeldOutSummary summarizeHeldOut(const std::vector<Evaluation>& evaluations, size
             }
             if (te.overall.pixels) s.overall[t].add(te.overall);
         }
+    for (const Evaluation& e : evaluations) {
+        if (!e.flip.available || !e.flip.hdr.pixels) continue;
+        s.flipHdr.add(e.flip.hdr.mean);
+        s.flipLdr.add(e.flip.ldr.mean);
+        if (std::isfinite(e.flip.hdrNoiseFloor)) s.flipHdrNoiseFloor.add(e.flip.hdrNoiseFloor);
+    }
     return s;
+}
+
+nlohmann::json HeldOutSummary::flipJson() const {
+    if (!flipHdr.count) return nullptr;
+    return {{"hdr", flipHdr.toJson()}, {"hdr_noise_floor", flipHdrNoiseFloor.toJson()}, {"ldr", flipLdr.toJson()}};
 }
 
 nlohmann::json heldOutJson(const Scene& scene, const HeldOutSummary& s) {
@@ -120,6 +132,14 @@ std::string heldOutTable(const Scene& scene, const HeldOutSummary& s) {
     }
     out << "noise floor: the error the references' own noise gives (mean over the K lights); corrected: the error "
            "with that noise subtracted, an estimate against the noise-free truth\n";
+    if (s.flipHdr.count) {
+        std::snprintf(line, sizeof line,
+                      "FLIP (global, all objects, %d lights): HDR-FLIP mean %.4g (min %.4g, max %.4g), noise floor %s; "
+                      "LDR-FLIP mean %.4g\n",
+                      s.flipHdr.count, s.flipHdr.mean, s.flipHdr.min, s.flipHdr.max,
+                      noiseFigureText(s.flipHdrNoiseFloor.meanOrUnknown()).c_str(), s.flipLdr.mean);
+        out << line;
+    }
     return out.str();
 }
 

@@ -41,12 +41,19 @@ struct HeldOutSummary {
     bool available[kTermCount] = {true, true, true};
     std::vector<Row> perObject[kTermCount];  ///< index = object id
     Row overall[kTermCount];
+    /// FLIP of the global term over all kept object pixels (core/eval/flip_evaluation.h), over the
+    /// evaluations that computed it: HDR-FLIP mean, its noise floor (where the noise was known) and
+    /// LDR-FLIP mean.
+    Spread flipHdr, flipHdrNoiseFloor, flipLdr;
+    /// {"hdr", "hdr_noise_floor", "ldr"} spreads, or null when no evaluation had FLIP figures.
+    nlohmann::json flipJson() const;
 };
 
 HeldOutSummary summarizeHeldOut(const std::vector<Evaluation>& evaluations, size_t objectCount);
 nlohmann::json heldOutJson(const Scene& scene, const HeldOutSummary& s);
 /// Fixed-width table: term, object, K, relative RMSE mean/min/max, its noise floor (mean), its
-/// corrected value mean/min/max, then RMSE mean/min/max, noise floor and corrected (means).
+/// corrected value mean/min/max, then RMSE mean/min/max, noise floor and corrected (means); then a
+/// line of the FLIP spread when the evaluations had FLIP figures.
 std::string heldOutTable(const Scene& scene, const HeldOutSummary& s);
 
 }  // namespace rrf

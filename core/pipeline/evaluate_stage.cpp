@@ -146,6 +146,7 @@ std::vector<Evaluation> evaluateAtLights(const Project& p, const Predictor& pred
         const Reference& ref = obtained.reference;
         const std::string dir = lights.size() > 1 ? evaluationFile(out, "light_" + std::to_string(k)) : out;
         evals.push_back(evaluate(predictor, ref));
+        evals.back().flip = flipEvaluation(evals.back(), ref);
         const Evaluation& e = evals.back();
         nlohmann::json report = evaluationJson(p.scene, e);
         if (!obtained.info.is_null()) report["reference_source"] = obtained.info;
@@ -173,7 +174,7 @@ std::vector<Evaluation> evaluateAtLights(const Project& p, const Predictor& pred
         const std::string text = evaluationFile(out, "held_out.txt"), json = evaluationFile(out, "held_out.json");
         writeFileAtomically(text, table);
         observer.note("wrote " + text);
-        writeFileAtomically(json, nlohmann::json{{"summary", heldOutJson(p.scene, s)}, {"evaluations", reports}}.dump(2) + "\n");
+        writeFileAtomically(json, nlohmann::json{{"summary", heldOutJson(p.scene, s)}, {"flip", s.flipJson()}, {"evaluations", reports}}.dump(2) + "\n");
         observer.note("wrote " + json);
     }
     return evals;

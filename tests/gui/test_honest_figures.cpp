@@ -222,8 +222,75 @@ TEST(HonestFigures, ObjectsTableIsEvaluatesWithNoiseColumns) {
     unknown.name = "wall";
     unknown.stats.rmse = 0.1;
     const std::string u = objectRowsCsv({unknown}, "global");
-    // rmse/relative floor and corrected, then bias 0, relMSE 0, its floor and corrected, SMAPE 0.
-    EXPECT_EQ(u.substr(u.size() - 12), ",,,,0,0,,,0\n") << "unknown noise columns are empty, never 0: " << u;
+    // rmse/relative floor and corrected, then bias 0, relMSE 0, its floor and corrected, SMAPE 0, no FLIP.
+    EXPECT_EQ(u.substr(u.size() - 13), ",,,,0,0,,,0,\n") << "unknown noise and FLIP columns are empty, never 0: " << u;
+}
+
+// Issue 30 item 3: the Views' FLIP map is shown only when it was computed from the images on screen
+// (the workbench computes it on a worker), in magma; a newer prediction hides the older map.
+TEST(HonestFigures, FlipViewShowsOnlyTheMapOfTheImagesOnScreen) {
+    const Fixture f;
+    WorkbenchState s;
+    f.fill(s);
+    s.view.flip = true;
+    ViewModel vm;
+    vm.update(s);
+    EXPECT_TRUE(vm.image(ViewModel::kError).rgba.empty()) << "no FLIP map yet: nothing shown";
+
+    FlipViewMap m;
+    m.groundTruth = s.groundTruth.revision;
+    m.compared = s.prediction.revision;
+    m.term = s.view.term;
+    const Image& ref = f.reference.image(s.view.term);
+    m.range = flipExposureRange(ref);
+    m.map = hdrFlip(ref, f.evaluation.prediction.image(s.view.term), m.range);
+    m.revision = 1;
+    s.view.flipMap = m;
+    vm.update(s);
+    ASSERT_FALSE(vm.image(ViewModel::kError).rgba.empty());
+    ASSERT_EQ(vm.error().data, m.map.data) << "the error view shows the FLIP map";
+    // A kept pixel is drawn in magma (the FLIP tools' map), not in viridis.
+    ASSERT_FALSE(f.mask->kept.empty());
+    const size_t i = f.mask->kept.front();
+    const Vec3 c = magma(m.map.data[3 * i]);
+    const uint8_t* px = &vm.image(ViewModel::kError).rgba[4 * i];
+    EXPECT_NEAR(px[0], std::lround(linearToSrgb(std::min(c.x, 1.f)) * 255.f), 1);
+    EXPECT_NEAR(px[2], std::lround(linearToSrgb(std::min(c.z, 1.f)) * 255.f), 1);
+
+    s.prediction.touch();  // a newer prediction: the map is of the old one
+    vm.update(s);
+    EXPECT_TRUE(vm.image(ViewModel::kError).rgba.empty());
+    s.view.flip = false;  // the per-pixel metrics need no worker
+    vm.update(s);
+    EXPECT_FALSE(vm.image(ViewModel::kError).rgba.empty());
+}
+
+// The Objects table's FLIP column is evaluate()'s per-object HDR-FLIP (global term only), and the
+// header's figures its overall mean and noise floor.
+TEST(HonestFigures, ObjectsTableCarriesTheFlipOfEachObject) {
+    Fixture f;
+    f.evaluation.flip = flipEvaluation(f.evaluation, f.reference);
+    ASSERT_TRUE(f.evaluation.flip.available);
+    const EvaluationInfo info = evaluationInfo(f.evaluation, f.scene, f.models);
+    EXPECT_EQ(info.flipHdr, f.evaluation.flip.hdr.mean);
+    EXPECT_EQ(info.flipNoiseFloor, f.evaluation.flip.hdrNoiseFloor);
+    EXPECT_TRUE(std::isfinite(info.flipNoiseFloor)) << "the ground truth carries its variance";
+    size_t withFlip = 0;
+    for (const ObjectErrorRow& r : info.rows[int(Term::Global)]) {
+        const FlipStats& o = f.evaluation.flip.hdrPerObject[size_t(r.objectId)];
+        if (o.pixels) {
+            EXPECT_EQ(r.flip, o.mean);
+            ++withFlip;
+        } else {
+            EXPECT_TRUE(std::isnan(r.flip));
+        }
+    }
+    EXPECT_GT(withFlip, 0u);
+    for (const ObjectErrorRow& r : info.rows[int(Term::Direct)]) EXPECT_TRUE(std::isnan(r.flip)) << "global term only";
+    const std::string csv = objectRowsCsv(info.rows[int(Term::Global)], "global");
+    char first[40];
+    std::snprintf(first, sizeof first, ",%.9g\n", info.rows[int(Term::Global)].front().flip);
+    if (!std::isnan(info.rows[int(Term::Global)].front().flip)) EXPECT_NE(csv.find(first), std::string::npos) << csv;
 }
 
 TEST_F(CostPanelTest, CostPanelDrawsTwoSeriesAndTheBreakEven) {

@@ -210,7 +210,7 @@ TEST_F(LearningPanelTest, ObjectsTableSortsAndExports) {
     EXPECT_EQ(csv.substr(0, csv.find('\n')),
               "term,object_id,object,rmse,relative_rmse,mae,max,pixels,samples,train_seconds,rmse_noise_floor,rmse_corrected,"
               "relative_rmse_noise_floor,relative_rmse_corrected,signed_relative_mean,relmse,relmse_noise_floor,"
-              "relmse_corrected,smape");
+              "relmse_corrected,smape,flip");
     EXPECT_NE(csv.find("\nglobal,1,\"floor\",0.05,0.1,"), std::string::npos) << csv;
     EXPECT_LT(csv.find("floor"), csv.find("tall box")) << "rows in the table's order";
 
