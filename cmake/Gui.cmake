@@ -131,4 +131,11 @@ if(RRF_BUILD_TESTS)
                    ${CMAKE_BINARY_DIR}/gui_test_first_start ${CMAKE_SOURCE_DIR}/tests/gui/session_first_start.json)
   set_tests_properties(gui_screenshot gui_scripted_session gui_stop_and_switch gui_first_start_workspace
                        gui_pane_layout PROPERTIES TIMEOUT 600)
+  # CTest starts the costliest tests first (COST; a clean clone has no timings of its own): the long
+  # sessions then run beside the short tests instead of after them, two long ones alone at the end.
+  # Rough seconds on the 2-core CI machine.
+  set_tests_properties(gui_glossy_gather PROPERTIES COST 60)
+  set_tests_properties(gui_pipeline PROPERTIES COST 25)
+  set_tests_properties(gui_scripted_session gui_stop_and_switch PROPERTIES COST 15)
+  set_tests_properties(gui_unclipped_1280x720 gui_unclipped_1600x1000 PROPERTIES COST 10)
 endif()

@@ -4,5 +4,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${RRF_BUILD_DIR:-$root/build}
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+source "$root/scripts/generator.sh"
+# shellcheck disable=SC2046  # the generator arguments are two words or none
+cmake -S "$root" -B "$build" $(rrf_generator_args "$build") -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
 cmake --build "$build" -j "$(nproc)"

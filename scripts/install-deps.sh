@@ -7,8 +7,8 @@
 #                 sanitizer and fuzz jobs need (scripts/sanitize.sh; Debian bookworm's clang 14)
 set -euo pipefail
 
-core_pkgs=(build-essential cmake pkg-config libembree-dev libtbb-dev libeigen3-dev nlohmann-json3-dev
-           libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev libtinyexr-dev
+core_pkgs=(build-essential cmake ninja-build pkg-config libembree-dev libtbb-dev libeigen3-dev nlohmann-json3-dev
+           libgtest-dev libgmock-dev libcli11-dev libtinyobjloader-dev libtinyexr-dev
            libstb-dev libopenmpi-dev openmpi-bin)
 gui_pkgs=(libimgui-dev libglfw3-dev python3-glad libgl-dev libgl1-mesa-dri xvfb xauth)
 sanitizer_pkgs=(clang-14 libclang-rt-14-dev llvm-14)
