@@ -69,6 +69,27 @@ ViewErrorStats viewErrorStats(const ImageSet& groundTruth, const ImageSet& compa
     return out;
 }
 
+std::vector<uint32_t> regionPixels(const FootprintMask& mask, const ViewRegion& region) {
+    std::vector<uint32_t> out;
+    if (region.empty() || mask.width <= 0) return out;
+    for (uint32_t i : mask.kept)
+        if (region.contains(int(i % uint32_t(mask.width)), int(i / uint32_t(mask.width)))) out.push_back(i);
+    return out;
+}
+
+ViewErrorStats viewRegionStats(const ImageSet& groundTruth, const ImageSet& compared, Term t, const ViewRegion& region) {
+    ViewErrorStats out = viewErrorStats(groundTruth, compared, t);
+    if (!out.valid) return out;
+    const std::vector<uint32_t> px = regionPixels(*groundTruth.footprint, region);
+    if (px.empty()) {
+        out.valid = false;
+        out.stats = {};
+        return out;
+    }
+    out.stats = errorStatsWithNoise(compared.term(t), groundTruth.term(t), groundTruth.variance(t), px);
+    return out;
+}
+
 Image viewErrorMap(const Image& groundTruth, const Image& compared, ErrorMapKind kind) {
     if (groundTruth.empty() || groundTruth.width != compared.width || groundTruth.height != compared.height) return {};
     return errorMap(compared, groundTruth, kind);
@@ -164,10 +185,14 @@ void ViewModel::update(WorkbenchState& s) {
     k.leaves = s.view.leafOverlay ? s.leaves.revision : 0;
     k.flip = s.view.flip;
     k.flipRevision = s.view.flip ? s.view.flipMap.revision : 0;
+    k.region = s.view.region;
     if (k == key_) {
         s.view.errorStats = stats_;
+        s.view.regionStats = regionStats_;
+        s.view.regionFlip = regionFlip_;
         return;
     }
+    const bool regionChanged = !(k.region == key_.region);
     const bool sourcesChanged = k.gt != key_.gt || k.cmp != key_.cmp || k.source != key_.source || k.term != key_.term;
     const bool errorChanged = sourcesChanged || k.metric != key_.metric || k.flip != key_.flip || k.flipRevision != key_.flipRevision;
     key_ = k;
@@ -198,6 +223,15 @@ void ViewModel::update(WorkbenchState& s) {
                                : viewErrorMap(ref, cmp, s.view.metric);
     if (sourcesChanged) stats_ = viewErrorStats(s.reference(), s.compared(), s.view.term);
     s.view.errorStats = stats_;
+    if (sourcesChanged || regionChanged) regionStats_ = viewRegionStats(s.reference(), s.compared(), s.view.term, k.region);
+    s.view.regionStats = regionStats_;
+    if (errorChanged || regionChanged) {
+        regionFlip_ = {};
+        const FootprintMask* mask = s.reference().footprint.get();
+        if (s.view.flip && !error_.empty() && !k.region.empty() && mask && mask->width == error_.width && mask->height == error_.height)
+            regionFlip_ = flipStats(error_, regionPixels(*mask, k.region));
+    }
+    s.view.regionFlip = regionFlip_;
     fill(views_[kReference], ref, false);
     fill(views_[kCompared], cmp, false);
     if (k.leaves && cmp.width == s.leaves.width && cmp.height == s.leaves.height && idsFor(cmp))

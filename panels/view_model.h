@@ -35,6 +35,13 @@ Image viewErrorMap(const Image& groundTruth, const Image& compared, ErrorMapKind
 /// image of the ground truth's size.
 ViewErrorStats viewErrorStats(const ImageSet& groundTruth, const ImageSet& compared, Term t);
 
+/// viewErrorStats over the kept pixels inside `region` only (the region's figures under the map);
+/// `valid` is false as there, and also for an empty region or one with no kept pixel.
+ViewErrorStats viewRegionStats(const ImageSet& groundTruth, const ImageSet& compared, Term t, const ViewRegion& region);
+
+/// The kept pixels of `mask` inside `region` (ascending), the pixels region figures are over.
+std::vector<uint32_t> regionPixels(const FootprintMask& mask, const ViewRegion& region);
+
 /// Why `compared` must not be measured against `groundTruth`: "" when they may be (same stamp, or
 /// one of them unstamped), else what the view waits for, e.g. "waiting for the ground truth of the
 /// light at (0.10, 0.87, -0.10): the one shown is of (0.00, 0.87, -0.10)".
@@ -108,16 +115,19 @@ private:
         uint64_t leaves = 0;  ///< LeavesInfo::revision when the leaf overlay is on, else 0
         bool flip = false;
         uint64_t flipRevision = 0;  ///< FlipViewMap::revision while the FLIP map is shown, else 0
+        ViewRegion region;
         bool operator==(const Key& o) const {
             return gt == o.gt && cmp == o.cmp && source == o.source && term == o.term && metric == o.metric && exposure == o.exposure &&
                    errorMax == o.errorMax && selected == o.selected && ids == o.ids && leaves == o.leaves && flip == o.flip &&
-                   flipRevision == o.flipRevision;
+                   flipRevision == o.flipRevision && region == o.region;
         }
     };
     Key key_;
     DisplayImage views_[3];
     Image error_;
     ViewErrorStats stats_;
+    ViewErrorStats regionStats_;
+    FlipStats regionFlip_;
     uint64_t counter_ = 0;
 };
 

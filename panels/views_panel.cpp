@@ -75,6 +75,37 @@ struct ViewRect {
     }
 };
 
+/// The image pixel under screen point `p` in view `r`, clamped into the image.
+void pixelAt(const ViewRect& r, const ViewState& v, const Image& image, const ImVec2& p, int& x, int& y) {
+    const ImVec2 q = r.toImage(p, v);
+    x = std::clamp(int(std::floor(q.x)), 0, image.width - 1);
+    y = std::clamp(int(std::floor(q.y)), 0, image.height - 1);
+}
+
+/// The right-button drag that draws the region of interest: pressed over a view it anchors at the
+/// pixel there, dragged it spans the anchor and the pixel under the mouse (both included), and a
+/// click without a drag clears the region.
+void dragRegion(ViewState& v, int index, const ViewRect& r, const Image& image, bool hovered) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Right)) {
+        v.regionDragView = index;
+        pixelAt(r, v, image, io.MousePos, v.regionAnchorX, v.regionAnchorY);
+    }
+    if (v.regionDragView != index) return;
+    if (ImGui::IsMouseDragging(ImGuiMouseButton_Right)) {
+        int x = 0, y = 0;
+        pixelAt(r, v, image, io.MousePos, x, y);
+        v.region = {std::min(x, v.regionAnchorX), std::min(y, v.regionAnchorY), std::max(x, v.regionAnchorX) + 1,
+                    std::max(y, v.regionAnchorY) + 1};
+    }
+    if (!ImGui::IsMouseDown(ImGuiMouseButton_Right)) {
+        const float t = io.MouseDragThreshold;
+        if (ImGui::IsMouseReleased(ImGuiMouseButton_Right) && io.MouseDragMaxDistanceSqr[ImGuiMouseButton_Right] < t * t)
+            v.region = {};
+        v.regionDragView = -1;
+    }
+}
+
 void drawToolbar(WorkbenchState& state) {
     ViewState& v = state.view;
     const RenderProgress& r = state.render;
@@ -159,7 +190,8 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
     ImGui::TextUnformatted(title);
     ImGui::PopTextWrapPos();
     const ImVec2 pos = ImGui::GetCursorScreenPos();
-    ImGui::InvisibleButton("##canvas", size);
+    // Left button: pan; right button: draw the region of interest.
+    ImGui::InvisibleButton("##canvas", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
     const bool hovered = ImGui::IsItemHovered();
     const bool active = ImGui::IsItemActive();
     ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -186,11 +218,15 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
             v.panX -= io.MouseDelta.x / r.scale;
             v.panY -= io.MouseDelta.y / r.scale;
         }
+        dragRegion(v, index, r, image, hovered);
         const ImVec2 a = r.toScreen(0.f, 0.f, v);
         const ImVec2 b = r.toScreen(float(image.width), float(image.height), v);
         dl->PushClipRect(r.min, r.max, true);
         if (state.viewTextures[index]) dl->AddImage(state.viewTextures[index], a, b);
         else dl->AddRect(a, b, IM_COL32(200, 200, 200, 255));  // no GL (tests): outline only
+        if (!v.region.empty())
+            dl->AddRect(r.toScreen(float(v.region.x0), float(v.region.y0), v), r.toScreen(float(v.region.x1), float(v.region.y1), v),
+                        IM_COL32(255, 220, 60, 255), 0.f, 0, 2.f);
         dl->PopClipRect();
         if (hovered) {
             const ImVec2 q = r.toImage(io.MousePos, v);
@@ -217,8 +253,31 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
     return over;
 }
 
+/// The region of interest's figures (every metric over its kept pixels) and a button to clear it.
+void drawRegionFigures(WorkbenchState& state) {
+    ViewState& v = state.view;
+    if (v.region.empty()) return;
+    const ViewRegion& g = v.region;
+    ImGui::Text("region (%d, %d)-(%d, %d):", g.x0, g.y0, g.x1 - 1, g.y1 - 1);
+    ImGui::SameLine();
+    if (ImGui::SmallButton("clear region")) v.region = {};
+    const ViewErrorStats& f = v.regionStats;
+    if (!f.valid) {
+        ImGui::TextDisabled("  no compared pixel inside (background, emitter or left out)");
+        return;
+    }
+    const ErrorStats& e = f.stats;
+    ImGui::Text("  %llu pixels: rel. RMSE %.4g (noise floor %s, corrected %s)  RMSE %.4g (corrected %s)  bias %+.4g  "
+                "relMSE %.4g  SMAPE %.4g  MAE %.4g",
+                (unsigned long long)e.pixels, e.relativeRmse, noiseFigureText(e.relativeRmseNoiseFloor).c_str(),
+                noiseFigureText(e.relativeRmseCorrected).c_str(), e.rmse, noiseFigureText(e.rmseCorrected).c_str(),
+                e.signedRelativeMean, e.relMse, e.smape, e.mae);
+    if (v.flip && v.regionFlip.pixels)
+        ImGui::Text("  HDR-FLIP mean %.4g, weighted median %.4g", v.regionFlip.mean, v.regionFlip.weightedMedian);
+}
+
 /// The figures of the error map: `rrf evaluate`'s overall row for the term, and what it leaves out.
-void drawErrorFigures(const WorkbenchState& state) {
+void drawErrorFigures(WorkbenchState& state) {
     const ViewErrorStats& f = state.view.errorStats;
     if (!f.valid && state.view.compareSource == CompareSource::RunPair) {
         ImGui::TextDisabled("Run pair: the error map is |B - A|, prediction against prediction (no noise floor).");
@@ -243,6 +302,7 @@ void drawErrorFigures(const WorkbenchState& state) {
         ImGui::SetTooltip("the figures rrf evaluate reports for all objects (per channel, footprint mask's pixels);\n"
                           "noise floor: what the ground truth's own noise gives; corrected: that noise subtracted");
     ImGui::TextDisabled("hatched: %s", f.left.describe().c_str());
+    drawRegionFigures(state);
     if (!state.view.flip) return;
     const FlipViewMap& m = state.view.flipMap;
     if (!flipShown(state)) {
@@ -309,7 +369,7 @@ std::string objectUnder(const WorkbenchState& state, int px, int py, int width, 
 void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp) {
     const ViewState& v = state.view;
     if (v.hoverX < 0 || ref.empty() || v.hoverX >= ref.width || v.hoverY >= ref.height) {
-        ImGui::TextDisabled("Hover a view for pixel values; wheel zooms, drag pans.");
+        ImGui::TextDisabled("Hover a view for pixel values; wheel zooms, drag pans, right-drag marks a region.");
         return;
     }
     const Vec3 r = ref.at(v.hoverX, v.hoverY);

@@ -138,6 +138,16 @@ struct FlipViewMap {
     bool matches(uint64_t gt, uint64_t cmp, Term t) const { return revision && groundTruth == gt && compared == cmp && term == t; }
 };
 
+/// A rectangle of image pixels [x0, x1) × [y0, y1) whose figures the Views show beside the whole
+/// image's (drawn with the right mouse button in any view). Empty: none.
+struct ViewRegion {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+    bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+    uint64_t pixels() const { return empty() ? 0 : uint64_t(x1 - x0) * uint64_t(y1 - y0); }
+    bool operator==(const ViewRegion& o) const { return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1; }
+};
+
 /// Display settings of the three side-by-side views.
 struct ViewState {
     Term term = Term::Global;   ///< the radiance term the views show
@@ -157,6 +167,14 @@ struct ViewState {
     int selectedObject = -1;
     int hoverX = -1, hoverY = -1;  ///< image pixel under the mouse, -1 when none
     ViewErrorStats errorStats;  ///< published by the ViewModel each frame
+    ViewRegion region;          ///< the region of interest (empty: none)
+    /// The region's figures, published by the ViewModel: the same statistics as errorStats over
+    /// the kept pixels inside the region, and the FLIP map's over them while it is shown
+    /// (regionFlip.pixels = 0 otherwise).
+    ViewErrorStats regionStats;
+    FlipStats regionFlip;
+    /// A right-button drag in progress: the view it started in (-1: none) and its first pixel.
+    int regionDragView = -1, regionAnchorX = 0, regionAnchorY = 0;
 };
 
 /// Progress of the ground-truth render, as last published by its job.

@@ -40,7 +40,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"reopen_run", {"index"}},
             {"set_light", {"position"}},
             {"select_object", {"id"}},
-            {"view", {"term", "metric", "exposure", "error_max", "zoom"}},
+            {"view", {"term", "metric", "exposure", "error_max", "zoom", "region"}},
             {"open", {"path"}},
             {"request_open", {"path"}},
             {"answer_unsaved", {"choice"}},
@@ -59,7 +59,8 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"check", {"runs", "ground_truth_spp_min", "errors", "compare", "dataset", "prediction", "evaluated",
                        "train_runs", "sweeps", "unsaved_prompt", "dirty", "stopped_runs", "prediction_partial",
                        "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped", "pipeline_done",
-                       "pipeline_stopped", "prediction_label", "error_waiting", "flip_evaluated"}},
+                       "pipeline_stopped", "prediction_label", "error_waiting", "flip_evaluated",
+                       "region_pixels_min"}},
         };
     }();
     return keys;
@@ -289,6 +290,14 @@ bool Script::execute(Workbench& wb, const json& s) {
         st.view.exposure = r.floatOr("exposure", st.view.exposure);
         st.view.errorMax = r.floatOr("error_max", st.view.errorMax);
         st.view.zoom = r.floatOr("zoom", st.view.zoom);
+        // region: [x0, y0, x1, y1] (x1, y1 exclusive), as a right-drag draws it; [] clears it.
+        if (const auto g = r.find("region")) {
+            const size_t n = g->requireArray();
+            if (n != 0 && n != 4) g->fail("expected [x0, y0, x1, y1] or []");
+            st.view.region = n == 0 ? panels::ViewRegion{}
+                                    : panels::ViewRegion{int(g->at(size_t(0)).integer(0, 1 << 20)), int(g->at(size_t(1)).integer(0, 1 << 20)),
+                                                         int(g->at(size_t(2)).integer(0, 1 << 20)), int(g->at(size_t(3)).integer(0, 1 << 20))};
+        }
     } else if (what == "open") {
         // Without a path: re-open the current project from disk (checks what a save kept).
         const std::string path = r.stringOr("path", st.project.path);
@@ -361,6 +370,11 @@ bool Script::execute(Workbench& wb, const json& s) {
         flag("error_waiting", !st.view.errorStats.waiting.empty(), "error figures' waiting state");
         count("sweeps", st.cost.sweeps.size(), "sweeps");
         flag("evaluated", st.evaluation.valid, "evaluation state");
+        // region_pixels_min: the Views' region has figures over at least this many pixels.
+        if (const auto v = r.find("region_pixels_min"))
+            require(st.view.regionStats.valid && st.view.regionStats.stats.pixels >= uint64_t(v->integer(0, std::numeric_limits<int>::max())),
+                    "the region has figures over " + std::to_string(st.view.regionStats.valid ? st.view.regionStats.stats.pixels : 0) +
+                        " pixels");
         // flip_evaluated: the last evaluation has FLIP figures (global term, finite mean).
         flag("flip_evaluated", st.evaluation.valid && std::isfinite(st.evaluation.flipHdr), "evaluation's FLIP state");
         size_t trained = 0;

@@ -226,6 +226,33 @@ TEST(HonestFigures, ObjectsTableIsEvaluatesWithNoiseColumns) {
     EXPECT_EQ(u.substr(u.size() - 13), ",,,,0,0,,,0,\n") << "unknown noise and FLIP columns are empty, never 0: " << u;
 }
 
+// Issue 30 item 6: a region's figures are errorStatsWithNoise over the mask's kept pixels inside it
+// (all metrics, with the ground truth's noise), recomputed when the region moves.
+TEST(HonestFigures, RegionFiguresAreThoseOfItsKeptPixels) {
+    const Fixture f;
+    WorkbenchState s;
+    f.fill(s);
+    s.view.region = {4, 6, 16, 14};
+    ViewModel vm;
+    vm.update(s);
+    ASSERT_TRUE(s.view.regionStats.valid);
+    std::vector<uint32_t> px;
+    for (uint32_t i : f.mask->kept)
+        if (int(i % kSize) >= 4 && int(i % kSize) < 16 && int(i / kSize) >= 6 && int(i / kSize) < 14) px.push_back(i);
+    ASSERT_FALSE(px.empty());
+    ASSERT_LT(px.size(), f.mask->kept.size());
+    const Term t = s.view.term;
+    expectSameStats(s.view.regionStats.stats,
+                    errorStatsWithNoise(f.evaluation.prediction.image(t), f.reference.image(t), f.reference.variance(t), px));
+    EXPECT_EQ(s.view.regionStats.stats.pixels, px.size());
+    s.view.region = {0, 0, 1, 1};  // a corner: background only
+    vm.update(s);
+    EXPECT_FALSE(s.view.regionStats.valid) << "no kept pixel inside";
+    s.view.region = {};
+    vm.update(s);
+    EXPECT_FALSE(s.view.regionStats.valid);
+}
+
 // Issue 30 item 3: the Views' FLIP map is shown only when it was computed from the images on screen
 // (the workbench computes it on a worker), in magma; a newer prediction hides the older map.
 TEST(HonestFigures, FlipViewShowsOnlyTheMapOfTheImagesOnScreen) {

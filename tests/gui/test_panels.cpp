@@ -144,6 +144,36 @@ TEST_F(PanelTest, DragPansTheViews) {
     EXPECT_FLOAT_EQ(s.view.panY, 0.f);
 }
 
+// Issue 30 item 6: a right-button drag in a view marks a region (the pixels between the press and the
+// mouse, both included), without panning; a right click without a drag clears it.
+TEST_F(PanelTest, RightDragMarksARegionAndARightClickClearsIt) {
+    WorkbenchState s;
+    fillGroundTruth(s);
+    s.hasProject = true;
+    auto right = [&](float x, float y, bool down) {
+        mouse(x, y, false);
+        ImGui::GetIO().MouseDown[1] = down;
+        frame([&] { drawViewsPanel(s); });
+    };
+    right(150, 250, false);
+    right(150, 250, false);  // hovering needs a frame
+    const int ax = s.view.hoverX, ay = s.view.hoverY;
+    ASSERT_GE(ax, 0);
+    right(150, 250, true);
+    for (int i = 1; i <= 5; ++i) right(150.f + 8.f * float(i), 250.f + 4.f * float(i), true);
+    const int bx = s.view.hoverX, by = s.view.hoverY;
+    right(190, 270, false);
+    EXPECT_FLOAT_EQ(s.view.panX, 0.f) << "the right button does not pan";
+    ASSERT_FALSE(s.view.region.empty());
+    EXPECT_EQ(s.view.region.x0, ax);
+    EXPECT_EQ(s.view.region.y0, ay);
+    EXPECT_EQ(s.view.region.x1, bx + 1);
+    EXPECT_EQ(s.view.region.y1, by + 1);
+    right(150, 250, true);
+    right(150, 250, false);
+    EXPECT_TRUE(s.view.region.empty()) << "a right click without a drag clears the region";
+}
+
 TEST_F(PanelTest, LogCollectsMessagesAndCopiesThem) {
     WorkbenchState s;
     s.log.info("first");
