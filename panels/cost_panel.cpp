@@ -134,7 +134,11 @@ void drawCostPanel(WorkbenchState& state) {
         if (x > 0 && std::isfinite(x)) xlo = std::min(xlo, x), xhi = std::max(xhi, x);
         if (y > 0 && std::isfinite(y)) ylo = std::min(ylo, y), yhi = std::max(yhi, y);
     };
-    for (const CostSeries* s : series) {
+    // The series shown: all but those switched off in the legend (which still lists them).
+    std::vector<const CostSeries*> shown;
+    for (const CostSeries* s : series)
+        if (!seriesHidden(v.hidden, s->name)) shown.push_back(s);
+    for (const CostSeries* s : shown) {
         extend(NAN, s->noiseFloor);
         for (const CostPoint& p : s->points) {
             extend(p.seconds, p.error);
@@ -155,8 +159,9 @@ void drawCostPanel(WorkbenchState& state) {
     const bool hovered = area.hovered;
     const ImVec2 pmin = area.min, pmax = area.max;
     v.plotMinX = pmin.x, v.plotMinY = pmin.y, v.plotMaxX = pmax.x, v.plotMaxY = pmax.y;
-    const PlotAxis x = logAxis(xlo, xhi, pmin.x, pmax.x);
-    const PlotAxis y = logAxis(ylo, yhi, pmax.y, pmin.y);
+    PlotAxis x = logAxis(xlo, xhi, pmin.x, pmax.x);
+    PlotAxis y = logAxis(ylo, yhi, pmax.y, pmin.y);
+    interactPlot(v.plot, area, x, y);  // wheel zooms, drag pans, double-click fits the data again
     ImDrawList* dl = ImGui::GetWindowDrawList();
     drawAxes(dl, pmin, pmax, x, y, "time (s): path tracer render, model data + training or one frame",
              "relative RMSE, corrected (noise subtracted), global term");
@@ -177,6 +182,7 @@ void drawCostPanel(WorkbenchState& state) {
     dl->PushClipRect(pmin, pmax, true);
     for (size_t i = 0; i < series.size(); ++i) {
         const CostSeries& s = *series[i];
+        if (seriesHidden(v.hidden, s.name)) continue;
         const ImU32 colour = seriesColour(s.name);
         const CostSeries* pt = s.kind == CostKind::Models ? findSeries(series, s.pathTracer) : nullptr;
         // One dashed line per reference: a model series shares its path tracer's.
@@ -236,19 +242,20 @@ void drawCostPanel(WorkbenchState& state) {
     ImGui::SameLine();
     ImGui::BeginGroup();
     for (const CostSeries* s : series) {
-        const ImVec2 p = ImGui::GetCursorScreenPos();
-        dl->AddRectFilled(ImVec2(p.x, p.y + font * 0.3f), ImVec2(p.x + font * 0.7f, p.y + font), seriesColour(s->name));
-        ImGui::Dummy(ImVec2(font * 0.8f, font));
-        ImGui::SameLine();
-        ImGui::Text("%s (%zu)", s->name.c_str(), s->points.size());
-        if (!s->reference.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", s->reference.c_str());
+        char text[160];
+        std::snprintf(text, sizeof text, "%s (%zu)", s->name.c_str(), s->points.size());
+        legendEntry(s->name, text, seriesColour(s->name), v.hidden);
+        if (!s->reference.empty() && ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s\nclick to %s this series", s->reference.c_str(), seriesHidden(v.hidden, s->name) ? "show" : "hide");
     }
+    if (!v.plot.autoFit && ImGui::SmallButton("fit the data")) v.plot.autoFit = true;
     ImGui::Spacing();
     ImGui::TextDisabled("o path tracer (render time)");
     ImGui::TextDisabled("filled square: data + training");
     ImGui::TextDisabled("hollow square: CPU frame");
     ImGui::TextDisabled("triangle: GLSL frame");
     ImGui::TextDisabled("x: break-even; - - noise floor");
+    ImGui::TextDisabled("wheel: zoom, drag: pan,\ndouble-click: fit");
     ImGui::EndGroup();
     if (!v.breakEvenLines.empty()) {
         ImGui::TextUnformatted("Break-even (the same reference and resolution for every point):");

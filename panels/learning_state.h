@@ -11,6 +11,7 @@
 
 #include "core/eval/break_even.h"
 #include "core/eval/error_metrics.h"
+#include "panels/plot.h"
 #include "core/predict/footprint_mask.h"
 #include "core/render/term.h"
 #include "core/util/vec3.h"
@@ -59,6 +60,9 @@ struct LeavesInfo {
 struct TrainingView {
     bool aggregate = false;      ///< one mean curve instead of one per network
     bool showTrain = true, showValidation = true;
+    PlotView plot;               ///< zoom and pan of the loss plot (auto-fit until the user zooms)
+    /// Curves hidden by a click on their legend entry (their labels, LossCurve::label()).
+    std::vector<std::string> hidden;
     // Filled by the panel each frame (read by tests and by the hover read-out):
     float plotMinX = 0, plotMinY = 0, plotMaxX = 0, plotMaxY = 0;  ///< plot rectangle on screen
     double yLo = 0, yHi = 0;     ///< log10 of the y range (decade aligned)
@@ -188,6 +192,8 @@ struct CostView {
     /// The project's runs are each evaluated against their own ground truth, so they do not compare
     /// with the sweeps' points: shown only on request.
     bool showRuns = false;
+    PlotView plot;               ///< zoom and pan of the cost plot (auto-fit until the user zooms)
+    std::vector<std::string> hidden;  ///< series hidden by a click on their legend entry (names)
     int hoverSeries = -1, hoverPoint = -1;
     // Filled by the panel each frame (read by tests):
     std::vector<std::string> breakEvenLines;  ///< the break-even sentences shown under the plot

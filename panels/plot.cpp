@@ -117,12 +117,15 @@ void drawAxes(ImDrawList* dl, const ImVec2& min, const ImVec2& max, const PlotAx
         };
         if (a.log) {
             // Label every decade, or every second/third one when there are many.
-            const int decades = int(std::lround(a.hi - a.lo));
+            // Decades from below the range to above it (a zoomed axis need not start on one); the
+            // lines outside the plot are skipped.
+            const int first = int(std::floor(a.lo + 1e-9)), last = int(std::ceil(a.hi - 1e-9));
+            const int decades = last - first;
             const int every = decades > 12 ? 3 : decades > 6 ? 2 : 1;
-            for (int d = int(std::lround(a.lo)); d <= int(std::lround(a.hi)); ++d) {
+            for (int d = first; d <= last; ++d) {
                 const double base = std::pow(10.0, d);
-                line(base, major, (d - int(std::lround(a.lo))) % every == 0);
-                if (d < int(std::lround(a.hi)) && decades <= 8)
+                line(base, major, (d - first) % every == 0);
+                if (d < last && decades <= 8)
                     for (int m = 2; m <= 9; ++m) line(base * m, minor, false);
             }
         } else {
@@ -151,10 +154,80 @@ PlotArea plotArea(const char* id, float legendWidth, float reserveBelow) {
     ImGui::InvisibleButton(id, size);
     PlotArea a;
     a.hovered = ImGui::IsItemHovered();
+    a.active = ImGui::IsItemActive();
     // Margins for the tick labels (left) and the x labels (below).
     a.min = ImVec2(origin.x + font * 3.5f, origin.y + font * 1.5f);
     a.max = ImVec2(origin.x + size.x - font * 0.5f, origin.y + size.y - font * 2.6f);
     return a;
+}
+
+void zoomPanPlot(PlotView& view, PlotAxis& x, PlotAxis& y, const ImVec2& mouse, float wheel, const ImVec2& drag,
+                 bool doubleClicked) {
+    if (doubleClicked) view.autoFit = true;
+    if (view.autoFit) {
+        view.xlo = x.lo, view.xhi = x.hi, view.ylo = y.lo, view.yhi = y.hi;
+        if (wheel == 0.f && drag.x == 0.f && drag.y == 0.f) return;
+    }
+    // Axis units under a pixel, and the axis span a pixel covers.
+    auto unitsAt = [](double lo, double hi, float p0, float p1, float p) {
+        return p1 != p0 ? lo + double(p - p0) / double(p1 - p0) * (hi - lo) : lo;
+    };
+    auto perPixel = [](double lo, double hi, float p0, float p1) { return p1 != p0 ? (hi - lo) / double(p1 - p0) : 0.0; };
+    if (wheel != 0.f) {
+        // One notch shows 80 % of the span, centred so the point under the cursor stays there.
+        const double f = std::pow(0.8, double(wheel));
+        const double cx = unitsAt(view.xlo, view.xhi, x.p0, x.p1, mouse.x), cy = unitsAt(view.ylo, view.yhi, y.p0, y.p1, mouse.y);
+        view.xlo = cx - (cx - view.xlo) * f, view.xhi = cx + (view.xhi - cx) * f;
+        view.ylo = cy - (cy - view.ylo) * f, view.yhi = cy + (view.yhi - cy) * f;
+    }
+    if (drag.x != 0.f || drag.y != 0.f) {
+        const double dx = perPixel(view.xlo, view.xhi, x.p0, x.p1) * double(drag.x);
+        const double dy = perPixel(view.ylo, view.yhi, y.p0, y.p1) * double(drag.y);
+        view.xlo -= dx, view.xhi -= dx, view.ylo -= dy, view.yhi -= dy;
+    }
+    view.autoFit = false;
+    // A span too small for a double's resolution (many notches in) stops the zoom there.
+    const double minSpan = 1e-9;
+    if (view.xhi - view.xlo < minSpan) view.xhi = view.xlo + minSpan;
+    if (view.yhi - view.ylo < minSpan) view.yhi = view.ylo + minSpan;
+    x.lo = view.xlo, x.hi = view.xhi, y.lo = view.ylo, y.hi = view.yhi;
+}
+
+bool seriesHidden(const std::vector<std::string>& hidden, const std::string& name) {
+    return std::find(hidden.begin(), hidden.end(), name) != hidden.end();
+}
+
+bool legendEntry(const std::string& name, const char* text, ImU32 colour, std::vector<std::string>& hidden) {
+    const float font = ImGui::GetFontSize();
+    const bool off = seriesHidden(hidden, name);
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const ImU32 box = off ? IM_COL32(90, 90, 90, 255) : colour;
+    dl->AddRectFilled(ImVec2(p.x, p.y + font * 0.3f), ImVec2(p.x + font * 0.7f, p.y + font), box);
+    ImGui::Dummy(ImVec2(font * 0.8f, font));
+    ImGui::SameLine();
+    ImGui::PushID(name.c_str());
+    if (off) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    // As wide as its text: the legend column keeps its width, and a click lands on this entry only.
+    const bool clicked = ImGui::Selectable(text, false, 0, ImGui::CalcTextSize(text));
+    if (off) ImGui::PopStyleColor();
+    ImGui::PopID();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip(off ? "click to show this series" : "click to hide this series");
+    if (clicked) {
+        if (off) hidden.erase(std::find(hidden.begin(), hidden.end(), name));
+        else hidden.push_back(name);
+    }
+    return clicked;
+}
+
+void interactPlot(PlotView& view, const PlotArea& area, PlotAxis& x, PlotAxis& y) {
+    const ImGuiIO& io = ImGui::GetIO();
+    const float wheel = area.hovered ? io.MouseWheel : 0.f;
+    const bool dragging = area.active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.f);
+    const ImVec2 drag = dragging ? io.MouseDelta : ImVec2(0.f, 0.f);
+    const bool doubleClicked = area.hovered && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
+    zoomPanPlot(view, x, y, io.MousePos, wheel, drag, doubleClicked);
+    if (!view.autoFit) x.lo = view.xlo, x.hi = view.xhi, y.lo = view.ylo, y.hi = view.yhi;
 }
 
 }  // namespace rrf::panels

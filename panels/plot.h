@@ -41,9 +41,33 @@ void drawAxes(ImDrawList* dl, const ImVec2& min, const ImVec2& max, const PlotAx
 struct PlotArea {
     ImVec2 min, max;       ///< the data rectangle (inside the margins)
     bool hovered = false;  ///< the mouse is over the plot item
+    bool active = false;   ///< the plot item is held (a drag)
 };
 /// `reserveBelow` pixels under the plot are left free (for text the caller adds there).
 PlotArea plotArea(const char* id, float legendWidth, float reserveBelow = 0.f);
+
+/// What the user did to a plot's axes, kept across frames: while `autoFit` the axes follow the data;
+/// the wheel over the plot zooms about the cursor (both axes), a drag pans, a double-click fits the
+/// data again. Ranges are in axis units (log10 on a log axis), as PlotAxis::lo and hi.
+struct PlotView {
+    bool autoFit = true;
+    double xlo = 0.0, xhi = 1.0, ylo = 0.0, yhi = 1.0;
+};
+
+/// One frame of zoom and pan: `x` and `y` come in fitted to the data and leave as the view shows
+/// them; `view` follows this frame's input over the plot (its invisible button, just submitted by
+/// plotArea). `wheel` is the wheel notches over the plot, `drag` the mouse's movement while the
+/// plot is dragged (pixels), `doubleClicked` a double-click on it; split out so tests drive it.
+void zoomPanPlot(PlotView& view, PlotAxis& x, PlotAxis& y, const ImVec2& mouse, float wheel, const ImVec2& drag,
+                 bool doubleClicked);
+/// True when `name` is in `hidden` (a series switched off in its legend).
+bool seriesHidden(const std::vector<std::string>& hidden, const std::string& name);
+/// One legend entry: a colour box and `text`, clickable; a click hides the series `name` (adds it to
+/// `hidden`) or shows it again. A hidden series' entry is drawn dimmed. Returns true on a click.
+bool legendEntry(const std::string& name, const char* text, ImU32 colour, std::vector<std::string>& hidden);
+
+/// zoomPanPlot with this frame's ImGui input over `area`.
+void interactPlot(PlotView& view, const PlotArea& area, PlotAxis& x, PlotAxis& y);
 
 /// A distinct colour for series i (cycles after 10).
 ImU32 seriesColour(int i, float alpha = 1.f);

@@ -73,8 +73,9 @@ void hoverReadout(TrainingView& v, const std::vector<LossCurve>& curves, const P
     float best = ImGui::GetFontSize() * 0.75f;
     best *= best;
     for (size_t c = 0; c < curves.size(); ++c)
-        for (const LossPoint& p : curves[c].points)
-            for (double value : {v.showTrain ? p.train : NAN, v.showValidation ? p.validation : NAN}) {
+        if (!seriesHidden(v.hidden, curves[c].label()))
+            for (const LossPoint& p : curves[c].points)
+                for (double value : {v.showTrain ? p.train : NAN, v.showValidation ? p.validation : NAN}) {
                 const float py = y.toPixel(value);
                 if (!std::isfinite(py)) continue;
                 const float dx = x.toPixel(p.epoch) - m.x, dy = py - m.y;
@@ -140,7 +141,8 @@ void drawTrainingBody(WorkbenchState& state) {
     double lo = INFINITY, hi = 0;
     int lastEpoch = 1;
     for (const LossCurve& c : curves)
-        for (const LossPoint& p : c.points) {
+        if (!seriesHidden(v.hidden, c.label()))
+            for (const LossPoint& p : c.points) {
             lastEpoch = std::max(lastEpoch, p.epoch);
             for (double value : {v.showTrain ? p.train : NAN, v.showValidation ? p.validation : NAN})
                 if (value > 0 && std::isfinite(value)) lo = std::min(lo, value), hi = std::max(hi, value);
@@ -170,8 +172,9 @@ void drawTrainingBody(WorkbenchState& state) {
     const PlotArea area = plotArea("##loss-plot", legendW);
     const bool hovered = area.hovered;
     const ImVec2 pmin = area.min, pmax = area.max;
-    const PlotAxis x = linearAxis(0, lastEpoch, pmin.x, pmax.x);
-    const PlotAxis y = logAxis(lo, hi, pmax.y, pmin.y);
+    PlotAxis x = linearAxis(0, lastEpoch, pmin.x, pmax.x);
+    PlotAxis y = logAxis(lo, hi, pmax.y, pmin.y);
+    interactPlot(v.plot, area, x, y);  // wheel zooms, drag pans, double-click fits the data again
     v.plotMinX = pmin.x, v.plotMinY = pmin.y, v.plotMaxX = pmax.x, v.plotMaxY = pmax.y;
     v.yLo = y.lo, v.yHi = y.hi;
 
@@ -184,6 +187,7 @@ void drawTrainingBody(WorkbenchState& state) {
     }
     dl->PushClipRect(pmin, pmax, true);
     for (size_t c = 0; c < curves.size(); ++c) {
+        if (seriesHidden(v.hidden, curves[c].label())) continue;
         if (v.showTrain) drawCurve(dl, curves[c].points, false, x, y, seriesColour(int(c)), 2.f);
         if (v.showValidation) drawCurve(dl, curves[c].points, true, x, y, seriesColour(int(c), 0.55f), 1.f);
     }
@@ -195,13 +199,9 @@ void drawTrainingBody(WorkbenchState& state) {
     ImGui::BeginGroup();
     ImGui::TextDisabled("%s", shown.source.c_str());
     ImGui::TextDisabled("thick: train, thin: validation");
-    for (size_t c = 0; c < curves.size(); ++c) {
-        const ImVec2 p = ImGui::GetCursorScreenPos();
-        dl->AddRectFilled(ImVec2(p.x, p.y + font * 0.3f), ImVec2(p.x + font * 0.7f, p.y + font), seriesColour(int(c)));
-        ImGui::Dummy(ImVec2(font * 0.8f, font));
-        ImGui::SameLine();
-        ImGui::TextUnformatted(legend[c].c_str());
-    }
+    for (size_t c = 0; c < curves.size(); ++c) legendEntry(curves[c].label(), legend[c].c_str(), seriesColour(int(c)), v.hidden);
+    if (!v.plot.autoFit && ImGui::SmallButton("fit the data")) v.plot.autoFit = true;
+    ImGui::TextDisabled("wheel: zoom, drag: pan,\ndouble-click: fit");
     ImGui::EndGroup();
 }
 }  // namespace

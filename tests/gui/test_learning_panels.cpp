@@ -193,6 +193,79 @@ TEST(PlotAxes, LogAxisSpansWholeDecades) {
     EXPECT_EQ(tickLabel(10.0), "10");
 }
 
+// Issue 30 item 7: zoom about the cursor, pan by dragging, double-click fits the data again.
+TEST(PlotAxes, WheelZoomsAboutTheCursorDragPansAndDoubleClickFits) {
+    PlotAxis x = linearAxis(0, 10, 0.f, 100.f), y = logAxis(1e-3, 1.0, 100.f, 0.f);
+    PlotView v;
+    zoomPanPlot(v, x, y, ImVec2(25, 50), 0.f, ImVec2(0, 0), false);
+    EXPECT_TRUE(v.autoFit) << "no input: the axes follow the data";
+    EXPECT_DOUBLE_EQ(x.lo, 0.0);
+    zoomPanPlot(v, x, y, ImVec2(25, 50), 1.f, ImVec2(0, 0), false);
+    EXPECT_FALSE(v.autoFit);
+    // One notch shows 80 % of each span about the point under the cursor (x 2.5, y 10^-1.5).
+    EXPECT_NEAR(x.lo, 0.5, 1e-12);
+    EXPECT_NEAR(x.hi, 8.5, 1e-12);
+    EXPECT_NEAR(x.toValue(25.f), 2.5, 1e-6);
+    EXPECT_NEAR(std::log10(y.toValue(50.f)), -1.5, 1e-6);
+    EXPECT_NEAR(y.hi - y.lo, 2.4, 1e-12);
+    // The next frame's fitted axes are replaced by the view's ranges.
+    PlotAxis x2 = linearAxis(0, 10, 0.f, 100.f), y2 = logAxis(1e-3, 1.0, 100.f, 0.f);
+    zoomPanPlot(v, x2, y2, ImVec2(25, 50), 0.f, ImVec2(0, 0), false);
+    EXPECT_DOUBLE_EQ(x2.lo, x.lo);
+    EXPECT_DOUBLE_EQ(y2.hi, y.hi);
+    // Dragging 10 pixels right moves the data with the mouse: 10 px of an 8-unit, 100-px axis.
+    zoomPanPlot(v, x2, y2, ImVec2(35, 50), 0.f, ImVec2(10, 0), false);
+    EXPECT_NEAR(x2.lo, 0.5 - 0.8, 1e-12);
+    EXPECT_NEAR(x2.toValue(35.f), 2.5, 1e-6) << "the point dragged stays under the mouse";
+    PlotAxis x3 = linearAxis(0, 10, 0.f, 100.f), y3 = logAxis(1e-3, 1.0, 100.f, 0.f);
+    zoomPanPlot(v, x3, y3, ImVec2(35, 50), 0.f, ImVec2(0, 0), true);
+    EXPECT_TRUE(v.autoFit);
+    EXPECT_DOUBLE_EQ(x3.lo, 0.0);
+    EXPECT_DOUBLE_EQ(y3.lo, -3.0);
+}
+
+// A click on a legend entry hides that curve (and its range), a second click shows it again; the
+// wheel over the loss plot zooms it.
+TEST_F(LearningPanelTest, LegendClicksHideCurvesAndTheWheelZoomsTheLossPlot) {
+    WorkbenchState s;
+    loadCornell(s);
+    s.training.curves.push_back(decadeCurve());  // 1 ... 1e-3
+    LossCurve high = decadeCurve();
+    high.object = "ceiling";
+    for (LossPoint& p : high.points) p.train *= 100.0;  // 100 ... 0.1
+    s.training.curves.push_back(high);
+    s.trainingView.showValidation = false;
+    for (int i = 0; i < 2; ++i) frame([&] { drawTrainingPanel(s); });
+    TrainingView& v = s.trainingView;
+    EXPECT_DOUBLE_EQ(v.yHi, 2.0);
+    // Find the ceiling's entry by clicking down the legend column (its rows' place depends on the font).
+    for (float y = v.plotMinY; y < v.plotMinY + 300.f && v.hidden.empty(); y += 3.f) {
+        mouse(v.plotMaxX + 60.f, y, true);
+        frame([&] { drawTrainingPanel(s); });
+        mouse(v.plotMaxX + 60.f, y, false);
+        frame([&] { drawTrainingPanel(s); });
+    }
+    ASSERT_EQ(v.hidden.size(), 1u) << "a legend entry hides its curve";
+    frame([&] { drawTrainingPanel(s); });
+    // The hidden curve no longer sets the range: without the ceiling the top is 1, without the floor
+    // the bottom is 0.1.
+    if (v.hidden.front() == high.label()) EXPECT_DOUBLE_EQ(v.yHi, 0.0);
+    else EXPECT_DOUBLE_EQ(v.yLo, -1.0);
+    v.hidden.clear();
+    frame([&] { drawTrainingPanel(s); });
+    EXPECT_DOUBLE_EQ(v.yHi, 2.0);
+
+    const float cx = 0.5f * (v.plotMinX + v.plotMaxX), cy = 0.5f * (v.plotMinY + v.plotMaxY);
+    mouse(cx, cy, false);
+    frame([&] { drawTrainingPanel(s); });
+    mouse(cx, cy, false, 2.f);
+    frame([&] { drawTrainingPanel(s); });
+    mouse(cx, cy, false, 0.f);
+    frame([&] { drawTrainingPanel(s); });
+    EXPECT_FALSE(v.plot.autoFit);
+    EXPECT_NEAR(v.yHi - v.yLo, 5.0 * 0.64, 1e-9) << "two notches: 64 % of the five decades";
+}
+
 TEST_F(LearningPanelTest, ObjectsTableSortsAndExports) {
     const std::vector<ObjectErrorRow> rows = {row(0, "left wall", 0.2, 500), row(1, "floor", 0.05, 900),
                                               row(2, "tall box", 0.4, 300)};
