@@ -69,6 +69,38 @@ ViewErrorStats viewErrorStats(const ImageSet& groundTruth, const ImageSet& compa
     return out;
 }
 
+ErrorHistogram errorHistogram(const Image& map, const std::vector<uint32_t>* pixels) {
+    ErrorHistogram h;
+    const int bins = 6 * h.perDecade;  // 1e-5 ... 10
+    h.counts.assign(size_t(bins), 0);
+    auto add = [&](float v) {
+        if (!std::isfinite(v)) return;
+        if (v < 0.f) ++h.negative;
+        const double a = std::fabs(double(v));
+        if (!(a > 0.0)) {
+            ++h.below;
+            return;
+        }
+        const double b = std::floor((std::log10(a) - h.lo) * h.perDecade);
+        if (b < 0) ++h.below;
+        else if (b >= bins) ++h.above;
+        else ++h.counts[size_t(b)];
+    };
+    if (pixels) {
+        for (uint32_t i : *pixels)
+            if (size_t(i) < map.pixelCount()) add(map.data[3 * size_t(i)]);
+    } else {
+        for (size_t i = 0; i < map.pixelCount(); ++i) add(map.data[3 * i]);
+    }
+    return h;
+}
+
+uint64_t ErrorHistogram::total() const {
+    uint64_t n = below + above;
+    for (uint64_t c : counts) n += c;
+    return n;
+}
+
 std::vector<uint32_t> regionPixels(const FootprintMask& mask, const ViewRegion& region) {
     std::vector<uint32_t> out;
     if (region.empty() || mask.width <= 0) return out;
@@ -190,6 +222,7 @@ void ViewModel::update(WorkbenchState& s) {
         s.view.errorStats = stats_;
         s.view.regionStats = regionStats_;
         s.view.regionFlip = regionFlip_;
+        s.view.errorHistogram = histogram_;
         return;
     }
     const bool regionChanged = !(k.region == key_.region);
@@ -225,6 +258,13 @@ void ViewModel::update(WorkbenchState& s) {
     s.view.errorStats = stats_;
     if (sourcesChanged || regionChanged) regionStats_ = viewRegionStats(s.reference(), s.compared(), s.view.term, k.region);
     s.view.regionStats = regionStats_;
+    if (errorChanged) {
+        // Over the pixels the figures are over (the mask's kept ones), else every pixel.
+        const FootprintMask* mask = s.reference().footprint.get();
+        const bool masked = mask && mask->width == error_.width && mask->height == error_.height;
+        histogram_ = error_.empty() ? ErrorHistogram{} : errorHistogram(error_, masked ? &mask->kept : nullptr);
+    }
+    s.view.errorHistogram = histogram_;
     if (errorChanged || regionChanged) {
         regionFlip_ = {};
         const FootprintMask* mask = s.reference().footprint.get();

@@ -39,6 +39,10 @@ ViewErrorStats viewErrorStats(const ImageSet& groundTruth, const ImageSet& compa
 /// `valid` is false as there, and also for an empty region or one with no kept pixel.
 ViewErrorStats viewRegionStats(const ImageSet& groundTruth, const ImageSet& compared, Term t, const ViewRegion& region);
 
+/// The log histogram of the first channel of `map` over `pixels` (every pixel when null), bins of
+/// ErrorHistogram's defaults from 1e-5 to 10; non-finite values are left out.
+ErrorHistogram errorHistogram(const Image& map, const std::vector<uint32_t>* pixels);
+
 /// The kept pixels of `mask` inside `region` (ascending), the pixels region figures are over.
 std::vector<uint32_t> regionPixels(const FootprintMask& mask, const ViewRegion& region);
 
@@ -127,6 +131,7 @@ private:
     Image error_;
     ViewErrorStats stats_;
     ViewErrorStats regionStats_;
+    ErrorHistogram histogram_;
     FlipStats regionFlip_;
     uint64_t counter_ = 0;
 };

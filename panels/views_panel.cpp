@@ -16,6 +16,7 @@
 #include "panels/clip_check.h"
 #include "panels/layout.h"
 #include "panels/panels.h"
+#include "panels/plot.h"
 #include "panels/status_text.h"
 #include "panels/view_model.h"
 
@@ -174,6 +175,9 @@ void drawToolbar(WorkbenchState& state) {
     ImGui::Checkbox("highlight", &v.highlight);
     sameLineIfFits(labelledWidth(box, "leaves"));
     ImGui::Checkbox("leaves", &v.leafOverlay);  // tint the compared view by kd-tree leaf
+    sameLineIfFits(labelledWidth(box, "histogram"));
+    ImGui::Checkbox("histogram", &v.histogram);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the error map's values over the compared pixels, on a log axis");
     int source = int(v.compareSource);
     sameLineIfFits(labelledWidth(w * 1.3f, "middle view"));
     ImGui::SetNextItemWidth(w * 1.3f);
@@ -251,6 +255,36 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
     ImGui::EndGroup();
     ImGui::PopID();
     return over;
+}
+
+/// Height of the error histogram's block (plot, tick labels, its line of counts).
+float histogramHeight() { return ImGui::GetFontSize() * 9.f; }
+
+/// The error view's log histogram (ViewState::errorHistogram): bars of the kept pixels' count per
+/// bin over |value| from 1e-5 to 10 on a log axis, the counts outside beside it.
+void drawHistogram(const ViewState& v, float width) {
+    const ErrorHistogram& h = v.errorHistogram;
+    const float font = ImGui::GetFontSize();
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    const float height = histogramHeight() - ImGui::GetTextLineHeightWithSpacing();
+    ImGui::Dummy(ImVec2(width, height));
+    const ImVec2 min(origin.x + font * 3.5f, origin.y + font * 1.5f), max(origin.x + width - font * 0.5f, origin.y + height - font * 2.6f);
+    if (h.counts.empty() || max.x <= min.x || max.y <= min.y) return;
+    uint64_t top = 1;
+    for (uint64_t c : h.counts) top = std::max(top, c);
+    const PlotAxis x{true, h.lo, h.lo + double(h.counts.size()) / h.perDecade, min.x, max.x};
+    const PlotAxis y = linearAxis(0.0, double(top), max.y, min.y);
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    drawAxes(dl, min, max, x, y, v.flip ? "FLIP" : "|error|", "pixels");
+    for (size_t i = 0; i < h.counts.size(); ++i) {
+        if (!h.counts[i]) continue;
+        const double e0 = std::pow(10.0, h.lo + double(i) / h.perDecade), e1 = std::pow(10.0, h.lo + double(i + 1) / h.perDecade);
+        dl->AddRectFilled(ImVec2(x.toPixel(e0) + 1.f, y.toPixel(double(h.counts[i]))), ImVec2(x.toPixel(e1) - 1.f, max.y),
+                          IM_COL32(120, 170, 230, 220));
+    }
+    ImGui::TextDisabled("%llu pixels: %llu under 1e-5 (zeros included), %llu at 10 or over%s", (unsigned long long)h.total(),
+                        (unsigned long long)h.below, (unsigned long long)h.above,
+                        h.negative ? (", " + std::to_string(h.negative) + " negative (binned by |value|)").c_str() : "");
 }
 
 /// The region of interest's figures (every metric over its kept pixels) and a button to clear it.
@@ -409,7 +443,10 @@ void drawViewsPanel(WorkbenchState& state) {
         if (ImGui::SmallButton("Back to the ground truth")) state.view.compareSource = CompareSource::Prediction;
     }
     const ImageSet& compared = state.compared();
-    const ViewsLayout layout = viewsLayout(ImGui::GetContentRegionAvail(), ImGui::GetStyle().ItemSpacing,
+    // The histogram takes its height from the views (in a row it sits under them with the figures).
+    ImVec2 avail = ImGui::GetContentRegionAvail();
+    if (state.view.histogram) avail.y -= histogramHeight();
+    const ViewsLayout layout = viewsLayout(avail, ImGui::GetStyle().ItemSpacing,
                                            ImGui::GetTextLineHeightWithSpacing(), ref.empty() ? cmp : ref);
     const ImVec2 size = layout.view;
 
@@ -443,6 +480,7 @@ void drawViewsPanel(WorkbenchState& state) {
     if (!partial.empty()) ImGui::TextColored(ImVec4(1.f, 0.3f, 1.f, 1.f), "%s", partial.c_str());
     drawReadout(state, ref, cmp);
     drawLegend(state.view, std::min(size.x, ImGui::GetFontSize() * 18));
+    if (state.view.histogram) drawHistogram(state.view, std::min(std::max(size.x, ImGui::GetFontSize() * 20), ImGui::GetFontSize() * 30));
     if (layout.grid) {
         ImGui::PopTextWrapPos();
         ImGui::EndGroup();

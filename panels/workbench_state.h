@@ -148,6 +148,18 @@ struct ViewRegion {
     bool operator==(const ViewRegion& o) const { return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1; }
 };
 
+/// The distribution of the error view's values over the kept pixels, on log-spaced bins (as tev's
+/// log histogram): bin i holds |value| in [10^(lo + i/perDecade), 10^(lo + (i+1)/perDecade)).
+struct ErrorHistogram {
+    double lo = -5.0;          ///< log10 of the first bin's lower edge
+    int perDecade = 4;         ///< bins per decade
+    std::vector<uint64_t> counts;
+    uint64_t below = 0;        ///< |value| under the first edge, zeros included
+    uint64_t above = 0;        ///< |value| at or over the last edge
+    uint64_t negative = 0;     ///< values < 0 (a signed map: counted by |value| in the bins too)
+    uint64_t total() const;
+};
+
 /// Display settings of the three side-by-side views.
 struct ViewState {
     Term term = Term::Global;   ///< the radiance term the views show
@@ -167,6 +179,8 @@ struct ViewState {
     int selectedObject = -1;
     int hoverX = -1, hoverY = -1;  ///< image pixel under the mouse, -1 when none
     ViewErrorStats errorStats;  ///< published by the ViewModel each frame
+    bool histogram = false;     ///< the error view's log histogram under the figures
+    ErrorHistogram errorHistogram;  ///< published by the ViewModel (empty without an error map)
     ViewRegion region;          ///< the region of interest (empty: none)
     /// The region's figures, published by the ViewModel: the same statistics as errorStats over
     /// the kept pixels inside the region, and the FLIP map's over them while it is shown

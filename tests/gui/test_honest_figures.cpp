@@ -253,6 +253,31 @@ TEST(HonestFigures, RegionFiguresAreThoseOfItsKeptPixels) {
     EXPECT_FALSE(s.view.regionStats.valid);
 }
 
+// Issue 30 item 7: the error histogram's bins are log-spaced (four per decade from 1e-5), counted by
+// |value| over the given pixels; zeros and values under 1e-5 go below, 10 and over above.
+TEST(HonestFigures, ErrorHistogramCountsEachValueInItsLogBin) {
+    Image map(8, 1);
+    const float values[8] = {0.f, 1e-6f, 1e-5f, 0.012f, -0.012f, 0.5f, 20.f, std::nanf("")};
+    for (int x = 0; x < 8; ++x) map.set(x, 0, Vec3(values[x]));
+    const ErrorHistogram h = errorHistogram(map, nullptr);
+    ASSERT_EQ(h.counts.size(), 24u);
+    EXPECT_GE(h.below, 2u) << "0 and 1e-6 (and 1e-5f if it rounds under the edge)";
+    EXPECT_EQ(h.above, 1u) << "20";
+    EXPECT_EQ(h.negative, 1u);
+    EXPECT_EQ(h.total(), 7u) << "the NaN is left out";
+    // 1e-5 opens bin 0 (rounding may put it at the top of the bin below: 1e-5f is not exact).
+    EXPECT_EQ(h.counts[0] + h.below, 3u);
+    // log10(0.012) = -1.92: (−1.92 + 5) · 4 = 12.3, bin 12, for both signs.
+    EXPECT_EQ(h.counts[12], 2u);
+    // log10(0.5) = -0.30: (−0.30 + 5) · 4 = 18.8, bin 18.
+    EXPECT_EQ(h.counts[18], 1u);
+    const std::vector<uint32_t> some = {3, 5};
+    const ErrorHistogram m = errorHistogram(map, &some);
+    EXPECT_EQ(m.total(), 2u);
+    EXPECT_EQ(m.counts[12], 1u);
+    EXPECT_EQ(m.counts[18], 1u);
+}
+
 // Issue 30 item 3: the Views' FLIP map is shown only when it was computed from the images on screen
 // (the workbench computes it on a worker), in magma; a newer prediction hides the older map.
 TEST(HonestFigures, FlipViewShowsOnlyTheMapOfTheImagesOnScreen) {
