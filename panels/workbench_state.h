@@ -134,7 +134,6 @@ struct FlipViewMap {
     FlipExposureRange range;   ///< from the ground truth's image
     FlipStats stats;           ///< over the ground truth's footprint mask's kept pixels
     uint64_t revision = 0;     ///< changes whenever a new map arrives
-    bool computing = false;    ///< a FLIP job runs
     bool matches(uint64_t gt, uint64_t cmp, Term t) const { return revision && groundTruth == gt && compared == cmp && term == t; }
 };
 

@@ -16,7 +16,6 @@ void Workbench::updateFlipMap() {
         m.revision = ++flipMaps_;
         shown = std::move(m);
     });
-    shown.computing = flipJob_.running();
     if (!state_.view.flip || flipJob_.running()) return;
     const panels::ImageSet& gt = state_.reference();
     const panels::ImageSet& cmp = state_.compared();
@@ -40,10 +39,7 @@ void Workbench::updateFlipMap() {
         m.stats = masked ? flipStats(m.map, mask->kept) : flipStats(m.map);
         return m;
     });
-    if (started) {
-        flipFor_ = want;
-        shown.computing = true;
-    }
+    if (started) flipFor_ = want;
 }
 
 }  // namespace rrf
