@@ -124,8 +124,10 @@ void Workbench::frame() {
     pollGenerate();
     pollTrain();
     pollEvaluate();
-    pollEvaluateAfterTrain();
+    // After pollPredict: a CPU frame that has just ended is delivered before the evaluation that
+    // waited for it looks for it.
     pollPredict();
+    pollEvaluateAfterTrain();
     pollSweep();
     pollRunPair();
     pollPipeline();

@@ -27,6 +27,7 @@ struct TrainingOutcome;
 struct TrainingLive;
 struct EvaluationOutcome;
 struct TimedPrediction;
+struct CpuFrame;
 struct SweepOutcome;
 struct SweepResult;
 struct PairOutcome;
@@ -236,6 +237,9 @@ private:
     size_t framesSinceRecorded_[2] = {0, 0};
     void noteFrameSeconds(const char* key, double seconds);
     bool predictPending_ = false;  ///< the light moved while a CPU prediction ran
+    /// The last CPU frame of the loaded models (app/gui/cpu_frame.h): an evaluation of the same
+    /// models, settings and ground truth reuses it; a manual Train's evaluation waits for it.
+    std::shared_ptr<const CpuFrame> lastCpuFrame_;
     /// Light-drag drafts (app/gui/prediction_draft.h): the light position of the last GLSL frame,
     /// whether one was rendered for the loaded models, whether the view shows a draft and when
     /// that draft was rendered (the full frame follows kDraftRestSeconds later), draft frame times.

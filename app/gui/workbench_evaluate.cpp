@@ -3,6 +3,8 @@
 // the metrics it adds to the training run whose models it judged.
 #include "app/gui/workbench.h"
 
+#include "app/gui/cpu_frame.h"
+
 #include <filesystem>
 
 #include "core/util/atomic_file.h"
@@ -60,12 +62,26 @@ bool Workbench::startEvaluate() {
     reference->lightPosition = state_.project.scene.lightPosition();
     reference->spp = state_.render.spp;
     reference->seconds = state_.render.seconds;
-    const bool started = evaluateJob_.start("evaluate", [scene, models, modelsDir, settings, reference](JobContext& ctx)
-                                                            -> std::optional<EvaluationOutcome> {
+    // The CPU frame of these models at this light, scene and size already holds the prediction
+    // (on a glossy scene, with its gather): its pixels are what predicting again would give.
+    std::shared_ptr<const CpuFrame> frame = lastCpuFrame_;
+    const Image& gt = state_.groundTruth.term(Term::Global);
+    if (frame && !frame->matches(models, settings,
+                                 panels::ImageStamp{reference->lightPosition, scene->contentHash(), gt.width, gt.height}))
+        frame.reset();
+    if (frame) state_.log.info("evaluate: reusing the CPU frame of these models (same light, scene and size)");
+    const bool started = evaluateJob_.start("evaluate", [scene, models, modelsDir, settings, reference,
+                                                         frame](JobContext& ctx) -> std::optional<EvaluationOutcome> {
         const Stopwatch clock;
-        ctx.setStatus("predicting");
-        const Predictor predictor(*scene, *models, settings);
-        Evaluation e = evaluate(predictor, *reference);
+        Evaluation e;
+        if (frame) {
+            e = evaluatePrediction(frame->gbuffer, frame->prediction, *reference);
+            e.gbufferSeconds = frame->gbufferSeconds;
+        } else {
+            ctx.setStatus("predicting");
+            const Predictor predictor(*scene, *models, settings);
+            e = evaluate(predictor, *reference);
+        }
         e.flip = flipEvaluation(e, *reference);
         EvaluationOutcome out;
         out.info = panels::evaluationInfo(e, *scene, *models);
@@ -86,6 +102,8 @@ void Workbench::pollEvaluateAfterTrain() {
     // A render of the current light still running (or restarting after an edit) is waited for: its
     // finished image is the reference the evaluation needs.
     if (renderRunning() || restartRender_) return;
+    // So is the CPU frame of the new models (a glossy gather, or no GLSL): the evaluation reuses it.
+    if (predictRunning()) return;
     evaluateAfterTrain_ = false;
     const auto& stamp = state_.groundTruth.stamp;
     std::string why;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "app/gui/cpu_frame.h"
 #include "app/gui/prediction_draft.h"
 #include "core/eval/evaluation.h"
 #include "core/predict/glossy_gather.h"
@@ -25,6 +26,7 @@ struct TimedPrediction {
     double seconds = 0;
     Vec3 light{0.f};  ///< the light it was predicted for: a frame for a light that moved on is dropped
     panels::ImageStamp stamp;  ///< light, scene and size it was predicted for
+    std::shared_ptr<const CpuFrame> frame;  ///< a copy for an evaluation of the same models to reuse
 };
 
 namespace {
@@ -50,6 +52,7 @@ bool Workbench::loadModels(const std::string& dir, std::shared_ptr<const ModelSe
     if (!glslError.empty())
         state_.log.warning("GLSL prediction unavailable, using the CPU predictor (slower): " + glslError);
     state_.training.modelsDir = dir;
+    lastCpuFrame_.reset();
     for (int k = 0; k < 2; ++k) {
         frameSeconds_[k].clear();
         framesSinceRecorded_[k] = 0;
@@ -134,10 +137,17 @@ void Workbench::startCpuPrediction(const Camera& camera) {
                                                -> std::optional<TimedPrediction> {
         const Stopwatch clock;
         const Predictor predictor(*shared, *models, settings);
-        const GBuffer gb = predictor.gbuffer(light, camera.width, camera.height);
-        TimedPrediction p{predictor.predict(gb), 0.0, light,
-                          panels::ImageStamp{light, shared->contentHash(), camera.width, camera.height}};
+        auto frame = std::make_shared<CpuFrame>();
+        frame->gbuffer = predictor.gbuffer(light, camera.width, camera.height);
+        frame->gbufferSeconds = clock.seconds();
+        TimedPrediction p{predictor.predict(frame->gbuffer), 0.0, light,
+                          panels::ImageStamp{light, shared->contentHash(), camera.width, camera.height}, nullptr};
         p.seconds = clock.seconds();
+        frame->models = models;
+        frame->settings = settings;
+        frame->stamp = p.stamp;
+        frame->prediction = p.prediction;  // the views take the images; the copy is made here, off the UI thread
+        p.frame = std::move(frame);
         ctx.setProgress(1.0);
         return p;
     }, &why);
@@ -182,6 +192,7 @@ void Workbench::pollPredict() {
         // would replace the newer GLSL frame with the old light's image; the CPU-only view shows
         // what it has (its stamp keeps the error figures honest).
         if (live_.usesGlsl() && !(timed.light == state_.project.scene.lightPosition())) return;
+        lastCpuFrame_ = std::move(timed.frame);
         Prediction& prediction = timed.prediction;
         noteFrameSeconds("frame_seconds", timed.seconds);
         panels::ImageSet& p = state_.prediction;

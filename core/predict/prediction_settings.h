@@ -55,7 +55,17 @@ struct PredictionSettings {
         std::vector<std::string> objects;
         /// Anything is gathered: the exponent rule or named objects, with directions to gather.
         bool on() const { return (minExponent > 0.0 || !objects.empty()) && lobeSamples + diffuseSamples > 0; }
+        bool operator==(const Gather& o) const {
+            return minExponent == o.minExponent && lobeSamples == o.lobeSamples && diffuseSamples == o.diffuseSamples &&
+                   directSamples == o.directSamples && secondLobeSamples == o.secondLobeSamples &&
+                   secondDiffuseSamples == o.secondDiffuseSamples && causticSamples == o.causticSamples &&
+                   objects == o.objects;
+        }
     } gather;
+
+    bool operator==(const PredictionSettings& o) const {
+        return direct == o.direct && directSamples == o.directSamples && seed == o.seed && gather == o.gather;
+    }
 
     /// Reads the section (missing keys keep their defaults). Throws InputError naming the reader's
     /// file and the JSON pointer for unknown keys or bad values.
