@@ -40,7 +40,7 @@
 
 using namespace rrf;
 
-namespace {
+namespace bench_direct {
 
 double cpuSeconds() {
     timespec t;
@@ -112,7 +112,6 @@ struct Case {
     float backWallExponent = 0.f;  ///< > 0: the glossy back wall's exponent replaced
 };
 
-}  // namespace
 
 int main(int argc, char** argv) {
     bool quick = false;
@@ -194,3 +193,5 @@ int main(int argc, char** argv) {
                 "casters off: every ray to Embree in 16-ray packets.\n");
     return 0;
 }
+
+}  // namespace bench_direct

@@ -19,7 +19,7 @@
 
 using namespace rrf;
 
-namespace {
+namespace bench_ensemble {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
@@ -33,7 +33,6 @@ void macs(const MlpArch& merged, int k, double& dense, double& blocked) {
     }
 }
 
-}  // namespace
 
 int main(int argc, char** argv) {
     bool quick = false;
@@ -88,3 +87,5 @@ int main(int argc, char** argv) {
     }
     return 0;
 }
+
+}  // namespace bench_ensemble

@@ -34,7 +34,7 @@
 using namespace rrf;
 using Clock = std::chrono::steady_clock;
 
-namespace {
+namespace bench_generate {
 
 double seconds(Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); }
 
@@ -56,7 +56,6 @@ void addGridOption(CLI::App& app, const std::string& name, SamplingSettings& s, 
         ->default_str(std::to_string(s.nx) + "," + std::to_string(s.ny) + "," + std::to_string(s.nz));
 }
 
-}  // namespace
 
 int main(int argc, char** argv) {
     std::string input, out;
@@ -160,3 +159,5 @@ int main(int argc, char** argv) {
     if (tempOut) std::filesystem::remove(out);
     return 0;
 }
+
+}  // namespace bench_generate

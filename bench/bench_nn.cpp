@@ -28,7 +28,7 @@
 
 using namespace rrf;
 
-namespace {
+namespace bench_nn {
 
 double now() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -223,7 +223,6 @@ void printTable() {
     }
 }
 
-}  // namespace
 
 int main(int argc, char** argv) {
     bool quick = false;
@@ -347,3 +346,5 @@ int main(int argc, char** argv) {
                     100.0 * s.forwardShare, 100.0 * s.trainShare);
     return 0;
 }
+
+}  // namespace bench_nn

@@ -29,7 +29,7 @@
 
 using namespace rrf;
 
-namespace {
+namespace bench_predict {
 
 ModelSet randomModels(const Scene& scene, const std::vector<int>& hidden) {
     const RecordLayout layout = RecordLayout::forScene(scene);
@@ -110,7 +110,6 @@ void exactDirectTable(const Scene& scene, const ModelSet& models, const Vec3& li
     }
 }
 
-}  // namespace
 
 int main(int argc, char** argv) {
     bool quick = false;
@@ -155,3 +154,5 @@ int main(int argc, char** argv) {
     exactDirectTable(scene, models, light, quick ? 256 : 1024, quick ? 2 : 5);
     return 0;
 }
+
+}  // namespace bench_predict

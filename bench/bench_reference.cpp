@@ -36,6 +36,8 @@
 using namespace rrf;
 namespace fs = std::filesystem;
 
+namespace bench_reference {
+
 int main(int argc, char** argv) {
     CLI::App app{"Reference store: seconds and spp to reach a relative noise target"};
     std::string project;
@@ -146,3 +148,5 @@ int main(int argc, char** argv) {
     }
     return 0;
 }
+
+}  // namespace bench_reference

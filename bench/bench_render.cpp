@@ -23,7 +23,7 @@
 using namespace rrf;
 using Clock = std::chrono::steady_clock;
 
-namespace {
+namespace bench_render {
 
 double seconds(Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); }
 
@@ -61,7 +61,6 @@ double plainEmbree(const Accel& accel, const std::vector<Ray>& rays, bool occlud
     return double(rays.size()) * repeats / s;
 }
 
-}  // namespace
 
 int main(int argc, char** argv) {
     std::string input;
@@ -121,3 +120,5 @@ int main(int argc, char** argv) {
     }
     return 0;
 }
+
+}  // namespace bench_render
