@@ -1,8 +1,10 @@
 // `rrf evaluate`: the networks' predictions against path-traced references at the scene's light, at
-// a given position, at K held-out positions, or against a saved `rrf render` output. Under an MPI
+// a given position, at K held-out positions, over a grid of the light region (--light-grid), or
+// against a saved `rrf render` output. Under an MPI
 // launcher the ranks render the references of the light positions into the project's reference
 // store, each its share, and rank 0 evaluates (docs/cluster.md).
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -13,6 +15,7 @@
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "app/mpi/ranks.h"
+#include "core/data/dataset_file.h"
 #include "core/eval/held_out.h"
 #include "core/nn/model_set.h"
 #include "core/project/project.h"
@@ -27,6 +30,7 @@ namespace {
 struct EvaluateArgs : PredictionArgs {
     std::string models, reference;
     std::string estimator;  ///< --estimator of the references (empty: the project's)
+    std::string lightGrid;  ///< --light-grid NxMxK (empty: none)
     std::optional<Vec3> lightPos;
     int heldOut = 0, spp = -1, sppCap = -1;
     double noise = -1;
@@ -53,7 +57,8 @@ void prepareRecording(const Project& p, EvaluateArgs& a) {
 }
 
 /// Adds what `evals` measured to the train run that made the models and saves the project.
-void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vector<Evaluation>& evals, double seconds) {
+void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vector<Evaluation>& evals, double seconds,
+                       const char* report = nullptr) {
     EvaluationRecord r;
     for (const Evaluation& e : evals) {
         const ErrorStats& g = e.term(Term::Global).overall;
@@ -65,14 +70,47 @@ void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vecto
     }
     r.referenceSpp = evals.empty() ? 0 : evals.front().referenceSpp;
     r.seconds = seconds;
-    r.artifacts = {outputPath(a.out, evals.size() > 1 ? "held_out.json" : "evaluation.json")};
+    r.artifacts = {outputPath(a.out, report ? report : evals.size() > 1 ? "held_out.json" : "evaluation.json")};
     const std::string dir = projectDirectory(p);
     editRuns(a.input, [&](std::vector<Run>& runs) { recordEvaluation(runs, dir, a.models, r); });
     std::printf("recorded the evaluation in the train run of %s in %s\n", a.models.c_str(), a.input.c_str());
 }
 
+/// The marks of a light-grid map: the light positions of the records of the dataset that trained
+/// `models`, when its train run is in the project and the dataset is still there.
+LightGridMarks trainingLightMarks(const Project& p, const std::string& models) {
+    constexpr size_t kMaxMarks = 3000;  // enough to show the coverage of each slice, few enough to read it
+    LightGridMarks m;
+    const Run* trained = isBareScene(p) ? nullptr : findTrainRun(p.runs, projectDirectory(p), models);
+    if (!trained) {
+        m.why = "the models are not from a train run recorded in the project";
+        return m;
+    }
+    const std::string rel = trained->settings.value("dataset", std::string());
+    if (rel.empty()) {
+        m.why = "the train run '" + trained->name + "' names no dataset";
+        return m;
+    }
+    const std::filesystem::path path = std::filesystem::path(rel).is_absolute() ? std::filesystem::path(rel)
+                                                                                : std::filesystem::path(projectDirectory(p)) / rel;
+    if (!std::filesystem::exists(path)) {
+        m.why = "the dataset " + path.string() + " of train run '" + trained->name + "' is gone";
+        return m;
+    }
+    try {
+        const Dataset d(path.string(), false, p.scene.contentHash());
+        m.positions = datasetLightPositions(d, kMaxMarks);
+        m.source = path.string();
+    } catch (const std::exception& e) {
+        m.why = std::string("its dataset could not be read: ") + e.what();
+    }
+    return m;
+}
+
 int runEvaluate(EvaluateArgs a) {
     const mpi::Ranks& ranks = mpi::ranks();
+    const std::optional<LightGridSpec> grid =
+        a.lightGrid.empty() ? std::nullopt : std::optional<LightGridSpec>(LightGridSpec::parse(a.lightGrid, "command line", "--light-grid"));
     Project p = loadProjectOrScene(a.input);
     applyEstimatorFlag(a.estimator, p.render.estimator);
     std::vector<std::string> inputs = projectInputs(p);
@@ -110,7 +148,8 @@ int runEvaluate(EvaluateArgs a) {
         return 0;
     }
     std::vector<Vec3> lights;
-    if (a.heldOut > 0) lights = heldOutLightPositions(p.scene.lightRange(), a.heldOut, uint64_t(a.seed));
+    if (grid) lights = grid->positions(p.scene.lightRange());
+    else if (a.heldOut > 0) lights = heldOutLightPositions(p.scene.lightRange(), a.heldOut, uint64_t(a.seed));
     else lights = {a.lightPos.value_or(p.scene.lightPosition())};
     if (a.lightPos) checkLightPosition(p.scene, *a.lightPos);
     // --spp: a fixed number of samples, no noise target, not stored. Otherwise the project's store
@@ -127,12 +166,21 @@ int runEvaluate(EvaluateArgs a) {
     else if (ranks.isRoot())
         std::printf("%zu light position(s)%s, references %dx%d from %s: relative noise <= max(%g, %g x the error), at most "
                     "%d spp\n",
-                    lights.size(), a.heldOut > 0 ? (" (held out, seed " + std::to_string(a.seed) + ")").c_str() : "", width,
+                    lights.size(),
+                    grid         ? (" (a " + grid->text() + " grid over the light region)").c_str()
+                    : a.heldOut > 0 ? (" (held out, seed " + std::to_string(a.seed) + ")").c_str()
+                                    : "",
+                    width,
                     height, store.dir().c_str(), target.relativeRmse, target.errorFraction, target.sppCap);
     const Stopwatch clock;
     if (ranks.size() > 1) {
         obtainRankReferences(ranks, lights, source);
         if (!ranks.isRoot()) return 0;
+    }
+    if (grid) {
+        const LightGridOutcome o = lightGrid(p, predictor, *grid, source, a.out, a.exposure, trainingLightMarks(p, a.models));
+        if (a.record) recordEvaluations(a, p, o.evaluations, clock.seconds(), "light_grid.json");
+        return 0;
     }
     const std::vector<Evaluation> evals = evaluateAll(p, predictor, lights, source, a.out, a.exposure);
     if (a.record) recordEvaluations(a, p, evals, clock.seconds());
@@ -147,7 +195,14 @@ void addEvaluateCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--models", a->models, "model directory (rrf train --out)")->required();
     CLI::Option* lp = addVec3Option(cmd, "--light-pos", a->lightPos, "light centre x,y,z (default: the scene's)");
     cmd->add_option("--held-out", a->heldOut, "evaluate at K held-out light positions")->check(positive())->excludes(lp);
-    cmd->add_option("--reference", a->reference, "use this rrf render output instead of rendering")->excludes(lp);
+    CLI::Option* ref = cmd->add_option("--reference", a->reference, "use this rrf render output instead of rendering")->excludes(lp);
+    cmd->add_option("--light-grid", a->lightGrid,
+                    "evaluate at an NxMxK grid of light positions spanning the light region (edges included): "
+                    "light_grid.json, light_grid.txt and one error map per y slice, light_grid_y<j>.png, with the "
+                    "training records' lights marked")
+        ->excludes(lp)
+        ->excludes(ref)
+        ->excludes("--held-out");
     CLI::Option* spp = cmd->add_option("--spp", a->spp,
                                        "render references at this fixed spp: no noise target, not stored (default: the "
                                        "project's reference store, converged to the noise target)")

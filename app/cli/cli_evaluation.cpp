@@ -32,4 +32,9 @@ std::vector<Evaluation> evaluateAll(const Project& p, const Predictor& predictor
     return evaluateAtLights(p, predictor, lights, source, out, exposure, printingObserver());
 }
 
+LightGridOutcome lightGrid(const Project& p, const Predictor& predictor, const LightGridSpec& grid,
+                           const ReferenceSource& source, const std::string& out, float exposure, const LightGridMarks& marks) {
+    return evaluateLightGrid(p, predictor, grid, source, out, exposure, marks, printingObserver());
+}
+
 }  // namespace rrf::cli

@@ -29,4 +29,8 @@ ReferenceSource fixedSppSource(const Project& p, const RenderOptions& ro, size_t
 std::vector<Evaluation> evaluateAll(const Project& p, const Predictor& predictor, const std::vector<Vec3>& lights,
                                     const ReferenceSource& source, const std::string& out, float exposure);
 
+/// evaluateLightGrid (core/pipeline/evaluate_stage.h) with its tables and lines printed.
+LightGridOutcome lightGrid(const Project& p, const Predictor& predictor, const LightGridSpec& grid,
+                           const ReferenceSource& source, const std::string& out, float exposure, const LightGridMarks& marks);
+
 }  // namespace rrf::cli

@@ -1,5 +1,6 @@
 #include "core/pipeline/evaluate_stage.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "core/eval/held_out.h"
 #include "core/eval/reference_noise.h"
 #include "core/util/atomic_file.h"
+#include "core/util/image_io.h"
 
 namespace rrf {
 
@@ -28,6 +30,19 @@ std::string evaluationFile(const std::string& dir, const std::string& name) { re
 std::string withoutFinalNewline(std::string text) {
     if (!text.empty() && text.back() == '\n') text.pop_back();
     return text;
+}
+
+/// `e` without its per-pixel data (images, maps, masks), its figures kept: an evaluation at many
+/// lights holds each light's pixels only while its files are written.
+void dropPixels(Evaluation& e) {
+    for (Image& im : e.prediction.images) im = Image{};
+    e.prediction.leaf = {};
+    e.objectIds = {};
+    e.footprint.pixel = {};
+    e.footprint.keptByObject = {};
+    e.footprint.kept = {};
+    e.flip.hdrMap = Image{};
+    e.flip.ldrMap = Image{};
 }
 
 double globalErrorOf(const Evaluation& e) {
@@ -165,6 +180,7 @@ std::vector<Evaluation> evaluateAtLights(const Project& p, const Predictor& pred
         observer.note(line);
         for (const std::string& why : e.prediction.unavailableWhy) observer.note("unavailable: " + why);
         reports.push_back(report);
+        if (lights.size() > 1) dropPixels(evals.back());
         observer.setProgress(double(k + 1) / double(lights.size()));
     }
     if (evals.size() > 1) {
@@ -178,6 +194,45 @@ std::vector<Evaluation> evaluateAtLights(const Project& p, const Predictor& pred
         observer.note("wrote " + json);
     }
     return evals;
+}
+
+LightGridOutcome evaluateLightGrid(const Project& p, const Predictor& predictor, const LightGridSpec& grid,
+                                   const ReferenceSource& source, const std::string& out, float exposure,
+                                   const LightGridMarks& marks, const StageObserver& observer) {
+    const Bounds3 region = p.scene.lightRange();
+    LightGridOutcome outcome;
+    outcome.evaluations = evaluateAtLights(p, predictor, grid.positions(region), source, out, exposure, observer);
+    LightGridMap& map = outcome.map;
+    map = lightGridMap(grid, region, outcome.evaluations, p.scene.objects.size());
+    map.marks = marks.positions;
+    map.marksSource = marks.source;
+    map.marksWhy = marks.why;
+    nlohmann::json report = lightGridJson(p.scene, map);
+    // Cells large enough to read a mark's place in them, the slice at least 256 pixels across.
+    const int cell = std::max(8, 256 / std::max(grid.counts[0], grid.counts[2]));
+    const double scale = LightGridMap::scaleOf(map.global);
+    nlohmann::json slices = nlohmann::json::array();
+    for (int j = 0; j < grid.counts[1]; ++j) {
+        const std::string name = "light_grid_y" + std::to_string(j) + ".png";
+        writeImage(evaluationFile(out, name), lightGridSlice(map, map.global, j, cell, scale), ImageFormat::PNG);
+        slices.push_back({{"y", grid.positions(region)[grid.index(0, j, 0)].y}, {"image", name}});
+    }
+    report["slices"] = slices;
+    // The set of slices is replaced whole: slices of an earlier, taller grid in `out` go.
+    for (int j = grid.counts[1];; ++j) {
+        std::error_code ec;
+        if (!std::filesystem::remove(evaluationFile(out, "light_grid_y" + std::to_string(j) + ".png"), ec)) break;
+    }
+    const std::string table = lightGridTable(p.scene, map);
+    writeFileAtomically(evaluationFile(out, "light_grid.txt"), table);
+    writeFileAtomically(evaluationFile(out, "light_grid.json"), report.dump(2) + "\n");
+    observer.note("\nerror across the light region (" + grid.text() + ", colour scale 0.." + figureText(scale) + "; " +
+                  (map.marks.empty() ? "no training lights marked: " + map.marksWhy
+                                     : std::to_string(map.marks.size()) + " training records' lights marked from " + map.marksSource) +
+                  ")\n" + withoutFinalNewline(table));
+    observer.note("wrote " + evaluationFile(out, "light_grid.json") + ", light_grid.txt and " + std::to_string(grid.counts[1]) +
+                  " slice image(s) light_grid_y<j>.png");
+    return outcome;
 }
 
 }  // namespace rrf

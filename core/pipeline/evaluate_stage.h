@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/eval/evaluation.h"
+#include "core/eval/light_grid.h"
 #include "core/eval/reference_store.h"
 #include "core/pipeline/stage_observer.h"
 #include "core/predict/predictor.h"
@@ -84,9 +85,29 @@ ReferenceSource fixedSppReferenceSource(const Project& p, const RenderOptions& r
 /// The evaluation stage: `predictor` judged at each light position (references from `source`), the
 /// maps, evaluation.json and evaluation.txt written per light (to `out` for one light, else to
 /// out/light_<k>) and, for several, held_out.txt and held_out.json in `out`. The tables and a line of
-/// prediction times per light go to `observer` as notes. Returns the evaluations.
+/// prediction times per light go to `observer` as notes. Returns the evaluations; of several, only
+/// their figures (per-pixel images, maps and masks are dropped once each light's files are written).
 std::vector<Evaluation> evaluateAtLights(const Project& p, const Predictor& predictor, const std::vector<Vec3>& lights,
                                          const ReferenceSource& source, const std::string& out, float exposure,
                                          const StageObserver& observer);
+
+/// Training records' light positions to mark on a light-grid map, and where they came from.
+struct LightGridMarks {
+    std::vector<Vec3> positions;
+    std::string source;  ///< the dataset they were read from ("" when there are none)
+    std::string why;     ///< why there are none
+};
+
+/// The light-grid stage (core/eval/light_grid.h): evaluateAtLights at every position of `grid` over
+/// the scene's light region (each light's files under out/light_<k>, held_out.* in `out`), then in
+/// `out` light_grid.json, light_grid.txt and one slice image per y of the grid, light_grid_y<j>.png
+/// (all on one colour scale), with `marks` drawn. The table goes to `observer` as a note.
+struct LightGridOutcome {
+    std::vector<Evaluation> evaluations;  ///< figures only, as evaluateAtLights returns them for several lights
+    LightGridMap map;
+};
+LightGridOutcome evaluateLightGrid(const Project& p, const Predictor& predictor, const LightGridSpec& grid,
+                               const ReferenceSource& source, const std::string& out, float exposure,
+                               const LightGridMarks& marks, const StageObserver& observer);
 
 }  // namespace rrf
