@@ -209,7 +209,7 @@ void drawPanel(WorkbenchState& state, const std::string& name) {
         {"Project", drawProjectPanel}, {"Scene", drawScenePanel},       {"Sampling", drawSamplingPanel},
         {"Network", drawNetworkPanel}, {"Views", drawViewsPanel},       {"Training", drawTrainingPanel},
         {"Objects", drawObjectsPanel}, {"Cost", drawCostPanel},         {"Leaves", drawLeavesPanel},
-        {"Log", drawLogPanel},
+        {"Light region", drawLightRegionPanel}, {"Log", drawLogPanel},
     };
     for (const auto& [panel, draw] : kPanels)
         if (name == panel) draw(state);

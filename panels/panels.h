@@ -32,6 +32,9 @@ void drawTrainingPanel(WorkbenchState& state);
 void drawObjectsPanel(WorkbenchState& state);
 /// Cost: accuracy versus time from sweeps and from the project's runs.
 void drawCostPanel(WorkbenchState& state);
+/// Light region: the loaded models' error over a grid of light positions spanning the light region,
+/// one map per height, training lights marked; click a cell to move the light there.
+void drawLightRegionPanel(WorkbenchState& state);
 /// Leaves: the loaded models' kd-tree leaves per object, each leaf's records and validation error.
 void drawLeavesPanel(WorkbenchState& state);
 /// The Leaves panel's rows for a model set (pixelLeaf left empty).

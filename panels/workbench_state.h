@@ -15,6 +15,7 @@
 
 #include "core/eval/error_metrics.h"
 #include "core/eval/flip.h"
+#include "core/eval/light_grid.h"
 #include "core/predict/footprint_mask.h"
 #include "core/render/term.h"
 #include "core/util/vec3.h"
@@ -58,6 +59,8 @@ enum class Command {
     CompareRun,       ///< index: show the run's images in the compare view, the error against it
     CompareRunPair,   ///< show the predictions of runPair.a and runPair.b side by side
     DeleteRun,        ///< index
+    EvaluateLightRegion,  ///< judge the loaded models over lightRegion.counts (Light region panel)
+    CancelLightRegion,
     ExportImages,     ///< path: a directory
     ExportScreenshot, ///< path: a PNG file
     ResetLayout,
@@ -254,6 +257,23 @@ struct RunPair {
     std::string nameA, nameB;      ///< run names at the time of the comparison
 };
 
+/// The Light region panel (panels/light_region_panel.cpp): the loaded models' error over a grid of
+/// light positions spanning the light region (core/eval/light_grid.h), the grid the next evaluation
+/// uses, and its job.
+struct LightRegionInfo {
+    /// Grid points along x, y and z of the next evaluation, each 1 … kMaxCount.
+    int counts[3] = {4, 2, 4};
+    static constexpr int kMaxCount = 8;
+    bool running = false;
+    double progress = 0.0;
+    std::string status;                  ///< what the job does now
+    std::optional<LightGridMap> map;     ///< the last finished evaluation
+    std::string modelsDir;               ///< the models it judged
+    std::string outDir;                  ///< where its files are
+    int width = 0, height = 0;           ///< its references' size
+    int object = -1;                     ///< shown: -1 the global figure, else an object id
+};
+
 struct WorkbenchState {
     /// The open project: its typed sections (settings, runs, pane layout, scene overrides) are what
     /// the panels edit.
@@ -279,6 +299,7 @@ struct WorkbenchState {
     ObjectsView objectsView;
     CostInfo cost;
     CostView costView;
+    LightRegionInfo lightRegion;
     ViewState view;
     /// GL textures of the three views, set by the application (null in tests: nothing is drawn).
     ImTextureID viewTextures[3] = {nullptr, nullptr, nullptr};

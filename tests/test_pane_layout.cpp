@@ -33,7 +33,7 @@ TEST(PaneLayout, DefaultIsThreePanes) {
     ASSERT_EQ(l.panes().size(), 3u);
     EXPECT_EQ(l.panes()[0]->tabs, (std::vector<std::string>{"Project", "Scene", "Sampling", "Network"}));
     EXPECT_EQ(l.panes()[1]->tabs, (std::vector<std::string>{"Views"}));
-    EXPECT_EQ(l.panes()[2]->tabs, (std::vector<std::string>{"Training", "Objects", "Cost", "Leaves", "Log"}));
+    EXPECT_EQ(l.panes()[2]->tabs, (std::vector<std::string>{"Training", "Objects", "Cost", "Leaves", "Light region", "Log"}));
     EXPECT_EQ(l.root.split, PaneSplit::Row);
     EXPECT_FLOAT_EQ(l.root.fraction, 0.27f);
     EXPECT_EQ(l.root.children[1].split, PaneSplit::Column);
@@ -48,7 +48,7 @@ TEST(PaneLayout, MoveTabIntoAnotherPaneShowsIt) {
     ASSERT_NE(views, nullptr);
     EXPECT_EQ(views->tabs, (std::vector<std::string>{"Views", "Objects"}));
     EXPECT_EQ(views->active, "Objects");
-    EXPECT_EQ(l.paneOf("Training")->tabs, (std::vector<std::string>{"Training", "Cost", "Leaves", "Log"}));
+    EXPECT_EQ(l.paneOf("Training")->tabs, (std::vector<std::string>{"Training", "Cost", "Leaves", "Light region", "Log"}));
     EXPECT_EQ(l.panes().size(), 3u);
     EXPECT_TRUE(holdsEveryPanelOnce(l));
     EXPECT_FALSE(l.moveTab("Objects", "Views", DropSide::Centre)) << "already there";

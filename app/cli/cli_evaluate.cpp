@@ -4,7 +4,6 @@
 // launcher the ranks render the references of the light positions into the project's reference
 // store, each its share, and rank 0 evaluates (docs/cluster.md).
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -15,7 +14,6 @@
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "app/mpi/ranks.h"
-#include "core/data/dataset_file.h"
 #include "core/eval/held_out.h"
 #include "core/nn/model_set.h"
 #include "core/project/project.h"
@@ -74,37 +72,6 @@ void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vecto
     const std::string dir = projectDirectory(p);
     editRuns(a.input, [&](std::vector<Run>& runs) { recordEvaluation(runs, dir, a.models, r); });
     std::printf("recorded the evaluation in the train run of %s in %s\n", a.models.c_str(), a.input.c_str());
-}
-
-/// The marks of a light-grid map: the light positions of the records of the dataset that trained
-/// `models`, when its train run is in the project and the dataset is still there.
-LightGridMarks trainingLightMarks(const Project& p, const std::string& models) {
-    constexpr size_t kMaxMarks = 3000;  // enough to show the coverage of each slice, few enough to read it
-    LightGridMarks m;
-    const Run* trained = isBareScene(p) ? nullptr : findTrainRun(p.runs, projectDirectory(p), models);
-    if (!trained) {
-        m.why = "the models are not from a train run recorded in the project";
-        return m;
-    }
-    const std::string rel = trained->settings.value("dataset", std::string());
-    if (rel.empty()) {
-        m.why = "the train run '" + trained->name + "' names no dataset";
-        return m;
-    }
-    const std::filesystem::path path = std::filesystem::path(rel).is_absolute() ? std::filesystem::path(rel)
-                                                                                : std::filesystem::path(projectDirectory(p)) / rel;
-    if (!std::filesystem::exists(path)) {
-        m.why = "the dataset " + path.string() + " of train run '" + trained->name + "' is gone";
-        return m;
-    }
-    try {
-        const Dataset d(path.string(), false, p.scene.contentHash());
-        m.positions = datasetLightPositions(d, kMaxMarks);
-        m.source = path.string();
-    } catch (const std::exception& e) {
-        m.why = std::string("its dataset could not be read: ") + e.what();
-    }
-    return m;
 }
 
 int runEvaluate(EvaluateArgs a) {

@@ -16,6 +16,7 @@ const char* jobKindName(JobKind kind) {
         case JobKind::Sweep: return "sweep";
         case JobKind::Compare: return "compare";
         case JobKind::Overlay: return "leaf overlay";
+        case JobKind::LightGrid: return "light grid";
     }
     return "job";
 }
@@ -25,6 +26,8 @@ bool jobsConflict(JobKind a, JobKind b) {
     // A sweep renders, generates and trains in its own memory and writes no project files; it only
     // competes for the cores, which the user decides about.
     if (a == JobKind::Sweep || b == JobKind::Sweep) return false;
+    // So does a light grid: references into the store, predictions of the models it holds.
+    if (a == JobKind::LightGrid || b == JobKind::LightGrid) return false;
     if (a == JobKind::Compare || b == JobKind::Compare) return false;  // its own models, copied images
     if (a == JobKind::Overlay || b == JobKind::Overlay) return false;  // shared read-only models
     auto pair = [&](JobKind x, JobKind y) { return (a == x && b == y) || (a == y && b == x); };

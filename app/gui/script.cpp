@@ -34,6 +34,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"train", train},
             {"evaluate", {}},
             {"sweep", {"what"}},
+            {"light_grid", {"grid"}},
             {"wait", {"for", "timeout_s"}},
             {"save_run", {}},
             {"compare_run", {"index"}},
@@ -60,7 +61,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
                        "train_runs", "sweeps", "unsaved_prompt", "dirty", "stopped_runs", "prediction_partial",
                        "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped", "pipeline_done",
                        "pipeline_stopped", "prediction_label", "error_waiting", "flip_evaluated",
-                       "region_pixels_min"}},
+                       "region_pixels_min", "light_grid_points"}},
         };
     }();
     return keys;
@@ -192,6 +193,14 @@ bool Script::execute(Workbench& wb, const json& s) {
         require(wb.startEvaluate(), "the evaluation could not start (see the log)");
     } else if (what == "sweep") {
         require(wb.startSweep(r.at("what").string()), "the sweep could not start (see the log)");
+    } else if (what == "light_grid") {
+        // As setting the Light region panel's grid and clicking "Evaluate over the light region".
+        if (r.has("grid")) {
+            const JsonReader g = r.at("grid");
+            for (int a = 0; a < 3; ++a)
+                st.lightRegion.counts[a] = int(g.at(size_t(a)).integer(1, panels::LightRegionInfo::kMaxCount));
+        }
+        require(wb.startLightGrid(), "the light grid could not start (see the log)");
     } else if (what == "pipeline") {
         // As choosing a preset in the pipeline bar and clicking "Run pipeline" (the request the
         // button makes). Optional sizes shrink the preset for small scripted runs: they are applied
@@ -375,6 +384,8 @@ bool Script::execute(Workbench& wb, const json& s) {
             require(st.view.regionStats.valid && st.view.regionStats.stats.pixels >= uint64_t(v->integer(0, std::numeric_limits<int>::max())),
                     "the region has figures over " + std::to_string(st.view.regionStats.valid ? st.view.regionStats.stats.pixels : 0) +
                         " pixels");
+        // light_grid_points: the Light region panel's map has this many light positions.
+        count("light_grid_points", st.lightRegion.map ? st.lightRegion.map->lights.size() : 0, "light grid points");
         // flip_evaluated: the last evaluation has FLIP figures (global term, finite mean).
         flag("flip_evaluated", st.evaluation.valid && std::isfinite(st.evaluation.flipHdr), "evaluation's FLIP state");
         size_t trained = 0;

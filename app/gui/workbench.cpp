@@ -129,6 +129,7 @@ void Workbench::frame() {
     pollPredict();
     pollEvaluateAfterTrain();
     pollSweep();
+    pollLightGrid();
     pollRunPair();
     pollPipeline();
     updateFlipMap();
@@ -399,6 +400,8 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
                 break;
             case Command::RunSweep: startSweep(r.path); break;
             case Command::CancelSweep: sweepJob_.cancel(); break;
+            case Command::EvaluateLightRegion: startLightGrid(); break;
+            case Command::CancelLightRegion: lightGridJob_.cancel(); break;
             case Command::RunPipeline: startPipeline(r.path); break;
             case Command::CancelPipeline: cancelPipeline(); break;
             case Command::SceneChanged: sceneEdited = true; break;  // many edits in a frame: one restart

@@ -28,6 +28,7 @@ struct TrainingLive;
 struct EvaluationOutcome;
 struct TimedPrediction;
 struct CpuFrame;
+struct LightGridResult;
 struct SweepOutcome;
 struct SweepResult;
 struct PairOutcome;
@@ -124,6 +125,9 @@ public:
     /// Runs a cost sweep of one of the kinds in kSweepKinds (core/pipeline/sweep.h) with interactive sizes.
     bool startSweep(const std::string& what);
     bool sweepRunning() const;
+    /// The Light region panel's evaluation of the loaded models (app/gui/workbench_light_grid.cpp).
+    bool startLightGrid();
+    bool lightGridRunning() const;
     /// The Cost panel's series of the project's sweeps on disk (<project dir>/sweeps/*.json), as they
     /// were when they finished: called when a project is opened.
     void restoreSweeps();
@@ -169,6 +173,7 @@ private:
     void refreshAvailableMemory();
     void pollPredict();
     void pollSweep();
+    void pollLightGrid();
     /// Adds `r`'s series to the Cost panel, named "sweep <what>" (" #n" for the n-th of a kind).
     void addSweepSeries(const SweepResult& r);
     /// Moves the pipeline to its next stage once the current one delivered, publishes its progress.
@@ -252,6 +257,7 @@ private:
     /// Renders the full-quality frame once the light has rested after a drag.
     void finishDraft();
     JobSession<SweepOutcome> sweepJob_{jobs_, JobKind::Sweep, state_.log};
+    JobSession<LightGridResult> lightGridJob_{jobs_, JobKind::LightGrid, state_.log};
     JobSession<PairOutcome> pairJob_{jobs_, JobKind::Compare, state_.log};
     void pollRunPair();
     /// The Views' leaf overlay, computed on a worker (a G-buffer and a leaf lookup per pixel).

@@ -9,7 +9,9 @@
 #include <future>
 #include <stdexcept>
 
+#include "core/data/dataset_file.h"
 #include "core/eval/held_out.h"
+#include "core/pipeline/run_recording.h"
 #include "core/eval/reference_noise.h"
 #include "core/util/atomic_file.h"
 #include "core/util/image_io.h"
@@ -194,6 +196,35 @@ std::vector<Evaluation> evaluateAtLights(const Project& p, const Predictor& pred
         observer.note("wrote " + json);
     }
     return evals;
+}
+
+LightGridMarks trainingLightMarks(const Project& p, const std::string& models) {
+    constexpr size_t kMaxMarks = 600;  // enough to show the coverage of each slice, few enough to see its colours
+    LightGridMarks m;
+    const Run* trained = isBareScene(p) ? nullptr : findTrainRun(p.runs, projectDirectory(p), models);
+    if (!trained) {
+        m.why = "the models are not from a train run recorded in the project";
+        return m;
+    }
+    const std::string rel = trained->settings.value("dataset", std::string());
+    if (rel.empty()) {
+        m.why = "the train run '" + trained->name + "' names no dataset";
+        return m;
+    }
+    const std::filesystem::path path = std::filesystem::path(rel).is_absolute() ? std::filesystem::path(rel)
+                                                                                : std::filesystem::path(projectDirectory(p)) / rel;
+    if (!std::filesystem::exists(path)) {
+        m.why = "the dataset " + path.string() + " of train run '" + trained->name + "' is gone";
+        return m;
+    }
+    try {
+        const Dataset d(path.string(), false, p.scene.contentHash());
+        m.positions = datasetLightPositions(d, kMaxMarks);
+        m.source = path.string();
+    } catch (const std::exception& e) {
+        m.why = std::string("its dataset could not be read: ") + e.what();
+    }
+    return m;
 }
 
 LightGridOutcome evaluateLightGrid(const Project& p, const Predictor& predictor, const LightGridSpec& grid,

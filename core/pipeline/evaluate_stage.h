@@ -98,6 +98,11 @@ struct LightGridMarks {
     std::string why;     ///< why there are none
 };
 
+/// The marks of a light-grid map of `models`: the light positions of (a sample of) the records of
+/// the dataset that trained them, when their train run is in the project and the dataset is still
+/// there; otherwise none, and why.
+LightGridMarks trainingLightMarks(const Project& p, const std::string& models);
+
 /// The light-grid stage (core/eval/light_grid.h): evaluateAtLights at every position of `grid` over
 /// the scene's light region (each light's files under out/light_<k>, held_out.* in `out`), then in
 /// `out` light_grid.json, light_grid.txt and one slice image per y of the grid, light_grid_y<j>.png

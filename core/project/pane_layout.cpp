@@ -151,8 +151,8 @@ bool PaneNode::operator==(const PaneNode& o) const {
 }
 
 const std::vector<std::string>& PaneLayout::panels() {
-    static const std::vector<std::string> names = {"Project",  "Scene",   "Sampling", "Network", "Views",
-                                                   "Training", "Objects", "Cost",     "Leaves",  "Log"};
+    static const std::vector<std::string> names = {"Project",  "Scene",   "Sampling", "Network", "Views",         "Training",
+                                                   "Objects",  "Cost",    "Leaves",   "Light region", "Log"};
     return names;
 }
 
@@ -160,7 +160,7 @@ PaneNode PaneLayout::defaultRoot(float left, float bottom) {
     // Training first in the bottom pane: the loss plot is what a user watches while networks learn.
     return splitNode(PaneSplit::Row, left, leaf({"Project", "Scene", "Sampling", "Network"}),
                      splitNode(PaneSplit::Column, 1.f - bottom, leaf({"Views"}),
-                               leaf({"Training", "Objects", "Cost", "Leaves", "Log"})));
+                               leaf({"Training", "Objects", "Cost", "Leaves", "Light region", "Log"})));
 }
 
 float PaneLayout::clampFraction(float f, float fallback) {

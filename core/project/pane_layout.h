@@ -10,7 +10,7 @@
 ///                   {"tabs": ["Project", "Scene", "Sampling", "Network"], "active": "Project"},
 ///                   {"split": "column", "fraction": 0.68, "panes": [
 ///                       {"tabs": ["Views"]},
-///                       {"tabs": ["Training", "Objects", "Cost", "Leaves", "Log"]}]}]}}
+///                       {"tabs": ["Training", "Objects", "Cost", "Leaves", "Light region", "Log"]}]}]}}
 ///
 /// Files of earlier versions have {"left": 0.27, "bottom": 0.32} (the two splitters of the fixed
 /// three-pane arrangement) and still load as that arrangement. Only data lives here; panels/layout

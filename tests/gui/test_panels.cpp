@@ -186,3 +186,49 @@ TEST_F(PanelTest, LogCollectsMessagesAndCopiesThem) {
 }
 
 }  // namespace rrf::test::test_panels
+
+namespace rrf::test::test_panels {
+
+TEST_F(PanelTest, LightRegionCellClickMovesTheLightToItsGridPosition) {
+    WorkbenchState s;
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, kCornell, error)) << error;
+    s.training.modelsDir = "models";  // as if models were loaded
+    const Bounds3 region = s.project.scene.lightRegion;
+    LightGridMap m;
+    m.grid = LightGridSpec::parse("2x1x3", "test", "grid");
+    m.region = region;
+    m.lights = m.grid.positions(region);
+    m.global = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6};
+    m.globalRaw = m.global;
+    m.globalNoiseFloor.assign(6, 0.01);
+    m.objects.assign(s.project.scene.objects.size(), m.global);
+    m.marksWhy = "test";
+    s.lightRegion.map = m;
+    // The slice is the item before the panel's last line: its bottom-left cell is (x lo, z hi).
+    ImVec2 lastLine;
+    frame([&] {
+        drawLightRegionPanel(s);
+        lastLine = ImGui::GetItemRectMin();
+    });
+    EXPECT_TRUE(s.requests.empty());
+    const float x = lastLine.x + 6, y = lastLine.y - ImGui::GetStyle().ItemSpacing.y - 6;
+    mouse(x, y, false);
+    frame([&] { drawLightRegionPanel(s); });
+    mouse(x, y, true);
+    frame([&] { drawLightRegionPanel(s); });
+    mouse(x, y, false);
+    frame([&] { drawLightRegionPanel(s); });
+    ASSERT_EQ(s.requests.size(), 1u);
+    EXPECT_EQ(s.requests[0].command, Command::SceneChanged);
+    EXPECT_TRUE(s.dirty);
+    const Vec3 moved = s.project.scene.lightPosition();
+    const Vec3 want = m.lights[m.grid.index(0, 0, 2)];
+    EXPECT_FLOAT_EQ(moved.x, want.x);
+    EXPECT_FLOAT_EQ(moved.y, want.y);
+    EXPECT_FLOAT_EQ(moved.z, want.z);
+    EXPECT_FLOAT_EQ(want.x, region.lo.x);
+    EXPECT_FLOAT_EQ(want.z, region.hi.z);
+}
+
+}  // namespace rrf::test::test_panels
