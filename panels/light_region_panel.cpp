@@ -79,17 +79,10 @@ void drawSlice(WorkbenchState& state, const LightGridMap& m, const std::vector<d
             const ImVec2 a(origin.x + cell * float(i), origin.y + cell * float(k));
             dl->AddRectFilled(a, ImVec2(a.x + cell, a.y + cell), viridisColour(values[m.grid.index(i, j, k)], scale));
         }
-    // Marks of this slice's height band (halfway to the neighbouring slices), placed as in the images.
-    const int ny = m.grid.counts[1];
-    const float y0 = m.region.lo.y, y1 = m.region.hi.y;
-    const float yj = m.lights[m.grid.index(0, j, 0)].y, half = ny > 1 ? 0.5f * (y1 - y0) / float(ny - 1) : INFINITY;
-    auto at = [&](float v, float lo, float hi, int n) {
-        return ((n > 1 && hi > lo ? (v - lo) / (hi - lo) * float(n - 1) : 0.f) + 0.5f) * cell;
-    };
+    // Marks of this slice's height band, placed as in the slice images.
     for (const Vec3& p : m.marks)
-        if (std::fabs(p.y - yj) <= half)
-            dl->AddCircleFilled(ImVec2(origin.x + at(p.x, m.region.lo.x, m.region.hi.x, nx),
-                                       origin.y + at(p.z, m.region.lo.z, m.region.hi.z, nz)),
+        if (m.inSlice(p, j))
+            dl->AddCircleFilled(ImVec2(origin.x + m.cellCoordinate(p, 0) * cell, origin.y + m.cellCoordinate(p, 2) * cell),
                                 std::max(1.5f, cell * 0.025f), IM_COL32(255, 255, 255, 150));
     if (!hovered) return;
     const ImVec2 mouse = ImGui::GetIO().MousePos;

@@ -89,6 +89,19 @@ double LightGridMap::scaleOf(const std::vector<double>& values) {
     return s;
 }
 
+bool LightGridMap::inSlice(const Vec3& p, int j) const {
+    const int ny = grid.counts[1];
+    if (ny <= 1) return true;
+    const float y0 = region.lo.y, y1 = region.hi.y;
+    return std::fabs(p.y - gridCoordinate(y0, y1, j, ny)) <= 0.5f * (y1 - y0) / float(ny - 1);
+}
+
+float LightGridMap::cellCoordinate(const Vec3& p, int a) const {
+    const int n = grid.counts[a];
+    const float lo = axisOf(region.lo, a), hi = axisOf(region.hi, a);
+    return (n > 1 && hi > lo ? (axisOf(p, a) - lo) / (hi - lo) * float(n - 1) : 0.f) + 0.5f;
+}
+
 LightGridMap lightGridMap(const LightGridSpec& grid, const Bounds3& region, const std::vector<Evaluation>& evaluations,
                           size_t objectCount) {
     if (evaluations.size() != grid.size())
@@ -150,19 +163,10 @@ Image lightGridSlice(const LightGridMap& map, const std::vector<double>& values,
                 for (int x = 0; x < cell; ++x) scalar.set(i * cell + x, k * cell + y, Vec3(v));
         }
     Image img = falseColor(scalar, 0.f, float(std::max(scale, 1e-12)));
-    // A mark belongs to the slice whose grid height is nearest: the band halfway to the neighbours.
-    const float y0 = map.region.lo.y, y1 = map.region.hi.y;
-    const float yj = gridCoordinate(y0, y1, j, ny), half = ny > 1 ? 0.5f * (y1 - y0) / float(ny - 1) : INFINITY;
-    // Grid point i sits at the centre of column i; positions between map linearly (the cells span
-    // half a spacing beyond the outer points).
-    auto pixelOf = [&](float v, float lo, float hi, int n) {
-        const float t = n > 1 && hi > lo ? (v - lo) / (hi - lo) * float(n - 1) : 0.f;
-        return int(std::floor((t + 0.5f) * float(cell)));
-    };
     for (const Vec3& p : map.marks) {
-        if (!(std::fabs(p.y - yj) <= half)) continue;
-        const int px = pixelOf(p.x, map.region.lo.x, map.region.hi.x, nx);
-        const int py = pixelOf(p.z, map.region.lo.z, map.region.hi.z, nz);
+        if (!map.inSlice(p, j)) continue;
+        const int px = int(std::floor(map.cellCoordinate(p, 0) * float(cell)));
+        const int py = int(std::floor(map.cellCoordinate(p, 2) * float(cell)));
         if (px >= 0 && px < img.width && py >= 0 && py < img.height) img.set(px, py, Vec3(1.f));
     }
     return img;

@@ -53,6 +53,12 @@ struct LightGridMap {
 
     /// The largest finite figure of `values` (0 when none): the slices' shared colour scale.
     static double scaleOf(const std::vector<double>& values);
+    /// Whether a mark at `p` belongs to slice `j`: its height is nearer to slice j's than to any
+    /// other's (the band halfway to the neighbouring slices; every height for a single slice).
+    bool inSlice(const Vec3& p, int j) const;
+    /// Where `p` falls along axis `a` (0: x, 2: z) of a slice, in cells: grid point i sits at the
+    /// centre of cell i, i + 0.5, and positions between points map linearly.
+    float cellCoordinate(const Vec3& p, int a) const;
 };
 
 /// The map of `evaluations`, one per position of `grid` over `region` in index() order. Throws
