@@ -116,7 +116,7 @@ void drawLightRegionPanel(WorkbenchState& state) {
     const LightGridMap& m = *lr.map;
     // What is shown: the global figure or one object's.
     const auto& objects = state.project.scene.objects;
-    if (lr.object >= int(m.objects.size())) lr.object = -1;
+    if (lr.object >= int(std::min(m.objects.size(), objects.size()))) lr.object = -1;
     const std::string shown = lr.object < 0 ? "all objects" : objects[size_t(lr.object)].name;
     ImGui::SetNextItemWidth(fieldWidth(ImGui::GetFontSize() * 10, "show"));
     if (ImGui::BeginCombo("show", shown.c_str())) {
@@ -146,7 +146,7 @@ void drawLightRegionPanel(WorkbenchState& state) {
         drawSlice(state, m, values, j, scale, side);
         ImGui::EndGroup();
     }
-    ImGui::TextDisabled("x to the right, z downwards; files in %s", lr.outDir.c_str());
+    ImGui::TextDisabled("x to the right, z downwards; models %s; files in %s", lr.modelsDir.c_str(), lr.outDir.c_str());
 }
 
 }  // namespace rrf::panels

@@ -28,6 +28,7 @@ bool loadProjectIntoState(WorkbenchState& state, const std::string& path, std::s
     state.training = TrainingInfo{};
     state.evaluation = EvaluationInfo{};
     state.cost = CostInfo{};
+    state.lightRegion = LightRegionInfo{};  // its map and cells are the previous project's lights
     state.render = RenderProgress{};
     state.runPair = RunPair{};
     state.notice.reset();  // it spoke of the previous project's state

@@ -78,6 +78,24 @@ TEST(LightGrid, ParsesNxMxKAndRefusesEveryOtherForm) {
     EXPECT_NE(tooMany.find("4352"), std::string::npos) << tooMany;
 }
 
+TEST(LightGrid, RefusesAFixedLightAndSeveralPointsAlongAFlatAxis) {
+    Scene scene;
+    auto why = [&](const char* text) {
+        try {
+            checkLightGrid(LightGridSpec::parse(text, "t", "f"), scene, "command line", "--light-grid");
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_NE(why("2x2x2").find("does not move"), std::string::npos) << why("2x2x2");
+    scene.lightRegion = box(Vec3(-1.f, 0.5f, -1.f), Vec3(1.f, 0.5f, 1.f));  // flat in y
+    EXPECT_EQ(why("3x1x3"), "");
+    const std::string flat = why("3x2x3");
+    EXPECT_NE(flat.find("flat along y"), std::string::npos) << flat;
+    EXPECT_NE(flat.find("--light-grid"), std::string::npos) << flat;
+}
+
 TEST(LightGrid, PositionsSpanTheRegionWithItsEdgesAndTheCentreOfASingleton) {
     const LightGridSpec g = LightGridSpec::parse("3x1x2", "t", "f");
     const std::vector<Vec3> p = g.positions(box(Vec3(-1.f, 0.f, 3.f), Vec3(1.f, 2.f, 4.f)));

@@ -79,6 +79,7 @@ int runEvaluate(EvaluateArgs a) {
     const std::optional<LightGridSpec> grid =
         a.lightGrid.empty() ? std::nullopt : std::optional<LightGridSpec>(LightGridSpec::parse(a.lightGrid, "command line", "--light-grid"));
     Project p = loadProjectOrScene(a.input);
+    if (grid) checkLightGrid(*grid, p.scene, "command line", "--light-grid");
     applyEstimatorFlag(a.estimator, p.render.estimator);
     std::vector<std::string> inputs = projectInputs(p);
     inputs.push_back(a.models);

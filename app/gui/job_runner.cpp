@@ -26,7 +26,8 @@ bool jobsConflict(JobKind a, JobKind b) {
     // A sweep renders, generates and trains in its own memory and writes no project files; it only
     // competes for the cores, which the user decides about.
     if (a == JobKind::Sweep || b == JobKind::Sweep) return false;
-    // So does a light grid: references into the store, predictions of the models it holds.
+    // So does a light grid beside other jobs: references into the store, predictions of the models
+    // it holds (two of them would write the same files: a == b above).
     if (a == JobKind::LightGrid || b == JobKind::LightGrid) return false;
     if (a == JobKind::Compare || b == JobKind::Compare) return false;  // its own models, copied images
     if (a == JobKind::Overlay || b == JobKind::Overlay) return false;  // shared read-only models

@@ -90,7 +90,7 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 void Workbench::dropJobs() {
     for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &generateJob_, &trainJob_, &evaluateJob_,
                                                                       &predictJob_, &sweepJob_, &pairJob_, &overlayJob_,
-                                                                      &flipJob_})
+                                                                      &flipJob_, &lightGridJob_})
         job->drop();
     render_.reset();
     trainLive_.reset();

@@ -33,17 +33,23 @@ constexpr int kLightGridSize = 64;
 bool Workbench::lightGridRunning() const { return lightGridJob_.running(); }
 
 bool Workbench::startLightGrid() {
-    if (!live_.loaded()) {
-        state_.notify(panels::LogLevel::Error, "Light region", "evaluate over the light region: no models are loaded; train first");
+    if (lightGridRunning()) {
+        state_.notify(panels::LogLevel::Error, "Light region", "evaluate over the light region: one is running; stop it first");
         return false;
     }
-    if (state_.project.scene.lightRegion.empty()) {
-        state_.notify(panels::LogLevel::Error, "Light region", "evaluate over the light region: the scene's light does not move");
+    if (!live_.loaded()) {
+        state_.notify(panels::LogLevel::Error, "Light region", "evaluate over the light region: no models are loaded; train first");
         return false;
     }
     LightGridSpec grid;
     for (int a = 0; a < 3; ++a)
         grid.counts[a] = std::clamp(state_.lightRegion.counts[a], 1, panels::LightRegionInfo::kMaxCount);
+    try {
+        checkLightGrid(grid, state_.project.scene, "Light region", "grid");
+    } catch (const std::exception& e) {
+        state_.notify(panels::LogLevel::Error, "Light region", std::string("evaluate over the light region: ") + e.what());
+        return false;
+    }
     auto project = std::make_shared<const Project>(state_.project);
     const std::shared_ptr<const ModelSet> models = live_.models();
     const std::string modelsDir = live_.dir();

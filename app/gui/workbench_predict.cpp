@@ -53,6 +53,7 @@ bool Workbench::loadModels(const std::string& dir, std::shared_ptr<const ModelSe
         state_.log.warning("GLSL prediction unavailable, using the CPU predictor (slower): " + glslError);
     state_.training.modelsDir = dir;
     lastCpuFrame_.reset();
+    state_.lightRegion.map.reset();  // it judged the models these replace
     for (int k = 0; k < 2; ++k) {
         frameSeconds_[k].clear();
         framesSinceRecorded_[k] = 0;

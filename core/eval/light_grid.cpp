@@ -82,6 +82,20 @@ std::string LightGridSpec::text() const {
     return std::to_string(counts[0]) + "x" + std::to_string(counts[1]) + "x" + std::to_string(counts[2]);
 }
 
+void checkLightGrid(const LightGridSpec& grid, const Scene& scene, const std::string& source, const std::string& field) {
+    if (scene.lightRegion.empty())
+        throw InputError(source, field, "the scene's light does not move (it has no \"light_region\"): there is no region to span");
+    const char* axes[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a)
+        if (grid.counts[a] > 1 && !(axisOf(scene.lightRegion.hi, a) > axisOf(scene.lightRegion.lo, a))) {
+            char why[200];
+            std::snprintf(why, sizeof why,
+                          "the light region is flat along %s (%g to %g): give one point along it instead of %d", axes[a],
+                          double(axisOf(scene.lightRegion.lo, a)), double(axisOf(scene.lightRegion.hi, a)), grid.counts[a]);
+            throw InputError(source, field, why);
+        }
+}
+
 double LightGridMap::scaleOf(const std::vector<double>& values) {
     double s = 0.0;
     for (double v : values)

@@ -35,6 +35,11 @@ struct LightGridSpec {
     std::string text() const;  ///< "NxMxK"
 };
 
+/// Refuses a grid `scene`'s light region cannot hold: no region (the light does not move), or more
+/// than one point along an axis the region is flat in (every point there would be the same light).
+/// Throws InputError naming `source` and `field`.
+void checkLightGrid(const LightGridSpec& grid, const Scene& scene, const std::string& source, const std::string& field);
+
 /// The judged figures of each grid point.
 struct LightGridMap {
     LightGridSpec grid;
