@@ -46,7 +46,7 @@ void drawControls(WorkbenchState& state, bool modelsLoaded) {
     if (lr.running) {
         if (ImGui::Button("Stop")) state.request(Command::CancelLightRegion);
         ImGui::SameLine();
-        ImGui::ProgressBar(float(lr.progress), ImVec2(-1, 0), lr.status.empty() ? nullptr : lr.status.c_str());
+        ImGui::ProgressBar(float(lr.progress), ImVec2(-1, 0));
         return;
     }
     const char* why = !state.hasProject                    ? "no project is open"

@@ -266,7 +266,6 @@ struct LightRegionInfo {
     static constexpr int kMaxCount = 8;
     bool running = false;
     double progress = 0.0;
-    std::string status;                  ///< what the job does now
     std::optional<LightGridMap> map;     ///< the last finished evaluation
     std::string modelsDir;               ///< the models it judged
     std::string outDir;                  ///< where its files are

@@ -247,7 +247,7 @@ LightGridOutcome evaluateLightGrid(const Project& p, const Predictor& predictor,
     for (int j = 0; j < grid.counts[1]; ++j) {
         const std::string name = "light_grid_y" + std::to_string(j) + ".png";
         writeImage(evaluationFile(out, name), lightGridSlice(map, map.global, j, cell, scale), ImageFormat::PNG);
-        slices.push_back({{"y", grid.positions(region)[grid.index(0, j, 0)].y}, {"image", name}});
+        slices.push_back({{"y", map.lights[grid.index(0, j, 0)].y}, {"image", name}});
     }
     report["slices"] = slices;
     // The set of slices is replaced whole: slices of an earlier, taller grid in `out` go.
