@@ -159,6 +159,7 @@ Evaluation evaluatePrediction(const GBuffer& gb, Prediction prediction, const Re
             te.perObject.push_back(errorStatsWithNoise(e.prediction.images[t], reference.images[t], variance, px));
         te.overall = errorStatsWithNoise(e.prediction.images[t], reference.images[t], variance, covered);
     }
+    e.uncertainty = evaluateUncertainty(e.prediction, ref, masks, covered);
     return e;
 }
 
@@ -207,6 +208,13 @@ nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
         std::vector<std::string> names;
         for (const auto& o : scene.objects) names.push_back(o.name);
         report["flip"] = flipJson(e.flip, names);
+    }
+    if (e.uncertainty.available) {
+        std::vector<std::string> names;
+        for (const auto& o : scene.objects) names.push_back(o.name);
+        report["uncertainty"] = e.uncertainty.toJson(names);
+        report["prediction"]["spread_pixels"] = p.spreadPixels;
+        report["prediction"]["spread_seconds"] = p.spreadSeconds;
     }
     return report;
 }
@@ -268,6 +276,23 @@ std::string evaluationTable(const Scene& scene, const Evaluation& e) {
         out << "FLIP: mean per-pixel perceived difference in [0, 1] (w. = weighted by the error, as the FLIP tools "
                "pool it); noise floor: the reference against itself plus one draw of its own noise\n";
     }
+    if (e.uncertainty.available) {
+        const UncertaintyEvaluation& u = e.uncertainty;
+        std::snprintf(line, sizeof line, "uncertainty (ensemble members' spread, global term)\n%-14s %8s %12s %12s %10s\n",
+                      "object", "pixels", "rel.spread", "rel.error", "Spearman");
+        out << line;
+        auto uRow = [&](const std::string& name, const UncertaintyStats& s) {
+            std::snprintf(line, sizeof line, "%-14s %8llu %12s %12s %10s\n", name.substr(0, 14).c_str(),
+                          (unsigned long long)s.pixels, num(s.meanRelativeSpread).c_str(), num(s.meanRelativeError).c_str(),
+                          noiseFigureText(s.spearman).c_str());
+            out << line;
+        };
+        for (size_t id = 0; id < u.perObject.size(); ++id)
+            if (u.perObject[id].pixels) uRow(id < scene.objects.size() ? scene.objects[id].name : std::to_string(id), u.perObject[id]);
+        uRow("ALL OBJECTS", u.overall);
+        out << "rel.spread: mean sd / (|pred| + 0.01) over the members; Spearman: its rank correlation with the "
+               "relative error per pixel (1: it ranks the pixels as their error does; 0: it does not)\n";
+    }
     const Prediction& p = e.prediction;
     if (!p.objectsWithoutNetwork.empty())
         out << "objects without a network (shown black): " << p.objectsWithoutNetwork.size() << " objects, "
@@ -287,6 +312,16 @@ std::vector<std::string> writePredictionImages(const std::string& dir, const Pre
         writeImage(base + ".png", p.images[t], ImageFormat::PNG, exposureStops);
         files.push_back(base + ".exr");
         files.push_back(base + ".png");
+    }
+    if (!p.spread.empty()) {
+        // The members' spread (radiance, RGB) and its relative form on viridis over [0, p99].
+        const std::string spread = (fs::path(dir) / "spread_global.exr").string();
+        writeImage(spread, p.spread, ImageFormat::EXR);
+        const Image rel = relativeSpreadMap(p.spread, p.image(Term::Global), p.spreadKnown);
+        const std::string base = (fs::path(dir) / "spread_relative_global").string();
+        writeImage(base + ".exr", rel, ImageFormat::EXR);
+        writeImage(base + ".png", falseColor(rel, 0.f, std::max(percentile(rel, 0.99), 1e-6f)), ImageFormat::PNG);
+        for (const std::string& f : {spread, base + ".exr", base + ".png"}) files.push_back(f);
     }
     return files;
 }

@@ -12,6 +12,7 @@
 
 #include "core/eval/error_metrics.h"
 #include "core/eval/flip_evaluation.h"
+#include "core/eval/uncertainty.h"
 #include "core/predict/footprint_mask.h"
 #include "core/predict/predictor.h"
 #include "core/render/term.h"
@@ -93,6 +94,9 @@ struct Evaluation {
     /// FLIP of the global term (core/eval/flip_evaluation.h); not available unless the caller ran
     /// flipEvaluation (the CLI's evaluation stage and the workbench's Evaluate do; sweeps do not).
     FlipEvaluation flip;
+    /// The ensemble members' spread against the true error (core/eval/uncertainty.h); unavailable
+    /// when the prediction carried no spread.
+    UncertaintyEvaluation uncertainty;
     const TermErrors& term(Term t) const { return terms[int(t)]; }
 };
 

@@ -76,7 +76,26 @@ HeldOutSummary summarizeHeldOut(const std::vector<Evaluation>& evaluations, size
         s.flipLdr.add(e.flip.ldr.mean);
         if (std::isfinite(e.flip.hdrNoiseFloor)) s.flipHdrNoiseFloor.add(e.flip.hdrNoiseFloor);
     }
+    s.spearmanPerObject.resize(objectCount);
+    for (const Evaluation& e : evaluations) {
+        if (!e.uncertainty.available) continue;
+        if (std::isfinite(e.uncertainty.overall.spearman)) s.spearman.add(e.uncertainty.overall.spearman);
+        for (size_t id = 0; id < e.uncertainty.perObject.size() && id < objectCount; ++id)
+            if (std::isfinite(e.uncertainty.perObject[id].spearman)) s.spearmanPerObject[id].add(e.uncertainty.perObject[id].spearman);
+    }
     return s;
+}
+
+nlohmann::json HeldOutSummary::uncertaintyJson(const Scene& scene) const {
+    if (!spearman.count) return nullptr;
+    nlohmann::json objects = nlohmann::json::array();
+    for (size_t id = 0; id < spearmanPerObject.size(); ++id) {
+        if (!spearmanPerObject[id].count) continue;
+        objects.push_back({{"id", int(id)},
+                           {"name", id < scene.objects.size() ? scene.objects[id].name : ""},
+                           {"spearman", spearmanPerObject[id].toJson()}});
+    }
+    return {{"spearman", spearman.toJson()}, {"objects", objects}};
 }
 
 nlohmann::json HeldOutSummary::flipJson() const {
@@ -139,6 +158,20 @@ std::string heldOutTable(const Scene& scene, const HeldOutSummary& s) {
                       s.flipHdr.count, s.flipHdr.mean, s.flipHdr.min, s.flipHdr.max,
                       noiseFigureText(s.flipHdrNoiseFloor.meanOrUnknown()).c_str(), s.flipLdr.mean);
         out << line;
+    }
+    if (s.spearman.count) {
+        std::snprintf(line, sizeof line,
+                      "uncertainty (ensemble spread against the true error, %d lights): Spearman mean %.3f (min %.3f, max %.3f)\n",
+                      s.spearman.count, s.spearman.mean, s.spearman.min, s.spearman.max);
+        out << line;
+        for (size_t id = 0; id < s.spearmanPerObject.size(); ++id) {
+            const Spread& o = s.spearmanPerObject[id];
+            if (!o.count) continue;
+            std::snprintf(line, sizeof line, "  %-14s Spearman mean %.3f (min %.3f, max %.3f)\n",
+                          (id < scene.objects.size() ? scene.objects[id].name : std::to_string(id)).substr(0, 14).c_str(),
+                          o.mean, o.min, o.max);
+            out << line;
+        }
     }
     return out.str();
 }

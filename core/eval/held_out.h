@@ -47,6 +47,12 @@ struct HeldOutSummary {
     Spread flipHdr, flipHdrNoiseFloor, flipLdr;
     /// {"hdr", "hdr_noise_floor", "ldr"} spreads, or null when no evaluation had FLIP figures.
     nlohmann::json flipJson() const;
+    /// The ensemble spread's rank correlation with the true error (core/eval/uncertainty.h) per
+    /// object id and over all objects, across the evaluations whose prediction had a spread.
+    std::vector<Spread> spearmanPerObject;
+    Spread spearman;
+    /// {"overall": spread, "objects": [{"id", "name", spread}]}, or null when no evaluation had a spread.
+    nlohmann::json uncertaintyJson(const Scene& scene) const;
 };
 
 HeldOutSummary summarizeHeldOut(const std::vector<Evaluation>& evaluations, size_t objectCount);

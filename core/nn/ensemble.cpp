@@ -54,6 +54,20 @@ VecX<double> mergeEnsemble(const MlpArch& member, const std::vector<VecX<double>
     return out;
 }
 
+VecX<double> memberOutputBiases(const MlpArch& member, const std::vector<VecX<double>>& params) {
+    const int last = member.numLayers() - 1;
+    const Eigen::Index outs = member.outputs;
+    VecX<double> out(Eigen::Index(params.size()) * outs);
+    for (size_t m = 0; m < params.size(); ++m) {
+        if (params[m].size() != member.numParams())
+            throw std::invalid_argument("memberOutputBiases: a member has " + std::to_string(params[m].size()) +
+                                        " parameters, the " + member.describe() + " network " +
+                                        std::to_string(member.numParams()));
+        out.segment(Eigen::Index(m) * outs, outs) = params[m].segment(member.biasOffset(last), outs);
+    }
+    return out;
+}
+
 std::string ensembleEncodingRefusal(const std::string& encodingDescription, int members) {
     return "the encoding " + encodingDescription + " has trainable parameters, which the " + std::to_string(members) +
            " members of an ensemble cannot share (they merge into one network only over one fixed input map); use "
@@ -110,7 +124,8 @@ void scoreMerged(TrainResult& res, const MlpArch& arch, const VecX<double>& para
 
 TrainResult trainEnsemble(MlpArch& arch, const TrainerConfig& cfg, const TrainingData& data,
                           const MinMaxScaler& outputScaler, VecX<double>& params, int members, uint64_t stream,
-                          const TrainObserver& observer) {
+                          const TrainObserver& observer, VecX<double>* memberBiases) {
+    if (memberBiases) memberBiases->resize(0);
     if (members < 1) throw std::invalid_argument("trainEnsemble: " + std::to_string(members) + " members (at least 1)");
     std::vector<VecX<double>> kept;
     std::vector<double> figures;
@@ -152,6 +167,7 @@ TrainResult trainEnsemble(MlpArch& arch, const TrainerConfig& cfg, const Trainin
     const MlpArch member = arch;
     arch = ensembleArch(member, int(kept.size()));
     params = mergeEnsemble(member, kept);
+    if (memberBiases) *memberBiases = memberOutputBiases(member, kept);
     scoreMerged(first, arch, params, cfg, data, outputScaler);
     std::string line = "ensemble of " + std::to_string(kept.size()) + " " + member.describe() + " networks: members' validation error";
     for (double f : figures) {

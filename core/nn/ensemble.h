@@ -10,6 +10,12 @@
 ///   hidden layers W' = diag(W₁, …, W_K) (block-diagonal: a member only reads its own units)
 ///   output layer  W' = [W₁ … W_K] / K, b' = (b₁ + … + b_K) / K (the mean of the members' outputs)
 /// so prediction (CPU, GLSL, model files) needs nothing new: a merged ensemble is a plain network.
+///
+/// The members themselves stay recoverable from the merged weights but for one thing: member m's
+/// output is K·W'_m h_m + b_m (W'_m its columns of the output layer, h_m its last hidden units), and
+/// the merged network keeps only the mean of the b_m. memberOutputBiases keeps them (the model file
+/// stores them, nn/model.h), and NetworkModel::predictMembers gives every member's output, whose
+/// spread is the ensemble's uncertainty (core/eval/uncertainty.h).
 
 #include <cstdint>
 #include <string>
@@ -30,6 +36,10 @@ MlpArch ensembleArch(const MlpArch& member, int members);
 /// member.numParams() values; throws std::invalid_argument otherwise or when `params` is empty.
 VecX<double> mergeEnsemble(const MlpArch& member, const std::vector<VecX<double>>& params);
 
+/// The members' own output-layer biases, member after member (K × outputs values, K = params.size()):
+/// what mergeEnsemble averages away. Each entry of `params` must hold member.numParams() values.
+VecX<double> memberOutputBiases(const MlpArch& member, const std::vector<VecX<double>>& params);
+
 /// Why an ensemble of `members` cannot use the encoding `encodingDescription` (one with trainable
 /// parameters): the text of the SettingError naming "network.ensemble" that training, sweeps and
 /// fitNetwork raise.
@@ -46,9 +56,10 @@ uint64_t ensembleMemberSeed(uint64_t seed, int member);
 /// (unchanged in shape for one member) and the result's losses and validation figures are the
 /// merged network's, its history the first member's; `observer` sees every member's epochs, each
 /// marked with its member. A cancel ends the ensemble: a member cut short by it is left out (but
-/// the first, which is kept as the single network it is).
+/// the first, which is kept as the single network it is). `memberBiases`, when given, receives
+/// memberOutputBiases of the kept members (empty when one is kept).
 TrainResult trainEnsemble(MlpArch& arch, const TrainerConfig& cfg, const TrainingData& data,
                           const MinMaxScaler& outputScaler, VecX<double>& params, int members, uint64_t stream,
-                          const TrainObserver& observer = {});
+                          const TrainObserver& observer = {}, VecX<double>* memberBiases = nullptr);
 
 }  // namespace rrf

@@ -110,6 +110,7 @@ void NetworkModel::validate() const {
     };
     checkScaler(inputScaler, "input");
     checkScaler(outputScaler, "output");
+    checkMemberBiases(*this);
 }
 
 PartitionedNetwork::PartitionedNetwork(NetworkModel single)
@@ -314,7 +315,8 @@ NetworkModel fitNetwork(const MlpArch& arch, const InputEncoding& encoding, cons
                 encoding.forward<float>(nullptr, *x, features);
                 *x = std::move(features);
             }
-        model.training = trainEnsemble(model.arch, cfg, d, model.outputScaler, model.params, members, stream, observer);
+        model.training = trainEnsemble(model.arch, cfg, d, model.outputScaler, model.params, members, stream, observer,
+                                       &model.memberOutputBias);
     }
 
     model.errors.train = rawRmse(model, inputs, targets, split.train);

@@ -17,7 +17,9 @@
 ///                          "derived": DerivedInputs::toJson(), "components": InputEncoding::toJson()}),
 ///                          training record (history, stop
 ///                          reason, errors), payload description with the payload's byte count and
-///                          FNV-1a 64 checksum
+///                          FNV-1a 64 checksum; for a merged ensemble "ensemble": {"members": K,
+///                          "output_bias": K arrays of the members' own output biases} (optional:
+///                          without it the ensemble predicts as before but has no spread)
 ///     offset 24+H          payload: IEEE-754 float64 values, in this order:
 ///                          params[P], input_offset[in], input_scale[in], output_offset[out], output_scale[out],
 ///                          encoding_params[E]
@@ -63,13 +65,25 @@ struct NetworkModel {
     TrainerConfig trainer;
     TrainResult training;
     ModelErrors errors;
+    /// A merged ensemble's members' own output biases in normalised output units, member after
+    /// member (K × outputs values, K = training.members ≥ 2; nn/ensemble.h): what makes every
+    /// member's output, and so their spread, recoverable. Empty for a single network and for
+    /// ensembles from model files written before they were stored (which then have no spread).
+    VecX<double> memberOutputBias;
 
     /// Predicts raw outputs (outputs × N) for raw inputs (inputs × N) in float, in fixed chunks:
     /// the result depends only on the stored bits and the inputs.
     MatX<float> predict(const Eigen::Ref<const MatX<float>>& rawInputs) const;
     /// The same in double (reference for tests and for checking the float path).
     MatX<double> predictDouble(const Eigen::Ref<const MatX<double>>& rawInputs) const;
-    /// Throws std::invalid_argument unless sizes agree and every number is finite.
+    /// Members whose outputs predictMembers gives: K when memberOutputBias is stored, else 0.
+    int spreadMembers() const { return arch.outputs > 0 ? int(memberOutputBias.size() / arch.outputs) : 0; }
+    /// Every member's raw outputs (outputs × N each, `spreadMembers()` matrices) for raw inputs: the
+    /// members as they were trained, recovered from the merged weights (nn/ensemble.h); their mean is
+    /// predict() to float rounding. Empty when spreadMembers() is 0.
+    std::vector<MatX<float>> predictMembers(const Eigen::Ref<const MatX<float>>& rawInputs) const;
+    /// Throws std::invalid_argument unless sizes agree and every number is finite (and a stored
+    /// ensemble's member biases fit its architecture and average to its output bias).
     void validate() const;
     /// Raw record inputs the model reads (12 + n): the encoding's inputs, or what the identity's
     /// first layer reads less the derived inputs.
@@ -79,6 +93,10 @@ struct NetworkModel {
     /// Trainable numbers: the MLP's weights and biases plus the encoding's parameters.
     int64_t numParams() const { return int64_t(arch.numParams()) + int64_t(encodingParams.size()); }
 };
+
+/// Throws std::invalid_argument unless `model`'s member output biases (if any) fit its architecture
+/// and training record and average to its output bias (part of NetworkModel::validate).
+void checkMemberBiases(const NetworkModel& model);
 
 /// Bytes of the model's payload in its file (nn/model_file.h, float64): its MLP weights and biases,
 /// the input and output scalers' offsets and scales, and the encoding's parameters. A function of the
@@ -116,6 +134,10 @@ struct PartitionedNetwork {
     MatX<float> predict(const Eigen::Ref<const MatX<float>>& rawInputs) const;
     /// The same in double; the leaf of a column is looked up on its float value, as predict does.
     MatX<double> predictDouble(const Eigen::Ref<const MatX<double>>& rawInputs) const;
+    /// Members every leaf's predictMembers gives (the smallest over the leaves; 0 when one leaf has none).
+    int spreadMembers() const;
+    /// NetworkModel::predictMembers column by column through the leaves; empty when spreadMembers() is 0.
+    std::vector<MatX<float>> predictMembers(const Eigen::Ref<const MatX<float>>& rawInputs) const;
     /// Throws std::invalid_argument unless the tree is valid for the inputs, there is one valid
     /// network per leaf and all share architecture, encoding, object and target.
     void validate() const;

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 
 #include "core/data/dataset_file.h"
@@ -64,7 +65,7 @@ json modelHeader(const NetworkModel& m) {
         hist["step"].push_back(num(r.step));
         hist["seconds"].push_back(num(r.seconds));
     }
-    return json{
+    json header{
         {"format", "rrf-model"},
         {"version", kVersion},
         {"object", m.objectId},
@@ -90,6 +91,19 @@ json modelHeader(const NetworkModel& m) {
           {"messages", t.messages},
           {"history", hist}}},
     };
+    if (m.spreadMembers() > 0) {
+        // The members' own output biases (nn/ensemble.h), one array per member; JSON numbers keep a
+        // double's bits (nlohmann writes the shortest text that reads back to them).
+        json biases = json::array();
+        const Eigen::Index outs = m.arch.outputs;
+        for (int k = 0; k < m.spreadMembers(); ++k) {
+            json row = json::array();
+            for (Eigen::Index o = 0; o < outs; ++o) row.push_back(m.memberOutputBias[Eigen::Index(k) * outs + o]);
+            biases.push_back(std::move(row));
+        }
+        header["ensemble"] = {{"members", m.spreadMembers()}, {"output_bias", std::move(biases)}};
+    }
+    return header;
 }
 
 std::string modelFileBytes(const NetworkModel& model) {
@@ -254,6 +268,24 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
         throw;
     } catch (const std::exception& e) {
         fail("header/training", std::string("bad training record: ") + e.what());
+    }
+    if (const std::optional<JsonReader> ens = header.find("ensemble")) {
+        // An ensemble's members' output biases (files before them have none: no spread).
+        ens->checkKeys({"members", "output_bias"});
+        const int k = int(ens->at("members").integer(2, kMaxInt));
+        const JsonReader rows = ens->at("output_bias");
+        if (rows.requireArray() != size_t(k))
+            fail("header/ensemble/output_bias", "expected " + std::to_string(k) + " members' biases, got " +
+                                                    std::to_string(rows.value().size()));
+        const Eigen::Index outs = m.arch.outputs;
+        m.memberOutputBias.resize(Eigen::Index(k) * outs);
+        for (int j = 0; j < k; ++j) {
+            const JsonReader row = rows.at(size_t(j));
+            if (row.requireArray() != size_t(outs))
+                fail("header/ensemble/output_bias/" + std::to_string(j),
+                     "expected " + std::to_string(outs) + " biases (one per output), got " + std::to_string(row.value().size()));
+            for (Eigen::Index o = 0; o < outs; ++o) m.memberOutputBias[Eigen::Index(j) * outs + o] = row.at(size_t(o)).number();
+        }
     }
 
     const size_t P = size_t(m.arch.numParams()), in = size_t(m.scaledInputs()), out = size_t(m.arch.outputs);

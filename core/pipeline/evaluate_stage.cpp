@@ -45,6 +45,8 @@ void dropPixels(Evaluation& e) {
     e.footprint.kept = {};
     e.flip.hdrMap = Image{};
     e.flip.ldrMap = Image{};
+    e.prediction.spread = Image{};
+    e.prediction.spreadKnown = {};
 }
 
 double globalErrorOf(const Evaluation& e) {
@@ -192,7 +194,7 @@ std::vector<Evaluation> evaluateAtLights(const Project& p, const Predictor& pred
         const std::string text = evaluationFile(out, "held_out.txt"), json = evaluationFile(out, "held_out.json");
         writeFileAtomically(text, table);
         observer.note("wrote " + text);
-        writeFileAtomically(json, nlohmann::json{{"summary", heldOutJson(p.scene, s)}, {"flip", s.flipJson()}, {"evaluations", reports}}.dump(2) + "\n");
+        writeFileAtomically(json, nlohmann::json{{"summary", heldOutJson(p.scene, s)}, {"flip", s.flipJson()}, {"uncertainty", s.uncertaintyJson(p.scene)}, {"evaluations", reports}}.dump(2) + "\n");
         observer.note("wrote " + json);
     }
     return evals;

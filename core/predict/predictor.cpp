@@ -8,6 +8,7 @@
 
 #include "core/predict/exact_direct.h"
 #include "core/predict/glossy_gather.h"
+#include "core/predict/member_spread.h"
 #include "core/util/error.h"
 
 namespace rrf {
@@ -94,6 +95,7 @@ Predictor::Predictor(const Scene& scene, const ModelSet& models, const Predictio
         throw InputError(models.dir, "/input_layout", "the networks' input layout differs from this scene's record layout");
     for (const ObjectNetworks& o : models.objects)
         for (const auto& [target, tree] : o.byTarget) {
+            if (tree.spreadMembers() > 0) spread_ = true;
             const MlpArch& net = tree.arch();
             if (tree.rawInputs() != layout_.inputCount())
                 throw std::invalid_argument("network " + target + " of object " + std::to_string(o.objectId) + " has " +
@@ -125,7 +127,7 @@ std::vector<std::string> Predictor::describe() const {
 }
 
 Prediction Predictor::predict(const GBuffer& gb) const {
-    Prediction pr = predictTerms(gb, settings_.directSamples, settings_.seed);
+    Prediction pr = predictTerms(gb, settings_.directSamples, settings_.seed, spread_);
     if (!gathered_.empty()) gather(gb, pr, 0, settings_.seed);
     return pr;
 }
@@ -184,7 +186,7 @@ void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth, uint64_t se
             // The secondary points are keyed by their index in the batch: a stream of their own per
             // (level, object, batch), so no two batches share random numbers.
             const uint64_t batchSeed = mix64(seed ^ mix64((uint64_t(depth + 1) << 56) ^ (uint64_t(id) << 32) ^ uint64_t(b)));
-            Prediction secondary = predictTerms(batch.secondary, g.directSamples, batchSeed);
+            Prediction secondary = predictTerms(batch.secondary, g.directSamples, batchSeed, false);
             if (depth == 0) gather(batch.secondary, secondary, 1, mix64(batchSeed ^ kGlossyGatherStream));
             pr.nonFinite += secondary.nonFinite;
             const Image& radiance = secondary.image(Term::Global);
@@ -199,6 +201,12 @@ void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth, uint64_t se
                 }
                 pr.images[int(Term::Indirect)].set(x, y, ind);
                 pr.images[int(Term::Global)].set(x, y, pr.images[int(Term::Direct)].at(x, y) + ind);
+                // The gathered light is not this object's network's: its members' spread does not apply.
+                if (!pr.spreadKnown.empty() && pr.spreadKnown[i]) {
+                    pr.spreadKnown[i] = 0;
+                    pr.spread.set(x, y, Vec3(0.f));
+                    --pr.spreadPixels;
+                }
             }
             pr.pixelsGathered += n;
         }
@@ -206,10 +214,14 @@ void Predictor::gather(const GBuffer& gb, Prediction& pr, int depth, uint64_t se
     if (depth == 0) pr.gatherSeconds = since(t0);
 }
 
-Prediction Predictor::predictTerms(const GBuffer& gb, int directSamples, uint64_t seed) const {
+Prediction Predictor::predictTerms(const GBuffer& gb, int directSamples, uint64_t seed, bool withSpread) const {
     Prediction pr;
     for (Image& im : pr.images) im = Image(gb.width, gb.height);
     pr.leaf.assign(size_t(gb.width) * size_t(gb.height), -1);
+    if (withSpread) {
+        pr.spread = Image(gb.width, gb.height);
+        pr.spreadKnown.assign(size_t(gb.width) * size_t(gb.height), 0);
+    }
     const bool exact = settings_.direct == PredictionSettings::Direct::Exact;
 
     // Emitters show their emission in the direct and global terms, as in the ground truth.
@@ -251,6 +263,7 @@ Prediction Predictor::predictTerms(const GBuffer& gb, int directSamples, uint64_
 
     auto t0 = std::chrono::steady_clock::now();
     std::vector<uint64_t> jobNonFinite(jobs.size(), 0);
+    std::vector<double> jobSpreadSeconds(jobs.size(), 0.0);
     tbb::parallel_for(size_t(0), jobs.size(), [&](size_t j) {
         const Job& job = jobs[j];
         const std::vector<uint32_t>& px = gb.pixelsByObject[job.object];
@@ -293,8 +306,29 @@ Prediction Predictor::predictTerms(const GBuffer& gb, int directSamples, uint64_
             else pr.images[int(Term::Global)].set(xx, yy, d + ind);
         }
         jobNonFinite[j] = bad;
+        if (!withSpread) return;
+        const auto s0 = std::chrono::steady_clock::now();
+        // The network part of the pixel's global term: the global network, else direct and indirect.
+        std::vector<SpreadTerm> terms;
+        if (nets[2]) terms.push_back({nets[2], rows[2]});
+        else
+            for (int a = 0; a < 2; ++a)
+                if (nets[a]) terms.push_back({nets[a], rows[a]});
+        MatX<float> sd;
+        if (memberSpread(terms, x, sd)) {
+            for (Eigen::Index k = 0; k < n; ++k) {
+                const uint32_t i = px[job.begin + size_t(k)];
+                const Vec3 v(sd(0, k), sd(1, k), sd(2, k));
+                if (!v.isFinite()) continue;
+                pr.spread.set(int(i % uint32_t(gb.width)), int(i / uint32_t(gb.width)), v);
+                pr.spreadKnown[i] = 1;
+            }
+        }
+        jobSpreadSeconds[j] = since(s0);
     });
     for (uint64_t b : jobNonFinite) pr.nonFinite += b;
+    for (double s : jobSpreadSeconds) pr.spreadSeconds += s;
+    for (uint8_t k : pr.spreadKnown) pr.spreadPixels += k;
     pr.inferenceSeconds = since(t0);
 
     if (exact) {

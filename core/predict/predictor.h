@@ -59,6 +59,14 @@ struct Prediction {
     /// the time it took (secondary rays, networks and exact direct light there).
     uint64_t pixelsGathered = 0;
     double gatherSeconds = 0.0;
+    /// Ensemble spread (core/predict/member_spread.h): per pixel the members' standard deviation of
+    /// the networks' part of the global term (RGB, radiance). Computed when some network of the
+    /// model set has members' outputs; otherwise empty (0 × 0). Pixels without one (objects whose
+    /// networks are single, gathered pixels, emitters, background) hold 0 and spreadKnown 0.
+    Image spread;
+    std::vector<uint8_t> spreadKnown;  ///< per pixel: 1 where `spread` is the members' spread
+    uint64_t spreadPixels = 0;         ///< pixels with spreadKnown 1
+    double spreadSeconds = 0.0;        ///< the members' extra forward passes (CPU seconds, summed over batches)
 
     const Image& image(Term t) const { return images[int(t)]; }
 };
@@ -94,7 +102,8 @@ public:
 private:
     /// The networks and exact direct light (with `directSamples`, keyed by `seed`) over `gb`, without
     /// the gather.
-    Prediction predictTerms(const GBuffer& gb, int directSamples, uint64_t seed) const;
+    /// `withSpread`: also the members' spread of networks that have it.
+    Prediction predictTerms(const GBuffer& gb, int directSamples, uint64_t seed, bool withSpread) const;
     /// Replaces the indirect (and global) term of gathered objects' pixels (core/predict/glossy_gather.h).
     /// `depth` 0 for the camera's pixels, 1 for the gather's secondary points (which gather once
     /// more, with PredictionSettings::Gather's second-bounce sample counts, and no further).
@@ -108,6 +117,7 @@ private:
     Accel accel_;
     PathTracer tracer_;  ///< NEE, one bounce: primary rays and exact direct light
     std::vector<int> gathered_;  ///< gatheredObjects(): the objects whose indirect light is gathered
+    bool spread_ = false;        ///< some network of the model set has members' outputs (Prediction::spread)
 };
 
 }  // namespace rrf
