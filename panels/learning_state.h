@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/eval/break_even.h"
@@ -105,6 +106,12 @@ struct EvaluationInfo {
     double flipHdr = std::numeric_limits<double>::quiet_NaN();
     double flipNoiseFloor = std::numeric_limits<double>::quiet_NaN();
     double flipLdr = std::numeric_limits<double>::quiet_NaN();
+    /// The ensemble members' spread against the true error (core/eval/uncertainty.h), global term:
+    /// Spearman's rank correlation over all objects and per object ("name rho" pairs); NaN and
+    /// empty when the models have no members' spread.
+    double spreadSpearman = std::numeric_limits<double>::quiet_NaN();
+    double spreadRelative = std::numeric_limits<double>::quiet_NaN();  ///< mean relative spread
+    std::vector<std::pair<std::string, double>> spreadSpearmanPerObject;
 };
 
 /// One object of two runs compared side by side (Objects panel while the Views show a run pair):

@@ -102,6 +102,13 @@ void drawHeader(WorkbenchState& state) {
         if (!std::isnan(e.flipHdr))
             ImGui::TextDisabled("FLIP (global term): HDR-FLIP %.4g (noise floor %s), LDR-FLIP %.4g", e.flipHdr,
                                 noiseFigureText(e.flipNoiseFloor).c_str(), e.flipLdr);
+        if (!std::isnan(e.spreadSpearman)) {
+            std::string per;
+            for (const auto& [name, rho] : e.spreadSpearmanPerObject) per += "  " + name + " " + noiseFigureText(rho);
+            ImGui::TextDisabled("Uncertainty (ensemble members' spread, global term): mean relative spread %.4g, rank "
+                                "correlation with the error %.3f;%s",
+                                e.spreadRelative, e.spreadSpearman, per.c_str());
+        }
     }
 }
 }  // namespace
@@ -130,6 +137,13 @@ EvaluationInfo evaluationInfo(const Evaluation& e, const Scene& scene, const Mod
         info.flipHdr = f.hdr.mean;
         info.flipNoiseFloor = f.hdrNoiseFloor;
         info.flipLdr = f.ldr.mean;
+    }
+    if (e.uncertainty.available && e.uncertainty.overall.pixels) {
+        info.spreadSpearman = e.uncertainty.overall.spearman;
+        info.spreadRelative = e.uncertainty.overall.meanRelativeSpread;
+        for (size_t id = 0; id < e.uncertainty.perObject.size() && id < scene.objects.size(); ++id)
+            if (e.uncertainty.perObject[id].pixels)
+                info.spreadSpearmanPerObject.emplace_back(scene.objects[id].name, e.uncertainty.perObject[id].spearman);
     }
     for (Term t : kTerms) {
         const TermErrors& te = e.term(t);

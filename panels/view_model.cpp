@@ -203,6 +203,11 @@ ViewsLayout viewsLayout(ImVec2 avail, ImVec2 spacing, float line, const Image& i
     return l;
 }
 
+bool spreadShown(const WorkbenchState& s) {
+    return s.view.spread && s.view.compareSource == CompareSource::Prediction &&
+           s.view.spreadMap.matches(s.prediction.revision) && !s.view.spreadMap.map.empty();
+}
+
 void ViewModel::update(WorkbenchState& s) {
     Key k;
     k.gt = s.reference().revision;
@@ -218,6 +223,7 @@ void ViewModel::update(WorkbenchState& s) {
     k.flip = s.view.flip;
     k.flipRevision = s.view.flip ? s.view.flipMap.revision : 0;
     k.region = s.view.region;
+    k.spreadRevision = spreadShown(s) ? s.view.spreadMap.revision : 0;
     if (k == key_) {
         s.view.errorStats = stats_;
         s.view.regionStats = regionStats_;
@@ -273,7 +279,15 @@ void ViewModel::update(WorkbenchState& s) {
     }
     s.view.regionFlip = regionFlip_;
     fill(views_[kReference], ref, false);
-    fill(views_[kCompared], cmp, false);
+    if (k.spreadRevision) {
+        // The members' relative spread on viridis over [0, p99], where the prediction would be.
+        const Image& m = s.view.spreadMap.map;
+        views_[kCompared].width = m.width;
+        views_[kCompared].height = m.height;
+        views_[kCompared].revision = ++counter_;
+        toneMapRgba(falseColor(m, 0.f, std::max(s.view.spreadMap.scale, 1e-6f)), 0.f, idsFor(m), k.selected,
+                    views_[kCompared].rgba);
+    } else fill(views_[kCompared], cmp, false);
     if (k.leaves && cmp.width == s.leaves.width && cmp.height == s.leaves.height && idsFor(cmp))
         tintByLeaf(s.objectIds, s.leaves.pixelLeaf, views_[kCompared].rgba);
     if (idsFor(cmp)) hatchWithoutNetwork(s.objectIds, s.compared().withoutNetwork, cmp.width, views_[kCompared].rgba);

@@ -77,6 +77,10 @@ struct ViewsLayout {
 /// height with spacing, and the image shown (its aspect; empty: square).
 ViewsLayout viewsLayout(ImVec2 avail, ImVec2 spacing, float line, const Image& image);
 
+/// Whether the compared view shows the spread map: it is on, the compared image is the live
+/// prediction, and the map was made for exactly that prediction.
+bool spreadShown(const WorkbenchState& state);
+
 /// One displayable image.
 struct DisplayImage {
     int width = 0, height = 0;
@@ -119,11 +123,12 @@ private:
         uint64_t leaves = 0;  ///< LeavesInfo::revision when the leaf overlay is on, else 0
         bool flip = false;
         uint64_t flipRevision = 0;  ///< FlipViewMap::revision while the FLIP map is shown, else 0
+        uint64_t spreadRevision = 0;  ///< SpreadViewMap::revision while the spread is shown, else 0
         ViewRegion region;
         bool operator==(const Key& o) const {
             return gt == o.gt && cmp == o.cmp && source == o.source && term == o.term && metric == o.metric && exposure == o.exposure &&
                    errorMax == o.errorMax && selected == o.selected && ids == o.ids && leaves == o.leaves && flip == o.flip &&
-                   flipRevision == o.flipRevision && region == o.region;
+                   flipRevision == o.flipRevision && spreadRevision == o.spreadRevision && region == o.region;
         }
     };
     Key key_;

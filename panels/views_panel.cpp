@@ -175,6 +175,12 @@ void drawToolbar(WorkbenchState& state) {
     ImGui::Checkbox("highlight", &v.highlight);
     sameLineIfFits(labelledWidth(box, "leaves"));
     ImGui::Checkbox("leaves", &v.leafOverlay);  // tint the compared view by kd-tree leaf
+    sameLineIfFits(labelledWidth(box, "spread"));
+    ImGui::Checkbox("spread", &v.spread);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("the middle view shows the ensemble members' relative spread, mean_c sd_c / (|pred_c| + 0.01):\n"
+                          "where the members disagree, without a reference (also for a moved light);\n"
+                          "the Objects panel gives its rank correlation with the error");
     sameLineIfFits(labelledWidth(box, "histogram"));
     ImGui::Checkbox("histogram", &v.histogram);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("the error map's values over the compared pixels, on a log axis");
@@ -413,6 +419,10 @@ void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp
         const Vec3 c = cmp.at(v.hoverX, v.hoverY);
         ImGui::SameLine();
         ImGui::Text("  compared (%.4g, %.4g, %.4g)", c.x, c.y, c.z);
+        if (spreadShown(state) && v.hoverX < state.view.spreadMap.map.width && v.hoverY < state.view.spreadMap.map.height) {
+            ImGui::SameLine();
+            ImGui::Text("  spread %.4g", state.view.spreadMap.map.at(v.hoverX, v.hoverY).x);
+        }
         if (cmp.width == ref.width && cmp.height == ref.height) {
             ImGui::SameLine();
             if (!v.flip) ImGui::Text("  error %.4g", pixelError(c, r, v.metric));
@@ -453,8 +463,13 @@ void drawViewsPanel(WorkbenchState& state) {
     char gtTitle[160];
     if (pair) std::snprintf(gtTitle, sizeof gtTitle, "A: %s", state.runPair.imagesA.label.c_str());
     else std::snprintf(gtTitle, sizeof gtTitle, "Ground truth (%s, %d spp)", termName(state.view.term), state.render.spp);
-    const std::string cmpTitle = compared.empty() ? std::string(state.view.compareSource == CompareSource::Run ? "Compared run" : "Prediction")
-                                                  : compared.label;
+    std::string cmpTitle = compared.empty() ? std::string(state.view.compareSource == CompareSource::Run ? "Compared run" : "Prediction")
+                                            : compared.label;
+    if (spreadShown(state)) {
+        char t[160];
+        std::snprintf(t, sizeof t, "Ensemble spread (relative, 0 to %.3g)", state.view.spreadMap.scale);
+        cmpTitle = t;
+    }
     const std::string errTitle = std::string(pair ? "Difference B vs A: " : "Error: ") + errorViewLabel(state.view);
 
     ImVec2 hover(-1, -1);
@@ -476,6 +491,15 @@ void drawViewsPanel(WorkbenchState& state) {
         ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + size.x);
     }
     drawErrorFigures(state);
+    if (state.view.spread) {
+        const SpreadViewMap& m = state.view.spreadMap;
+        if (state.view.compareSource != CompareSource::Prediction)
+            ImGui::TextDisabled("Spread: shown for the live prediction only (middle view: prediction).");
+        else if (!m.matches(state.prediction.revision)) ImGui::TextDisabled("Spread: computing on the CPU...");
+        else if (!m.why.empty()) ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "Spread: %s", m.why.c_str());
+        else ImGui::TextDisabled("Spread: %llu pixels, viridis over [0, %.3g] (p99); 0 where none is known",
+                                 (unsigned long long)m.pixels, m.scale);
+    }
     const std::string partial = withoutNetworkText(compared, state.project.scene);
     if (!partial.empty()) ImGui::TextColored(ImVec4(1.f, 0.3f, 1.f, 1.f), "%s", partial.c_str());
     drawReadout(state, ref, cmp);

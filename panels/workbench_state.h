@@ -140,6 +140,19 @@ struct FlipViewMap {
     bool matches(uint64_t gt, uint64_t cmp, Term t) const { return revision && groundTruth == gt && compared == cmp && term == t; }
 };
 
+/// The ensemble members' spread of a prediction (core/eval/uncertainty.h), computed on a worker
+/// while the Views show it: the relative spread mean_c sd_c / (|pred_c| + 0.01) per pixel.
+struct SpreadViewMap {
+    uint64_t prediction = 0;   ///< the prediction ImageSet revision it belongs to (0: none yet)
+    Image map;                 ///< relative spread per pixel (all channels); 0 where none is known
+    float scale = 0.f;         ///< top of its colour scale: the 99th percentile
+    uint64_t pixels = 0;       ///< pixels with a known spread
+    /// Why there is no map ("the models have no ensemble members' spread"); "" when there is one.
+    std::string why;
+    uint64_t revision = 0;     ///< changes whenever a new map arrives
+    bool matches(uint64_t forPrediction) const { return revision && prediction == forPrediction; }
+};
+
 /// A rectangle of image pixels [x0, x1) × [y0, y1) whose figures the Views show beside the whole
 /// image's (drawn with the right mouse button in any view). Empty: none.
 struct ViewRegion {
@@ -178,6 +191,10 @@ struct ViewState {
     CompareSource compareSource = CompareSource::Prediction;
     bool highlight = true;      ///< dim everything but the selected object
     bool leafOverlay = false;   ///< tint the compared view by kd-tree leaf (Leaves panel)
+    /// The compared view shows the ensemble members' relative spread (spreadMap) instead of the
+    /// prediction: uncertainty without a reference.
+    bool spread = false;
+    SpreadViewMap spreadMap;    ///< published by the application while `spread` is on
     int selectedObject = -1;
     int hoverX = -1, hoverY = -1;  ///< image pixel under the mouse, -1 when none
     ViewErrorStats errorStats;  ///< published by the ViewModel each frame

@@ -15,7 +15,7 @@ const char* jobKindName(JobKind kind) {
         case JobKind::Predict: return "predict";
         case JobKind::Sweep: return "sweep";
         case JobKind::Compare: return "compare";
-        case JobKind::Overlay: return "leaf overlay";
+        case JobKind::Overlay: return "view overlay";  // leaf tint, FLIP and spread maps
         case JobKind::LightGrid: return "light grid";
     }
     return "job";

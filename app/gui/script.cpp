@@ -16,6 +16,7 @@
 #include "core/util/json_reader.h"
 #include "panels/clip_check.h"
 #include "panels/pipeline_controls.h"
+#include "panels/view_model.h"
 
 namespace rrf {
 
@@ -41,7 +42,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"reopen_run", {"index"}},
             {"set_light", {"position"}},
             {"select_object", {"id"}},
-            {"view", {"term", "metric", "exposure", "error_max", "zoom", "region"}},
+            {"view", {"term", "metric", "exposure", "error_max", "zoom", "region", "spread"}},
             {"open", {"path"}},
             {"request_open", {"path"}},
             {"answer_unsaved", {"choice"}},
@@ -61,7 +62,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
                        "train_runs", "sweeps", "unsaved_prompt", "dirty", "stopped_runs", "prediction_partial",
                        "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped", "pipeline_done",
                        "pipeline_stopped", "prediction_label", "error_waiting", "flip_evaluated",
-                       "region_pixels_min", "light_grid_points"}},
+                       "region_pixels_min", "light_grid_points", "spread_shown", "spread_evaluated"}},
         };
     }();
     return keys;
@@ -147,9 +148,11 @@ bool Script::execute(Workbench& wb, const json& s) {
         }
         // train_epoch: until the running training has reported its first epoch (to stop it mid-run).
         // pipeline: until the one-click pipeline has ended; train_running: until a training runs.
-        // flip: until the Views' FLIP map of the images on screen has arrived.
-        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running", "flip"});
+        // flip: until the Views' FLIP map of the images on screen has arrived; spread: until the
+        // spread map of the prediction on screen has.
+        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running", "flip", "spread"});
         const bool busy = on == "flip" ? !st.view.flipMap.matches(st.reference().revision, st.compared().revision, st.view.term)
+                          : on == "spread"        ? !st.view.spreadMap.matches(st.prediction.revision)
                           : on == "render"        ? wb.renderRunning()
                           : on == "train_epoch"   ? wb.trainRunning() && st.training.epoch < 1
                           : on == "pipeline"      ? wb.pipelineRunning()
@@ -299,6 +302,7 @@ bool Script::execute(Workbench& wb, const json& s) {
         st.view.exposure = r.floatOr("exposure", st.view.exposure);
         st.view.errorMax = r.floatOr("error_max", st.view.errorMax);
         st.view.zoom = r.floatOr("zoom", st.view.zoom);
+        st.view.spread = r.booleanOr("spread", st.view.spread);
         // region: [x0, y0, x1, y1] (x1, y1 exclusive), as a right-drag draws it; [] clears it.
         if (const auto g = r.find("region")) {
             const size_t n = g->requireArray();
@@ -388,6 +392,10 @@ bool Script::execute(Workbench& wb, const json& s) {
         count("light_grid_points", st.lightRegion.map ? st.lightRegion.map->lights.size() : 0, "light grid points");
         // flip_evaluated: the last evaluation has FLIP figures (global term, finite mean).
         flag("flip_evaluated", st.evaluation.valid && std::isfinite(st.evaluation.flipHdr), "evaluation's FLIP state");
+        // spread_shown: the middle view shows the ensemble spread map (with pixels that have one);
+        // spread_evaluated: the last evaluation ranked the spread against the error (finite Spearman).
+        flag("spread_shown", panels::spreadShown(st) && st.view.spreadMap.pixels > 0, "spread view state");
+        flag("spread_evaluated", st.evaluation.valid && std::isfinite(st.evaluation.spreadSpearman), "evaluation's spread state");
         size_t trained = 0;
         for (const Run& run : st.project.runs) trained += run.kind == "train" && !run.curves.empty();
         count("train_runs", trained, "training runs with loss curves");

@@ -90,7 +90,7 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 void Workbench::dropJobs() {
     for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &generateJob_, &trainJob_, &evaluateJob_,
                                                                       &predictJob_, &sweepJob_, &pairJob_, &overlayJob_,
-                                                                      &flipJob_, &lightGridJob_})
+                                                                      &flipJob_, &spreadJob_, &lightGridJob_})
         job->drop();
     render_.reset();
     trainLive_.reset();
@@ -133,6 +133,7 @@ void Workbench::frame() {
     pollRunPair();
     pollPipeline();
     updateFlipMap();
+    updateSpreadMap();
     refreshAvailableMemory();
     finishDraft();
     drawHost();

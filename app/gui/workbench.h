@@ -101,6 +101,9 @@ public:
     /// The Views' FLIP map while it is selected: one worker at a time for the images on screen
     /// (app/gui/workbench_flip.cpp).
     void updateFlipMap();
+    /// The Views' spread map while it is on: one worker at a time for the prediction on screen
+    /// (app/gui/workbench_spread.cpp).
+    void updateSpreadMap();
     /// Compares the prediction with the ground truth per object and term (fills the Objects panel).
     bool startEvaluate();
     bool evaluateRunning() const;
@@ -268,6 +271,10 @@ private:
     /// What the last FLIP job was started for (ground truth and compared revisions, term).
     std::tuple<uint64_t, uint64_t, Term> flipFor_{0, 0, Term::Global};
     uint64_t flipMaps_ = 0;  ///< FLIP maps delivered (their revisions)
+    /// The Views' spread map (the ensemble members' relative spread of the prediction), on a worker.
+    JobSession<panels::SpreadViewMap> spreadJob_{jobs_, JobKind::Overlay, state_.log};
+    uint64_t spreadFor_ = 0;   ///< the prediction revision the last spread job was started for
+    uint64_t spreadMaps_ = 0;  ///< spread maps delivered (their revisions)
     LivePrediction live_;
     /// Results each kind of job delivered so far: the pipeline advances when its stage's count grew
     /// and fails when the job ended without one (stopped, refused, failed).

@@ -385,3 +385,66 @@ TEST_F(CostPanelTest, SeriesColoursFollowTheirNames) {
 }
 
 }  // namespace rrf::test::test_honest_figures
+
+namespace test_honest_figures_spread {
+using namespace rrf;
+using namespace rrf::panels;
+
+TEST(HonestFigures, ObjectsHeaderCarriesTheEnsembleSpreadsRankCorrelation) {
+    // The Objects panel's uncertainty line reads evaluate()'s figures: overall and per visible object.
+    Scene scene;
+    scene.objects.resize(2);
+    scene.objects[0].name = "floor";
+    scene.objects[1].name = "box";
+    Evaluation e;
+    EXPECT_TRUE(std::isnan(evaluationInfo(e, scene, ModelSet()).spreadSpearman));
+    e.uncertainty.available = true;
+    e.uncertainty.overall = {10, 0.02, 0.05, 0.61};
+    e.uncertainty.perObject = {{6, 0.01, 0.04, 0.7}, {0, 0, 0, std::nan("")}};
+    const EvaluationInfo info = evaluationInfo(e, scene, ModelSet());
+    EXPECT_DOUBLE_EQ(info.spreadSpearman, 0.61);
+    EXPECT_DOUBLE_EQ(info.spreadRelative, 0.02);
+    ASSERT_EQ(info.spreadSpearmanPerObject.size(), 1u);  // the box has no pixels
+    EXPECT_EQ(info.spreadSpearmanPerObject[0].first, "floor");
+    EXPECT_DOUBLE_EQ(info.spreadSpearmanPerObject[0].second, 0.7);
+}
+}  // namespace test_honest_figures_spread
+
+namespace test_honest_figures_spread_view {
+using namespace rrf;
+using namespace rrf::panels;
+
+TEST(HonestFigures, SpreadViewShowsOnlyTheMapOfThePredictionOnScreen) {
+    WorkbenchState s;
+    s.prediction.global = Image(4, 2);
+    for (int x = 0; x < 4; ++x) s.prediction.global.set(x, 0, Vec3(0.5f));
+    s.prediction.touch();
+    ViewModel vm;
+    vm.update(s);
+    const std::vector<uint8_t> plain = vm.image(ViewModel::kCompared).rgba;
+    s.view.spread = true;
+    SpreadViewMap m;
+    m.prediction = s.prediction.revision;
+    m.map = Image(4, 2);
+    m.map.set(3, 1, Vec3(0.2f));
+    m.scale = 0.2f;
+    m.pixels = 8;
+    m.revision = 1;
+    s.view.spreadMap = m;
+    EXPECT_TRUE(spreadShown(s));
+    vm.update(s);
+    const std::vector<uint8_t>& shown = vm.image(ViewModel::kCompared).rgba;
+    ASSERT_EQ(shown.size(), plain.size());
+    EXPECT_NE(shown, plain);
+    // Pixel (3, 1) at the top of the scale: viridis's yellow end (red and green high, blue low).
+    const size_t i = (size_t(1) * 4 + 3) * 4;
+    EXPECT_GT(shown[i], 200);
+    EXPECT_GT(shown[i + 1], 200);
+    EXPECT_LT(shown[i + 2], 100);
+    // A new prediction: the map belongs to the old one and is not shown.
+    s.prediction.touch();
+    EXPECT_FALSE(spreadShown(s));
+    vm.update(s);
+    EXPECT_EQ(vm.image(ViewModel::kCompared).rgba, plain);
+}
+}  // namespace test_honest_figures_spread_view
