@@ -467,7 +467,7 @@ void drawViewsPanel(WorkbenchState& state) {
                                             : compared.label;
     if (spreadShown(state)) {
         char t[160];
-        std::snprintf(t, sizeof t, "Ensemble spread (relative, 0 to %.3g)", state.view.spreadMap.scale);
+        std::snprintf(t, sizeof t, "Ensemble spread (global term, relative, 0 to %.3g)", state.view.spreadMap.scale);
         cmpTitle = t;
     }
     const std::string errTitle = std::string(pair ? "Difference B vs A: " : "Error: ") + errorViewLabel(state.view);

@@ -5,6 +5,7 @@
 
 #include "core/util/error.h"
 #include "core/eval/evaluation.h"
+#include "core/nn/ensemble.h"
 #include "core/predict/footprint_mask.h"
 #include "core/predict/predictor.h"
 #include "core/util/json_reader.h"
@@ -250,3 +251,73 @@ TEST(Evaluation, FootprintPixelsAreLeftOutAndCounted) {
 }
 
 }  // namespace test_predictor
+
+namespace test_predictor_spread {
+using namespace rrf;
+
+/// A merged ensemble of `k` members of 15-6-`outputs` tanh networks (identity scalers).
+NetworkModel ensembleNet(int outputs, int k, uint64_t seed) {
+    MlpArch member;
+    member.inputs = 15;
+    member.hidden = {6};
+    member.outputs = outputs;
+    std::vector<VecX<double>> p;
+    for (int m = 0; m < k; ++m) p.push_back(initialParams(member, seed + uint64_t(m), 1));
+    NetworkModel e;
+    e.arch = ensembleArch(member, k);
+    e.params = mergeEnsemble(member, p);
+    e.memberOutputBias = memberOutputBiases(member, p);
+    e.inputScaler = MinMaxScaler::identity(15);
+    e.outputScaler = MinMaxScaler::identity(outputs);
+    e.encoding.inputs = 15;
+    e.training.members = k;
+    return e;
+}
+
+TEST(Predictor, SpreadIsTheMembersDisagreementOnTheirObjectsPixelsOnly) {
+    const Project proj = loadProjectOrScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json");
+    const Scene& s = proj.scene;
+    // Object 0: a joint ensemble of 3 with learned direct light (the spread of direct + indirect per
+    // member); object 1: a single network (no spread); the others: nothing.
+    ModelSet models;
+    models.inputLayout = RecordLayout::forScene(s).inputs;
+    for (int id : {0, 1}) {
+        ObjectNetworks n;
+        n.objectId = id;
+        n.name = s.objects[size_t(id)].name;
+        if (id == 0) n.byTarget.emplace("joint", ensembleNet(6, 3, 5));
+        else n.byTarget.emplace("global", rrf::test::copyInputNet(15, {3, 4, 5}));
+        models.objects.push_back(std::move(n));
+    }
+    const Predictor pred(s, models, PredictionSettings::fromJson(JsonReader(nlohmann::json{{"direct", "network"}}, "p.json", "/prediction")));
+    const GBuffer g = pred.gbuffer(Vec3(0.2f, 0.9f, -0.1f), 32, 32);
+    const Prediction out = pred.predict(g);
+    ASSERT_FALSE(out.spread.empty());
+    EXPECT_EQ(out.spreadPixels, g.pixelsByObject[0].size());
+    const PartitionedNetwork& joint = models.find(0)->byTarget.at("joint");
+    for (uint32_t i : g.pixelsByObject[0]) {
+        ASSERT_EQ(out.spreadKnown[i], 1);
+        // By hand: every member's direct + indirect at this pixel, their standard deviation (1/K).
+        const MatX<float> x = Eigen::Map<const MatX<float>>(g.input(i), 15, 1);
+        const std::vector<MatX<float>> m = joint.predictMembers(x);
+        ASSERT_EQ(m.size(), 3u);
+        for (int c = 0; c < 3; ++c) {
+            double sum = 0, sq = 0;
+            for (const MatX<float>& y : m) {
+                const double v = double(y(c, 0)) + double(y(c + 3, 0));
+                sum += v;
+                sq += v * v;
+            }
+            const double mean = sum / 3, sd = std::sqrt(std::max(0.0, sq / 3 - mean * mean));
+            ASSERT_NEAR(out.spread.at(int(i % 32), int(i / 32))[c], sd, 1e-5);
+        }
+    }
+    for (uint32_t i : g.pixelsByObject[1]) ASSERT_EQ(out.spreadKnown[i], 0);
+    for (uint32_t i : g.emitterPixels) ASSERT_EQ(out.spreadKnown[i], 0);
+    // A model set without members' outputs predicts no spread at all.
+    ModelSet single;
+    single.inputLayout = models.inputLayout;
+    single.objects.push_back(models.objects[1]);
+    EXPECT_TRUE(Predictor(s, single).predict(g).spread.empty());
+}
+}  // namespace test_predictor_spread

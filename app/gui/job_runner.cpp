@@ -15,8 +15,9 @@ const char* jobKindName(JobKind kind) {
         case JobKind::Predict: return "predict";
         case JobKind::Sweep: return "sweep";
         case JobKind::Compare: return "compare";
-        case JobKind::Overlay: return "view overlay";  // leaf tint, FLIP and spread maps
+        case JobKind::Overlay: return "view overlay";  // the leaf tint and the FLIP map
         case JobKind::LightGrid: return "light grid";
+        case JobKind::Spread: return "spread map";
     }
     return "job";
 }
@@ -31,6 +32,7 @@ bool jobsConflict(JobKind a, JobKind b) {
     if (a == JobKind::LightGrid || b == JobKind::LightGrid) return false;
     if (a == JobKind::Compare || b == JobKind::Compare) return false;  // its own models, copied images
     if (a == JobKind::Overlay || b == JobKind::Overlay) return false;  // shared read-only models
+    if (a == JobKind::Spread || b == JobKind::Spread) return false;    // so does the spread map
     auto pair = [&](JobKind x, JobKind y) { return (a == x && b == y) || (a == y && b == x); };
     // Training reads the dataset being generated; evaluation reads the models being trained and
     // compares against the ground truth being rendered.

@@ -26,7 +26,7 @@ namespace rrf {
 /// Compare: two runs' models predicted (and judged) side by side; it loads its own models and copies
 /// the ground truth, so it conflicts only with another comparison. Overlay: the Views' leaf overlay
 /// (a leaf lookup per pixel of the loaded models), reading shared models only.
-enum class JobKind { Render, Generate, Train, Evaluate, Predict, Sweep, Compare, Overlay, LightGrid };
+enum class JobKind { Render, Generate, Train, Evaluate, Predict, Sweep, Compare, Overlay, LightGrid, Spread };
 const char* jobKindName(JobKind kind);
 /// True when jobs of kinds a and b must not run at the same time (one needs what the other makes,
 /// or both write the same outputs).

@@ -152,7 +152,7 @@ bool Script::execute(Workbench& wb, const json& s) {
         // spread map of the prediction on screen has.
         const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running", "flip", "spread"});
         const bool busy = on == "flip" ? !st.view.flipMap.matches(st.reference().revision, st.compared().revision, st.view.term)
-                          : on == "spread"        ? !st.view.spreadMap.matches(st.prediction.revision)
+                          : on == "spread"        ? st.view.spread && !st.view.spreadMap.matches(st.prediction.revision)
                           : on == "render"        ? wb.renderRunning()
                           : on == "train_epoch"   ? wb.trainRunning() && st.training.epoch < 1
                           : on == "pipeline"      ? wb.pipelineRunning()

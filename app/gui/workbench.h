@@ -272,7 +272,7 @@ private:
     std::tuple<uint64_t, uint64_t, Term> flipFor_{0, 0, Term::Global};
     uint64_t flipMaps_ = 0;  ///< FLIP maps delivered (their revisions)
     /// The Views' spread map (the ensemble members' relative spread of the prediction), on a worker.
-    JobSession<panels::SpreadViewMap> spreadJob_{jobs_, JobKind::Overlay, state_.log};
+    JobSession<panels::SpreadViewMap> spreadJob_{jobs_, JobKind::Spread, state_.log};
     uint64_t spreadFor_ = 0;   ///< the prediction revision the last spread job was started for
     uint64_t spreadMaps_ = 0;  ///< spread maps delivered (their revisions)
     LivePrediction live_;

@@ -15,7 +15,8 @@
 namespace rrf {
 
 namespace {
-/// The spread map of `p` (its relative spread, scale at the 99th percentile of the known pixels).
+/// The spread map of `p` (its relative spread, scale at the 99th percentile of the known pixels;
+/// the global term's, whichever term the views show).
 panels::SpreadViewMap spreadMapOf(const Prediction& p, uint64_t forPrediction) {
     panels::SpreadViewMap m;
     m.prediction = forPrediction;
@@ -25,7 +26,7 @@ panels::SpreadViewMap spreadMapOf(const Prediction& p, uint64_t forPrediction) {
     }
     m.map = relativeSpreadMap(p.spread, p.image(Term::Global), p.spreadKnown);
     m.pixels = p.spreadPixels;
-    m.scale = std::max(percentile(m.map, 0.99), 1e-6f);
+    m.scale = relativeSpreadScale(m.map, p.spreadKnown);
     if (!m.pixels) m.why = "no pixel of this view has a spread (gathered or single networks only)";
     return m;
 }

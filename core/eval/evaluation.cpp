@@ -320,7 +320,7 @@ std::vector<std::string> writePredictionImages(const std::string& dir, const Pre
         const Image rel = relativeSpreadMap(p.spread, p.image(Term::Global), p.spreadKnown);
         const std::string base = (fs::path(dir) / "spread_relative_global").string();
         writeImage(base + ".exr", rel, ImageFormat::EXR);
-        writeImage(base + ".png", falseColor(rel, 0.f, std::max(percentile(rel, 0.99), 1e-6f)), ImageFormat::PNG);
+        writeImage(base + ".png", falseColor(rel, 0.f, relativeSpreadScale(rel, p.spreadKnown)), ImageFormat::PNG);
         for (const std::string& f : {spread, base + ".exr", base + ".png"}) files.push_back(f);
     }
     return files;

@@ -51,7 +51,8 @@ struct HeldOutSummary {
     /// object id and over all objects, across the evaluations whose prediction had a spread.
     std::vector<Spread> spearmanPerObject;
     Spread spearman;
-    /// {"overall": spread, "objects": [{"id", "name", spread}]}, or null when no evaluation had a spread.
+    /// {"spearman": spread, "objects": [{"id", "name", "spearman": spread}]}, or null when no
+    /// evaluation had a spread.
     nlohmann::json uncertaintyJson(const Scene& scene) const;
 };
 

@@ -71,6 +71,19 @@ Image relativeSpreadMap(const Image& spread, const Image& prediction, const std:
     return out;
 }
 
+float relativeSpreadScale(const Image& rel, const std::vector<uint8_t>& known) {
+    std::vector<float> v;
+    for (int y = 0; y < rel.height; ++y)
+        for (int x = 0; x < rel.width; ++x) {
+            const size_t i = size_t(y) * size_t(rel.width) + size_t(x);
+            if ((known.empty() || (i < known.size() && known[i])) && std::isfinite(rel.at(x, y).x)) v.push_back(rel.at(x, y).x);
+        }
+    if (v.empty()) return 1e-6f;
+    const size_t k = std::min(v.size() - 1, size_t(0.99 * double(v.size() - 1) + 0.5));
+    std::nth_element(v.begin(), v.begin() + long(k), v.end());
+    return std::max(v[k], 1e-6f);
+}
+
 nlohmann::json UncertaintyStats::toJson() const {
     return {{"pixels", pixels},
             {"mean_relative_spread", number(meanRelativeSpread)},
@@ -105,7 +118,9 @@ UncertaintyEvaluation evaluateUncertainty(const Prediction& prediction, const Im
     auto stats = [&](const std::vector<uint32_t>& px) {
         std::vector<double> s, e;
         for (uint32_t i : px) {
-            if (i >= prediction.spreadKnown.size() || !prediction.spreadKnown[i]) continue;
+            // An empty mask: every pixel's spread is known (as relativeSpreadMap reads it).
+            if (!prediction.spreadKnown.empty() && (i >= prediction.spreadKnown.size() || !prediction.spreadKnown[i])) continue;
+            if (i >= size_t(pred.width) * size_t(pred.height)) continue;
             const int x = int(i % uint32_t(pred.width)), y = int(i / uint32_t(pred.width));
             const double sv = rel.at(x, y).x;
             const double ev = pixelError(pred.at(x, y), reference.at(x, y), ErrorMapKind::Relative);

@@ -35,6 +35,10 @@ double spearman(const std::vector<double>& a, const std::vector<double>& b);
 /// `known` (per pixel, may be empty = all) is 0. Throws std::invalid_argument when sizes differ.
 Image relativeSpreadMap(const Image& spread, const Image& prediction, const std::vector<uint8_t>& known);
 
+/// The top of the relative spread's colour scale: the 99th percentile over the pixels `known` marks
+/// (every pixel when it is empty), at least 1e-6.
+float relativeSpreadScale(const Image& relativeSpread, const std::vector<uint8_t>& known);
+
 /// The spread against the true error over one set of pixels.
 struct UncertaintyStats {
     uint64_t pixels = 0;             ///< pixels with a known, finite spread and error

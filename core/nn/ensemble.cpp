@@ -167,7 +167,8 @@ TrainResult trainEnsemble(MlpArch& arch, const TrainerConfig& cfg, const Trainin
     const MlpArch member = arch;
     arch = ensembleArch(member, int(kept.size()));
     params = mergeEnsemble(member, kept);
-    if (memberBiases) *memberBiases = memberOutputBiases(member, kept);
+    // Without hidden layers the members merge into one linear map and cannot be told apart.
+    if (memberBiases && !member.hidden.empty()) *memberBiases = memberOutputBiases(member, kept);
     scoreMerged(first, arch, params, cfg, data, outputScaler);
     std::string line = "ensemble of " + std::to_string(kept.size()) + " " + member.describe() + " networks: members' validation error";
     for (double f : figures) {

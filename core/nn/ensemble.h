@@ -57,7 +57,7 @@ uint64_t ensembleMemberSeed(uint64_t seed, int member);
 /// merged network's, its history the first member's; `observer` sees every member's epochs, each
 /// marked with its member. A cancel ends the ensemble: a member cut short by it is left out (but
 /// the first, which is kept as the single network it is). `memberBiases`, when given, receives
-/// memberOutputBiases of the kept members (empty when one is kept).
+/// memberOutputBiases of the kept members (empty when one is kept or `arch` has no hidden layers).
 TrainResult trainEnsemble(MlpArch& arch, const TrainerConfig& cfg, const TrainingData& data,
                           const MinMaxScaler& outputScaler, VecX<double>& params, int members, uint64_t stream,
                           const TrainObserver& observer = {}, VecX<double>* memberBiases = nullptr);

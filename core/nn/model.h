@@ -77,7 +77,9 @@ struct NetworkModel {
     /// The same in double (reference for tests and for checking the float path).
     MatX<double> predictDouble(const Eigen::Ref<const MatX<double>>& rawInputs) const;
     /// Members whose outputs predictMembers gives: K when memberOutputBias is stored, else 0.
-    int spreadMembers() const { return arch.outputs > 0 ? int(memberOutputBias.size() / arch.outputs) : 0; }
+    int spreadMembers() const {
+        return arch.outputs > 0 && !arch.hidden.empty() ? int(memberOutputBias.size() / arch.outputs) : 0;
+    }
     /// Every member's raw outputs (outputs × N each, `spreadMembers()` matrices) for raw inputs: the
     /// members as they were trained, recovered from the merged weights (nn/ensemble.h); their mean is
     /// predict() to float rounding. Empty when spreadMembers() is 0.

@@ -263,7 +263,6 @@ Prediction Predictor::predictTerms(const GBuffer& gb, int directSamples, uint64_
 
     auto t0 = std::chrono::steady_clock::now();
     std::vector<uint64_t> jobNonFinite(jobs.size(), 0);
-    std::vector<double> jobSpreadSeconds(jobs.size(), 0.0);
     tbb::parallel_for(size_t(0), jobs.size(), [&](size_t j) {
         const Job& job = jobs[j];
         const std::vector<uint32_t>& px = gb.pixelsByObject[job.object];
@@ -306,16 +305,28 @@ Prediction Predictor::predictTerms(const GBuffer& gb, int directSamples, uint64_
             else pr.images[int(Term::Global)].set(xx, yy, d + ind);
         }
         jobNonFinite[j] = bad;
-        if (!withSpread) return;
+    });
+    for (uint64_t b : jobNonFinite) pr.nonFinite += b;
+    pr.inferenceSeconds = since(t0);
+
+    if (withSpread) {
+        // The members' extra forward passes, timed apart so the frame's network time stays the
+        // merged network's alone.
         const auto s0 = std::chrono::steady_clock::now();
-        // The network part of the pixel's global term: the global network, else direct and indirect.
-        std::vector<SpreadTerm> terms;
-        if (nets[2]) terms.push_back({nets[2], rows[2]});
-        else
-            for (int a = 0; a < 2; ++a)
-                if (nets[a]) terms.push_back({nets[a], rows[a]});
-        MatX<float> sd;
-        if (memberSpread(terms, x, sd)) {
+        tbb::parallel_for(size_t(0), jobs.size(), [&](size_t j) {
+            const Job& job = jobs[j];
+            const std::vector<uint32_t>& px = gb.pixelsByObject[job.object];
+            const Eigen::Index n = Eigen::Index(job.end - job.begin);
+            // The network part of the pixel's global term: the global network, else direct and indirect.
+            std::vector<SpreadTerm> terms;
+            if (job.plan.global.ok()) terms.push_back({job.plan.global.net, job.plan.global.row});
+            else
+                for (const Source& src : {job.plan.direct, job.plan.indirect})
+                    if (src.ok()) terms.push_back({src.net, src.row});
+            MatX<float> x(gb.numInputs, n), sd;
+            for (Eigen::Index k = 0; k < n; ++k)
+                x.col(k) = Eigen::Map<const VecX<float>>(gb.input(px[job.begin + size_t(k)]), gb.numInputs);
+            if (!memberSpread(terms, x, sd)) return;
             for (Eigen::Index k = 0; k < n; ++k) {
                 const uint32_t i = px[job.begin + size_t(k)];
                 const Vec3 v(sd(0, k), sd(1, k), sd(2, k));
@@ -323,13 +334,10 @@ Prediction Predictor::predictTerms(const GBuffer& gb, int directSamples, uint64_
                 pr.spread.set(int(i % uint32_t(gb.width)), int(i / uint32_t(gb.width)), v);
                 pr.spreadKnown[i] = 1;
             }
-        }
-        jobSpreadSeconds[j] = since(s0);
-    });
-    for (uint64_t b : jobNonFinite) pr.nonFinite += b;
-    for (double s : jobSpreadSeconds) pr.spreadSeconds += s;
-    for (uint8_t k : pr.spreadKnown) pr.spreadPixels += k;
-    pr.inferenceSeconds = since(t0);
+        });
+        for (uint8_t k : pr.spreadKnown) pr.spreadPixels += k;
+        pr.spreadSeconds = since(s0);
+    }
 
     if (exact) {
         t0 = std::chrono::steady_clock::now();

@@ -66,7 +66,7 @@ struct Prediction {
     Image spread;
     std::vector<uint8_t> spreadKnown;  ///< per pixel: 1 where `spread` is the members' spread
     uint64_t spreadPixels = 0;         ///< pixels with spreadKnown 1
-    double spreadSeconds = 0.0;        ///< the members' extra forward passes (CPU seconds, summed over batches)
+    double spreadSeconds = 0.0;        ///< the members' extra forward passes (wall time; not in inferenceSeconds)
 
     const Image& image(Term t) const { return images[int(t)]; }
 };
