@@ -30,8 +30,6 @@ std::vector<double> ranks(const std::vector<double>& v) {
     return r;
 }
 
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 }  // namespace
 
 double spearman(const std::vector<double>& a, const std::vector<double>& b) {
@@ -72,23 +70,20 @@ Image relativeSpreadMap(const Image& spread, const Image& prediction, const std:
 }
 
 float relativeSpreadScale(const Image& rel, const std::vector<uint8_t>& known) {
-    std::vector<float> v;
-    for (int y = 0; y < rel.height; ++y)
-        for (int x = 0; x < rel.width; ++x) {
-            const size_t i = size_t(y) * size_t(rel.width) + size_t(x);
-            if ((known.empty() || (i < known.size() && known[i])) && std::isfinite(rel.at(x, y).x)) v.push_back(rel.at(x, y).x);
-        }
-    if (v.empty()) return 1e-6f;
-    const size_t k = std::min(v.size() - 1, size_t(0.99 * double(v.size() - 1) + 0.5));
-    std::nth_element(v.begin(), v.begin() + long(k), v.end());
-    return std::max(v[k], 1e-6f);
+    // percentile() leaves non-finite values out: unknown pixels become NaN in a copy.
+    Image knownOnly = rel;
+    if (!known.empty())
+        for (size_t i = 0; i < knownOnly.pixelCount(); ++i)
+            if (i >= known.size() || !known[i]) knownOnly.data[3 * i] = std::numeric_limits<float>::quiet_NaN();
+    return std::max(percentile(knownOnly, 0.99), 1e-6f);
 }
 
 nlohmann::json UncertaintyStats::toJson() const {
+    // Undefined figures (no pixels, a constant side) are null, as unknown noise figures are.
     return {{"pixels", pixels},
-            {"mean_relative_spread", number(meanRelativeSpread)},
-            {"mean_relative_error", number(meanRelativeError)},
-            {"spearman", number(spearman)}};
+            {"mean_relative_spread", noiseFigureJson(meanRelativeSpread)},
+            {"mean_relative_error", noiseFigureJson(meanRelativeError)},
+            {"spearman", noiseFigureJson(spearman)}};
 }
 
 nlohmann::json UncertaintyEvaluation::toJson(const std::vector<std::string>& objectNames) const {

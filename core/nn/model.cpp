@@ -2,6 +2,7 @@
 
 #include "core/nn/block_forward.h"
 #include "core/nn/ensemble.h"
+#include "core/nn/model_forward.h"
 #include "core/nn/training_loss.h"
 #include "core/util/error.h"
 #include "core/util/relative_error.h"
@@ -14,8 +15,6 @@ namespace rrf {
 
 namespace {
 
-// Inference chunk: 20-10 activations of 2048 samples stay in L2, which beats one huge GEMM.
-constexpr Eigen::Index kPredictChunk = 2048;
 
 MatX<float> gather(const Eigen::Ref<const MatX<float>>& m, const std::vector<uint32_t>& idx) {
     MatX<float> out(m.rows(), Eigen::Index(idx.size()));
@@ -39,24 +38,11 @@ static MatX<S> predictImpl(const NetworkModel& m, const Eigen::Ref<const MatX<S>
     if (raw.rows() != m.rawInputs())
         throw std::invalid_argument("predict: expected " + std::to_string(m.rawInputs()) + " input rows, got " +
                                     std::to_string(raw.rows()));
-    const VecX<S> w = m.params.cast<S>();
-    const VecX<S> e = m.encodingParams.cast<S>();
-    const bool encoded = !m.encoding.isIdentity();
-    // A merged ensemble (nn/ensemble.h) runs member by member: K·h² per hidden layer, not K²·h².
-    const int members = blockMembers<S>(m.arch, w.data());
-    MatX<S> out(m.arch.outputs, raw.cols()), x, features;
-    std::vector<MatX<S>> acts;
-    const DerivedInputs& derived = m.encoding.derived;
-    for (Eigen::Index c = 0; c < raw.cols(); c += kPredictChunk) {
-        const Eigen::Index nc = std::min(kPredictChunk, raw.cols() - c);
-        if (derived.any()) derived.append<S>(raw.middleCols(c, nc), x);  // from the raw unit vectors
-        else x = raw.middleCols(c, nc);
-        m.inputScaler.apply(x);
-        if (encoded) m.encoding.forward<S>(e.data(), x, features);
-        blockForward<S>(m.arch, members, w.data(), encoded ? features : x, acts);
+    MatX<S> out(m.arch.outputs, raw.cols());
+    forwardChunks<S>(m, raw, [&](Eigen::Index c, Eigen::Index nc, std::vector<MatX<S>>& acts) {
         m.outputScaler.invert(acts.back());
         out.middleCols(c, nc) = acts.back();
-    }
+    });
     return out;
 }
 

@@ -5,17 +5,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/nn/block_forward.h"
 #include "core/nn/model.h"
+#include "core/nn/model_forward.h"
 
 namespace rrf {
-
-namespace {
-
-// As NetworkModel::predict's chunks: the activations of a chunk stay in cache.
-constexpr Eigen::Index kMemberChunk = 2048;
-
-}  // namespace
 
 void checkMemberBiases(const NetworkModel& m) {
     if (m.memberOutputBias.size() == 0) return;
@@ -57,23 +50,13 @@ std::vector<MatX<float>> NetworkModel::predictMembers(const Eigen::Ref<const Mat
     if (raw.rows() != rawInputs())
         throw std::invalid_argument("predictMembers: expected " + std::to_string(rawInputs()) + " input rows, got " +
                                     std::to_string(raw.rows()));
-    const VecX<float> w = params.cast<float>();
-    const VecX<float> e = encodingParams.cast<float>();
-    const bool encoded = !encoding.isIdentity();
-    const int blocks = blockMembers<float>(arch, w.data());
     const int last = arch.numLayers() - 1;
     const Eigen::Index outs = arch.outputs, width = arch.layerInputs(last), h = width / k;
-    const Eigen::Map<const MatX<float>> W(w.data() + arch.weightOffset(last), outs, width);
+    const VecX<float> wOut = params.segment(arch.weightOffset(last), outs * width).cast<float>();
+    const Eigen::Map<const MatX<float>> W(wOut.data(), outs, width);
     std::vector<MatX<float>> out(size_t(k), MatX<float>(outs, raw.cols()));
-    MatX<float> x, features, y;
-    std::vector<MatX<float>> acts;
-    for (Eigen::Index c = 0; c < raw.cols(); c += kMemberChunk) {
-        const Eigen::Index nc = std::min(kMemberChunk, raw.cols() - c);
-        if (encoding.derived.any()) encoding.derived.append<float>(raw.middleCols(c, nc), x);
-        else x = raw.middleCols(c, nc);
-        inputScaler.apply(x);
-        if (encoded) encoding.forward<float>(e.data(), x, features);
-        blockForward<float>(arch, blocks, w.data(), encoded ? features : x, acts);
+    MatX<float> y;
+    forwardChunks<float>(*this, raw, [&](Eigen::Index c, Eigen::Index nc, std::vector<MatX<float>>& acts) {
         const MatX<float>& hidden = acts[size_t(last) - 1];
         for (int m = 0; m < k; ++m) {
             // Member m: K·W'_m h_m + b_m, the output the merge divided by K and averaged.
@@ -83,7 +66,7 @@ std::vector<MatX<float>> NetworkModel::predictMembers(const Eigen::Ref<const Mat
             outputScaler.invert(y);
             out[size_t(m)].middleCols(c, nc) = y;
         }
-    }
+    });
     return out;
 }
 
