@@ -161,28 +161,39 @@ void main() {
         rawIn[slot >> 2][slot & 3] = t2 * n[i] - v[i];
     }
 
-    // Term rules of core/predict/network_texture.h (the same as core/predict/predictor.cpp).
+    // Term rules of core/predict/network_texture.h (the same as core/predict/predictor.cpp). Which
+    // networks run is decided first, then one loop evaluates them through a single call of
+    // predictNetwork: drivers inline every call site, and a second, third and fourth inlined copy of
+    // the network and its encodings multiplies the program's compile time (seconds each on llvmpipe)
+    // without changing a single operation. The loop walks a bit mask (a count unknown to the compiler,
+    // so it is not unrolled back into four copies): bit 0 joint, 1 direct, 2 indirect, 3 global.
     vec4 off = texel(entry);
-    vec3 direct = vec3(0.0), indirect = vec3(0.0), global, unused;
-    if (off.w >= 0.0) {
-        predictNetwork(findLeafNetwork(int(off.w)), direct, indirect);
-        direct = finiteOrZero(direct);
-        indirect = finiteOrZero(indirect);
-    }
-    if (off.x >= 0.0 && uDirectMode == 0) { predictNetwork(findLeafNetwork(int(off.x)), direct, unused); direct = finiteOrZero(direct); }
-    if (off.y >= 0.0) { predictNetwork(findLeafNetwork(int(off.y)), indirect, unused); indirect = finiteOrZero(indirect); }
-    bool hasDirect = off.x >= 0.0 || off.w >= 0.0;
-    if (uDirectMode != 0) {  // direct light computed, not learned (direct_light.glsl, as core/predict/predictor.cpp)
-        direct = finiteOrZero(rrfDirectLight(px, textureSize(uGPosition, 0), p, n, v, id));
-        hasDirect = true;
-    }
+    bool hasDirect = off.x >= 0.0 || off.w >= 0.0 || uDirectMode != 0;
     bool both = hasDirect && (off.y >= 0.0 || off.w >= 0.0);
-    if (!both && off.z >= 0.0) {
-        predictNetwork(findLeafNetwork(int(off.z)), global, unused);
-        global = finiteOrZero(global);
-    } else {
-        global = direct + indirect;
+    int todo = (off.w >= 0.0 ? 1 : 0) | (off.x >= 0.0 && uDirectMode == 0 ? 2 : 0) | (off.y >= 0.0 ? 4 : 0) |
+               (!both && off.z >= 0.0 ? 8 : 0);
+    vec3 direct = vec3(0.0), indirect = vec3(0.0), global = vec3(0.0);
+    while (todo != 0) {
+        int bit = (todo & 1) != 0 ? 0 : ((todo & 2) != 0 ? 1 : ((todo & 4) != 0 ? 2 : 3));
+        todo &= todo - 1;
+        float tree = bit == 0 ? off.w : (bit == 1 ? off.x : (bit == 2 ? off.y : off.z));
+        vec3 first, second;
+        predictNetwork(findLeafNetwork(int(tree)), first, second);
+        first = finiteOrZero(first);
+        if (bit == 0) {
+            direct = first;
+            indirect = finiteOrZero(second);
+        } else if (bit == 1) {
+            direct = first;
+        } else if (bit == 2) {
+            indirect = first;
+        } else {
+            global = first;
+        }
     }
+    if (uDirectMode != 0)  // direct light computed, not learned (direct_light.glsl, as core/predict/predictor.cpp)
+        direct = finiteOrZero(rrfDirectLight(px, textureSize(uGPosition, 0), p, n, v, id));
+    if (both || off.z < 0.0) global = direct + indirect;
 
     oDirect = vec4(direct + emission, 1.0);
     oIndirect = vec4(indirect, 1.0);
