@@ -30,7 +30,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
         std::vector<std::string> train = {"epochs", "trainer", "refused"};
         train.insert(train.end(), NetworkSettings::keys().begin(), NetworkSettings::keys().end());
         return std::map<std::string, std::vector<std::string>>{
-            {"render", {"spp"}},
+            {"render", {"spp", "width", "height"}},
             {"generate", SamplingSettings::keys()},
             {"train", train},
             {"evaluate", {}},
@@ -140,6 +140,9 @@ bool Script::execute(Workbench& wb, const json& s) {
             return false;
         }
         st.project.render.spp = int(r.integerOr("spp", st.project.render.spp, 1, 1 << 30));
+        // The image size as the project's "render" section takes it (0: the scene camera's).
+        st.project.render.width = int(r.integerOr("width", st.project.render.width, 0, kMaxImageSide));
+        st.project.render.height = int(r.integerOr("height", st.project.render.height, 0, kMaxImageSide));
         require(wb.startRender(), "the render could not start (see the log)");
     } else if (what == "wait") {
         if (!waiting_) {
@@ -149,14 +152,16 @@ bool Script::execute(Workbench& wb, const json& s) {
         // train_epoch: until the running training has reported its first epoch (to stop it mid-run).
         // pipeline: until the one-click pipeline has ended; train_running: until a training runs.
         // flip: until the Views' FLIP map of the images on screen has arrived; spread: until the
-        // spread map of the prediction on screen has.
-        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running", "flip", "spread"});
+        // spread map of the prediction on screen has; full_frame: until the draft frames of a light
+        // move have been replaced by the full-quality prediction and every job has ended.
+        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running", "flip", "spread", "full_frame"});
         const bool busy = on == "flip" ? !st.view.flipMap.matches(st.reference().revision, st.compared().revision, st.view.term)
                           : on == "spread"        ? st.view.spread && !st.view.spreadMap.matches(st.prediction.revision)
                           : on == "render"        ? wb.renderRunning()
                           : on == "train_epoch"   ? wb.trainRunning() && st.training.epoch < 1
                           : on == "pipeline"      ? wb.pipelineRunning()
                           : on == "train_running" ? !wb.trainRunning()
+                          : on == "full_frame"    ? wb.draftShown() || !wb.jobs().idle() || wb.evaluationPending()
                                                   : !wb.jobs().idle() || wb.evaluationPending();
         if (busy) {
             const double limit = r.numberOr("timeout_s", 300, 0, 1e9);

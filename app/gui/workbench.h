@@ -110,6 +110,8 @@ public:
     /// A manual training finished and its models wait to be evaluated (once the ground truth of the
     /// current light is rendered), so every run gets its error without pressing Evaluate.
     bool evaluationPending() const { return evaluateAfterTrain_; }
+    /// Whether the live prediction on screen is a draft (the light moved less than kDraftRestSeconds ago).
+    bool draftShown() const { return draftShown_; }
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
     bool exportObjectsCsv(const std::string& path);
     /// The one-click pipeline: applies `preset` (core/pipeline/presets.h) to the project's data and
