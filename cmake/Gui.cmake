@@ -134,7 +134,7 @@ if(RRF_BUILD_TESTS)
   # CTest starts the costliest tests first (COST; a clean clone has no timings of its own): the long
   # sessions then run beside the short tests instead of after them, two long ones alone at the end.
   # Rough seconds on the 2-core CI machine.
-  set_tests_properties(gui_glossy_gather PROPERTIES COST 60)
+  set_tests_properties(gui_glossy_gather PROPERTIES COST 8)
   set_tests_properties(gui_pipeline PROPERTIES COST 25)
   set_tests_properties(gui_scripted_session gui_stop_and_switch PROPERTIES COST 15)
   set_tests_properties(gui_unclipped_1280x720 gui_unclipped_1600x1000 PROPERTIES COST 10)

@@ -164,7 +164,7 @@ void main() {
     // Term rules of core/predict/network_texture.h (the same as core/predict/predictor.cpp). Which
     // networks run is decided first, then one loop evaluates them through a single call of
     // predictNetwork: drivers inline every call site, and a second, third and fourth inlined copy of
-    // the network and its encodings multiplies the program's compile time (seconds each on llvmpipe)
+    // the network and its encodings multiplies the program's compile time (llvmpipe compiles on the CPU)
     // without changing a single operation. The loop walks a bit mask (a count unknown to the compiler,
     // so it is not unrolled back into four copies): bit 0 joint, 1 direct, 2 indirect, 3 global.
     vec4 off = texel(entry);
