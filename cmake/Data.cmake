@@ -10,12 +10,13 @@ set(RRF_INSTALL_DATADIR share/rrf-workbench)
 set(RRF_BUILD_DATADIR ${CMAKE_BINARY_DIR}/${RRF_INSTALL_DATADIR})
 
 # The bundled projects are projects/<name>/ without what working in them produces: the folders the
-# workbench writes next to a project (app/gui: data/, export/, models/, runs/, sweeps/) and dataset,
+# workbench writes next to a project (app/gui: data/, export/, models/, runs/, sweeps/,
+# ground_truth/) and dataset,
 # model and temporary files, and the workbench's autosaves (*.autosave.json). So running the
 # workbench on a source project never ships its outputs.
 file(GLOB_RECURSE RRF_DATA_FILES CONFIGURE_DEPENDS RELATIVE ${CMAKE_SOURCE_DIR}
      ${CMAKE_SOURCE_DIR}/shaders/* ${CMAKE_SOURCE_DIR}/projects/*)
-list(FILTER RRF_DATA_FILES EXCLUDE REGEX "^projects/[^/]+/(data|export|models|runs|sweeps)/")
+list(FILTER RRF_DATA_FILES EXCLUDE REGEX "^projects/[^/]+/(data|export|models|runs|sweeps|ground_truth)/")
 list(FILTER RRF_DATA_FILES EXCLUDE REGEX "\\.(rrfd|rrfm|tmp)$")
 list(FILTER RRF_DATA_FILES EXCLUDE REGEX "\\.autosave\\.json$")
 

@@ -5,12 +5,14 @@
 //     against the per-frame prediction time (hollow squares: CPU, triangles: GLSL).
 // The error is the relative RMSE of the global term with the reference's noise subtracted
 // (comparableError, core/eval/break_even.h), the figure `rrf evaluate` reports as "corrected"; the
-// reference's noise floor is a dashed line. For each model point the break-even — the spp and seconds
+// reference's noise floor is a dashed line. A GLSL frame is the GPU time of its passes (timer
+// queries), a CPU frame its wall time; each series' legend entry names its resolution. For each model point the break-even — the spp and seconds
 // the path tracer of the same sweep needs for the model's error — is a cross on the path tracer's
 // line, joined by a dotted line to the model's per-frame time, and a sentence under the plot. Both
 // axes are log10 with decade grids, so the path tracer's 1/sqrt(N) is a straight line. Colours come
 // from the series' names (seriesColour(name)), so a series keeps its colour. The project's evaluated
-// training runs can be shown too, marked as what they are: each against its own ground truth.
+// training runs can be shown too (diamonds, with their frame times), marked as what they are: each
+// against its own ground truth, in the same corrected figure where their reference's noise was known.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -59,10 +61,17 @@ const CostSeries* findSeries(const std::vector<const CostSeries*>& series, const
     return nullptr;
 }
 
-/// A triangle (GLSL frame time) or a square (CPU frame time, one-off cost) around q.
-void marker(ImDrawList* dl, const ImVec2& q, ImU32 colour, char shape, bool filled) {
+/// A triangle (GLSL frame time), a square (CPU frame time, one-off cost), a diamond (a project run's
+/// one-off cost), a cross (break-even) or a circle (path tracer) around q.
+void marker(ImDrawList* dl, const ImVec2& q, ImU32 colour, char shape, bool filled, std::string* drawn = nullptr) {
+    if (drawn && drawn->find(std::string(1, shape) + (filled ? "F" : "h")) == std::string::npos)
+        *drawn += std::string(1, shape) + (filled ? "F" : "h");
     const float r = 4.f;
-    if (shape == 't') {
+    if (shape == 'd') {
+        const ImVec2 a(q.x, q.y - r - 1), b(q.x + r + 1, q.y), c(q.x, q.y + r + 1), d(q.x - r - 1, q.y);
+        if (filled) dl->AddQuadFilled(a, b, c, d, colour);
+        else dl->AddQuad(a, b, c, d, colour, 1.5f);
+    } else if (shape == 't') {
         const ImVec2 a(q.x, q.y - r), b(q.x + r, q.y + r * 0.8f), c(q.x - r, q.y + r * 0.8f);
         if (filled) dl->AddTriangleFilled(a, b, c, colour);
         else dl->AddTriangle(a, b, c, colour, 1.5f);
@@ -82,17 +91,27 @@ CostSeries runsCostSeries(const std::vector<Run>& runs) {
     CostSeries s;
     s.name = "project runs";
     s.kind = CostKind::Runs;
+    std::string resolution;
     for (const Run& r : runs) {
         if (r.kind != "train") continue;
-        const double error = r.metric("relative_rmse").value_or(NAN);
+        const double raw = r.metric("relative_rmse").value_or(NAN);
         // The cost of a training run is what it took to get there: data generation plus training.
         const double seconds = r.timing("train").value_or(NAN) + r.timing("generate").value_or(0.0);
-        if (!(error > 0) || !(seconds > 0)) continue;
-        CostPoint p{seconds, error, r.name};
-        p.corrected = false;  // a run records the raw figure against its own ground truth
-        p.rawError = error;
+        if (!(raw > 0) || !(seconds > 0)) continue;
+        // The sweeps' figure (comparableError): corrected where the run's reference noise was known.
+        const std::optional<double> corrected = r.metric("relative_rmse_corrected");
+        CostPoint p{seconds, corrected ? *corrected : raw, r.name};
+        p.corrected = corrected.has_value();
+        p.rawError = raw;
+        p.frameSeconds = r.metric("frame_seconds").value_or(NAN);
+        p.glslFrameSeconds = r.metric("glsl_frame_seconds").value_or(NAN);
+        const int w = int(r.metric("evaluated_width").value_or(0)), h = int(r.metric("evaluated_height").value_or(0));
+        if (w > 0 && h > 0) p.resolution = std::to_string(w) + "x" + std::to_string(h);
+        if (s.points.empty()) resolution = p.resolution;
+        else if (resolution != p.resolution) resolution.clear();
         s.points.push_back(p);
     }
+    s.resolution = resolution;
     return s;
 }
 
@@ -164,8 +183,9 @@ void drawCostPanel(WorkbenchState& state) {
     interactPlot(v.plot, area, x, y);  // wheel zooms, drag pans, double-click fits the data again
     ImDrawList* dl = ImGui::GetWindowDrawList();
     drawAxes(dl, pmin, pmax, x, y, "time (s): path tracer render, model data + training or one frame",
-             "relative RMSE, corrected (noise subtracted), global term");
+             "relative RMSE, global term, corrected (noise subtracted) where the noise is known");
     v.hoverSeries = v.hoverPoint = -1;
+    v.shapesDrawn.clear();
     if (series.empty()) {
         dl->AddText(ImVec2(pmin.x + font, pmin.y + font * 1.5f), IM_COL32(170, 170, 170, 255),
                     "No data yet: run a sweep (model sweeps include the path tracer against the same reference).");
@@ -198,23 +218,23 @@ void drawCostPanel(WorkbenchState& state) {
             if (finite(q)) {
                 line.push_back(q);
                 hover(q, i, k);
-                marker(dl, q, colour, s.kind == CostKind::Models ? 's' : 'o', true);
+                marker(dl, q, colour, s.kind == CostKind::Models ? 's' : s.kind == CostKind::Runs ? 'd' : 'o', true, &v.shapesDrawn);
                 if (s.kind == CostKind::PathTracer) {
                     char spp[32];
                     std::snprintf(spp, sizeof spp, "%g spp", p.spp);
                     dl->AddText(ImVec2(q.x + 5, q.y + 2), IM_COL32(190, 190, 190, 200), spp);
                 }
             }
-            if (s.kind != CostKind::Models) continue;
+            if (s.kind == CostKind::PathTracer) continue;
             const ImVec2 cpu = at(p.frameSeconds, p.error), glsl = at(p.glslFrameSeconds, p.error);
-            if (finite(cpu)) marker(dl, cpu, colour, 's', false), hover(cpu, i, k);
-            if (finite(glsl)) marker(dl, glsl, colour, 't', false), hover(glsl, i, k);
+            if (finite(cpu)) marker(dl, cpu, colour, 's', false, &v.shapesDrawn), hover(cpu, i, k);
+            if (finite(glsl)) marker(dl, glsl, colour, 't', false, &v.shapesDrawn), hover(glsl, i, k);
             if (!pt) continue;
             const BreakEven b = costBreakEven(*pt, p);
             const ImVec2 e = at(b.seconds, p.error);
             if (!b.known || !finite(e)) continue;
             // The break-even: where the path tracer reaches this error, joined to the model's frame time.
-            marker(dl, e, seriesColour(pt->name), 'x', false);
+            marker(dl, e, seriesColour(pt->name), 'x', false, &v.shapesDrawn);
             const ImVec2 from = finite(glsl) ? glsl : finite(cpu) ? cpu : q;
             if (finite(from)) drawDashedLine(dl, from, e, seriesColour(s.name, 0.6f), 2.f);
         }
@@ -236,25 +256,49 @@ void drawCostPanel(WorkbenchState& state) {
                               noiseFigureText(1e3 * p.glslFrameSeconds).c_str(), err.c_str(),
                               noiseFigureText(p.rawError).c_str(), s.reference.c_str());
         else
-            ImGui::SetTooltip("%s: %s\ndata + training %.3g s\nrelative RMSE %s against its own ground truth", s.name.c_str(),
-                              p.label.c_str(), p.seconds, err.c_str());
+            ImGui::SetTooltip("%s: %s\ndata + training %.3g s\nper frame: CPU %s ms, GLSL %s ms\nrelative RMSE %s, raw %s, "
+                              "against its own ground truth%s%s",
+                              s.name.c_str(), p.label.c_str(), p.seconds, noiseFigureText(1e3 * p.frameSeconds).c_str(),
+                              noiseFigureText(1e3 * p.glslFrameSeconds).c_str(), err.c_str(),
+                              noiseFigureText(p.rawError).c_str(), p.resolution.empty() ? "" : " at ",
+                              p.resolution.c_str());
     }
     ImGui::SameLine();
     ImGui::BeginGroup();
     for (const CostSeries* s : series) {
         char text[160];
-        std::snprintf(text, sizeof text, "%s (%zu)", s->name.c_str(), s->points.size());
+        // The resolution beside the name: points of different sizes share the axes only when said.
+        std::snprintf(text, sizeof text, "%s (%zu, %s)", s->name.c_str(), s->points.size(),
+                      s->resolution.empty() ? "sizes differ" : s->resolution.c_str());
         legendEntry(s->name, text, seriesColour(s->name), v.hidden);
         if (!s->reference.empty() && ImGui::IsItemHovered())
             ImGui::SetTooltip("%s\nclick to %s this series", s->reference.c_str(), seriesHidden(v.hidden, s->name) ? "show" : "hide");
     }
     if (!v.plot.autoFit && ImGui::SmallButton("fit the data")) v.plot.autoFit = true;
     ImGui::Spacing();
-    ImGui::TextDisabled("o path tracer (render time)");
-    ImGui::TextDisabled("filled square: data + training");
-    ImGui::TextDisabled("hollow square: CPU frame");
-    ImGui::TextDisabled("triangle: GLSL frame");
-    ImGui::TextDisabled("x: break-even; - - noise floor");
+    // The key draws each marker with the function the plot uses, so the two cannot disagree.
+    struct KeyEntry {
+        char shape;
+        bool filled;
+        const char* text;
+    };
+    static const KeyEntry kKey[] = {{'o', true, "path tracer (render time)"},
+                                    {'s', true, "data + training"},
+                                    {'d', true, "project run: data + training"},
+                                    {'s', false, "CPU frame (wall time)"},
+                                    {'t', false, "GLSL frame (GPU time)"},
+                                    {'x', false, "break-even"}};
+    v.keyShapes.clear();
+    const ImU32 keyColour = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+    for (const KeyEntry& k : kKey) {
+        const ImVec2 at = ImGui::GetCursorScreenPos();
+        ImGui::Dummy(ImVec2(font, font));
+        marker(ImGui::GetWindowDrawList(), ImVec2(at.x + font * 0.5f, at.y + font * 0.5f), keyColour, k.shape, k.filled);
+        ImGui::SameLine();
+        ImGui::TextDisabled("%s", k.text);
+        v.keyShapes += std::string(1, k.shape) + (k.filled ? "F" : "h");
+    }
+    ImGui::TextDisabled("- - noise floor");
     ImGui::TextDisabled("wheel: zoom, drag: pan,\ndouble-click: fit");
     ImGui::EndGroup();
     if (!v.breakEvenLines.empty()) {

@@ -165,7 +165,9 @@ struct CostPoint {
     double rawError = kUnknown;  ///< raw relative RMSE
     double spp = 0.0;            ///< path tracer: samples per pixel
     double frameSeconds = kUnknown;      ///< model: one CPU frame of prediction
-    double glslFrameSeconds = kUnknown;  ///< model: one GLSL frame (measured in the workbench)
+    /// model: one GLSL frame, the GPU time of its passes (GL timer queries, measured in the workbench)
+    double glslFrameSeconds = kUnknown;
+    std::string resolution{};            ///< runs: the size the error was measured at, e.g. "256x256"
 };
 
 /// What a series' points are.
@@ -185,6 +187,8 @@ struct CostSeries {
     /// The reference's relative RMSE noise floor (NaN: unknown), drawn as a dashed line.
     double noiseFloor = CostPoint::kUnknown;
     std::string reference{};     ///< e.g. "64x64, reference 256 spp"
+    /// The image size every point was measured at ("64x64"); empty when the points differ (runs).
+    std::string resolution{};
 };
 
 /// Sweeps run in this session and the sweep job's state.
@@ -204,6 +208,9 @@ struct CostView {
     int hoverSeries = -1, hoverPoint = -1;
     // Filled by the panel each frame (read by tests):
     std::vector<std::string> breakEvenLines;  ///< the break-even sentences shown under the plot
+    /// Markers drawn in the plot and listed in its key, each as shape + "F" (filled) or "h" (hollow):
+    /// 'o' circle, 's' square, 'd' diamond, 't' triangle, 'x' cross.
+    std::string shapesDrawn, keyShapes;
     float plotMinX = 0, plotMinY = 0, plotMaxX = 0, plotMaxY = 0;  ///< plot rectangle on screen
 };
 

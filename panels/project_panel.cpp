@@ -131,6 +131,16 @@ void drawRuns(WorkbenchState& state) {
         ImGui::TextUnformatted(numberText(r.frameSeconds ? std::optional<double>(*r.frameSeconds * 1e3) : std::nullopt,
                                           r.frameGlsl ? "%.2f GLSL" : "%.1f CPU")
                                    .c_str());
+        if (r.frameSeconds && ImGui::IsItemHovered()) {
+            const std::string size = r.frameWidth > 0 ? std::to_string(r.frameWidth) + "x" + std::to_string(r.frameHeight)
+                                                      : std::string("the view's size");
+            ImGui::SetTooltip(r.frameGlsl ? "one full-quality GLSL frame at %s: the GPU time of the G-buffer and network passes\n"
+                                            "(GL timer queries, median of the last frames; read-back excluded).\n"
+                                            "On a software driver (Mesa llvmpipe) the GPU is this machine's CPU."
+                                          : "one CPU frame at %s: wall time of the G-buffer, the networks and the direct light\n"
+                                            "(median of the last frames)",
+                              size.c_str());
+        }
         ImGui::TableNextColumn();
         if (ImGui::SmallButton("Re-open")) state.request(Command::ReopenRun, {}, int(i));
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Restore this run's settings and show its images");

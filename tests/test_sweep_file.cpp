@@ -37,7 +37,9 @@ void expectSameRow(const SweepRow& a, const SweepRow& b) {
     expectSameFigure(a.frameSeconds, b.frameSeconds, a.setting + " frame");
     expectSameFigure(a.glslFrameSeconds, b.glslFrameSeconds, a.setting + " GLSL frame");
     EXPECT_EQ(a.breakEven.known, b.breakEven.known);
-    if (a.breakEven.known) EXPECT_DOUBLE_EQ(a.breakEven.spp, b.breakEven.spp);
+    if (a.breakEven.known) {
+        EXPECT_DOUBLE_EQ(a.breakEven.spp, b.breakEven.spp);
+    }
     EXPECT_EQ(a.perObject.size(), b.perObject.size());
     EXPECT_EQ(a.extra, b.extra);
 }

@@ -54,9 +54,10 @@ void prepareRecording(const Project& p, EvaluateArgs& a) {
     if (a.out.empty()) a.out = outputPath(runDirectory(projectDirectory(p), *trained), "evaluation");
 }
 
-/// Adds what `evals` measured to the train run that made the models and saves the project.
-void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vector<Evaluation>& evals, double seconds,
-                       const char* report = nullptr) {
+/// Adds what `evals` (references of width x height) measured to the train run that made the models
+/// and saves the project.
+void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vector<Evaluation>& evals, int width,
+                       int height, double seconds, const char* report = nullptr) {
     EvaluationRecord r;
     for (const Evaluation& e : evals) {
         const ErrorStats& g = e.term(Term::Global).overall;
@@ -67,6 +68,8 @@ void recordEvaluations(const EvaluateArgs& a, const Project& p, const std::vecto
         r.lights.push_back(e.lightPosition);
     }
     r.referenceSpp = evals.empty() ? 0 : evals.front().referenceSpp;
+    r.width = width;
+    r.height = height;
     r.seconds = seconds;
     r.artifacts = {outputPath(a.out, report ? report : evals.size() > 1 ? "held_out.json" : "evaluation.json")};
     const std::string dir = projectDirectory(p);
@@ -112,7 +115,8 @@ int runEvaluate(EvaluateArgs a) {
             return ObtainedReference{ref, {{"directory", a.reference}}};
         };
         const std::vector<Evaluation> evals = evaluateAll(p, predictor, {ref.lightPosition}, given, a.out, a.exposure);
-        if (a.record) recordEvaluations(a, p, evals, clock.seconds());
+        const Image& refImage = ref.images[int(Term::Global)];
+        if (a.record) recordEvaluations(a, p, evals, refImage.width, refImage.height, clock.seconds());
         return 0;
     }
     std::vector<Vec3> lights;
@@ -128,6 +132,8 @@ int runEvaluate(EvaluateArgs a) {
     const RenderOptions ro = referenceOptions(p, a.spp, a.width, a.height);
     const ReferenceSource source = a.spp > 0 ? fixedSppSource(p, ro, lights.size())
                                              : storeSource(store, p, predictor, width, height, target, lights.size());
+    // The size of the references the figures are measured at (recorded beside them).
+    const int evalWidth = a.spp > 0 ? ro.width : width, evalHeight = a.spp > 0 ? ro.height : height;
     if (a.spp > 0)
         std::printf("%zu light position(s), references %dx%d at a fixed %d spp (no noise target, not stored)\n", lights.size(),
                     ro.width, ro.height, ro.spp);
@@ -147,11 +153,11 @@ int runEvaluate(EvaluateArgs a) {
     }
     if (grid) {
         const LightGridOutcome o = lightGrid(p, predictor, *grid, source, a.out, a.exposure, trainingLightMarks(p, a.models));
-        if (a.record) recordEvaluations(a, p, o.evaluations, clock.seconds(), "light_grid.json");
+        if (a.record) recordEvaluations(a, p, o.evaluations, evalWidth, evalHeight, clock.seconds(), "light_grid.json");
         return 0;
     }
     const std::vector<Evaluation> evals = evaluateAll(p, predictor, lights, source, a.out, a.exposure);
-    if (a.record) recordEvaluations(a, p, evals, clock.seconds());
+    if (a.record) recordEvaluations(a, p, evals, evalWidth, evalHeight, clock.seconds());
     return 0;
 }
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include <glad/gl.h>
@@ -143,6 +144,7 @@ GlslPredictor::GlslPredictor(const Scene& scene, const ModelSet& models, const s
     glGenVertexArrays(1, &emptyVao_);  // core profile: drawing needs a bound VAO even without attributes
     glGenBuffers(1, &objectVbo_);
     glGenBuffers(1, &lightVbo_);
+    glGenQueries(2, timerQueries_.data());
     buildStaticGeometry();
     checkGl("uploading the scene geometry");
     setCamera(scene_.camera);
@@ -158,6 +160,20 @@ GlslPredictor::~GlslPredictor() {
     glDeleteBuffers(2, buffers);
     const GLuint vaos[2] = {vao_, emptyVao_};
     glDeleteVertexArrays(2, vaos);
+    glDeleteQueries(2, timerQueries_.data());
+}
+
+double GlslPredictor::gpuSeconds() const {
+    if (!timed_) return std::numeric_limits<double>::quiet_NaN();
+    // GL_QUERY_RESULT waits until the passes have run (read() has already waited for them).
+    GLuint64 total = 0;
+    for (GLuint q : timerQueries_) {
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(q, GL_QUERY_RESULT, &ns);
+        total += ns;
+    }
+    checkGl("reading the frame's timer queries");
+    return double(total) * 1e-9;
 }
 
 void GlslPredictor::buildStaticGeometry() {
@@ -314,6 +330,9 @@ void GlslPredictor::render() {
     glClearBufferfv(GL_COLOR, 2, zero);
     glClearBufferfv(GL_DEPTH, 0, &one);
 
+    // The passes' GPU time (gpuSeconds): one query per pass, so that the CPU's work between them
+    // (mode 2's host direct light) is not counted as the GPU's.
+    glBeginQuery(GL_TIME_ELAPSED, timerQueries_[0]);
     glUseProgram(gbufferProgram_.id());
     glUniform3f(gbufferProgram_.uniform("uEye"), cam.eye.x, cam.eye.y, cam.eye.z);
     glUniform3f(gbufferProgram_.uniform("uForward"), forward.x, forward.y, forward.z);
@@ -340,6 +359,7 @@ void GlslPredictor::render() {
         }
         glDrawArrays(GL_TRIANGLES, 0, count);
     }
+    glEndQuery(GL_TIME_ELAPSED);
     checkGl("G-buffer pass");
 
     // ---- pass 2: networks
@@ -372,7 +392,10 @@ void GlslPredictor::render() {
     }
     glUniform1i(predictProgram_.uniform("uDirectMode"), directMode_);
     glBindVertexArray(emptyVao_);
+    glBeginQuery(GL_TIME_ELAPSED, timerQueries_[1]);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEndQuery(GL_TIME_ELAPSED);
+    timed_ = true;
     checkGl("network pass");
 }
 

@@ -101,6 +101,12 @@ public:
     /// glFinish() waits for the result. Throws GlError on a GL error.
     void render();
 
+    /// The GPU time of the last render()'s G-buffer and network passes (GL timer queries), in
+    /// seconds; waits for the passes to finish. NaN before the first render(). Excludes read-back
+    /// and CPU work (uploads, mode 2's host direct light); on a software driver (llvmpipe) the
+    /// "GPU" is the CPU's rasteriser threads.
+    double gpuSeconds() const;
+
     /// The prediction of the last render() as an image (top row first).
     Image read(Term term) const;
     /// The G-buffer of the last render().
@@ -142,6 +148,8 @@ private:
     unsigned directBuffer_ = 0, directBufferTex_ = 0, directHostTex_ = 0;
     std::unique_ptr<Accel> hostAccel_;         ///< mode 2 only
     std::unique_ptr<PathTracer> hostTracer_;   ///< mode 2 only
+    std::array<unsigned, 2> timerQueries_{};   ///< GL_TIME_ELAPSED of the G-buffer and network passes
+    bool timed_ = false;                       ///< a render() has issued the queries
 };
 
 }  // namespace rrf

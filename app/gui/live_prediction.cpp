@@ -33,7 +33,7 @@ void LivePrediction::reset() {
     sceneHash_ = 0;
 }
 
-void LivePrediction::renderGlsl(const Camera& camera, const Vec3& lightPos, const PredictionSettings& prediction,
+double LivePrediction::renderGlsl(const Camera& camera, const Vec3& lightPos, const PredictionSettings& prediction,
                                 Image out[kTermCount]) {
     const Camera& current = glsl_->camera();
     if (current.width != camera.width || current.height != camera.height || !(current.eye == camera.eye) ||
@@ -43,6 +43,7 @@ void LivePrediction::renderGlsl(const Camera& camera, const Vec3& lightPos, cons
     glsl_->setPrediction(prediction);
     glsl_->render();
     for (Term t : kTerms) out[int(t)] = glsl_->read(t);
+    return glsl_->gpuSeconds();
 }
 
 }  // namespace rrf

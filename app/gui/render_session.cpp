@@ -6,11 +6,18 @@
 #include <stdexcept>
 
 #include "core/eval/reference_noise.h"
+#include "core/eval/stored_ground_truth.h"
 #include "core/predict/gbuffer.h"
 
 namespace rrf {
 
-RenderSession::RenderSession(const Scene& scene, const RenderOptions& options) : scene_(scene), options_(options) {}
+RenderSession::RenderSession(const Scene& scene, const RenderOptions& options, std::optional<Store> store)
+    : scene_(scene), options_(options), store_(std::move(store)) {}
+
+std::string RenderSession::storeNote() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return storeNote_;
+}
 
 void RenderSession::run(JobContext& ctx) {
     ctx.setStatus("building BVH");
@@ -37,6 +44,25 @@ void RenderSession::run(JobContext& ctx) {
         std::lock_guard<std::mutex> lock(mutex_);
         footprint_ = std::move(mask);
     }
+    if (store_) {
+        ctx.setStatus("looking for the stored ground truth");
+        StoredGroundTruth stored = loadGroundTruth(store_->dir, store_->key, options_.spp);
+        if (stored.snapshot) {
+            publish(std::make_shared<const RenderSnapshot>(std::move(*stored.snapshot)));
+            loaded_ = true;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                storeNote_ = "ground truth loaded from " + store_->dir + " (the same scene, light, size and spp)";
+            }
+            ctx.setProgress(1.0);
+            ctx.setStatus("loaded");
+            return;
+        }
+        if (!stored.why.empty()) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            storeNote_ = "rendering the ground truth: " + stored.why;
+        }
+    }
     ctx.setStatus("rendering");
     renderer->run([&](int sppDone) {
         publish();
@@ -45,13 +71,28 @@ void RenderSession::run(JobContext& ctx) {
         std::snprintf(status, sizeof status, "%d/%d spp", sppDone, options_.spp);
         ctx.setStatus(status);
     });
+    if (store_ && !renderer->cancelled()) {
+        ctx.setStatus("storing");
+        std::string note;
+        try {
+            storeGroundTruth(store_->dir, store_->key, renderer_->snapshot());
+            note = "ground truth stored in " + store_->dir + " (shown at once when the project is opened again)";
+        } catch (const std::exception& e) {
+            note = std::string("the ground truth could not be stored: ") + e.what();
+        }
+        std::lock_guard<std::mutex> lock(mutex_);
+        storeNote_ = note;
+    }
     ctx.setStatus(renderer->cancelled() ? "cancelled" : "done");
 }
 
 void RenderSession::publish() {
     // Called on the worker between passes, when the renderer's own lock is free: the snapshot is a
     // consistent copy, and the UI thread never waits for a pass to finish.
-    auto snap = std::make_shared<const RenderSnapshot>(renderer_->snapshot());
+    publish(std::make_shared<const RenderSnapshot>(renderer_->snapshot()));
+}
+
+void RenderSession::publish(std::shared_ptr<const RenderSnapshot> snap) {
     // The noise is a pass over every pixel: done here, on the worker, once per pass. Below 2 spp the
     // renderer's variance is 0 (not estimable), which must not read as "no noise".
     const double noise = footprint_ && snap->varianceKnown() ? relativeNoiseFloor(snap->global, snap->variance, footprint_->kept)

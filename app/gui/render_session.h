@@ -9,13 +9,19 @@
 /// this ground truth is measured over, as `rrf evaluate` does. With each snapshot it publishes the
 /// image's relative noise over that mask (relativeNoiseFloor of the global term,
 /// core/eval/reference_noise.h), so the UI thread does no per-pixel work for the render status.
+///
+/// With a store (the project's ground_truth directory, core/eval/stored_ground_truth.h) the worker
+/// first looks there: a stored render of the same key and spp is published as the one snapshot
+/// instead of rendering (the same pixels, by determinism), and a render that finishes is stored.
 
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "app/gui/job_runner.h"
+#include "core/eval/reference_store.h"
 #include "core/predict/footprint_mask.h"
 #include "core/scene/accel.h"
 #include "core/render/render_outputs.h"
@@ -26,7 +32,12 @@ namespace rrf {
 
 class RenderSession {
 public:
-    RenderSession(const Scene& scene, const RenderOptions& options);
+    /// Where a finished render is kept and looked for, and under which key.
+    struct Store {
+        std::string dir;
+        ReferenceKey key;
+    };
+    RenderSession(const Scene& scene, const RenderOptions& options, std::optional<Store> store = std::nullopt);
 
     /// The job body: builds the BVH and renders until done or cancelled.
     void run(JobContext& context);
@@ -38,6 +49,10 @@ public:
     std::shared_ptr<const FootprintMask> footprint() const;
     RenderStats stats() const;
     const RenderOptions& options() const { return options_; }
+    /// After the job: whether the images came from the store, and a line for the log about the
+    /// store (loaded from, stored in, why a stored one was not used, a failed write); empty if none.
+    bool loadedFromStore() const { return loaded_.load(); }
+    std::string storeNote() const;
     const Scene& scene() const { return scene_; }
 
     /// Writes the images and render.json of the latest snapshot into `dir` as one set
@@ -48,6 +63,7 @@ public:
 
 private:
     void publish();
+    void publish(std::shared_ptr<const RenderSnapshot> snapshot);
 
     const Scene scene_;
     const RenderOptions options_;
@@ -59,7 +75,13 @@ private:
     double latestNoise_ = 0;  ///< relative noise of latest_ (guarded by mutex_)
     std::shared_ptr<const FootprintMask> footprint_;
     std::atomic<uint64_t> revision_{0};
+    const std::optional<Store> store_;
+    std::atomic<bool> loaded_{false};
+    std::string storeNote_;  ///< guarded by mutex_
 };
+
+/// The ground truth's label in the views when it was loaded from the store.
+constexpr const char* kStoredGroundTruthLabel = "ground truth (stored)";
 
 /// Passes per progressive render in the workbench: one sample per pass up to 64 spp gives a visible
 /// refresh every pass; beyond that, passes of spp/64 keep snapshot copies a small part of the work.

@@ -62,7 +62,8 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
                        "train_runs", "sweeps", "unsaved_prompt", "dirty", "stopped_runs", "prediction_partial",
                        "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped", "pipeline_done",
                        "pipeline_stopped", "prediction_label", "error_waiting", "flip_evaluated",
-                       "region_pixels_min", "light_grid_points", "spread_shown", "spread_evaluated"}},
+                       "region_pixels_min", "light_grid_points", "spread_shown", "spread_evaluated",
+                       "ground_truth_stored"}},
         };
     }();
     return keys;
@@ -384,6 +385,8 @@ bool Script::execute(Workbench& wb, const json& s) {
         if (const auto v = r.find("prediction_label"))
             require(st.prediction.label.find(v->string()) != std::string::npos,
                     "the prediction's label is \"" + st.prediction.label + "\"");
+        // ground_truth_stored: the ground truth shown was loaded from the project's ground_truth/.
+        flag("ground_truth_stored", st.groundTruth.label == kStoredGroundTruthLabel, "stored ground truth");
         // error_waiting: the Views withhold their error figures until a ground truth of this light.
         flag("error_waiting", !st.view.errorStats.waiting.empty(), "error figures' waiting state");
         count("sweeps", st.cost.sweeps.size(), "sweeps");

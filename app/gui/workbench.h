@@ -245,7 +245,7 @@ private:
     static constexpr int kGlslFrames = 0, kCpuFrames = 1;
     std::vector<double> frameSeconds_[2];
     size_t framesSinceRecorded_[2] = {0, 0};
-    void noteFrameSeconds(const char* key, double seconds);
+    void noteFrameSeconds(const char* key, double seconds, int width, int height);
     bool predictPending_ = false;  ///< the light moved while a CPU prediction ran
     /// The last CPU frame of the loaded models (app/gui/cpu_frame.h): an evaluation of the same
     /// models, settings and ground truth reuses it; a manual Train's evaluation waits for it.

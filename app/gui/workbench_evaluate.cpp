@@ -22,6 +22,7 @@ using nlohmann::json;
 struct EvaluationOutcome {
     panels::EvaluationInfo info;
     ErrorStats global;         ///< the global term over all object pixels
+    int width = 0, height = 0;  ///< the reference's size
     std::string modelsDir;     ///< the models that were judged
 };
 
@@ -88,6 +89,8 @@ bool Workbench::startEvaluate() {
         out.info.referenceSpp = reference->spp;
         out.info.seconds = clock.seconds();
         out.global = e.term(Term::Global).overall;
+        out.width = reference->images[int(Term::Global)].width;
+        out.height = reference->images[int(Term::Global)].height;
         out.modelsDir = modelsDir;
         ctx.setProgress(1.0);
         return out;
@@ -137,6 +140,8 @@ void Workbench::pollEvaluate() {
         record.global = g;
         record.referenceSpp = spp;
         record.lights = {light};
+        record.width = out.width;
+        record.height = out.height;
         record.seconds = seconds;
         if (recordEvaluation(state_.project.runs, projectDir(), out.modelsDir, record) > 0) state_.markDirty();
         char line[320];

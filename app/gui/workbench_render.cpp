@@ -2,10 +2,14 @@
 #include "app/gui/workbench.h"
 
 #include <cstdio>
+#include <filesystem>
 
+#include "core/eval/stored_ground_truth.h"
 #include "core/scene/camera_rays.h"
 
 namespace rrf {
+
+namespace fs = std::filesystem;
 
 bool Workbench::renderRunning() const { return renderJob_.running(); }
 
@@ -20,7 +24,14 @@ bool Workbench::startRender() {
         return false;
     }
     const RenderOptions options = renderOptionsFor(state_.project.scene, state_.project.render, kGuiRenderPasses);
-    auto session = std::make_shared<RenderSession>(state_.project.scene, options);
+    // A saved project keeps its last finished ground truth beside it (restored on reopen); an
+    // untitled one has no place for it yet.
+    std::optional<RenderSession::Store> store;
+    if (!untitled_ && !state_.project.path.empty())
+        store = RenderSession::Store{(fs::path(projectDir()) / kGroundTruthDir).string(),
+                                     ReferenceKey::of(state_.project.scene, state_.project.scene.lightPosition(),
+                                                      options.width, options.height, state_.project.render)};
+    auto session = std::make_shared<RenderSession>(state_.project.scene, options, std::move(store));
     char name[64];
     std::snprintf(name, sizeof name, "ground truth %dx%d, %d spp", options.width, options.height, options.spp);
     const bool started = renderJob_.start(name, [session](JobContext& ctx) { session->run(ctx); });
@@ -53,7 +64,7 @@ void Workbench::pollRender() {
             // Below 2 spp the renderer's variance is 0, not known: left empty ("unknown", never 0).
             for (Term t : kTerms) gt.variances[int(t)] = snap->varianceKnown() ? snap->varianceOf(t) : Image();
             gt.footprint = render_->footprint();
-            gt.label = "ground truth";
+            gt.label = render_->loadedFromStore() ? kStoredGroundTruthLabel : "ground truth";
             gt.stamp = renderStamp_;
             gt.touch();
             state_.render.spp = snap->sppCompleted;
@@ -66,7 +77,13 @@ void Workbench::pollRender() {
     }
     const bool wasRunning = state_.render.running;
     state_.render.running = renderRunning();
-    if (wasRunning && !state_.render.running) state_.render.cancelled = state_.render.spp < state_.render.targetSpp;
+    if (wasRunning && !state_.render.running) {
+        state_.render.cancelled = state_.render.spp < state_.render.targetSpp;
+        if (render_) {
+            const std::string note = render_->storeNote();
+            if (!note.empty()) state_.log.info(note);
+        }
+    }
     if (restartRender_ && !renderRunning()) {
         restartRender_ = false;
         startRender();

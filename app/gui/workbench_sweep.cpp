@@ -39,8 +39,9 @@ namespace {
 constexpr int kGlslTimedFrames = 5;
 
 /// Seconds of one GLSL prediction frame of `models` at width × height with the light at `light`:
-/// render plus read-back of the global term, as the live view needs it. Needs the current GL context.
-/// Direct light as `prediction` says, like the CPU frame time of the same row.
+/// the GPU time of its passes (GL timer queries, as the workbench records a run's GLSL frame), the
+/// mean over kGlslTimedFrames. Needs the current GL context. Direct light as `prediction` says, like
+/// the CPU frame time of the same row.
 double glslFrameSeconds(const Scene& scene, const ModelSet& models, const PredictionSettings& prediction,
                         const Vec3& light, int width, int height) {
     GlslPredictor gp(scene, models);
@@ -52,12 +53,12 @@ double glslFrameSeconds(const Scene& scene, const ModelSet& models, const Predic
     gp.setLightPosition(light);
     gp.render();
     gp.read(Term::Global);
-    const Stopwatch clock;
+    double seconds = 0.0;
     for (int i = 0; i < kGlslTimedFrames; ++i) {
         gp.render();
-        gp.read(Term::Global);
+        seconds += gp.gpuSeconds();
     }
-    return clock.seconds() / kGlslTimedFrames;
+    return seconds / kGlslTimedFrames;
 }
 
 panels::CostPoint costPoint(const SweepRow& row) {
@@ -93,6 +94,7 @@ std::vector<panels::CostSeries> costSeries(const SweepResult& r, const std::stri
     pt.name = r.what == "spp" ? name : "path tracer (" + name + ")";
     pt.noiseFloor = r.relativeNoiseFloor;
     pt.reference = reference;
+    pt.resolution = std::to_string(r.width) + "x" + std::to_string(r.height);
     for (const SweepRow& row : pathTracerRows(r)) pt.points.push_back(costPoint(row));
     if (r.what == "spp") return {pt};
     panels::CostSeries models;
@@ -101,6 +103,7 @@ std::vector<panels::CostSeries> costSeries(const SweepResult& r, const std::stri
     models.pathTracer = pt.name;
     models.noiseFloor = r.relativeNoiseFloor;
     models.reference = reference;
+    models.resolution = pt.resolution;
     for (const SweepRow& row : r.rows) models.points.push_back(costPoint(row));
     return {pt, models};
 }

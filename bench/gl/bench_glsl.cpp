@@ -15,7 +15,8 @@
 // relative difference between the GLSL prediction and NetworkModel::predict on the G-buffer's inputs.
 //
 // Every frame moves the light (as dragging it in the GUI does), renders, and waits with glFinish; the
-// time is the mean over the frames after two warm-up frames. "read back" adds glReadPixels of the
+// time is the mean over the frames after two warm-up frames; "GPU ms" is the same frames' GL timer
+// queries (the passes alone, the figure the workbench records per run). "read back" adds glReadPixels of the
 // global term into an rrf::Image, which the GUI needs if it tone-maps on the CPU.
 // The last rows add exact direct light in the shader (prediction "direct": "exact",
 // shaders/direct_light.glsl) at 16 and 64 light samples per pixel, the project default's cost.
@@ -76,6 +77,7 @@ ModelSet untrainedSet(const Scene& scene, const std::vector<int>& hidden, const 
 
 struct Timing {
     double renderMs = 0, readMs = 0;
+    double gpuMs = 0;  ///< the passes' GPU time (timer queries), what the workbench records per run
 };
 
 Timing timeFrames(GlslPredictor& gp, const Scene& scene, int frames) {
@@ -91,13 +93,15 @@ Timing timeFrames(GlslPredictor& gp, const Scene& scene, int frames) {
         glFinish();
     }
     Timing t;
-    double t0 = now();
+    double t0 = now(), gpu = 0;
     for (int f = 0; f < frames; ++f) {
         gp.setLightPosition(lightAt(f));
         gp.render();
         glFinish();
+        gpu += gp.gpuSeconds();
     }
     t.renderMs = (now() - t0) * 1e3 / frames;
+    t.gpuMs = gpu * 1e3 / frames;
     t0 = now();
     for (int f = 0; f < frames; ++f) {
         gp.setLightPosition(lightAt(f));
@@ -199,7 +203,7 @@ int main(int argc, char** argv) {
         scene.camera.width = scene.camera.height = size;
         std::printf("bench_glsl: %s | %s\n%s, %dx%d, mean of %d frames (light moved every frame)\n\n",
                     ctx.renderer().c_str(), ctx.version().c_str(), project.c_str(), size, size, frames);
-        std::printf("%-44s %8s %12s %16s%s\n", "networks", "weights", "ms/frame", "+read back ms", models.empty() ? "" : "  max rel GLSL-CPU (CPU float-double)");
+        std::printf("%-44s %8s %12s %10s %16s%s\n", "networks", "weights", "ms/frame", "GPU ms", "+read back ms", models.empty() ? "" : "  max rel GLSL-CPU (CPU float-double)");
         auto row = [&](const std::string& name, const ModelSet& set, int directSamples = 0) {
             GlslPredictor gp(scene, set);
             if (directSamples > 0) {
@@ -213,7 +217,7 @@ int main(int argc, char** argv) {
                     for (const NetworkModel& leaf : kv.second.leaves)
                         weights += size_t(leaf.arch.numParams()) + size_t(leaf.encodingParams.size());
             const Timing t = timeFrames(gp, scene, frames);
-            std::printf("%-44s %8zu %12.2f %16.2f", name.c_str(), weights, t.renderMs, t.readMs);
+            std::printf("%-44s %8zu %12.2f %10.2f %16.2f", name.c_str(), weights, t.renderMs, t.gpuMs, t.readMs);
             if (!models.empty() && directSamples == 0) {
                 const auto [vsCpu, floor] = maxRelativeVsCpu(gp, scene, set);
                 std::printf("  %.3g (%.3g)", vsCpu, floor);

@@ -159,6 +159,12 @@ int recordEvaluation(std::vector<Run>& runs, const std::string& projectDir, cons
         r.metrics["rmse"] = e.global.rmse;
         r.metrics["mae"] = e.global.mae;
         r.metrics["evaluated_spp"] = e.referenceSpp;
+        r.metrics.erase("evaluated_width");
+        r.metrics.erase("evaluated_height");
+        if (e.width > 0 && e.height > 0) {
+            r.metrics["evaluated_width"] = e.width;
+            r.metrics["evaluated_height"] = e.height;
+        }
         // The noise floor makes the error readable (an error at the floor is as good as the
         // reference allows); without the reference's variance it is unknown and left out.
         r.metrics.erase("relative_rmse_noise_floor");
@@ -186,12 +192,14 @@ int recordEvaluation(std::vector<Run>& runs, const std::string& projectDir, cons
 }
 
 int recordFrameSeconds(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
-                       const std::string& key, double seconds) {
+                       const std::string& key, double seconds, int width, int height) {
     int changed = 0;
     const fs::path wanted = normal(modelsDir);
     for (Run& r : runs)
         if (trainedInto(r, projectDir, wanted)) {
             r.metrics[key] = seconds;
+            r.metrics["frame_width"] = width;
+            r.metrics["frame_height"] = height;
             ++changed;
         }
     return changed;

@@ -92,21 +92,24 @@ struct EvaluationRecord {
     ErrorStats global;                ///< over all object pixels; the mean over lights when several
     int referenceSpp = 0;
     std::vector<Vec3> lights;         ///< light positions evaluated at
+    int width = 0, height = 0;        ///< the reference's image size (0: unknown)
     double seconds = 0;
     std::vector<std::string> artifacts;  ///< report files written, absolute or cwd-relative
 };
 
-/// Adds an evaluation's metrics {relative_rmse, rmse, mae, evaluated_spp, evaluated_light (one light)
-/// or evaluated_lights (their count), relative_rmse_noise_floor and relative_rmse_corrected when the
+/// Adds an evaluation's metrics {relative_rmse, rmse, mae, evaluated_spp, evaluated_width and
+/// evaluated_height (when known), evaluated_light (one light) or evaluated_lights (their count),
+/// relative_rmse_noise_floor and relative_rmse_corrected when the
 /// reference's noise is known (removed otherwise)}, timings {evaluate} and artifacts to every "train" run whose
 /// models are in `modelsDir`, so the Cost panel can place it. Returns how many runs it changed.
 int recordEvaluation(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
                      const EvaluationRecord& record);
 
 /// Sets metrics[key] (e.g. "glsl_frame_seconds", "frame_seconds": one frame of prediction, the
-/// names sweeps use) of every "train" run whose models are in `modelsDir`. Returns how many changed.
+/// names sweeps use) and the frame's size, frame_width and frame_height, of every "train" run whose
+/// models are in `modelsDir`. Returns how many changed.
 int recordFrameSeconds(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
-                       const std::string& key, double seconds);
+                       const std::string& key, double seconds, int width, int height);
 
 /// Appends `run` to the runs of the project file `projectFile` and saves it atomically (saveProject).
 /// The file is read again first, so that runs another program (the workbench) saved while the work

@@ -40,6 +40,10 @@ RunSummary summarizeRun(const Run& run) {
         } else {
             r.frameSeconds = run.metric("frame_seconds");
         }
+        r.frameWidth = int(run.metric("frame_width").value_or(0));
+        r.frameHeight = int(run.metric("frame_height").value_or(0));
+        r.evaluatedWidth = int(run.metric("evaluated_width").value_or(0));
+        r.evaluatedHeight = int(run.metric("evaluated_height").value_or(0));
     } else {
         r.spp = run.metric("spp");
         r.seconds = run.timing("render");

@@ -29,6 +29,8 @@ struct RunSummary {
     std::optional<double> noiseFloor;
     std::optional<double> frameSeconds;  ///< one frame of prediction: GLSL when measured, else CPU
     bool frameGlsl = false;           ///< frameSeconds is the GLSL figure
+    int frameWidth = 0, frameHeight = 0;          ///< the frame's size (0: not recorded)
+    int evaluatedWidth = 0, evaluatedHeight = 0;  ///< the size `error` was measured at (0: not recorded)
 };
 
 /// The table row of `run`.

@@ -3,6 +3,7 @@
 // (issue 6: max relative difference ≤ 1e-4 on every covered pixel of the Cornell box).
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -211,6 +212,32 @@ TEST(GlslPredictor, ResizeWithSetCamera) {
     expectEquivalent(scene, set, gp, 0.5);  // the wide frame shows background beside the box
     cam.width = 0;
     EXPECT_THROW(gp.setCamera(cam), std::invalid_argument);
+}
+
+// The frame time the workbench records per run is the passes' GPU time (timer queries): unknown
+// before a frame, within the wall time of render + read-back, and growing with the pixels shaded.
+TEST(GlslPredictor, GpuSecondsAreTheTimerQueriesOfTheLastFrame) {
+    RRF_REQUIRE_GL();
+    const Scene scene = test::cornellBox();
+    GlslPredictor gp(scene, test::mixedModelSet(scene));
+    EXPECT_TRUE(std::isnan(gp.gpuSeconds())) << "no frame yet";
+    auto frameAt = [&](int side) {
+        Camera cam = scene.camera;
+        cam.width = cam.height = side;
+        gp.setCamera(cam);
+        gp.render();  // warm-up: the driver compiles the programs at their first draw
+        (void)gp.read(Term::Global);
+        const auto start = std::chrono::steady_clock::now();
+        gp.render();
+        (void)gp.read(Term::Global);
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double gpu = gp.gpuSeconds();
+        EXPECT_GT(gpu, 0.0) << side << "x" << side;
+        EXPECT_LE(gpu, wall) << "the passes ran inside render() + read()";
+        return gpu;
+    };
+    const double small = frameAt(16), large = frameAt(512);
+    EXPECT_GT(large, small) << "1024 times the pixels take longer on any device";
 }
 
 TEST(GlslPredictor, RestoresCallerGlState) {

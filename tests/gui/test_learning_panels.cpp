@@ -325,25 +325,50 @@ TEST_F(LearningPanelTest, ObjectsTableSortsAndExports) {
 }
 
 TEST_F(LearningPanelTest, CostPanelPlotsEvaluatedTrainingRuns) {
-    std::vector<rrf::Run> runs(3);
+    std::vector<rrf::Run> runs(4);
     runs[0].kind = "render";
     runs[1].kind = "train";
     runs[1].name = "evaluated";
-    runs[1].metrics = {{"relative_rmse", 0.12}};
+    runs[1].metrics = {{"relative_rmse", 0.12}, {"evaluated_width", 256}, {"evaluated_height", 256}};
     runs[1].timings = {{"train", 30.0}, {"generate", 10.0}};
     runs[2].kind = "train";  // never evaluated: no point
     runs[2].timings = {{"train", 5.0}};
+    runs[3].kind = "train";  // evaluated against a reference of known noise, with its frame times
+    runs[3].name = "with noise";
+    runs[3].metrics = {{"relative_rmse", 0.10},       {"relative_rmse_corrected", 0.08}, {"frame_seconds", 0.5},
+                       {"glsl_frame_seconds", 0.02}, {"evaluated_width", 128},          {"evaluated_height", 128}};
+    runs[3].timings = {{"train", 20.0}};
     const CostSeries series = runsCostSeries(runs);
-    ASSERT_EQ(series.points.size(), 1u);
+    ASSERT_EQ(series.points.size(), 2u);
     EXPECT_DOUBLE_EQ(series.points[0].seconds, 40.0) << "the cost of a run includes its data generation";
-    EXPECT_DOUBLE_EQ(series.points[0].error, 0.12);
+    EXPECT_DOUBLE_EQ(series.points[0].error, 0.12) << "raw where the reference's noise was unknown";
+    EXPECT_FALSE(series.points[0].corrected);
+    EXPECT_TRUE(std::isnan(series.points[0].glslFrameSeconds));
+    // The sweeps' metric where it is known: the noise-corrected error, as the axis says.
+    EXPECT_DOUBLE_EQ(series.points[1].error, 0.08);
+    EXPECT_TRUE(series.points[1].corrected);
+    EXPECT_DOUBLE_EQ(series.points[1].rawError, 0.10);
+    EXPECT_DOUBLE_EQ(series.points[1].frameSeconds, 0.5);
+    EXPECT_DOUBLE_EQ(series.points[1].glslFrameSeconds, 0.02);
+    EXPECT_EQ(series.points[1].resolution, "128x128");
+    EXPECT_EQ(series.resolution, "") << "runs measured at two sizes: the legend says the sizes differ";
 
     WorkbenchState s;
     loadCornell(s);
     s.project.runs = runs;
-    s.cost.sweeps.push_back({"sweep spp", {{0.1, 0.5, "1"}, {0.4, 0.25, "4"}, {1.6, 0.125, "16"}}});
+    s.costView.showRuns = true;
+    CostSeries sweep{"sweep spp", {{0.1, 0.5, "1"}, {0.4, 0.25, "4"}, {1.6, 0.125, "16"}}};
+    sweep.kind = CostKind::PathTracer;
+    sweep.resolution = "64x64";
+    s.cost.sweeps.push_back(sweep);
     for (int i = 0; i < 3; ++i) frame([&] { drawCostPanel(s); });
     EXPECT_TRUE(s.requests.empty());
+    // Every marker the plot drew is in the key, drawn as the key draws it.
+    const std::string& drawn = s.costView.shapesDrawn;
+    for (const char* m : {"oF", "dF", "sh", "th"}) EXPECT_NE(drawn.find(m), std::string::npos) << m << " in " << drawn;
+    for (size_t i = 0; i + 1 < drawn.size(); i += 2)
+        EXPECT_NE(s.costView.keyShapes.find(drawn.substr(i, 2)), std::string::npos)
+            << "marker " << drawn.substr(i, 2) << " is drawn but not in the key " << s.costView.keyShapes;
 }
 
 TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {

@@ -43,9 +43,11 @@ TEST(RunsTable, ATrainRunRowCarriesItsSettingsCostsAndErrors) {
     e.global.relativeRmseCorrected = 0.049;
     e.referenceSpp = 256;
     e.lights = {Vec3(0.f)};
+    e.width = 128;
+    e.height = 96;
     std::vector<rrf::Run> runs = {run};
     ASSERT_EQ(recordEvaluation(runs, "/p", "/p/runs/t/models", e), 1);
-    ASSERT_EQ(recordFrameSeconds(runs, "/p", "/p/runs/t/models", "glsl_frame_seconds", 0.004), 1);
+    ASSERT_EQ(recordFrameSeconds(runs, "/p", "/p/runs/t/models", "glsl_frame_seconds", 0.004, 320, 240), 1);
 
     const RunSummary s = summarizeRun(runs[0]);
     EXPECT_EQ(s.trainer, "Adam");
@@ -58,6 +60,10 @@ TEST(RunsTable, ATrainRunRowCarriesItsSettingsCostsAndErrors) {
     EXPECT_EQ(*s.noiseFloor, 0.01);
     EXPECT_EQ(*s.frameSeconds, 0.004);
     EXPECT_TRUE(s.frameGlsl);
+    EXPECT_EQ(s.frameWidth, 320) << "the frame's size is recorded beside its time";
+    EXPECT_EQ(s.frameHeight, 240);
+    EXPECT_EQ(s.evaluatedWidth, 128) << "and the size the error was measured at beside the error";
+    EXPECT_EQ(s.evaluatedHeight, 96);
     EXPECT_EQ(s.status, "7 networks");
 }
 
