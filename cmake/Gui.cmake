@@ -60,7 +60,8 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/frame_stats.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/prediction_draft.cpp
-    ${CMAKE_SOURCE_DIR}/app/gui/user_workspace.cpp)
+    ${CMAKE_SOURCE_DIR}/app/gui/user_workspace.cpp
+    ${CMAKE_SOURCE_DIR}/app/gui/shortcuts.cpp)
   target_link_libraries(rrf_gui_tests PRIVATE rrf_panels GTest::gtest GTest::gtest_main rrf_warnings)
   target_compile_definitions(rrf_gui_tests PRIVATE RRF_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
   include(GoogleTest)

@@ -149,7 +149,7 @@ bool drawPartition(PartitionSettings& p, long long paramsPerNetwork) {
 }
 
 /// The MLP of one network under `s`: its first layer reads the encoding's features.
-MlpArch networkArch(const WorkbenchState& state, const NetworkSettings& s, const InputEncoding& encoding) {
+MlpArch networkArch(const WorkbenchState& /*state*/, const NetworkSettings& s, const InputEncoding& encoding) {
     MlpArch arch;
     arch.inputs = encoding.outputs();  // the identity: the record inputs and the derived ones
     arch.hidden = s.options.hidden;

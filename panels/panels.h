@@ -14,6 +14,17 @@
 
 namespace rrf::panels {
 
+/// A keyboard shortcut as the Help window lists it; the application's key table
+/// (app/gui/shortcuts.h) is its one source.
+struct ShortcutInfo {
+    std::string keys;  ///< e.g. "Ctrl+O"
+    std::string what;  ///< what it does
+};
+/// The Help window (F1): `shortcuts`, the mouse gestures of the views, plots and panes, and a short
+/// tour of where each stage is driven from. Drawn while *open; its close button or Escape clears
+/// it. `linesShown` (tests) receives one line per entry shown.
+void drawHelpWindow(const std::vector<ShortcutInfo>& shortcuts, bool* open, std::vector<std::string>* linesShown = nullptr);
+
 /// Project: name, file, render settings, recent projects and the runs table.
 void drawProjectPanel(WorkbenchState& state);
 /// Scene: objects, materials (editable), lights, the movable light's position, derived effects.

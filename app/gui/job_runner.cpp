@@ -198,6 +198,11 @@ bool JobRunner::idle() const {
     return std::all_of(entries_.begin(), entries_.end(), [](const auto& e) { return e->done.load(); });
 }
 
+bool JobRunner::drained() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return entries_.empty();
+}
+
 std::vector<JobInfo> JobRunner::takeFinished() {
     std::vector<std::unique_ptr<Entry>> finished;
     {

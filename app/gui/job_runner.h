@@ -96,6 +96,10 @@ public:
     /// The context of job `id` (null for an unknown id); it outlives the job for whoever holds it.
     std::shared_ptr<JobContext> context(int id) const;
     bool idle() const;
+    /// True when no job runs and every ended job has been taken (takeFinished), so its result has
+    /// been handed to the UI in the same frame: what a script waits for between steps (a job that
+    /// ends after the frame's polls is idle() but its result is still on its way).
+    bool drained() const;
     /// Jobs that finished since the last call (each reported once), joined.
     std::vector<JobInfo> takeFinished();
     /// Blocks until every job has finished (used on exit after cancelAll()).

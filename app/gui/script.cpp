@@ -52,6 +52,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
             {"export_images", {"dir"}},
             {"screenshot", {"path"}},
             {"frames", {"count"}},
+            {"shortcut", {"keys"}},
             {"tab", {"name"}},
             {"move_tab", {"tab", "to", "side"}},
             {"reset_layout", {}},
@@ -63,7 +64,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
                        "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped", "pipeline_done",
                        "pipeline_stopped", "prediction_label", "error_waiting", "flip_evaluated",
                        "region_pixels_min", "light_grid_points", "spread_shown", "spread_evaluated",
-                       "ground_truth_stored"}},
+                       "ground_truth_stored", "help_open"}},
         };
     }();
     return keys;
@@ -162,8 +163,8 @@ bool Script::execute(Workbench& wb, const json& s) {
                           : on == "train_epoch"   ? wb.trainRunning() && st.training.epoch < 1
                           : on == "pipeline"      ? wb.pipelineRunning()
                           : on == "train_running" ? !wb.trainRunning()
-                          : on == "full_frame"    ? wb.draftShown() || !wb.jobs().idle() || wb.evaluationPending()
-                                                  : !wb.jobs().idle() || wb.evaluationPending();
+                          : on == "full_frame"    ? wb.draftShown() || !wb.jobs().drained() || wb.evaluationPending()
+                                                  : !wb.jobs().drained() || wb.evaluationPending();
         if (busy) {
             const double limit = r.numberOr("timeout_s", 300, 0, 1e9);
             const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart_).count();
@@ -353,6 +354,13 @@ bool Script::execute(Workbench& wb, const json& s) {
         require(wb.exportImages(r.at("dir").string()), "could not export images (see the log)");
     } else if (what == "screenshot") {
         st.request(panels::Command::ExportScreenshot, r.at("path").string());
+    } else if (what == "shortcut") {
+        // The action of a shortcut of the table (app/gui/shortcuts.h) by its label, as its key does.
+        const std::string keys = r.at("keys").string();
+        bool found = false;
+        for (const Shortcut& s : shortcuts())
+            if (keys == s.keys) wb.performShortcut(s.action), found = true;
+        if (!found) r.at("keys").fail("no shortcut is labelled '" + keys + "'");
     } else if (what == "frames") {
         if (!waiting_) {
             waiting_ = true;
@@ -386,6 +394,7 @@ bool Script::execute(Workbench& wb, const json& s) {
             require(st.prediction.label.find(v->string()) != std::string::npos,
                     "the prediction's label is \"" + st.prediction.label + "\"");
         // ground_truth_stored: the ground truth shown was loaded from the project's ground_truth/.
+        flag("help_open", wb.helpOpen(), "Help window");
         flag("ground_truth_stored", st.groundTruth.label == kStoredGroundTruthLabel, "stored ground truth");
         // error_waiting: the Views withhold their error figures until a ground truth of this light.
         flag("error_waiting", !st.view.errorStats.waiting.empty(), "error figures' waiting state");

@@ -177,8 +177,9 @@ void Workbench::drawMenuBar() {
     if (!ImGui::BeginMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("New from scene...")) state_.request(Command::NewProject);
-        if (ImGui::MenuItem("Open...", "Ctrl+O")) state_.request(Command::OpenProject);
-        if (ImGui::MenuItem("Save", "Ctrl+S", false, state_.hasProject)) state_.request(Command::SaveProject);
+        if (ImGui::MenuItem("Open...", shortcutKeys(ShortcutAction::Open))) state_.request(Command::OpenProject);
+        if (ImGui::MenuItem("Save", shortcutKeys(ShortcutAction::Save), false, state_.hasProject))
+            state_.request(Command::SaveProject);
         if (ImGui::MenuItem("Save As...", nullptr, false, state_.hasProject)) state_.request(Command::SaveProjectAs);
         if (ImGui::BeginMenu("Recent", !state_.recent.empty())) {
             for (const std::string& p : state_.recent)
@@ -191,7 +192,7 @@ void Workbench::drawMenuBar() {
         if (ImGui::MenuItem("Export error table (CSV)...", nullptr, false, state_.evaluation.valid))
             openDialog(DialogPurpose::ExportObjectsCsv);
         ImGui::Separator();
-        if (ImGui::MenuItem("Quit", "Ctrl+Q")) state_.request(Command::Quit);
+        if (ImGui::MenuItem("Quit", shortcutKeys(ShortcutAction::Quit))) state_.request(Command::Quit);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("View")) {
@@ -200,25 +201,35 @@ void Workbench::drawMenuBar() {
             state_.view.zoom = 1.f;
             state_.view.panX = state_.view.panY = 0.f;
         }
-        ImGui::MenuItem("Frame time overlay", "F3", &frameOverlay_);
+        ImGui::MenuItem("Frame time overlay", shortcutKeys(ShortcutAction::FrameOverlay), &frameOverlay_);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {
+        ImGui::MenuItem("Shortcuts and help", shortcutKeys(ShortcutAction::Help), &helpOpen_);
         if (ImGui::MenuItem("About")) aboutModal_ = true;
         ImGui::EndMenu();
     }
     // The one-click pipeline and its one progress display, always in sight.
     ImGui::Separator();
     panels::drawPipelineBar(state_);
-    // Keyboard shortcuts advertised in the menu (1.86 indexes keys by the GLFW backend's key codes).
+    // The keyboard shortcuts, from the one table the menus and the Help window show (shortcuts.h).
     const ImGuiIO& io = ImGui::GetIO();
-    if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F3, false)) frameOverlay_ = !frameOverlay_;
-    if (io.KeyCtrl && !io.WantTextInput) {
-        if (ImGui::IsKeyPressed(GLFW_KEY_O)) state_.request(Command::OpenProject);
-        if (ImGui::IsKeyPressed(GLFW_KEY_S) && state_.hasProject) state_.request(Command::SaveProject);
-        if (ImGui::IsKeyPressed(GLFW_KEY_Q)) state_.request(Command::Quit);
-    }
+    if (!io.WantTextInput)
+        for (const Shortcut& s : shortcuts())
+            if (s.ctrl == io.KeyCtrl && ImGui::IsKeyPressed(s.key, false)) performShortcut(s.action);
     ImGui::EndMenuBar();
+}
+
+void Workbench::performShortcut(ShortcutAction action) {
+    switch (action) {
+        case ShortcutAction::Open: state_.request(Command::OpenProject); break;
+        case ShortcutAction::Save:
+            if (state_.hasProject) state_.request(Command::SaveProject);
+            break;
+        case ShortcutAction::Quit: state_.request(Command::Quit); break;
+        case ShortcutAction::FrameOverlay: frameOverlay_ = !frameOverlay_; break;
+        case ShortcutAction::Help: helpOpen_ = !helpOpen_; break;
+    }
 }
 
 void Workbench::drawStatusBar() {
@@ -273,6 +284,7 @@ void Workbench::drawFrameOverlay() {
 }
 
 void Workbench::drawModals() {
+    panels::drawHelpWindow(shortcutInfos(), &helpOpen_);
     if (aboutModal_) {
         ImGui::OpenPopup("About RRF Workbench");
         aboutModal_ = false;

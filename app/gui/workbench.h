@@ -15,6 +15,7 @@
 #include "app/gui/live_prediction.h"
 #include "app/gui/prediction_draft.h"
 #include "app/gui/render_session.h"
+#include "app/gui/shortcuts.h"
 #include "app/gui/user_config.h"
 #include "panels/file_dialog.h"
 #include "panels/view_model.h"
@@ -110,6 +111,9 @@ public:
     /// A manual training finished and its models wait to be evaluated (once the ground truth of the
     /// current light is rendered), so every run gets its error without pressing Evaluate.
     bool evaluationPending() const { return evaluateAfterTrain_; }
+    /// What the shortcut `action` does (its key, its menu item).
+    void performShortcut(ShortcutAction action);
+    bool helpOpen() const { return helpOpen_; }
     /// Whether the live prediction on screen is a draft (the light moved less than kDraftRestSeconds ago).
     bool draftShown() const { return draftShown_; }
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
@@ -256,6 +260,7 @@ private:
     Vec3 predictedLight_{};
     bool predictedOnce_ = false;
     bool draftShown_ = false;
+    bool helpOpen_ = false;  ///< the Help window (F1)
     std::chrono::steady_clock::time_point draftTime_{};
     std::vector<double> draftSeconds_;
     int draftDivisor_ = kMaxDraftDivisor;  ///< resolution divisor of the next draft (adapts to its time)

@@ -342,7 +342,9 @@ TEST(HonestFigures, ObjectsTableCarriesTheFlipOfEachObject) {
     const std::string csv = objectRowsCsv(info.rows[int(Term::Global)], "global");
     char first[40];
     std::snprintf(first, sizeof first, ",%.9g\n", info.rows[int(Term::Global)].front().flip);
-    if (!std::isnan(info.rows[int(Term::Global)].front().flip)) EXPECT_NE(csv.find(first), std::string::npos) << csv;
+    if (!std::isnan(info.rows[int(Term::Global)].front().flip)) {
+        EXPECT_NE(csv.find(first), std::string::npos) << csv;
+    }
 }
 
 TEST_F(CostPanelTest, CostPanelDrawsTwoSeriesAndTheBreakEven) {

@@ -2,6 +2,10 @@
 // nothing, and simulated input changes exactly the state it should.
 #include <cmath>
 
+#include <algorithm>
+#include <set>
+
+#include "app/gui/shortcuts.h"
 #include "panels/layout.h"
 #include "panels/panels.h"
 #include "panels/project_io.h"
@@ -101,6 +105,27 @@ TEST_F(PanelTest, RenderButtonClickRequestsOneRender) {
     frame([&] { drawViewsPanel(s); });
     ASSERT_EQ(s.requests.size(), 1u);
     EXPECT_EQ(s.requests[0].command, Command::CancelRender);
+}
+
+// The Help window (F1) lists the application's key table itself, so every shortcut that works is
+// listed and every listed one has a key; the menus take their labels from the same table.
+TEST_F(PanelTest, HelpWindowListsEveryShortcutOfTheKeyTable) {
+    bool open = true;
+    std::vector<std::string> lines;
+    frame([&] { drawHelpWindow(shortcutInfos(), &open, &lines); });
+    ASSERT_FALSE(shortcuts().empty());
+    std::set<std::string> labels;
+    for (const Shortcut& s : shortcuts()) {
+        const std::string entry = std::string(s.keys) + ": " + s.what;
+        EXPECT_NE(std::find(lines.begin(), lines.end(), entry), lines.end()) << entry;
+        EXPECT_TRUE(labels.insert(s.keys).second) << s.keys << " is bound twice";
+    }
+    for (ShortcutAction a : {ShortcutAction::Open, ShortcutAction::Save, ShortcutAction::Quit, ShortcutAction::FrameOverlay,
+                             ShortcutAction::Help})
+        EXPECT_NE(shortcutKeys(a), nullptr) << "an action the menus advertise has no key";
+    EXPECT_STREQ(shortcutKeys(ShortcutAction::Help), "F1");
+    EXPECT_GT(lines.size(), shortcuts().size()) << "the mouse gestures and the tour follow the keys";
+    EXPECT_TRUE(open);
 }
 
 TEST_F(PanelTest, WheelZoomsAboutTheCursorInAllViews) {

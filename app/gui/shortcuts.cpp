@@ -1,0 +1,31 @@
+// The keyboard shortcuts table (see shortcuts.h).
+#include "app/gui/shortcuts.h"
+
+#include <GLFW/glfw3.h>
+
+namespace rrf {
+
+const std::vector<Shortcut>& shortcuts() {
+    static const std::vector<Shortcut> table = {
+        {ShortcutAction::Help, GLFW_KEY_F1, false, "F1", "show or hide this Help window"},
+        {ShortcutAction::Open, GLFW_KEY_O, true, "Ctrl+O", "open a project"},
+        {ShortcutAction::Save, GLFW_KEY_S, true, "Ctrl+S", "save the project"},
+        {ShortcutAction::FrameOverlay, GLFW_KEY_F3, false, "F3", "frame time overlay (UI frame, GLSL and CPU prediction)"},
+        {ShortcutAction::Quit, GLFW_KEY_Q, true, "Ctrl+Q", "quit (asks about unsaved changes)"},
+    };
+    return table;
+}
+
+const char* shortcutKeys(ShortcutAction action) {
+    for (const Shortcut& s : shortcuts())
+        if (s.action == action) return s.keys;
+    return nullptr;
+}
+
+std::vector<panels::ShortcutInfo> shortcutInfos() {
+    std::vector<panels::ShortcutInfo> out;
+    for (const Shortcut& s : shortcuts()) out.push_back({s.keys, s.what});
+    return out;
+}
+
+}  // namespace rrf
