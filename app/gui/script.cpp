@@ -64,7 +64,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
                        "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped", "pipeline_done",
                        "pipeline_stopped", "prediction_label", "error_waiting", "flip_evaluated",
                        "region_pixels_min", "light_grid_points", "spread_shown", "spread_evaluated",
-                       "ground_truth_stored", "help_open"}},
+                       "ground_truth_stored", "help_open", "status_idle_while_pipeline"}},
         };
     }();
     return keys;
@@ -395,6 +395,7 @@ bool Script::execute(Workbench& wb, const json& s) {
                     "the prediction's label is \"" + st.prediction.label + "\"");
         // ground_truth_stored: the ground truth shown was loaded from the project's ground_truth/.
         flag("help_open", wb.helpOpen(), "Help window");
+        count("status_idle_while_pipeline", size_t(wb.statusIdleWhilePipeline()), "status-bar frames idle during the pipeline");
         flag("ground_truth_stored", st.groundTruth.label == kStoredGroundTruthLabel, "stored ground truth");
         // error_waiting: the Views withhold their error figures until a ground truth of this light.
         flag("error_waiting", !st.view.errorStats.waiting.empty(), "error figures' waiting state");

@@ -238,7 +238,31 @@ void Workbench::drawStatusBar() {
         ImGui::SameLine();
     }
     const std::vector<JobInfo> running = jobs_.jobs();
+    // The one-click pipeline is one entry of its own, before its stage's job: between two stages
+    // (a frame or two with no job) the bar keeps showing it instead of flickering to idle.
+    const panels::PipelineInfo& pipeline = state_.pipeline;
+    if (pipeline.running) {
+        char overlay[64];
+        if (pipeline.etaSeconds >= 0)
+            std::snprintf(overlay, sizeof overlay, "%.0f%%, ETA %.0f s", 100 * pipeline.fraction, pipeline.etaSeconds);
+        else std::snprintf(overlay, sizeof overlay, "%.0f%%", 100 * pipeline.fraction);
+        ImGui::Text("pipeline: %s (stage %d of 4)", pipeline.stage.c_str(), pipeline.stageIndex + 1);
+        ImGui::SameLine();
+        ImGui::ProgressBar(float(pipeline.fraction), ImVec2(ImGui::GetFontSize() * 10, 0), overlay);
+        ImGui::SameLine();
+    }
     if (running.empty()) {
+        // Work that follows at once (the next pipeline stage, the evaluation after a training, a
+        // render restarted by an edit) is said, not shown as idle.
+        const char* next = pipeline.running    ? "starting the next stage"
+                           : evaluateAfterTrain_ ? "the trained models are evaluated next"
+                           : restartRender_      ? "the render restarts"
+                                                 : nullptr;
+        if (next) {
+            ImGui::TextDisabled("%s", next);
+            return;
+        }
+        if (pipelineRunning()) ++statusIdleWhilePipeline_;
         ImGui::TextDisabled("%s%s", state_.hasProject ? state_.project.path.c_str() : "no project",
                             state_.dirty ? "  (unsaved changes)" : "");
         return;

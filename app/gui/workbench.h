@@ -114,6 +114,8 @@ public:
     /// What the shortcut `action` does (its key, its menu item).
     void performShortcut(ShortcutAction action);
     bool helpOpen() const { return helpOpen_; }
+    /// Frames in which the status bar showed the idle line although the pipeline was running.
+    int statusIdleWhilePipeline() const { return statusIdleWhilePipeline_; }
     /// Whether the live prediction on screen is a draft (the light moved less than kDraftRestSeconds ago).
     bool draftShown() const { return draftShown_; }
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
@@ -261,6 +263,7 @@ private:
     bool predictedOnce_ = false;
     bool draftShown_ = false;
     bool helpOpen_ = false;  ///< the Help window (F1)
+    int statusIdleWhilePipeline_ = 0;  ///< frames whose status bar said idle while the pipeline ran
     std::chrono::steady_clock::time_point draftTime_{};
     std::vector<double> draftSeconds_;
     int draftDivisor_ = kMaxDraftDivisor;  ///< resolution divisor of the next draft (adapts to its time)
