@@ -170,12 +170,12 @@ void main() {
     vec4 off = texel(entry);
     bool hasDirect = off.x >= 0.0 || off.w >= 0.0 || uDirectMode != 0;
     bool both = hasDirect && (off.y >= 0.0 || off.w >= 0.0);
-    int todo = (off.w >= 0.0 ? 1 : 0) | (off.x >= 0.0 && uDirectMode == 0 ? 2 : 0) | (off.y >= 0.0 ? 4 : 0) |
+    int pending = (off.w >= 0.0 ? 1 : 0) | (off.x >= 0.0 && uDirectMode == 0 ? 2 : 0) | (off.y >= 0.0 ? 4 : 0) |
                (!both && off.z >= 0.0 ? 8 : 0);
     vec3 direct = vec3(0.0), indirect = vec3(0.0), global = vec3(0.0);
-    while (todo != 0) {
-        int bit = (todo & 1) != 0 ? 0 : ((todo & 2) != 0 ? 1 : ((todo & 4) != 0 ? 2 : 3));
-        todo &= todo - 1;
+    while (pending != 0) {
+        int bit = (pending & 1) != 0 ? 0 : ((pending & 2) != 0 ? 1 : ((pending & 4) != 0 ? 2 : 3));
+        pending &= pending - 1;
         float tree = bit == 0 ? off.w : (bit == 1 ? off.x : (bit == 2 ? off.y : off.z));
         vec3 first, second;
         predictNetwork(findLeafNetwork(int(tree)), first, second);
