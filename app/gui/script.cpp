@@ -64,7 +64,8 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
                        "render_cancelled", "notice", "pair", "panes", "same_pane", "clipped", "pipeline_done",
                        "pipeline_stopped", "prediction_label", "error_waiting", "flip_evaluated",
                        "region_pixels_min", "light_grid_points", "spread_shown", "spread_evaluated",
-                       "ground_truth_stored", "help_open", "status_idle_while_pipeline"}},
+                       "ground_truth_stored", "help_open", "status_idle_while_pipeline",
+                       "undo_steps", "redo_steps", "light_position"}},
         };
     }();
     return keys;
@@ -395,6 +396,13 @@ bool Script::execute(Workbench& wb, const json& s) {
                     "the prediction's label is \"" + st.prediction.label + "\"");
         // ground_truth_stored: the ground truth shown was loaded from the project's ground_truth/.
         flag("help_open", wb.helpOpen(), "Help window");
+        count("undo_steps", wb.settingsHistory().undoSteps(), "undo steps");
+        count("redo_steps", wb.settingsHistory().redoSteps(), "redo steps");
+        if (const auto v = r.find("light_position")) {
+            const Vec3 want = v->vec3(), got = st.project.scene.lightPosition();
+            require(std::abs(want.x - got.x) < 1e-4f && std::abs(want.y - got.y) < 1e-4f && std::abs(want.z - got.z) < 1e-4f,
+                    "the light is at (" + std::to_string(got.x) + ", " + std::to_string(got.y) + ", " + std::to_string(got.z) + ")");
+        }
         count("status_idle_while_pipeline", size_t(wb.statusIdleWhilePipeline()), "status-bar frames idle during the pipeline");
         flag("ground_truth_stored", st.groundTruth.label == kStoredGroundTruthLabel, "stored ground truth");
         // error_waiting: the Views withhold their error figures until a ground truth of this light.

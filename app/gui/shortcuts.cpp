@@ -7,11 +7,14 @@ namespace rrf {
 
 const std::vector<Shortcut>& shortcuts() {
     static const std::vector<Shortcut> table = {
-        {ShortcutAction::Help, GLFW_KEY_F1, false, "F1", "show or hide this Help window"},
-        {ShortcutAction::Open, GLFW_KEY_O, true, "Ctrl+O", "open a project"},
-        {ShortcutAction::Save, GLFW_KEY_S, true, "Ctrl+S", "save the project"},
-        {ShortcutAction::FrameOverlay, GLFW_KEY_F3, false, "F3", "frame time overlay (UI frame, GLSL and CPU prediction)"},
-        {ShortcutAction::Quit, GLFW_KEY_Q, true, "Ctrl+Q", "quit (asks about unsaved changes)"},
+        {ShortcutAction::Help, GLFW_KEY_F1, false, false, "F1", "show or hide this Help window"},
+        {ShortcutAction::Open, GLFW_KEY_O, true, false, "Ctrl+O", "open a project"},
+        {ShortcutAction::Save, GLFW_KEY_S, true, false, "Ctrl+S", "save the project"},
+        {ShortcutAction::Undo, GLFW_KEY_Z, true, false, "Ctrl+Z",
+         "undo a setting edit (render, sampling, network, trainer, prediction, light position)"},
+        {ShortcutAction::Redo, GLFW_KEY_Z, true, true, "Ctrl+Shift+Z", "redo the setting edit undone"},
+        {ShortcutAction::FrameOverlay, GLFW_KEY_F3, false, false, "F3", "frame time overlay (UI frame, GLSL and CPU prediction)"},
+        {ShortcutAction::Quit, GLFW_KEY_Q, true, false, "Ctrl+Q", "quit (asks about unsaved changes)"},
     };
     return table;
 }

@@ -10,12 +10,13 @@
 namespace rrf {
 
 /// What a shortcut does.
-enum class ShortcutAction { Open, Save, Quit, FrameOverlay, Help };
+enum class ShortcutAction { Open, Save, Quit, Undo, Redo, FrameOverlay, Help };
 
 struct Shortcut {
     ShortcutAction action;
     int key;            ///< GLFW key code (ImGui 1.86 indexes keys by the backend's codes)
     bool ctrl;          ///< with Ctrl held
+    bool shift;         ///< with Shift held
     const char* keys;   ///< as menus and the Help window show it, e.g. "Ctrl+O"
     const char* what;   ///< what it does, for the Help window
 };

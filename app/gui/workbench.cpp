@@ -141,6 +141,9 @@ void Workbench::frame() {
     drawFrameOverlay();
     if (dialog_.draw()) dialogConfirmed(dialog_.result());
     handleRequests();
+    // One undo step per settled edit: while a button is held (a slider, a light drag) the edit is
+    // still being made.
+    if (state_.hasProject && !ImGui::IsAnyMouseDown()) history_.observe(state_.project);
     autosave();
 
     viewModel_.update(state_);
@@ -195,6 +198,13 @@ void Workbench::drawMenuBar() {
         if (ImGui::MenuItem("Quit", shortcutKeys(ShortcutAction::Quit))) state_.request(Command::Quit);
         ImGui::EndMenu();
     }
+    if (ImGui::BeginMenu("Edit")) {
+        if (ImGui::MenuItem("Undo", shortcutKeys(ShortcutAction::Undo), false, history_.undoSteps() > 0))
+            performShortcut(ShortcutAction::Undo);
+        if (ImGui::MenuItem("Redo", shortcutKeys(ShortcutAction::Redo), false, history_.redoSteps() > 0))
+            performShortcut(ShortcutAction::Redo);
+        ImGui::EndMenu();
+    }
     if (ImGui::BeginMenu("View")) {
         if (ImGui::MenuItem("Reset layout")) state_.request(Command::ResetLayout);
         if (ImGui::MenuItem("Reset zoom and pan")) {
@@ -216,7 +226,8 @@ void Workbench::drawMenuBar() {
     const ImGuiIO& io = ImGui::GetIO();
     if (!io.WantTextInput)
         for (const Shortcut& s : shortcuts())
-            if (s.ctrl == io.KeyCtrl && ImGui::IsKeyPressed(s.key, false)) performShortcut(s.action);
+            if (s.ctrl == io.KeyCtrl && s.shift == io.KeyShift && ImGui::IsKeyPressed(s.key, false))
+                performShortcut(s.action);
     ImGui::EndMenuBar();
 }
 
@@ -227,9 +238,33 @@ void Workbench::performShortcut(ShortcutAction action) {
             if (state_.hasProject) state_.request(Command::SaveProject);
             break;
         case ShortcutAction::Quit: state_.request(Command::Quit); break;
+        case ShortcutAction::Undo: applySettings(history_.undo(), "undo"); break;
+        case ShortcutAction::Redo: applySettings(history_.redo(), "redo"); break;
         case ShortcutAction::FrameOverlay: frameOverlay_ = !frameOverlay_; break;
         case ShortcutAction::Help: helpOpen_ = !helpOpen_; break;
     }
+}
+
+void Workbench::applySettings(const std::optional<ProjectSettings>& settings, const char* what) {
+    if (!settings || !state_.hasProject) {
+        state_.notify(panels::LogLevel::Info, "", std::string(what) + ": nothing to " + what);
+        return;
+    }
+    Project& p = state_.project;
+    p.render = settings->render;
+    p.sampling = settings->sampling;
+    p.network = settings->network;
+    p.trainer = settings->trainer;
+    p.prediction = settings->prediction;
+    const bool lightMoved = settings->light && !(*settings->light == p.scene.lightPosition());
+    if (lightMoved) moveLight(p, *settings->light);
+    state_.markDirty();
+    state_.log.info(std::string(what) + ": settings restored (" + std::to_string(history_.undoSteps()) + " undo, " +
+                    std::to_string(history_.redoSteps()) + " redo steps left)");
+    // The light restarts the ground truth and moves the prediction; other settings change what
+    // the next render, generation or training does, and the prediction's direct light.
+    if (lightMoved) sceneChanged(true);
+    else refreshPrediction();
 }
 
 void Workbench::drawStatusBar() {

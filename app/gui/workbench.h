@@ -16,6 +16,7 @@
 #include "app/gui/prediction_draft.h"
 #include "app/gui/render_session.h"
 #include "app/gui/shortcuts.h"
+#include "core/project/settings_history.h"
 #include "app/gui/user_config.h"
 #include "panels/file_dialog.h"
 #include "panels/view_model.h"
@@ -113,6 +114,7 @@ public:
     bool evaluationPending() const { return evaluateAfterTrain_; }
     /// What the shortcut `action` does (its key, its menu item).
     void performShortcut(ShortcutAction action);
+    const SettingsHistory& settingsHistory() const { return history_; }
     bool helpOpen() const { return helpOpen_; }
     /// Frames in which the status bar showed the idle line although the pipeline was running.
     int statusIdleWhilePipeline() const { return statusIdleWhilePipeline_; }
@@ -263,6 +265,8 @@ private:
     bool predictedOnce_ = false;
     bool draftShown_ = false;
     bool helpOpen_ = false;  ///< the Help window (F1)
+    SettingsHistory history_;  ///< undo/redo of setting edits (observed once per settled frame)
+    void applySettings(const std::optional<ProjectSettings>& settings, const char* what);
     int statusIdleWhilePipeline_ = 0;  ///< frames whose status bar said idle while the pipeline ran
     std::chrono::steady_clock::time_point draftTime_{};
     std::vector<double> draftSeconds_;

@@ -55,6 +55,7 @@ bool Workbench::openProject(const std::string& path) {
         break;
     }
     restoreSweeps();
+    history_.reset(state_.project);  // undo never crosses into another project
     sceneChanged(true);
     lastAutosave_ = std::chrono::steady_clock::now();
     return true;
