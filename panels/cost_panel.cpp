@@ -20,6 +20,7 @@
 #include <imgui.h>
 
 #include "core/pipeline/sweep.h"
+#include "core/util/text_format.h"
 #include "panels/panels.h"
 #include "panels/plot.h"
 
@@ -63,9 +64,11 @@ const CostSeries* findSeries(const std::vector<const CostSeries*>& series, const
 
 /// A triangle (GLSL frame time), a square (CPU frame time, one-off cost), a diamond (a project run's
 /// one-off cost), a cross (break-even) or a circle (path tracer) around q.
+/// A marker's code in CostView::shapesDrawn / keyShapes: the shape, then "F" (filled) or "h" (hollow).
+std::string markerCode(char shape, bool filled) { return std::string(1, shape) + (filled ? "F" : "h"); }
+
 void marker(ImDrawList* dl, const ImVec2& q, ImU32 colour, char shape, bool filled, std::string* drawn = nullptr) {
-    if (drawn && drawn->find(std::string(1, shape) + (filled ? "F" : "h")) == std::string::npos)
-        *drawn += std::string(1, shape) + (filled ? "F" : "h");
+    if (drawn && drawn->find(markerCode(shape, filled)) == std::string::npos) *drawn += markerCode(shape, filled);
     const float r = 4.f;
     if (shape == 'd') {
         const ImVec2 a(q.x, q.y - r - 1), b(q.x + r + 1, q.y), c(q.x, q.y + r + 1), d(q.x - r - 1, q.y);
@@ -106,7 +109,7 @@ CostSeries runsCostSeries(const std::vector<Run>& runs) {
         p.frameSeconds = r.metric("frame_seconds").value_or(NAN);
         p.glslFrameSeconds = r.metric("glsl_frame_seconds").value_or(NAN);
         const int w = int(r.metric("evaluated_width").value_or(0)), h = int(r.metric("evaluated_height").value_or(0));
-        if (w > 0 && h > 0) p.resolution = std::to_string(w) + "x" + std::to_string(h);
+        if (w > 0 && h > 0) p.resolution = sizeText(w, h);
         if (s.points.empty()) resolution = p.resolution;
         else if (resolution != p.resolution) resolution.clear();
         s.points.push_back(p);
@@ -268,8 +271,12 @@ void drawCostPanel(WorkbenchState& state) {
     for (const CostSeries* s : series) {
         char text[160];
         // The resolution beside the name: points of different sizes share the axes only when said.
-        std::snprintf(text, sizeof text, "%s (%zu, %s)", s->name.c_str(), s->points.size(),
-                      s->resolution.empty() ? "sizes differ" : s->resolution.c_str());
+        std::string size = s->resolution;
+        if (size.empty())
+            size = std::any_of(s->points.begin(), s->points.end(), [](const CostPoint& p) { return !p.resolution.empty(); })
+                       ? "sizes differ"
+                       : "size not recorded";
+        std::snprintf(text, sizeof text, "%s (%zu, %s)", s->name.c_str(), s->points.size(), size.c_str());
         legendEntry(s->name, text, seriesColour(s->name), v.hidden);
         if (!s->reference.empty() && ImGui::IsItemHovered())
             ImGui::SetTooltip("%s\nclick to %s this series", s->reference.c_str(), seriesHidden(v.hidden, s->name) ? "show" : "hide");
@@ -296,7 +303,7 @@ void drawCostPanel(WorkbenchState& state) {
         marker(ImGui::GetWindowDrawList(), ImVec2(at.x + font * 0.5f, at.y + font * 0.5f), keyColour, k.shape, k.filled);
         ImGui::SameLine();
         ImGui::TextDisabled("%s", k.text);
-        v.keyShapes += std::string(1, k.shape) + (k.filled ? "F" : "h");
+        v.keyShapes += markerCode(k.shape, k.filled);
     }
     ImGui::TextDisabled("- - noise floor");
     ImGui::TextDisabled("wheel: zoom, drag: pan,\ndouble-click: fit");

@@ -8,6 +8,7 @@
 #include <imgui_stdlib.h>
 
 #include "core/pipeline/run_summary.h"
+#include "core/util/text_format.h"
 #include "panels/panels.h"
 #include "panels/status_text.h"
 
@@ -132,8 +133,7 @@ void drawRuns(WorkbenchState& state) {
                                           r.frameGlsl ? "%.2f GLSL" : "%.1f CPU")
                                    .c_str());
         if (r.frameSeconds && ImGui::IsItemHovered()) {
-            const std::string size = r.frameWidth > 0 ? std::to_string(r.frameWidth) + "x" + std::to_string(r.frameHeight)
-                                                      : std::string("the view's size");
+            const std::string size = r.frameWidth > 0 ? sizeText(r.frameWidth, r.frameHeight) : std::string("the view's size");
             ImGui::SetTooltip(r.frameGlsl ? "one full-quality GLSL frame at %s: the GPU time of the G-buffer and network passes\n"
                                             "(GL timer queries, median of the last frames; read-back excluded).\n"
                                             "On a software driver (Mesa llvmpipe) the GPU is this machine's CPU."

@@ -110,6 +110,10 @@ std::string errorOf(const json& doc) {
     return "";
 }
 
+}  // namespace
+
+// Outside the anonymous namespace: the TEST_F classes derive from it (GCC warns otherwise when the
+// file is part of a unity batch); namespace test_obj_scene keeps the name unique.
 class ObjScene : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -117,8 +121,6 @@ protected:
         writeFile("room.obj", kObj);
     }
 };
-
-}  // namespace
 
 TEST_F(ObjScene, GroupsBecomeObjectsWithTheirMaterials) {
     const Scene s = load(sceneWith({{"type", "obj"}, {"file", "room.obj"}}));

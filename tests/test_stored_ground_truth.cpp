@@ -31,11 +31,20 @@ struct Dir {
     ~Dir() { fs::remove_all(path); }
 };
 
-RenderSnapshot renderOf(const Scene& scene, int spp) {
+struct Rendered {
+    RenderSnapshot snapshot;
+    RenderStats stats;
+};
+
+Rendered renderOf(const Scene& scene, int spp) {
     const Accel accel(scene);
     Renderer r(scene, accel, renderOptions(scene, Estimator::NEE, spp, 1));
     r.run();
-    return r.snapshot();
+    return {r.snapshot(), r.stats()};
+}
+
+void store(const fs::path& dir, const ReferenceKey& key, const Rendered& r) {
+    storeGroundTruth(dir.string(), key, r.snapshot, r.stats);
 }
 
 ReferenceKey keyOf(const Scene& scene) {
@@ -58,11 +67,12 @@ TEST(StoredGroundTruth, LoadsExactlyWhatAFreshRenderOfTheSameKeyGives) {
     const Dir dir;
     EXPECT_FALSE(loadGroundTruth(dir.path.string(), keyOf(scene), 4).snapshot) << "nothing stored yet";
     EXPECT_TRUE(loadGroundTruth(dir.path.string(), keyOf(scene), 4).why.empty()) << "a first render needs no reason";
-    storeGroundTruth(dir.path.string(), keyOf(scene), renderOf(scene, 4));
+    store(dir.path, keyOf(scene), renderOf(scene, 4));
     const StoredGroundTruth got = loadGroundTruth(dir.path.string(), keyOf(scene), 4);
     ASSERT_TRUE(got.snapshot) << got.why;
     // An independent render of the same key: the renderer's determinism is what makes storing exact.
-    const RenderSnapshot fresh = renderOf(scene, 4);
+    const Rendered render = renderOf(scene, 4);
+    const RenderSnapshot& fresh = render.snapshot;
     for (Term t : kTerms) {
         EXPECT_TRUE(sameBits(got.snapshot->image(t), fresh.image(t))) << termName(t);
         EXPECT_TRUE(sameBits(got.snapshot->varianceOf(t), fresh.varianceOf(t))) << termName(t) << " variance";
@@ -70,12 +80,15 @@ TEST(StoredGroundTruth, LoadsExactlyWhatAFreshRenderOfTheSameKeyGives) {
     EXPECT_EQ(got.snapshot->sppCompleted, 4);
     EXPECT_EQ(got.snapshot->samples, fresh.samples);
     EXPECT_TRUE(got.snapshot->varianceKnown());
+    EXPECT_EQ(got.stats.rays, render.stats.rays) << "the statistics a saved run's render.json reports";
+    EXPECT_EQ(got.stats.shadowRays, render.stats.shadowRays);
+    EXPECT_GT(got.stats.rays, 0u);
 }
 
 TEST(StoredGroundTruth, AnotherLightSizeOrSppIsNeverUsed) {
     Scene scene = cornellLike(1.f, 8);
     const Dir dir;
-    storeGroundTruth(dir.path.string(), keyOf(scene), renderOf(scene, 2));
+    store(dir.path, keyOf(scene), renderOf(scene, 2));
     const StoredGroundTruth moreSpp = loadGroundTruth(dir.path.string(), keyOf(scene), 8);
     EXPECT_FALSE(moreSpp.snapshot);
     EXPECT_NE(moreSpp.why.find("2 spp, 8 are asked for"), std::string::npos) << moreSpp.why;
@@ -92,10 +105,10 @@ TEST(StoredGroundTruth, AnotherLightSizeOrSppIsNeverUsed) {
 TEST(StoredGroundTruth, ANewRenderReplacesTheOldSetWhole) {
     const Scene scene = cornellLike(1.f, 8);
     const Dir dir;
-    storeGroundTruth(dir.path.string(), keyOf(scene), renderOf(scene, 4));
+    store(dir.path, keyOf(scene), renderOf(scene, 4));
     ASSERT_TRUE(fs::exists(dir.path / "variance_global.exr"));
     // 1 spp has no variance: the old set's variance images must not survive beside the new images.
-    storeGroundTruth(dir.path.string(), keyOf(scene), renderOf(scene, 1));
+    store(dir.path, keyOf(scene), renderOf(scene, 1));
     EXPECT_FALSE(fs::exists(dir.path / "variance_global.exr"));
     const StoredGroundTruth got = loadGroundTruth(dir.path.string(), keyOf(scene), 1);
     ASSERT_TRUE(got.snapshot) << got.why;
@@ -106,7 +119,7 @@ TEST(StoredGroundTruth, ANewRenderReplacesTheOldSetWhole) {
 TEST(StoredGroundTruth, DamagedFilesAreReportedByNameAndNotUsed) {
     const Scene scene = cornellLike(1.f, 8);
     const Dir dir;
-    storeGroundTruth(dir.path.string(), keyOf(scene), renderOf(scene, 2));
+    store(dir.path, keyOf(scene), renderOf(scene, 2));
     std::ofstream(dir.path / "global.exr", std::ios::binary | std::ios::trunc) << "not an image";
     const StoredGroundTruth broken = loadGroundTruth(dir.path.string(), keyOf(scene), 2);
     EXPECT_FALSE(broken.snapshot);

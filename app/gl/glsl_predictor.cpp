@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/predict/exact_direct.h"
+#include "core/util/stopwatch.h"
 #include "core/util/data_dir.h"
 
 namespace rrf {
@@ -377,7 +378,12 @@ void GlslPredictor::render() {
     glBindTexture(GL_TEXTURE_2D, networkTex_);
     if (directMode_ != 0) {
         // Units 4 and 5 are the predictor's own (GlStateGuard restores units 0-3 only).
-        if (directMode_ == 2) computeHostDirect();
+        hostDirectSeconds_ = 0.0;
+        if (directMode_ == 2) {
+            const Stopwatch host;
+            computeHostDirect();
+            hostDirectSeconds_ = host.seconds();
+        }
         glUseProgram(predictProgram_.id());
         glBindFramebuffer(GL_FRAMEBUFFER, outputFbo_);
         const uint64_t key = mix64(exactDirectSeed(prediction_.seed) + Rng::kGamma);  // Rng's first step

@@ -106,6 +106,9 @@ public:
     /// and CPU work (uploads, mode 2's host direct light); on a software driver (llvmpipe) the
     /// "GPU" is the CPU's rasteriser threads.
     double gpuSeconds() const;
+    /// What the last render() cost as a frame: gpuSeconds() plus, in mode 2, the CPU's exact direct
+    /// light computed for it (the part of the frame the GPU does not do). NaN before the first render().
+    double frameSeconds() const { return gpuSeconds() + hostDirectSeconds_; }
 
     /// The prediction of the last render() as an image (top row first).
     Image read(Term term) const;
@@ -150,6 +153,7 @@ private:
     std::unique_ptr<PathTracer> hostTracer_;   ///< mode 2 only
     std::array<unsigned, 2> timerQueries_{};   ///< GL_TIME_ELAPSED of the G-buffer and network passes
     bool timed_ = false;                       ///< a render() has issued the queries
+    double hostDirectSeconds_ = 0.0;           ///< the last render()'s computeHostDirect (mode 2), else 0
 };
 
 }  // namespace rrf

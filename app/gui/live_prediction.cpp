@@ -43,7 +43,7 @@ double LivePrediction::renderGlsl(const Camera& camera, const Vec3& lightPos, co
     glsl_->setPrediction(prediction);
     glsl_->render();
     for (Term t : kTerms) out[int(t)] = glsl_->read(t);
-    return glsl_->gpuSeconds();
+    return glsl_->frameSeconds();
 }
 
 }  // namespace rrf

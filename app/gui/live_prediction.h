@@ -48,8 +48,9 @@ public:
 
     /// GLSL path only: renders with `camera` (its width × height), the light at `lightPos` and the
     /// project's `prediction` settings (exact or learned direct light), and returns the images of
-    /// every term, out[int(Term)] (top row first); returns the frame's GPU seconds
-    /// (GlslPredictor::gpuSeconds). Throws GlError on GL failure.
+    /// every term, out[int(Term)] (top row first); returns the frame's cost in seconds
+    /// (GlslPredictor::frameSeconds: its passes' GPU time, plus the CPU's direct light in mode 2).
+    /// Throws GlError on GL failure.
     double renderGlsl(const Camera& camera, const Vec3& lightPos, const PredictionSettings& prediction,
                     Image out[kTermCount]);
 

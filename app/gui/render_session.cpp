@@ -14,8 +14,9 @@ namespace rrf {
 RenderSession::RenderSession(const Scene& scene, const RenderOptions& options, std::optional<Store> store)
     : scene_(scene), options_(options), store_(std::move(store)) {}
 
-std::string RenderSession::storeNote() const {
+std::string RenderSession::storeNote(bool* problem) const {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (problem) *problem = storeNoteIsProblem_;
     return storeNote_;
 }
 
@@ -48,12 +49,13 @@ void RenderSession::run(JobContext& ctx) {
         ctx.setStatus("looking for the stored ground truth");
         StoredGroundTruth stored = loadGroundTruth(store_->dir, store_->key, options_.spp);
         if (stored.snapshot) {
-            publish(std::make_shared<const RenderSnapshot>(std::move(*stored.snapshot)));
-            loaded_ = true;
             {
                 std::lock_guard<std::mutex> lock(mutex_);
+                loadedStats_ = stored.stats;
                 storeNote_ = "ground truth loaded from " + store_->dir + " (the same scene, light, size and spp)";
             }
+            loaded_ = true;  // before the snapshot appears: whoever sees it sees where it came from
+            publish(std::make_shared<const RenderSnapshot>(std::move(*stored.snapshot)));
             ctx.setProgress(1.0);
             ctx.setStatus("loaded");
             return;
@@ -61,6 +63,7 @@ void RenderSession::run(JobContext& ctx) {
         if (!stored.why.empty()) {
             std::lock_guard<std::mutex> lock(mutex_);
             storeNote_ = "rendering the ground truth: " + stored.why;
+            storeNoteIsProblem_ = stored.why.find("cannot be read") != std::string::npos;
         }
     }
     ctx.setStatus("rendering");
@@ -74,14 +77,17 @@ void RenderSession::run(JobContext& ctx) {
     if (store_ && !renderer->cancelled()) {
         ctx.setStatus("storing");
         std::string note;
+        bool noteIsProblem = false;
         try {
-            storeGroundTruth(store_->dir, store_->key, renderer_->snapshot());
+            storeGroundTruth(store_->dir, store_->key, renderer_->snapshot(), renderer_->stats());
             note = "ground truth stored in " + store_->dir + " (shown at once when the project is opened again)";
         } catch (const std::exception& e) {
             note = std::string("the ground truth could not be stored: ") + e.what();
+            noteIsProblem = true;
         }
         std::lock_guard<std::mutex> lock(mutex_);
         storeNote_ = note;
+        storeNoteIsProblem_ = noteIsProblem;
     }
     ctx.setStatus(renderer->cancelled() ? "cancelled" : "done");
 }
@@ -117,6 +123,7 @@ std::shared_ptr<const FootprintMask> RenderSession::footprint() const {
 
 RenderStats RenderSession::stats() const {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (loaded_) return loadedStats_;
     return renderer_ ? renderer_->stats() : RenderStats{};
 }
 
@@ -124,7 +131,8 @@ RenderOutputs RenderSession::write(const std::string& dir, ImageFormat format, f
                                    const std::vector<std::pair<ImageFormat, float>>& moreFormats) const {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!renderer_ || !latest_) throw std::runtime_error(dir + ": nothing rendered yet");
-    return writeRenderOutputs(dir, scene_, *renderer_, *latest_, format, exposure, moreFormats);
+    return writeRenderOutputs(dir, scene_, *renderer_, *latest_, format, exposure, moreFormats,
+                              loaded_ ? &loadedStats_ : nullptr);
 }
 
 }  // namespace rrf

@@ -52,7 +52,8 @@ public:
     /// After the job: whether the images came from the store, and a line for the log about the
     /// store (loaded from, stored in, why a stored one was not used, a failed write); empty if none.
     bool loadedFromStore() const { return loaded_.load(); }
-    std::string storeNote() const;
+    /// `problem` (optional): whether the note reports a failure (a write that failed, a damaged set).
+    std::string storeNote(bool* problem = nullptr) const;
     const Scene& scene() const { return scene_; }
 
     /// Writes the images and render.json of the latest snapshot into `dir` as one set
@@ -78,6 +79,8 @@ private:
     const std::optional<Store> store_;
     std::atomic<bool> loaded_{false};
     std::string storeNote_;  ///< guarded by mutex_
+    bool storeNoteIsProblem_ = false;  ///< guarded by mutex_
+    RenderStats loadedStats_;  ///< a loaded render's statistics (its renderer never ran); guarded by mutex_
 };
 
 /// The ground truth's label in the views when it was loaded from the store.

@@ -160,7 +160,7 @@ bool Script::execute(Workbench& wb, const json& s) {
         const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running", "flip", "spread", "full_frame"});
         const bool busy = on == "flip" ? !st.view.flipMap.matches(st.reference().revision, st.compared().revision, st.view.term)
                           : on == "spread"        ? st.view.spread && !st.view.spreadMap.matches(st.prediction.revision)
-                          : on == "render"        ? wb.renderRunning()
+                          : on == "render"        ? !wb.renderShown()
                           : on == "train_epoch"   ? wb.trainRunning() && st.training.epoch < 1
                           : on == "pipeline"      ? wb.pipelineRunning()
                           : on == "train_running" ? !wb.trainRunning()
@@ -359,8 +359,8 @@ bool Script::execute(Workbench& wb, const json& s) {
         // The action of a shortcut of the table (app/gui/shortcuts.h) by its label, as its key does.
         const std::string keys = r.at("keys").string();
         bool found = false;
-        for (const Shortcut& s : shortcuts())
-            if (keys == s.keys) wb.performShortcut(s.action), found = true;
+        for (const Shortcut& shortcut : shortcuts())
+            if (keys == shortcut.keys) wb.performShortcut(shortcut.action), found = true;
         if (!found) r.at("keys").fail("no shortcut is labelled '" + keys + "'");
     } else if (what == "frames") {
         if (!waiting_) {

@@ -75,6 +75,9 @@ public:
     /// Starts the ground-truth render of the current scene (refused while one runs).
     bool startRender();
     bool renderRunning() const;
+    /// The render has ended and its last snapshot is what the views show (a render that ends after
+    /// this frame's poll is not running but not shown yet).
+    bool renderShown() const;
     /// Asks the running render (if any) to stop; it stops at its next pass boundary.
     void cancelRender();
     /// Records the current ground truth as a run (files under <project dir>/runs/<id>/).

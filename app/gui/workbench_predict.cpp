@@ -95,8 +95,9 @@ void Workbench::refreshPrediction() {
                 draftDivisor_ = nextDraftDivisor(draftDivisor_, draftSeconds_.back());
                 if (draftSeconds_.size() > 64) draftSeconds_.erase(draftSeconds_.begin());
             } else {
-                // The figure recorded is the passes' GPU time (timer queries), the cost of a frame
-                // on the device; read-back to the CPU is the workbench's own overhead.
+                // The figure recorded is the frame's cost on the device (its passes' GPU time from
+                // timer queries, plus the CPU's direct light where the GPU cannot do it); read-back
+                // to the CPU is the workbench's own overhead.
                 noteFrameSeconds("glsl_frame_seconds", live_.renderGlsl(camera, light, state_.project.prediction, images),
                                  camera.width, camera.height);
             }

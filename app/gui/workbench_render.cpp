@@ -13,6 +13,14 @@ namespace fs = std::filesystem;
 
 bool Workbench::renderRunning() const { return renderJob_.running(); }
 
+bool Workbench::renderShown() const {
+    if (renderRunning()) return false;
+    if (!render_) return true;
+    uint64_t revision = 0;
+    (void)render_->latest(&revision);
+    return revision == renderRevision_ && state_.render.running == false;
+}
+
 void Workbench::cancelRender() {
     renderJob_.cancel();
     restartRender_ = false;
@@ -80,8 +88,10 @@ void Workbench::pollRender() {
     if (wasRunning && !state_.render.running) {
         state_.render.cancelled = state_.render.spp < state_.render.targetSpp;
         if (render_) {
-            const std::string note = render_->storeNote();
-            if (!note.empty()) state_.log.info(note);
+            bool problem = false;
+            const std::string note = render_->storeNote(&problem);
+            if (!note.empty() && problem) state_.log.warning(note);
+            else if (!note.empty()) state_.log.info(note);
         }
     }
     if (restartRender_ && !renderRunning()) {

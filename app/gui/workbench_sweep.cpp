@@ -15,6 +15,7 @@
 #include "core/data/sampling_settings.h"
 #include "core/pipeline/sweep.h"
 #include "core/pipeline/sweep_file.h"
+#include "core/util/text_format.h"
 #include "core/nn/network_settings.h"
 #include "core/pipeline/run_recording.h"
 #include "core/util/atomic_file.h"
@@ -39,8 +40,9 @@ namespace {
 constexpr int kGlslTimedFrames = 5;
 
 /// Seconds of one GLSL prediction frame of `models` at width × height with the light at `light`:
-/// the GPU time of its passes (GL timer queries, as the workbench records a run's GLSL frame), the
-/// mean over kGlslTimedFrames. Needs the current GL context. Direct light as `prediction` says, like
+/// the GPU time of its passes (GL timer queries) plus any direct light the CPU computes for it
+/// (GlslPredictor::frameSeconds, as the workbench records a run's GLSL frame), the mean over
+/// kGlslTimedFrames. Needs the current GL context. Direct light as `prediction` says, like
 /// the CPU frame time of the same row.
 double glslFrameSeconds(const Scene& scene, const ModelSet& models, const PredictionSettings& prediction,
                         const Vec3& light, int width, int height) {
@@ -56,7 +58,7 @@ double glslFrameSeconds(const Scene& scene, const ModelSet& models, const Predic
     double seconds = 0.0;
     for (int i = 0; i < kGlslTimedFrames; ++i) {
         gp.render();
-        seconds += gp.gpuSeconds();
+        seconds += gp.frameSeconds();
     }
     return seconds / kGlslTimedFrames;
 }
@@ -94,7 +96,7 @@ std::vector<panels::CostSeries> costSeries(const SweepResult& r, const std::stri
     pt.name = r.what == "spp" ? name : "path tracer (" + name + ")";
     pt.noiseFloor = r.relativeNoiseFloor;
     pt.reference = reference;
-    pt.resolution = std::to_string(r.width) + "x" + std::to_string(r.height);
+    pt.resolution = sizeText(r.width, r.height);
     for (const SweepRow& row : pathTracerRows(r)) pt.points.push_back(costPoint(row));
     if (r.what == "spp") return {pt};
     panels::CostSeries models;

@@ -34,7 +34,8 @@ Image& imageSlot(RenderSnapshot& s, Term t) {
 
 }  // namespace
 
-void storeGroundTruth(const std::string& dir, const ReferenceKey& key, const RenderSnapshot& snapshot) {
+void storeGroundTruth(const std::string& dir, const ReferenceKey& key, const RenderSnapshot& snapshot,
+                      const RenderStats& stats) {
     const bool variance = snapshot.varianceKnown();
     // Every file of the set is this module's: nothing of an old set is kept.
     replaceDirectory(dir, [](const std::string&) { return true; }, [&](const std::string& staging) {
@@ -51,6 +52,8 @@ void storeGroundTruth(const std::string& dir, const ReferenceKey& key, const Ren
                         {"non_finite_samples", snapshot.nonFinite},
                         {"seconds", snapshot.seconds},
                         {"relative_error", snapshot.relativeError},
+                        {"rays", stats.rays},
+                        {"shadow_rays", stats.shadowRays},
                         {"variance", variance}};
         writeFileAtomically((tmp / kMetaFile).string(), meta.dump(2) + "\n");
     });
@@ -65,7 +68,7 @@ StoredGroundTruth loadGroundTruth(const std::string& dir, const ReferenceKey& ke
         const json j = readJsonFile(meta.string());
         const JsonReader r(j, meta.string());
         r.checkKeys({"format", "key", "spp", "passes", "samples", "non_finite_samples", "seconds", "relative_error",
-                     "variance"});
+                     "rays", "shadow_rays", "variance"});
         if (r.at("format").string() != kFormat)
             r.at("format").fail(std::string("unknown format (expected \"") + kFormat + "\")");
         r.at("key").requireObject();  // an InputError naming the file when it is missing
@@ -86,6 +89,11 @@ StoredGroundTruth loadGroundTruth(const std::string& dir, const ReferenceKey& ke
         s.nonFinite = r.at("non_finite_samples").unsignedInteger();
         s.seconds = r.at("seconds").number(0, 1e12);
         s.relativeError = r.at("relative_error").number();
+        out.stats.samples = s.samples;
+        out.stats.nonFinite = s.nonFinite;
+        out.stats.seconds = s.seconds;
+        out.stats.rays = r.at("rays").unsignedInteger();
+        out.stats.shadowRays = r.at("shadow_rays").unsignedInteger();
         const bool variance = r.at("variance").boolean();
         for (Term t : kTerms) {
             Image& im = imageSlot(s, t);
@@ -105,6 +113,7 @@ StoredGroundTruth loadGroundTruth(const std::string& dir, const ReferenceKey& ke
         out.snapshot = std::move(s);
     } catch (const std::exception& e) {
         out.snapshot.reset();
+        out.stats = RenderStats{};
         out.why = std::string("the stored one cannot be read: ") + e.what();
     }
     return out;

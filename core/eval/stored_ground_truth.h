@@ -12,7 +12,7 @@
 /// On disk, one directory (the workbench's is <project dir>/ground_truth):
 ///   ground_truth.json          {"format": "rrf-ground-truth-1", "key": ReferenceKey::toJson(), "spp",
 ///                               "passes", "samples", "non_finite_samples", "seconds", "relative_error",
-///                               "variance": whether the variance images are there}
+///                               "rays", "shadow_rays", "variance": whether the variance images are there}
 ///   {direct,indirect,global}.exr, and variance_{direct,indirect,global}.exr when "variance"
 /// written whole (core/util/directory_replace.h), never a mixture of two renders.
 #include <optional>
@@ -29,11 +29,13 @@ constexpr const char* kGroundTruthDir = "ground_truth";
 /// Writes `snapshot` (a finished render of `key`) into `dir` as one set, replacing what was there.
 /// The variance images are written when the snapshot has them (varianceKnown()). Throws
 /// std::runtime_error naming the directory when it cannot be written (the old set is then kept).
-void storeGroundTruth(const std::string& dir, const ReferenceKey& key, const RenderSnapshot& snapshot);
+void storeGroundTruth(const std::string& dir, const ReferenceKey& key, const RenderSnapshot& snapshot,
+                      const RenderStats& stats);
 
 /// What loadGroundTruth found.
 struct StoredGroundTruth {
     std::optional<RenderSnapshot> snapshot;  ///< the stored render, when it is the one asked for
+    RenderStats stats;                       ///< its renderer's statistics (rays, samples, seconds)
     /// Why there is none: empty when nothing is stored (a first render), else e.g. "the scene, light,
     /// camera or size changed", "it has 16 spp, 64 are asked for", or the problem with a damaged
     /// file (named).

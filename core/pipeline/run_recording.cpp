@@ -191,6 +191,13 @@ int recordEvaluation(std::vector<Run>& runs, const std::string& projectDir, cons
     return changed;
 }
 
+std::string frameSizeKey(const std::string& secondsKey, const char* side) {
+    const std::string suffix = "_seconds";
+    const bool ends = secondsKey.size() > suffix.size() &&
+                      secondsKey.compare(secondsKey.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return (ends ? secondsKey.substr(0, secondsKey.size() - suffix.size()) : secondsKey) + "_" + side;
+}
+
 int recordFrameSeconds(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
                        const std::string& key, double seconds, int width, int height) {
     int changed = 0;
@@ -198,8 +205,8 @@ int recordFrameSeconds(std::vector<Run>& runs, const std::string& projectDir, co
     for (Run& r : runs)
         if (trainedInto(r, projectDir, wanted)) {
             r.metrics[key] = seconds;
-            r.metrics["frame_width"] = width;
-            r.metrics["frame_height"] = height;
+            r.metrics[frameSizeKey(key, "width")] = width;
+            r.metrics[frameSizeKey(key, "height")] = height;
             ++changed;
         }
     return changed;

@@ -105,9 +105,12 @@ struct EvaluationRecord {
 int recordEvaluation(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
                      const EvaluationRecord& record);
 
+/// The metric holding the size of the frame timed under `secondsKey`: "glsl_frame_seconds", "width"
+/// -> "glsl_frame_width"; "frame_seconds" -> "frame_width".
+std::string frameSizeKey(const std::string& secondsKey, const char* side);
 /// Sets metrics[key] (e.g. "glsl_frame_seconds", "frame_seconds": one frame of prediction, the
-/// names sweeps use) and the frame's size, frame_width and frame_height, of every "train" run whose
-/// models are in `modelsDir`. Returns how many changed.
+/// names sweeps use) and the frame's size (frameSizeKey: glsl_frame_width, frame_width, ...) of
+/// every "train" run whose models are in `modelsDir`. Returns how many changed.
 int recordFrameSeconds(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
                        const std::string& key, double seconds, int width, int height);
 

@@ -40,8 +40,9 @@ RunSummary summarizeRun(const Run& run) {
         } else {
             r.frameSeconds = run.metric("frame_seconds");
         }
-        r.frameWidth = int(run.metric("frame_width").value_or(0));
-        r.frameHeight = int(run.metric("frame_height").value_or(0));
+        const std::string timed = r.frameGlsl ? "glsl_frame_seconds" : "frame_seconds";
+        r.frameWidth = int(run.metric(frameSizeKey(timed, "width")).value_or(0));
+        r.frameHeight = int(run.metric(frameSizeKey(timed, "height")).value_or(0));
         r.evaluatedWidth = int(run.metric("evaluated_width").value_or(0));
         r.evaluatedHeight = int(run.metric("evaluated_height").value_or(0));
     } else {

@@ -20,9 +20,10 @@ void makeDirectories(const std::string& dir) {
     if (ec || !fs::is_directory(dir)) throw std::runtime_error(dir + ": cannot create output directory" + (ec ? ": " + ec.message() : ""));
 }
 
-nlohmann::json renderMetadata(const Scene& scene, const Renderer& renderer, const RenderSnapshot& snapshot) {
+nlohmann::json renderMetadata(const Scene& scene, const Renderer& renderer, const RenderSnapshot& snapshot,
+                              const RenderStats* stats) {
     const RenderOptions& o = renderer.options();
-    const RenderStats st = renderer.stats();
+    const RenderStats st = stats ? *stats : renderer.stats();
     const Vec3 lp = scene.lightPosition();
     return {
         {"scene", scene.sourcePath},
@@ -77,7 +78,8 @@ bool isRenderOutputEntry(const std::string& name) {
 
 RenderOutputs writeRenderOutputs(const std::string& dir, const Scene& scene, const Renderer& renderer,
                                  const RenderSnapshot& snapshot, ImageFormat format, float exposureStops,
-                                 const std::vector<std::pair<ImageFormat, float>>& moreFormats) {
+                                 const std::vector<std::pair<ImageFormat, float>>& moreFormats,
+                                 const RenderStats* stats) {
     RenderOutputs out;
     std::vector<std::pair<ImageFormat, float>> formats = {{format, exposureStops}};
     formats.insert(formats.end(), moreFormats.begin(), moreFormats.end());
@@ -94,7 +96,7 @@ RenderOutputs writeRenderOutputs(const std::string& dir, const Scene& scene, con
                 writeImage((fs::path(staging) / file).string(), *image, f, exposure);
                 out.images.push_back((fs::path(dir) / file).string());
             }
-        nlohmann::json meta = renderMetadata(scene, renderer, snapshot);
+        nlohmann::json meta = renderMetadata(scene, renderer, snapshot, stats);
         // With fewer than 2 samples per pixel the variance cannot be estimated (the snapshot holds 0):
         // no files, so a reader sees "unknown" instead of a floor of 0.
         if (snapshot.varianceKnown()) {

@@ -24,8 +24,11 @@ struct RenderOutputs {
     std::string metadata;                ///< path of render.json
 };
 
-/// Metadata of a render as JSON (settings, effects, statistics, light position, scene hash).
-nlohmann::json renderMetadata(const Scene& scene, const Renderer& renderer, const RenderSnapshot& snapshot);
+/// Metadata of a render as JSON (settings, effects, statistics, light position, scene hash). The
+/// statistics are `stats` when given (a render restored from a store, whose renderer never ran),
+/// else the renderer's.
+nlohmann::json renderMetadata(const Scene& scene, const Renderer& renderer, const RenderSnapshot& snapshot,
+                              const RenderStats* stats = nullptr);
 
 /// Writes each term's variance of the mean, `variances[int(t)]`, as variance_<term>.<ext> into `dir`
 /// (created if missing), in `format` if it holds floats (EXR, PFM) and EXR otherwise. Appends the paths
@@ -41,7 +44,8 @@ nlohmann::json writeVarianceImages(const std::string& dir, const std::array<cons
 /// the old render or the new one. Throws std::runtime_error naming the file or directory on failure.
 RenderOutputs writeRenderOutputs(const std::string& dir, const Scene& scene, const Renderer& renderer,
                                  const RenderSnapshot& snapshot, ImageFormat format, float exposureStops,
-                                 const std::vector<std::pair<ImageFormat, float>>& moreFormats = {});
+                                 const std::vector<std::pair<ImageFormat, float>>& moreFormats = {},
+                                 const RenderStats* stats = nullptr);
 
 /// True for the names a render output directory's set consists of: render.json and
 /// <term>.<any extension> or variance_<term>.<any extension>.

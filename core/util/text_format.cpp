@@ -25,4 +25,6 @@ std::string hexString16(uint64_t value) {
     return buf;
 }
 
+std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
+
 }  // namespace rrf

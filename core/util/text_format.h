@@ -18,4 +18,7 @@ std::string hexString(uint64_t value);
 /// reference store, whose fields have a fixed width.
 std::string hexString16(uint64_t value);
 
+/// An image size as tables and legends write it: "256x256".
+std::string sizeText(int width, int height);
+
 }  // namespace rrf

@@ -233,7 +233,10 @@ TEST(GlslPredictor, GpuSecondsAreTheTimerQueriesOfTheLastFrame) {
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const double gpu = gp.gpuSeconds();
         EXPECT_GT(gpu, 0.0) << side << "x" << side;
-        EXPECT_LE(gpu, wall) << "the passes ran inside render() + read()";
+        // The passes ran inside render() + read(); a software driver's timestamps bracket them
+        // loosely (the driver's threads keep their own clock: llvmpipe's exceeded it by ms), so the bound has
+        // slack, far below what a wrong unit (ns as us) or a sum over threads would give.
+        EXPECT_LE(gpu, 1.5 * wall + 2e-3) << "the passes ran inside render() + read()";
         return gpu;
     };
     const double small = frameAt(16), large = frameAt(512);
