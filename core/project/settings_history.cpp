@@ -48,22 +48,17 @@ bool SettingsHistory::observe(const Project& project) {
     return true;
 }
 
-std::optional<ProjectSettings> SettingsHistory::undo() {
-    if (undo_.empty()) return std::nullopt;
-    redo_.push_back(std::move(current_));
-    current_ = std::move(undo_.back());
-    undo_.pop_back();
+std::optional<ProjectSettings> SettingsHistory::step(std::vector<ProjectSettings>& from, std::vector<ProjectSettings>& to) {
+    if (from.empty()) return std::nullopt;
+    to.push_back(std::move(current_));
+    current_ = std::move(from.back());
+    from.pop_back();
     currentPrint_ = current_.fingerprint();
     return current_;
 }
 
-std::optional<ProjectSettings> SettingsHistory::redo() {
-    if (redo_.empty()) return std::nullopt;
-    undo_.push_back(std::move(current_));
-    current_ = std::move(redo_.back());
-    redo_.pop_back();
-    currentPrint_ = current_.fingerprint();
-    return current_;
-}
+std::optional<ProjectSettings> SettingsHistory::undo() { return step(undo_, redo_); }
+
+std::optional<ProjectSettings> SettingsHistory::redo() { return step(redo_, undo_); }
 
 }  // namespace rrf

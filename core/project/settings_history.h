@@ -52,6 +52,9 @@ public:
     size_t redoSteps() const { return redo_.size(); }
 
 private:
+    /// Makes the last of `from` current and the current settings the last of `to`.
+    std::optional<ProjectSettings> step(std::vector<ProjectSettings>& from, std::vector<ProjectSettings>& to);
+
     size_t limit_;
     std::vector<ProjectSettings> undo_, redo_;
     ProjectSettings current_;
