@@ -8,6 +8,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "core/project/scene_edits.h"
 #include "core/util/memory_budget.h"
 #include "panels/panels.h"
 #include "panels/pipeline_controls.h"

@@ -9,6 +9,7 @@
 #include "core/render/term.h"
 #include "core/util/atomic_file.h"
 #include "core/util/directory_replace.h"
+#include "core/util/error.h"
 #include "core/util/image_io.h"
 #include "core/util/json_reader.h"
 
