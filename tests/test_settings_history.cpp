@@ -13,15 +13,6 @@ using namespace rrf;
 
 Project cornell() { return loadProjectOrScene(RRF_SOURCE_DIR "/projects/cornell-box/project.json"); }
 
-void apply(Project& p, const ProjectSettings& s) {
-    p.render = s.render;
-    p.sampling = s.sampling;
-    p.network = s.network;
-    p.trainer = s.trainer;
-    p.prediction = s.prediction;
-    if (s.light) moveLight(p, *s.light);
-}
-
 }  // namespace test_settings_history
 
 using namespace test_settings_history;
@@ -43,19 +34,19 @@ TEST(SettingsHistory, UndoAndRedoGiveBackTheSettingsThatWereThere) {
 
     auto undone = h.undo();
     ASSERT_TRUE(undone);
-    apply(p, *undone);
+    undone->applyTo(p);
     EXPECT_EQ(ProjectSettings::of(p).fingerprint(), afterSpp) << "the light is back, the spp edit stays";
     EXPECT_FALSE(h.observe(p)) << "applying an undo is not a new edit";
     undone = h.undo();
     ASSERT_TRUE(undone);
-    apply(p, *undone);
+    undone->applyTo(p);
     EXPECT_EQ(ProjectSettings::of(p).fingerprint(), start);
     EXPECT_FALSE(h.undo()) << "nothing before the project was opened";
     EXPECT_EQ(h.redoSteps(), 2u);
 
     auto redone = h.redo();
     ASSERT_TRUE(redone);
-    apply(p, *redone);
+    redone->applyTo(p);
     EXPECT_EQ(ProjectSettings::of(p).fingerprint(), afterSpp);
     // A new edit after an undo drops what could be redone.
     p.prediction.directSamples = 5;

@@ -8,7 +8,6 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
-#include "core/project/scene_edits.h"
 #include "core/util/memory_budget.h"
 #include "panels/panels.h"
 #include "panels/pipeline_controls.h"
@@ -251,14 +250,7 @@ void Workbench::applySettings(const std::optional<ProjectSettings>& settings, co
         state_.notify(panels::LogLevel::Info, "", std::string(what) + ": nothing to " + what);
         return;
     }
-    Project& p = state_.project;
-    p.render = settings->render;
-    p.sampling = settings->sampling;
-    p.network = settings->network;
-    p.trainer = settings->trainer;
-    p.prediction = settings->prediction;
-    const bool lightMoved = settings->light && !(*settings->light == p.scene.lightPosition());
-    if (lightMoved) moveLight(p, *settings->light);
+    const bool lightMoved = settings->applyTo(state_.project);
     state_.markDirty();
     state_.log.info(std::string(what) + ": settings restored (" + std::to_string(history_.undoSteps()) + " undo, " +
                     std::to_string(history_.redoSteps()) + " redo steps left)");
@@ -344,7 +336,7 @@ void Workbench::drawFrameOverlay() {
 }
 
 void Workbench::drawModals() {
-    panels::drawHelpWindow(shortcutInfos(), &helpOpen_);
+    if (helpOpen_) panels::drawHelpWindow(shortcutInfos(), &helpOpen_);
     if (aboutModal_) {
         ImGui::OpenPopup("About RRF Workbench");
         aboutModal_ = false;

@@ -3,6 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/project/scene_edits.h"
+
 namespace rrf {
 
 ProjectSettings ProjectSettings::of(const Project& project) {
@@ -14,6 +16,17 @@ ProjectSettings ProjectSettings::of(const Project& project) {
     s.prediction = project.prediction;
     if (!project.scene.lights.empty()) s.light = project.scene.lightPosition();
     return s;
+}
+
+bool ProjectSettings::applyTo(Project& project) const {
+    project.render = render;
+    project.sampling = sampling;
+    project.network = network;
+    project.trainer = trainer;
+    project.prediction = prediction;
+    const bool lightMoved = light && !(*light == project.scene.lightPosition());
+    if (lightMoved) moveLight(project, *light);
+    return lightMoved;
 }
 
 std::string ProjectSettings::fingerprint() const {

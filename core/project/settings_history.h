@@ -27,6 +27,9 @@ struct ProjectSettings {
     std::optional<Vec3> light;  ///< the movable light's centre (none without lights)
 
     static ProjectSettings of(const Project& project);
+    /// Sets `project`'s settings to these (the light moved with moveLight); returns whether the
+    /// light moved, which restarts what depends on the scene.
+    bool applyTo(Project& project) const;
     /// The settings as the project file writes them: equal fingerprints, equal settings.
     std::string fingerprint() const;
 };
