@@ -7,7 +7,10 @@
 // The networks are the default architecture (20-10 tanh, "separate": a direct and an indirect net
 // per object) with Nguyen–Widrow initial weights: inference costs the same for any weights, so no
 // training is needed. Prediction figures are the fastest of several frames (the machine is shared);
-// the path tracer is timed once per thread count (seconds, not milliseconds, of work). Also shown:
+// the path tracer is timed once per thread count (seconds, not milliseconds, of work). At 2 threads
+// a second table gives the path tracer's time to the errors the presets reach (--errors; from the
+// render's own noise, which falls as 1/sqrt(spp)) against one frame with the project's prediction
+// settings: prediction against the path tracer at equal error (issue 28 item 5). Also shown:
 // exact direct light (prediction "direct": "exact", core/predict/exact_direct.h) at 16 samples per
 // pixel, and a second table at 128x128 with 16 and 64 samples: time per frame and the error of the
 // direct image against a converged path-traced direct image (max depth 1, 1024 spp; --quick 256),
@@ -21,6 +24,8 @@
 
 #include "bench/bench_args.h"
 #include "core/eval/evaluation.h"
+#include "core/eval/reference_noise.h"
+#include "core/predict/footprint_mask.h"
 #include "core/pipeline/experiment.h"
 #include "core/nn/network_settings.h"
 #include "core/predict/predictor.h"
@@ -111,6 +116,38 @@ void exactDirectTable(const Scene& scene, const ModelSet& models, const Vec3& li
 }
 
 
+/// The path tracer's time to the error a model reaches: the render's own noise (relative RMSE noise
+/// floor of the global term over the footprint mask, core/eval/reference_noise.h, the figure held-out
+/// errors are reported in) falls as 1/sqrt(spp), so a render of `ref.spp` samples with noise r reaches
+/// noise e at spp · (r/e)² samples in ref.seconds · (r/e)². Against one prediction frame with the
+/// project's own prediction settings (G-buffer, networks and its direct light), timed on the same
+/// threads.
+void equalErrorTable(const Project& p, const ModelSet& models, const Vec3& light, const Reference& ref,
+                     const std::vector<double>& errors, int frames) {
+    const Scene& scene = p.scene;
+    const Predictor pred(scene, models, p.prediction);
+    double frame = 1e30;
+    GBuffer gb;
+    for (int f = 0; f < frames; ++f) {
+        Stopwatch s;
+        gb = pred.gbuffer(light, ref.image(Term::Global).width, ref.image(Term::Global).height);
+        pred.predict(gb);
+        frame = std::min(frame, s.seconds());
+    }
+    const double noise = referenceNoise(ref, footprintMask(gb)).relativeRmse[int(Term::Global)];
+    std::printf("\npath tracer to equal error (global relative RMSE noise over the footprint mask; %d spp gave %.4f in "
+                "%.2f s), against one prediction frame with the project's prediction settings (direct: %s, %d samples):\n\n",
+                ref.spp, noise, ref.seconds, p.prediction.direct == PredictionSettings::Direct::Exact ? "exact" : "network",
+                p.prediction.directSamples);
+    std::printf("| error | path tracer spp | path tracer s | prediction ms/frame | path tracer / prediction |\n");
+    std::printf("|---|---|---|---|---|\n");
+    for (double e : errors) {
+        const double factor = (noise / e) * (noise / e);
+        std::printf("| %.3f | %.0f | %.1f | %.1f | %.0fx |\n", e, ref.spp * factor, ref.seconds * factor, 1e3 * frame,
+                    ref.seconds * factor / frame);
+    }
+}
+
 int main(int argc, char** argv) {
     bool quick = false;
     std::string project;
@@ -123,6 +160,13 @@ int main(int argc, char** argv) {
         ->type_name("N,N,...")
         ->check(bench::kPositive)
         ->default_str("20,10");
+    std::vector<double> errors{0.04, 0.015};
+    app.add_option("--errors", errors,
+                   "held-out errors to reach (the default and best presets' on the Cornell box, docs/results.md)")
+        ->delimiter(',')
+        ->type_name("E,E,...")
+        ->check(CLI::PositiveNumber)
+        ->default_str("0.04,0.015");
     bench::parseArgs(app, argc, argv);
     project = bench::projectOrDefault(project, "bench_predict");
     const Project p = loadProjectOrScene(project);
@@ -148,6 +192,10 @@ int main(int argc, char** argv) {
         std::printf("| %d | %.2f | %.2f | %.2f | %.1f | %.0f | %.0fx |\n", threads, 1e3 * t.gbuffer, 1e3 * t.networks,
                     predictMs, 1e3 * t.exact, 1e3 * ref.seconds, 1e3 * ref.seconds / predictMs);
         std::fflush(stdout);
+        if (threads == 2) {
+            equalErrorTable(p, models, light, ref, errors, frames);
+            std::printf("\n");
+        }
     }
     std::printf("\nprediction = G-buffer + networks (best of %d frames); speed-up = path tracer time / prediction time.\n",
                 frames);
