@@ -55,13 +55,15 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_pipeline_controls.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_frame_stats.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_prediction_draft.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_input_habits.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/worker_priority.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/frame_stats.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/prediction_draft.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/user_workspace.cpp
-    ${CMAKE_SOURCE_DIR}/app/gui/shortcuts.cpp)
+    ${CMAKE_SOURCE_DIR}/app/gui/shortcuts.cpp
+    ${CMAKE_SOURCE_DIR}/app/gui/key_taps.cpp)
   target_link_libraries(rrf_gui_tests PRIVATE rrf_panels GTest::gtest GTest::gtest_main rrf_warnings)
   target_compile_definitions(rrf_gui_tests PRIVATE RRF_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
   include(GoogleTest)

@@ -13,6 +13,8 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include "panels/input_habits.h"
+
 namespace rrf {
 
 namespace {
@@ -84,7 +86,17 @@ bool Window::create(int width, int height, const std::string& title, const std::
     ImGui::StyleColorsDark();
     ImGui::GetStyle().ScaleAllSizes(scale_);
     setupFonts(scale_);
+    panels::configureInput(io);
     ImGui_ImplGlfw_InitForOpenGL(window_, true);
+    // Key events go through KeyTaps (app/gui/key_taps.h) before the backend sees them; the backend's
+    // other callbacks (mouse, characters, focus) stay as it installed them.
+    keyTaps_ = KeyTaps([this](int key, int scancode, int action, int mods) {
+        ImGui_ImplGlfw_KeyCallback(window_, key, scancode, action, mods);
+    });
+    glfwSetWindowUserPointer(window_, this);
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int scancode, int action, int mods) {
+        static_cast<Window*>(glfwGetWindowUserPointer(w))->keyTaps_.event(key, scancode, action, mods);
+    });
     ImGui_ImplOpenGL3_Init("#version 330 core");
     return true;
 }
@@ -109,6 +121,7 @@ void Window::beginFrame() {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
+    keyTaps_.frameStarted();
 }
 
 void Window::render() {

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "app/gui/key_taps.h"
 #include "core/util/image.h"
 
 struct GLFWwindow;
@@ -44,6 +45,8 @@ private:
     bool imgui_ = false;
     float scale_ = 1.f;
     std::string iniPath_;  ///< must outlive ImGui, which keeps the pointer
+    /// GLFW's key events on their way to ImGui's backend, so that taps shorter than a frame count.
+    KeyTaps keyTaps_{nullptr};
 };
 
 }  // namespace rrf
