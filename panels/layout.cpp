@@ -75,13 +75,15 @@ void tabMenu(WorkspaceDraw& w, const PaneNode& pane, const std::string& tab) {
     ImGui::EndPopup();
 }
 
-/// The tab bar of one pane and its shown panel.
-void drawPaneTabs(WorkspaceDraw& w, PaneNode& pane) {
+/// The tab bar of one pane and its shown panel; returns the bar's rectangle (empty when not drawn).
+ImRect drawPaneTabs(WorkspaceDraw& w, PaneNode& pane) {
+    ImRect barRect;
     // The bar's ID follows the pane's tabs in model order: when the model changes them (a move, a
     // reorder, a reset, a loaded project) ImGui sees a bar it has not shown in the last frame.
     ImGui::PushID(joined(pane.tabs).c_str());
     if (ImGui::BeginTabBar("##tabs", ImGuiTabBarFlags_Reorderable | ImGuiTabBarFlags_FittingPolicyScroll)) {
         ImGuiTabBar* bar = GImGui->CurrentTabBar;
+        barRect = bar->BarRect;
         const bool fresh = bar->PrevFrameVisible != ImGui::GetFrameCount() - 1;
         // A reorderable bar keeps its own tab order from the last time it was shown; a bar that
         // (re)appears starts from the model's order instead.
@@ -122,13 +124,18 @@ void drawPaneTabs(WorkspaceDraw& w, PaneNode& pane) {
         ImGui::EndTabBar();
     }
     ImGui::PopID();
+    return barRect;
 }
 
 /// A pane as a drop target: the zone under the pointer is highlighted while a tab is dragged over it.
-void paneDropTarget(WorkspaceDraw& w, const PaneNode& pane, const ImRect& r) {
+/// A drop on the pane's tab bar joins the pane, as it does in every docking UI, whatever edge zone
+/// the bar lies in.
+void paneDropTarget(WorkspaceDraw& w, const PaneNode& pane, const ImRect& r, const ImRect& bar) {
     if (!ImGui::BeginDragDropTargetCustom(r, ImGui::GetID(("##drop" + joined(pane.tabs)).c_str()))) return;
     const ImVec2 m = ImGui::GetIO().MousePos;
-    const DropSide side = dropSideAt((m.x - r.Min.x) / std::max(1.f, r.GetWidth()), (m.y - r.Min.y) / std::max(1.f, r.GetHeight()));
+    const DropSide side = bar.Contains(m) ? DropSide::Centre
+                                          : dropSideAt((m.x - r.Min.x) / std::max(1.f, r.GetWidth()),
+                                                       (m.y - r.Min.y) / std::max(1.f, r.GetHeight()));
     if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload(
             kTabPayload, ImGuiDragDropFlags_AcceptBeforeDelivery | ImGuiDragDropFlags_AcceptNoDrawDefaultRect)) {
         const ImRect z = zoneRect(r, side);
@@ -144,9 +151,10 @@ void drawNode(WorkspaceDraw& w, PaneNode& node, const ImVec2& origin, const ImVe
     if (node.isLeaf()) {
         if (node.tabs.empty()) return;  // only an empty tree has an empty pane (PaneLayout collapses them)
         ImGui::SetCursorScreenPos(origin);
-        if (ImGui::BeginChild(("##pane" + joined(node.tabs)).c_str(), size, true)) drawPaneTabs(w, node);
+        ImRect bar;
+        if (ImGui::BeginChild(("##pane" + joined(node.tabs)).c_str(), size, true)) bar = drawPaneTabs(w, node);
         ImGui::EndChild();
-        paneDropTarget(w, node, ImRect(origin, ImVec2(origin.x + size.x, origin.y + size.y)));
+        paneDropTarget(w, node, ImRect(origin, ImVec2(origin.x + size.x, origin.y + size.y)), bar);
         return;
     }
     const bool row = node.split == PaneSplit::Row;

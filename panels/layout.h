@@ -2,7 +2,7 @@
 /// Docking without ImGui's docking branch: the workspace is drawn from the project's pane tree
 /// (core/project/pane_layout.h). Each split has a draggable splitter (ImGui::SplitterBehavior); each
 /// pane is a child window with a reorderable tab bar. A tab can be dragged onto another pane (its
-/// centre: join that pane; an edge zone: split it and take that side), or moved and split from its
+/// centre or its tab bar: join that pane; an edge zone: split it and take that side), or moved and split from its
 /// context menu (right click). Changes are applied to the PaneLayout after the frame's panes are
 /// drawn, so the tree is never edited while it is walked.
 

@@ -63,6 +63,30 @@ TEST_F(DockingTest, DraggingATabOntoAPaneEdgeSplitsIt) {
     EXPECT_EQ(w.layout.root.children[0].tabs, (std::vector<std::string>{"Scene", "Sampling", "Network"}));
 }
 
+TEST_F(DockingTest, DroppingATabOnAnotherPanesTabBarJoinsThatPane) {
+    Workspace w;
+    // Carry "Project" as above, then drop it on the Views pane's tab bar (top of the right column,
+    // inside the pane's top edge zone, where a drop on the pane body would split it).
+    mouse(24, 16, false);
+    for (int i = 0; i < 3; ++i) frame([&] { w.draw(); });
+    mouse(24, 16, true);
+    frame([&] { w.draw(); });
+    for (int i = 1; i <= 10; ++i) {
+        mouse(24.f, 16.f + 10.f * float(i), true);
+        frame([&] { w.draw(); });
+    }
+    for (int i = 1; i <= 20; ++i) {
+        mouse(24.f + (1000.f - 24.f) * float(i) / 20.f, 116.f + (16.f - 116.f) * float(i) / 20.f, true);
+        frame([&] { w.draw(); });
+    }
+    mouse(1000, 16, false);
+    frame([&] { w.draw(); });
+    frame([&] { w.draw(); });
+    EXPECT_TRUE(w.changed);
+    ASSERT_EQ(w.layout.panes().size(), 3u) << "no pane was split";
+    EXPECT_EQ(w.layout.root.children[1].children[0].tabs, (std::vector<std::string>{"Views", "Project"}));
+}
+
 TEST_F(DockingTest, DraggingATabAlongItsBarReordersThePane) {
     Workspace w;
     for (int i = 0; i < 3; ++i) frame([&] { w.draw(); });
