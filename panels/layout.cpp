@@ -27,6 +27,8 @@ struct WorkspaceDraw {
     float thickness = 4.f;
     std::optional<PendingMove> move;
     std::vector<std::string> reorder;  ///< a pane's tabs in the order its bar now shows them
+    std::string undock, dock;          ///< a tab to float in a window of its own / to dock back
+    bool floatingMoved = false;        ///< a floating window was moved or resized
 };
 
 /// One splitter between two panes along `axis`; `first` is the size of the pane before it.
@@ -66,6 +68,7 @@ void tabMenu(WorkspaceDraw& w, const PaneNode& pane, const std::string& tab) {
     const bool alone = pane.tabs.size() == 1;
     if (ImGui::MenuItem("Split right", nullptr, false, !alone)) w.move = PendingMove{tab, tab, DropSide::Right};
     if (ImGui::MenuItem("Split below", nullptr, false, !alone)) w.move = PendingMove{tab, tab, DropSide::Bottom};
+    if (ImGui::MenuItem("Float in a window", nullptr, false, w.layout.panes().size() > 1 || !alone)) w.undock = tab;
     if (ImGui::BeginMenu("Move to pane", w.layout.panes().size() > 1)) {
         for (const PaneNode* other : w.layout.panes())
             if (other != &pane && ImGui::MenuItem(joined(other->tabs).c_str()))
@@ -147,6 +150,42 @@ void paneDropTarget(WorkspaceDraw& w, const PaneNode& pane, const ImRect& r, con
     ImGui::EndDragDropTarget();
 }
 
+/// A panel floating in a window of its own: a Dock button and a handle that carries it onto a pane
+/// (as a tab's drag does) above the panel; closing the window docks it too, so no panel is lost.
+/// The window's position and size go back into the layout when the user has moved or sized it.
+void drawFloating(WorkspaceDraw& w, FloatingPanel& f) {
+    ImGui::SetNextWindowPos(ImVec2(f.x, f.y), ImGuiCond_Appearing);
+    ImGui::SetNextWindowSize(ImVec2(f.width, f.height), ImGuiCond_Appearing);
+    bool open = true;
+    const std::string title = f.tab + "###floating " + f.tab;
+    if (w.focusTab == f.tab) {
+        ImGui::SetNextWindowFocus();
+        w.focusTab.clear();
+    }
+    if (ImGui::Begin(title.c_str(), &open, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings)) {
+        if (ImGui::SmallButton("Dock")) w.dock = f.tab;
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Back into the pane it came from");
+        ImGui::SameLine();
+        ImGui::SmallButton("Drag to a pane");
+        if (ImGui::BeginDragDropSource()) {
+            ImGui::SetDragDropPayload(kTabPayload, f.tab.c_str(), f.tab.size() + 1);
+            ImGui::Text("Move '%s': drop on a pane (its edge splits it)", f.tab.c_str());
+            ImGui::EndDragDropSource();
+        }
+        ImGui::Separator();
+        ImGui::PushTextWrapPos(0.f);
+        w.drawPanel(f.tab);
+        ImGui::PopTextWrapPos();
+        const ImVec2 p = ImGui::GetWindowPos(), s = ImGui::GetWindowSize();
+        if (!ImGui::IsMouseDown(ImGuiMouseButton_Left) && (p.x != f.x || p.y != f.y || s.x != f.width || s.y != f.height)) {
+            f.x = p.x, f.y = p.y, f.width = s.x, f.height = s.y;
+            w.floatingMoved = true;
+        }
+    }
+    ImGui::End();
+    if (!open) w.dock = f.tab;
+}
+
 void drawNode(WorkspaceDraw& w, PaneNode& node, const ImVec2& origin, const ImVec2& size, int depth) {
     if (node.isLeaf()) {
         if (node.tabs.empty()) return;  // only an empty tree has an empty pane (PaneLayout collapses them)
@@ -206,9 +245,17 @@ bool drawWorkspace(PaneLayout& layout, const std::function<void(const std::strin
     // The panes' child windows were placed by hand: claim their area so the parent's layout knows it.
     ImGui::SetCursorScreenPos(origin);
     ImGui::Dummy(avail);
-    bool changed = false;
-    if (w.move) changed = layout.moveTab(w.move->tab, w.move->target, w.move->side);
-    else if (!w.reorder.empty()) changed = layout.reorderPane(w.reorder);
+    for (FloatingPanel& f : layout.floating) drawFloating(w, f);
+    bool changed = w.floatingMoved;
+    if (w.move) changed |= layout.moveTab(w.move->tab, w.move->target, w.move->side);
+    else if (!w.reorder.empty()) changed |= layout.reorderPane(w.reorder);
+    else if (!w.dock.empty()) changed |= layout.dockTab(w.dock);
+    else if (!w.undock.empty()) {
+        // The new window opens under the pointer, a third of the workspace in size.
+        const ImVec2 m = ImGui::GetIO().MousePos;
+        changed |= layout.floatTab(w.undock, std::round(m.x), std::round(m.y), std::round(std::max(320.f, avail.x / 3)),
+                                   std::round(std::max(240.f, avail.y / 3)));
+    }
     return changed;
 }
 

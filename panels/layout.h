@@ -3,7 +3,8 @@
 /// (core/project/pane_layout.h). Each split has a draggable splitter (ImGui::SplitterBehavior); each
 /// pane is a child window with a reorderable tab bar. A tab can be dragged onto another pane (its
 /// centre or its tab bar: join that pane; an edge zone: split it and take that side), or moved and split from its
-/// context menu (right click). Changes are applied to the PaneLayout after the frame's panes are
+/// context menu (right click), which also floats it in a window of its own (Dock, closing the
+/// window or dragging its handle onto a pane puts it back). Changes are applied to the PaneLayout after the frame's panes are
 /// drawn, so the tree is never edited while it is walked.
 
 #include <functional>

@@ -13,10 +13,11 @@ namespace rrf::test::test_pane_layout {
 using nlohmann::json;
 
 namespace {
-/// Every panel exactly once over all panes.
+/// Every panel exactly once over all panes and floating windows.
 bool holdsEveryPanelOnce(const PaneLayout& l) {
     std::vector<std::string> all;
     for (const PaneNode* p : l.panes()) all.insert(all.end(), p->tabs.begin(), p->tabs.end());
+    for (const FloatingPanel& f : l.floating) all.push_back(f.tab);
     std::vector<std::string> want = PaneLayout::panels();
     std::sort(all.begin(), all.end());
     std::sort(want.begin(), want.end());
@@ -165,6 +166,64 @@ TEST(PaneLayout, DamagedTreeFallsBackWithAWarning) {
     EXPECT_EQ(read(json{{"root", deep}}, warnings), PaneLayout());
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("nested deeper than 12 levels"), std::string::npos) << warnings[0];
+}
+
+TEST(PaneLayout, FloatingPanelsLeaveThePanesAndDockBack) {
+    PaneLayout l;
+    ASSERT_TRUE(l.floatTab("Log", 900, 80, 480, 360));
+    EXPECT_EQ(l.paneOf("Log"), nullptr);
+    ASSERT_NE(l.floatingPanel("Log"), nullptr);
+    EXPECT_EQ(l.floatingPanel("Log")->home, "Light region");
+    EXPECT_TRUE(holdsEveryPanelOnce(l));
+    EXPECT_FALSE(l.floatTab("Log", 0, 0, 10, 10)) << "it floats already";
+    ASSERT_TRUE(l.dockTab("Log"));
+    EXPECT_EQ(l.paneOf("Log"), l.paneOf("Training"));
+    EXPECT_EQ(l.paneOf("Log")->active, "Log");
+    EXPECT_TRUE(l.floating.empty());
+    EXPECT_FALSE(l.dockTab("Log")) << "it is docked";
+
+    // A pane's only panel floats: the pane collapses; docked by a drag onto another pane's edge.
+    ASSERT_TRUE(l.floatTab("Views", 10, 10, 300, 200));
+    EXPECT_EQ(l.panes().size(), 2u);
+    ASSERT_TRUE(l.moveTab("Views", "Cost", DropSide::Top));
+    EXPECT_EQ(l.panes().size(), 3u);
+    EXPECT_EQ(l.paneOf("Views")->tabs, (std::vector<std::string>{"Views"}));
+    EXPECT_TRUE(holdsEveryPanelOnce(l));
+
+    // The last panel left in the panes stays there.
+    PaneLayout m;
+    const std::vector<std::string>& all = PaneLayout::panels();
+    for (size_t i = 0; i + 1 < all.size(); ++i) ASSERT_TRUE(m.floatTab(all[i], 0, 0, 100, 100)) << all[i];
+    EXPECT_FALSE(m.floatTab(all.back(), 0, 0, 100, 100));
+    EXPECT_TRUE(holdsEveryPanelOnce(m));
+    // Their homes floated away: docking falls back to the first pane.
+    ASSERT_TRUE(m.dockTab(all.front()));
+    EXPECT_EQ(m.paneOf(all.front()), m.paneOf(all.back()));
+}
+
+TEST(PaneLayout, FloatingPanelsSurviveJsonAndDamageIsRepaired) {
+    PaneLayout l;
+    ASSERT_TRUE(l.floatTab("Objects", 700.5f, 90, 420, 300));
+    const json j = l.toJson();
+    EXPECT_EQ(j["floating"][0]["rect"], json::array({700.5, 90.0, 420.0, 300.0}));
+    std::vector<std::string> warnings;
+    EXPECT_EQ(read(j, warnings), l);
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    EXPECT_FALSE(PaneLayout().toJson().contains("floating")) << "layouts without floating panels are written as before";
+
+    json bad = PaneLayout().toJson();
+    bad["floating"] = json::array({{{"tab", "Bogus"}, {"rect", {0, 0, 10, 10}}},
+                                   {{"tab", "Log"}, {"rect", {0, 0, 10}}},
+                                   {{"tab", "Views"}, {"rect", {0, 0, 10, 10}}}});
+    const PaneLayout b = read(bad, warnings);
+    EXPECT_TRUE(holdsEveryPanelOnce(b));
+    EXPECT_TRUE(b.floating.empty());
+    auto has = [&](const std::string& text) {
+        return std::any_of(warnings.begin(), warnings.end(), [&](const std::string& w) { return w.find(text) != w.npos; });
+    };
+    EXPECT_TRUE(has("unknown floating panel 'Bogus' dropped"));
+    EXPECT_TRUE(has("p.json: /layout/floating/1/rect: expected [x, y, width, height]"));
+    EXPECT_TRUE(has("panel 'Views' floats but is also in a pane"));
 }
 
 TEST(PaneLayout, ClampFraction) {

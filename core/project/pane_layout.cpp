@@ -111,9 +111,44 @@ PaneNode readNode(const JsonReader& r, int depth, std::vector<std::string>& warn
     return n;
 }
 
+/// The "floating" windows; a damaged entry is dropped with a warning (its panel returns to a pane).
+std::vector<FloatingPanel> readFloating(const JsonReader& section, std::vector<std::string>& warnings) {
+    std::vector<FloatingPanel> out;
+    if (!section.has("floating")) return out;
+    const JsonReader list = section.at("floating");
+    size_t count = 0;
+    try {
+        count = list.requireArray();
+    } catch (const InputError& e) {
+        warnings.push_back(std::string(e.what()) + "; no panel floats");
+        return out;
+    }
+    for (size_t i = 0; i < count; ++i) {
+        const JsonReader r = list.at(i);
+        try {
+            r.requireObject();
+            r.checkKeys({"tab", "rect", "home"});
+            FloatingPanel f;
+            f.tab = r.at("tab").string();
+            f.home = r.stringOr("home", "");
+            const JsonReader rect = r.at("rect");
+            if (rect.requireArray() != 4) rect.fail("expected [x, y, width, height]");
+            float v[4];
+            for (size_t k = 0; k < 4; ++k) v[k] = float(rect.at(k).number(-1e5, 1e5));
+            if (v[2] < 1.f || v[3] < 1.f) rect.fail("expected a positive width and height");
+            f.x = v[0], f.y = v[1], f.width = v[2], f.height = v[3];
+            out.push_back(std::move(f));
+        } catch (const InputError& e) {
+            warnings.push_back(std::string(e.what()) + "; that panel is docked");
+        }
+    }
+    return out;
+}
+
 /// Makes the tree hold every panel exactly once: unknown and repeated tabs are dropped, missing
 /// panels join the first pane, empty panes collapse, and each pane shows one of its tabs.
-void normalise(PaneNode& root, const std::string& file, const std::string& pointer, std::vector<std::string>& warnings) {
+void normalise(PaneNode& root, std::vector<FloatingPanel>& floating, const std::string& file, const std::string& pointer,
+               std::vector<std::string>& warnings) {
     const std::vector<std::string>& known = PaneLayout::panels();
     std::set<std::string> seen;
     std::vector<PaneNode*> panes;
@@ -130,7 +165,26 @@ void normalise(PaneNode& root, const std::string& file, const std::string& point
         }
         p->tabs = std::move(kept);
     }
+    // Floating windows after the panes: a panel a pane holds stays there.
+    std::vector<FloatingPanel> floats;
+    for (FloatingPanel& f : floating) {
+        if (std::find(known.begin(), known.end(), f.tab) == known.end())
+            warnings.push_back(InputError(file, pointer, "unknown floating panel '" + f.tab + "' dropped").what());
+        else if (!seen.insert(f.tab).second)
+            warnings.push_back(
+                InputError(file, pointer, "panel '" + f.tab + "' floats but is also in a pane or window; the window is dropped")
+                    .what());
+        else
+            floats.push_back(std::move(f));
+    }
+    floating = std::move(floats);
     collapse(root);
+    // At least one panel stays in the panes.
+    if (root.isLeaf() && root.tabs.empty() && !floating.empty()) {
+        warnings.push_back(InputError(file, pointer, "every panel floats; '" + floating.front().tab + "' is docked").what());
+        root.tabs.push_back(floating.front().tab);
+        floating.erase(floating.begin());
+    }
     std::vector<PaneNode*> first;
     collectPanes(root, first);
     for (const std::string& t : known)
@@ -187,12 +241,17 @@ std::vector<const PaneNode*> PaneLayout::panes() const {
 bool PaneLayout::moveTab(const std::string& tab, const std::string& target, DropSide side) {
     PaneNode* from = paneOf(tab);
     PaneNode* to = paneOf(target);
-    if (!from || !to) return false;
+    FloatingPanel* floats = floatingPanel(tab);
+    if ((!from && !floats) || !to) return false;
     if (side == DropSide::Centre && from == to) return false;
     if (side != DropSide::Centre && from == to && from->tabs.size() == 1) return false;
     // Take the tab out first (the pane may become empty but stays in place, so `to` stays valid).
-    from->tabs.erase(std::find(from->tabs.begin(), from->tabs.end(), tab));
-    fixActive(*from);
+    if (floats) {
+        floating.erase(floating.begin() + (floats - floating.data()));
+    } else {
+        from->tabs.erase(std::find(from->tabs.begin(), from->tabs.end(), tab));
+        fixActive(*from);
+    }
     if (side == DropSide::Centre) {
         to->tabs.push_back(tab);
         to->active = tab;
@@ -206,6 +265,35 @@ bool PaneLayout::moveTab(const std::string& tab, const std::string& target, Drop
     }
     collapse(root);
     return true;
+}
+
+bool PaneLayout::floatTab(const std::string& tab, float x, float y, float width, float height) {
+    PaneNode* from = paneOf(tab);
+    if (!from) return false;
+    size_t docked = 0;
+    for (const PaneNode* p : panes()) docked += p->tabs.size();
+    if (docked <= 1) return false;
+    FloatingPanel f{tab, x, y, width, height, {}};
+    for (const std::string& other : from->tabs)
+        if (other != tab) f.home = other;
+    from->tabs.erase(std::find(from->tabs.begin(), from->tabs.end(), tab));
+    fixActive(*from);
+    collapse(root);
+    floating.push_back(std::move(f));
+    return true;
+}
+
+bool PaneLayout::dockTab(const std::string& tab) {
+    const FloatingPanel* f = floatingPanel(tab);
+    if (!f) return false;
+    const std::string home = paneOf(f->home) ? f->home : panes().front()->tabs.front();
+    return moveTab(tab, home, DropSide::Centre);
+}
+
+FloatingPanel* PaneLayout::floatingPanel(const std::string& tab) {
+    for (FloatingPanel& f : floating)
+        if (f.tab == tab) return &f;
+    return nullptr;
 }
 
 bool PaneLayout::reorderPane(const std::vector<std::string>& order) {
@@ -227,7 +315,16 @@ bool PaneLayout::showTab(const std::string& tab) {
     return true;
 }
 
-json PaneLayout::toJson() const { return json{{"root", nodeJson(root)}}; }
+json PaneLayout::toJson() const {
+    json j{{"root", nodeJson(root)}};
+    if (!floating.empty()) {
+        json fl = json::array();
+        for (const FloatingPanel& f : floating)
+            fl.push_back({{"tab", f.tab}, {"rect", {f.x, f.y, f.width, f.height}}, {"home", f.home}});
+        j["floating"] = fl;
+    }
+    return j;
+}
 
 PaneLayout PaneLayout::fromJson(const JsonReader& section, std::vector<std::string>& warnings) {
     PaneLayout l;
@@ -255,8 +352,10 @@ PaneLayout PaneLayout::fromJson(const JsonReader& section, std::vector<std::stri
     try {
         std::vector<std::string> nodeWarnings;
         PaneNode tree = readNode(root, 0, nodeWarnings);
-        normalise(tree, root.file(), root.pointer(), nodeWarnings);
+        std::vector<FloatingPanel> floating = readFloating(section, nodeWarnings);
+        normalise(tree, floating, root.file(), root.pointer(), nodeWarnings);
         l.root = std::move(tree);
+        l.floating = std::move(floating);
         warnings.insert(warnings.end(), nodeWarnings.begin(), nodeWarnings.end());
     } catch (const InputError& e) {
         warnings.push_back(std::string(e.what()) + "; the default layout is used");

@@ -12,6 +12,14 @@
 ///                       {"tabs": ["Views"]},
 ///                       {"tabs": ["Training", "Objects", "Cost", "Leaves", "Light region", "Log"]}]}]}}
 ///
+/// A panel can also float: undocked from its pane into a window of its own that the user moves and
+/// sizes, and docked back (into the pane it came from, or dragged onto any pane). Every panel is
+/// always in exactly one pane or one floating window, and at least one panel stays in the panes:
+///
+///     "floating": [{"tab": "Log", "rect": [900, 80, 480, 360], "home": "Training"}]
+///
+/// ("rect": the window's position and size in pixels; "home": a panel of the pane it left).
+///
 /// Files of earlier versions have {"left": 0.27, "bottom": 0.32} (the two splitters of the fixed
 /// three-pane arrangement) and still load as that arrangement. Only data lives here; panels/layout
 /// draws the workspace from it.
@@ -48,6 +56,16 @@ struct PaneNode {
     bool operator!=(const PaneNode& o) const { return !(*this == o); }
 };
 
+/// A panel in a window of its own (undocked from the panes).
+struct FloatingPanel {
+    std::string tab;
+    float x = 0.f, y = 0.f, width = 0.f, height = 0.f;  ///< the window's position and size, pixels
+    std::string home;  ///< a panel of the pane it was undocked from (where Dock puts it back)
+    bool operator==(const FloatingPanel& o) const {
+        return tab == o.tab && x == o.x && y == o.y && width == o.width && height == o.height && home == o.home;
+    }
+};
+
 struct PaneLayout {
     static constexpr float kDefaultLeft = 0.27f;    ///< left column width / workspace width
     static constexpr float kDefaultBottom = 0.32f;  ///< bottom pane height / right side's height
@@ -58,6 +76,7 @@ struct PaneLayout {
     static constexpr int kMaxDepth = 12;
 
     PaneNode root = defaultRoot();
+    std::vector<FloatingPanel> floating;  ///< panels undocked into windows of their own
 
     /// Every panel of the workbench in its default order; each is in exactly one pane.
     static const std::vector<std::string>& panels();
@@ -66,7 +85,7 @@ struct PaneLayout {
     static PaneNode defaultRoot(float left = kDefaultLeft, float bottom = kDefaultBottom);
 
     void reset() { *this = PaneLayout(); }
-    bool operator==(const PaneLayout& o) const { return root == o.root; }
+    bool operator==(const PaneLayout& o) const { return root == o.root && floating == o.floating; }
     bool operator!=(const PaneLayout& o) const { return !(*this == o); }
 
     /// `f` clamped to [kMinFraction, kMaxFraction]; `fallback` when it is not finite.
@@ -78,11 +97,20 @@ struct PaneLayout {
     /// The panes (leaves) in drawing order: depth first, first child first.
     std::vector<const PaneNode*> panes() const;
 
-    /// Moves `tab` to the pane holding `target`: into it (Centre, appended and shown) or into a new
-    /// pane on `side` of it (the target pane is split in half). A pane left empty collapses. Returns
-    /// false and changes nothing when the move is not possible or would change nothing (an unknown
-    /// tab; Centre on its own pane; splitting a pane whose only tab is the one moved).
+    /// Moves `tab` (in a pane or floating) to the pane holding `target`: into it (Centre, appended
+    /// and shown) or into a new pane on `side` of it (the target pane is split in half). A pane left
+    /// empty collapses. Returns false and changes nothing when the move is not possible or would
+    /// change nothing (an unknown tab; Centre on its own pane; splitting a pane whose only tab is the
+    /// one moved).
     bool moveTab(const std::string& tab, const std::string& target, DropSide side);
+    /// Undocks `tab` from its pane into a floating window at (x, y) of size (width, height). False
+    /// and nothing changed when no pane holds it or it is the last panel left in the panes.
+    bool floatTab(const std::string& tab, float x, float y, float width, float height);
+    /// Docks a floating `tab` back into the pane of its home panel (the first pane when its home
+    /// floats too or is gone). False when `tab` does not float.
+    bool dockTab(const std::string& tab);
+    /// The floating window of `tab`; nullptr when it is in a pane.
+    FloatingPanel* floatingPanel(const std::string& tab);
     /// Puts the tabs of one pane in the order given (the tab bar was reordered by dragging). `order`
     /// must name exactly that pane's tabs; returns false and changes nothing otherwise or when the
     /// order is the same.
@@ -90,11 +118,12 @@ struct PaneLayout {
     /// Makes `tab` the shown tab of its pane; false if no pane holds it or it is shown already.
     bool showTab(const std::string& tab);
 
-    /// {"root": node}; nodes as in the header comment.
+    /// {"root": node[, "floating": [...]]}; nodes as in the header comment.
     nlohmann::json toJson() const;
     /// Reads the section. A damaged layout must never make the workspace unusable (nor the project
     /// unopenable): a damaged tree is replaced by the default arrangement, an unknown or repeated tab
-    /// is dropped, a panel no pane holds is added to the first pane, an out-of-range fraction is
+    /// is dropped (a floating one too, and a floating panel that a pane also holds), a panel no pane
+    /// or window holds is added to the first pane, an out-of-range fraction is
     /// clamped, and each repair is described in `warnings` (file, JSON pointer, what was expected).
     /// The old form {"left", "bottom"} is read as the default arrangement with those fractions.
     static PaneLayout fromJson(const JsonReader& section, std::vector<std::string>& warnings);

@@ -2,6 +2,8 @@
 // and the clipped-text check of item 6 (panels/clip_check.h) on content that does and does not fit.
 #include <string>
 
+#include <imgui_internal.h>
+
 #include "panels/clip_check.h"
 #include "panels/layout.h"
 #include "panels/panels.h"
@@ -133,6 +135,62 @@ TEST_F(DockingTest, ContextMenuSplitsAPane) {
     const PaneNode& left = w.layout.root.children[0];
     ASSERT_EQ(left.split, PaneSplit::Row);
     EXPECT_EQ(left.children[1].tabs, (std::vector<std::string>{"Project"}));
+}
+
+TEST_F(DockingTest, ContextMenuFloatsATabAndDockPutsItBack) {
+    Workspace w;
+    for (int i = 0; i < 3; ++i) frame([&] { w.draw(); });
+    // Right click on the "Project" tab; its third entry is "Float in a window".
+    ImGuiIO& io = ImGui::GetIO();
+    mouse(24, 16, false);
+    io.MouseDown[1] = true;
+    frame([&] { w.draw(); });
+    io.MouseDown[1] = false;
+    frame([&] { w.draw(); });
+    frame([&] { w.draw(); });
+    const ImGuiStyle& style = ImGui::GetStyle();
+    // Move the pointer down the open menu until its "Float in a window" item is under it.
+    ASSERT_FALSE(GImGui->OpenPopupStack.empty());
+    ImGuiWindow* menu = GImGui->OpenPopupStack.back().Window;
+    ASSERT_NE(menu, nullptr);
+    const ImGuiID item = menu->GetID("Float in a window");
+    float itemY = menu->Pos.y;
+    for (; itemY < menu->Pos.y + menu->Size.y; itemY += 2.f) {
+        mouse(40, itemY, false);
+        frame([&] { w.draw(); });
+        if (GImGui->HoveredId == item) break;
+    }
+    ASSERT_EQ(GImGui->HoveredId, item) << "the menu has the item";
+    mouse(40, itemY, true);
+    frame([&] { w.draw(); });
+    mouse(40, itemY, false);
+    frame([&] { w.draw(); });
+    frame([&] { w.draw(); });
+    EXPECT_TRUE(w.changed);
+    EXPECT_EQ(w.layout.paneOf("Project"), nullptr);
+    const FloatingPanel* f = w.layout.floatingPanel("Project");
+    ASSERT_NE(f, nullptr);
+    ImGuiWindow* window = ImGui::FindWindowByName("Project###floating Project");
+    ASSERT_NE(window, nullptr) << "the panel has a window of its own";
+    EXPECT_TRUE(window->Active) << "drawn in the last frame";
+    EXPECT_FLOAT_EQ(window->Pos.x, f->x);
+    EXPECT_FLOAT_EQ(window->Pos.y, f->y);
+
+    // Its Dock button (first item under the title bar) puts it back where it came from.
+    w.changed = false;
+    const ImVec2 dock(window->Pos.x + style.WindowPadding.x + 8.f,
+                      window->Pos.y + window->TitleBarHeight() + style.WindowPadding.y + ImGui::GetFontSize() * 0.5f);
+    mouse(dock.x, dock.y, false);
+    frame([&] { w.draw(); });
+    mouse(dock.x, dock.y, true);
+    frame([&] { w.draw(); });
+    mouse(dock.x, dock.y, false);
+    frame([&] { w.draw(); });
+    frame([&] { w.draw(); });
+    EXPECT_TRUE(w.changed);
+    EXPECT_TRUE(w.layout.floating.empty());
+    ASSERT_NE(w.layout.paneOf("Project"), nullptr);
+    EXPECT_EQ(w.layout.paneOf("Project"), w.layout.paneOf("Scene")) << "back in the pane it came from";
 }
 
 TEST_F(DockingTest, FocusTabBringsItToTheFrontOnce) {
