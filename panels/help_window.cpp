@@ -24,8 +24,9 @@ const Gesture kGestures[] = {
     {"Plots", "mouse wheel / left drag", "zoom / pan (Training loss, Cost)"},
     {"Plots", "double click", "fit the data again"},
     {"Plots", "click a legend entry", "hide or show that series"},
-    {"Numeric fields", "double click, or Ctrl+click", "type a value; drag to change it"},
-    {"Tabs", "drag a tab", "onto a pane's centre to join it, onto its edge to split (View > Reset layout)"},
+    {"Numeric fields", "click", "type a value; drag to change it"},
+    {"Tabs", "drag a tab", "onto a pane's centre or tab bar to join it, onto its edge to split (View > Reset layout)"},
+    {"Tabs", "right click a tab", "split its pane, move it, or float it in a window of its own (Dock puts it back)"},
     {"Runs table", "tick A and B", "compare two training runs' predictions side by side"},
 };
 
