@@ -3,7 +3,7 @@
 ///
 /// On the 2-core machines this workbench targets, a render or training job keeps every core busy;
 /// at equal priority the UI thread (and Mesa llvmpipe's rasteriser threads, which draw its frames)
-/// gets about a third of the CPU, and frames stretch to 100 ms. A job's thread and the TBB worker
+/// gets only its share of the CPU among the jobs' threads, and frames stretch. A job's thread and the TBB worker
 /// threads of its parallel loops therefore run at a lower scheduling priority (nice +kWorkerNice on
 /// Linux): the scheduler gives the UI thread the CPU when it needs it and the jobs everything else,
 /// so job throughput is unchanged while the UI is idle. Results do not depend on it (every number

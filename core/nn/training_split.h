@@ -7,7 +7,7 @@
 ///
 /// Load balance: longest processing time first (Graham's LPT rule) with an object's record count as
 /// its cost — an epoch of either trainer costs time linear in the records, and the objects of a scene
-/// differ by an order of magnitude (the Cornell box's floor holds ~10× the records of a block's). The
+/// differ by an order of magnitude (a floor against a small block's faces). The
 /// objects are taken in decreasing cost and each goes to the rank with the least cost so far, which
 /// keeps the largest rank within 4/3 of the optimum split. Epoch counts (early stops) and kd-tree
 /// growth are not known in advance and are not modelled. The rule is deterministic, so every rank

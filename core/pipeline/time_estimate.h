@@ -8,7 +8,7 @@
 ///    directions (cells inside objects and escaping rays make none; a measured records-per-ray
 ///    fraction narrows it); paths per record are the first round (low) to max_spp (high, when
 ///    adaptive). The rate is the last ground-truth render's samples/s when known (the generator
-///    traces at the renderer's speed, README: bench_generate), else kReferencePathRate per thread.
+///    traces at the renderer's speed, bench_generate), else kReferencePathRate per thread.
 ///  - training: per network, max_epochs × the cost of one epoch (an upper bound: the error goal and
 ///    patience stop earlier). Levenberg–Marquardt: 3·N·P² flops (N its records after max_samples and
 ///    max_epoch_gflop, P the weights) at kLmFlopsPerThread; Adam: N·P multiply–adds per epoch for
@@ -28,14 +28,14 @@ namespace rrf {
 
 struct Scene;
 
-/// Path samples per second per thread when no render was measured: the path tracer's speed on the
-/// 2-core reference machine (README, bench_render: 3.70 M samples/s on 2 threads, 1.85 per thread).
+/// Path samples per second per thread when no render was measured: the path tracer's per-thread speed
+/// on the 2-core reference machine (docs/results.md, "tracer": bench_render's tracer rate).
 constexpr double kReferencePathRate = 1.85e6;
-/// Levenberg–Marquardt flops per second per thread (README, bench_nn: an LM epoch of 16-20-10-3 on
-/// 20 000 samples, 3·N·P² = 20.4 GFLOP, took 1.018 s on 1 thread).
+/// Levenberg–Marquardt flops per second per thread (docs/results.md, "kernels": bench_nn's LM epoch
+/// of 16-20-10-3 against its 3·N·P² flop count, on 1 thread).
 constexpr double kLmFlopsPerThread = 20.0e9;
-/// Adam training throughput per thread in samples × weights per second (README, bench_nn: 6.30 M
-/// samples/s for 16-20-10-3, P = 583).
+/// Adam training throughput per thread in samples × weights per second (docs/results.md, "kernels":
+/// bench_nn's Adam rate for 16-20-10-3 on one thread, times its P = 583 weights).
 constexpr double kAdamWeightSamplesPerThread = 6.30e6 * 583;
 /// The evaluation's CPU prediction (exact direct light's shadow rays and the networks) counted as
 /// this many path samples per pixel: a rough allowance that only weighs the pipeline's last stage

@@ -6,8 +6,7 @@
 /// surface point seen through the pixel centre (core/predict/gbuffer.h). Both agree, up to the
 /// reference's noise and the second-order variation of smooth shading across the square, only where
 /// the square shows one smooth surface. Elsewhere the difference measures the filter, not the model
-/// (the Cornell box's short box, exact direct light against a reference of the same light, 96², 256
-/// spp: relative RMSE 0.11 with its creases kept, 0.002 — the two images' noise — without). So an
+/// (at a box's creases it dwarfs the images' own noise: docs/results-history.md, §14). So an
 /// object pixel is left out of every error statistic when its footprint can cover more than one
 /// surface, judged from the centre samples of its 3×3 neighbourhood: a discontinuity between two
 /// neighbouring centres lies in the square of one of them, so both are left out. Reasons, tested in
