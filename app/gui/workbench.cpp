@@ -1,4 +1,5 @@
-// Workbench: frame loop pieces, host window, menus, status bar, modals and request dispatch.
+// Workbench: frame loop pieces, host window, menus, status bar, modals, request dispatch and the
+// wiring of the controllers.
 #include "app/gui/workbench.h"
 
 #include <cstdio>
@@ -19,9 +20,36 @@ namespace fs = std::filesystem;
 using panels::Command;
 
 Workbench::Workbench(const std::string& configDir)
-    : recent_((fs::path(configDir) / "recent.json").string()), lastAutosave_(std::chrono::steady_clock::now()) {
+    : recent_((fs::path(configDir) / "recent.json").string()),
+      pipeline_(ctx_, pipelineStages()),
+      lastAutosave_(std::chrono::steady_clock::now()) {
     recent_.load();
     state_.recent = recent_.paths();
+    training_.onTrained = [this](const std::string& modelsDir, std::shared_ptr<const ModelSet> models) {
+        loadModels(modelsDir, std::move(models));
+        // The pipeline evaluates as its own stage; a manual training is evaluated here (issue 29 item 8).
+        if (!pipelineRunning()) evaluateAfterTrain_ = true;
+    };
+}
+
+std::array<PipelineController::StageHooks, PipelineController::kStages> Workbench::pipelineStages() {
+    PipelineController::StageHooks render, generate, train, evaluate;
+    render.start = [this](StageDone done) { return startRenderStage(std::move(done)); };
+    render.progress = [this] {
+        return state_.render.targetSpp > 0 ? double(state_.render.spp) / state_.render.targetSpp : 0.0;
+    };
+    render.cancel = [this] { cancelRender(); };
+    render.finished = [this] { return groundTruthConverged(); };
+    generate.start = [this](StageDone done) { return training_.startGenerate(std::move(done)); };
+    generate.progress = [this] { return training_.generateProgress(); };
+    generate.cancel = [this] { training_.cancelGenerate(); };
+    train.start = [this](StageDone done) { return training_.startTrain(0, std::move(done)); };
+    train.progress = [this] { return training_.trainProgress(); };
+    train.cancel = [this] { training_.cancelTrain(); };
+    evaluate.start = [this](StageDone done) { return startEvaluate(std::move(done)); };
+    evaluate.progress = [this] { return evaluateJob_.progress(); };
+    evaluate.cancel = [this] { evaluateJob_.cancel(); };
+    return {render, generate, train, evaluate};
 }
 
 Workbench::~Workbench() {
@@ -88,17 +116,15 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 }
 
 void Workbench::dropJobs() {
-    for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &generateJob_, &trainJob_, &evaluateJob_,
-                                                                      &predictJob_, &sweepJob_, &pairJob_, &overlayJob_,
-                                                                      &flipJob_, &spreadJob_, &lightGridJob_})
+    for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &evaluateJob_, &predictJob_, &sweepJob_,
+                                                                      &pairJob_, &overlayJob_, &flipJob_, &spreadJob_,
+                                                                      &lightGridJob_})
         job->drop();
+    training_.drop();
     render_.reset();
-    trainLive_.reset();
+    renderDone_ = evaluateDone_ = nullptr;
     predictPending_ = false;
-    if (pipelineRunning()) {
-        pipeline_.cancelled = true;
-        endPipeline("stopped: its project was closed");
-    }
+    pipeline_.abandon("stopped: its project was closed");
 }
 
 void Workbench::logFinishedJobs() {
@@ -121,8 +147,7 @@ void Workbench::frame() {
     // Ended jobs are logged first, so their results' lines follow "... finished after N s".
     logFinishedJobs();
     pollRender();
-    pollGenerate();
-    pollTrain();
+    training_.poll();
     pollEvaluate();
     // After pollPredict: a CPU frame that has just ended is delivered before the evaluation that
     // waited for it looks for it.
@@ -131,7 +156,7 @@ void Workbench::frame() {
     pollSweep();
     pollLightGrid();
     pollRunPair();
-    pollPipeline();
+    pipeline_.poll();
     updateFlipMap();
     updateSpreadMap();
     refreshAvailableMemory();
@@ -455,9 +480,9 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
             case Command::StartRender: startRender(); break;
             case Command::CancelRender: cancelRender(); break;
             case Command::Generate: startGenerate(); break;
-            case Command::CancelGenerate: generateJob_.cancel(); break;
+            case Command::CancelGenerate: training_.cancelGenerate(); break;
             case Command::Train: startTrain(); break;
-            case Command::CancelTrain: trainJob_.cancel(); break;
+            case Command::CancelTrain: training_.cancelTrain(); break;
             case Command::Evaluate: startEvaluate(); break;
             case Command::ExportObjectsCsv:
                 if (r.path.empty()) openDialog(DialogPurpose::ExportObjectsCsv);

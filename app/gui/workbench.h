@@ -1,8 +1,11 @@
 #pragma once
-/// The workbench application: the host window with menu bar, split panes and tabs, the modals, the
-/// background jobs and the GL textures of the views. Panels (panels/) draw and edit the state and
-/// queue Requests; this class carries them out between frames. UI thread only.
+/// The workbench application: the host window with menu bar, split panes and tabs, the modals and
+/// the GL textures of the views, composed with the controllers that own the background jobs
+/// (TrainingController: data and training; PipelineController: the one-click chain). Panels
+/// (panels/) draw and edit the state and queue Requests; this class carries them out between frames.
+/// UI thread only.
 
+#include <array>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -12,10 +15,13 @@
 #include "app/gui/gl_texture.h"
 #include "app/gui/job_runner.h"
 #include "app/gui/job_session.h"
+#include "app/gui/controller_context.h"
 #include "app/gui/live_prediction.h"
+#include "app/gui/pipeline_controller.h"
 #include "app/gui/prediction_draft.h"
 #include "app/gui/render_session.h"
 #include "app/gui/shortcuts.h"
+#include "app/gui/training_controller.h"
 #include "core/project/settings_history.h"
 #include "app/gui/user_config.h"
 #include "panels/file_dialog.h"
@@ -24,9 +30,6 @@
 
 namespace rrf {
 
-struct GeneratedDataset;
-struct TrainingOutcome;
-struct TrainingLive;
 struct EvaluationOutcome;
 struct TimedPrediction;
 struct CpuFrame;
@@ -91,13 +94,13 @@ public:
     bool exportImages(const std::string& dir);
     /// Starts the data generator with the project's sampling settings, writing
     /// <project dir>/data/dataset.rrfd (refused while a conflicting job runs).
-    bool startGenerate();
-    bool generateRunning() const;
+    bool startGenerate() { return training_.startGenerate(); }
+    bool generateRunning() const { return training_.generateRunning(); }
     /// Trains the project's networks on the generated dataset (or <project dir>/data/dataset.rrfd);
     /// `maxEpochs` > 0 overrides the trainer's epoch limit. When done the models are saved under
     /// runs/<run>/models, a "train" run is recorded and the models drive the live prediction.
-    bool startTrain(int maxEpochs = 0);
-    bool trainRunning() const;
+    bool startTrain(int maxEpochs = 0) { return training_.startTrain(maxEpochs); }
+    bool trainRunning() const { return training_.trainRunning(); }
     /// Loads a model directory for the live prediction (GLSL, else CPU). `preloaded`: the set a
     /// worker already read from `dir` (a finished training), so only the GL upload is left here.
     bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr);
@@ -110,7 +113,8 @@ public:
     /// (app/gui/workbench_spread.cpp).
     void updateSpreadMap();
     /// Compares the prediction with the ground truth per object and term (fills the Objects panel).
-    bool startEvaluate();
+    /// `done`: told once when the job ended (delivered: an evaluation was made).
+    bool startEvaluate(StageDone done = nullptr);
     bool evaluateRunning() const;
     /// A manual training finished and its models wait to be evaluated (once the ground truth of the
     /// current light is rendered), so every run gets its error without pressing Evaluate.
@@ -125,19 +129,17 @@ public:
     bool draftShown() const { return draftShown_; }
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
     bool exportObjectsCsv(const std::string& path);
-    /// The one-click pipeline: applies `preset` (core/pipeline/presets.h) to the project's data and
-    /// network settings, then renders the ground truth (or keeps a finished one), generates the
-    /// dataset, trains and evaluates, one job after the other, each the same job its own button
-    /// starts. state().pipeline shows one progress display (overall fraction weighted by the stages'
-    /// estimates, current stage, ETA); the trained models become a run in the runs table with their
-    /// evaluation. Refused (false, with a notice) without a saved project or while a job runs.
-    bool startPipeline(const std::string& preset);
+    /// The one-click pipeline (PipelineController): applies `preset` (core/pipeline/presets.h) to the
+    /// project's data and network settings, then renders the ground truth (or keeps a finished one),
+    /// generates the dataset, trains and evaluates, one job after the other, each the same job its
+    /// own button starts. Refused (false, with a notice) without a saved project or while a job runs.
+    bool startPipeline(const std::string& preset) { return pipeline_.start(preset); }
     /// The pipeline with the settings in effect (no preset applied); `label` names them in its
     /// display and log (a script that shrank a preset's sizes).
-    bool runPipeline(const std::string& label);
+    bool runPipeline(const std::string& label) { return pipeline_.run(label); }
     /// Stops the running stage's job (its job stops within a second) and the stages after it.
-    void cancelPipeline();
-    bool pipelineRunning() const { return pipeline_.stage != PipelineStage::Idle; }
+    void cancelPipeline() { pipeline_.cancel(); }
+    bool pipelineRunning() const { return pipeline_.running(); }
     /// Runs a cost sweep of one of the kinds in kSweepKinds (core/pipeline/sweep.h) with interactive sizes.
     bool startSweep(const std::string& what);
     bool sweepRunning() const;
@@ -179,8 +181,6 @@ private:
     void newProjectFromScene(const std::string& scenePath);
 
     void pollRender();
-    void pollGenerate();
-    void pollTrain();
     void pollEvaluate();
     /// Starts the evaluation a manual training asked for when its ground truth is ready, or says why
     /// it cannot be made (a notice on the Training panel).
@@ -192,21 +192,18 @@ private:
     void pollLightGrid();
     /// Adds `r`'s series to the Cost panel, named "sweep <what>" (" #n" for the n-th of a kind).
     void addSweepSeries(const SweepResult& r);
-    /// Moves the pipeline to its next stage once the current one delivered, publishes its progress.
-    void pollPipeline();
-    enum class PipelineStage { Idle, Render, Generate, Train, Evaluate };
-    /// Starts `stage`'s job; false (the pipeline ends with `why`) when it is refused.
-    bool beginPipelineStage(PipelineStage stage);
-    void endPipeline(const std::string& outcome);
-    /// Why the pipeline cannot start now ("" when it can).
-    std::string pipelineRefusal() const;
+    /// The pipeline's stages as their owners offer them (PipelineController::StageHooks).
+    std::array<PipelineController::StageHooks, PipelineController::kStages> pipelineStages();
+    /// The pipeline's render stage: joins the running render or starts one; `done` is told when the
+    /// render ended with no restart pending (delivered: it reached its target).
+    bool startRenderStage(StageDone done);
+    /// The current ground truth is of the current scene and converged (the pipeline keeps it).
+    bool groundTruthConverged() const;
     /// Logs the jobs that ended since the last frame (finished, stopped or failed).
     void logFinishedJobs();
     /// Cancels every session's job and forgets it, so nothing a previous project's job finishes
     /// lands in the project opened now.
     void dropJobs();
-    /// A finished training run: records it as a run and loads its models.
-    void trainingFinished(TrainingOutcome& outcome);
     /// Brings the middle view's prediction up to date with the scene's light (GLSL now, or a CPU job).
     void refreshPrediction();
     /// The CPU prediction as a job (the fallback path, and the glossy gather after a GLSL frame).
@@ -217,8 +214,6 @@ private:
     /// Re-opens / compares a training run (project.runs[index]): restores its network and trainer
     /// settings and loads its models.
     bool loadTrainRun(const Run& run, int index);
-    /// The dataset training reads: this session's, else the project's data/dataset.rrfd if present.
-    std::string datasetPath() const;
     /// The scene changed. `geometryChanged` false means materials or the movable light only: the
     /// light is not in the BVH, so the picking BVH and the object-id buffer stay valid then.
     void sceneChanged(bool restartRender, bool geometryChanged = true);
@@ -231,6 +226,7 @@ private:
 
     panels::WorkbenchState state_;
     JobRunner jobs_;
+    ControllerContext ctx_{state_, jobs_};
     panels::ViewModel viewModel_;
     GlTexture textures_[3];
     panels::FileDialog dialog_;
@@ -243,11 +239,9 @@ private:
     JobSession<void> renderJob_{jobs_, JobKind::Render, state_.log};
     uint64_t renderRevision_ = 0;
     panels::ImageStamp renderStamp_;  ///< what the current render's images are of (light, scene, size)
-    JobSession<GeneratedDataset> generateJob_{jobs_, JobKind::Generate, state_.log};
-    std::shared_ptr<TrainingLive> trainLive_;  ///< loss curves of the running training, for the plot
-    JobSession<TrainingOutcome> trainJob_{jobs_, JobKind::Train, state_.log};
-    uint64_t trainRevision_ = 0;
+    StageDone renderDone_;  ///< the pipeline's, while its render stage runs
     JobSession<EvaluationOutcome> evaluateJob_{jobs_, JobKind::Evaluate, state_.log};
+    StageDone evaluateDone_;  ///< the pipeline's, while its evaluate stage runs
     JobSession<TimedPrediction> predictJob_{jobs_, JobKind::Predict, state_.log};
     /// Recent per-frame prediction times of the loaded models (seconds), whose median is recorded
     /// in their training run (runs table: "frame ms").
@@ -293,22 +287,11 @@ private:
     uint64_t spreadFor_ = 0;   ///< the prediction revision the last spread job was started for
     uint64_t spreadMaps_ = 0;  ///< spread maps delivered (their revisions)
     LivePrediction live_;
-    /// Results each kind of job delivered so far: the pipeline advances when its stage's count grew
-    /// and fails when the job ended without one (stopped, refused, failed).
-    uint64_t datasetsDelivered_ = 0, trainingsCompleted_ = 0, evaluationsDelivered_ = 0;
+    TrainingController training_{ctx_, live_};
+    PipelineController pipeline_;
     bool evaluateAfterTrain_ = false;  ///< see evaluationPending()
     std::chrono::steady_clock::time_point memoryCheckedAt_{};
-    struct PipelineRun {
-        PipelineStage stage = PipelineStage::Idle;
-        uint64_t mark = 0;                  ///< the stage's delivery count when it started
-        double weights[4] = {0, 0, 0, 0};   ///< estimated seconds per stage (render, generate, train, evaluate)
-        double spent[4] = {0, 0, 0, 0};     ///< measured seconds of the stages done (0: skipped)
-        std::chrono::steady_clock::time_point start, stageStart;
-        bool cancelled = false;
-        std::string preset;
-    } pipeline_;
     bool restartRender_ = false;   ///< a scene edit arrived while the old render was stopping
-    bool untitled_ = false;        ///< the project has no file of its own yet (New)
 
     /// An action waiting for the "Unsaved changes" prompt.
     struct PendingAction {

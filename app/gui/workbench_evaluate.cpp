@@ -28,7 +28,7 @@ struct EvaluationOutcome {
 
 bool Workbench::evaluateRunning() const { return evaluateJob_.running(); }
 
-bool Workbench::startEvaluate() {
+bool Workbench::startEvaluate(StageDone done) {
     if (!live_.loaded()) {
         state_.notify(panels::LogLevel::Error, "Training", "evaluate: no trained models; train first");
         return false;
@@ -96,6 +96,7 @@ bool Workbench::startEvaluate() {
         return out;
     });
     if (!started) return false;
+    evaluateDone_ = std::move(done);
     state_.evaluation.running = true;
     return true;
 }
@@ -126,8 +127,9 @@ void Workbench::pollEvaluateAfterTrain() {
 
 void Workbench::pollEvaluate() {
     state_.evaluation.running = evaluateRunning();
+    bool delivered = false;
     evaluateJob_.poll([&](EvaluationOutcome& out) {
-        ++evaluationsDelivered_;
+        delivered = true;
         const double seconds = out.info.seconds;
         const int spp = out.info.referenceSpp;
         const Vec3 light = out.info.lightPosition;
@@ -152,6 +154,11 @@ void Workbench::pollEvaluate() {
                       noiseFigureText(g.relativeRmseCorrected).c_str(), g.rmse, (unsigned long long)g.pixels, seconds);
         state_.log.info(line);
     });
+    if (evaluateDone_ && !evaluateRunning()) {
+        const StageDone finished = std::move(evaluateDone_);
+        evaluateDone_ = nullptr;
+        finished(delivered);
+    }
 }
 
 bool Workbench::exportObjectsCsv(const std::string& path) {

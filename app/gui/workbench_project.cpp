@@ -32,7 +32,7 @@ bool Workbench::openProject(const std::string& path) {
         showError("Cannot open project", error + (state_.hasProject ? "\n\nThe open project was kept." : ""));
         return false;
     }
-    untitled_ = false;
+    ctx_.untitled = false;
     if (!recent_.add(path)) state_.log.warning("could not update the recent projects list");
     state_.recent = recent_.paths();
     std::error_code ec;
@@ -64,14 +64,14 @@ bool Workbench::openProject(const std::string& path) {
 void Workbench::newProjectFromScene(const std::string& scenePath) {
     if (!openProject(scenePath)) return;
     // A new project references the scene and has no file yet: the first Save asks where.
-    untitled_ = true;
+    ctx_.untitled = true;
     state_.project.name = "untitled";
     state_.dirty = true;
 }
 
 bool Workbench::saveProject(const std::string& requested) {
     if (!state_.hasProject) return false;
-    if (requested.empty() && (untitled_ || state_.project.path.empty())) {
+    if (requested.empty() && (ctx_.untitled || state_.project.path.empty())) {
         state_.request(panels::Command::SaveProjectAs);
         return false;
     }
@@ -81,7 +81,7 @@ bool Workbench::saveProject(const std::string& requested) {
         showError("Cannot save project", error);
         return false;
     }
-    untitled_ = false;
+    ctx_.untitled = false;
     std::error_code ec;
     fs::remove(autosavePath(path), ec);  // the real file is now at least as new
     recent_.add(path);
@@ -94,7 +94,7 @@ void Workbench::autosave() {
     const auto now = std::chrono::steady_clock::now();
     if (now - lastAutosave_ < kAutosaveInterval) return;
     lastAutosave_ = now;
-    if (!state_.dirty || untitled_ || !state_.hasProject || state_.project.path.empty()) return;
+    if (!state_.dirty || ctx_.untitled || !state_.hasProject || state_.project.path.empty()) return;
     // Save a copy so the project itself (and its path) stay as the user left them.
     panels::storeWorkbenchSections(state_);
     Project copy = state_.project;
@@ -115,7 +115,7 @@ bool Workbench::saveRun() {
         state_.notify(panels::LogLevel::Error, "Views", "save run: the render is still running; wait for it or stop it first");
         return false;
     }
-    if (untitled_ || state_.project.path.empty()) {
+    if (ctx_.untitled || state_.project.path.empty()) {
         state_.notify(panels::LogLevel::Error, "Views", "save run: save the project first (runs are stored next to it)");
         return false;
     }

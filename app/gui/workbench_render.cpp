@@ -21,6 +21,18 @@ bool Workbench::renderShown() const {
     return revision == renderRevision_ && state_.render.running == false;
 }
 
+bool Workbench::groundTruthConverged() const {
+    return !renderRunning() && !state_.groundTruth.empty() && !state_.render.cancelled &&
+           state_.render.spp >= state_.render.targetSpp && state_.render.targetSpp > 0;
+}
+
+bool Workbench::startRenderStage(StageDone done) {
+    // The render the project started on opening (or an edit restarted) is the stage's own.
+    if (!renderRunning() && !startRender()) return false;
+    renderDone_ = std::move(done);
+    return true;
+}
+
 void Workbench::cancelRender() {
     renderJob_.cancel();
     restartRender_ = false;
@@ -35,7 +47,7 @@ bool Workbench::startRender() {
     // A saved project keeps its last finished ground truth beside it (restored on reopen); an
     // untitled one has no place for it yet.
     std::optional<RenderSession::Store> store;
-    if (!untitled_ && !state_.project.path.empty())
+    if (!ctx_.untitled && !state_.project.path.empty())
         store = RenderSession::Store{(fs::path(projectDir()) / kGroundTruthDir).string(),
                                      ReferenceKey::of(state_.project.scene, state_.project.scene.lightPosition(),
                                                       options.width, options.height, state_.project.render)};
@@ -97,6 +109,13 @@ void Workbench::pollRender() {
     if (restartRender_ && !renderRunning()) {
         restartRender_ = false;
         startRender();
+    }
+    // A render replaced by an edit's restart is the same stage still: the pipeline hears of the
+    // render that ends with none pending.
+    if (renderDone_ && !renderRunning() && !restartRender_) {
+        const StageDone done = std::move(renderDone_);
+        renderDone_ = nullptr;
+        done(!state_.groundTruth.empty() && !state_.render.cancelled && state_.render.spp >= state_.render.targetSpp);
     }
 }
 
