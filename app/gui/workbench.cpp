@@ -25,6 +25,8 @@ Workbench::Workbench(const std::string& configDir)
       lastAutosave_(std::chrono::steady_clock::now()) {
     recent_.load();
     state_.recent = recent_.paths();
+    // A CPU frame asked for while a training runs waits for it: both want every core.
+    prediction_.holdCpuFrames = [this] { return training_.trainRunning(); };
     training_.onTrained = [this](const std::string& modelsDir, std::shared_ptr<const ModelSet> models) {
         loadModels(modelsDir, std::move(models));
         // The pipeline evaluates as its own stage; a manual training is evaluated here (issue 29 item 8).
@@ -116,14 +118,13 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 }
 
 void Workbench::dropJobs() {
-    for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &evaluateJob_, &predictJob_, &sweepJob_,
-                                                                      &pairJob_, &overlayJob_, &flipJob_, &spreadJob_,
+    for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &evaluateJob_, &sweepJob_, &pairJob_,
                                                                       &lightGridJob_})
         job->drop();
     training_.drop();
+    prediction_.drop();
     render_.reset();
     renderDone_ = evaluateDone_ = nullptr;
-    predictPending_ = false;
     pipeline_.abandon("stopped: its project was closed");
 }
 
@@ -151,16 +152,16 @@ void Workbench::frame() {
     pollEvaluate();
     // After pollPredict: a CPU frame that has just ended is delivered before the evaluation that
     // waited for it looks for it.
-    pollPredict();
+    prediction_.poll();
     pollEvaluateAfterTrain();
     pollSweep();
     pollLightGrid();
     pollRunPair();
     pipeline_.poll();
-    updateFlipMap();
-    updateSpreadMap();
+    prediction_.updateFlipMap();
+    prediction_.updateSpreadMap();
     refreshAvailableMemory();
-    finishDraft();
+    prediction_.finishDraft();
     drawHost();
     drawModals();
     drawFrameOverlay();
@@ -282,7 +283,7 @@ void Workbench::applySettings(const std::optional<ProjectSettings>& settings, co
     // The light restarts the ground truth and moves the prediction; other settings change what
     // the next render, generation or training does, and the prediction's direct light.
     if (lightMoved) sceneChanged(true);
-    else refreshPrediction();
+    else prediction_.refresh();
 }
 
 void Workbench::drawStatusBar() {
@@ -340,7 +341,7 @@ void Workbench::drawStatusBar() {
 
 bool Workbench::busy() const {
     // A draft on screen is replaced by the full frame shortly: keep the frames coming until then.
-    return !jobs_.idle() || pipelineRunning() || draftShown_ || ImGui::IsAnyMouseDown();
+    return !jobs_.idle() || pipelineRunning() || prediction_.draftShown() || ImGui::IsAnyMouseDown();
 }
 
 void Workbench::drawFrameOverlay() {
@@ -495,7 +496,7 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
             case Command::RunPipeline: startPipeline(r.path); break;
             case Command::CancelPipeline: cancelPipeline(); break;
             case Command::SceneChanged: sceneEdited = true; break;  // many edits in a frame: one restart
-            case Command::PredictionChanged: refreshPrediction(); break;
+            case Command::PredictionChanged: prediction_.refresh(); break;
             case Command::SaveRun: saveRun(); break;
             case Command::ReopenRun: reopenRun(r.index); break;
             case Command::CompareRun: compareRun(r.index); break;

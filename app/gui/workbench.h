@@ -1,7 +1,8 @@
 #pragma once
 /// The workbench application: the host window with menu bar, split panes and tabs, the modals and
 /// the GL textures of the views, composed with the controllers that own the background jobs
-/// (TrainingController: data and training; PipelineController: the one-click chain). Panels
+/// (TrainingController: data and training; PredictionController: the live prediction, its drafts
+/// and overlays; PipelineController: the one-click chain). Panels
 /// (panels/) draw and edit the state and queue Requests; this class carries them out between frames.
 /// UI thread only.
 
@@ -16,9 +17,8 @@
 #include "app/gui/job_runner.h"
 #include "app/gui/job_session.h"
 #include "app/gui/controller_context.h"
-#include "app/gui/live_prediction.h"
 #include "app/gui/pipeline_controller.h"
-#include "app/gui/prediction_draft.h"
+#include "app/gui/prediction_controller.h"
 #include "app/gui/render_session.h"
 #include "app/gui/shortcuts.h"
 #include "app/gui/training_controller.h"
@@ -31,13 +31,10 @@
 namespace rrf {
 
 struct EvaluationOutcome;
-struct TimedPrediction;
-struct CpuFrame;
 struct LightGridResult;
 struct SweepOutcome;
 struct SweepResult;
 struct PairOutcome;
-struct LeafOverlay;
 
 class Workbench {
 public:
@@ -103,15 +100,9 @@ public:
     bool trainRunning() const { return training_.trainRunning(); }
     /// Loads a model directory for the live prediction (GLSL, else CPU). `preloaded`: the set a
     /// worker already read from `dir` (a finished training), so only the GL upload is left here.
-    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr);
-    /// Recomputes the Views leaf overlay (leaf per pixel) when it is on and the prediction changed.
-    void updateLeafOverlay();
-    /// The Views' FLIP map while it is selected: one worker at a time for the images on screen
-    /// (app/gui/workbench_flip.cpp).
-    void updateFlipMap();
-    /// The Views' spread map while it is on: one worker at a time for the prediction on screen
-    /// (app/gui/workbench_spread.cpp).
-    void updateSpreadMap();
+    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr) {
+        return prediction_.loadModels(dir, std::move(preloaded));
+    }
     /// Compares the prediction with the ground truth per object and term (fills the Objects panel).
     /// `done`: told once when the job ended (delivered: an evaluation was made).
     bool startEvaluate(StageDone done = nullptr);
@@ -126,7 +117,7 @@ public:
     /// Frames in which the status bar showed the idle line although the pipeline was running.
     int statusIdleWhilePipeline() const { return statusIdleWhilePipeline_; }
     /// Whether the live prediction on screen is a draft (the light moved less than kDraftRestSeconds ago).
-    bool draftShown() const { return draftShown_; }
+    bool draftShown() const { return prediction_.draftShown(); }
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
     bool exportObjectsCsv(const std::string& path);
     /// The one-click pipeline (PipelineController): applies `preset` (core/pipeline/presets.h) to the
@@ -157,11 +148,9 @@ public:
     FrameStats& frameStats() { return frameStats_; }
     /// The live prediction's recent frame times (seconds): GLSL frames on the UI thread where the
     /// GLSL path runs, else the CPU jobs'.
-    const std::vector<double>& predictionSeconds() const {
-        return frameSeconds_[live_.usesGlsl() ? kGlslFrames : kCpuFrames];
-    }
+    const std::vector<double>& predictionSeconds() const { return prediction_.frameSeconds(); }
     /// The recent draft frames' prediction times while the light was dragged (seconds).
-    const std::vector<double>& draftSeconds() const { return draftSeconds_; }
+    const std::vector<double>& draftSeconds() const { return prediction_.draftSeconds(); }
 
     panels::WorkbenchState& state() { return state_; }
     JobRunner& jobs() { return jobs_; }
@@ -187,7 +176,6 @@ private:
     void pollEvaluateAfterTrain();
     /// state().availableMemory from the machine, about once a second.
     void refreshAvailableMemory();
-    void pollPredict();
     void pollSweep();
     void pollLightGrid();
     /// Adds `r`'s series to the Cost panel, named "sweep <what>" (" #n" for the n-th of a kind).
@@ -204,13 +192,6 @@ private:
     /// Cancels every session's job and forgets it, so nothing a previous project's job finishes
     /// lands in the project opened now.
     void dropJobs();
-    /// Brings the middle view's prediction up to date with the scene's light (GLSL now, or a CPU job).
-    void refreshPrediction();
-    /// The CPU prediction as a job (the fallback path, and the glossy gather after a GLSL frame).
-    void startCpuPrediction(const Camera& camera);
-    bool predictRunning() const;
-    /// Adds the CPU prediction's images to an export directory (no-op without models).
-    bool exportPrediction(const std::string& dir);
     /// Re-opens / compares a training run (project.runs[index]): restores its network and trainer
     /// settings and loads its models.
     bool loadTrainRun(const Run& run, int index);
@@ -242,52 +223,16 @@ private:
     StageDone renderDone_;  ///< the pipeline's, while its render stage runs
     JobSession<EvaluationOutcome> evaluateJob_{jobs_, JobKind::Evaluate, state_.log};
     StageDone evaluateDone_;  ///< the pipeline's, while its evaluate stage runs
-    JobSession<TimedPrediction> predictJob_{jobs_, JobKind::Predict, state_.log};
-    /// Recent per-frame prediction times of the loaded models (seconds), whose median is recorded
-    /// in their training run (runs table: "frame ms").
-    /// Recent frame times per kind (a GLSL frame and the CPU frame after it are different figures),
-    /// and the frames noted since each median was last recorded in the run.
-    static constexpr int kGlslFrames = 0, kCpuFrames = 1;
-    std::vector<double> frameSeconds_[2];
-    size_t framesSinceRecorded_[2] = {0, 0};
-    void noteFrameSeconds(const char* key, double seconds, int width, int height);
-    bool predictPending_ = false;  ///< the light moved while a CPU prediction ran
-    /// The last CPU frame of the loaded models (app/gui/cpu_frame.h): an evaluation of the same
-    /// models, settings and ground truth reuses it; a manual Train's evaluation waits for it.
-    std::shared_ptr<const CpuFrame> lastCpuFrame_;
-    /// Light-drag drafts (app/gui/prediction_draft.h): the light position of the last GLSL frame,
-    /// whether one was rendered for the loaded models, whether the view shows a draft and when
-    /// that draft was rendered (the full frame follows kDraftRestSeconds later), draft frame times.
-    Vec3 predictedLight_{};
-    bool predictedOnce_ = false;
-    bool draftShown_ = false;
     bool helpOpen_ = false;  ///< the Help window (F1)
     SettingsHistory history_;  ///< undo/redo of setting edits (observed once per settled frame)
     void applySettings(const std::optional<ProjectSettings>& settings, const char* what);
     int statusIdleWhilePipeline_ = 0;  ///< frames whose status bar said idle while the pipeline ran
-    std::chrono::steady_clock::time_point draftTime_{};
-    std::vector<double> draftSeconds_;
-    int draftDivisor_ = kMaxDraftDivisor;  ///< resolution divisor of the next draft (adapts to its time)
-    /// Renders the full-quality frame once the light has rested after a drag.
-    void finishDraft();
     JobSession<SweepOutcome> sweepJob_{jobs_, JobKind::Sweep, state_.log};
     JobSession<LightGridResult> lightGridJob_{jobs_, JobKind::LightGrid, state_.log};
     JobSession<PairOutcome> pairJob_{jobs_, JobKind::Compare, state_.log};
     void pollRunPair();
-    /// The Views' leaf overlay, computed on a worker (a G-buffer and a leaf lookup per pixel).
-    JobSession<LeafOverlay> overlayJob_{jobs_, JobKind::Overlay, state_.log};
-    uint64_t overlayFor_ = 0;  ///< the prediction revision the last overlay job was started for
-    /// The Views' FLIP map (HDR-FLIP of the compared image against the ground truth), on a worker.
-    JobSession<panels::FlipViewMap> flipJob_{jobs_, JobKind::Overlay, state_.log};
-    /// What the last FLIP job was started for (ground truth and compared revisions, term).
-    std::tuple<uint64_t, uint64_t, Term> flipFor_{0, 0, Term::Global};
-    uint64_t flipMaps_ = 0;  ///< FLIP maps delivered (their revisions)
-    /// The Views' spread map (the ensemble members' relative spread of the prediction), on a worker.
-    JobSession<panels::SpreadViewMap> spreadJob_{jobs_, JobKind::Spread, state_.log};
-    uint64_t spreadFor_ = 0;   ///< the prediction revision the last spread job was started for
-    uint64_t spreadMaps_ = 0;  ///< spread maps delivered (their revisions)
-    LivePrediction live_;
-    TrainingController training_{ctx_, live_};
+    PredictionController prediction_{ctx_};
+    TrainingController training_{ctx_, prediction_.live()};
     PipelineController pipeline_;
     bool evaluateAfterTrain_ = false;  ///< see evaluationPending()
     std::chrono::steady_clock::time_point memoryCheckedAt_{};

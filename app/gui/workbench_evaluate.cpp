@@ -29,7 +29,7 @@ struct EvaluationOutcome {
 bool Workbench::evaluateRunning() const { return evaluateJob_.running(); }
 
 bool Workbench::startEvaluate(StageDone done) {
-    if (!live_.loaded()) {
+    if (!prediction_.live().loaded()) {
         state_.notify(panels::LogLevel::Error, "Training", "evaluate: no trained models; train first");
         return false;
     }
@@ -48,8 +48,8 @@ bool Workbench::startEvaluate(StageDone done) {
     }
     const PredictionSettings settings = state_.project.prediction;
     auto scene = std::make_shared<const Scene>(state_.project.scene);
-    const std::shared_ptr<const ModelSet> models = live_.models();
-    const std::string modelsDir = live_.dir();
+    const std::shared_ptr<const ModelSet> models = prediction_.live().models();
+    const std::string modelsDir = prediction_.live().dir();
     // The reference is the ground truth the views show, at the light position it was rendered at,
     // with the render's per-term variance of the mean (empty for a re-opened run's images: the
     // noise floors are then unknown, never 0). Image copies share nothing with the views, so the
@@ -65,7 +65,7 @@ bool Workbench::startEvaluate(StageDone done) {
     reference->seconds = state_.render.seconds;
     // The CPU frame of these models at this light, scene and size already holds the prediction
     // (on a glossy scene, with its gather): its pixels are what predicting again would give.
-    std::shared_ptr<const CpuFrame> frame = lastCpuFrame_;
+    std::shared_ptr<const CpuFrame> frame = prediction_.lastCpuFrame();
     const Image& gt = state_.groundTruth.term(Term::Global);
     if (frame && !frame->matches(models, settings,
                                  panels::ImageStamp{reference->lightPosition, scene->contentHash(), gt.width, gt.height}))
@@ -107,11 +107,11 @@ void Workbench::pollEvaluateAfterTrain() {
     // finished image is the reference the evaluation needs.
     if (renderRunning() || restartRender_) return;
     // So is the CPU frame of the new models (a glossy gather, or no GLSL): the evaluation reuses it.
-    if (predictRunning()) return;
+    if (prediction_.predictRunning()) return;
     evaluateAfterTrain_ = false;
     const auto& stamp = state_.groundTruth.stamp;
     std::string why;
-    if (!live_.loaded()) why = "no complete model set is loaded";
+    if (!prediction_.live().loaded()) why = "no complete model set is loaded";
     else if (state_.groundTruth.empty() || state_.render.cancelled)
         why = "there is no finished ground truth of the current light (Render, then Evaluate)";
     else if (stamp && (!(stamp->light == state_.project.scene.lightPosition()) ||

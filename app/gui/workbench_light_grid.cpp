@@ -37,7 +37,7 @@ bool Workbench::startLightGrid() {
         state_.notify(panels::LogLevel::Error, "Light region", "evaluate over the light region: one is running; stop it first");
         return false;
     }
-    if (!live_.loaded()) {
+    if (!prediction_.live().loaded()) {
         state_.notify(panels::LogLevel::Error, "Light region", "evaluate over the light region: no models are loaded; train first");
         return false;
     }
@@ -51,8 +51,8 @@ bool Workbench::startLightGrid() {
         return false;
     }
     auto project = std::make_shared<const Project>(state_.project);
-    const std::shared_ptr<const ModelSet> models = live_.models();
-    const std::string modelsDir = live_.dir();
+    const std::shared_ptr<const ModelSet> models = prediction_.live().models();
+    const std::string modelsDir = prediction_.live().dir();
     const Run* run = findTrainRun(project->runs, projectDir(), modelsDir);
     const std::string outDir = run ? (fs::path(runDirectory(projectDir(), *run)) / "light_grid").string()
                                    : (fs::path(projectDir()) / "light_grid").string();

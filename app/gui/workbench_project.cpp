@@ -46,7 +46,7 @@ bool Workbench::openProject(const std::string& path) {
     dropJobs();
     // Models belong to the previous project; the last training run's models (if still on disk)
     // drive the prediction of this one.
-    live_.reset();
+    prediction_.reset();
     for (auto it = state_.project.runs.rbegin(); it != state_.project.runs.rend(); ++it) {
         // A stopped run's partial set is shown only when the user chooses it (Compare).
         if (it->kind != "train" || it->artifacts.empty() || isStoppedTrainRun(*it)) continue;
@@ -270,7 +270,7 @@ bool Workbench::exportImages(const std::string& dir) {
             writeImage((fs::path(dir) / "error.exr").string(), err, ImageFormat::EXR);
             writeImage((fs::path(dir) / "error.png").string(), errorMapColour(err, state_.view.metric, state_.view.errorMax), ImageFormat::PNG);
         }
-        if (!exportPrediction(dir)) return false;
+        if (!prediction_.exportImages(dir)) return false;
     } catch (const std::exception& e) {
         state_.notify(panels::LogLevel::Error, "", std::string("export images: ") + e.what());
         return false;

@@ -125,7 +125,7 @@ void Workbench::sceneChanged(bool restartRender, bool geometryChanged) {
     if (geometryChanged || !state_.pickAccel || o.width != state_.idWidth || o.height != state_.idHeight)
         rebuildPicking();
     // The prediction follows the light at once (GLSL: this frame); the ground truth restarts below.
-    refreshPrediction();
+    prediction_.refresh();
     if (!restartRender) return;
     // The old render no longer matches the scene: stop it and start again once it has stopped.
     // This is a replacement the user asked for by editing, not a queued conflicting job.
