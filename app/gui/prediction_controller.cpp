@@ -8,6 +8,7 @@
 
 #include "app/gui/cpu_frame.h"
 #include "app/gui/prediction_draft.h"
+#include "app/gui/render_session.h"
 #include "core/eval/evaluation.h"
 #include "core/predict/glossy_gather.h"
 #include "core/predict/predictor.h"

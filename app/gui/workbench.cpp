@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <optional>
 
+// Key codes only: no GL header, so that glad (app/gl, window.cpp) may come after it in a unity build.
+#define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
@@ -30,7 +32,10 @@ Workbench::Workbench(const std::string& configDir)
     training_.onTrained = [this](const std::string& modelsDir, std::shared_ptr<const ModelSet> models) {
         loadModels(modelsDir, std::move(models));
         // The pipeline evaluates as its own stage; a manual training is evaluated here (issue 29 item 8).
-        if (!pipelineRunning()) evaluateAfterTrain_ = true;
+        if (!pipelineRunning()) evaluation_.evaluateWhenReady();
+    };
+    evaluation_.holdEvaluation = [this] {
+        return pipelineRunning() || renderRunning() || restartRender_ || prediction_.predictRunning();
     };
 }
 
@@ -48,9 +53,9 @@ std::array<PipelineController::StageHooks, PipelineController::kStages> Workbenc
     train.start = [this](StageDone done) { return training_.startTrain(0, std::move(done)); };
     train.progress = [this] { return training_.trainProgress(); };
     train.cancel = [this] { training_.cancelTrain(); };
-    evaluate.start = [this](StageDone done) { return startEvaluate(std::move(done)); };
-    evaluate.progress = [this] { return evaluateJob_.progress(); };
-    evaluate.cancel = [this] { evaluateJob_.cancel(); };
+    evaluate.start = [this](StageDone done) { return evaluation_.startEvaluate(std::move(done)); };
+    evaluate.progress = [this] { return evaluation_.evaluateProgress(); };
+    evaluate.cancel = [this] { evaluation_.cancelEvaluate(); };
     return {render, generate, train, evaluate};
 }
 
@@ -118,13 +123,12 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 }
 
 void Workbench::dropJobs() {
-    for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &evaluateJob_, &sweepJob_, &pairJob_,
-                                                                      &lightGridJob_})
-        job->drop();
+    renderJob_.drop();
     training_.drop();
+    evaluation_.drop();
     prediction_.drop();
     render_.reset();
-    renderDone_ = evaluateDone_ = nullptr;
+    renderDone_ = nullptr;
     pipeline_.abandon("stopped: its project was closed");
 }
 
@@ -149,14 +153,11 @@ void Workbench::frame() {
     logFinishedJobs();
     pollRender();
     training_.poll();
-    pollEvaluate();
+    evaluation_.pollEvaluation();
     // After pollPredict: a CPU frame that has just ended is delivered before the evaluation that
     // waited for it looks for it.
     prediction_.poll();
-    pollEvaluateAfterTrain();
-    pollSweep();
-    pollLightGrid();
-    pollRunPair();
+    evaluation_.pollAfterPrediction();
     pipeline_.poll();
     prediction_.updateFlipMap();
     prediction_.updateSpreadMap();
@@ -309,7 +310,7 @@ void Workbench::drawStatusBar() {
         // Work that follows at once (the next pipeline stage, the evaluation after a training, a
         // render restarted by an edit) is said, not shown as idle.
         const char* next = pipeline.running    ? "starting the next stage"
-                           : evaluateAfterTrain_ ? "the trained models are evaluated next"
+                           : evaluation_.evaluationPending() ? "the trained models are evaluated next"
                            : restartRender_      ? "the render restarts"
                                                  : nullptr;
         if (next) {
@@ -484,15 +485,15 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
             case Command::CancelGenerate: training_.cancelGenerate(); break;
             case Command::Train: startTrain(); break;
             case Command::CancelTrain: training_.cancelTrain(); break;
-            case Command::Evaluate: startEvaluate(); break;
+            case Command::Evaluate: evaluation_.startEvaluate(); break;
             case Command::ExportObjectsCsv:
                 if (r.path.empty()) openDialog(DialogPurpose::ExportObjectsCsv);
                 else exportObjectsCsv(r.path);
                 break;
             case Command::RunSweep: startSweep(r.path); break;
-            case Command::CancelSweep: sweepJob_.cancel(); break;
+            case Command::CancelSweep: evaluation_.cancelSweep(); break;
             case Command::EvaluateLightRegion: startLightGrid(); break;
-            case Command::CancelLightRegion: lightGridJob_.cancel(); break;
+            case Command::CancelLightRegion: evaluation_.cancelLightGrid(); break;
             case Command::RunPipeline: startPipeline(r.path); break;
             case Command::CancelPipeline: cancelPipeline(); break;
             case Command::SceneChanged: sceneEdited = true; break;  // many edits in a frame: one restart

@@ -2,7 +2,8 @@
 /// The workbench application: the host window with menu bar, split panes and tabs, the modals and
 /// the GL textures of the views, composed with the controllers that own the background jobs
 /// (TrainingController: data and training; PredictionController: the live prediction, its drafts
-/// and overlays; PipelineController: the one-click chain). Panels
+/// and overlays; EvaluationController: evaluations, run pairs, light grids and sweeps;
+/// PipelineController: the one-click chain). Panels
 /// (panels/) draw and edit the state and queue Requests; this class carries them out between frames.
 /// UI thread only.
 
@@ -17,6 +18,7 @@
 #include "app/gui/job_runner.h"
 #include "app/gui/job_session.h"
 #include "app/gui/controller_context.h"
+#include "app/gui/evaluation_controller.h"
 #include "app/gui/pipeline_controller.h"
 #include "app/gui/prediction_controller.h"
 #include "app/gui/render_session.h"
@@ -29,12 +31,6 @@
 #include "panels/workbench_state.h"
 
 namespace rrf {
-
-struct EvaluationOutcome;
-struct LightGridResult;
-struct SweepOutcome;
-struct SweepResult;
-struct PairOutcome;
 
 class Workbench {
 public:
@@ -86,7 +82,7 @@ public:
     /// Predicts the models of training runs runPair.a and runPair.b at the current light (and judges
     /// each against the ground truth, when there is one) on a worker; the Views then show A | B |
     /// difference and the Objects panel their per-object errors side by side.
-    bool compareRunPair();
+    bool compareRunPair() { return evaluation_.compareRunPair(); }
     bool reopenRun(int index);
     bool exportImages(const std::string& dir);
     /// Starts the data generator with the project's sampling settings, writing
@@ -104,12 +100,11 @@ public:
         return prediction_.loadModels(dir, std::move(preloaded));
     }
     /// Compares the prediction with the ground truth per object and term (fills the Objects panel).
-    /// `done`: told once when the job ended (delivered: an evaluation was made).
-    bool startEvaluate(StageDone done = nullptr);
-    bool evaluateRunning() const;
+    bool startEvaluate() { return evaluation_.startEvaluate(); }
+    bool evaluateRunning() const { return evaluation_.evaluateRunning(); }
     /// A manual training finished and its models wait to be evaluated (once the ground truth of the
     /// current light is rendered), so every run gets its error without pressing Evaluate.
-    bool evaluationPending() const { return evaluateAfterTrain_; }
+    bool evaluationPending() const { return evaluation_.evaluationPending(); }
     /// What the shortcut `action` does (its key, its menu item).
     void performShortcut(ShortcutAction action);
     const SettingsHistory& settingsHistory() const { return history_; }
@@ -119,7 +114,7 @@ public:
     /// Whether the live prediction on screen is a draft (the light moved less than kDraftRestSeconds ago).
     bool draftShown() const { return prediction_.draftShown(); }
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
-    bool exportObjectsCsv(const std::string& path);
+    bool exportObjectsCsv(const std::string& path) { return evaluation_.exportObjectsCsv(path); }
     /// The one-click pipeline (PipelineController): applies `preset` (core/pipeline/presets.h) to the
     /// project's data and network settings, then renders the ground truth (or keeps a finished one),
     /// generates the dataset, trains and evaluates, one job after the other, each the same job its
@@ -132,14 +127,11 @@ public:
     void cancelPipeline() { pipeline_.cancel(); }
     bool pipelineRunning() const { return pipeline_.running(); }
     /// Runs a cost sweep of one of the kinds in kSweepKinds (core/pipeline/sweep.h) with interactive sizes.
-    bool startSweep(const std::string& what);
-    bool sweepRunning() const;
-    /// The Light region panel's evaluation of the loaded models (app/gui/workbench_light_grid.cpp).
-    bool startLightGrid();
-    bool lightGridRunning() const;
-    /// The Cost panel's series of the project's sweeps on disk (<project dir>/sweeps/*.json), as they
-    /// were when they finished: called when a project is opened.
-    void restoreSweeps();
+    bool startSweep(const std::string& what) { return evaluation_.startSweep(what); }
+    bool sweepRunning() const { return evaluation_.sweepRunning(); }
+    /// The Light region panel's evaluation of the loaded models (app/gui/evaluation_light_grid.cpp).
+    bool startLightGrid() { return evaluation_.startLightGrid(); }
+    bool lightGridRunning() const { return evaluation_.lightGridRunning(); }
 
     /// True while something changes without input (a job or the pipeline runs, a mouse button is
     /// held): the window then redraws at its frame rate, otherwise it waits for events.
@@ -170,16 +162,8 @@ private:
     void newProjectFromScene(const std::string& scenePath);
 
     void pollRender();
-    void pollEvaluate();
-    /// Starts the evaluation a manual training asked for when its ground truth is ready, or says why
-    /// it cannot be made (a notice on the Training panel).
-    void pollEvaluateAfterTrain();
     /// state().availableMemory from the machine, about once a second.
     void refreshAvailableMemory();
-    void pollSweep();
-    void pollLightGrid();
-    /// Adds `r`'s series to the Cost panel, named "sweep <what>" (" #n" for the n-th of a kind).
-    void addSweepSeries(const SweepResult& r);
     /// The pipeline's stages as their owners offer them (PipelineController::StageHooks).
     std::array<PipelineController::StageHooks, PipelineController::kStages> pipelineStages();
     /// The pipeline's render stage: joins the running render or starts one; `done` is told when the
@@ -221,20 +205,14 @@ private:
     uint64_t renderRevision_ = 0;
     panels::ImageStamp renderStamp_;  ///< what the current render's images are of (light, scene, size)
     StageDone renderDone_;  ///< the pipeline's, while its render stage runs
-    JobSession<EvaluationOutcome> evaluateJob_{jobs_, JobKind::Evaluate, state_.log};
-    StageDone evaluateDone_;  ///< the pipeline's, while its evaluate stage runs
     bool helpOpen_ = false;  ///< the Help window (F1)
     SettingsHistory history_;  ///< undo/redo of setting edits (observed once per settled frame)
     void applySettings(const std::optional<ProjectSettings>& settings, const char* what);
     int statusIdleWhilePipeline_ = 0;  ///< frames whose status bar said idle while the pipeline ran
-    JobSession<SweepOutcome> sweepJob_{jobs_, JobKind::Sweep, state_.log};
-    JobSession<LightGridResult> lightGridJob_{jobs_, JobKind::LightGrid, state_.log};
-    JobSession<PairOutcome> pairJob_{jobs_, JobKind::Compare, state_.log};
-    void pollRunPair();
     PredictionController prediction_{ctx_};
     TrainingController training_{ctx_, prediction_.live()};
+    EvaluationController evaluation_{ctx_, prediction_};
     PipelineController pipeline_;
-    bool evaluateAfterTrain_ = false;  ///< see evaluationPending()
     std::chrono::steady_clock::time_point memoryCheckedAt_{};
     bool restartRender_ = false;   ///< a scene edit arrived while the old render was stopping
 

@@ -54,7 +54,7 @@ bool Workbench::openProject(const std::string& path) {
         if (fs::exists(models / "models.json", ec)) loadModels(models.string());
         break;
     }
-    restoreSweeps();
+    evaluation_.restoreSweeps();
     history_.reset(state_.project);  // undo never crosses into another project
     sceneChanged(true);
     lastAutosave_ = std::chrono::steady_clock::now();

@@ -1,9 +1,10 @@
-// Workbench: the Light region panel's job. The loaded models are judged at a grid of light positions
+// EvaluationController: the Light region panel's job. The loaded models are judged at a grid of light positions
 // spanning the light region (core/pipeline/evaluate_stage.h's evaluateLightGrid, the stage behind
 // `rrf evaluate --light-grid`) against references of the project's store at an interactive size, and
 // the map becomes the panel's. Its files replace the previous light grid of the same models whole:
 // runs/<train run>/light_grid (or <project dir>/light_grid for models no recorded run made).
-#include "app/gui/workbench.h"
+#include "app/gui/evaluation_controller.h"
+#include "app/gui/prediction_controller.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -30,9 +31,7 @@ namespace {
 constexpr int kLightGridSize = 64;
 }  // namespace
 
-bool Workbench::lightGridRunning() const { return lightGridJob_.running(); }
-
-bool Workbench::startLightGrid() {
+bool EvaluationController::startLightGrid() {
     if (lightGridRunning()) {
         state_.notify(panels::LogLevel::Error, "Light region", "evaluate over the light region: one is running; stop it first");
         return false;
@@ -101,7 +100,7 @@ bool Workbench::startLightGrid() {
     return true;
 }
 
-void Workbench::pollLightGrid() {
+void EvaluationController::pollLightGrid() {
     panels::LightRegionInfo& lr = state_.lightRegion;
     lr.running = lightGridRunning();
     if (lr.running) lr.progress = lightGridJob_.progress();

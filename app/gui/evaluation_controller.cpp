@@ -1,9 +1,10 @@
-// Workbench: evaluation of the trained models against the ground truth shown in the views
-// (core/eval/evaluation.h, CPU predictor, on a worker), the Objects table it fills, its CSV export, and
-// the metrics it adds to the training run whose models it judged.
-#include "app/gui/workbench.h"
+// EvaluationController (evaluation_controller.h): evaluation of the trained models against the ground
+// truth shown in the views (core/eval/evaluation.h, CPU predictor, on a worker), the Objects table it
+// fills, its CSV export, and the metrics it adds to the training run whose models it judged.
+#include "app/gui/evaluation_controller.h"
 
 #include "app/gui/cpu_frame.h"
+#include "app/gui/prediction_controller.h"
 
 #include <filesystem>
 
@@ -26,9 +27,31 @@ struct EvaluationOutcome {
     std::string modelsDir;     ///< the models that were judged
 };
 
-bool Workbench::evaluateRunning() const { return evaluateJob_.running(); }
+EvaluationController::EvaluationController(ControllerContext& ctx, const PredictionController& prediction)
+    : ctx_(ctx),
+      state_(ctx.state),
+      prediction_(prediction),
+      evaluateJob_(ctx.jobs, JobKind::Evaluate, ctx.state.log),
+      pairJob_(ctx.jobs, JobKind::Compare, ctx.state.log),
+      lightGridJob_(ctx.jobs, JobKind::LightGrid, ctx.state.log),
+      sweepJob_(ctx.jobs, JobKind::Sweep, ctx.state.log) {}
 
-bool Workbench::startEvaluate(StageDone done) {
+EvaluationController::~EvaluationController() = default;
+
+void EvaluationController::drop() {
+    for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&evaluateJob_, &pairJob_, &lightGridJob_, &sweepJob_})
+        job->drop();
+    evaluateDone_ = nullptr;
+}
+
+void EvaluationController::pollAfterPrediction() {
+    pollEvaluateAfterTrain();
+    pollSweep();
+    pollLightGrid();
+    pollRunPair();
+}
+
+bool EvaluationController::startEvaluate(StageDone done) {
     if (!prediction_.live().loaded()) {
         state_.notify(panels::LogLevel::Error, "Training", "evaluate: no trained models; train first");
         return false;
@@ -101,13 +124,12 @@ bool Workbench::startEvaluate(StageDone done) {
     return true;
 }
 
-void Workbench::pollEvaluateAfterTrain() {
-    if (!evaluateAfterTrain_ || evaluateRunning() || pipelineRunning()) return;
-    // A render of the current light still running (or restarting after an edit) is waited for: its
-    // finished image is the reference the evaluation needs.
-    if (renderRunning() || restartRender_) return;
-    // So is the CPU frame of the new models (a glossy gather, or no GLSL): the evaluation reuses it.
-    if (prediction_.predictRunning()) return;
+void EvaluationController::pollEvaluateAfterTrain() {
+    if (!evaluateAfterTrain_ || evaluateRunning()) return;
+    // The pipeline evaluates as its own stage; a render of the current light still running (or
+    // restarting after an edit) is waited for, its finished image being the reference the evaluation
+    // needs; so is the CPU frame of the new models (a glossy gather, or no GLSL), which it reuses.
+    if (holdEvaluation && holdEvaluation()) return;
     evaluateAfterTrain_ = false;
     const auto& stamp = state_.groundTruth.stamp;
     std::string why;
@@ -125,7 +147,7 @@ void Workbench::pollEvaluateAfterTrain() {
     startEvaluate();
 }
 
-void Workbench::pollEvaluate() {
+void EvaluationController::pollEvaluation() {
     state_.evaluation.running = evaluateRunning();
     bool delivered = false;
     evaluateJob_.poll([&](EvaluationOutcome& out) {
@@ -161,7 +183,7 @@ void Workbench::pollEvaluate() {
     }
 }
 
-bool Workbench::exportObjectsCsv(const std::string& path) {
+bool EvaluationController::exportObjectsCsv(const std::string& path) {
     const panels::EvaluationInfo& e = state_.evaluation;
     if (!e.valid) {
         state_.notify(panels::LogLevel::Error, "Objects", "export table: evaluate first");
