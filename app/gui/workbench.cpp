@@ -35,18 +35,16 @@ Workbench::Workbench(const std::string& configDir)
         if (!pipelineRunning()) evaluation_.evaluateWhenReady();
     };
     evaluation_.holdEvaluation = [this] {
-        return pipelineRunning() || renderRunning() || restartRender_ || prediction_.predictRunning();
+        return pipelineRunning() || groundTruth_.running() || groundTruth_.restartPending() || prediction_.predictRunning();
     };
 }
 
 std::array<PipelineController::StageHooks, PipelineController::kStages> Workbench::pipelineStages() {
     PipelineController::StageHooks render, generate, train, evaluate;
-    render.start = [this](StageDone done) { return startRenderStage(std::move(done)); };
-    render.progress = [this] {
-        return state_.render.targetSpp > 0 ? double(state_.render.spp) / state_.render.targetSpp : 0.0;
-    };
-    render.cancel = [this] { cancelRender(); };
-    render.finished = [this] { return groundTruthConverged(); };
+    render.start = [this](StageDone done) { return groundTruth_.startStage(std::move(done)); };
+    render.progress = [this] { return groundTruth_.progress(); };
+    render.cancel = [this] { groundTruth_.cancel(); };
+    render.finished = [this] { return groundTruth_.converged(); };
     generate.start = [this](StageDone done) { return training_.startGenerate(std::move(done)); };
     generate.progress = [this] { return training_.generateProgress(); };
     generate.cancel = [this] { training_.cancelGenerate(); };
@@ -123,12 +121,10 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 }
 
 void Workbench::dropJobs() {
-    renderJob_.drop();
+    groundTruth_.drop();
     training_.drop();
     evaluation_.drop();
     prediction_.drop();
-    render_.reset();
-    renderDone_ = nullptr;
     pipeline_.abandon("stopped: its project was closed");
 }
 
@@ -151,7 +147,7 @@ void Workbench::refreshAvailableMemory() {
 void Workbench::frame() {
     // Ended jobs are logged first, so their results' lines follow "... finished after N s".
     logFinishedJobs();
-    pollRender();
+    groundTruth_.poll();
     training_.poll();
     evaluation_.pollEvaluation();
     // After pollPredict: a CPU frame that has just ended is delivered before the evaluation that
@@ -217,7 +213,7 @@ void Workbench::drawMenuBar() {
             ImGui::EndMenu();
         }
         ImGui::Separator();
-        if (ImGui::MenuItem("Export images...", nullptr, false, render_ != nullptr)) openDialog(DialogPurpose::ExportImages);
+        if (ImGui::MenuItem("Export images...", nullptr, false, groundTruth_.session() != nullptr)) openDialog(DialogPurpose::ExportImages);
         if (ImGui::MenuItem("Export screenshot...")) openDialog(DialogPurpose::ExportScreenshot);
         if (ImGui::MenuItem("Export error table (CSV)...", nullptr, false, state_.evaluation.valid))
             openDialog(DialogPurpose::ExportObjectsCsv);
@@ -311,7 +307,7 @@ void Workbench::drawStatusBar() {
         // render restarted by an edit) is said, not shown as idle.
         const char* next = pipeline.running    ? "starting the next stage"
                            : evaluation_.evaluationPending() ? "the trained models are evaluated next"
-                           : restartRender_      ? "the render restarts"
+                           : groundTruth_.restartPending() ? "the render restarts"
                                                  : nullptr;
         if (next) {
             ImGui::TextDisabled("%s", next);

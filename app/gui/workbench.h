@@ -1,7 +1,7 @@
 #pragma once
 /// The workbench application: the host window with menu bar, split panes and tabs, the modals and
 /// the GL textures of the views, composed with the controllers that own the background jobs
-/// (TrainingController: data and training; PredictionController: the live prediction, its drafts
+/// (GroundTruthController: the render; TrainingController: data and training; PredictionController: the live prediction, its drafts
 /// and overlays; EvaluationController: evaluations, run pairs, light grids and sweeps;
 /// PipelineController: the one-click chain). Panels
 /// (panels/) draw and edit the state and queue Requests; this class carries them out between frames.
@@ -19,9 +19,9 @@
 #include "app/gui/job_session.h"
 #include "app/gui/controller_context.h"
 #include "app/gui/evaluation_controller.h"
+#include "app/gui/ground_truth_controller.h"
 #include "app/gui/pipeline_controller.h"
 #include "app/gui/prediction_controller.h"
-#include "app/gui/render_session.h"
 #include "app/gui/shortcuts.h"
 #include "app/gui/training_controller.h"
 #include "core/project/settings_history.h"
@@ -69,13 +69,13 @@ public:
     std::string takeScreenshotRequest();
 
     /// Starts the ground-truth render of the current scene (refused while one runs).
-    bool startRender();
-    bool renderRunning() const;
+    bool startRender() { return groundTruth_.start(); }
+    bool renderRunning() const { return groundTruth_.running(); }
     /// The render has ended and its last snapshot is what the views show (a render that ends after
     /// this frame's poll is not running but not shown yet).
-    bool renderShown() const;
+    bool renderShown() const { return groundTruth_.shown(); }
     /// Asks the running render (if any) to stop; it stops at its next pass boundary.
-    void cancelRender();
+    void cancelRender() { groundTruth_.cancel(); }
     /// Records the current ground truth as a run (files under <project dir>/runs/<id>/).
     bool saveRun();
     bool compareRun(int index);
@@ -161,16 +161,10 @@ private:
     void dialogConfirmed(const std::string& path);
     void newProjectFromScene(const std::string& scenePath);
 
-    void pollRender();
     /// state().availableMemory from the machine, about once a second.
     void refreshAvailableMemory();
     /// The pipeline's stages as their owners offer them (PipelineController::StageHooks).
     std::array<PipelineController::StageHooks, PipelineController::kStages> pipelineStages();
-    /// The pipeline's render stage: joins the running render or starts one; `done` is told when the
-    /// render ended with no restart pending (delivered: it reached its target).
-    bool startRenderStage(StageDone done);
-    /// The current ground truth is of the current scene and converged (the pipeline keeps it).
-    bool groundTruthConverged() const;
     /// Logs the jobs that ended since the last frame (finished, stopped or failed).
     void logFinishedJobs();
     /// Cancels every session's job and forgets it, so nothing a previous project's job finishes
@@ -198,23 +192,19 @@ private:
     DialogPurpose dialogPurpose_ = DialogPurpose::None;
     RecentProjects recent_;
 
-    // One session per kind of job (job_session.h). render_ and train live hold what the UI shows
-    // while the job runs; the sessions deliver each job's result once it has ended.
-    std::shared_ptr<RenderSession> render_;  ///< the current ground truth's render (snapshots, outputs)
-    JobSession<void> renderJob_{jobs_, JobKind::Render, state_.log};
-    uint64_t renderRevision_ = 0;
-    panels::ImageStamp renderStamp_;  ///< what the current render's images are of (light, scene, size)
-    StageDone renderDone_;  ///< the pipeline's, while its render stage runs
     bool helpOpen_ = false;  ///< the Help window (F1)
     SettingsHistory history_;  ///< undo/redo of setting edits (observed once per settled frame)
     void applySettings(const std::optional<ProjectSettings>& settings, const char* what);
     int statusIdleWhilePipeline_ = 0;  ///< frames whose status bar said idle while the pipeline ran
+    // The controllers, each owning its jobs (job_session.h) and publishing its sections of state_.
+    GroundTruthController groundTruth_{ctx_};
+    /// The ground truth's render as saving a run and exporting images read it (groundTruth_'s).
+    const std::shared_ptr<RenderSession>& render_ = groundTruth_.session();
     PredictionController prediction_{ctx_};
     TrainingController training_{ctx_, prediction_.live()};
     EvaluationController evaluation_{ctx_, prediction_};
     PipelineController pipeline_;
     std::chrono::steady_clock::time_point memoryCheckedAt_{};
-    bool restartRender_ = false;   ///< a scene edit arrived while the old render was stopping
 
     /// An action waiting for the "Unsaved changes" prompt.
     struct PendingAction {
