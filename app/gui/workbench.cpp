@@ -22,11 +22,10 @@ namespace fs = std::filesystem;
 using panels::Command;
 
 Workbench::Workbench(const std::string& configDir)
-    : recent_((fs::path(configDir) / "recent.json").string()),
-      pipeline_(ctx_, pipelineStages()),
-      lastAutosave_(std::chrono::steady_clock::now()) {
-    recent_.load();
-    state_.recent = recent_.paths();
+    : project_(ctx_, configDir), pipeline_(ctx_, pipelineStages()) {
+    project_.onOpened = [this] { projectOpened(); };
+    project_.onError = [this](const std::string& title, const std::string& message) { showError(title, message); };
+    project_.chooseFile = [this](bool newProject) { openDialog(newProject ? DialogPurpose::New : DialogPurpose::Open); };
     // A CPU frame asked for while a training runs waits for it: both want every core.
     prediction_.holdCpuFrames = [this] { return training_.trainRunning(); };
     training_.onTrained = [this](const std::string& modelsDir, std::shared_ptr<const ModelSet> models) {
@@ -62,11 +61,6 @@ Workbench::~Workbench() {
     jobs_.waitAll();
 }
 
-std::string Workbench::title() const {
-    std::string t = "RRF Workbench - " + state_.projectName();
-    if (state_.dirty) t += " *";
-    return t;
-}
 
 std::string Workbench::takeScreenshotRequest() {
     std::string p;
@@ -75,43 +69,14 @@ std::string Workbench::takeScreenshotRequest() {
 }
 
 bool Workbench::requestQuit() {
-    if (quitConfirmed_) return true;
-    return whenSaved({PendingAction::Quit, {}});
+    if (project_.quitConfirmed()) return true;
+    return project_.whenSaved({ProjectController::PendingAction::Quit, {}});
 }
 
-void Workbench::requestOpen(const std::string& path) { whenSaved({PendingAction::Open, path}); }
 
-bool Workbench::whenSaved(PendingAction action) {
-    if (!state_.dirty) {
-        carryOut(action);
-        return true;
-    }
-    pending_ = std::move(action);
-    unsavedModal_ = true;
-    return false;
-}
 
-void Workbench::carryOut(const PendingAction& action) {
-    switch (action.kind) {
-        case PendingAction::Quit: quitConfirmed_ = true; break;
-        case PendingAction::Open:
-            if (action.path.empty()) openDialog(DialogPurpose::Open);
-            else openProject(action.path);
-            break;
-        case PendingAction::New: openDialog(DialogPurpose::New); break;
-        case PendingAction::None: break;
-    }
-}
 
-void Workbench::answerUnsavedPrompt(UnsavedChoice choice) {
-    const PendingAction action = std::move(pending_);
-    pending_ = PendingAction{};
-    if (choice == UnsavedChoice::Cancel) return;
-    // An untitled project's Save opens Save As instead and returns false: the action waits for the
-    // user to ask again rather than discarding the work.
-    if (choice == UnsavedChoice::Save && !saveProject()) return;
-    carryOut(action);
-}
+
 
 void Workbench::showError(const std::string& title, const std::string& message) {
     state_.log.error(message);
@@ -167,7 +132,7 @@ void Workbench::frame() {
     // One undo step per settled edit: while a button is held (a slider, a light drag) the edit is
     // still being made.
     if (state_.hasProject && !ImGui::IsAnyMouseDown()) history_.observe(state_.project);
-    autosave();
+    project_.autosave();
 
     viewModel_.update(state_);
     for (int i = 0; i < 3; ++i) {
@@ -371,19 +336,18 @@ void Workbench::drawModals() {
         if (ImGui::Button("Close")) ImGui::CloseCurrentPopup();
         ImGui::EndPopup();
     }
-    if (unsavedModal_) {
-        ImGui::OpenPopup("Unsaved changes");
-        unsavedModal_ = false;
-    }
+    if (project_.takePromptRequest()) ImGui::OpenPopup("Unsaved changes");
     if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         if (!unsavedPromptOpen()) {
             ImGui::CloseCurrentPopup();  // answered from elsewhere (a script)
         } else {
-            const char* what = pending_.kind == PendingAction::Quit  ? "quitting"
-                               : pending_.kind == PendingAction::New ? "starting a new project"
+            using PendingAction = ProjectController::PendingAction;
+            const PendingAction& pending = project_.pending();
+            const char* what = pending.kind == PendingAction::Quit  ? "quitting"
+                               : pending.kind == PendingAction::New ? "starting a new project"
                                                                      : "opening another project";
             ImGui::Text("'%s' has unsaved changes. Save them before %s?", state_.projectName().c_str(), what);
-            if (!pending_.path.empty()) ImGui::TextDisabled("%s", pending_.path.c_str());
+            if (!pending.path.empty()) ImGui::TextDisabled("%s", pending.path.c_str());
             std::optional<UnsavedChoice> choice;
             if (ImGui::Button("Save")) choice = UnsavedChoice::Save;
             ImGui::SameLine();
@@ -438,7 +402,7 @@ void Workbench::openDialog(DialogPurpose purpose) {
 void Workbench::dialogConfirmed(const std::string& path) {
     switch (dialogPurpose_) {
         case DialogPurpose::Open: openProject(path); break;
-        case DialogPurpose::New: newProjectFromScene(path); break;
+        case DialogPurpose::New: project_.newFromScene(path); break;
         case DialogPurpose::SaveAs: saveProject(path); break;
         case DialogPurpose::ExportImages: exportImages(path); break;
         case DialogPurpose::ExportScreenshot: screenshotRequest_ = path; break;
@@ -468,7 +432,7 @@ void Workbench::handleRequests() {
 void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
     {
         switch (r.command) {
-            case Command::NewProject: whenSaved({PendingAction::New, {}}); break;
+            case Command::NewProject: project_.whenSaved({ProjectController::PendingAction::New, {}}); break;
             case Command::OpenProject: requestOpen(r.path); break;
             case Command::SaveProject: saveProject(); break;
             case Command::SaveProjectAs:

@@ -1,7 +1,7 @@
 #pragma once
 /// The workbench application: the host window with menu bar, split panes and tabs, the modals and
 /// the GL textures of the views, composed with the controllers that own the background jobs
-/// (GroundTruthController: the render; TrainingController: data and training; PredictionController: the live prediction, its drafts
+/// (ProjectController: the project file and the unsaved-changes prompt; GroundTruthController: the render; TrainingController: data and training; PredictionController: the live prediction, its drafts
 /// and overlays; EvaluationController: evaluations, run pairs, light grids and sweeps;
 /// PipelineController: the one-click chain). Panels
 /// (panels/) draw and edit the state and queue Requests; this class carries them out between frames.
@@ -21,6 +21,7 @@
 #include "app/gui/evaluation_controller.h"
 #include "app/gui/ground_truth_controller.h"
 #include "app/gui/pipeline_controller.h"
+#include "app/gui/project_controller.h"
 #include "app/gui/prediction_controller.h"
 #include "app/gui/shortcuts.h"
 #include "app/gui/training_controller.h"
@@ -40,9 +41,9 @@ public:
 
     /// Opens a project or bare scene. A file that cannot be read is reported in the log and in a
     /// modal, and the open project stays; returns false then.
-    bool openProject(const std::string& path);
+    bool openProject(const std::string& path) { return project_.open(path); }
     /// Saves to `path` (empty: the project's own path, or Save As when it has none).
-    bool saveProject(const std::string& path = {});
+    bool saveProject(const std::string& path = {}) { return project_.save(path); }
 
     /// One frame: pick up job results, draw the workspace, carry out requests, upload textures.
     void frame();
@@ -52,19 +53,19 @@ public:
     bool requestQuit();
     /// What the "Unsaved changes" prompt asks about: the one guard of quitting, opening a project
     /// (File > Open, Recent, the Project panel) and starting a new one.
-    enum class UnsavedChoice { Save, Discard, Cancel };
+    using UnsavedChoice = ProjectController::UnsavedChoice;
     /// Opens `path` (empty: the Open dialog) once unsaved changes are saved or discarded; with
     /// unsaved changes it asks first (Save / Discard / Cancel), as quitting does.
-    void requestOpen(const std::string& path);
+    void requestOpen(const std::string& path) { project_.whenSaved({ProjectController::PendingAction::Open, path}); }
     /// True while the "Unsaved changes" prompt waits for an answer.
-    bool unsavedPromptOpen() const { return pending_.kind != PendingAction::None; }
+    bool unsavedPromptOpen() const { return project_.promptOpen(); }
     /// Answers the prompt (its buttons call this; so do scripts): Save saves and then carries out
     /// the action (not when saving fails), Discard carries it out, Cancel forgets it.
-    void answerUnsavedPrompt(UnsavedChoice choice);
+    void answerUnsavedPrompt(UnsavedChoice choice) { project_.answer(choice); }
     /// True once the user confirmed quitting (from the modal or the File menu).
-    bool quitConfirmed() const { return quitConfirmed_; }
+    bool quitConfirmed() const { return project_.quitConfirmed(); }
     /// Window title: "RRF Workbench - <project>" with "*" for unsaved changes.
-    std::string title() const;
+    std::string title() const { return project_.title(); }
     /// A screenshot path requested from the menu (empty if none); cleared by the call.
     std::string takeScreenshotRequest();
 
@@ -159,7 +160,6 @@ private:
     void handleRequests();
     void openDialog(DialogPurpose purpose);
     void dialogConfirmed(const std::string& path);
-    void newProjectFromScene(const std::string& scenePath);
 
     /// state().availableMemory from the machine, about once a second.
     void refreshAvailableMemory();
@@ -177,7 +177,9 @@ private:
     /// light is not in the BVH, so the picking BVH and the object-id buffer stay valid then.
     void sceneChanged(bool restartRender, bool geometryChanged = true);
     void rebuildPicking();
-    void autosave();
+    /// A project was opened (ProjectController::onOpened): the controllers drop the previous
+    /// project's jobs and take up this one (its last models, its sweeps, its ground truth).
+    void projectOpened();
     void showError(const std::string& title, const std::string& message);
     /// One panel request; `sceneEdited` collects scene edits so a frame restarts the render once.
     void handleRequest(const panels::Request& r, bool& sceneEdited);
@@ -190,7 +192,6 @@ private:
     GlTexture textures_[3];
     panels::FileDialog dialog_;
     DialogPurpose dialogPurpose_ = DialogPurpose::None;
-    RecentProjects recent_;
 
     bool helpOpen_ = false;  ///< the Help window (F1)
     SettingsHistory history_;  ///< undo/redo of setting edits (observed once per settled frame)
@@ -203,27 +204,16 @@ private:
     PredictionController prediction_{ctx_};
     TrainingController training_{ctx_, prediction_.live()};
     EvaluationController evaluation_{ctx_, prediction_};
+    ProjectController project_;
     PipelineController pipeline_;
     std::chrono::steady_clock::time_point memoryCheckedAt_{};
 
-    /// An action waiting for the "Unsaved changes" prompt.
-    struct PendingAction {
-        enum Kind { None, Quit, Open, New } kind = None;
-        std::string path;  ///< Open: the project (empty: ask with the dialog)
-    };
-    /// Carries out `action` now when nothing is unsaved, else keeps it and opens the prompt.
-    /// Returns true when it was carried out now.
-    bool whenSaved(PendingAction action);
-    void carryOut(const PendingAction& action);
-    PendingAction pending_;
-    bool unsavedModal_ = false;  ///< open the prompt's popup next frame
-    bool quitConfirmed_ = false, aboutModal_ = false;
+    bool aboutModal_ = false;
     std::string errorTitle_, errorMessage_;
     bool errorModal_ = false;
     std::string screenshotRequest_;
     FrameStats frameStats_;
     bool frameOverlay_ = false;
-    std::chrono::steady_clock::time_point lastAutosave_;
 };
 
 }  // namespace rrf
