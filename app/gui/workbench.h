@@ -1,17 +1,17 @@
 #pragma once
-/// The workbench application: the host window with menu bar, split panes and tabs, the modals and
-/// the GL textures of the views, composed with the controllers that own the background jobs
-/// (ProjectController: the project file and the unsaved-changes prompt; GroundTruthController: the render; TrainingController: data and training; PredictionController: the live prediction, its drafts
-/// and overlays; EvaluationController: evaluations, run pairs, light grids and sweeps;
-/// PipelineController: the one-click chain). Panels
-/// (panels/) draw and edit the state and queue Requests; this class carries them out between frames.
-/// UI thread only.
+/// The workbench application: the host window with menu bar, split panes and tabs, the modals, the
+/// file dialogs, the status bar and the GL textures of the views, composed of the controllers that
+/// own the project and the background jobs: ProjectController (the project file and the
+/// unsaved-changes prompt), GroundTruthController (the render), TrainingController (data and
+/// training), PredictionController (the live prediction, its drafts and overlays),
+/// EvaluationController (evaluations, run pairs, light grids, sweeps) and PipelineController (the
+/// one-click chain). Panels (panels/) draw and edit the state and queue Requests; this class carries
+/// them out between frames, mostly by handing them to a controller. UI thread only.
 
 #include <array>
 #include <chrono>
 #include <memory>
 #include <string>
-#include <tuple>
 
 #include "app/gui/frame_stats.h"
 #include "app/gui/gl_texture.h"
