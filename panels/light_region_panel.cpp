@@ -1,6 +1,6 @@
 // Light region panel: where in the light region the loaded models fail. The models are judged at a
 // grid of light positions spanning the region, edges included (core/eval/light_grid.h, the job in
-// app/gui/workbench_light_grid.cpp); the panel shows one map per height (y) of the grid, x across and
+// app/gui/evaluation_light_grid.cpp); the panel shows one map per height (y) of the grid, x across and
 // z down, all on one colour scale, with the training records' light positions of that height band as
 // dots. Hovering a cell gives its figures; clicking it moves the light there, so the views show that
 // light's ground truth and prediction.

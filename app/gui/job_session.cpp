@@ -13,7 +13,7 @@ void JobSessionBase::cancel() {
 
 void JobSessionBase::drop() {
     // The id stays: running() is true until the cancelled worker has returned, so a new job of this
-    // kind waits for it (Workbench::sceneChanged restarts the render once the old one stopped).
+    // kind waits for it (GroundTruthController::restart starts the render again once the old one stopped).
     cancel();
     context_.reset();
     forgetResult();

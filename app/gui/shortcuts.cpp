@@ -1,6 +1,8 @@
 // The keyboard shortcuts table (see shortcuts.h).
 #include "app/gui/shortcuts.h"
 
+// Key codes only: no GL header, so that glad (app/gl, window.cpp) may come after it in a unity build.
+#define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 namespace rrf {

@@ -1,10 +1,13 @@
-// Workbench: frame loop pieces, host window, menus, status bar, modals and request dispatch.
+// Workbench: frame loop pieces, host window, menus, status bar, modals, request dispatch and the
+// wiring of the controllers.
 #include "app/gui/workbench.h"
 
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 
+// Key codes only: no GL header, so that glad (app/gl, window.cpp) may come after it in a unity build.
+#define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
@@ -19,9 +22,38 @@ namespace fs = std::filesystem;
 using panels::Command;
 
 Workbench::Workbench(const std::string& configDir)
-    : recent_((fs::path(configDir) / "recent.json").string()), lastAutosave_(std::chrono::steady_clock::now()) {
-    recent_.load();
-    state_.recent = recent_.paths();
+    : project_(ctx_, configDir), pipeline_(ctx_, pipelineStages()) {
+    project_.onOpened = [this] { projectOpened(); };
+    project_.onError = [this](const std::string& title, const std::string& message) { showError(title, message); };
+    project_.chooseFile = [this](bool newProject) { openDialog(newProject ? DialogPurpose::New : DialogPurpose::Open); };
+    // A CPU frame asked for while a training runs waits for it: both want every core.
+    prediction_.holdCpuFrames = [this] { return training_.trainRunning(); };
+    training_.onTrained = [this](const std::string& modelsDir, std::shared_ptr<const ModelSet> models) {
+        loadModels(modelsDir, std::move(models));
+        // The pipeline evaluates as its own stage; a manual training is evaluated here (issue 29 item 8).
+        if (!pipelineRunning()) evaluation_.evaluateWhenReady();
+    };
+    evaluation_.holdEvaluation = [this] {
+        return pipelineRunning() || groundTruth_.running() || groundTruth_.restartPending() || prediction_.predictRunning();
+    };
+}
+
+std::array<PipelineController::StageHooks, PipelineController::kStages> Workbench::pipelineStages() {
+    PipelineController::StageHooks render, generate, train, evaluate;
+    render.start = [this](StageDone done) { return groundTruth_.startStage(std::move(done)); };
+    render.progress = [this] { return groundTruth_.progress(); };
+    render.cancel = [this] { groundTruth_.cancel(); };
+    render.finished = [this] { return groundTruth_.converged(); };
+    generate.start = [this](StageDone done) { return training_.startGenerate(std::move(done)); };
+    generate.progress = [this] { return training_.generateProgress(); };
+    generate.cancel = [this] { training_.cancelGenerate(); };
+    train.start = [this](StageDone done) { return training_.startTrain(0, std::move(done)); };
+    train.progress = [this] { return training_.trainProgress(); };
+    train.cancel = [this] { training_.cancelTrain(); };
+    evaluate.start = [this](StageDone done) { return evaluation_.startEvaluate(std::move(done)); };
+    evaluate.progress = [this] { return evaluation_.evaluateProgress(); };
+    evaluate.cancel = [this] { evaluation_.cancelEvaluate(); };
+    return {render, generate, train, evaluate};
 }
 
 Workbench::~Workbench() {
@@ -29,11 +61,6 @@ Workbench::~Workbench() {
     jobs_.waitAll();
 }
 
-std::string Workbench::title() const {
-    std::string t = "RRF Workbench - " + state_.projectName();
-    if (state_.dirty) t += " *";
-    return t;
-}
 
 std::string Workbench::takeScreenshotRequest() {
     std::string p;
@@ -42,43 +69,14 @@ std::string Workbench::takeScreenshotRequest() {
 }
 
 bool Workbench::requestQuit() {
-    if (quitConfirmed_) return true;
-    return whenSaved({PendingAction::Quit, {}});
+    if (project_.quitConfirmed()) return true;
+    return project_.whenSaved({ProjectController::PendingAction::Quit, {}});
 }
 
-void Workbench::requestOpen(const std::string& path) { whenSaved({PendingAction::Open, path}); }
 
-bool Workbench::whenSaved(PendingAction action) {
-    if (!state_.dirty) {
-        carryOut(action);
-        return true;
-    }
-    pending_ = std::move(action);
-    unsavedModal_ = true;
-    return false;
-}
 
-void Workbench::carryOut(const PendingAction& action) {
-    switch (action.kind) {
-        case PendingAction::Quit: quitConfirmed_ = true; break;
-        case PendingAction::Open:
-            if (action.path.empty()) openDialog(DialogPurpose::Open);
-            else openProject(action.path);
-            break;
-        case PendingAction::New: openDialog(DialogPurpose::New); break;
-        case PendingAction::None: break;
-    }
-}
 
-void Workbench::answerUnsavedPrompt(UnsavedChoice choice) {
-    const PendingAction action = std::move(pending_);
-    pending_ = PendingAction{};
-    if (choice == UnsavedChoice::Cancel) return;
-    // An untitled project's Save opens Save As instead and returns false: the action waits for the
-    // user to ask again rather than discarding the work.
-    if (choice == UnsavedChoice::Save && !saveProject()) return;
-    carryOut(action);
-}
+
 
 void Workbench::showError(const std::string& title, const std::string& message) {
     state_.log.error(message);
@@ -88,17 +86,11 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 }
 
 void Workbench::dropJobs() {
-    for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&renderJob_, &generateJob_, &trainJob_, &evaluateJob_,
-                                                                      &predictJob_, &sweepJob_, &pairJob_, &overlayJob_,
-                                                                      &flipJob_, &spreadJob_, &lightGridJob_})
-        job->drop();
-    render_.reset();
-    trainLive_.reset();
-    predictPending_ = false;
-    if (pipelineRunning()) {
-        pipeline_.cancelled = true;
-        endPipeline("stopped: its project was closed");
-    }
+    groundTruth_.drop();
+    training_.drop();
+    evaluation_.drop();
+    prediction_.drop();
+    pipeline_.abandon("stopped: its project was closed");
 }
 
 void Workbench::logFinishedJobs() {
@@ -120,22 +112,18 @@ void Workbench::refreshAvailableMemory() {
 void Workbench::frame() {
     // Ended jobs are logged first, so their results' lines follow "... finished after N s".
     logFinishedJobs();
-    pollRender();
-    pollGenerate();
-    pollTrain();
-    pollEvaluate();
+    groundTruth_.poll();
+    training_.poll();
+    evaluation_.pollEvaluation();
     // After pollPredict: a CPU frame that has just ended is delivered before the evaluation that
     // waited for it looks for it.
-    pollPredict();
-    pollEvaluateAfterTrain();
-    pollSweep();
-    pollLightGrid();
-    pollRunPair();
-    pollPipeline();
-    updateFlipMap();
-    updateSpreadMap();
+    prediction_.poll();
+    evaluation_.pollAfterPrediction();
+    pipeline_.poll();
+    prediction_.updateFlipMap();
+    prediction_.updateSpreadMap();
     refreshAvailableMemory();
-    finishDraft();
+    prediction_.finishDraft();
     drawHost();
     drawModals();
     drawFrameOverlay();
@@ -144,7 +132,7 @@ void Workbench::frame() {
     // One undo step per settled edit: while a button is held (a slider, a light drag) the edit is
     // still being made.
     if (state_.hasProject && !ImGui::IsAnyMouseDown()) history_.observe(state_.project);
-    autosave();
+    project_.autosave();
 
     viewModel_.update(state_);
     for (int i = 0; i < 3; ++i) {
@@ -190,7 +178,7 @@ void Workbench::drawMenuBar() {
             ImGui::EndMenu();
         }
         ImGui::Separator();
-        if (ImGui::MenuItem("Export images...", nullptr, false, render_ != nullptr)) openDialog(DialogPurpose::ExportImages);
+        if (ImGui::MenuItem("Export images...", nullptr, false, groundTruth_.session() != nullptr)) openDialog(DialogPurpose::ExportImages);
         if (ImGui::MenuItem("Export screenshot...")) openDialog(DialogPurpose::ExportScreenshot);
         if (ImGui::MenuItem("Export error table (CSV)...", nullptr, false, state_.evaluation.valid))
             openDialog(DialogPurpose::ExportObjectsCsv);
@@ -257,7 +245,7 @@ void Workbench::applySettings(const std::optional<ProjectSettings>& settings, co
     // The light restarts the ground truth and moves the prediction; other settings change what
     // the next render, generation or training does, and the prediction's direct light.
     if (lightMoved) sceneChanged(true);
-    else refreshPrediction();
+    else prediction_.refresh();
 }
 
 void Workbench::drawStatusBar() {
@@ -283,8 +271,8 @@ void Workbench::drawStatusBar() {
         // Work that follows at once (the next pipeline stage, the evaluation after a training, a
         // render restarted by an edit) is said, not shown as idle.
         const char* next = pipeline.running    ? "starting the next stage"
-                           : evaluateAfterTrain_ ? "the trained models are evaluated next"
-                           : restartRender_      ? "the render restarts"
+                           : evaluation_.evaluationPending() ? "the trained models are evaluated next"
+                           : groundTruth_.restartPending() ? "the render restarts"
                                                  : nullptr;
         if (next) {
             ImGui::TextDisabled("%s", next);
@@ -315,7 +303,7 @@ void Workbench::drawStatusBar() {
 
 bool Workbench::busy() const {
     // A draft on screen is replaced by the full frame shortly: keep the frames coming until then.
-    return !jobs_.idle() || pipelineRunning() || draftShown_ || ImGui::IsAnyMouseDown();
+    return !jobs_.idle() || pipelineRunning() || prediction_.draftShown() || ImGui::IsAnyMouseDown();
 }
 
 void Workbench::drawFrameOverlay() {
@@ -348,19 +336,18 @@ void Workbench::drawModals() {
         if (ImGui::Button("Close")) ImGui::CloseCurrentPopup();
         ImGui::EndPopup();
     }
-    if (unsavedModal_) {
-        ImGui::OpenPopup("Unsaved changes");
-        unsavedModal_ = false;
-    }
+    if (project_.takePromptRequest()) ImGui::OpenPopup("Unsaved changes");
     if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         if (!unsavedPromptOpen()) {
             ImGui::CloseCurrentPopup();  // answered from elsewhere (a script)
         } else {
-            const char* what = pending_.kind == PendingAction::Quit  ? "quitting"
-                               : pending_.kind == PendingAction::New ? "starting a new project"
+            using PendingAction = ProjectController::PendingAction;
+            const PendingAction& pending = project_.pending();
+            const char* what = pending.kind == PendingAction::Quit  ? "quitting"
+                               : pending.kind == PendingAction::New ? "starting a new project"
                                                                      : "opening another project";
             ImGui::Text("'%s' has unsaved changes. Save them before %s?", state_.projectName().c_str(), what);
-            if (!pending_.path.empty()) ImGui::TextDisabled("%s", pending_.path.c_str());
+            if (!pending.path.empty()) ImGui::TextDisabled("%s", pending.path.c_str());
             std::optional<UnsavedChoice> choice;
             if (ImGui::Button("Save")) choice = UnsavedChoice::Save;
             ImGui::SameLine();
@@ -415,7 +402,7 @@ void Workbench::openDialog(DialogPurpose purpose) {
 void Workbench::dialogConfirmed(const std::string& path) {
     switch (dialogPurpose_) {
         case DialogPurpose::Open: openProject(path); break;
-        case DialogPurpose::New: newProjectFromScene(path); break;
+        case DialogPurpose::New: project_.newFromScene(path); break;
         case DialogPurpose::SaveAs: saveProject(path); break;
         case DialogPurpose::ExportImages: exportImages(path); break;
         case DialogPurpose::ExportScreenshot: screenshotRequest_ = path; break;
@@ -445,7 +432,7 @@ void Workbench::handleRequests() {
 void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
     {
         switch (r.command) {
-            case Command::NewProject: whenSaved({PendingAction::New, {}}); break;
+            case Command::NewProject: project_.whenSaved({ProjectController::PendingAction::New, {}}); break;
             case Command::OpenProject: requestOpen(r.path); break;
             case Command::SaveProject: saveProject(); break;
             case Command::SaveProjectAs:
@@ -455,22 +442,22 @@ void Workbench::handleRequest(const panels::Request& r, bool& sceneEdited) {
             case Command::StartRender: startRender(); break;
             case Command::CancelRender: cancelRender(); break;
             case Command::Generate: startGenerate(); break;
-            case Command::CancelGenerate: generateJob_.cancel(); break;
+            case Command::CancelGenerate: training_.cancelGenerate(); break;
             case Command::Train: startTrain(); break;
-            case Command::CancelTrain: trainJob_.cancel(); break;
-            case Command::Evaluate: startEvaluate(); break;
+            case Command::CancelTrain: training_.cancelTrain(); break;
+            case Command::Evaluate: evaluation_.startEvaluate(); break;
             case Command::ExportObjectsCsv:
                 if (r.path.empty()) openDialog(DialogPurpose::ExportObjectsCsv);
                 else exportObjectsCsv(r.path);
                 break;
             case Command::RunSweep: startSweep(r.path); break;
-            case Command::CancelSweep: sweepJob_.cancel(); break;
+            case Command::CancelSweep: evaluation_.cancelSweep(); break;
             case Command::EvaluateLightRegion: startLightGrid(); break;
-            case Command::CancelLightRegion: lightGridJob_.cancel(); break;
+            case Command::CancelLightRegion: evaluation_.cancelLightGrid(); break;
             case Command::RunPipeline: startPipeline(r.path); break;
             case Command::CancelPipeline: cancelPipeline(); break;
             case Command::SceneChanged: sceneEdited = true; break;  // many edits in a frame: one restart
-            case Command::PredictionChanged: refreshPrediction(); break;
+            case Command::PredictionChanged: prediction_.refresh(); break;
             case Command::SaveRun: saveRun(); break;
             case Command::ReopenRun: reopenRun(r.index); break;
             case Command::CompareRun: compareRun(r.index); break;

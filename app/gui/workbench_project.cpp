@@ -1,11 +1,10 @@
-// Workbench: project files (open, new, save, autosave, recent), runs and image export.
+// Workbench: what a newly opened project needs of the controllers, runs and image export.
 #include "app/gui/workbench.h"
 
 #include <filesystem>
 
 #include "core/util/image_io.h"
 #include "core/nn/network_settings.h"
-#include "panels/project_io.h"
 #include "core/pipeline/run_recording.h"
 #include "core/project/scene_edits.h"
 #include "core/util/json_reader.h"
@@ -15,38 +14,17 @@ namespace rrf {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
-constexpr auto kAutosaveInterval = std::chrono::minutes(2);
+std::string Workbench::projectDir() const { return ctx_.projectDir(); }
 
-std::string autosavePath(const std::string& projectPath) { return projectPath + ".autosave.json"; }
-}  // namespace
-
-std::string Workbench::projectDir() const {
-    if (!state_.hasProject) return fs::current_path().string();
-    return projectDirectory(state_.project);
-}
-
-bool Workbench::openProject(const std::string& path) {
-    std::string error;
-    if (!panels::loadProjectIntoState(state_, path, error)) {
-        showError("Cannot open project", error + (state_.hasProject ? "\n\nThe open project was kept." : ""));
-        return false;
-    }
-    untitled_ = false;
-    if (!recent_.add(path)) state_.log.warning("could not update the recent projects list");
-    state_.recent = recent_.paths();
-    std::error_code ec;
-    const std::string autosave = autosavePath(path);
-    if (fs::exists(autosave, ec) && fs::last_write_time(autosave, ec) > fs::last_write_time(path, ec))
-        state_.log.warning("an autosave copy newer than the project exists: " + autosave +
-                           " (open it to recover unsaved work)");
+void Workbench::projectOpened() {
     // Stop the previous project's jobs and forget their sessions, so that nothing they finish lands
     // in this project (their workers still complete into the old project's directory). The new
     // ground truth starts converging right away.
     dropJobs();
     // Models belong to the previous project; the last training run's models (if still on disk)
     // drive the prediction of this one.
-    live_.reset();
+    prediction_.reset();
+    std::error_code ec;
     for (auto it = state_.project.runs.rbegin(); it != state_.project.runs.rend(); ++it) {
         // A stopped run's partial set is shown only when the user chooses it (Compare).
         if (it->kind != "train" || it->artifacts.empty() || isStoppedTrainRun(*it)) continue;
@@ -54,56 +32,9 @@ bool Workbench::openProject(const std::string& path) {
         if (fs::exists(models / "models.json", ec)) loadModels(models.string());
         break;
     }
-    restoreSweeps();
+    evaluation_.restoreSweeps();
     history_.reset(state_.project);  // undo never crosses into another project
     sceneChanged(true);
-    lastAutosave_ = std::chrono::steady_clock::now();
-    return true;
-}
-
-void Workbench::newProjectFromScene(const std::string& scenePath) {
-    if (!openProject(scenePath)) return;
-    // A new project references the scene and has no file yet: the first Save asks where.
-    untitled_ = true;
-    state_.project.name = "untitled";
-    state_.dirty = true;
-}
-
-bool Workbench::saveProject(const std::string& requested) {
-    if (!state_.hasProject) return false;
-    if (requested.empty() && (untitled_ || state_.project.path.empty())) {
-        state_.request(panels::Command::SaveProjectAs);
-        return false;
-    }
-    const std::string path = requested.empty() ? state_.project.path : requested;
-    std::string error;
-    if (!panels::saveStateToProject(state_, path, error)) {
-        showError("Cannot save project", error);
-        return false;
-    }
-    untitled_ = false;
-    std::error_code ec;
-    fs::remove(autosavePath(path), ec);  // the real file is now at least as new
-    recent_.add(path);
-    state_.recent = recent_.paths();
-    state_.notify(panels::LogLevel::Info, "", "saved " + path);
-    return true;
-}
-
-void Workbench::autosave() {
-    const auto now = std::chrono::steady_clock::now();
-    if (now - lastAutosave_ < kAutosaveInterval) return;
-    lastAutosave_ = now;
-    if (!state_.dirty || untitled_ || !state_.hasProject || state_.project.path.empty()) return;
-    // Save a copy so the project itself (and its path) stay as the user left them.
-    panels::storeWorkbenchSections(state_);
-    Project copy = state_.project;
-    try {
-        rrf::saveProject(copy, autosavePath(state_.project.path));
-        state_.log.info("autosaved to " + autosavePath(state_.project.path));
-    } catch (const std::exception& e) {
-        state_.log.warning(std::string("autosave failed: ") + e.what());
-    }
 }
 
 bool Workbench::saveRun() {
@@ -115,7 +46,7 @@ bool Workbench::saveRun() {
         state_.notify(panels::LogLevel::Error, "Views", "save run: the render is still running; wait for it or stop it first");
         return false;
     }
-    if (untitled_ || state_.project.path.empty()) {
+    if (ctx_.untitled || state_.project.path.empty()) {
         state_.notify(panels::LogLevel::Error, "Views", "save run: save the project first (runs are stored next to it)");
         return false;
     }
@@ -270,7 +201,7 @@ bool Workbench::exportImages(const std::string& dir) {
             writeImage((fs::path(dir) / "error.exr").string(), err, ImageFormat::EXR);
             writeImage((fs::path(dir) / "error.png").string(), errorMapColour(err, state_.view.metric, state_.view.errorMax), ImageFormat::PNG);
         }
-        if (!exportPrediction(dir)) return false;
+        if (!prediction_.exportImages(dir)) return false;
     } catch (const std::exception& e) {
         state_.notify(panels::LogLevel::Error, "", std::string("export images: ") + e.what());
         return false;

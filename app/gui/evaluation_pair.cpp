@@ -1,11 +1,12 @@
-// Workbench: two training runs compared side by side. A worker loads both runs' model sets, predicts
+// EvaluationController: two training runs compared side by side. A worker loads both runs' model sets, predicts
 // each at the current light with the CPU predictor (the reference implementation: the two columns
 // differ only by their models) and, when a ground truth is shown, judges each against it per object,
 // so the Views show prediction A | prediction B | difference and the Objects panel both error columns.
-#include "app/gui/workbench.h"
+#include "app/gui/evaluation_controller.h"
 
 #include <filesystem>
 
+#include "app/gui/render_session.h"
 #include "core/eval/evaluation.h"
 #include "core/nn/model_set.h"
 #include "core/predict/predictor.h"
@@ -37,7 +38,7 @@ std::shared_ptr<const ModelSet> runModels(const std::string& dir, const std::str
 }
 }  // namespace
 
-bool Workbench::compareRunPair() {
+bool EvaluationController::compareRunPair() {
     const panels::RunPair& p = state_.runPair;
     const int n = int(state_.project.runs.size());
     if (p.a < 0 || p.b < 0 || p.a >= n || p.b >= n || p.a == p.b) {
@@ -115,7 +116,7 @@ bool Workbench::compareRunPair() {
     return true;
 }
 
-void Workbench::pollRunPair() {
+void EvaluationController::pollRunPair() {
     state_.runPair.running = pairJob_.running();
     pairJob_.poll([&](PairOutcome& out) {
         if (!out.error.empty()) {

@@ -1,16 +1,16 @@
-// Workbench: the Views' FLIP map. HDR-FLIP filters the whole image at several exposures, far more
+// PredictionController: the Views' FLIP map. HDR-FLIP filters the whole image at several exposures, far more
 // work than a per-pixel metric, so it runs on a worker: one job at a time, started for the images on
 // screen (ground truth and compared revisions, term) whenever they differ from the map on hand, its
 // result shown only while those images are still the ones on screen (FlipViewMap::matches).
 #include <memory>
 
-#include "app/gui/workbench.h"
+#include "app/gui/prediction_controller.h"
 #include "core/eval/flip.h"
 #include "panels/view_model.h"
 
 namespace rrf {
 
-void Workbench::updateFlipMap() {
+void PredictionController::updateFlipMap() {
     panels::FlipViewMap& shown = state_.view.flipMap;
     flipJob_.poll([&](panels::FlipViewMap& m) {
         m.revision = ++flipMaps_;

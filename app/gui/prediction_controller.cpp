@@ -1,13 +1,14 @@
-// Workbench: the trained models' prediction in the middle view. The GLSL path renders on the UI
-// thread in the same frame as a light move; the CPU path (core/predict/predictor.h) runs as a Predict job when
-// the GLSL predictor could not be built.
-#include "app/gui/workbench.h"
+// PredictionController (prediction_controller.h): the trained models' prediction in the middle view.
+// The GLSL path renders on the UI thread in the same frame as a light move; the CPU path
+// (core/predict/predictor.h) runs as a Predict job when the GLSL predictor could not be built.
+#include "app/gui/prediction_controller.h"
 
 #include <algorithm>
 #include <filesystem>
 
 #include "app/gui/cpu_frame.h"
 #include "app/gui/prediction_draft.h"
+#include "app/gui/render_session.h"
 #include "core/eval/evaluation.h"
 #include "core/predict/glossy_gather.h"
 #include "core/predict/predictor.h"
@@ -41,7 +42,30 @@ Camera viewCamera(const Project& project) {
 }
 }  // namespace
 
-bool Workbench::loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded) {
+/// The leaf of every view pixel, for the prediction of revision `forPrediction`.
+struct LeafOverlay {
+    std::vector<int> pixelLeaf;
+    int width = 0, height = 0;
+    uint64_t forPrediction = 0;
+};
+
+PredictionController::PredictionController(ControllerContext& ctx)
+    : ctx_(ctx),
+      state_(ctx.state),
+      predictJob_(ctx.jobs, JobKind::Predict, ctx.state.log),
+      overlayJob_(ctx.jobs, JobKind::Overlay, ctx.state.log),
+      flipJob_(ctx.jobs, JobKind::Overlay, ctx.state.log),
+      spreadJob_(ctx.jobs, JobKind::Spread, ctx.state.log) {}
+
+PredictionController::~PredictionController() = default;
+
+void PredictionController::drop() {
+    for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&predictJob_, &overlayJob_, &flipJob_, &spreadJob_})
+        job->drop();
+    predictPending_ = false;
+}
+
+bool PredictionController::loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded) {
     std::string glslError;
     try {
         live_.load(state_.project.scene, dir, true, glslError, std::move(preloaded));
@@ -62,11 +86,11 @@ bool Workbench::loadModels(const std::string& dir, std::shared_ptr<const ModelSe
     state_.leaves = panels::leavesOf(*live_.models());
     state_.view.compareSource = panels::CompareSource::Prediction;
     state_.log.info("models loaded from " + dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)"));
-    refreshPrediction();
+    refresh();
     return true;
 }
 
-void Workbench::refreshPrediction() {
+void PredictionController::refresh() {
     if (!live_.loaded() || !state_.hasProject) return;
     const Scene& scene = state_.project.scene;
     if (scene.contentHash() != live_.sceneHash()) {
@@ -126,7 +150,7 @@ void Workbench::refreshPrediction() {
     startCpuPrediction(camera);
 }
 
-void Workbench::startCpuPrediction(const Camera& camera) {
+void PredictionController::startCpuPrediction(const Camera& camera) {
     if (predictRunning()) {
         predictPending_ = true;  // the light moved again: predict once more when this one is done
         return;
@@ -165,15 +189,15 @@ void Workbench::startCpuPrediction(const Camera& camera) {
     predictPending_ = false;
 }
 
-void Workbench::finishDraft() {
+void PredictionController::finishDraft() {
     if (!draftShown_) return;
     const double rested = std::chrono::duration<double>(std::chrono::steady_clock::now() - draftTime_).count();
     if (rested < kDraftRestSeconds) return;
     draftShown_ = false;
-    if (live_.loaded() && live_.usesGlsl()) refreshPrediction();  // same light: the full-quality frame
+    if (live_.loaded() && live_.usesGlsl()) refresh();  // same light: the full-quality frame
 }
 
-void Workbench::noteFrameSeconds(const char* key, double seconds, int width, int height) {
+void PredictionController::noteFrameSeconds(const char* key, double seconds, int width, int height) {
     // The median of the last few frames: the first GLSL frame also compiles and uploads, and a
     // single frame is noisy; the figure lands in the models' training run for the runs table.
     constexpr size_t kFrames = 9;
@@ -187,12 +211,10 @@ void Workbench::noteFrameSeconds(const char* key, double seconds, int width, int
     framesSinceRecorded_[kind] = 0;
     std::vector<double> sorted = frames;
     std::sort(sorted.begin(), sorted.end());
-    recordFrameSeconds(state_.project.runs, projectDir(), live_.dir(), key, sorted[sorted.size() / 2], width, height);
+    recordFrameSeconds(state_.project.runs, ctx_.projectDir(), live_.dir(), key, sorted[sorted.size() / 2], width, height);
 }
 
-bool Workbench::predictRunning() const { return predictJob_.running(); }
-
-void Workbench::pollPredict() {
+void PredictionController::poll() {
     predictJob_.poll([&](TimedPrediction& timed) {
         // Beside the GLSL view (the glossy gather's frame), a frame for a light that has moved on
         // would replace the newer GLSL frame with the old light's image; the CPU-only view shows
@@ -209,18 +231,11 @@ void Workbench::pollPredict() {
             p.withoutNetwork = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
         p.touch();
     });
-    if (predictPending_ && !predictRunning() && !trainRunning()) refreshPrediction();
+    if (predictPending_ && !predictRunning() && !(holdCpuFrames && holdCpuFrames())) refresh();
     updateLeafOverlay();
 }
 
-/// The leaf of every view pixel, for the prediction of revision `forPrediction`.
-struct LeafOverlay {
-    std::vector<int> pixelLeaf;
-    int width = 0, height = 0;
-    uint64_t forPrediction = 0;
-};
-
-void Workbench::updateLeafOverlay() {
+void PredictionController::updateLeafOverlay() {
     panels::LeavesInfo& l = state_.leaves;
     overlayJob_.poll([&](LeafOverlay& o) {
         // A result for an older prediction is still shown until the newer one arrives.
@@ -251,7 +266,7 @@ void Workbench::updateLeafOverlay() {
     if (started) overlayFor_ = revision;
 }
 
-bool Workbench::exportPrediction(const std::string& dir) {
+bool PredictionController::exportImages(const std::string& dir) {
     if (!live_.loaded()) return true;  // nothing trained: nothing to add
     // Exported images come from the CPU predictor: the reference implementation, independent of
     // the GL driver that drew the view.

@@ -1,4 +1,4 @@
-// Workbench: the Views' spread map (uncertainty without a reference, core/eval/uncertainty.h). The
+// PredictionController: the Views' spread map (uncertainty without a reference, core/eval/uncertainty.h). The
 // members' spread needs the CPU predictor (the GLSL path evaluates the merged network only), so it
 // runs on a worker: from the last CPU frame when that frame is the prediction on screen, else by
 // predicting the frame again on the CPU; one job at a time, shown only for the prediction it was
@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "app/gui/cpu_frame.h"
-#include "app/gui/workbench.h"
+#include "app/gui/prediction_controller.h"
 #include "core/eval/error_metrics.h"
 #include "core/eval/uncertainty.h"
 #include "panels/view_model.h"
@@ -32,7 +32,7 @@ panels::SpreadViewMap spreadMapOf(const Prediction& p, uint64_t forPrediction) {
 }
 }  // namespace
 
-void Workbench::updateSpreadMap() {
+void PredictionController::updateSpreadMap() {
     panels::SpreadViewMap& shown = state_.view.spreadMap;
     spreadJob_.poll([&](panels::SpreadViewMap& m) {
         m.revision = ++spreadMaps_;

@@ -1,9 +1,10 @@
-// Workbench: the Light region panel's job. The loaded models are judged at a grid of light positions
+// EvaluationController: the Light region panel's job. The loaded models are judged at a grid of light positions
 // spanning the light region (core/pipeline/evaluate_stage.h's evaluateLightGrid, the stage behind
 // `rrf evaluate --light-grid`) against references of the project's store at an interactive size, and
 // the map becomes the panel's. Its files replace the previous light grid of the same models whole:
 // runs/<train run>/light_grid (or <project dir>/light_grid for models no recorded run made).
-#include "app/gui/workbench.h"
+#include "app/gui/evaluation_controller.h"
+#include "app/gui/prediction_controller.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -30,14 +31,12 @@ namespace {
 constexpr int kLightGridSize = 64;
 }  // namespace
 
-bool Workbench::lightGridRunning() const { return lightGridJob_.running(); }
-
-bool Workbench::startLightGrid() {
+bool EvaluationController::startLightGrid() {
     if (lightGridRunning()) {
         state_.notify(panels::LogLevel::Error, "Light region", "evaluate over the light region: one is running; stop it first");
         return false;
     }
-    if (!live_.loaded()) {
+    if (!prediction_.live().loaded()) {
         state_.notify(panels::LogLevel::Error, "Light region", "evaluate over the light region: no models are loaded; train first");
         return false;
     }
@@ -51,8 +50,8 @@ bool Workbench::startLightGrid() {
         return false;
     }
     auto project = std::make_shared<const Project>(state_.project);
-    const std::shared_ptr<const ModelSet> models = live_.models();
-    const std::string modelsDir = live_.dir();
+    const std::shared_ptr<const ModelSet> models = prediction_.live().models();
+    const std::string modelsDir = prediction_.live().dir();
     const Run* run = findTrainRun(project->runs, projectDir(), modelsDir);
     const std::string outDir = run ? (fs::path(runDirectory(projectDir(), *run)) / "light_grid").string()
                                    : (fs::path(projectDir()) / "light_grid").string();
@@ -101,7 +100,7 @@ bool Workbench::startLightGrid() {
     return true;
 }
 
-void Workbench::pollLightGrid() {
+void EvaluationController::pollLightGrid() {
     panels::LightRegionInfo& lr = state_.lightRegion;
     lr.running = lightGridRunning();
     if (lr.running) lr.progress = lightGridJob_.progress();

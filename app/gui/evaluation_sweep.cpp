@@ -1,10 +1,10 @@
-// Workbench: the "Run sweep" job of the Cost panel (core/pipeline/sweep.h) with sizes small enough for an
+// EvaluationController: the "Run sweep" job of the Cost panel (core/pipeline/sweep.h) with sizes small enough for an
 // interactive session. Every point of a sweep is measured against one reference at one resolution;
 // model sweeps include the path tracer's series (1…256 spp) against that reference, so each model has
 // its break-even. When the job is done the UI thread — the one with the window's GL context — times
 // the GLSL predictor on each row's networks (core has no GL), then the rows become the Cost panel's
 // series and are written as CSV and JSON under <project dir>/sweeps/, as `rrf sweep` writes them.
-#include "app/gui/workbench.h"
+#include "app/gui/evaluation_controller.h"
 
 #include <algorithm>
 #include <cmath>
@@ -112,9 +112,7 @@ std::vector<panels::CostSeries> costSeries(const SweepResult& r, const std::stri
 
 }  // namespace
 
-bool Workbench::sweepRunning() const { return sweepJob_.running(); }
-
-void Workbench::addSweepSeries(const SweepResult& r) {
+void EvaluationController::addSweepSeries(const SweepResult& r) {
     int earlier = 0;
     for (const panels::CostSeries& s : state_.cost.sweeps)
         if (s.kind != panels::CostKind::PathTracer || r.what == "spp")
@@ -123,7 +121,7 @@ void Workbench::addSweepSeries(const SweepResult& r) {
     for (panels::CostSeries& s : costSeries(r, name)) state_.cost.sweeps.push_back(std::move(s));
 }
 
-void Workbench::restoreSweeps() {
+void EvaluationController::restoreSweeps() {
     // What the project's sweeps wrote (pollSweep below), read back in the order they ran; a file that
     // cannot be read is named in the Log and left out, the others still come back.
     const std::vector<std::string> files = sweepFilesIn((fs::path(projectDir()) / "sweeps").string());
@@ -141,7 +139,7 @@ void Workbench::restoreSweeps() {
     if (restored > 0) state_.log.info("restored " + std::to_string(restored) + " sweep(s) from " + projectRelative(projectDir(), (fs::path(projectDir()) / "sweeps").string()));
 }
 
-bool Workbench::startSweep(const std::string& what) {
+bool EvaluationController::startSweep(const std::string& what) {
     if (!state_.hasProject) {
         state_.log.error("sweep: no project is open");
         return false;
@@ -204,7 +202,7 @@ bool Workbench::startSweep(const std::string& what) {
     return true;
 }
 
-void Workbench::pollSweep() {
+void EvaluationController::pollSweep() {
     state_.cost.running = sweepRunning();
     if (state_.cost.running) state_.cost.progress = sweepJob_.progress();
     sweepJob_.poll([&](SweepOutcome& out) {

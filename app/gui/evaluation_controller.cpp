@@ -1,9 +1,10 @@
-// Workbench: evaluation of the trained models against the ground truth shown in the views
-// (core/eval/evaluation.h, CPU predictor, on a worker), the Objects table it fills, its CSV export, and
-// the metrics it adds to the training run whose models it judged.
-#include "app/gui/workbench.h"
+// EvaluationController (evaluation_controller.h): evaluation of the trained models against the ground
+// truth shown in the views (core/eval/evaluation.h, CPU predictor, on a worker), the Objects table it
+// fills, its CSV export, and the metrics it adds to the training run whose models it judged.
+#include "app/gui/evaluation_controller.h"
 
 #include "app/gui/cpu_frame.h"
+#include "app/gui/prediction_controller.h"
 
 #include <filesystem>
 
@@ -26,10 +27,32 @@ struct EvaluationOutcome {
     std::string modelsDir;     ///< the models that were judged
 };
 
-bool Workbench::evaluateRunning() const { return evaluateJob_.running(); }
+EvaluationController::EvaluationController(ControllerContext& ctx, const PredictionController& prediction)
+    : ctx_(ctx),
+      state_(ctx.state),
+      prediction_(prediction),
+      evaluateJob_(ctx.jobs, JobKind::Evaluate, ctx.state.log),
+      pairJob_(ctx.jobs, JobKind::Compare, ctx.state.log),
+      lightGridJob_(ctx.jobs, JobKind::LightGrid, ctx.state.log),
+      sweepJob_(ctx.jobs, JobKind::Sweep, ctx.state.log) {}
 
-bool Workbench::startEvaluate() {
-    if (!live_.loaded()) {
+EvaluationController::~EvaluationController() = default;
+
+void EvaluationController::drop() {
+    for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&evaluateJob_, &pairJob_, &lightGridJob_, &sweepJob_})
+        job->drop();
+    evaluateDone_ = nullptr;
+}
+
+void EvaluationController::pollAfterPrediction() {
+    pollEvaluateAfterTrain();
+    pollSweep();
+    pollLightGrid();
+    pollRunPair();
+}
+
+bool EvaluationController::startEvaluate(StageDone done) {
+    if (!prediction_.live().loaded()) {
         state_.notify(panels::LogLevel::Error, "Training", "evaluate: no trained models; train first");
         return false;
     }
@@ -48,8 +71,8 @@ bool Workbench::startEvaluate() {
     }
     const PredictionSettings settings = state_.project.prediction;
     auto scene = std::make_shared<const Scene>(state_.project.scene);
-    const std::shared_ptr<const ModelSet> models = live_.models();
-    const std::string modelsDir = live_.dir();
+    const std::shared_ptr<const ModelSet> models = prediction_.live().models();
+    const std::string modelsDir = prediction_.live().dir();
     // The reference is the ground truth the views show, at the light position it was rendered at,
     // with the render's per-term variance of the mean (empty for a re-opened run's images: the
     // noise floors are then unknown, never 0). Image copies share nothing with the views, so the
@@ -65,7 +88,7 @@ bool Workbench::startEvaluate() {
     reference->seconds = state_.render.seconds;
     // The CPU frame of these models at this light, scene and size already holds the prediction
     // (on a glossy scene, with its gather): its pixels are what predicting again would give.
-    std::shared_ptr<const CpuFrame> frame = lastCpuFrame_;
+    std::shared_ptr<const CpuFrame> frame = prediction_.lastCpuFrame();
     const Image& gt = state_.groundTruth.term(Term::Global);
     if (frame && !frame->matches(models, settings,
                                  panels::ImageStamp{reference->lightPosition, scene->contentHash(), gt.width, gt.height}))
@@ -96,21 +119,21 @@ bool Workbench::startEvaluate() {
         return out;
     });
     if (!started) return false;
+    evaluateDone_ = std::move(done);
     state_.evaluation.running = true;
     return true;
 }
 
-void Workbench::pollEvaluateAfterTrain() {
-    if (!evaluateAfterTrain_ || evaluateRunning() || pipelineRunning()) return;
-    // A render of the current light still running (or restarting after an edit) is waited for: its
-    // finished image is the reference the evaluation needs.
-    if (renderRunning() || restartRender_) return;
-    // So is the CPU frame of the new models (a glossy gather, or no GLSL): the evaluation reuses it.
-    if (predictRunning()) return;
+void EvaluationController::pollEvaluateAfterTrain() {
+    if (!evaluateAfterTrain_ || evaluateRunning()) return;
+    // The pipeline evaluates as its own stage; a render of the current light still running (or
+    // restarting after an edit) is waited for, its finished image being the reference the evaluation
+    // needs; so is the CPU frame of the new models (a glossy gather, or no GLSL), which it reuses.
+    if (holdEvaluation && holdEvaluation()) return;
     evaluateAfterTrain_ = false;
     const auto& stamp = state_.groundTruth.stamp;
     std::string why;
-    if (!live_.loaded()) why = "no complete model set is loaded";
+    if (!prediction_.live().loaded()) why = "no complete model set is loaded";
     else if (state_.groundTruth.empty() || state_.render.cancelled)
         why = "there is no finished ground truth of the current light (Render, then Evaluate)";
     else if (stamp && (!(stamp->light == state_.project.scene.lightPosition()) ||
@@ -124,10 +147,11 @@ void Workbench::pollEvaluateAfterTrain() {
     startEvaluate();
 }
 
-void Workbench::pollEvaluate() {
+void EvaluationController::pollEvaluation() {
     state_.evaluation.running = evaluateRunning();
+    bool delivered = false;
     evaluateJob_.poll([&](EvaluationOutcome& out) {
-        ++evaluationsDelivered_;
+        delivered = true;
         const double seconds = out.info.seconds;
         const int spp = out.info.referenceSpp;
         const Vec3 light = out.info.lightPosition;
@@ -152,9 +176,14 @@ void Workbench::pollEvaluate() {
                       noiseFigureText(g.relativeRmseCorrected).c_str(), g.rmse, (unsigned long long)g.pixels, seconds);
         state_.log.info(line);
     });
+    if (evaluateDone_ && !evaluateRunning()) {
+        const StageDone finished = std::move(evaluateDone_);
+        evaluateDone_ = nullptr;
+        finished(delivered);
+    }
 }
 
-bool Workbench::exportObjectsCsv(const std::string& path) {
+bool EvaluationController::exportObjectsCsv(const std::string& path) {
     const panels::EvaluationInfo& e = state_.evaluation;
     if (!e.valid) {
         state_.notify(panels::LogLevel::Error, "Objects", "export table: evaluate first");

@@ -1,0 +1,113 @@
+#pragma once
+/// The trained models' prediction as a controller: the live prediction of the middle view (GLSL on
+/// the UI thread in the frame of a light move, or CPU Predict jobs), the light-drag drafts
+/// (prediction_draft.h), the frame times recorded in the models' training run, and the Views'
+/// overlays computed from the prediction on workers: the leaf overlay, the FLIP map
+/// (prediction_flip.cpp) and the spread map (prediction_spread.cpp). It owns the LivePrediction and
+/// those job sessions and publishes state.prediction, state.leaves, state.view.flipMap and
+/// state.view.spreadMap. UI thread only.
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "app/gui/controller_context.h"
+#include "app/gui/job_session.h"
+#include "app/gui/live_prediction.h"
+#include "app/gui/prediction_draft.h"
+
+namespace rrf {
+
+struct CpuFrame;
+struct LeafOverlay;
+struct TimedPrediction;
+
+class PredictionController {
+public:
+    explicit PredictionController(ControllerContext& ctx);
+    ~PredictionController();
+
+    /// Loads a model directory for the live prediction (GLSL, else CPU). `preloaded`: the set a
+    /// worker already read from `dir` (a finished training), so only the GL upload is left here.
+    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr);
+    /// Forgets the models (another project was opened).
+    void reset() { live_.reset(); }
+    /// Brings the middle view's prediction up to date with the scene's light (GLSL now, or a CPU job).
+    void refresh();
+    /// Each frame: takes a finished CPU frame, predicts again when the light moved meanwhile, and
+    /// keeps the leaf overlay current.
+    void poll();
+    /// The Views' FLIP map while it is selected: one worker at a time for the images on screen.
+    void updateFlipMap();
+    /// The Views' spread map while it is on: one worker at a time for the prediction on screen.
+    void updateSpreadMap();
+    /// Renders the full-quality frame once the light has rested after a drag.
+    void finishDraft();
+    /// Forgets every job (a project was closed): nothing they still produce arrives.
+    void drop();
+    /// Adds the CPU prediction's images to an export directory (true without models: nothing to add).
+    bool exportImages(const std::string& dir);
+
+    const LivePrediction& live() const { return live_; }
+    /// The last CPU frame of the loaded models (app/gui/cpu_frame.h): an evaluation of the same
+    /// models, settings and ground truth reuses it.
+    std::shared_ptr<const CpuFrame> lastCpuFrame() const { return lastCpuFrame_; }
+    bool predictRunning() const { return predictJob_.running(); }
+    /// Whether the prediction on screen is a draft (the light moved less than kDraftRestSeconds ago).
+    bool draftShown() const { return draftShown_; }
+    /// The live prediction's recent frame times (seconds): GLSL frames on the UI thread where the
+    /// GLSL path runs, else the CPU jobs'.
+    const std::vector<double>& frameSeconds() const { return frameSeconds_[live_.usesGlsl() ? kGlslFrames : kCpuFrames]; }
+    /// The recent draft frames' prediction times while the light was dragged (seconds).
+    const std::vector<double>& draftSeconds() const { return draftSeconds_; }
+
+    /// True while a CPU frame the light asked for must wait (the Workbench: while a training runs,
+    /// which needs the cores); null: never.
+    std::function<bool()> holdCpuFrames;
+
+private:
+    /// The CPU prediction as a job (the fallback path, and the glossy gather after a GLSL frame).
+    void startCpuPrediction(const Camera& camera);
+    /// Recomputes the leaf overlay (leaf per pixel) when it is on and the prediction changed.
+    void updateLeafOverlay();
+    /// Adds a frame time of the loaded models; their median goes into the models' training run.
+    void noteFrameSeconds(const char* key, double seconds, int width, int height);
+
+    ControllerContext& ctx_;
+    panels::WorkbenchState& state_;  ///< ctx_.state: what the controller publishes into
+    LivePrediction live_;
+    JobSession<TimedPrediction> predictJob_;
+    bool predictPending_ = false;  ///< the light moved while a CPU prediction ran
+    std::shared_ptr<const CpuFrame> lastCpuFrame_;
+    /// Recent frame times per kind (a GLSL frame and the CPU frame after it are different figures),
+    /// and the frames noted since each median was last recorded in the run.
+    static constexpr int kGlslFrames = 0, kCpuFrames = 1;
+    std::vector<double> frameSeconds_[2];
+    size_t framesSinceRecorded_[2] = {0, 0};
+    /// Light-drag drafts (app/gui/prediction_draft.h): the light position of the last GLSL frame,
+    /// whether one was rendered for the loaded models, whether the view shows a draft and when
+    /// that draft was rendered (the full frame follows kDraftRestSeconds later), draft frame times.
+    Vec3 predictedLight_{};
+    bool predictedOnce_ = false;
+    bool draftShown_ = false;
+    std::chrono::steady_clock::time_point draftTime_{};
+    std::vector<double> draftSeconds_;
+    int draftDivisor_ = kMaxDraftDivisor;  ///< resolution divisor of the next draft (adapts to its time)
+    /// The Views' leaf overlay, computed on a worker (a G-buffer and a leaf lookup per pixel).
+    JobSession<LeafOverlay> overlayJob_;
+    uint64_t overlayFor_ = 0;  ///< the prediction revision the last overlay job was started for
+    /// The Views' FLIP map (HDR-FLIP of the compared image against the ground truth), on a worker.
+    JobSession<panels::FlipViewMap> flipJob_;
+    /// What the last FLIP job was started for (ground truth and compared revisions, term).
+    std::tuple<uint64_t, uint64_t, Term> flipFor_{0, 0, Term::Global};
+    uint64_t flipMaps_ = 0;  ///< FLIP maps delivered (their revisions)
+    /// The Views' spread map (the ensemble members' relative spread of the prediction), on a worker.
+    JobSession<panels::SpreadViewMap> spreadJob_;
+    uint64_t spreadFor_ = 0;   ///< the prediction revision the last spread job was started for
+    uint64_t spreadMaps_ = 0;  ///< spread maps delivered (their revisions)
+};
+
+}  // namespace rrf
