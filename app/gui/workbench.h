@@ -16,6 +16,7 @@
 #include "app/gui/prediction_draft.h"
 #include "app/gui/render_session.h"
 #include "app/gui/shortcuts.h"
+#include "core/pipeline/run_recording.h"
 #include "core/project/settings_history.h"
 #include "app/gui/user_config.h"
 #include "panels/file_dialog.h"
@@ -216,7 +217,7 @@ private:
     bool exportPrediction(const std::string& dir);
     /// Re-opens / compares a training run (project.runs[index]): restores its network and trainer
     /// settings and loads its models.
-    bool loadTrainRun(const Run& run, int index);
+    bool loadTrainRun(const Run& run);
     /// The dataset training reads: this session's, else the project's data/dataset.rrfd if present.
     std::string datasetPath() const;
     /// The scene changed. `geometryChanged` false means materials or the movable light only: the
@@ -256,7 +257,7 @@ private:
     static constexpr int kGlslFrames = 0, kCpuFrames = 1;
     std::vector<double> frameSeconds_[2];
     size_t framesSinceRecorded_[2] = {0, 0};
-    void noteFrameSeconds(const char* key, double seconds, int width, int height);
+    void noteFrameSeconds(FramePath path, double seconds, int width, int height);
     bool predictPending_ = false;  ///< the light moved while a CPU prediction ran
     /// The last CPU frame of the loaded models (app/gui/cpu_frame.h): an evaluation of the same
     /// models, settings and ground truth reuses it; a manual Train's evaluation waits for it.
