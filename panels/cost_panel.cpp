@@ -97,18 +97,19 @@ CostSeries runsCostSeries(const std::vector<Run>& runs) {
     std::string resolution;
     for (const Run& r : runs) {
         if (r.kind != "train") continue;
-        const double raw = r.metric("relative_rmse").value_or(NAN);
+        const RunMetrics& m = r.metrics;
+        const double raw = m.relativeRmse.value_or(NAN);
         // The cost of a training run is what it took to get there: data generation plus training.
-        const double seconds = r.timing("train").value_or(NAN) + r.timing("generate").value_or(0.0);
+        const double seconds = r.timings.train.value_or(NAN) + r.timings.generate.value_or(0.0);
         if (!(raw > 0) || !(seconds > 0)) continue;
         // The sweeps' figure (comparableError): corrected where the run's reference noise was known.
-        const std::optional<double> corrected = r.metric("relative_rmse_corrected");
+        const std::optional<double> corrected = finiteOrNone(m.relativeRmseCorrected);
         CostPoint p{seconds, corrected ? *corrected : raw, r.name};
         p.corrected = corrected.has_value();
         p.rawError = raw;
-        p.frameSeconds = r.metric("frame_seconds").value_or(NAN);
-        p.glslFrameSeconds = r.metric("glsl_frame_seconds").value_or(NAN);
-        const int w = int(r.metric("evaluated_width").value_or(0)), h = int(r.metric("evaluated_height").value_or(0));
+        p.frameSeconds = m.frameSeconds.value_or(NAN);
+        p.glslFrameSeconds = m.glslFrameSeconds.value_or(NAN);
+        const int w = m.evaluatedWidth.value_or(0), h = m.evaluatedHeight.value_or(0);
         if (w > 0 && h > 0) p.resolution = sizeText(w, h);
         if (s.points.empty()) resolution = p.resolution;
         else if (resolution != p.resolution) resolution.clear();

@@ -44,6 +44,18 @@ void expectArtifactsPresent(const Project& p, const rrf::Run& run) {
         EXPECT_TRUE(fs::exists(fs::path(projectDirectory(p)) / a)) << run.id << ": " << a;
 }
 
+/// The runs the CLI wrote read into the typed records and write back as the very same text: the
+/// format is unchanged by reading it.
+void expectRunsRoundTrip(const std::string& projectFile) {
+    const nlohmann::json doc = readJsonFile(projectFile);
+    ASSERT_TRUE(doc.contains("runs"));
+    std::vector<std::string> warnings;
+    const std::vector<rrf::Run> runs = readRuns(JsonReader(doc.at("runs"), projectFile, "/runs"), warnings);
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    ASSERT_EQ(runs.size(), doc.at("runs").size());
+    EXPECT_EQ(runsToJson(runs).dump(2), doc.at("runs").dump(2));
+}
+
 }  // namespace
 
 TEST(CliRecord, RenderRecordsARunWithItsImagesAndSettings) {
@@ -62,14 +74,16 @@ TEST(CliRecord, RenderRecordsARunWithItsImagesAndSettings) {
     for (const char* f : {"global.exr", "direct.exr", "indirect.exr", "render.json"})
         EXPECT_TRUE(fs::exists(dir / "runs" / run.id / f)) << f;
     // The settings snapshot the workbench re-opens: render settings, light and scene.
-    EXPECT_EQ(run.settings.at("render").at("width"), 16);
-    EXPECT_EQ(run.settings.at("render").at("height"), 16);
-    EXPECT_EQ(run.settings.at("render").at("spp"), 1);
-    EXPECT_EQ(run.settings.at("light_position").size(), 3u);
-    EXPECT_TRUE(run.settings.contains("scene_hash"));
-    EXPECT_EQ(run.metric("spp").value_or(0), 1.0);
-    EXPECT_TRUE(run.metric("relative_error").has_value());
-    EXPECT_TRUE(run.timing("render").has_value());
+    ASSERT_TRUE(run.settings.render.has_value());
+    EXPECT_EQ(run.settings.render->width, 16);
+    EXPECT_EQ(run.settings.render->height, 16);
+    EXPECT_EQ(run.settings.render->spp, 1);
+    EXPECT_TRUE(run.settings.lightPosition.has_value());
+    EXPECT_TRUE(run.settings.sceneHash.has_value());
+    EXPECT_EQ(run.metrics.spp.value_or(0), 1);
+    EXPECT_TRUE(run.metrics.relativeError.has_value());
+    EXPECT_TRUE(run.timings.render.has_value());
+    expectRunsRoundTrip(project);
     // The user's own settings are not touched by recording.
     EXPECT_EQ(p.render.spp, 64);
     EXPECT_EQ(p.render.width, 0);
@@ -136,14 +150,15 @@ TEST(CliRecord, TrainAndEvaluateRecordLikeTheWorkbench) {
     const std::string models = trainRunModelsDir(run, projectDirectory(p));
     EXPECT_TRUE(fs::exists(fs::path(models) / "models.json"));
     EXPECT_EQ(fs::path(models), dir / "runs" / run.id / "models");
-    EXPECT_EQ(run.settings.at("network").at("hidden"), nlohmann::json::array({4}));
-    EXPECT_TRUE(run.settings.contains("trainer"));
-    EXPECT_EQ(run.settings.at("dataset"), "data.rrfd");
+    ASSERT_TRUE(run.settings.network.has_value());
+    EXPECT_EQ(run.settings.network->options.hidden, std::vector<int>({4}));
+    EXPECT_TRUE(run.settings.trainer.has_value());
+    EXPECT_EQ(run.settings.dataset.value_or(""), "data.rrfd");
     EXPECT_FALSE(run.curves.empty());
     EXPECT_FALSE(run.loss.empty());
-    EXPECT_GT(run.metric("networks").value_or(0), 0.0);
-    EXPECT_EQ(run.metric("epochs").value_or(-1), 3.0);
-    EXPECT_TRUE(run.timing("train").has_value());
+    EXPECT_GT(run.metrics.networks.value_or(0), 0);
+    EXPECT_EQ(run.metrics.epochs.value_or(-1), 3);
+    EXPECT_TRUE(run.timings.train.has_value());
     EXPECT_EQ(findTrainRun(p.runs, projectDirectory(p), models), &run);
 
     // Evaluating those models adds the metrics to the train run, as the workbench's Evaluate does.
@@ -152,11 +167,12 @@ TEST(CliRecord, TrainAndEvaluateRecordLikeTheWorkbench) {
     const Project q = loadProjectOrScene(project);
     ASSERT_EQ(q.runs.size(), 1u);
     const rrf::Run& judged = q.runs[0];
-    EXPECT_TRUE(judged.metric("relative_rmse").has_value());
-    EXPECT_TRUE(judged.metric("rmse").has_value());
-    EXPECT_EQ(judged.metric("evaluated_spp").value_or(0), 1.0);
-    EXPECT_EQ(judged.metrics.at("evaluated_light").size(), 3u);
-    EXPECT_TRUE(judged.timing("evaluate").has_value());
+    EXPECT_TRUE(judged.metrics.relativeRmse.has_value());
+    EXPECT_TRUE(judged.metrics.rmse.has_value());
+    EXPECT_EQ(judged.metrics.evaluatedSpp.value_or(0), 1);
+    EXPECT_TRUE(judged.metrics.evaluatedLight.has_value());
+    EXPECT_TRUE(judged.timings.evaluate.has_value());
+    expectRunsRoundTrip(project);
     EXPECT_EQ(judged.artifacts.front(), run.artifacts.front());
     expectArtifactsPresent(q, judged);
     EXPECT_TRUE(fs::exists(dir / "runs" / run.id / "evaluation" / "evaluation.json"));

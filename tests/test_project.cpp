@@ -78,7 +78,7 @@ TEST(Project, RoundTripKeepsUnknownSectionsAndRebasesSceneRef) {
     p.network = network;
     rrf::Run run;
     run.id = "3";
-    run.metrics = {{"rmse", 0.125}};
+    run.metrics.rmse = 0.125;
     p.runs = {run};
     p.layout.root.fraction = 0.25f;
     p.render.spp = 256;

@@ -122,7 +122,7 @@ void PredictionController::refresh() {
                 // The figure recorded is the frame's cost on the device (its passes' GPU time from
                 // timer queries, plus the CPU's direct light where the GPU cannot do it); read-back
                 // to the CPU is the workbench's own overhead.
-                noteFrameSeconds("glsl_frame_seconds", live_.renderGlsl(camera, light, state_.project.prediction, images),
+                noteFrameSeconds(FramePath::Glsl, live_.renderGlsl(camera, light, state_.project.prediction, images),
                                  camera.width, camera.height);
             }
         } catch (const std::exception& e) {
@@ -197,11 +197,11 @@ void PredictionController::finishDraft() {
     if (live_.loaded() && live_.usesGlsl()) refresh();  // same light: the full-quality frame
 }
 
-void PredictionController::noteFrameSeconds(const char* key, double seconds, int width, int height) {
+void PredictionController::noteFrameSeconds(FramePath path, double seconds, int width, int height) {
     // The median of the last few frames: the first GLSL frame also compiles and uploads, and a
     // single frame is noisy; the figure lands in the models' training run for the runs table.
     constexpr size_t kFrames = 9;
-    const int kind = std::string(key) == "glsl_frame_seconds" ? kGlslFrames : kCpuFrames;
+    const int kind = path == FramePath::Glsl ? kGlslFrames : kCpuFrames;
     std::vector<double>& frames = frameSeconds_[kind];
     frames.push_back(seconds);
     if (frames.size() > kFrames) frames.erase(frames.begin());
@@ -211,7 +211,7 @@ void PredictionController::noteFrameSeconds(const char* key, double seconds, int
     framesSinceRecorded_[kind] = 0;
     std::vector<double> sorted = frames;
     std::sort(sorted.begin(), sorted.end());
-    recordFrameSeconds(state_.project.runs, ctx_.projectDir(), live_.dir(), key, sorted[sorted.size() / 2], width, height);
+    recordFrameSeconds(state_.project.runs, ctx_.projectDir(), live_.dir(), path, sorted[sorted.size() / 2], width, height);
 }
 
 void PredictionController::poll() {
@@ -222,7 +222,7 @@ void PredictionController::poll() {
         if (live_.usesGlsl() && !(timed.light == state_.project.scene.lightPosition())) return;
         lastCpuFrame_ = std::move(timed.frame);
         Prediction& prediction = timed.prediction;
-        noteFrameSeconds("frame_seconds", timed.seconds, timed.stamp.width, timed.stamp.height);
+        noteFrameSeconds(FramePath::Cpu, timed.seconds, timed.stamp.width, timed.stamp.height);
         panels::ImageSet& p = state_.prediction;
         for (Term t : kTerms) p.term(t) = std::move(prediction.images[int(t)]);
         p.label = prediction.pixelsGathered ? "Prediction (CPU, glossy gather)" : "Prediction (CPU)";

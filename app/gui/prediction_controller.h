@@ -18,6 +18,7 @@
 #include "app/gui/job_session.h"
 #include "app/gui/live_prediction.h"
 #include "app/gui/prediction_draft.h"
+#include "core/pipeline/run_recording.h"
 
 namespace rrf {
 
@@ -74,7 +75,7 @@ private:
     /// Recomputes the leaf overlay (leaf per pixel) when it is on and the prediction changed.
     void updateLeafOverlay();
     /// Adds a frame time of the loaded models; their median goes into the models' training run.
-    void noteFrameSeconds(const char* key, double seconds, int width, int height);
+    void noteFrameSeconds(FramePath path, double seconds, int width, int height);
 
     ControllerContext& ctx_;
     panels::WorkbenchState& state_;  ///< ctx_.state: what the controller publishes into

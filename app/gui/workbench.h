@@ -172,7 +172,7 @@ private:
     void dropJobs();
     /// Re-opens / compares a training run (project.runs[index]): restores its network and trainer
     /// settings and loads its models.
-    bool loadTrainRun(const Run& run, int index);
+    bool loadTrainRun(const Run& run);
     /// The scene changed. `geometryChanged` false means materials or the movable light only: the
     /// light is not in the BVH, so the picking BVH and the object-id buffer stay valid then.
     void sceneChanged(bool restartRender, bool geometryChanged = true);

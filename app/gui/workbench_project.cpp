@@ -90,13 +90,13 @@ bool loadRunImages(const Run& run, const std::string& dir, panels::ImageSet& out
     return true;
 }
 
-int runSpp(const Run& run) { return int(run.metric("spp").value_or(0)); }
+int runSpp(const Run& run) { return run.metrics.spp.value_or(0); }
 }  // namespace
 
 bool Workbench::compareRun(int index) {
     if (index < 0 || index >= int(state_.project.runs.size())) return false;
     const Run& run = state_.project.runs[size_t(index)];
-    if (run.kind == "train") return loadTrainRun(run, index);
+    if (run.kind == "train") return loadTrainRun(run);
     panels::ImageSet set;
     std::string error;
     if (!loadRunImages(run, projectDir(), set, error)) {
@@ -115,7 +115,7 @@ bool Workbench::compareRun(int index) {
 bool Workbench::reopenRun(int index) {
     if (index < 0 || index >= int(state_.project.runs.size())) return false;
     const Run run = state_.project.runs[size_t(index)];
-    if (run.kind == "train") return loadTrainRun(run, index);
+    if (run.kind == "train") return loadTrainRun(run);
     panels::ImageSet set;
     std::string error;
     if (!loadRunImages(run, projectDir(), set, error)) {
@@ -123,25 +123,20 @@ bool Workbench::reopenRun(int index) {
         return false;
     }
     cancelRender();
-    // The run's settings snapshot is read like the project's sections (file and JSON pointer in every
-    // message); a part that does not read is reported and the current setting kept.
-    const JsonReader settings(run.settings, state_.project.path, "/runs/" + std::to_string(index) + "/settings");
-    if (const auto render = settings.find("render")) {
-        try {
-            state_.project.render = parseRenderSettings(*render);
-        } catch (const std::exception& e) {
-            state_.log.warning(std::string("re-open run: render settings kept as they are: ") + e.what());
-        }
-    }
-    if (const auto overrides = settings.find("scene_overrides")) {
+    // The run's settings snapshot was read (and checked) with the project; what does not fit the
+    // scene is reported and the current setting kept.
+    const RunSettings& settings = run.settings;
+    if (settings.render) state_.project.render = *settings.render;
+    if (settings.sceneOverrides) {
         std::vector<std::string> problems;
-        state_.project.overrides = SceneOverrides::fromJson(*overrides, problems);
-        applySceneOverrides(state_.project.overrides, state_.project.scene, problems, overrides->pointer());
+        state_.project.overrides = *settings.sceneOverrides;
+        applySceneOverrides(state_.project.overrides, state_.project.scene, problems,
+                            "/runs/" + std::to_string(index) + "/settings/scene_overrides");
         for (const std::string& p : problems) state_.log.warning("re-open run: " + p);
     }
-    if (const auto light = settings.find("light_position"); light && !state_.project.scene.lights.empty()) {
+    if (settings.lightPosition && !state_.project.scene.lights.empty()) {
         try {
-            moveLight(state_.project, light->vec3());
+            moveLight(state_.project, *settings.lightPosition);
         } catch (const InputError& e) {
             state_.log.warning(std::string("re-open run: light position kept as it is: ") + e.what());
         }
@@ -159,23 +154,14 @@ bool Workbench::reopenRun(int index) {
     return true;
 }
 
-bool Workbench::loadTrainRun(const Run& run, int index) {
+bool Workbench::loadTrainRun(const Run& run) {
     // A training run "opens" as its settings and its models: the Network panel shows what trained
-    // them, and the prediction view shows what they predict. Its settings snapshot is read like the
-    // project's sections, so every message names /runs/<index>/settings/... in the project file.
-    const JsonReader settings(run.settings, state_.project.path, "/runs/" + std::to_string(index) + "/settings");
-    const auto network = settings.find("network");
-    const auto trainer = settings.find("trainer");
-    if (network && trainer) {
-        try {
-            NetworkSettings restored = NetworkSettings::fromJson(*network);
-            const TrainerConfig restoredTrainer = TrainerConfig::fromJson(*trainer);
-            state_.project.network = std::move(restored);
-            state_.project.trainer = restoredTrainer;
-            state_.markDirty();
-        } catch (const std::exception& e) {
-            state_.log.warning("run '" + run.name + "': its network settings were not restored: " + e.what());
-        }
+    // them, and the prediction view shows what they predict. Its settings snapshot was read (and
+    // checked) with the project.
+    if (run.settings.network && run.settings.trainer) {
+        state_.project.network = *run.settings.network;
+        state_.project.trainer = *run.settings.trainer;
+        state_.markDirty();
     }
     if (run.artifacts.empty()) {
         state_.notify(panels::LogLevel::Error, "Project", "run '" + run.name + "' lists no models");

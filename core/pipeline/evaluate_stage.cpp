@@ -208,8 +208,7 @@ LightGridMarks trainingLightMarks(const Project& p, const std::string& models) {
         m.why = "the models are not from a train run recorded in the project";
         return m;
     }
-    const auto dataset = trained->settings.find("dataset");
-    const std::string rel = dataset != trained->settings.end() && dataset->is_string() ? dataset->get<std::string>() : "";
+    const std::string rel = trained->settings.dataset.value_or("");
     if (rel.empty()) {
         m.why = "the train run '" + trained->name + "' names no dataset";
         return m;

@@ -12,11 +12,8 @@
 namespace rrf {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 
 namespace {
-json vec3Json(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
-
 /// Both paths absolute and normalised, so "runs/x/models" and "/p/runs/x/models/" compare equal.
 fs::path normal(const fs::path& p) {
     std::error_code ec;
@@ -63,15 +60,18 @@ void setRenderRun(Run& run, const std::string& projectDir, RenderSettings settin
                   const SceneOverrides& overrides, const RenderSnapshot& snapshot, const RenderStats& stats,
                   const RenderOutputs& outputs) {
     settings.spp = targetSpp;
-    run.settings = json{{"render", renderSettingsToJson(settings)},
-                        {"light_position", vec3Json(scene.lightPosition())},
-                        {"scene_hash", hexString(scene.contentHash())}};
-    if (!overrides.empty()) run.settings["scene_overrides"] = overrides.toJson();
-    run.metrics = json{{"spp", snapshot.sppCompleted},
-                       {"relative_error", snapshot.relativeError},
-                       {"non_finite_samples", snapshot.nonFinite},
-                       {"samples_per_second", stats.samplesPerSecond()}};
-    run.timings = json{{"render", snapshot.seconds}};
+    run.settings = RunSettings();
+    run.settings.render = settings;
+    run.settings.lightPosition = scene.lightPosition();
+    run.settings.sceneHash = hexString(scene.contentHash());
+    if (!overrides.empty()) run.settings.sceneOverrides = overrides;
+    run.metrics = RunMetrics();
+    run.metrics.spp = snapshot.sppCompleted;
+    run.metrics.relativeError = snapshot.relativeError;
+    run.metrics.nonFiniteSamples = snapshot.nonFinite;
+    run.metrics.samplesPerSecond = stats.samplesPerSecond();
+    run.timings = RunTimings();
+    run.timings.render = snapshot.seconds;
     run.artifacts.clear();
     for (const std::string& p : outputs.images) run.artifacts.push_back(projectRelative(projectDir, p));
     run.artifacts.push_back(projectRelative(projectDir, outputs.metadata));
@@ -91,29 +91,35 @@ std::vector<LossCurve> lossCurves(const std::vector<NetworkCurve>& curves) {
 }
 
 void setTrainRun(Run& run, const std::string& projectDir, TrainRecord r) {
-    run.settings = json{{"network", r.settings.networkJson()}, {"trainer", r.settings.trainerJson()},
-                        {"dataset", projectRelative(projectDir, r.dataset)}, {"scene_hash", hexString(r.sceneHash)}};
-    if (r.sampling) run.settings["sampling"] = r.sampling->toJson();
+    run.settings = RunSettings();
+    run.settings.network = r.settings;
+    run.settings.trainer = r.settings.options.trainer;
+    run.settings.dataset = projectRelative(projectDir, r.dataset);
+    run.settings.sceneHash = hexString(r.sceneHash);
+    run.settings.sampling = r.sampling;
     // The process trains with one kernel (nn/mlp_kernel.h); a model reproduces bit for bit on it only.
-    run.settings["kernel"] = mlpKernelName(mlpKernel());
+    run.settings.kernel = mlpKernelName(mlpKernel());
     int epochs = 0;
     for (const LossCurve& c : r.curves)
         for (const LossPoint& p : c.points) epochs = std::max(epochs, p.epoch);
     run.curves = std::move(r.curves);
     run.loss = aggregateLoss(run.curves);
-    run.metrics = json{{"networks", r.networks}, {"skipped", r.skipped}, {"epochs", epochs}};
-    if (r.plannedNetworks > 0) run.metrics["planned_networks"] = r.plannedNetworks;
-    if (r.stopped) run.metrics["stopped"] = true;
-    if (r.leaves > 0) run.metrics["leaves"] = r.leaves;
-    if (r.records > 0) run.metrics["records"] = r.records;
-    run.timings = json{{"train", r.seconds}};
-    if (r.generateSeconds) run.timings["generate"] = *r.generateSeconds;
+    run.metrics = RunMetrics();
+    run.metrics.networks = r.networks;
+    run.metrics.skipped = r.skipped;
+    run.metrics.epochs = epochs;
+    if (r.plannedNetworks > 0) run.metrics.plannedNetworks = r.plannedNetworks;
+    if (r.stopped) run.metrics.stopped = true;
+    if (r.leaves > 0) run.metrics.leaves = r.leaves;
+    if (r.records > 0) run.metrics.records = r.records;
+    run.timings = RunTimings();
+    run.timings.train = r.seconds;
+    run.timings.generate = r.generateSeconds;
     run.artifacts = {projectRelative(projectDir, (fs::path(r.modelsDir) / "models.json").string())};
 }
 
 bool isStoppedTrainRun(const Run& run) {
-    const auto it = run.metrics.find("stopped");
-    return run.kind == "train" && it != run.metrics.end() && it->is_boolean() && it->get<bool>();
+    return run.kind == "train" && run.metrics.stopped.value_or(false);
 }
 
 std::string stoppedTrainingText(int epoch, int networks, int planned) {
@@ -124,10 +130,9 @@ std::string stoppedTrainingText(int epoch, int networks, int planned) {
 
 std::string trainRunStatusText(const Run& run) {
     if (run.kind != "train") return {};
-    const int networks = int(run.metric("networks").value_or(0));
+    const int networks = run.metrics.networks.value_or(0);
     if (isStoppedTrainRun(run))
-        return stoppedTrainingText(int(run.metric("epochs").value_or(0)), networks,
-                                   int(run.metric("planned_networks").value_or(0)));
+        return stoppedTrainingText(run.metrics.epochs.value_or(0), networks, run.metrics.plannedNetworks.value_or(0));
     return std::to_string(networks) + (networks == 1 ? " network" : " networks");
 }
 
@@ -155,32 +160,32 @@ int recordEvaluation(std::vector<Run>& runs, const std::string& projectDir, cons
     const fs::path wanted = normal(modelsDir);
     for (Run& r : runs) {
         if (!trainedInto(r, projectDir, wanted)) continue;
-        r.metrics["relative_rmse"] = e.global.relativeRmse;
-        r.metrics["rmse"] = e.global.rmse;
-        r.metrics["mae"] = e.global.mae;
-        r.metrics["evaluated_spp"] = e.referenceSpp;
-        r.metrics.erase("evaluated_width");
-        r.metrics.erase("evaluated_height");
+        RunMetrics& m = r.metrics;
+        m.relativeRmse = e.global.relativeRmse;
+        m.rmse = e.global.rmse;
+        m.mae = e.global.mae;
+        m.evaluatedSpp = e.referenceSpp;
+        m.evaluatedWidth.reset();
+        m.evaluatedHeight.reset();
         if (e.width > 0 && e.height > 0) {
-            r.metrics["evaluated_width"] = e.width;
-            r.metrics["evaluated_height"] = e.height;
+            m.evaluatedWidth = e.width;
+            m.evaluatedHeight = e.height;
         }
         // The noise floor makes the error readable (an error at the floor is as good as the
         // reference allows); without the reference's variance it is unknown and left out.
-        r.metrics.erase("relative_rmse_noise_floor");
-        r.metrics.erase("relative_rmse_corrected");
+        m.relativeRmseNoiseFloor.reset();
+        m.relativeRmseCorrected.reset();
         if (std::isfinite(e.global.relativeRmseNoiseFloor)) {
-            r.metrics["relative_rmse_noise_floor"] = e.global.relativeRmseNoiseFloor;
-            if (std::isfinite(e.global.relativeRmseCorrected))
-                r.metrics["relative_rmse_corrected"] = e.global.relativeRmseCorrected;
+            m.relativeRmseNoiseFloor = e.global.relativeRmseNoiseFloor;
+            if (std::isfinite(e.global.relativeRmseCorrected)) m.relativeRmseCorrected = e.global.relativeRmseCorrected;
         }
-        r.metrics.erase("evaluated_light");
-        r.metrics.erase("evaluated_lights");
+        m.evaluatedLight.reset();
+        m.evaluatedLights.reset();
         if (e.lights.size() == 1)
-            r.metrics["evaluated_light"] = vec3Json(e.lights.front());
+            m.evaluatedLight = e.lights.front();
         else
-            r.metrics["evaluated_lights"] = e.lights.size();
-        r.timings["evaluate"] = e.seconds;
+            m.evaluatedLights = int64_t(e.lights.size());
+        r.timings.evaluate = e.seconds;
         // models.json stays first: the workbench loads the models from the first artifact's directory.
         for (const std::string& a : e.artifacts) {
             const std::string rel = projectRelative(projectDir, a);
@@ -191,22 +196,16 @@ int recordEvaluation(std::vector<Run>& runs, const std::string& projectDir, cons
     return changed;
 }
 
-std::string frameSizeKey(const std::string& secondsKey, const char* side) {
-    const std::string suffix = "_seconds";
-    const bool ends = secondsKey.size() > suffix.size() &&
-                      secondsKey.compare(secondsKey.size() - suffix.size(), suffix.size(), suffix) == 0;
-    return (ends ? secondsKey.substr(0, secondsKey.size() - suffix.size()) : secondsKey) + "_" + side;
-}
-
 int recordFrameSeconds(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
-                       const std::string& key, double seconds, int width, int height) {
+                       FramePath path, double seconds, int width, int height) {
     int changed = 0;
     const fs::path wanted = normal(modelsDir);
     for (Run& r : runs)
         if (trainedInto(r, projectDir, wanted)) {
-            r.metrics[key] = seconds;
-            r.metrics[frameSizeKey(key, "width")] = width;
-            r.metrics[frameSizeKey(key, "height")] = height;
+            RunMetrics& m = r.metrics;
+            (path == FramePath::Glsl ? m.glslFrameSeconds : m.frameSeconds) = seconds;
+            (path == FramePath::Glsl ? m.glslFrameWidth : m.frameWidth) = width;
+            (path == FramePath::Glsl ? m.glslFrameHeight : m.frameHeight) = height;
             ++changed;
         }
     return changed;

@@ -105,14 +105,13 @@ struct EvaluationRecord {
 int recordEvaluation(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
                      const EvaluationRecord& record);
 
-/// The metric holding the size of the frame timed under `secondsKey`: "glsl_frame_seconds", "width"
-/// -> "glsl_frame_width"; "frame_seconds" -> "frame_width".
-std::string frameSizeKey(const std::string& secondsKey, const char* side);
-/// Sets metrics[key] (e.g. "glsl_frame_seconds", "frame_seconds": one frame of prediction, the
-/// names sweeps use) and the frame's size (frameSizeKey: glsl_frame_width, frame_width, ...) of
-/// every "train" run whose models are in `modelsDir`. Returns how many changed.
+/// Where a frame of prediction was timed.
+enum class FramePath { Cpu, Glsl };
+/// Sets the frame time of `path` (RunMetrics::frameSeconds or glslFrameSeconds: one frame of
+/// prediction, the names sweeps use) and the frame's size beside it in every "train" run whose
+/// models are in `modelsDir`. Returns how many changed.
 int recordFrameSeconds(std::vector<Run>& runs, const std::string& projectDir, const std::string& modelsDir,
-                       const std::string& key, double seconds, int width, int height);
+                       FramePath path, double seconds, int width, int height);
 
 /// Appends `run` to the runs of the project file `projectFile` and saves it atomically (saveProject).
 /// The file is read again first, so that runs another program (the workbench) saved while the work

@@ -83,11 +83,10 @@ CarriedFiles carryProjectFiles(const std::string& oldDirText, const std::string&
                 ++out.relinked;
             }
         }
-        const auto dataset = run.settings.find("dataset");
-        if (dataset != run.settings.end() && dataset->is_string()) {
-            const std::string d = dataset->get<std::string>();
+        if (std::optional<std::string>& dataset = run.settings.dataset) {
+            const std::string d = *dataset;
             if (insideProject(d)) carryTree(oldDir, newDir, d, out);
-            else if (!fs::path(d).is_absolute()) *dataset = relink(d, oldDir, newDir);
+            else if (!fs::path(d).is_absolute()) dataset = relink(d, oldDir, newDir);
         }
     }
     return out;

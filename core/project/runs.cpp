@@ -20,13 +20,6 @@ bool known(const std::string& key) {
     return false;
 }
 
-json objectOr(const JsonReader& r, const char* key) {
-    const auto v = r.find(key);
-    if (!v) return json::object();
-    v->requireObject();
-    return v->value();
-}
-
 // JSON has no NaN: a missing validation loss is written as null and read back as NaN.
 json numberOrNull(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 double numberFrom(const json& v) {
@@ -62,16 +55,136 @@ std::vector<LossPoint> lossFromJson(const JsonReader& r) {
     return loss;
 }
 
-std::optional<double> numberIn(const json& section, const std::string& key) {
-    if (!section.is_object()) return std::nullopt;
-    const auto it = section.find(key);
-    if (it == section.end() || !it->is_number()) return std::nullopt;
-    return it->get<double>();
-}
-}  // namespace
+// Typed fields <-> JSON. Each struct lists its fields once, in visit*; reading and writing both walk
+// that list, so a key cannot be read under one name and written under another.
 
-std::optional<double> Run::metric(const std::string& key) const { return numberIn(metrics, key); }
-std::optional<double> Run::timing(const std::string& key) const { return numberIn(timings, key); }
+template <class M, class F>
+void visitMetrics(M& m, F&& f) {
+    f("spp", m.spp);
+    f("relative_error", m.relativeError);
+    f("non_finite_samples", m.nonFiniteSamples);
+    f("samples_per_second", m.samplesPerSecond);
+    f("networks", m.networks);
+    f("skipped", m.skipped);
+    f("epochs", m.epochs);
+    f("planned_networks", m.plannedNetworks);
+    f("stopped", m.stopped);
+    f("leaves", m.leaves);
+    f("records", m.records);
+    f("relative_rmse", m.relativeRmse);
+    f("rmse", m.rmse);
+    f("mae", m.mae);
+    f("evaluated_spp", m.evaluatedSpp);
+    f("evaluated_width", m.evaluatedWidth);
+    f("evaluated_height", m.evaluatedHeight);
+    f("relative_rmse_noise_floor", m.relativeRmseNoiseFloor);
+    f("relative_rmse_corrected", m.relativeRmseCorrected);
+    f("evaluated_light", m.evaluatedLight);
+    f("evaluated_lights", m.evaluatedLights);
+    f("frame_seconds", m.frameSeconds);
+    f("frame_width", m.frameWidth);
+    f("frame_height", m.frameHeight);
+    f("glsl_frame_seconds", m.glslFrameSeconds);
+    f("glsl_frame_width", m.glslFrameWidth);
+    f("glsl_frame_height", m.glslFrameHeight);
+}
+
+template <class T, class F>
+void visitTimings(T& t, F&& f) {
+    f("render", t.render);
+    f("train", t.train);
+    f("generate", t.generate);
+    f("evaluate", t.evaluate);
+}
+
+// A recorded double may be non-finite (an estimate without enough samples): JSON has no NaN, so it is
+// written as null (nlohmann's own spelling of it) and null reads back as NaN.
+void readValue(const JsonReader& r, std::optional<double>& v) {
+    v = r.value().is_null() ? std::numeric_limits<double>::quiet_NaN() : r.number();
+}
+void readValue(const JsonReader& r, std::optional<int>& v) {
+    v = int(r.integer(std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+}
+void readValue(const JsonReader& r, std::optional<int64_t>& v) {
+    v = r.integer(std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::max());
+}
+void readValue(const JsonReader& r, std::optional<uint64_t>& v) { v = r.unsignedInteger(); }
+void readValue(const JsonReader& r, std::optional<bool>& v) { v = r.boolean(); }
+void readValue(const JsonReader& r, std::optional<Vec3>& v) { v = r.vec3(); }
+
+json toJsonValue(double v) { return numberOrNull(v); }
+json toJsonValue(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
+template <class T>
+json toJsonValue(const T& v) {
+    return json(v);
+}
+
+/// Reads the members of `section` that `visit` lists; every other member goes to `other` verbatim.
+template <class S, class Visit>
+S readFields(const JsonReader& section, Visit visit) {
+    section.requireObject();
+    S s;
+    std::vector<std::string> knownKeys;
+    visit(s, [&](const char* key, auto& field) {
+        knownKeys.push_back(key);
+        if (const auto v = section.find(key)) readValue(*v, field);
+    });
+    for (auto it = section.value().begin(); it != section.value().end(); ++it)
+        if (std::find(knownKeys.begin(), knownKeys.end(), it.key()) == knownKeys.end()) s.other[it.key()] = it.value();
+    return s;
+}
+
+template <class S, class Visit>
+json writeFields(const S& s, Visit visit) {
+    json j = s.other.is_object() ? s.other : json::object();
+    visit(s, [&](const char* key, const auto& field) {
+        if (field) j[key] = toJsonValue(*field);
+    });
+    return j;
+}
+
+const char* const kSettingsKeys[] = {"render",  "light_position", "scene_hash", "scene_overrides", "network",
+                                     "trainer", "dataset",        "sampling",   "kernel"};
+
+RunSettings settingsFromJson(const JsonReader& j, std::vector<std::string>& warnings) {
+    j.requireObject();
+    RunSettings s;
+    if (const auto v = j.find("render")) s.render = parseRenderSettings(*v);
+    if (const auto v = j.find("light_position")) s.lightPosition = v->vec3();
+    if (const auto v = j.find("scene_hash")) s.sceneHash = v->string();
+    if (const auto v = j.find("scene_overrides")) s.sceneOverrides = SceneOverrides::fromJson(*v, warnings);
+    if (const auto v = j.find("trainer")) s.trainer = TrainerConfig::fromJson(*v);
+    if (const auto v = j.find("network")) {
+        s.network = NetworkSettings::fromJson(*v);
+        if (s.trainer) s.network->options.trainer = *s.trainer;
+    }
+    if (const auto v = j.find("dataset")) s.dataset = v->string();
+    if (const auto v = j.find("sampling")) s.sampling = SamplingSettings::fromJson(*v);
+    if (const auto v = j.find("kernel")) s.kernel = v->string();
+    for (auto it = j.value().begin(); it != j.value().end(); ++it)
+        if (std::find_if(std::begin(kSettingsKeys), std::end(kSettingsKeys),
+                         [&](const char* k) { return it.key() == k; }) == std::end(kSettingsKeys))
+            s.other[it.key()] = it.value();
+    return s;
+}
+
+json settingsToJson(const RunSettings& s) {
+    json j = s.other.is_object() ? s.other : json::object();
+    if (s.render) j["render"] = renderSettingsToJson(*s.render);
+    if (s.lightPosition) j["light_position"] = toJsonValue(*s.lightPosition);
+    if (s.sceneHash) j["scene_hash"] = *s.sceneHash;
+    if (s.sceneOverrides) j["scene_overrides"] = s.sceneOverrides->toJson();
+    if (s.network) j["network"] = s.network->networkJson();
+    if (s.trainer) j["trainer"] = s.trainer->toJson();
+    if (s.dataset) j["dataset"] = *s.dataset;
+    if (s.sampling) j["sampling"] = s.sampling->toJson();
+    if (s.kernel) j["kernel"] = *s.kernel;
+    return j;
+}
+
+const auto kMetrics = [](auto& m, auto&& f) { visitMetrics(m, f); };
+const auto kTimings = [](auto& t, auto&& f) { visitTimings(t, f); };
+}  // namespace
 
 json Run::toJson() const {
     json j = extra.is_object() ? extra : json::object();
@@ -79,7 +192,7 @@ json Run::toJson() const {
     j["name"] = name;
     j["kind"] = kind;
     j["created"] = created;
-    j["settings"] = settings;
+    j["settings"] = settingsToJson(settings);
     j["loss"] = lossJson(loss);
     if (!curves.empty()) {
         json c = json::array();
@@ -88,13 +201,13 @@ json Run::toJson() const {
                              {"loss", lossJson(curve.points)}});
         j["curves"] = c;
     }
-    j["metrics"] = metrics;
-    j["timings"] = timings;
+    j["metrics"] = writeFields(metrics, kMetrics);
+    j["timings"] = writeFields(timings, kTimings);
     j["artifacts"] = artifacts;
     return j;
 }
 
-Run Run::fromJson(const JsonReader& j) {
+Run Run::fromJson(const JsonReader& j, std::vector<std::string>& warnings) {
     j.requireObject();
     Run r;
     r.id = j.stringOr("id", "");
@@ -102,9 +215,9 @@ Run Run::fromJson(const JsonReader& j) {
     r.name = j.stringOr("name", r.id);
     r.kind = j.stringOr("kind", "render");
     r.created = j.stringOr("created", "");
-    r.settings = objectOr(j, "settings");
-    r.metrics = objectOr(j, "metrics");
-    r.timings = objectOr(j, "timings");
+    if (const auto v = j.find("settings")) r.settings = settingsFromJson(*v, warnings);
+    if (const auto v = j.find("metrics")) r.metrics = readFields<RunMetrics>(*v, kMetrics);
+    if (const auto v = j.find("timings")) r.timings = readFields<RunTimings>(*v, kTimings);
     if (const auto loss = j.find("loss")) r.loss = lossFromJson(*loss);
     if (const auto curves = j.find("curves")) {
         const size_t n = curves->requireArray();
@@ -138,7 +251,9 @@ std::vector<Run> readRuns(const JsonReader& section, std::vector<std::string>& w
     }
     for (size_t i = 0; i < section.value().size(); ++i) {
         try {
-            runs.push_back(Run::fromJson(section.at(i)));
+            std::vector<std::string> overrideWarnings;
+            runs.push_back(Run::fromJson(section.at(i), overrideWarnings));
+            warnings.insert(warnings.end(), overrideWarnings.begin(), overrideWarnings.end());
         } catch (const InputError& e) {
             warnings.push_back(std::string(e.what()) + " (run skipped)");
         }

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/project/run_fields.h"
 #include "core/util/json_reader.h"
 
 namespace rrf {
@@ -38,22 +39,20 @@ struct Run {
     std::string name;      ///< user-visible, editable
     std::string kind;      ///< "render" or "train"
     std::string created;   ///< local time, ISO 8601
-    nlohmann::json settings = nlohmann::json::object();  ///< snapshot of every setting that made the run
+    RunSettings settings;                                 ///< snapshot of every setting that made the run
     std::vector<LossPoint> loss;                          ///< aggregate curve; empty for non-training runs
     std::vector<LossCurve> curves;                        ///< one per network (training runs)
-    nlohmann::json metrics = nlohmann::json::object();   ///< e.g. {"relative_error": 0.01, "spp": 64}
-    nlohmann::json timings = nlohmann::json::object();   ///< seconds per stage
+    RunMetrics metrics;                                   ///< what it measured
+    RunTimings timings;                                   ///< seconds per stage
     std::vector<std::string> artifacts;                   ///< files, relative to the project directory
     nlohmann::json extra = nlohmann::json::object();     ///< unknown keys, kept for round trips
 
-    /// metrics[key] / timings[key] when it is a number (for tables), else nothing.
-    std::optional<double> metric(const std::string& key) const;
-    std::optional<double> timing(const std::string& key) const;
-
     nlohmann::json toJson() const;
     /// Reads one run. Throws InputError naming the file, the JSON pointer and what was expected when
-    /// `r` is not a run object.
-    static Run fromJson(const JsonReader& r);
+    /// `r` is not a run object or a key this build knows (in the run, its settings, metrics or
+    /// timings) has the wrong type. Damaged scene overrides in its settings are described in
+    /// `warnings` (SceneOverrides::fromJson) and the rest of them kept.
+    static Run fromJson(const JsonReader& r, std::vector<std::string>& warnings);
 };
 
 /// Reads the project's "runs" section. Runs are the workbench's own records, so one damaged entry

@@ -329,15 +329,20 @@ TEST_F(LearningPanelTest, CostPanelPlotsEvaluatedTrainingRuns) {
     runs[0].kind = "render";
     runs[1].kind = "train";
     runs[1].name = "evaluated";
-    runs[1].metrics = {{"relative_rmse", 0.12}, {"evaluated_width", 256}, {"evaluated_height", 256}};
-    runs[1].timings = {{"train", 30.0}, {"generate", 10.0}};
+    runs[1].metrics.relativeRmse = 0.12;
+    runs[1].metrics.evaluatedWidth = runs[1].metrics.evaluatedHeight = 256;
+    runs[1].timings.train = 30.0;
+    runs[1].timings.generate = 10.0;
     runs[2].kind = "train";  // never evaluated: no point
-    runs[2].timings = {{"train", 5.0}};
+    runs[2].timings.train = 5.0;
     runs[3].kind = "train";  // evaluated against a reference of known noise, with its frame times
     runs[3].name = "with noise";
-    runs[3].metrics = {{"relative_rmse", 0.10},       {"relative_rmse_corrected", 0.08}, {"frame_seconds", 0.5},
-                       {"glsl_frame_seconds", 0.02}, {"evaluated_width", 128},          {"evaluated_height", 128}};
-    runs[3].timings = {{"train", 20.0}};
+    runs[3].metrics.relativeRmse = 0.10;
+    runs[3].metrics.relativeRmseCorrected = 0.08;
+    runs[3].metrics.frameSeconds = 0.5;
+    runs[3].metrics.glslFrameSeconds = 0.02;
+    runs[3].metrics.evaluatedWidth = runs[3].metrics.evaluatedHeight = 128;
+    runs[3].timings.train = 20.0;
     const CostSeries series = runsCostSeries(runs);
     ASSERT_EQ(series.points.size(), 2u);
     EXPECT_DOUBLE_EQ(series.points[0].seconds, 40.0) << "the cost of a run includes its data generation";
@@ -396,8 +401,9 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     run.kind = "train";
     run.curves = {decadeCurve()};
     run.loss = aggregateLoss(run.curves);
-    run.settings = {{"network", edited.networkJson()}, {"trainer", edited.trainerJson()}};
-    run.metrics = {{"relative_rmse", 0.2}};
+    run.settings.network = edited;
+    run.settings.trainer = edited.options.trainer;
+    run.metrics.relativeRmse = 0.2;
     run.artifacts = {"runs/train-1/models/models.json"};
     s.project.runs.push_back(run);
     ASSERT_TRUE(saveStateToProject(s, (dir / "project.json").string(), error)) << error;

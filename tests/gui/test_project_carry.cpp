@@ -62,7 +62,7 @@ TEST(ProjectCarry, SaveAsBringsRunsReferencesAndDatasetAlong) {
     rrf::Run train;
     train.id = train.name = "train-1";
     train.kind = "train";
-    train.settings = {{"dataset", "data/dataset.rrfd"}};
+    train.settings.dataset = "data/dataset.rrfd";
     train.artifacts = {"runs/train-1/models/models.json", "../shared/report.json"};
     rrf::Run render;
     render.id = render.name = "render-1";

@@ -38,10 +38,13 @@ rrf::Run sampleRun(const std::string& id) {
     r.name = "run " + id;
     r.kind = "train";
     r.created = "2024-01-02T03:04:05";
-    r.settings = {{"render", {{"spp", 16}}}, {"hidden", {20, 10}}};
+    r.settings.render = RenderSettings();
+    r.settings.render->spp = 16;
+    r.settings.other = {{"hidden", {20, 10}}};  // a key a newer workbench wrote
     r.loss = {{0, 1.0, 2.0, 0.0}, {1, 0.5, std::numeric_limits<double>::quiet_NaN(), 0.25}};
-    r.metrics = {{"rmse", 0.125}};
-    r.timings = {{"train", 3.5}};
+    r.metrics.rmse = 0.125;
+    r.metrics.other = {{"future_metric", 2}};
+    r.timings.train = 3.5;
     r.artifacts = {"runs/" + id + "/model.rrfm"};
     r.extra = {{"future_key", {{"x", 1}}}};
     return r;

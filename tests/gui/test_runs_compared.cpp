@@ -47,7 +47,7 @@ TEST(RunsTable, ATrainRunRowCarriesItsSettingsCostsAndErrors) {
     e.height = 96;
     std::vector<rrf::Run> runs = {run};
     ASSERT_EQ(recordEvaluation(runs, "/p", "/p/runs/t/models", e), 1);
-    ASSERT_EQ(recordFrameSeconds(runs, "/p", "/p/runs/t/models", "glsl_frame_seconds", 0.004, 320, 240), 1);
+    ASSERT_EQ(recordFrameSeconds(runs, "/p", "/p/runs/t/models", FramePath::Glsl, 0.004, 320, 240), 1);
 
     const RunSummary s = summarizeRun(runs[0]);
     EXPECT_EQ(s.trainer, "Adam");
