@@ -13,6 +13,8 @@
 #include <imgui.h>
 
 #include "core/scene/camera_rays.h"
+#include "core/project/scene_edits.h"
+#include "core/scene/light_drag.h"
 #include "panels/clip_check.h"
 #include "panels/layout.h"
 #include "panels/panels.h"
@@ -190,6 +192,48 @@ void drawToolbar(WorkbenchState& state) {
     if (ImGui::Combo("middle view", &source, "prediction\0compared run\0run pair (A | B)\0")) v.compareSource = CompareSource(source);
 }
 
+/// The movable light's handle where its centre projects into view `r`: a drag moves the light in the
+/// plane facing the camera (Shift: the horizontal plane, keeping its height) within the light region,
+/// as the Scene panel's sliders do.
+void lightHandle(WorkbenchState& state, int index, const ViewRect& r, const Image& image, bool activated, bool active) {
+    ViewState& v = state.view;
+    const Scene& scene = state.project.scene;
+    v.lightHandle[index] = ImVec2(NAN, NAN);
+    if (scene.lights.empty() || scene.lightRegion.empty()) return;
+    const ImGuiIO& io = ImGui::GetIO();
+    if (v.lightDragView == index && active) {
+        const ImVec2 q = r.toImage(io.MousePos, v);
+        const LightDragPlane plane = io.KeyShift ? LightDragPlane::Horizontal : LightDragPlane::Facing;
+        const Vec3 p = lightUnderPointer(scene.camera, image.width, image.height, q.x, q.y, v.lightDragStart, plane,
+                                         scene.lightRange());
+        if (p != scene.lightPosition()) {
+            moveLight(state.project, p);
+            state.markDirty();
+            state.request(Command::SceneChanged);
+        }
+    } else if (v.lightDragView == index) {
+        v.lightDragView = -1;
+    }
+    float x = 0.f, y = 0.f;
+    if (!projectToImage(scene.camera, image.width, image.height, scene.lightPosition(), x, y)) return;
+    const ImVec2 c = r.toScreen(x, y, v);
+    v.lightHandle[index] = c;
+    const float radius = std::max(5.f, ImGui::GetFontSize() * 0.45f);
+    const float dx = io.MousePos.x - c.x, dy = io.MousePos.y - c.y;
+    const bool onHandle = dx * dx + dy * dy <= 4.f * radius * radius && ImGui::IsItemHovered();
+    if (activated && onHandle && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+        v.lightDragView = index;
+        v.lightDragStart = scene.lightPosition();
+    }
+    const bool held = v.lightDragView == index;
+    if (onHandle && !held) ImGui::SetTooltip("Drag to move the light (Shift: keep its height)");
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->PushClipRect(r.min, r.max, true);
+    dl->AddCircleFilled(c, held || onHandle ? radius * 1.3f : radius, IM_COL32(255, 220, 60, 230));
+    dl->AddCircle(c, held || onHandle ? radius * 1.3f : radius, IM_COL32(20, 20, 20, 255), 0, 1.5f);
+    dl->PopClipRect();
+}
+
 /// Draws one view and handles zoom/pan on it; returns true while the mouse is over it.
 bool drawView(WorkbenchState& state, int index, const char* title, const Image& image, ImVec2 size, ImVec2& hoverPixel) {
     ViewState& v = state.view;
@@ -204,6 +248,7 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
     ImGui::InvisibleButton("##canvas", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
     const bool hovered = ImGui::IsItemHovered();
     const bool active = ImGui::IsItemActive();
+    const bool activated = ImGui::IsItemActivated();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRectFilled(pos, ImVec2(pos.x + size.x, pos.y + size.y), IM_COL32(24, 24, 28, 255));
 
@@ -224,7 +269,8 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
             v.panX = q.x - r.imageCentre.x - (io.MousePos.x - r.centre.x) / r.scale;
             v.panY = q.y - r.imageCentre.y - (io.MousePos.y - r.centre.y) / r.scale;
         }
-        if (active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.f)) {
+        // A left drag pans, unless it started on the light's handle (lightHandle, below).
+        if (v.lightDragView != index && active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.f)) {
             v.panX -= io.MouseDelta.x / r.scale;
             v.panY -= io.MouseDelta.y / r.scale;
         }
@@ -238,6 +284,7 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
             dl->AddRect(r.toScreen(float(v.region.x0), float(v.region.y0), v), r.toScreen(float(v.region.x1), float(v.region.y1), v),
                         IM_COL32(255, 220, 60, 255), 0.f, 0, 2.f);
         dl->PopClipRect();
+        lightHandle(state, index, r, image, activated, active);
         if (hovered) {
             const ImVec2 q = r.toImage(io.MousePos, v);
             if (q.x >= 0.f && q.y >= 0.f && q.x < float(image.width) && q.y < float(image.height)) {

@@ -208,6 +208,13 @@ struct ViewState {
     FlipStats regionFlip;
     /// A right-button drag in progress: the view it started in (-1: none) and its first pixel.
     int regionDragView = -1, regionAnchorX = 0, regionAnchorY = 0;
+    /// A drag of the light's handle in progress: the view it started in (-1: none) and where the
+    /// light was then (the drag's plane goes through it: core/scene/light_drag.h).
+    int lightDragView = -1;
+    Vec3 lightDragStart{0.f};
+    /// Where each view drew the light's handle in the last frame (screen pixels), for scripts and
+    /// tests that drag it as a user would; NaN where it drew none.
+    ImVec2 lightHandle[3] = {{NAN, NAN}, {NAN, NAN}, {NAN, NAN}};
 };
 
 /// Progress of the ground-truth render, as last published by its job.

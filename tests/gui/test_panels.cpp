@@ -169,6 +169,44 @@ TEST_F(PanelTest, DragPansTheViews) {
     EXPECT_FLOAT_EQ(s.view.panY, 0.f);
 }
 
+// Issue 29 item 10: the light's handle in a view drags the light (in the plane facing the camera,
+// within the light region), where it projects under the pointer; the view does not pan.
+TEST_F(PanelTest, DraggingTheLightHandleMovesTheLight) {
+    WorkbenchState s;
+    std::string error;
+    ASSERT_TRUE(loadProjectIntoState(s, kCornell, error)) << error;
+    fillGroundTruth(s);
+    const Vec3 before = s.project.scene.lightPosition();
+    mouse(5, 5, false);
+    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(s); });
+    const ImVec2 h = s.view.lightHandle[0];
+    ASSERT_FALSE(std::isnan(h.x)) << "the ground-truth view draws the handle";
+    mouse(h.x, h.y, false);
+    frame([&] { drawViewsPanel(s); });
+    mouse(h.x, h.y, true);
+    frame([&] { drawViewsPanel(s); });
+    for (int i = 1; i <= 6; ++i) {
+        mouse(h.x + 4.f * float(i), h.y + 3.f * float(i), true);
+        frame([&] { drawViewsPanel(s); });
+    }
+    mouse(h.x + 24.f, h.y + 18.f, false);
+    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(s); });
+    const Vec3 after = s.project.scene.lightPosition();
+    EXPECT_GT(after.x, before.x) << "right in the image is +x for this camera";
+    EXPECT_LT(after.y, before.y) << "down in the image is lower";
+    EXPECT_FLOAT_EQ(after.z, before.z) << "the plane facing the camera";
+    EXPECT_TRUE(s.project.scene.lightRegion.contains(after));
+    EXPECT_NEAR(s.view.lightHandle[0].x, h.x + 24.f, 1.f) << "the handle is under the pointer";
+    EXPECT_NEAR(s.view.lightHandle[0].y, h.y + 18.f, 1.f);
+    EXPECT_FLOAT_EQ(s.view.panX, 0.f) << "a drag on the handle does not pan";
+    EXPECT_FLOAT_EQ(s.view.panY, 0.f);
+    EXPECT_TRUE(s.dirty);
+    EXPECT_TRUE(std::any_of(s.requests.begin(), s.requests.end(),
+                            [](const Request& r) { return r.command == Command::SceneChanged; }));
+}
+
 // Issue 30 item 6: a right-button drag in a view marks a region (the pixels between the press and the
 // mouse, both included), without panning; a right click without a drag clears it.
 TEST_F(PanelTest, RightDragMarksARegionAndARightClickClearsIt) {
