@@ -93,7 +93,7 @@ bool Workbench::startTrain(int maxEpochs) {
     std::vector<std::string> names;
     for (const Object& o : state_.project.scene.objects) names.push_back(o.name);
     const ObjectTrainingOptions& o = request.settings.options;
-    const std::string name = std::string("train ") + json(o.hidden).dump() +
+    const std::string name = "train " + hiddenSizesText(o.hidden) +
                              (o.ensemble > 1 ? " x" + std::to_string(o.ensemble) : std::string()) + " " + o.trainer.typeName();
     auto live = std::make_shared<TrainingLive>();
     const bool started = trainJob_.start(name, [job, request, live, names](JobContext& ctx) -> std::optional<TrainingOutcome> {
