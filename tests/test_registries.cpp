@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "core/nn/encoding.h"
 #include "core/nn/encodings/registry.h"
@@ -91,7 +92,13 @@ TEST(TrainerRegistry, EveryTypeWritesExactlyItsKeysAndReadsBackByEachName) {
         EXPECT_EQ(TrainerConfig().withType(std::string(t.name)).type, t.type);
     }
     EXPECT_EQ(TrainerConfig::fromJson(json::object()).type, TrainerType::LevenbergMarquardt);
-    EXPECT_THROW(TrainerConfig().withType(std::string("sgd")), SettingError);
+    EXPECT_EQ(trainerShortNames(), (std::vector<std::string>{"lm", "adam"}));
+    try {
+        TrainerConfig().withType(std::string("sgd"), "trainer.type");
+        FAIL() << "an unknown trainer was accepted";
+    } catch (const SettingError& e) {
+        EXPECT_NE(std::string(e.what()).find("unknown trainer 'sgd' (expected lm or adam)"), std::string::npos) << e.what();
+    }
 }
 
 TEST(TrainerRegistry, LossesAndSchedulesRoundTripByName) {

@@ -121,12 +121,7 @@ TrainerConfig TrainerConfig::withType(TrainerType t) const {
 
 TrainerConfig TrainerConfig::withType(const std::string& name, const std::string& setting) const {
     const TrainerTypeInfo* info = findTrainerType(name);
-    if (!info) {
-        std::string expected;  // each trainer by its shortest name: "lm or adam"
-        for (const TrainerTypeInfo& t : trainerTypes())
-            expected += (expected.empty() ? "" : " or ") + std::string(t.shortName ? t.shortName : t.name);
-        throw SettingError(setting, "unknown trainer '" + name + "' (expected " + expected + ")");
-    }
+    if (!info) throw SettingError(setting, "unknown trainer '" + name + "' (expected " + trainerShortNamesText() + ")");
     return withType(info->type);
 }
 

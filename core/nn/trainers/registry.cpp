@@ -27,6 +27,19 @@ const TrainerTypeInfo* findTrainerType(const std::string& name) {
     return nullptr;
 }
 
+std::vector<std::string> trainerShortNames() {
+    std::vector<std::string> names;
+    for (const TrainerTypeInfo& t : trainerTypes()) names.push_back(t.shortName ? t.shortName : t.name);
+    return names;
+}
+
+std::string trainerShortNamesText() {
+    const std::vector<std::string> names = trainerShortNames();
+    std::string s;
+    for (size_t k = 0; k < names.size(); ++k) s += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+    return s;
+}
+
 std::vector<std::string> trainerTypeNames() {
     std::vector<std::string> names;
     for (const TrainerTypeInfo& t : trainerTypes()) {

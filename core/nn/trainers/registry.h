@@ -35,6 +35,10 @@ const std::vector<TrainerTypeInfo>& trainerTypes();
 const TrainerTypeInfo& trainerTypeInfo(TrainerType type);
 /// The trainer called `name` (its name or short name), or null.
 const TrainerTypeInfo* findTrainerType(const std::string& name);
+/// Each trainer by its shortest name ({"lm", "adam"}): the values a trainer sweep takes.
+std::vector<std::string> trainerShortNames();
+/// Those names joined for messages: "lm or adam".
+std::string trainerShortNamesText();
 
 /// Adam's losses ("loss") and learning-rate schedules ("schedule"), in the order messages list them.
 const std::vector<NamedValue<AdamLoss>>& adamLosses();
