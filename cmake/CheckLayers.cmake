@@ -5,7 +5,7 @@
 #
 # and nothing in core/ may include app/, panels/, tests/ or GL/GLFW/ImGui headers; every quoted
 # include names its path from the source root ("core/<stage>/…"; <…> system and library includes are
-# not checked further). Fails listing
+# not checked further). A subfolder belongs to its stage (core/nn/encodings/… is nn). Fails listing
 # every offending include (file and the include) so the fix is obvious.
 if(NOT RRF_ROOT)
   message(FATAL_ERROR "CheckLayers.cmake: pass -DRRF_ROOT=<source dir>")

@@ -33,12 +33,6 @@ bool storeEntry(WorkbenchState& state, NetworkSettings s, const std::string& nam
     return true;
 }
 
-std::string hiddenText(const std::vector<int>& hidden) {
-    std::string t;
-    for (const int h : hidden) t += (t.empty() ? "" : ",") + std::to_string(h);
-    return t;
-}
-
 /// One object's row: reflected (section's / on / off), hidden sizes (empty: the section's), encoding
 /// (section's or a named one), then what its networks read.
 void drawObjectRow(WorkbenchState& state, const NetworkSettings& s, const std::string& name, int inputs) {
@@ -56,9 +50,9 @@ void drawObjectRow(WorkbenchState& state, const NetworkSettings& s, const std::s
 
     ImGui::TableNextColumn();
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%s", entry.hidden ? hiddenText(*entry.hidden).c_str() : "");
+    std::snprintf(buf, sizeof buf, "%s", entry.hidden ? hiddenSizesText(*entry.hidden).c_str() : "");
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6);
-    if (ImGui::InputTextWithHint("##hidden", hiddenText(s.options.hidden).c_str(), buf, sizeof buf,
+    if (ImGui::InputTextWithHint("##hidden", hiddenSizesText(s.options.hidden).c_str(), buf, sizeof buf,
                                  ImGuiInputTextFlags_EnterReturnsTrue)) {
         const std::string text = buf;
         try {
@@ -85,7 +79,7 @@ void drawObjectRow(WorkbenchState& state, const NetworkSettings& s, const std::s
     ImGui::TableNextColumn();
     const ObjectNetworkChoice c = s.options.choiceFor(name);
     const EncodingSettingView view = viewEncodingSetting(c.encoding, inputs, c.inputs);
-    if (view.fits) ImGui::TextDisabled("%s, [%s]", view.encoding.describe().c_str(), hiddenText(c.hidden).c_str());
+    if (view.fits) ImGui::TextDisabled("%s, [%s]", view.encoding.describe().c_str(), hiddenSizesText(c.hidden).c_str());
     else ImGui::TextColored(ImVec4(1.f, .4f, .4f, 1.f), "%s", view.error.c_str());
 }
 

@@ -192,8 +192,7 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
     const int perObject = s.options.targets == TargetMode::Separate ? 2 : 1;
     const long long table = (long long)encoding.numParams();
     const long long params = (long long)arch.numParams() + table;
-    std::string hidden;
-    for (const int h : arch.hidden) hidden += (hidden.empty() ? "" : ", ") + std::to_string(h);
+    const std::string hidden = hiddenSizesText(arch.hidden);
     if (encoding.isIdentity())
         ImGui::Text("%d inputs%s -> [%s] -> %d outputs: %lld parameters per network", arch.inputs,
                     encoding.derived.any() ? " (with the reflected direction)" : "", hidden.c_str(), arch.outputs, params);

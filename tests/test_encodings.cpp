@@ -9,9 +9,9 @@
 #include <set>
 
 #include "core/nn/encoding.h"
-#include "core/nn/encoding_frequency.h"
-#include "core/nn/encoding_hash_grid.h"
-#include "core/nn/encoding_one_blob.h"
+#include "core/nn/encodings/frequency.h"
+#include "core/nn/encodings/hash_grid.h"
+#include "core/nn/encodings/one_blob.h"
 #include "core/util/error.h"
 #include "core/util/rng.h"
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "core/nn/sparse_adam.h"
+#include "core/nn/trainers/sparse_adam.h"
 
 namespace test_sparse_adam {
 

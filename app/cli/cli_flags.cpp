@@ -199,7 +199,7 @@ std::string describeExperiment(const SamplingSettings& s, const ObjectTrainingOp
     char buf[384];
     const std::string encoding = encodingPresetName(t.encoding);
     std::snprintf(buf, sizeof buf, "grid %dx%dx%d, %d directions, %d spp per record; network %s%s, encoding %s%s%s, targets %s, %s, %d epochs, kernel %s",
-                  s.nx, s.ny, s.nz, s.directions, s.spp, nlohmann::json(t.hidden).dump().c_str(),
+                  s.nx, s.ny, s.nz, s.directions, s.spp, hiddenSizesText(t.hidden).c_str(),
                   t.ensemble > 1 ? (" x" + std::to_string(t.ensemble)).c_str() : "",
                   encoding.empty() ? "(the project's)" : encoding.c_str(), t.inputs.reflected ? " +reflected" : "",
                   t.perObject.empty() ? "" : " (per-object entries)", targetModeName(t.targets), t.trainer.typeName(),

@@ -82,14 +82,14 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     if (ranks.isRoot()) {
         std::printf("rrf train: %s on %s (%llu records), hidden %s, %s%s, encoding %s, targets %s, trainer %s, kernel %s\n",
                 a.input.c_str(), a.data.c_str(), (unsigned long long)data.totalRecords(),
-                nlohmann::json(o.hidden).dump().c_str(),
+                hiddenSizesText(o.hidden).c_str(),
                 activationName(o.activation), o.ensemble > 1 ? (", ensemble of " + std::to_string(o.ensemble)).c_str() : "",
                 encoding.c_str(), targetModeName(o.targets), o.trainer.typeName(),
                 mlpKernelDescription(mlpKernel()).c_str());
         // Objects whose "network"/"objects" entry changes their networks say so (nn/object_network_overrides.h).
         for (const auto& entry : o.perObject) {
             const ObjectNetworkChoice c = o.choiceFor(entry.first);
-            std::printf("  object %s: hidden %s, encoding %s\n", entry.first.c_str(), nlohmann::json(c.hidden).dump().c_str(),
+            std::printf("  object %s: hidden %s, encoding %s\n", entry.first.c_str(), hiddenSizesText(c.hidden).c_str(),
                         networkEncoding(c.encoding, datasetInputs, c.inputs).describe().c_str());
         }
     }

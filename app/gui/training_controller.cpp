@@ -25,7 +25,6 @@
 namespace rrf {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 
 /// What the loss plot shows while a training job runs: written by the trainer's threads, copied by
 /// the UI thread when `revision` changed.
@@ -197,7 +196,7 @@ bool TrainingController::startTrain(int maxEpochs, StageDone done) {
     std::vector<std::string> names;
     for (const Object& o : state.project.scene.objects) names.push_back(o.name);
     const ObjectTrainingOptions& o = request.settings.options;
-    const std::string name = std::string("train ") + json(o.hidden).dump() +
+    const std::string name = "train " + hiddenSizesText(o.hidden) +
                              (o.ensemble > 1 ? " x" + std::to_string(o.ensemble) : std::string()) + " " + o.trainer.typeName();
     auto live = std::make_shared<TrainingLive>();
     const bool started = trainJob_.start(name, [job, request, live, names](JobContext& ctx) -> std::optional<TrainingOutcome> {

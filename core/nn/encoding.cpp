@@ -2,9 +2,7 @@
 
 #include <stdexcept>
 
-#include "core/nn/encoding_frequency.h"
-#include "core/nn/encoding_hash_grid.h"
-#include "core/nn/encoding_one_blob.h"
+#include "core/nn/encodings/registry.h"
 #include "core/util/error.h"
 
 namespace rrf {
@@ -19,11 +17,11 @@ struct InputGroup {
 constexpr InputGroup kGroups[] = {{"position", 0, 3}, {"view", 3, 3}, {"light", 6, 3}, {"normal", 9, 3}, {"brdf", 12, -1}};
 constexpr int kGeometryInputs = 12;
 
-/// Keys a component object may have, per type.
-std::vector<std::string> componentKeys(const std::string& type) {
-    if (type == "frequency") return {"type", "inputs", "frequencies", "include_input"};
-    if (type == "one_blob") return {"type", "inputs", "bins"};
-    return {"type", "inputs", "levels", "log2_table_size", "features_per_level", "base_resolution", "growth"};
+/// Keys a component object of type `t` may have: "type", "inputs" and its hyperparameters.
+std::vector<std::string> componentKeys(const EncodingType& t) {
+    std::vector<std::string> keys = {"type", "inputs"};
+    keys.insert(keys.end(), t.keys.begin(), t.keys.end());
+    return keys;
 }
 
 /// The component's inputs as one contiguous block of rows, if they are (first row), else −1.
@@ -189,10 +187,10 @@ InputEncoding InputEncoding::fromJson(const JsonReader& r, int inputs, const Der
         const JsonReader cr = r.at(k);
         cr.requireObject();
         const JsonReader typeReader = cr.at("type");
-        const std::string type = typeReader.string();
-        if (type != "frequency" && type != "one_blob" && type != "hash_grid")
-            typeReader.fail("unknown encoding type '" + type + "' (expected \"frequency\", \"one_blob\" or \"hash_grid\")");
-        cr.checkKeys(componentKeys(type));
+        const std::string typeName = typeReader.string();
+        const EncodingType* type = findEncodingType(typeName);
+        if (!type) typeReader.fail("unknown encoding type '" + typeName + "' (expected " + encodingTypeNames() + ")");
+        cr.checkKeys(componentKeys(*type));
 
         EncodingComponent c;
         const JsonReader in = cr.at("inputs");
@@ -225,16 +223,10 @@ InputEncoding InputEncoding::fromJson(const JsonReader& r, int inputs, const Der
         }
 
         const int dims = int(c.inputs.size());
-        if (type == "frequency") {
-            c.encoding = FrequencyEncoding::fromJson(cr, dims);
-        } else if (type == "one_blob") {
-            c.encoding = OneBlobEncoding::fromJson(cr, dims);
-        } else {
-            if (dims > HashGridEncoding::kMaxInputs)
-                in.fail("a hash_grid reads at most " + std::to_string(HashGridEncoding::kMaxInputs) + " inputs, these groups have " +
-                        std::to_string(dims));
-            c.encoding = HashGridEncoding::fromJson(cr, dims);
-        }
+        if (dims > type->maxInputs)
+            in.fail("a " + std::string(type->name) + " reads at most " + std::to_string(type->maxInputs) +
+                    " inputs, these groups have " + std::to_string(dims));
+        c.encoding = type->fromJson(cr, dims);
         c.paramOffset = offset;
         offset += c.encoding->numParams();
         e.components.push_back(std::move(c));

@@ -7,8 +7,9 @@
 ///
 /// Ren et al. 2013 feed x' itself (the identity encoding, F = 12 + n); later work gets far more
 /// accuracy per weight from encodings (NeRF's frequencies, NRC's one-blob, instant-NGP's hash grid).
-/// As in tiny-cuda-nn, an encoding is picked by "type" and owns its hyperparameters; each has its own
-/// header (encoding_frequency.h, encoding_one_blob.h, encoding_hash_grid.h).
+/// As in tiny-cuda-nn, an encoding is picked by "type" and owns its hyperparameters; the
+/// implementations live in nn/encodings/ (frequency.h, one_blob.h, hash_grid.h), each registered by
+/// its type name in nn/encodings/registry.h, which is where this reader finds them.
 ///
 /// Project / model JSON ("network": {"encoding": [...]}); an empty or missing list is the identity:
 ///

@@ -28,6 +28,12 @@ std::vector<int> parseHiddenSizes(const std::string& text, const std::string& se
     return sizes;
 }
 
+std::string hiddenSizesText(const std::vector<int>& sizes) {
+    std::string t;
+    for (size_t i = 0; i < sizes.size(); ++i) t += (i ? "," : "") + std::to_string(sizes[i]);
+    return t;
+}
+
 std::vector<int> hiddenSizesFromJson(const JsonReader& hidden) {
     if (hidden.requireArray() == 0) hidden.fail("expected a non-empty array of layer sizes");
     std::vector<int> sizes;

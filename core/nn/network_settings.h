@@ -95,6 +95,9 @@ std::vector<int> hiddenSizesFromJson(const JsonReader& hidden);
 /// Reads hidden sizes written as text, "20,10" (the spelling of `network.hidden` = [20, 10] outside a
 /// JSON file, e.g. a sweep value); throws SettingError naming `setting` if malformed or out of 1..kMaxHiddenSize.
 std::vector<int> parseHiddenSizes(const std::string& text, const std::string& setting);
+/// The one text spelling of hidden sizes, "20,10" (what parseHiddenSizes reads back), for tables,
+/// logs, job names and text fields; "" for none.
+std::string hiddenSizesText(const std::vector<int>& sizes);
 
 /// Reads a "partition" object over `base` (missing keys keep base's values); InputError names the
 /// file and JSON pointer of an unknown key, a wrong type or an out-of-range value.

@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/nn/trainers/registry.h"
 #include "core/util/json_reader.h"
 
 namespace rrf {
@@ -17,18 +18,9 @@ constexpr int64_t kMaxEpochs = 100000000;
 
 }  // namespace
 
-const char* adamLossName(AdamLoss loss) {
-    switch (loss) {
-    case AdamLoss::RelativeL2: return "relative_l2";
-    case AdamLoss::RelativeL2Prediction: return "relative_l2_prediction";
-    case AdamLoss::Mse: break;
-    }
-    return "mse";
-}
+const char* adamLossName(AdamLoss loss) { return nameOf(adamLosses(), loss); }
 
-const char* TrainerConfig::typeName() const {
-    return type == TrainerType::Adam ? "adam" : "levenberg_marquardt";
-}
+const char* TrainerConfig::typeName() const { return trainerTypeInfo(type).name; }
 
 TrainerConfig TrainerConfig::fromJson(const json& j, const std::string& file, const std::string& where) {
     return fromJson(JsonReader(j, file, where));
@@ -37,30 +29,26 @@ TrainerConfig TrainerConfig::fromJson(const json& j, const std::string& file, co
 TrainerConfig TrainerConfig::fromJson(const JsonReader& r) {
     r.requireObject();
     TrainerConfig c;
-    const std::string type = r.choiceOr("type", "levenberg_marquardt", {"levenberg_marquardt", "lm", "adam"});
-    if (type == "adam") {
-        r.checkKeys({"type", "max_epochs", "batch_size", "learning_rate", "min_learning_rate", "schedule", "step_epochs",
-                     "step_gamma", "beta1", "beta2", "epsilon", "weight_decay", "loss", "debias_targets", "patience",
-                     "patience_lr_fraction", "error_goal", "max_samples", "seed"});
-        c.type = TrainerType::Adam;
+    // A trainer object without "type" is Levenberg–Marquardt (the registry's first row).
+    const TrainerTypeInfo& info =
+        *findTrainerType(readTrainerChoice(r, "type", trainerTypes().front().name, trainerTypeNames()));
+    r.checkKeys(info.keys);
+    c.type = info.type;
+    if (c.type == TrainerType::Adam) {
         AdamConfig& a = c.adam;
         a.maxEpochs = int(r.integerOr("max_epochs", a.maxEpochs, 0, kMaxEpochs));
         a.batchSize = int(r.integerOr("batch_size", a.batchSize, 1, 1 << 24));
         a.learningRate = r.numberOr("learning_rate", a.learningRate, 0.0, 1e3, true);
         a.minLearningRate = r.numberOr("min_learning_rate", a.minLearningRate, 0.0, 1e3);
-        const std::string sched = r.choiceOr("schedule", "cosine", {"constant", "step", "cosine"});
-        a.schedule = sched == "constant" ? LrSchedule::Constant : sched == "step" ? LrSchedule::Step : LrSchedule::Cosine;
+        a.schedule = valueNamed(lrSchedules(), readTrainerChoice(r, "schedule", nameOf(lrSchedules(), a.schedule),
+                                                                 valueNames(lrSchedules())));
         a.stepEpochs = int(r.integerOr("step_epochs", a.stepEpochs, 1, kMaxEpochs));
         a.stepGamma = r.numberOr("step_gamma", a.stepGamma, 0.0, 1.0, true);
         a.beta1 = r.numberOr("beta1", a.beta1, 0.0, 1.0 - 1e-12);
         a.beta2 = r.numberOr("beta2", a.beta2, 0.0, 1.0 - 1e-12);
         a.epsilon = r.numberOr("epsilon", a.epsilon, 0.0, 1.0, true);
         a.weightDecay = r.numberOr("weight_decay", a.weightDecay, 0.0, 1.0);
-        const std::string loss =
-            r.choiceOr("loss", adamLossName(a.loss), {"mse", "relative_l2", "relative_l2_prediction"});
-        a.loss = loss == "relative_l2"              ? AdamLoss::RelativeL2
-                 : loss == "relative_l2_prediction" ? AdamLoss::RelativeL2Prediction
-                                                    : AdamLoss::Mse;
+        a.loss = valueNamed(adamLosses(), readTrainerChoice(r, "loss", adamLossName(a.loss), valueNames(adamLosses())));
         a.debiasTargets = r.booleanOr("debias_targets", a.debiasTargets);
         a.patience = int(r.integerOr("patience", a.patience, 0, kMaxEpochs));
         a.patienceLrFraction = r.numberOr("patience_lr_fraction", a.patienceLrFraction, 0.0, 1.0, true);
@@ -68,9 +56,6 @@ TrainerConfig TrainerConfig::fromJson(const JsonReader& r) {
         a.maxSamples = r.integerOr("max_samples", a.maxSamples, 0, INT64_MAX);
         a.seed = r.unsignedOr("seed", a.seed);
     } else {
-        r.checkKeys({"type", "max_epochs", "mu", "mu_dec", "mu_inc", "mu_max", "min_grad", "max_fail", "goal",
-                     "error_goal", "max_samples", "max_epoch_gflop", "seed"});
-        c.type = TrainerType::LevenbergMarquardt;
         LevenbergMarquardtConfig& l = c.lm;
         l.maxEpochs = int(r.integerOr("max_epochs", l.maxEpochs, 0, kMaxEpochs));
         l.mu = r.numberOr("mu", l.mu, 0.0, kInf, true);
@@ -92,15 +77,12 @@ TrainerConfig TrainerConfig::fromJson(const JsonReader& r) {
 json TrainerConfig::toJson() const {
     if (type == TrainerType::Adam) {
         const AdamConfig& a = adam;
-        const char* sched = a.schedule == LrSchedule::Constant ? "constant"
-                            : a.schedule == LrSchedule::Step   ? "step"
-                                                               : "cosine";
-        return json{{"type", "adam"},
+        return json{{"type", typeName()},
                     {"max_epochs", a.maxEpochs},
                     {"batch_size", a.batchSize},
                     {"learning_rate", a.learningRate},
                     {"min_learning_rate", a.minLearningRate},
-                    {"schedule", sched},
+                    {"schedule", nameOf(lrSchedules(), a.schedule)},
                     {"step_epochs", a.stepEpochs},
                     {"step_gamma", a.stepGamma},
                     {"beta1", a.beta1},
@@ -116,7 +98,7 @@ json TrainerConfig::toJson() const {
                     {"seed", a.seed}};
     }
     const LevenbergMarquardtConfig& l = lm;
-    return json{{"type", "levenberg_marquardt"},
+    return json{{"type", typeName()},
                 {"max_epochs", l.maxEpochs},
                 {"mu", l.mu},
                 {"mu_dec", l.muDec},
@@ -138,9 +120,9 @@ TrainerConfig TrainerConfig::withType(TrainerType t) const {
 }
 
 TrainerConfig TrainerConfig::withType(const std::string& name, const std::string& setting) const {
-    if (name != "lm" && name != "levenberg_marquardt" && name != "adam")
-        throw SettingError(setting, "unknown trainer '" + name + "' (expected lm or adam)");
-    return withType(name == "adam" ? TrainerType::Adam : TrainerType::LevenbergMarquardt);
+    const TrainerTypeInfo* info = findTrainerType(name);
+    if (!info) throw SettingError(setting, "unknown trainer '" + name + "' (expected " + trainerShortNamesText() + ")");
+    return withType(info->type);
 }
 
 }  // namespace rrf

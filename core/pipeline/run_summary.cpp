@@ -1,5 +1,6 @@
 #include "core/pipeline/run_summary.h"
 
+#include "core/nn/network_settings.h"
 #include "core/pipeline/run_recording.h"
 
 namespace rrf {
@@ -40,10 +41,7 @@ RunSummary summarizeRun(const Run& run) {
 }
 
 std::string hiddenText(const std::vector<int>& hidden) {
-    if (hidden.empty()) return "-";
-    std::string t;
-    for (size_t i = 0; i < hidden.size(); ++i) t += (i ? "," : "") + std::to_string(hidden[i]);
-    return t;
+    return hidden.empty() ? "-" : hiddenSizesText(hidden);
 }
 
 }  // namespace rrf

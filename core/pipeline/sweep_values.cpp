@@ -6,6 +6,7 @@
 
 #include "core/pipeline/sweep.h"
 #include "core/nn/encoding_presets.h"
+#include "core/nn/trainers/registry.h"
 #include "core/nn/network_settings.h"
 #include "core/util/error.h"
 
@@ -68,7 +69,7 @@ std::vector<std::string> defaultSweepValues(const std::string& what) {
     if (what == "grid") return {"2,2,2", "3,3,3", "4,4,4"};
     if (what == "dirs") return {"50", "100", "200"};
     if (what == "hidden") return {"5", "10,5", "20,10"};
-    if (what == "trainer") return {"lm", "adam"};
+    if (what == "trainer") return trainerShortNames();
     if (what == "goal") return {"0.1", "0.05", "0.03"};
     if (what == "leaves") return {"1", "4", "16"};
     if (what == "record_spp") return {"64", "256", "1024"};
@@ -114,7 +115,9 @@ std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
             p.sampling.maxSpp = positiveValue(v, v, kMaxSamplesPerRecord, "the most paths per record, 1.." + std::to_string(kMaxSamplesPerRecord));
             p.sampling.spp = std::min(p.sampling.spp, p.sampling.maxSpp);
         } else {
-            if (v != "lm" && v != "adam") throw SettingError(kValuesSetting, "'" + v + "': expected lm or adam");
+            const std::vector<std::string> trainers = trainerShortNames();
+            if (std::find(trainers.begin(), trainers.end(), v) == trainers.end())
+                throw SettingError(kValuesSetting, "'" + v + "': expected " + trainerShortNamesText());
             p.training.trainer = p.training.trainer.withType(v);
         }
         points.push_back(std::move(p));

@@ -7,7 +7,10 @@
 #include "core/data/record_layout.h"
 #include "core/nn/derived_inputs.h"
 #include "core/nn/encoding.h"
-#include "core/nn/encoding_hash_grid.h"
+#include "core/nn/encodings/frequency.h"
+#include "core/nn/encodings/hash_grid.h"
+#include "core/nn/encodings/one_blob.h"
+#include "core/nn/encodings/registry.h"
 
 namespace rrf {
 
@@ -46,13 +49,14 @@ int slotOf(const std::string& target) {
 }
 
 // Encoding component types as the texture stores them (shaders/encoding.glsl).
-enum EncodingType { kFrequency = 0, kOneBlob = 1, kHashGrid = 2 };
+constexpr int kFrequency = FrequencyEncoding::kGlslId;
+constexpr int kOneBlob = OneBlobEncoding::kGlslId;
 
-EncodingType encodingType(const std::string& name) {
-    if (name == "frequency") return kFrequency;
-    if (name == "one_blob") return kOneBlob;
-    if (name == "hash_grid") return kHashGrid;
-    throw std::invalid_argument("network texture: the GLSL predictor has no encoding '" + name + "'");
+/// The component type id the texture stores (shaders/encoding.glsl), from the encoding registry.
+int glslEncodingId(const Encoding& e) {
+    const EncodingType* t = findEncodingType(e.typeName());
+    if (!t) throw std::invalid_argument(std::string("network texture: the GLSL predictor has no encoding '") + e.typeName() + "'");
+    return t->glslId;
 }
 
 /// Hash-grid settings as the texture stores them, from the component's HashGridEncoding.
@@ -86,7 +90,7 @@ std::vector<std::pair<size_t, const EncodingComponent*>> writeEncoding(TexelWrit
     int first = 0;
     for (const EncodingComponent& c : e.components) {
         const int d = int(c.inputs.size()), outs = c.encoding->outputDims();
-        const EncodingType type = encodingType(c.encoding->typeName());
+        const int type = glslEncodingId(*c.encoding);
         w.texel4(float(type), float(d), float(first), float(outs));
         w.padded(d, [&](int i) { return float(c.inputs[size_t(i)]); });
         const nlohmann::json s = c.encoding->settingsJson();
@@ -334,8 +338,8 @@ NetworkTexture packNetworkTexture(const Scene& scene, const ModelSet& models, in
             widest = std::max(widest, arch.inputs);
             for (const NetworkModel& leaf : m.leaves)
                 for (const EncodingComponent& c : leaf.encoding.components) {
-                    encodingType(c.encoding->typeName());  // one the shader knows
-                    if (c.encoding->typeName() != std::string("hash_grid")) continue;
+                    glslEncodingId(*c.encoding);  // one the shader knows
+                    if (!dynamic_cast<const HashGridEncoding*>(c.encoding.get())) continue;
                     if (c.inputs.empty() || c.inputs.size() > 4)
                         throw std::invalid_argument(who + ": the GLSL hash grid reads 1 to 4 inputs, not " +
                                                     std::to_string(c.inputs.size()));

@@ -48,7 +48,7 @@
 ///         ⌈n_out/4⌉ texels   bias b_l, zero-padded
 ///       then each hash_grid component's table: its Lh · 2^log2 · Fh trainable parameters in the
 ///         order of nn/encoding.h (float index (l · 2^log2 + entry) · Fh + f), zero-padded to a
-///         whole texel; entry is the level's dense or hashed index (encoding_hash_grid.h)
+///         whole texel; entry is the level's dense or hashed index (nn/encodings/hash_grid.h)
 /// Raw inputs x of a pixel: its 12 geometric inputs, its object's I − 12 BRDF parameters, then at
 /// I … I+2 the reflected direction reflect(view, normal) (nn/derived_inputs.h, the same float
 /// operations), which the shader computes for every pixel: a network that derives it has I' = I + 3

@@ -5,7 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "core/nn/sparse_adam.h"
+#include "core/nn/trainers/sparse_adam.h"
 #include "core/nn/trainer.h"
 #include "core/nn/training_loss.h"
 #include "core/util/rng.h"

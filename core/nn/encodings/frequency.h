@@ -18,6 +18,7 @@
 #include <memory>
 
 #include "core/nn/encoding.h"
+#include "core/nn/encodings/registry.h"
 
 namespace rrf {
 
@@ -42,7 +43,11 @@ public:
     template <typename S>
     static S angularFrequency(int k);
 
-    const char* typeName() const override { return "frequency"; }
+    /// Its component type in the network texture (shaders/encoding.glsl, predict/network_texture.h).
+    static constexpr int kGlslId = 0;
+    /// Its row of the encoding registry (encodings/registry.h).
+    static const EncodingType& type();
+    const char* typeName() const override { return type().name; }
     int inputDims() const override { return inputDims_; }
     int outputDims() const override { return inputDims_ * perInput(); }
 

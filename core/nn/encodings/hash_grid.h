@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "core/nn/encoding.h"
+#include "core/nn/encodings/registry.h"
 
 namespace rrf {
 
@@ -84,7 +85,11 @@ public:
     /// Table entry (0 … T−1) of vertex v (inputDims() coordinates, each in 0 … res_l) at level l.
     uint32_t entryIndex(int l, const int* v) const;
 
-    const char* typeName() const override { return "hash_grid"; }
+    /// Its component type in the network texture (shaders/encoding.glsl, predict/network_texture.h).
+    static constexpr int kGlslId = 2;
+    /// Its row of the encoding registry (encodings/registry.h).
+    static const EncodingType& type();
+    const char* typeName() const override { return type().name; }
     int inputDims() const override { return inputDims_; }
     int outputDims() const override { return settings_.levels * settings_.featuresPerLevel; }
     int64_t numParams() const override { return settings_.levels * tableSize() * settings_.featuresPerLevel; }

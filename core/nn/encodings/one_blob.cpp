@@ -1,17 +1,26 @@
-#include "core/nn/encoding_one_blob.h"
+#include "core/nn/encodings/one_blob.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 namespace rrf {
 
 OneBlobEncoding::OneBlobEncoding(int inputDims, OneBlobSettings settings) : inputDims_(inputDims), settings_(settings) {
-    if (inputDims < 1) throw std::invalid_argument("one_blob encoding needs at least one input");
+    if (inputDims < 1) throw std::invalid_argument(std::string(type().name) + " encoding needs at least one input");
     if (settings.bins < kMinBins || settings.bins > kMaxBins)
         throw std::invalid_argument("bins must be in " + std::to_string(kMinBins) + ".." + std::to_string(kMaxBins) +
                                     ", got " + std::to_string(settings.bins));
+}
+
+const EncodingType& OneBlobEncoding::type() {
+    static const EncodingType t{"one_blob", {"bins"}, std::numeric_limits<int>::max(), kGlslId,
+                                [](const JsonReader& r, int inputDims) -> std::shared_ptr<const Encoding> {
+                                    return fromJson(r, inputDims);
+                                }};
+    return t;
 }
 
 std::shared_ptr<const OneBlobEncoding> OneBlobEncoding::fromJson(const JsonReader& r, int inputDims) {

@@ -1,7 +1,8 @@
-#include "core/nn/encoding_frequency.h"
+#include "core/nn/encodings/frequency.h"
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -14,10 +15,18 @@ constexpr double kOmegaPi = 3.14159265358979323846;
 
 FrequencyEncoding::FrequencyEncoding(int inputDims, FrequencySettings settings)
     : inputDims_(inputDims), settings_(settings) {
-    if (inputDims < 1) throw std::invalid_argument("frequency encoding needs at least one input");
+    if (inputDims < 1) throw std::invalid_argument(std::string(type().name) + " encoding needs at least one input");
     if (settings.frequencies < 1 || settings.frequencies > kMaxFrequencies)
         throw std::invalid_argument("frequencies must be in 1.." + std::to_string(kMaxFrequencies) + ", got " +
                                     std::to_string(settings.frequencies));
+}
+
+const EncodingType& FrequencyEncoding::type() {
+    static const EncodingType t{"frequency", {"frequencies", "include_input"}, std::numeric_limits<int>::max(), kGlslId,
+                                [](const JsonReader& r, int inputDims) -> std::shared_ptr<const Encoding> {
+                                    return fromJson(r, inputDims);
+                                }};
+    return t;
 }
 
 std::shared_ptr<const FrequencyEncoding> FrequencyEncoding::fromJson(const JsonReader& r, int inputDims) {

@@ -1,5 +1,5 @@
-// Sparse Adam with per-entry step counts (see core/nn/sparse_adam.h).
-#include "core/nn/sparse_adam.h"
+// Sparse Adam with per-entry step counts (see core/nn/trainers/sparse_adam.h).
+#include "core/nn/trainers/sparse_adam.h"
 
 #include <cmath>
 

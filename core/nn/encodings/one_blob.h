@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "core/nn/encoding.h"
+#include "core/nn/encodings/registry.h"
 
 namespace rrf {
 
@@ -40,7 +41,11 @@ public:
 
     const OneBlobSettings& settings() const { return settings_; }
 
-    const char* typeName() const override { return "one_blob"; }
+    /// Its component type in the network texture (shaders/encoding.glsl, predict/network_texture.h).
+    static constexpr int kGlslId = 1;
+    /// Its row of the encoding registry (encodings/registry.h).
+    static const EncodingType& type();
+    const char* typeName() const override { return type().name; }
     int inputDims() const override { return inputDims_; }
     int outputDims() const override { return inputDims_ * settings_.bins; }
 

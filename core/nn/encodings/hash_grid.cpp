@@ -1,4 +1,4 @@
-#include "core/nn/encoding_hash_grid.h"
+#include "core/nn/encodings/hash_grid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +33,7 @@ void unitCoordinates(const Eigen::Ref<const MatX<S>>& x, Eigen::Index n, int d, 
 
 HashGridEncoding::HashGridEncoding(int inputDims, HashGridSettings s) : inputDims_(inputDims), settings_(s) {
     if (inputDims < 1 || inputDims > kMaxInputs)
-        throw std::invalid_argument("hash_grid reads 1 to " + std::to_string(kMaxInputs) + " inputs, got " +
+        throw std::invalid_argument(std::string(type().name) + " reads 1 to " + std::to_string(kMaxInputs) + " inputs, got " +
                                     std::to_string(inputDims));
     if (s.levels < 1 || s.levels > kMaxLevels) throw std::invalid_argument(settingRange("levels", s.levels, 1, kMaxLevels));
     if (s.log2TableSize < kMinLog2TableSize || s.log2TableSize > kMaxLog2TableSize)
@@ -71,6 +71,14 @@ HashGridEncoding::HashGridEncoding(int inputDims, HashGridSettings s) : inputDim
         }
         levels_.push_back(level);
     }
+}
+
+const EncodingType& HashGridEncoding::type() {
+    static const EncodingType t{"hash_grid", {"levels", "log2_table_size", "features_per_level", "base_resolution", "growth"}, kMaxInputs, kGlslId,
+                                [](const JsonReader& r, int inputDims) -> std::shared_ptr<const Encoding> {
+                                    return fromJson(r, inputDims);
+                                }};
+    return t;
 }
 
 std::shared_ptr<const HashGridEncoding> HashGridEncoding::fromJson(const JsonReader& r, int inputDims) {
