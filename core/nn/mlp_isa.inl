@@ -84,8 +84,8 @@ void gemmProduct(Index n, const S* a, const S* b, S* c) {
 
 }  // namespace
 
-// Float networks up to small::kMaxWidth wide take the blocked small-layer kernel; wider ones and
-// double (Levenberg–Marquardt, tests) the GEMM.
+// Float networks up to small::kMaxWidth wide (backward: kMaxBackwardWidth) take the blocked
+// small-layer kernel; wider ones and double (Levenberg–Marquardt, tests) the GEMM.
 void forward(const Layers& net, const float* params, const float* x, Index xStride, Index n, float* const* acts) {
     if (small::fits(net)) return small::forward(net, params, x, xStride, n, acts);
     forwardPass(net, params, x, xStride, n, acts);
@@ -95,7 +95,8 @@ void forward(const Layers& net, const double* params, const double* x, Index xSt
 }
 void backward(const Layers& net, const float* params, const float* x, Index xStride, Index n, const float* const* acts,
               float* const* deltas, float* grad, float* dInputs) {
-    if (small::fits(net)) return small::backward(net, params, x, xStride, n, acts, deltas, grad, dInputs);
+    if (small::fits(net, small::kMaxBackwardWidth))
+        return small::backward(net, params, x, xStride, n, acts, deltas, grad, dInputs);
     backwardPass(net, params, x, xStride, n, acts, deltas, grad, dInputs);
 }
 void backward(const Layers& net, const double* params, const double* x, Index xStride, Index n,

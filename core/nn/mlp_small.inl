@@ -31,8 +31,12 @@ constexpr int kTile = kLanes * kVectors;
 /// feeds kRows rows. kRows × kChunk accumulators plus kChunk inputs fit the register file.
 constexpr int kChunk = 2;
 constexpr int kRows = kLanes >= 16 ? 8 : 4;
-/// The widest layer this kernel takes; wider networks use the GEMM (mlp_isa.inl).
+/// The widest layer this kernel's forward pass takes; wider networks use the GEMM (mlp_isa.inl).
 constexpr int kMaxWidth = 64;
+/// The widest layer its backward pass takes. Its weight gradients go through memory once per tile
+/// and weight, which costs more than the GEMM's packing from 32-wide layers on (bench_nn, "Adam
+/// training" rows of both builds; docs/results.md, "Kernels"); the 20-10 network gains.
+constexpr int kMaxBackwardWidth = 24;
 
 // kLanes packets transposed in registers. The packet type's vector attribute is not part of the
 // template's identity, which GCC warns about; Eigen's own uses are in system headers, silent.
@@ -144,10 +148,10 @@ inline void rowsTimesTile(const float* m, Index rs, Index ks, int rows, int K, c
     }
 }
 
-/// True when every layer of `net` is at most kMaxWidth wide.
-inline bool fits(const Layers& net) {
+/// True when every layer of `net` is at most `width` wide.
+inline bool fits(const Layers& net, int width = kMaxWidth) {
     for (int l = 0; l < net.count; ++l)
-        if (net.inputs[l] > kMaxWidth || net.outputs[l] > kMaxWidth) return false;
+        if (net.inputs[l] > width || net.outputs[l] > width) return false;
     return true;
 }
 
