@@ -34,8 +34,8 @@ constexpr int kRows = kLanes >= 16 ? 8 : 4;
 /// The widest layer this kernel's forward pass takes; wider networks use the GEMM (mlp_isa.inl).
 constexpr int kMaxWidth = 64;
 /// The widest layer its backward pass takes. Its weight gradients go through memory once per tile
-/// and weight, which costs more than the GEMM's packing from 32-wide layers on (bench_nn, "Adam
-/// training" rows of both builds; docs/results.md, "Kernels"); the 20-10 network gains.
+/// and weight, which costs more than the GEMM's packing from 32-wide layers on in the AVX-512 build
+/// (bench_nn, "Adam training" rows; docs/results.md, "Kernels"); the 20-10 network gains in both.
 constexpr int kMaxBackwardWidth = 24;
 
 // kLanes packets transposed in registers. The packet type's vector attribute is not part of the
