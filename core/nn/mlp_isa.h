@@ -26,11 +26,17 @@ struct Layers {
     int tanh = 1;
 };
 
+/// One dense Adam step's constants (nn/adam_step.h's AdamStepParams).
+struct AdamStep {
+    float beta1, beta2, correction1, correction2, learningRate, epsilon, weightDecay;
+};
+
 /// One instruction set's passes; the meaning is mlpForward / mlpBackward's (nn/mlp.h) on raw
 /// buffers. `x` is inputs[0] × n with column stride `xStride`; acts[l] and deltas[l] are
 /// outputs[l] × n, contiguous, allocated by the caller; deltas[count − 1] holds ∂loss/∂output on
 /// entry and is not changed; `dInputs` (inputs[0] × n) may be null. gemm is c = a · b for n × n
 /// column-major matrices with this set's Eigen: the yardstick bench_nn measures the passes against.
+/// adamStep is nn/adam_step.h's adamStep on `count` entries.
 #define RRF_MLP_ISA_DECLARE(isa)                                                                     \
     namespace isa {                                                                                  \
     void forward(const Layers& net, const float* params, const float* x, std::ptrdiff_t xStride,     \
@@ -43,6 +49,8 @@ struct Layers {
     void backward(const Layers& net, const double* params, const double* x, std::ptrdiff_t xStride,  \
                   std::ptrdiff_t n, const double* const* acts, double* const* deltas, double* grad,  \
                   double* dInputs);                                                                  \
+    void adamStep(const AdamStep& s, std::ptrdiff_t count, const float* grad, const float* decayMask, float* w, \
+                  float* m, float* v);                                                               \
     void gemm(std::ptrdiff_t n, const float* a, const float* b, float* c);                          \
     void gemm(std::ptrdiff_t n, const double* a, const double* b, double* c);                       \
     }

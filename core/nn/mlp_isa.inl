@@ -24,7 +24,10 @@ template <typename S> using Out = Eigen::Map<Mat<S>>;
 template <typename S> using In = Eigen::Map<const Mat<S>>;
 template <typename S> using Strided = Eigen::Map<const Mat<S>, 0, Eigen::OuterStride<>>;
 
-// The same expressions as the portable passes (nn/mlp.cpp), so the two differ by rounding only.
+#include "core/nn/mlp_small.inl"
+
+// The GEMM passes: the same expressions as the portable passes (nn/mlp.cpp), so the two differ by
+// rounding only.
 template <typename S>
 void forwardPass(const Layers& net, const S* params, const S* x, Index xStride, Index n, S* const* acts) {
     for (int l = 0; l < net.count; ++l) {
@@ -81,7 +84,10 @@ void gemmProduct(Index n, const S* a, const S* b, S* c) {
 
 }  // namespace
 
+// Float networks up to small::kMaxWidth wide (backward: kMaxBackwardWidth) take the blocked
+// small-layer kernel; wider ones and double (Levenberg–Marquardt, tests) the GEMM.
 void forward(const Layers& net, const float* params, const float* x, Index xStride, Index n, float* const* acts) {
+    if (small::fits(net)) return small::forward(net, params, x, xStride, n, acts);
     forwardPass(net, params, x, xStride, n, acts);
 }
 void forward(const Layers& net, const double* params, const double* x, Index xStride, Index n, double* const* acts) {
@@ -89,11 +95,55 @@ void forward(const Layers& net, const double* params, const double* x, Index xSt
 }
 void backward(const Layers& net, const float* params, const float* x, Index xStride, Index n, const float* const* acts,
               float* const* deltas, float* grad, float* dInputs) {
+    if (small::fits(net, small::kMaxBackwardWidth))
+        return small::backward(net, params, x, xStride, n, acts, deltas, grad, dInputs);
     backwardPass(net, params, x, xStride, n, acts, deltas, grad, dInputs);
 }
 void backward(const Layers& net, const double* params, const double* x, Index xStride, Index n,
               const double* const* acts, double* const* deltas, double* grad, double* dInputs) {
     backwardPass(net, params, x, xStride, n, acts, deltas, grad, dInputs);
+}
+
+void adamStep(const AdamStep& s, Index count, const float* grad, const float* decayMask, float* w, float* m,
+              float* v) {
+    // The expression of the portable step (nn/adam_step.cpp), on this set's packets. Every entry goes
+    // through the packet path, the last partial packet through a zero-padded copy: Eigen's own loop
+    // would take the entries before the first aligned address one by one (an exact square root
+    // instead of the packet's), so a step would depend on where the vectors were allocated.
+    using namespace Eigen::internal;
+    using P = small::Packet;
+    constexpr int kL = small::kLanes;
+    const P b1 = pset1<P>(s.beta1), a1 = pset1<P>(1.0f - s.beta1), b2 = pset1<P>(s.beta2),
+            a2 = pset1<P>(1.0f - s.beta2), c1 = pset1<P>(s.correction1), c2 = pset1<P>(s.correction2),
+            lr = pset1<P>(s.learningRate), eps = pset1<P>(s.epsilon), wd = pset1<P>(s.weightDecay);
+    auto step = [&](const float* gp, const float* kp, float* wp, float* mp, float* vp) {
+        const P g = ploadu<P>(gp), wi = ploadu<P>(wp);
+        const P mi = padd(pmul(b1, ploadu<P>(mp)), pmul(a1, g));
+        const P vi = padd(pmul(b2, ploadu<P>(vp)), pmul(a2, pmul(g, g)));
+        const P adaptive = pdiv(pdiv(mi, c1), padd(psqrt(pdiv(vi, c2)), eps));
+        pstoreu(mp, mi);
+        pstoreu(vp, vi);
+        pstoreu(wp, psub(wi, pmul(lr, padd(adaptive, pmul(pmul(wd, ploadu<P>(kp)), wi)))));
+    };
+    Index i = 0;
+    for (; i + kL <= count; i += kL) step(grad + i, decayMask + i, w + i, m + i, v + i);
+    if (i < count) {
+        float g[kL] = {}, k[kL] = {}, wt[kL] = {}, mt[kL] = {}, vt[kL] = {};
+        const Index rest = count - i;
+        for (Index j = 0; j < rest; ++j) {
+            g[j] = grad[i + j];
+            k[j] = decayMask[i + j];
+            wt[j] = w[i + j];
+            mt[j] = m[i + j];
+            vt[j] = v[i + j];
+        }
+        step(g, k, wt, mt, vt);
+        for (Index j = 0; j < rest; ++j) {
+            w[i + j] = wt[j];
+            m[i + j] = mt[j];
+            v[i + j] = vt[j];
+        }
+    }
 }
 
 void gemm(Index n, const float* a, const float* b, float* c) { gemmProduct(n, a, b, c); }

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/nn/adam_step.h"
 #include "core/nn/trainers/sparse_adam.h"
 #include "core/nn/trainer.h"
 #include "core/nn/training_loss.h"
@@ -193,11 +194,8 @@ TrainResult trainAdam(const MlpArch& arch, const InputEncoding& encoding, const 
             ++step;
             const float c1 = float(1.0 - std::pow(cfg.beta1, double(step)));
             const float c2 = float(1.0 - std::pow(cfg.beta2, double(step)));
-            m = b1 * m + (1.0f - b1) * grad;
-            v = b2 * v + (1.0f - b2) * grad.cwiseAbs2();
             const float lrf = float(lr);
-            w.array() -= lrf * ((m.array() / c1) / ((v.array() / c2).sqrt() + float(cfg.epsilon)) +
-                                float(cfg.weightDecay) * decayMask.array() * w.array());
+            adamStep({b1, b2, c1, c2, lrf, float(cfg.epsilon), float(cfg.weightDecay)}, grad, decayMask, w, m, v);
             if (E > 0) encodingAdam.step(e, b1, b2, lrf, float(cfg.epsilon));
         }
         const double trainLoss = epochLoss / (double(n) * arch.outputs);
