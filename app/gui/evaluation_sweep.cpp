@@ -156,12 +156,12 @@ bool EvaluationController::startSweep(const std::string& what) {
         state_.log.error(std::string("sweep: ") + e.what());
         return false;
     }
-    // Interactive sizes: 64x64 images; data, epochs and samples bounded so a whole series takes a
-    // minute or two on a laptop instead of the CLI defaults' much longer runs. Every point, path
+    // Interactive sizes: 64x64 images; data, epochs and samples bounded so a whole series stays
+    // interactive instead of the CLI defaults' much longer runs. Every point, path
     // tracer and model, is judged against the one reference of the sweep.
     o.width = o.height = 64;
-    // The one reference comes from the project's store, converged to the project's noise target (at
-    // 64² a few seconds to a minute, once: later sweeps of the same scene and light reuse it).
+    // The one reference comes from the project's store, converged to the project's noise target
+    // (once: later sweeps of the same scene and light reuse it).
     o.referenceTarget = state_.project.reference.target;
     const std::string storeDir = projectReferenceStore(state_.project).dir();
     if (what == "spp") o.values = {"1", "4", "16", "64"};

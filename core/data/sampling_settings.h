@@ -35,7 +35,7 @@ struct SamplingSettings {
     /// "noise_target": the relative standard error a record's targets are sampled down to: the
     /// trainers' default error goal (0.05), so a record's noise is below the goal (the trainers also
     /// subtract the measured noise from their validation error). In the Cornell box the indirect
-    /// term needs about 1000 paths for it (median 0.047, p90 0.07 at 1024 paths).
+    /// term needs about the max_spp cap's paths for it (docs/results-history.md, §8).
     double noiseTarget = 0.05;
     uint64_t seed = 1;
     bool fixedLight = false;        ///< true: every record uses the scene's light position
@@ -53,9 +53,9 @@ struct SamplingSettings {
     /// fromJson over the project defaults (a project file's section).
     static SamplingSettings fromJson(const JsonReader& section) { return fromJson(section, projectDefault()); }
     /// A project's sampling when its file says nothing: an 8³ grid × 300 directions, 64 paths per
-    /// record doubled adaptively up to max_spp (118 050 records of the Cornell box in about 50 s on
-    /// 2 cores), the data that lets the default networks reach 5 % held-out error (README, issue 11).
-    /// The struct's own grid and directions are the report's setting (15³ × 1200), hours on 2 cores.
+    /// record doubled adaptively up to max_spp, the data that lets the default networks reach the
+    /// default preset's held-out error (docs/results.md, pipeline-cornell-default). The struct's own
+    /// grid and directions are the report's setting (15³ × 1200), many times the data and the time.
     static SamplingSettings projectDefault() {
         SamplingSettings s;
         s.nx = s.ny = s.nz = 8;

@@ -15,7 +15,7 @@ namespace {
 constexpr MlpKernel kAll[] = {MlpKernel::Portable, MlpKernel::Avx2, MlpKernel::Avx512};
 
 // Preference when nothing is asked for: the widest set the CPU has. bench_nn measures every kernel
-// on the radiance networks' own layer sizes (docs/results.md, "Kernels"); where a CPU's 512-bit
+// on the radiance networks' own layer sizes (docs/results.md, "kernels"); where a CPU's 512-bit
 // units are slower than its 256-bit ones, RRF_MLP_KERNEL=avx2 says so.
 constexpr MlpKernel kPreference[] = {MlpKernel::Avx512, MlpKernel::Avx2, MlpKernel::Portable};
 

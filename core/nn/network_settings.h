@@ -55,10 +55,10 @@ struct NetworkSettings {
     /// A project's trainer when its file has no "trainer" section: Adam with the relative L2 loss
     /// (the error metric's own weighting, so dark regions such as the light's shadow on the ceiling
     /// count as the evaluation counts them) on all records, error goal 0.02 and at most 600 epochs.
-    /// Measured on the Cornell box with the default data (README, issue 11): held-out global relative
-    /// RMSE 0.040 corrected against 0.054 with Levenberg–Marquardt (100 epochs, 33 661 records — LM
-    /// costs 3·N·P² per epoch, so it cannot use 118 050 records in the time). Levenberg–Marquardt
-    /// (the report's trainer) stays selectable.
+    /// On the Cornell box with the default data it generalises better than Levenberg–Marquardt,
+    /// which costs 3·N·P² per epoch and so cannot use all the records in the same time (figures:
+    /// docs/results-history.md, issue 11). Levenberg–Marquardt (the report's trainer) stays
+    /// selectable.
     static TrainerConfig defaultTrainer() {
         TrainerConfig t = TrainerConfig().withType(TrainerType::Adam);
         t.adam.loss = AdamLoss::RelativeL2;

@@ -38,8 +38,8 @@ struct LevenbergMarquardtConfig {
     int64_t maxSamples = 0;
     /// "max_epoch_gflop": LM costs about 3·N·P² flops per epoch (N samples, P weights); when all N
     /// would exceed this budget, training uses the first N' = budget / (3 P²) samples of the random
-    /// split and says so in the log. 100 GFLOP is ~5 s per epoch on the 2-core reference machine
-    /// (bench_nn) and 55 000 samples for the 20-10 network (P ≈ 600). 0 = no bound.
+    /// split and says so in the log. 100 GFLOP is 55 000 samples for the 20-10 network (P ≈ 600);
+    /// its time per epoch at bench_nn's LM rate is in docs/results.md. 0 = no bound.
     double maxEpochGflop = 100.0;
     uint64_t seed = 1;           ///< "seed": split, initial weights
 };

@@ -95,8 +95,9 @@ private:
 /// Monte Carlo mean, same shape (entries ≤ 0 or NaN: unknown, left as they are). The validation
 /// figures of a network trained on these targets are measured against them too (a difference of order
 /// σ⁴ from the plain targets); its reported RMSEs (ModelErrors) against the records as they are.
-/// Measured on the Cornell box (README, "The best preset"): the networks' light on the ceiling was 2 %
-/// low at the records' 10 % noise; with these targets the held-out error fell from 0.0224 to 0.0156.
+/// On the Cornell box the plain targets left the networks' light on the ceiling visibly low at the
+/// records' noise, and these targets removed most of that bias (docs/results-history.md, "The best
+/// preset").
 constexpr float kDebiasMaxRelativeVariance = 0.25f;
 inline MatX<float> debiasedRelativeL2Targets(const Eigen::Ref<const MatX<float>>& y, const Eigen::Ref<const MatX<float>>& variance) {
     MatX<float> out = y;

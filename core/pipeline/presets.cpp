@@ -62,8 +62,8 @@ void defaultPrediction(PredictionSettings& p) {
     p.gather.causticSamples = PredictionSettings().gather.causticSamples;
 }
 
-// best (README, "The best preset"): what the measurements on the Cornell box found most accurate
-// within 20 minutes on 2 cores. Records: a 10³ grid × 1200 directions (eight times the default's
+// best: what the measurements on the Cornell box found most accurate within the time budget
+// (docs/results-history.md, "The best preset"; docs/results.md measures it again). Records: a 10³ grid × 1200 directions (eight times the default's
 // records) at at most 256 paths each (a quarter of the default's cap): the networks average the
 // noise of neighbouring records, and more light positions and hit points pin the function down
 // better than fewer, cleaner records. The adaptive sampler still stops at 64 paths where that
@@ -75,12 +75,11 @@ void bestSampling(SamplingSettings& s) {
     s.maxSpp = 256;
 }
 // 32-32-32 tanh networks (five times the weights of 20-10, which the larger data supports; 48-48-48
-// and 64-64 fitted worse), four per object merged into one (an ensemble: held out 0.0156 for one,
-// 0.0143 for two, 0.0132 for four, each member a full training: 10 min end to end on 2 cores, half
-// the 20), relative L2 on debiased targets (the trainer's default; 0.0224 → 0.0156)
-// through the whole cosine schedule from a learning rate of 3e-3 (1e-2 and 1e-3 fitted worse): no
-// error goal and no early stop (both stopped networks at a still-high learning rate, measured 0.031
-// against 0.025 for the same networks run to the end).
+// and 64-64 fitted worse), four per object merged into one (each member more lowered the held-out
+// error, each a full training), relative L2 on debiased targets (the trainer's default) through the
+// whole cosine schedule from a learning rate of 3e-3 (1e-2 and 1e-3 fitted worse): no error goal
+// and no early stop (both stopped networks at a still-high learning rate, which fitted worse than
+// the same networks run to the end). Figures: docs/results-history.md, "The best preset".
 void bestNetwork(ObjectTrainingOptions& t) {
     defaultNetwork(t);
     t.hidden = {32, 32, 32};
@@ -91,8 +90,8 @@ void bestNetwork(ObjectTrainingOptions& t) {
     t.trainer.adam.maxEpochs = 400;
     t.trainer.adam.learningRate = 3e-3;
 }
-// Exact direct light at 256 samples: at 64 its noise (direct relative RMSE 0.016; 0.0075 at 256)
-// adds 0.008 in quadrature to the global error, which at 0.02 is too much.
+// Exact direct light at 256 samples: the noise of 64 adds in quadrature to the global error a share
+// that matters at the best preset's accuracy (bench_predict's direct light table).
 // The glossy gather with twice the default lobe directions and four times the diffuse directions
 // and caustic samples: what it adds to the error is the Monte Carlo noise of its directions
 // (docs/results.md), and a diffuse receiver gathered by name (the glossy box's ceiling) has only its

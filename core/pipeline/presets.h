@@ -5,19 +5,18 @@
 /// and Network panels' preset choices and the one-click pipeline). A new preset is one more row of
 /// pipelinePresets() (presets.cpp); everything that lists or applies presets reads that table.
 ///
-///   quick  about a minute for the whole pipeline on 2 cores: shrinks the sizes of the settings in
+///   quick  a smoke test of the whole pipeline: shrinks the sizes of the settings in
 ///          effect (grid 5³, 150 directions, 16 paths per record in the first round, 50 epochs) and
 ///          keeps everything else (network shape, trainer, adaptive sampling);
 ///   paper  the seed report's setting (docs/design.md §21): grid 15³ × 1200 directions, 64 paths per
 ///          record (fixed), one 20-10 tanh network per object and target, Levenberg–Marquardt with
-///          at most 1000 epochs — hours on 2 cores;
+///          at most 1000 epochs, by far the slowest;
 ///   default the project defaults (SamplingSettings::projectDefault(), NetworkSettings() with
-///          NetworkSettings::defaultTrainer()): a few minutes on 2 cores, what a project without
-///          sections runs;
-///   best   the most accurate setting measured (README, issue 16): eight times the default's
-///          records at a quarter of their paths each, 32-32-32 tanh networks (one per object),
-///          Adam with relative L2 to the end of a cosine schedule, exact direct light at 256
-///          samples per pixel. Its ≤ 20 minute budget on 2 cores is stated and measured in the README.
+///          NetworkSettings::defaultTrainer()): what a project without sections runs;
+///   best   the most accurate setting measured (issue 16): eight times the default's records at a
+///          quarter of their paths each, 32-32-32 tanh networks (one per object), Adam with
+///          relative L2 to the end of a cosine schedule, exact direct light at 256 samples per
+///          pixel. Its time and error: docs/results.md (pipeline-cornell-best).
 ///
 /// paper, default and best set every data and network setting except the seeds; quick changes only sizes.
 

@@ -18,7 +18,7 @@ struct SweepOptions;
 constexpr const char* kSweepKinds[] = {"spp", "grid", "dirs", "hidden", "trainer", "goal", "leaves", "record_spp", "encoding", "ensemble"};
 constexpr int kSweepKindCount = int(sizeof kSweepKinds / sizeof kSweepKinds[0]);
 
-/// The small default series of each kind (a minute or two on 2 cores at the default sizes). Throws
+/// The small default series of each kind (kept small so a series runs interactively). Throws
 /// SettingError naming "sweep dimension" for an unknown kind.
 std::vector<std::string> defaultSweepValues(const std::string& what);
 
