@@ -19,6 +19,7 @@ struct Gesture {
 const Gesture kGestures[] = {
     {"Views", "mouse wheel", "zoom all three views together"},
     {"Views", "left drag", "pan all three views together"},
+    {"Views", "drag the light's handle", "move the light (Shift: keep its height), within its region"},
     {"Views", "right drag", "draw a region of interest (its error figures below); right click clears it"},
     {"Views", "hover", "read out the pixel's values in every view"},
     {"Plots", "mouse wheel / left drag", "zoom / pan (Training loss, Cost)"},
