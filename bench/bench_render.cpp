@@ -2,7 +2,9 @@
 // the tracer itself, for 1 and 2 threads, in one run (ratios are only meaningful within a run on
 // a shared machine). The baseline stays one ray per call on purpose: it is what the tracer's rays
 // cost without the tracer, whereas the tracer may trace its coherent rays (camera rays, their
-// shadow rays) as packets, which is part of what is measured.
+// shadow rays) as packets, which is part of what is measured. Each ratio is given by wall time and
+// by CPU time: on a machine shared with other work only the second counts just the time this
+// process ran.
 //
 //   bench_render [project-or-scene.json] [--spp N] [--width W --height H]
 //
