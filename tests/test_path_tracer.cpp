@@ -8,12 +8,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "core/scene/accel.h"
 #include "core/render/path_tracer.h"
 #include "core/render/renderer.h"
 #include "core/scene/camera_rays.h"
+#include "core/scene/scene_json.h"
 #include "scene_builders.h"
 
 namespace test_path_tracer {
@@ -184,6 +186,71 @@ TEST(PathTracer, MissAndBlackEmitterBack) {
     back.dir = Vec3(0, 0, 1);
     EXPECT_TRUE(tracer.trace(back, rng, counters).global().isZero());
     EXPECT_EQ(counters.rays, 3u);
+}
+
+/// traceBatch() against trace() sample by sample: the packets (camera rays, first shadow rays) must
+/// not change a path's random numbers, its arithmetic or what its rays hit. Batches are whole rows of
+/// 16 pixels and one pixel's 16 samples, as the renderer forms them.
+void expectBatchIsTrace(const Scene& scene, Estimator estimator, const std::string& what) {
+    const Accel accel(scene);
+    const PathTracer tracer(scene, accel, estimator);
+    const int w = 48, h = 48;
+    const CameraRays cam(scene.camera, w, h);
+    TraceCounters one, batch;
+    int compared = 0, lit = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x0 = 0; x0 < w; x0 += 16) {
+            const int width = y % 2 == 0 ? 16 : 1;  // a row of 16 pixels, or one pixel's 16 samples
+            Ray rays[16];
+            Rng rngs[16] = {Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0),
+                            Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0)};
+            Radiance expected[16], got[16];
+            const int count = y % 3 == 0 ? 16 : 7 + x0 / 16;  // partial packets too
+            for (int i = 0; i < count; ++i) {
+                const int x = x0 + (width == 16 ? i : 0);
+                Rng rng(5, uint64_t(y * w + x), uint64_t(i));
+                const float jx = rng.uniform(), jy = rng.uniform();
+                rays[i] = cam.generate(x, y, jx, jy);
+                rngs[i] = rng;
+                expected[i] = tracer.trace(rays[i], rng, one);
+            }
+            tracer.traceBatch(rays, rngs, count, batch, got);
+            for (int i = 0; i < count; ++i) {
+                ASSERT_EQ(got[i].direct, expected[i].direct) << what << ", pixel row " << y << ", path " << i;
+                ASSERT_EQ(got[i].indirect, expected[i].indirect) << what << ", pixel row " << y << ", path " << i;
+                ++compared;
+                lit += !expected[i].global().isZero();
+            }
+        }
+    EXPECT_EQ(batch.rays, one.rays) << what;
+    EXPECT_EQ(batch.shadowRays, one.shadowRays) << what;
+    // Not a comparison of zeros: with NEE most samples carry light, naive ones only where a bounce
+    // happens to hit the light.
+    if (estimator == Estimator::NEE) {
+        EXPECT_GT(lit, compared / 2) << what;
+        EXPECT_GT(one.shadowRays, uint64_t(compared)) << what;
+    } else {
+        EXPECT_GT(lit, 0) << what;
+    }
+}
+
+TEST(PathTracer, BatchIsTracePerSampleOnTheBundledScenes) {
+    for (const char* name : {"cornell-box", "cornell-glossy", "mesh-room"}) {
+        const Scene scene = loadScene(std::string(RRF_SOURCE_DIR) + "/projects/" + name + "/scene.json");
+        for (Estimator e : {Estimator::NEE, Estimator::Naive}) {
+            expectBatchIsTrace(scene, e, std::string(name) + (e == Estimator::NEE ? " nee" : " naive"));
+        }
+    }
+}
+
+TEST(PathTracer, BatchIsTracePerSampleWithSeveralLightsOfEveryKind) {
+    // Two rect lights and a point light: three light samples per vertex, traced as packets by light.
+    Scene s = cornellLike();
+    addRectLight(s, Vec3(-0.9f, -0.5f, -0.99f), Vec3(0.3f, 0, 0), Vec3(0, 0.3f, 0), Vec3(4.f));  // before the back wall, facing +z
+    addPointLight(s, Vec3(0.5f, 0.5f, 0.2f), Vec3(1.5f));
+    expectBatchIsTrace(s, Estimator::NEE, "cornell-like, three lights");
+    s.materials[0] = phongWall(0.4f, 0.3f, 200.f);  // the white walls glossy: MIS on every light sample
+    expectBatchIsTrace(s, Estimator::NEE, "cornell-like, three lights, glossy");
 }
 
 }  // namespace test_path_tracer

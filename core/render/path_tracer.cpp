@@ -1,9 +1,12 @@
 #include "core/render/path_tracer.h"
 
+#include "core/render/path_steps.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace rrf {
 
@@ -37,44 +40,9 @@ Light PathTracer::movableLightAt(const Vec3& p) const {
     return l;
 }
 
-namespace {
-/// Ray intersection with an area light (corner + s·e1 + t·e2: s,t ∈ [0,1] for a rect, s,t ≥ 0 and
-/// s+t ≤ 1 for a triangle) in (tmin, tmax).
-bool intersectAreaLight(const Ray& ray, const Light& l, float tmax, float& t) {
-    const Vec3 n = cross(l.edge1, l.edge2);
-    const float denom = dot(ray.dir, n);
-    if (denom == 0.f) return false;
-    t = dot(l.corner - ray.origin, n) / denom;
-    if (!(t > ray.tmin && t < tmax)) return false;
-    const Vec3 q = ray.origin + ray.dir * t - l.corner;
-    const float nn = dot(n, n);
-    const float a = dot(cross(q, l.edge2), n) / nn;
-    const float b = dot(cross(l.edge1, q), n) / nn;
-    if (l.type == Light::Type::Triangle) return a >= 0.f && b >= 0.f && a + b <= 1.f;
-    return a >= 0.f && a <= 1.f && b >= 0.f && b <= 1.f;
-}
-
-/// Power-heuristic weight (β = 2) of the strategy with pdf `p` against the one with pdf `other`
-/// (both in solid angle); 0 when `p` is 0 or either pdf is not finite.
-float powerHeuristic(float p, float other) {
-    const float p2 = p * p, o2 = other * other;
-    const float w = p2 / (p2 + o2);
-    return std::isfinite(w) ? w : 0.f;
-}
-}  // namespace
 
 bool PathTracer::intersect(const Ray& ray, const Light& movable, Hit& hit) const {
-    bool found = accel_.intersect(ray, hit);
-    float t;
-    if (movable_ >= 0 && movable.isArea() && intersectAreaLight(ray, movable, found ? hit.t : ray.tmax, t)) {
-        hit = Hit{};
-        hit.t = t;
-        hit.p = ray.origin + ray.dir * t;
-        hit.ng = movable.normal();
-        hit.light = movable_;
-        found = true;
-    }
-    return found;
+    return withMovableLight(ray, movable, movable_, accel_.intersect(ray, hit), hit);
 }
 
 bool PathTracer::occluded(const Ray& ray, const Light& movable) const {
@@ -98,6 +66,7 @@ int PathTracer::materialOf(const Hit& hit) const {
     return hit.object >= 0 ? scene_.objects[size_t(hit.object)].material : scene_.lights[size_t(hit.light)].material;
 }
 
+
 Radiance PathTracer::trace(const Ray& ray, const Light& movable, Rng& rng, TraceCounters& counters) const {
     Hit hit;
     ++counters.rays;
@@ -108,197 +77,131 @@ Radiance PathTracer::trace(const Ray& ray, const Light& movable, Rng& rng, Trace
 
 Radiance PathTracer::shade(const Hit& hit, const Vec3& wo, const Light& movable, Rng& rng,
                            TraceCounters& counters) const {
-    return effects_.glossy ? shadeImpl<true>(hit, wo, movable, rng, counters)
-                           : shadeImpl<false>(hit, wo, movable, rng, counters);
+    Impl::Vertex v;
+    v.hit = hit;
+    v.wo = wo;
+    Impl::emissionSeen(*this, v, movable);
+    if (effects_.glossy) Impl::finish<true>(*this, v, movable, rng, counters);
+    else Impl::finish<false>(*this, v, movable, rng, counters);
+    return v.L;
+}
+
+void PathTracer::traceBatch(const Ray* rays, Rng* rngs, int count, TraceCounters& counters, Radiance* out) const {
+    if (count <= 0) return;
+    if (count > Accel::kPacket) throw std::invalid_argument("PathTracer::traceBatch: more than 16 rays");
+    if (effects_.glossy) Impl::traceBatch<true>(*this, rays, rngs, count, counters, out);
+    else Impl::traceBatch<false>(*this, rays, rngs, count, counters, out);
 }
 
 template <bool kGlossy>
-Radiance PathTracer::shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng, TraceCounters& counters) const {
-    Radiance L;
-    // Emission seen directly is always counted.
-    if (hit.light >= 0) L.direct += light(hit.light, movable).emittedTowards(wo);
-    const bool nee = estimator_ == Estimator::NEE;
-    Vec3 beta(1.f);
-    for (int depth = 0;; ++depth) {
-        const int mat = materialOf(hit);
-        if (mat < 0) break;
-        const Brdf& brdf = brdfs_[size_t(mat)];
-        const float side = dot(wo, hit.ng);
-        if (side == 0.f) break;  // exactly grazing: no reflection
-        // Two-sided surfaces: shade the side we see (decided by the geometric normal; the shading
-        // normal is on ng's side).
-        const Vec3 ns = hit.shading();
-        const Vec3 n = side > 0.f ? ns : -ns;
-        const Frame frame(n);
-        const Vec3 woLocal = frame.toLocal(wo);
-        Vec3& target = depth == 0 ? L.direct : L.indirect;
-        // Bounce: always for the naive estimator's first reflection (that is its direct light), and
-        // beyond that only if the scene lets light travel between surfaces. NEE at depth d already
-        // accounts for paths of d+1 reflections; the naive estimator needs the bounce at depth d to
-        // see them, so for it the depth limit applies after the emission test below.
-        const bool bounces = nee ? depth + 1 < maxDepth_ && effects_.indirect : depth == 0 || effects_.indirect;
-        const bool mis = kGlossy && nee && bounces;
-        if (nee)
-            target += beta * sampleDirect<kGlossy>(hit.p, hit.ng, n, frame, woLocal, brdf, movable, mis, rng, counters);
-        if (!bounces) break;
-        const float uLobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-        Vec3 wiLocal, weight;
-        bool ok;
-        if constexpr (kGlossy) {
-            ok = brdf.sample(woLocal, uLobe, u1, u2, wiLocal, weight);
-        } else {
-            (void)uLobe;
-            wiLocal = sampleCosineHemisphere(u1, u2);
-            weight = brdf.kd;
-            ok = wiLocal.z > 0.f;
-        }
-        if (!ok) break;
-        // With a shading normal a direction above it may point below the geometric surface; such a
-        // ray would start on the far side and leak light through the mesh, so the path ends.
-        if (!hit.ns.isZero() && dot(frame.toWorld(wiLocal), hit.ng) * side <= 0.f) break;
-        beta *= weight;
-        if (depth >= 1) {
-            // Russian roulette: survive with the path's throughput, bounded away from 0 so that the
-            // 1/q weight stays bounded (q never 0).
-            const float q = std::clamp(beta.maxComponent(), 0.05f, 1.f);
-            if (q < 1.f) {
-                if (rng.uniform() >= q) break;
-                beta = beta / q;
-            }
-        }
-        if (beta.isZero()) break;
-        const Vec3 wi = frame.toWorld(wiLocal);
-        Ray r;
-        r.origin = accel_.spawnOrigin(hit.p, hit.ng, wi);
-        r.dir = wi;
-        Hit next;
-        ++counters.rays;
-        if (counters.rayLog) counters.rayLog->push_back(r);
-        if (!intersect(r, movable, next)) break;
-        if (next.light >= 0 && (!nee || mis)) {
-            const Light& hitLight = light(next.light, movable);
-            Vec3 emitted = hitLight.emittedTowards(-wi);
-            if (mis && !emitted.isZero()) {
-                // The pdf with which this vertex's light sample would have picked the same point, in
-                // solid angle: t² / (|cos θ'| A), with A the rect's own area (one sample per rect
-                // light) or the total area of the triangle lights (one sample for all of them, the
-                // triangle picked by area). Point lights are never hit.
-                const float sampledArea =
-                    hitLight.type == Light::Type::Triangle ? float(triangleArea_) : hitLight.area();
-                const float cosLArea = std::fabs(dot(wi, hitLight.normal())) * sampledArea;
-                const float t = length(next.p - hit.p);
-                const float pLight = cosLArea > 0.f ? t * t / cosLArea : 0.f;
-                emitted *= powerHeuristic(brdf.pdf(woLocal, wiLocal), pLight);
-            }
-            Vec3& t = depth == 0 ? L.direct : L.indirect;
-            t += beta * emitted;
-        }
-        if (!nee && depth + 1 >= maxDepth_) break;
-        hit = next;
-        wo = -wi;
+void PathTracer::Impl::directLightBatch(const PathTracer& t, Vertex* v, const int* live, int count,
+                                        const Light& movable, Rng* rngs, TraceCounters& counters) {
+    constexpr int K = Accel::kPacket;
+    // The k-th samples of all paths (the same light) go together: rays towards one light.
+    struct LightSample {
+        Ray shadow;
+        Vec3 contribution;
+        bool needsRay = false, blocked = false;
+    };
+    thread_local std::vector<LightSample> samples;
+    samples.clear();
+    int first[K + 1];
+    size_t slots = 0;
+    for (int j = 0; j < count; ++j) {
+        const int i = live[j];
+        first[j] = int(samples.size());
+        lightSamples<kGlossy>(t, v[i], movable, rngs[i], counters, [&](bool needsRay, const Ray& s, auto&& contribution) {
+            samples.push_back({s, contribution(), needsRay, false});
+        });
+        slots = std::max(slots, samples.size() - size_t(first[j]));
     }
-    return L;
+    first[count] = int(samples.size());
+    Ray packet[K];
+    LightSample* owner[K];
+    bool blocked[K];
+    int m = 0;
+    auto flush = [&] {
+        if (m == 1) blocked[0] = t.occluded(packet[0], movable);
+        else t.occludedPacket(packet, m, movable, blocked);
+        for (int k = 0; k < m; ++k) owner[k]->blocked = blocked[k];
+        m = 0;
+    };
+    for (size_t k = 0; k < slots; ++k)
+        for (int j = 0; j < count; ++j) {
+            const size_t n = size_t(first[j]) + k;
+            if (n >= size_t(first[j + 1]) || !samples[n].needsRay) continue;
+            packet[m] = samples[n].shadow;
+            owner[m] = &samples[n];
+            if (++m == K) flush();
+        }
+    if (m > 0) flush();
+    // Each path's sum in the order of its samples, as directLight() takes it.
+    for (int j = 0; j < count; ++j) {
+        Vec3 sum(0.f);
+        for (int n = first[j]; n < first[j + 1]; ++n) {
+            const LightSample& ls = samples[size_t(n)];
+            if (!ls.needsRay || !ls.blocked) sum += ls.contribution;
+        }
+        Vertex& vi = v[live[j]];
+        vi.target() += vi.beta * sum;
+    }
 }
 
 template <bool kGlossy>
-Vec3 PathTracer::sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, const Frame& frame, const Vec3& woLocal,
-                              const Brdf& brdf, const Light& movable, bool brdfRayFollows, Rng& rng,
-                              TraceCounters& counters) const {
-    Vec3 sum(0.f);
-    auto evalBrdf = [&](const Vec3& wi) -> Vec3 {
-        if constexpr (kGlossy) return brdf.eval(woLocal, frame.toLocal(wi));
-        else return brdf.kd * kInvPi;
-    };
-    // Same for light samples: below the geometric surface means behind it, whatever the shading
-    // normal says (for flat surfaces n = ±ng, and cos θ > 0 already implies this).
-    const float ngSide = dot(n, ng);
-    auto visible = [&](const Vec3& wi, const Vec3& target) {
-        if (dot(wi, ng) * ngSide <= 0.f) return false;
-        Ray s;
-        s.origin = accel_.spawnOrigin(p, ng, wi);
-        const Vec3 d = target - s.origin;
-        const float dist = length(d);
-        // Stop short of the target so the light's own quad does not occlude its sample point.
-        s.tmax = dist * (1.f - 1e-4f) - accel_.offset(target);
-        if (!(s.tmax > 0.f)) return true;  // nothing fits between the point and the light
-        s.dir = d / dist;
-        ++counters.shadowRays;
-        if (counters.shadowRayLog) counters.shadowRayLog->push_back(s);
-        return !occluded(s, movable);
-    };
-    for (int li : rectLights_) {
-        const Light& l = light(li, movable);
-        const float u1 = rng.uniform(), u2 = rng.uniform();
-        const Vec3 x = l.corner + l.edge1 * u1 + l.edge2 * u2;
-        const Vec3 d = x - p;
-        const float dist2 = lengthSquared(d);
-        if (!(dist2 > 0.f)) continue;
-        const float dist = std::sqrt(dist2);
-        const Vec3 wi = d / dist;
-        const float cosTheta = dot(wi, n);
-        if (cosTheta <= 0.f) continue;
-        const Vec3 nl = cross(l.edge1, l.edge2);  // |nl| = area
-        float cosLArea = -dot(wi, nl);            // cos θ' · A
-        if (!l.oneSided) cosLArea = std::fabs(cosLArea);
-        if (cosLArea <= 0.f) continue;
-        const Vec3 f = evalBrdf(wi);
-        if (f.isZero() || !visible(wi, x)) continue;
-        // Area sampling with pdf 1/A turned into solid angle: Le f cosθ cosθ' A / d².
-        Vec3 contribution = l.radiance * f * (cosTheta * cosLArea / dist2);
-        if constexpr (kGlossy) {
-            if (brdfRayFollows) contribution *= powerHeuristic(dist2 / cosLArea, brdf.pdf(woLocal, frame.toLocal(wi)));
-        } else {
-            (void)brdfRayFollows;
-        }
-        sum += contribution;
+void PathTracer::Impl::traceBatch(const PathTracer& t, const Ray* rays, Rng* rngs, int count, TraceCounters& counters,
+                                  Radiance* out) {
+    constexpr int K = Accel::kPacket;
+    const Light& movable = t.movableDefault_;
+    const bool nee = t.estimator_ == Estimator::NEE;
+    // The camera rays as one packet against the static scene, then the movable light as intersect()
+    // adds it.
+    Hit hits[K];
+    bool found[K];
+    counters.rays += uint64_t(count);
+    if (counters.rayLog) counters.rayLog->insert(counters.rayLog->end(), rays, rays + count);
+    t.accel_.intersectPacket(rays, count, hits, found);
+    Vertex v[K];
+    int live[K];  // the paths that go on, in batch order
+    int alive = 0;
+    for (int i = 0; i < count; ++i) {
+        if (!withMovableLight(rays[i], movable, t.movable_, found[i], hits[i])) continue;
+        v[i].hit = hits[i];
+        v[i].wo = -rays[i].dir;
+        emissionSeen(t, v[i], movable);
+        if (enter<kGlossy>(t, v[i])) live[alive++] = i;
     }
-    if (!triangleLights_.empty()) {
-        // One sample for all triangle lights together: a triangle picked with probability ∝ its area
-        // (areas do not change when the movable light moves), then a uniform point on it, so the
-        // point is uniform on the emitters' total area A (pdf 1/A) and a mesh emitter of many
-        // triangles costs one shadow ray.
-        const float uPick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-        const double target = double(uPick) * triangleArea_;
-        const size_t k = std::min(size_t(std::upper_bound(triangleCdf_.begin(), triangleCdf_.end(), target) -
-                                         triangleCdf_.begin()),
-                                  triangleCdf_.size() - 1);
-        const Light& l = light(triangleLights_[k], movable);
-        const Vec3 x = l.pointAt(u1, u2);
-        const Vec3 d = x - p;
-        const float dist2 = lengthSquared(d);
-        if (dist2 > 0.f) {
-            const float dist = std::sqrt(dist2);
-            const Vec3 wi = d / dist;
-            const float cosTheta = dot(wi, n);
-            float cosL = -dot(wi, l.normal());
-            if (!l.oneSided) cosL = std::fabs(cosL);
-            if (cosTheta > 0.f && cosL > 0.f) {
-                const Vec3 f = evalBrdf(wi);
-                if (!f.isZero() && visible(wi, x)) {
-                    Vec3 contribution = l.radiance * f * (cosTheta * cosL * float(triangleArea_) / dist2);
-                    if constexpr (kGlossy) {
-                        if (brdfRayFollows)
-                            contribution *= powerHeuristic(dist2 / (cosL * float(triangleArea_)),
-                                                           brdf.pdf(woLocal, frame.toLocal(wi)));
-                    }
-                    sum += contribution;
-                }
-            }
+    // The paths in lockstep over their first kLockstepVertices vertices: the light samples of all
+    // live vertices, then their bounce rays, each as packets (Embree traces even incoherent rays
+    // faster as a packet than one by one, bench/bench_render.cpp). Deeper, Russian roulette has
+    // thinned the batch and the bookkeeping of sparse packets costs more than they save, so the paths
+    // go on one by one. The hits of misses are never read, so `hits` is reused.
+    constexpr int kLockstepVertices = 2;
+    Ray bounce[K];
+    Vec3 wiLocal[K];
+    int lane[K];
+    while (alive > 1 && v[live[0]].depth < kLockstepVertices) {
+        if (nee) directLightBatch<kGlossy>(t, v, live, alive, movable, rngs, counters);
+        int m = 0;
+        for (int j = 0; j < alive; ++j)
+            if (bounceRay<kGlossy>(t, v[live[j]], rngs[live[j]], counters, bounce[m], wiLocal[m])) lane[m++] = live[j];
+        if (m == 1) found[0] = t.accel_.intersect(bounce[0], hits[0]);
+        else if (m > 1) t.accel_.intersectPacket(bounce, m, hits, found);
+        alive = 0;
+        for (int j = 0; j < m; ++j) {
+            const int i = lane[j];
+            found[j] = withMovableLight(bounce[j], movable, t.movable_, found[j], hits[j]);
+            if (arrive(t, v[i], movable, bounce[j], wiLocal[j], found[j], hits[j]) && enter<kGlossy>(t, v[i]))
+                live[alive++] = i;
         }
     }
-    for (int li : pointLights_) {
-        const Light& l = light(li, movable);
-        const Vec3 d = l.position - p;
-        const float dist2 = lengthSquared(d);
-        if (!(dist2 > 0.f)) continue;
-        const Vec3 wi = d / std::sqrt(dist2);
-        const float cosTheta = dot(wi, n);
-        if (cosTheta <= 0.f) continue;
-        const Vec3 f = evalBrdf(wi);
-        if (f.isZero() || !visible(wi, l.position)) continue;
-        sum += l.intensity * f * (cosTheta / dist2);
+    // The paths left go on one by one as in shade(), from the vertex enter() has set up.
+    for (int j = 0; j < alive; ++j) {
+        Vertex& last = v[live[j]];
+        Rng& rng = rngs[live[j]];
+        if (nee) directLight<kGlossy>(t, last, movable, rng, counters);
+        if (scatter<kGlossy>(t, last, movable, rng, counters)) finish<kGlossy>(t, last, movable, rng, counters);
     }
-    return sum;
+    for (int i = 0; i < count; ++i) out[i] = v[i].L;
 }
 
 }  // namespace rrf

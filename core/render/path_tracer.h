@@ -57,6 +57,13 @@ public:
     }
     /// Same, with the movable light replaced by `movable` (from movableLightAt()).
     Radiance trace(const Ray& ray, const Light& movable, Rng& rng, TraceCounters& counters) const;
+    /// trace() for `count` ≤ Accel::kPacket camera rays at once, with the movable light where the scene
+    /// puts it: out[i] = trace(rays[i], rngs[i], counters). The paths advance in lockstep over their
+    /// first vertices, their rays going to Embree as packets (the camera rays as a coherent one, from
+    /// one origin), and then one by one; each path keeps its own random numbers and trace()'s
+    /// arithmetic, so the results are trace()'s up to the edge cases in which a packet and a single
+    /// ray disagree.
+    void traceBatch(const Ray* rays, Rng* rngs, int count, TraceCounters& counters, Radiance* out) const;
     /// Radiance leaving the surface point `hit` towards `wo` (unit, pointing away from the surface).
     /// Used by the data generator, which shoots each record's first ray once and estimates many paths.
     Radiance shade(const Hit& hit, const Vec3& wo, Rng& rng, TraceCounters& counters) const {
@@ -90,14 +97,9 @@ public:
     const Scene& scene() const { return scene_; }
 
 private:
-    template <bool kGlossy>
-    Radiance shadeImpl(Hit hit, Vec3 wo, const Light& movable, Rng& rng, TraceCounters& counters) const;
-    /// Light sampling at a vertex; `brdfRayFollows`: the vertex goes on to bounce, so in a glossy scene
-    /// its light samples share the rect lights with the BRDF ray (power heuristic, see above).
-    template <bool kGlossy>
-    Vec3 sampleDirect(const Vec3& p, const Vec3& ng, const Vec3& n, const Frame& frame, const Vec3& woLocal,
-                      const Brdf& brdf, const Light& movable, bool brdfRayFollows, Rng& rng,
-                      TraceCounters& counters) const;
+    /// The path-tracing loop in steps (one vertex's setup, its light samples, its bounce), so that
+    /// trace(), shade() and traceBatch() share them (path_tracer.cpp).
+    struct Impl;
 
     const Scene& scene_;
     const Accel& accel_;

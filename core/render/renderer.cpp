@@ -113,24 +113,45 @@ void Renderer::addSample(Pixel& px, const Radiance& L) {
 
 void Renderer::renderTile(int x0, int y0, int x1, int y1, int samples, TraceCounters& counters, uint64_t& nonFinite,
                           uint64_t& accepted) {
+    // Samples go to the tracer in batches of Accel::kPacket in the tile's pixel and sample order (a
+    // row of pixels, or one pixel's samples), so their camera rays and first shadow rays are coherent
+    // packets; each pixel still adds its samples in sample order.
+    constexpr int K = Accel::kPacket;
+    Ray rays[K];
+    Rng rngs[K] = {Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0),
+                   Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0)};
+    Pixel* owners[K];
+    Radiance out[K];
+    int n = 0;
+    auto flush = [&] {
+        tracer_.traceBatch(rays, rngs, n, counters, out);
+        for (int j = 0; j < n; ++j) {
+            const Radiance& L = out[j];
+            if (!L.direct.isFinite() || !L.indirect.isFinite()) {
+                ++nonFinite;
+                continue;
+            }
+            addSample(*owners[j], L);
+            ++accepted;
+        }
+        n = 0;
+    };
     for (int y = y0; y < y1; ++y) {
         if (y % options_.rowStride != options_.rowOffset) continue;
         for (int x = x0; x < x1; ++x) {
             const uint64_t index = uint64_t(y) * uint64_t(options_.width) + uint64_t(x);
             Pixel& px = pass_[index];
+            const uint64_t key = Rng::streamKey(options_.seed, index);
             for (int s = 0; s < samples; ++s) {
-                Rng rng(options_.seed, index, px.next++);
+                Rng& rng = rngs[n] = Rng::ofStream(key, px.next++);
                 const float jx = rng.uniform(), jy = rng.uniform();
-                const Radiance L = tracer_.trace(camera_.generate(x, y, jx, jy), rng, counters);
-                if (!L.direct.isFinite() || !L.indirect.isFinite()) {
-                    ++nonFinite;
-                    continue;
-                }
-                addSample(px, L);
-                ++accepted;
+                rays[n] = camera_.generate(x, y, jx, jy);
+                owners[n] = &px;
+                if (++n == K) flush();
             }
         }
     }
+    if (n > 0) flush();
 }
 
 bool Renderer::runBidirectionalPass(int samples, TraceCounters& counters, uint64_t& nonFinite, uint64_t& accepted) {

@@ -6,6 +6,16 @@
 namespace rrf {
 
 namespace {
+/// Embree's traversal flag for a packet: coherent when all rays leave from one point (camera rays,
+/// the shadow rays of one receiver), where the packet shares its traversal; incoherent otherwise
+/// (bounce rays, shadow rays of many points), where Embree's incoherent packet traversal is the
+/// faster one (bench/bench_render.cpp).
+RTCIntersectContextFlags packetFlags(const Ray* rays, int count) {
+    for (int i = 1; i < count; ++i)
+        if (!(rays[i].origin == rays[0].origin)) return RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    return RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+}
+
 void embreeError(void*, RTCError code, const char* str) {
     // Errors are turned into exceptions where they are detected (rtcGetDeviceError after builds);
     // this callback only exists so Embree does not print to stderr behind the user's back.
@@ -126,22 +136,63 @@ bool Accel::intersect(const Ray& ray, Hit& hit) const {
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    const GeomInfo& g = geoms_[rh.hit.geomID];
-    hit.t = rh.ray.tfar;
-    hit.p = ray.origin + ray.dir * rh.ray.tfar;
+    fillHit(ray, rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v,
+            Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), hit);
+    return true;
+}
+
+void Accel::fillHit(const Ray& ray, float t, unsigned geomID, unsigned primID, float u, float v, const Vec3& embreeNg,
+                    Hit& hit) const {
+    const GeomInfo& g = geoms_[geomID];
+    hit.t = t;
+    hit.p = ray.origin + ray.dir * t;
     hit.object = g.object;
     hit.light = g.light;
-    hit.prim = rh.hit.primID;
+    hit.prim = primID;
     if (g.sphere) {
         // Embree's Ng for spheres is (p − c) unnormalised; normalise our own for precision.
-        const Vec3 n(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-        const float len = length(n);
-        hit.ng = len > 0.f ? n / len : normalize(hit.p - g.center);
+        const float len = length(embreeNg);
+        hit.ng = len > 0.f ? embreeNg / len : normalize(hit.p - g.center);
     } else {
-        hit.ng = g.normals[rh.hit.primID];
+        hit.ng = g.normals[primID];
     }
-    hit.ns = g.smooth ? shadingNormal(g, rh.hit.primID, rh.hit.u, rh.hit.v, hit.ng) : Vec3(0.f);
-    return true;
+    hit.ns = g.smooth ? shadingNormal(g, primID, u, v, hit.ng) : Vec3(0.f);
+}
+
+void Accel::intersectPacket(const Ray* rays, int count, Hit* hits, bool* found) const {
+    if (count <= 0) return;
+    if (count > kPacket) throw std::invalid_argument("Accel::intersectPacket: more than 16 rays");
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = packetFlags(rays, count);
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[kPacket];
+    for (int i = 0; i < kPacket; ++i) {
+        // Lanes past `count` repeat ray 0 but are masked off (valid = 0), so Embree never reads garbage.
+        const Ray& ray = rays[i < count ? i : 0];
+        valid[i] = i < count ? -1 : 0;
+        rh.ray.org_x[i] = ray.origin.x;
+        rh.ray.org_y[i] = ray.origin.y;
+        rh.ray.org_z[i] = ray.origin.z;
+        rh.ray.dir_x[i] = ray.dir.x;
+        rh.ray.dir_y[i] = ray.dir.y;
+        rh.ray.dir_z[i] = ray.dir.z;
+        rh.ray.tnear[i] = ray.tmin;
+        rh.ray.tfar[i] = ray.tmax;
+        rh.ray.time[i] = 0.f;
+        rh.ray.mask[i] = 0xFFFFFFFFu;
+        rh.ray.id[i] = unsigned(i);
+        rh.ray.flags[i] = 0;
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, scene_, &ctx, &rh);
+    for (int i = 0; i < count; ++i) {
+        found[i] = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        if (found[i])
+            fillHit(rays[i], rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i],
+                    Vec3(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]), hits[i]);
+    }
 }
 
 Vec3 Accel::shadingNormal(const GeomInfo& g, uint32_t prim, float u, float v, const Vec3& ng) {
@@ -181,7 +232,7 @@ void Accel::occludedPacket(const Ray* rays, int count, bool* blocked) const {
     if (count > kPacket) throw std::invalid_argument("Accel::occludedPacket: more than 16 rays");
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    ctx.flags = packetFlags(rays, count);
     alignas(64) RTCRay16 r;
     alignas(64) int valid[kPacket];
     for (int i = 0; i < kPacket; ++i) {

@@ -56,12 +56,19 @@ public:
     /// True if anything lies in [ray.tmin, ray.tmax].
     bool occluded(const Ray& ray) const;
     /// occluded() for `count` ≤ kPacket rays at once (blocked[i] = occluded(rays[i])), traced as one
-    /// Embree packet marked coherent: the shadow rays of one receiver to one light leave from the same
-    /// origin towards nearby points, so the packet shares its traversal and runs several times faster
-    /// than the rays one by one (bench/bench_direct.cpp). Same answers as occluded() up to the edge
-    /// cases of two watertight ray tests.
+    /// Embree packet, marked coherent when the rays share their origin: the shadow rays of one
+    /// receiver to one light leave from the same origin towards nearby points, so the packet shares
+    /// its traversal and runs several times faster than the rays one by one (bench/bench_direct.cpp);
+    /// rays from many points go as an incoherent packet, still faster than one by one
+    /// (bench/bench_render.cpp). Same answers as occluded() up to the edge cases of two watertight ray
+    /// tests.
     static constexpr int kPacket = 16;
     void occludedPacket(const Ray* rays, int count, bool* blocked) const;
+    /// intersect() for `count` ≤ kPacket rays at once (found[i] = intersect(rays[i], hits[i]); hits of
+    /// misses are left as they were), traced as one Embree packet, coherent or not as in
+    /// occludedPacket(): camera rays of neighbouring pixels share most of their traversal. Same hits
+    /// as intersect() up to the edge cases of two watertight ray tests.
+    void intersectPacket(const Ray* rays, int count, Hit* hits, bool* found) const;
 
     /// Ray offset scale for self-intersection avoidance: a hit point p is moved by
     /// offset(p) along the normal. Relative to both the point's magnitude and the scene's size so
@@ -92,6 +99,9 @@ private:
                  GeomInfo info);
     /// Hit's ns for a hit at barycentrics (u, v) of triangle `prim` of `g` (Embree's convention).
     static Vec3 shadingNormal(const GeomInfo& g, uint32_t prim, float u, float v, const Vec3& ng);
+    /// The Hit of `ray` from Embree's answer (t, ids, barycentrics, Embree's Ng for spheres).
+    void fillHit(const Ray& ray, float t, unsigned geomID, unsigned primID, float u, float v, const Vec3& embreeNg,
+                 Hit& hit) const;
     void addSphere(const Vec3& c, float r, GeomInfo info);
 
     RTCDevice device_ = nullptr;
