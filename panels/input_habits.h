@@ -10,6 +10,7 @@ struct ImGuiIO;
 
 namespace rrf::panels {
 
+/// Sets the habits above on `io` (once, after ImGui::CreateContext).
 void configureInput(ImGuiIO& io);
 
 }  // namespace rrf::panels

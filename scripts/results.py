@@ -139,13 +139,19 @@ def cpu_name():
 
 
 def clean_output(text):
-    """Progress lines redraw themselves with carriage returns: keep what each line ended as."""
-    return "\n".join(line.split("\r")[-1] for line in text.splitlines()).strip("\n")
+    """Progress lines redraw themselves with carriage returns: keep what each line ended as (split on
+    newlines only: str.splitlines would split at every carriage return too)."""
+    return "\n".join(line.split("\r")[-1] for line in text.split("\n")).strip("\n")
+
+
+def command_text(section):
+    """The command as a record shows it (one step a line)."""
+    return section.command.replace(" && ", " &&\n  ")
 
 
 def kept(section, text):
     if section.keep.startswith("tail:"):
-        lines = text.splitlines()
+        lines = text.split("\n")
         n = int(section.keep[5:])
         return ("[... %d earlier lines]\n" % (len(lines) - n) if len(lines) > n else "") + "\n".join(lines[-n:])
     return text
@@ -160,13 +166,12 @@ def write_whole(path, text):
     os.replace(tmp, path)
 
 
-def run_section(section, build):
+def run_section(section, build, commit):
     scratch = tempfile.mkdtemp(prefix="rrf-results-")
     env = dict(os.environ, BUILD=build, ROOT=ROOT, XDG_DATA_HOME=os.path.join(scratch, "xdg-data"),
                XDG_CONFIG_HOME=os.path.join(scratch, "xdg-config"))
     load = os.getloadavg()
     started = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    commit = commit_label()
     print("results: %s: %s" % (section.ident, section.command), flush=True)
     t0 = time.monotonic()
     try:
@@ -193,7 +198,7 @@ def run_section(section, build):
     body = "\n\n".join(parts).replace("```", "'''")
     text = ("<!-- results: %s -->\n## %s\n\n%s\n\n```sh\n%s\n```\n\n%s, commit %s; %s, %d cores, load average "
             "%.1f at the start; %.0f s.\n\n```text\n%s\n```\n") % (
-        meta, section.title, section.about, section.command.replace(" && ", " &&\n  "), started, commit,
+        meta, section.title, section.about, command_text(section), started, commit,
         cpu_name(), os.cpu_count() or 0, load[0], seconds, body)
     write_whole(record_path(section.ident), text)
     print("results: %s recorded (%.0f s)" % (section.ident, seconds), flush=True)
@@ -241,6 +246,14 @@ def main():
                 print("docs/results.md is not the assembly of docs/results/*.md: run scripts/results.py "
                       "(with no sections it only reassembles) instead of editing it by hand")
                 return 1
+        for s in SECTIONS:
+            path = record_path(s.ident)
+            if os.path.isfile(path):
+                with open(path) as f:
+                    if "```sh\n%s\n```" % command_text(s) not in f.read():
+                        print("docs/results/%s.md was not made by its section's command (%s): run "
+                              "scripts/results.py %s" % (s.ident, s.command, s.ident))
+                        return 1
         for name in (os.listdir(RECORDS) if os.path.isdir(RECORDS) else []):
             if name.endswith(".md") and name[:-3] not in known:
                 print("docs/results/%s belongs to no section of scripts/results.py" % name)
@@ -252,7 +265,9 @@ def main():
         return 2
     build = os.path.abspath(os.environ.get("RRF_BUILD_DIR", os.path.join(ROOT, "build")))
     chosen = SECTIONS if args.all else [known[i] for i in args.sections]
-    ok = all([run_section(s, build) for s in chosen])
+    # The commit is read once, before any record is rewritten (a rewritten record is a change).
+    commit = commit_label()
+    ok = all([run_section(s, build, commit) for s in chosen])
     write_whole(RESULTS, assembly())
     print("results: %s assembled" % os.path.relpath(RESULTS, ROOT))
     return 0 if ok else 1

@@ -99,6 +99,22 @@ TEST(RunRecords, KnownFiguresReadIntoFields) {
     EXPECT_TRUE(r.settings.other.empty());
 }
 
+TEST(RunRecords, ASettingsSectionThisBuildCannotReadKeepsTheRun) {
+    // A newer build's trainer type: the run stays (its figures with it), the section is written back
+    // as it was, and the warning names the file, the pointer and what was expected.
+    json doc = trainRun();
+    doc["settings"]["trainer"] = {{"type", "future_optimizer"}};
+    const json runs = json::array({doc});
+    std::vector<std::string> warnings;
+    const std::vector<rrf::Run> read = readRuns(JsonReader(runs, kFile, "/runs"), warnings);
+    ASSERT_EQ(read.size(), 1u) << "the run is kept";
+    EXPECT_FALSE(read[0].settings.trainer.has_value());
+    EXPECT_EQ(read[0].metrics.networks, 7);
+    ASSERT_EQ(warnings.size(), 1u);
+    expectMentions(warnings[0], {kFile, "/runs/0/settings/trainer", "kept as written"});
+    EXPECT_EQ(read[0].toJson(), doc) << "saving writes the section back unchanged";
+}
+
 TEST(RunRecords, UnknownKeysAndNullFiguresComeBackVerbatim) {
     json doc = trainRun();
     doc["settings"]["future_setting"] = {{"a", json::array({1, "b"})}};

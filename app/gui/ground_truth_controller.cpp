@@ -76,6 +76,8 @@ bool GroundTruthController::start() {
     std::snprintf(name, sizeof name, "ground truth %dx%d, %d spp", options.width, options.height, options.spp);
     const bool started = job_.start(name, [session](JobContext& ctx) { session->run(ctx); });
     if (!started) return false;
+    // This render is of the scene as it is now: a restart an earlier edit asked for is done by it.
+    restart_ = false;
     session_ = session;
     revision_ = 0;
     stamp_ = panels::ImageStamp{state_.project.scene.lightPosition(), state_.project.scene.contentHash(),

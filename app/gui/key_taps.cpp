@@ -26,7 +26,7 @@ void KeyTaps::event(int key, int scancode, int action, int mods) {
     forward_(key, scancode, action, mods);
 }
 
-void KeyTaps::frameStarted() {
+void KeyTaps::frameEnded() {
     for (const Event& e : held_) forward_(e.key, e.scancode, e.action, e.mods);
     held_.clear();
     pressedThisFrame_.clear();

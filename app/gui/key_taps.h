@@ -4,9 +4,11 @@
 /// press and release both arrive between two frames (a quick typist, a loaded machine, a frame of
 /// 100 ms) leaves the key up at the next frame, so ImGui never sees it pressed and the shortcut or
 /// the typed key is lost. KeyTaps sits between GLFW and the backend: a release of a key pressed since
-/// the current frame began is held back until that frame has read the key as down
-/// (frameStarted, right after ImGui::NewFrame), so the frame sees the press and the next one the
-/// release. Every other event passes through at once, in order.
+/// the last frame ended is held back until the next frame has run (frameEnded, after the UI has
+/// drawn and acted), so that whole frame sees the key down and the one after sees it up. The whole
+/// frame matters: the backend recomputes io.KeyCtrl/KeyShift at once from the keys' states, and the
+/// shortcut table compares them while the UI runs, so a Ctrl+S tap needs Ctrl down until then.
+/// Every other event passes through at once, in order.
 
 #include <functional>
 #include <vector>
@@ -23,10 +25,10 @@ public:
 
     /// One key event from GLFW (the window's key callback).
     void event(int key, int scancode, int action, int mods);
-    /// Call after ImGui::NewFrame: the frame has read the keys, so the releases held back for it go
+    /// Call once the frame's UI has run (after ImGui::Render): the releases held back for it go
     /// through now and the next frame sees them.
-    void frameStarted();
-    /// Releases held back for the current frame (for tests).
+    void frameEnded();
+    /// Releases held back for the coming frame (for tests).
     size_t heldReleases() const { return held_.size(); }
 
 private:
@@ -34,7 +36,7 @@ private:
         int key, scancode, action, mods;
     };
     Forward forward_;
-    std::vector<int> pressedThisFrame_;  ///< keys pressed since the last frameStarted
+    std::vector<int> pressedThisFrame_;  ///< keys pressed since the last frameEnded
     std::vector<Event> held_;            ///< their releases, in arrival order
 };
 

@@ -121,11 +121,11 @@ void Window::beginFrame() {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    keyTaps_.frameStarted();
 }
 
 void Window::render() {
     ImGui::Render();
+    keyTaps_.frameEnded();
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     glViewport(0, 0, w, h);

@@ -35,7 +35,7 @@ constexpr int kRows = kLanes >= 16 ? 8 : 4;
 constexpr int kMaxWidth = 64;
 /// The widest layer its backward pass takes. Its weight gradients go through memory once per tile
 /// and weight, which costs more than the GEMM's packing from 32-wide layers on in the AVX-512 build
-/// (bench_nn, "Adam training" rows; docs/results.md, "Kernels"); the 20-10 network gains in both.
+/// (bench_nn, "Adam training" rows; docs/results-history.md, "Kernels: the blocked small-layer kernel"); the 20-10 network gains in both.
 constexpr int kMaxBackwardWidth = 24;
 
 // kLanes packets transposed in registers. The packet type's vector attribute is not part of the

@@ -146,20 +146,36 @@ json writeFields(const S& s, Visit visit) {
 const char* const kSettingsKeys[] = {"render",  "light_position", "scene_hash", "scene_overrides", "network",
                                      "trainer", "dataset",        "sampling",   "kernel"};
 
+/// Reads the settings section `key` with `read` into `field`. A section this build cannot read (one a
+/// newer build wrote: a trainer type, an encoding or a key it does not know) must not cost the user
+/// the run: its JSON is kept in `other` and written back as it was, with a warning, and the run
+/// shows without those settings (re-opening it cannot restore them).
+template <class T, class Read>
+void readSection(const JsonReader& j, const char* key, std::optional<T>& field, RunSettings& s,
+                 std::vector<std::string>& warnings, Read read) {
+    const auto v = j.find(key);
+    if (!v) return;
+    try {
+        field = read(*v);
+    } catch (const InputError& e) {
+        warnings.push_back(std::string(e.what()) + " (kept as written; this run's " + key + " settings are not used)");
+        s.other[key] = v->value();
+    }
+}
+
 RunSettings settingsFromJson(const JsonReader& j, std::vector<std::string>& warnings) {
     j.requireObject();
     RunSettings s;
-    if (const auto v = j.find("render")) s.render = parseRenderSettings(*v);
+    readSection(j, "render", s.render, s, warnings, [](const JsonReader& v) { return parseRenderSettings(v); });
     if (const auto v = j.find("light_position")) s.lightPosition = v->vec3();
     if (const auto v = j.find("scene_hash")) s.sceneHash = v->string();
-    if (const auto v = j.find("scene_overrides")) s.sceneOverrides = SceneOverrides::fromJson(*v, warnings);
-    if (const auto v = j.find("trainer")) s.trainer = TrainerConfig::fromJson(*v);
-    if (const auto v = j.find("network")) {
-        s.network = NetworkSettings::fromJson(*v);
-        if (s.trainer) s.network->options.trainer = *s.trainer;
-    }
+    readSection(j, "scene_overrides", s.sceneOverrides, s, warnings,
+                [&](const JsonReader& v) { return SceneOverrides::fromJson(v, warnings); });
+    readSection(j, "trainer", s.trainer, s, warnings, [](const JsonReader& v) { return TrainerConfig::fromJson(v); });
+    readSection(j, "network", s.network, s, warnings, [](const JsonReader& v) { return NetworkSettings::fromJson(v); });
+    if (s.network && s.trainer) s.network->options.trainer = *s.trainer;
     if (const auto v = j.find("dataset")) s.dataset = v->string();
-    if (const auto v = j.find("sampling")) s.sampling = SamplingSettings::fromJson(*v);
+    readSection(j, "sampling", s.sampling, s, warnings, [](const JsonReader& v) { return SamplingSettings::fromJson(v); });
     if (const auto v = j.find("kernel")) s.kernel = v->string();
     for (auto it = j.value().begin(); it != j.value().end(); ++it)
         if (std::find_if(std::begin(kSettingsKeys), std::end(kSettingsKeys),

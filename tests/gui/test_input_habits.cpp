@@ -82,17 +82,24 @@ TEST_F(InputHabits, DraggingStillChangesTheValueAndDoesNotOpenTheField) {
 
 class KeyTapsTest : public ImGuiFixture {
 protected:
-    bool pressed = false, down = false;
-    /// A frame as the window runs one: NewFrame, then KeyTaps::frameStarted, then the panels.
+    bool pressed = false, down = false, ctrl = false;
+    /// A frame as the window runs one: NewFrame, the panels (reading keys and modifiers), Render,
+    /// then KeyTaps::frameEnded.
     void frameWith(KeyTaps* taps, int key) {
         frame([&] {
-            if (taps) taps->frameStarted();
             pressed = ImGui::IsKeyPressed(key, false);
             down = ImGui::IsKeyDown(key);
+            ctrl = ImGui::GetIO().KeyCtrl;
         });
+        if (taps) taps->frameEnded();
     }
-    /// The ImGui GLFW backend's effect of a key event: the key's down state.
-    static void backend(int key, int, int action, int) { ImGui::GetIO().KeysDown[key] = action != GLFW_RELEASE; }
+    /// What ImGui 1.86's GLFW backend does with a key event: the key's down state, and the
+    /// modifiers recomputed from the keys at once.
+    static void backend(int key, int, int action, int) {
+        ImGuiIO& io = ImGui::GetIO();
+        io.KeysDown[key] = action != GLFW_RELEASE;
+        io.KeyCtrl = io.KeysDown[GLFW_KEY_LEFT_CONTROL] || io.KeysDown[GLFW_KEY_RIGHT_CONTROL];
+    }
 };
 
 TEST_F(KeyTapsTest, ATapWithinOneFrameIsSeenPressedThenReleased) {
@@ -107,6 +114,23 @@ TEST_F(KeyTapsTest, ATapWithinOneFrameIsSeenPressedThenReleased) {
     frameWith(&taps, GLFW_KEY_F1);
     EXPECT_FALSE(down);
     EXPECT_FALSE(pressed);
+}
+
+TEST_F(KeyTapsTest, AShortcutTappedWithinOneFrameKeepsItsModifier) {
+    // Ctrl+S pressed and let go between two frames: the frame's UI sees S pressed with Ctrl down,
+    // as the shortcut table asks (workbench.cpp compares io.KeyCtrl while the UI runs).
+    KeyTaps taps(backend);
+    frameWith(&taps, GLFW_KEY_S);
+    taps.event(GLFW_KEY_LEFT_CONTROL, 0, GLFW_PRESS, 0);
+    taps.event(GLFW_KEY_S, 0, GLFW_PRESS, GLFW_MOD_CONTROL);
+    taps.event(GLFW_KEY_S, 0, GLFW_RELEASE, GLFW_MOD_CONTROL);
+    taps.event(GLFW_KEY_LEFT_CONTROL, 0, GLFW_RELEASE, 0);
+    frameWith(&taps, GLFW_KEY_S);
+    EXPECT_TRUE(pressed);
+    EXPECT_TRUE(ctrl);
+    frameWith(&taps, GLFW_KEY_S);
+    EXPECT_FALSE(down);
+    EXPECT_FALSE(ctrl);
 }
 
 TEST_F(KeyTapsTest, WithoutItTheSameTapIsLost) {
