@@ -58,13 +58,7 @@ bool EvaluationController::compareRunPair() {
     const uint64_t sceneHash = state_.project.scene.contentHash();
     auto scene = std::make_shared<const Scene>(state_.project.scene);
     const PredictionSettings settings = state_.project.prediction;
-    const Camera camera = [&] {
-        const RenderOptions o = renderOptionsFor(state_.project.scene, state_.project.render, kGuiRenderPasses);
-        Camera c = state_.project.scene.camera;
-        c.width = o.width;
-        c.height = o.height;
-        return c;
-    }();
+    const Camera camera = groundTruthCamera(state_.project.scene, state_.project.render);
     std::shared_ptr<Reference> reference;
     if (!state_.groundTruth.empty()) {
         reference = std::make_shared<Reference>();

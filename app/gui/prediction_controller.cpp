@@ -31,15 +31,7 @@ struct TimedPrediction {
 };
 
 namespace {
-/// The ground truth's camera: the scene camera at the render settings' size, so the prediction
-/// lines up pixel for pixel with the ground truth and the error map.
-Camera viewCamera(const Project& project) {
-    const RenderOptions o = renderOptionsFor(project.scene, project.render, kGuiRenderPasses);
-    Camera c = project.scene.camera;
-    c.width = o.width;
-    c.height = o.height;
-    return c;
-}
+Camera viewCamera(const Project& project) { return groundTruthCamera(project.scene, project.render); }
 }  // namespace
 
 /// The leaf of every view pixel, for the prediction of revision `forPrediction`.

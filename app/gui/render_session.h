@@ -90,4 +90,14 @@ constexpr const char* kStoredGroundTruthLabel = "ground truth (stored)";
 /// refresh every pass; beyond that, passes of spp/64 keep snapshot copies a small part of the work.
 constexpr int kGuiRenderPasses = 64;
 
+/// The ground truth's camera: the scene camera at the render settings' size, so that a prediction
+/// made with it lines up pixel for pixel with the ground truth and the error map.
+inline Camera groundTruthCamera(const Scene& scene, const RenderSettings& settings) {
+    const RenderOptions o = renderOptionsFor(scene, settings, kGuiRenderPasses);
+    Camera c = scene.camera;
+    c.width = o.width;
+    c.height = o.height;
+    return c;
+}
+
 }  // namespace rrf

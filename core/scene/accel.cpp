@@ -10,6 +10,27 @@ namespace {
 /// the shadow rays of one receiver), where the packet shares its traversal; incoherent otherwise
 /// (bounce rays, shadow rays of many points), where Embree's incoherent packet traversal is the
 /// faster one (bench/bench_render.cpp).
+/// Embree's 16-wide ray layout of `rays` (count ≤ 16) and its lane mask. Lanes past `count` repeat
+/// ray 0 but are masked off (valid = 0), so Embree never reads garbage.
+void packRays(const Ray* rays, int count, RTCRay16& r, int* valid) {
+    for (int i = 0; i < 16; ++i) {
+        const Ray& ray = rays[i < count ? i : 0];
+        valid[i] = i < count ? -1 : 0;
+        r.org_x[i] = ray.origin.x;
+        r.org_y[i] = ray.origin.y;
+        r.org_z[i] = ray.origin.z;
+        r.dir_x[i] = ray.dir.x;
+        r.dir_y[i] = ray.dir.y;
+        r.dir_z[i] = ray.dir.z;
+        r.tnear[i] = ray.tmin;
+        r.tfar[i] = ray.tmax;
+        r.time[i] = 0.f;
+        r.mask[i] = 0xFFFFFFFFu;
+        r.id[i] = unsigned(i);
+        r.flags[i] = 0;
+    }
+}
+
 RTCIntersectContextFlags packetFlags(const Ray* rays, int count) {
     for (int i = 1; i < count; ++i)
         if (!(rays[i].origin == rays[0].origin)) return RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
@@ -167,22 +188,8 @@ void Accel::intersectPacket(const Ray* rays, int count, Hit* hits, bool* found) 
     ctx.flags = packetFlags(rays, count);
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[kPacket];
+    packRays(rays, count, rh.ray, valid);
     for (int i = 0; i < kPacket; ++i) {
-        // Lanes past `count` repeat ray 0 but are masked off (valid = 0), so Embree never reads garbage.
-        const Ray& ray = rays[i < count ? i : 0];
-        valid[i] = i < count ? -1 : 0;
-        rh.ray.org_x[i] = ray.origin.x;
-        rh.ray.org_y[i] = ray.origin.y;
-        rh.ray.org_z[i] = ray.origin.z;
-        rh.ray.dir_x[i] = ray.dir.x;
-        rh.ray.dir_y[i] = ray.dir.y;
-        rh.ray.dir_z[i] = ray.dir.z;
-        rh.ray.tnear[i] = ray.tmin;
-        rh.ray.tfar[i] = ray.tmax;
-        rh.ray.time[i] = 0.f;
-        rh.ray.mask[i] = 0xFFFFFFFFu;
-        rh.ray.id[i] = unsigned(i);
-        rh.ray.flags[i] = 0;
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
@@ -235,23 +242,7 @@ void Accel::occludedPacket(const Ray* rays, int count, bool* blocked) const {
     ctx.flags = packetFlags(rays, count);
     alignas(64) RTCRay16 r;
     alignas(64) int valid[kPacket];
-    for (int i = 0; i < kPacket; ++i) {
-        // Lanes past `count` repeat ray 0 but are masked off (valid = 0), so Embree never reads garbage.
-        const Ray& ray = rays[i < count ? i : 0];
-        valid[i] = i < count ? -1 : 0;
-        r.org_x[i] = ray.origin.x;
-        r.org_y[i] = ray.origin.y;
-        r.org_z[i] = ray.origin.z;
-        r.dir_x[i] = ray.dir.x;
-        r.dir_y[i] = ray.dir.y;
-        r.dir_z[i] = ray.dir.z;
-        r.tnear[i] = ray.tmin;
-        r.tfar[i] = ray.tmax;
-        r.time[i] = 0.f;
-        r.mask[i] = 0xFFFFFFFFu;
-        r.id[i] = unsigned(i);
-        r.flags[i] = 0;
-    }
+    packRays(rays, count, r, valid);
     rtcOccluded16(valid, scene_, &ctx, &r);
     for (int i = 0; i < count; ++i) blocked[i] = r.tfar[i] < 0.f;  // Embree sets tfar = -inf on a hit
 }

@@ -25,7 +25,28 @@ struct Workspace {
 };
 }  // namespace
 
-using DockingTest = ImGuiFixture;
+class DockingTest : public ImGuiFixture {
+protected:
+    /// Presses on the left pane's first tab ("Project", top left), leaves the tab bar downwards, then
+    /// carries the tab to (x, y) and lets go there, a frame per step, as a user's drag does.
+    void carryProjectTab(Workspace& w, float x, float y) {
+        mouse(24, 16, false);
+        for (int i = 0; i < 3; ++i) frame([&] { w.draw(); });
+        mouse(24, 16, true);
+        frame([&] { w.draw(); });
+        for (int i = 1; i <= 10; ++i) {
+            mouse(24.f, 16.f + 10.f * float(i), true);
+            frame([&] { w.draw(); });
+        }
+        for (int i = 1; i <= 20; ++i) {
+            mouse(24.f + (x - 24.f) * float(i) / 20.f, 116.f + (y - 116.f) * float(i) / 20.f, true);
+            frame([&] { w.draw(); });
+        }
+        mouse(x, y, false);
+        frame([&] { w.draw(); });
+        frame([&] { w.draw(); });
+    }
+};
 
 TEST(DropSide, EdgeQuartersSplitTheMiddleJoins) {
     EXPECT_EQ(dropSideAt(0.5f, 0.5f), DropSide::Centre);
@@ -41,21 +62,7 @@ TEST_F(DockingTest, DraggingATabOntoAPaneEdgeSplitsIt) {
     Workspace w;
     // Press on the left pane's first tab ("Project", top left), leave the tab bar downwards, then
     // carry the tab to the right edge of the Views pane (right of x = 0.27 · 1600, upper part).
-    mouse(24, 16, false);
-    for (int i = 0; i < 3; ++i) frame([&] { w.draw(); });
-    mouse(24, 16, true);
-    frame([&] { w.draw(); });
-    for (int i = 1; i <= 10; ++i) {
-        mouse(24.f, 16.f + 10.f * float(i), true);
-        frame([&] { w.draw(); });
-    }
-    for (int i = 1; i <= 20; ++i) {
-        mouse(24.f + (1540.f - 24.f) * float(i) / 20.f, 116.f + (300.f - 116.f) * float(i) / 20.f, true);
-        frame([&] { w.draw(); });
-    }
-    mouse(1540, 300, false);
-    frame([&] { w.draw(); });
-    frame([&] { w.draw(); });
+    carryProjectTab(w, 1540, 300);
     EXPECT_TRUE(w.changed);
     ASSERT_EQ(w.layout.panes().size(), 4u);
     const PaneNode& top = w.layout.root.children[1].children[0];
@@ -69,21 +76,7 @@ TEST_F(DockingTest, DroppingATabOnAnotherPanesTabBarJoinsThatPane) {
     Workspace w;
     // Carry "Project" as above, then drop it on the Views pane's tab bar (top of the right column,
     // inside the pane's top edge zone, where a drop on the pane body would split it).
-    mouse(24, 16, false);
-    for (int i = 0; i < 3; ++i) frame([&] { w.draw(); });
-    mouse(24, 16, true);
-    frame([&] { w.draw(); });
-    for (int i = 1; i <= 10; ++i) {
-        mouse(24.f, 16.f + 10.f * float(i), true);
-        frame([&] { w.draw(); });
-    }
-    for (int i = 1; i <= 20; ++i) {
-        mouse(24.f + (1000.f - 24.f) * float(i) / 20.f, 116.f + (16.f - 116.f) * float(i) / 20.f, true);
-        frame([&] { w.draw(); });
-    }
-    mouse(1000, 16, false);
-    frame([&] { w.draw(); });
-    frame([&] { w.draw(); });
+    carryProjectTab(w, 1000, 16);
     EXPECT_TRUE(w.changed);
     ASSERT_EQ(w.layout.panes().size(), 3u) << "no pane was split";
     EXPECT_EQ(w.layout.root.children[1].children[0].tabs, (std::vector<std::string>{"Views", "Project"}));
