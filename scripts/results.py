@@ -124,7 +124,11 @@ def git(*args):
 
 def commit_label():
     label = git("rev-parse", "--short", "HEAD") or "unknown"
-    return label + ("+changes" if git("status", "--porcelain", "--untracked-files=no") else "")
+    # The records themselves are not the code that made them: a tree whose only changes are
+    # records (an earlier invocation's) is still the commit.
+    changed = git("status", "--porcelain", "--untracked-files=no", "--", ".", ":(exclude)docs/results.md",
+                  ":(exclude)docs/results")
+    return label + ("+changes" if changed else "")
 
 
 def cpu_name():
