@@ -46,6 +46,25 @@ protected:
         frame([&] { w.draw(); });
         frame([&] { w.draw(); });
     }
+    /// A right click on the "Project" tab: its context menu opens at the pointer.
+    void openProjectTabMenu(Workspace& w) {
+        mouse(24, 16, false);
+        ImGui::GetIO().MouseDown[1] = true;
+        frame([&] { w.draw(); });
+        ImGui::GetIO().MouseDown[1] = false;
+        frame([&] { w.draw(); });
+        frame([&] { w.draw(); });
+    }
+    /// A left click at (x, y): the pointer moves there, presses and lets go, a frame each.
+    void clickAt(Workspace& w, float x, float y) {
+        mouse(x, y, false);
+        frame([&] { w.draw(); });
+        mouse(x, y, true);
+        frame([&] { w.draw(); });
+        mouse(x, y, false);
+        frame([&] { w.draw(); });
+        frame([&] { w.draw(); });
+    }
 };
 
 TEST(DropSide, EdgeQuartersSplitTheMiddleJoins) {
@@ -108,22 +127,10 @@ TEST_F(DockingTest, ContextMenuSplitsAPane) {
     Workspace w;
     for (int i = 0; i < 3; ++i) frame([&] { w.draw(); });
     // Right click on the "Project" tab opens its menu; its first entry is "Split right".
-    ImGuiIO& io = ImGui::GetIO();
-    mouse(24, 16, false);
-    io.MouseDown[1] = true;
-    frame([&] { w.draw(); });
-    io.MouseDown[1] = false;
-    frame([&] { w.draw(); });
-    frame([&] { w.draw(); });
+    openProjectTabMenu(w);
     // The menu opens at the pointer: its first item is just below and right of it.
     const float itemY = 16.f + ImGui::GetStyle().WindowPadding.y + ImGui::GetFontSize() * 0.5f;
-    mouse(40, itemY, false);
-    frame([&] { w.draw(); });
-    mouse(40, itemY, true);
-    frame([&] { w.draw(); });
-    mouse(40, itemY, false);
-    frame([&] { w.draw(); });
-    frame([&] { w.draw(); });
+    clickAt(w, 40, itemY);
     EXPECT_TRUE(w.changed);
     const PaneNode& left = w.layout.root.children[0];
     ASSERT_EQ(left.split, PaneSplit::Row);
@@ -134,13 +141,7 @@ TEST_F(DockingTest, ContextMenuFloatsATabAndDockPutsItBack) {
     Workspace w;
     for (int i = 0; i < 3; ++i) frame([&] { w.draw(); });
     // Right click on the "Project" tab; its third entry is "Float in a window".
-    ImGuiIO& io = ImGui::GetIO();
-    mouse(24, 16, false);
-    io.MouseDown[1] = true;
-    frame([&] { w.draw(); });
-    io.MouseDown[1] = false;
-    frame([&] { w.draw(); });
-    frame([&] { w.draw(); });
+    openProjectTabMenu(w);
     const ImGuiStyle& style = ImGui::GetStyle();
     // Move the pointer down the open menu until its "Float in a window" item is under it.
     ASSERT_FALSE(GImGui->OpenPopupStack.empty());
@@ -154,11 +155,7 @@ TEST_F(DockingTest, ContextMenuFloatsATabAndDockPutsItBack) {
         if (GImGui->HoveredId == item) break;
     }
     ASSERT_EQ(GImGui->HoveredId, item) << "the menu has the item";
-    mouse(40, itemY, true);
-    frame([&] { w.draw(); });
-    mouse(40, itemY, false);
-    frame([&] { w.draw(); });
-    frame([&] { w.draw(); });
+    clickAt(w, 40, itemY);
     EXPECT_TRUE(w.changed);
     EXPECT_EQ(w.layout.paneOf("Project"), nullptr);
     const FloatingPanel* f = w.layout.floatingPanel("Project");
@@ -173,13 +170,7 @@ TEST_F(DockingTest, ContextMenuFloatsATabAndDockPutsItBack) {
     w.changed = false;
     const ImVec2 dock(window->Pos.x + style.WindowPadding.x + 8.f,
                       window->Pos.y + window->TitleBarHeight() + style.WindowPadding.y + ImGui::GetFontSize() * 0.5f);
-    mouse(dock.x, dock.y, false);
-    frame([&] { w.draw(); });
-    mouse(dock.x, dock.y, true);
-    frame([&] { w.draw(); });
-    mouse(dock.x, dock.y, false);
-    frame([&] { w.draw(); });
-    frame([&] { w.draw(); });
+    clickAt(w, dock.x, dock.y);
     EXPECT_TRUE(w.changed);
     EXPECT_TRUE(w.layout.floating.empty());
     ASSERT_NE(w.layout.paneOf("Project"), nullptr);
