@@ -199,8 +199,6 @@ private:
     int statusIdleWhilePipeline_ = 0;  ///< frames whose status bar said idle while the pipeline ran
     // The controllers, each owning its jobs (job_session.h) and publishing its sections of state_.
     GroundTruthController groundTruth_{ctx_};
-    /// The ground truth's render as saving a run and exporting images read it (groundTruth_'s).
-    const std::shared_ptr<RenderSession>& render_ = groundTruth_.session();
     PredictionController prediction_{ctx_};
     TrainingController training_{ctx_, prediction_.live()};
     EvaluationController evaluation_{ctx_, prediction_};

@@ -38,7 +38,8 @@ void Workbench::projectOpened() {
 }
 
 bool Workbench::saveRun() {
-    if (!render_ || !render_->latest()) {
+    const std::shared_ptr<RenderSession>& render = groundTruth_.session();
+    if (!render || !render->latest()) {
         state_.notify(panels::LogLevel::Error, "Views", "save run: no ground truth rendered yet");
         return false;
     }
@@ -52,11 +53,11 @@ bool Workbench::saveRun() {
     }
     Run run = beginRun(state_.project.runs, "render");
     const std::string relDir = "runs/" + run.id;
-    const auto snap = render_->latest();
+    const auto snap = render->latest();
     try {
-        const RenderOutputs out = render_->write(runDirectory(projectDir(), run), ImageFormat::EXR, 0.f);
-        setRenderRun(run, projectDir(), state_.project.render, render_->options().spp, render_->scene(),
-                     state_.project.overrides, *snap, render_->stats(), out);
+        const RenderOutputs out = render->write(runDirectory(projectDir(), run), ImageFormat::EXR, 0.f);
+        setRenderRun(run, projectDir(), state_.project.render, render->options().spp, render->scene(),
+                     state_.project.overrides, *snap, render->stats(), out);
     } catch (const std::exception& e) {
         state_.log.error(std::string("save run: ") + e.what());
         return false;
@@ -171,7 +172,8 @@ bool Workbench::loadTrainRun(const Run& run) {
 }
 
 bool Workbench::exportImages(const std::string& dir) {
-    if (!render_ || !render_->latest()) {
+    const std::shared_ptr<RenderSession>& render = groundTruth_.session();
+    if (!render || !render->latest()) {
         state_.notify(panels::LogLevel::Error, "", "export images: nothing rendered yet");
         return false;
     }
@@ -181,7 +183,7 @@ bool Workbench::exportImages(const std::string& dir) {
     }
     try {
         // One set: a second write would replace the first (core/render/render_outputs.h).
-        render_->write(dir, ImageFormat::EXR, 0.f, {{ImageFormat::PNG, state_.view.exposure}});
+        render->write(dir, ImageFormat::EXR, 0.f, {{ImageFormat::PNG, state_.view.exposure}});
         const Image& err = viewModel_.error();
         if (!err.empty()) {
             writeImage((fs::path(dir) / "error.exr").string(), err, ImageFormat::EXR);
