@@ -150,7 +150,7 @@ void EvaluationController::pollEvaluateAfterTrain() {
 void EvaluationController::pollEvaluation() {
     state_.evaluation.running = evaluateRunning();
     bool delivered = false;
-    evaluateJob_.poll([&](EvaluationOutcome& out) {
+    const bool ended = evaluateJob_.poll([&](EvaluationOutcome& out) {
         delivered = true;
         const double seconds = out.info.seconds;
         const int spp = out.info.referenceSpp;
@@ -176,7 +176,7 @@ void EvaluationController::pollEvaluation() {
                       noiseFigureText(g.relativeRmseCorrected).c_str(), g.rmse, (unsigned long long)g.pixels, seconds);
         state_.log.info(line);
     });
-    if (evaluateDone_ && !evaluateRunning()) {
+    if (evaluateDone_ && ended) {
         const StageDone finished = std::move(evaluateDone_);
         evaluateDone_ = nullptr;
         finished(delivered);

@@ -79,11 +79,14 @@ public:
 
     /// UI thread, every frame: forwards log lines; once the job has ended, calls `onResult` with its
     /// result (if it delivered one: not when it failed, was cancelled without one, or was dropped).
-    /// Each result is delivered once.
+    /// Each result is delivered once. Returns true when no job is in flight after the call: a caller
+    /// that must act once the job has ended asks this, not running() again, since the job may end
+    /// between the two reads with its result still waiting for the next frame.
     template <class OnResult>
-    void poll(OnResult&& onResult) {
+    bool poll(OnResult&& onResult) {
         forwardMessages();
-        if (!slot_ || running()) return;
+        if (running()) return false;
+        if (!slot_) return true;
         std::optional<Result> result;
         {
             std::lock_guard<std::mutex> lock(slot_->mutex);
@@ -91,6 +94,7 @@ public:
         }
         slot_.reset();
         if (result) onResult(*result);
+        return true;
     }
 
 private:

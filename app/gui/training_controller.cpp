@@ -134,7 +134,7 @@ void TrainingController::pollGenerate() {
     const bool wasRunning = state.dataset.running;
     if (generateRunning()) state.dataset.progress = generateJob_.progress();
     bool delivered = false;
-    generateJob_.poll([&](GeneratedDataset& d) {
+    const bool ended = generateJob_.poll([&](GeneratedDataset& d) {
         delivered = true;
         state.dataset.progress = 1.0;
         state.dataset.path = d.path;
@@ -147,11 +147,10 @@ void TrainingController::pollGenerate() {
         state.dataset.lastCancelled = false;
         state.log.info("dataset written: " + d.path + " (" + std::to_string(state.dataset.generator.records) + " records)");
     });
-    // Read after poll(): a job that ended between the two checks delivers this frame, not the next.
-    state.dataset.running = generateRunning();
+    state.dataset.running = !ended;
     // A cancelled generation writes nothing: the table still shows the dataset before it, marked stale.
-    if (wasRunning && !state.dataset.running && !delivered) state.dataset.lastCancelled = true;  // until a result arrives
-    if (generateDone_ && !generateRunning()) {
+    if (wasRunning && ended && !delivered) state.dataset.lastCancelled = true;  // until a result arrives
+    if (generateDone_ && ended) {
         const StageDone finished = std::move(generateDone_);
         generateDone_ = nullptr;
         finished(delivered);
@@ -252,10 +251,9 @@ void TrainingController::pollTrain() {
     }
     if (state.training.running) state.training.progress = trainJob_.progress();
     bool delivered = false;
-    trainJob_.poll([&](TrainingOutcome& outcome) { delivered = trainingFinished(outcome); });
+    const bool ended = trainJob_.poll([&](TrainingOutcome& outcome) { delivered = trainingFinished(outcome); });
     if (!state.training.running) trainLive_.reset();
-    // Read after poll(): the job has ended once the session no longer runs it.
-    if (trainDone_ && !trainRunning()) {
+    if (trainDone_ && ended) {
         const StageDone done = std::move(trainDone_);
         trainDone_ = nullptr;
         done(delivered);

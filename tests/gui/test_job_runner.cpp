@@ -1,6 +1,7 @@
 // The job runner: progress and status from workers, cancel, failures, and refusal of conflicts;
 // and the workbench's job sessions on top of it: results delivered once, refusals logged, messages
 // forwarded, dropped jobs never deliver, cancel acts at once.
+#include <atomic>
 #include <chrono>
 #include <functional>
 #include <map>
@@ -47,11 +48,7 @@ std::vector<JobInfo> waitFinished(JobRunner& runner) {
 template <class Result>
 std::vector<Result> pollUntilEnded(JobSession<Result>& session) {
     std::vector<Result> delivered;
-    waitFor([&] {
-        const bool wasRunning = session.running();
-        session.poll([&](Result& r) { delivered.push_back(r); });
-        return !wasRunning;
-    });
+    waitFor([&] { return session.poll([&](Result& r) { delivered.push_back(r); }); });
     return delivered;
 }
 
@@ -170,6 +167,29 @@ TEST(JobSession, DeliversTheResultOnceAfterTheJobEnded) {
     session.poll([&](int&) { ++again; });
     EXPECT_EQ(again, 0) << "each result is delivered once";
     EXPECT_TRUE(logContains(log, "evaluate: thinking")) << "worker lines reach the log with the job's kind";
+    runner.waitAll();
+}
+
+TEST(JobSession, PollReportsTheEndInTheCallThatDeliversTheResult) {
+    // The stages' done callbacks fire on poll()'s answer: a job that ends just after a poll has
+    // seen it running must not look ended (running() false) before its result was handed over.
+    JobRunner runner;
+    panels::Log log;
+    JobSession<int> session(runner, JobKind::Evaluate, log);
+    std::atomic<bool> release{false};
+    ASSERT_TRUE(session.start("held", [&](JobContext&) -> std::optional<int> {
+        while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        return 7;
+    }));
+    int delivered = 0;
+    EXPECT_FALSE(session.poll([&](int&) { ++delivered; })) << "the job still runs";
+    release = true;
+    ASSERT_TRUE(waitFor([&] { return !session.running(); }));
+    EXPECT_EQ(delivered, 0) << "ended, but its result waits for the next poll";
+    EXPECT_TRUE(session.poll([&](int&) { ++delivered; })) << "this poll hands the result over and reports the end";
+    EXPECT_EQ(delivered, 1);
+    EXPECT_TRUE(session.poll([&](int&) { ++delivered; })) << "nothing in flight afterwards";
+    EXPECT_EQ(delivered, 1);
     runner.waitAll();
 }
 
