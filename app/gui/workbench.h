@@ -4,8 +4,8 @@
 /// own the project and the background jobs: ProjectController (the project file and the
 /// unsaved-changes prompt), GroundTruthController (the render), TrainingController (data and
 /// training), PredictionController (the live prediction, its drafts and overlays),
-/// EvaluationController (evaluations, run pairs, light grids, sweeps) and PipelineController (the
-/// one-click chain). Panels (panels/) draw and edit the state and queue Requests; this class carries
+/// EvaluationController (evaluations, run pairs, light grids, sweeps), PipelineController (the
+/// one-click chain) and RunsController (saving, comparing and re-opening runs; image export). Panels (panels/) draw and edit the state and queue Requests; this class carries
 /// them out between frames, mostly by handing them to a controller. UI thread only.
 
 #include <array>
@@ -22,6 +22,7 @@
 #include "app/gui/ground_truth_controller.h"
 #include "app/gui/pipeline_controller.h"
 #include "app/gui/project_controller.h"
+#include "app/gui/runs_controller.h"
 #include "app/gui/prediction_controller.h"
 #include "app/gui/shortcuts.h"
 #include "app/gui/training_controller.h"
@@ -77,15 +78,16 @@ public:
     bool renderShown() const { return groundTruth_.shown(); }
     /// Asks the running render (if any) to stop; it stops at its next pass boundary.
     void cancelRender() { groundTruth_.cancel(); }
-    /// Records the current ground truth as a run (files under <project dir>/runs/<id>/).
-    bool saveRun();
-    bool compareRun(int index);
+    /// The run actions (RunsController): save the ground truth as a run, compare with a run,
+    /// re-open a run, export the images on screen.
+    bool saveRun() { return runs_.saveRun(); }
+    bool compareRun(int index) { return runs_.compareRun(index); }
     /// Predicts the models of training runs runPair.a and runPair.b at the current light (and judges
     /// each against the ground truth, when there is one) on a worker; the Views then show A | B |
     /// difference and the Objects panel their per-object errors side by side.
     bool compareRunPair() { return evaluation_.compareRunPair(); }
-    bool reopenRun(int index);
-    bool exportImages(const std::string& dir);
+    bool reopenRun(int index) { return runs_.reopenRun(index); }
+    bool exportImages(const std::string& dir) { return runs_.exportImages(dir, viewModel_.error()); }
     /// Starts the data generator with the project's sampling settings, writing
     /// <project dir>/data/dataset.rrfd (refused while a conflicting job runs).
     bool startGenerate() { return training_.startGenerate(); }
@@ -170,9 +172,6 @@ private:
     /// Cancels every session's job and forgets it, so nothing a previous project's job finishes
     /// lands in the project opened now.
     void dropJobs();
-    /// Re-opens / compares a training run (project.runs[index]): restores its network and trainer
-    /// settings and loads its models.
-    bool loadTrainRun(const Run& run);
     /// The scene changed. `geometryChanged` false means materials or the movable light only: the
     /// light is not in the BVH, so the picking BVH and the object-id buffer stay valid then.
     void sceneChanged(bool restartRender, bool geometryChanged = true);
@@ -204,6 +203,7 @@ private:
     EvaluationController evaluation_{ctx_, prediction_};
     ProjectController project_;
     PipelineController pipeline_;
+    RunsController runs_{ctx_, groundTruth_, prediction_, [this] { sceneChanged(false); }};
     std::chrono::steady_clock::time_point memoryCheckedAt_{};
 
     bool aboutModal_ = false;

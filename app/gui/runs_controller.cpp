@@ -1,0 +1,182 @@
+// The runs controller: saving, comparing and re-opening runs, and exporting the images on screen.
+#include "app/gui/runs_controller.h"
+
+#include <filesystem>
+#include <utility>
+
+#include "app/gui/ground_truth_controller.h"
+#include "app/gui/prediction_controller.h"
+#include "core/eval/error_metrics.h"
+#include "core/pipeline/run_recording.h"
+#include "core/project/scene_edits.h"
+#include "core/util/image_io.h"
+
+namespace rrf {
+
+namespace fs = std::filesystem;
+
+RunsController::RunsController(ControllerContext& ctx, GroundTruthController& groundTruth, PredictionController& prediction,
+                               std::function<void()> sceneChanged)
+    : ctx_(ctx), state_(ctx.state), groundTruth_(groundTruth), prediction_(prediction), sceneChanged_(std::move(sceneChanged)) {}
+
+bool RunsController::saveRun() {
+    const std::shared_ptr<RenderSession>& render = groundTruth_.session();
+    if (!render || !render->latest()) {
+        state_.notify(panels::LogLevel::Error, "Views", "save run: no ground truth rendered yet");
+        return false;
+    }
+    if (groundTruth_.running()) {
+        state_.notify(panels::LogLevel::Error, "Views", "save run: the render is still running; wait for it or stop it first");
+        return false;
+    }
+    if (!ctx_.savedProject()) {
+        state_.notify(panels::LogLevel::Error, "Views", "save run: save the project first (runs are stored next to it)");
+        return false;
+    }
+    Run run = beginRun(state_.project.runs, "render");
+    const std::string relDir = "runs/" + run.id;
+    const auto snap = render->latest();
+    try {
+        const RenderOutputs out = render->write(runDirectory(ctx_.projectDir(), run), ImageFormat::EXR, 0.f);
+        setRenderRun(run, ctx_.projectDir(), state_.project.render, render->options().spp, render->scene(),
+                     state_.project.overrides, *snap, render->stats(), out);
+    } catch (const std::exception& e) {
+        state_.log.error(std::string("save run: ") + e.what());
+        return false;
+    }
+    state_.project.runs.push_back(run);
+    state_.markDirty();
+    state_.log.info("saved run '" + run.name + "' (" + std::to_string(snap->sppCompleted) + " spp) to " + relDir);
+    return true;
+}
+
+namespace {
+/// Loads a render run's global/direct/indirect EXR images.
+bool loadRunImages(const Run& run, const std::string& dir, panels::ImageSet& out, std::string& error) {
+    Image* slots[3] = {&out.global, &out.direct, &out.indirect};
+    const char* names[3] = {"global.exr", "direct.exr", "indirect.exr"};
+    for (int i = 0; i < 3; ++i) {
+        std::string file;
+        for (const std::string& a : run.artifacts)
+            if (fs::path(a).filename() == names[i]) file = (fs::path(dir) / a).string();
+        if (file.empty()) {
+            error = "run '" + run.name + "' has no " + names[i];
+            return false;
+        }
+        try {
+            *slots[i] = readImage(file);
+        } catch (const std::exception& e) {
+            error = e.what();
+            return false;
+        }
+    }
+    return true;
+}
+
+int runSpp(const Run& run) { return run.metrics.spp.value_or(0); }
+}  // namespace
+
+bool RunsController::compareRun(int index) {
+    if (index < 0 || index >= int(state_.project.runs.size())) return false;
+    const Run& run = state_.project.runs[size_t(index)];
+    if (run.kind == "train") return loadTrainRun(run);
+    panels::ImageSet set;
+    std::string error;
+    if (!loadRunImages(run, ctx_.projectDir(), set, error)) {
+        state_.notify(panels::LogLevel::Error, "Project", "compare run: " + error);
+        return false;
+    }
+    set.label = "Run '" + run.name + "' (" + std::to_string(runSpp(run)) + " spp)";
+    set.touch();
+    state_.compare = std::move(set);
+    state_.compareRun = index;
+    state_.view.compareSource = panels::CompareSource::Run;
+    state_.log.info("comparing the ground truth with run '" + run.name + "'");
+    return true;
+}
+
+bool RunsController::reopenRun(int index) {
+    if (index < 0 || index >= int(state_.project.runs.size())) return false;
+    const Run run = state_.project.runs[size_t(index)];
+    if (run.kind == "train") return loadTrainRun(run);
+    panels::ImageSet set;
+    std::string error;
+    if (!loadRunImages(run, ctx_.projectDir(), set, error)) {
+        state_.notify(panels::LogLevel::Error, "Project", "re-open run: " + error);
+        return false;
+    }
+    groundTruth_.cancel();
+    // The run's settings snapshot was read (and checked) with the project; what does not fit the
+    // scene is reported and the current setting kept.
+    const RunSettings& settings = run.settings;
+    if (settings.render) state_.project.render = *settings.render;
+    if (settings.sceneOverrides) {
+        std::vector<std::string> problems;
+        state_.project.overrides = *settings.sceneOverrides;
+        applySceneOverrides(state_.project.overrides, state_.project.scene, problems,
+                            "/runs/" + std::to_string(index) + "/settings/scene_overrides");
+        for (const std::string& p : problems) state_.log.warning("re-open run: " + p);
+    }
+    if (settings.lightPosition && !state_.project.scene.lights.empty()) {
+        try {
+            moveLight(state_.project, *settings.lightPosition);
+        } catch (const InputError& e) {
+            state_.log.warning(std::string("re-open run: light position kept as it is: ") + e.what());
+        }
+    }
+    sceneChanged_();
+    set.label = "Run '" + run.name + "'";
+    set.stamp = panels::ImageStamp{state_.project.scene.lightPosition(), state_.project.scene.contentHash(), set.global.width,
+                                   set.global.height};
+    set.touch();
+    state_.groundTruth = std::move(set);
+    state_.render = panels::RenderProgress{};
+    state_.render.spp = state_.render.targetSpp = runSpp(run);
+    state_.markDirty();
+    state_.log.info("re-opened run '" + run.name + "': settings restored, its images shown as the ground truth");
+    return true;
+}
+
+bool RunsController::loadTrainRun(const Run& run) {
+    // A training run "opens" as its settings and its models: the Network panel shows what trained
+    // them, and the prediction view shows what they predict. Its settings snapshot was read (and
+    // checked) with the project.
+    if (run.settings.network && run.settings.trainer) {
+        state_.project.network = *run.settings.network;
+        state_.project.trainer = *run.settings.trainer;
+        state_.markDirty();
+    }
+    if (run.artifacts.empty()) {
+        state_.notify(panels::LogLevel::Error, "Project", "run '" + run.name + "' lists no models");
+        return false;
+    }
+    return prediction_.loadModels((fs::path(ctx_.projectDir()) / fs::path(run.artifacts.front()).parent_path()).string());
+}
+
+bool RunsController::exportImages(const std::string& dir, const Image& error) {
+    const std::shared_ptr<RenderSession>& render = groundTruth_.session();
+    if (!render || !render->latest()) {
+        state_.notify(panels::LogLevel::Error, "", "export images: nothing rendered yet");
+        return false;
+    }
+    if (groundTruth_.running()) {
+        state_.notify(panels::LogLevel::Error, "", "export images: the render is still running; wait for it or stop it first");
+        return false;
+    }
+    try {
+        // One set: a second write would replace the first (core/render/render_outputs.h).
+        render->write(dir, ImageFormat::EXR, 0.f, {{ImageFormat::PNG, state_.view.exposure}});
+        if (!error.empty()) {
+            writeImage((fs::path(dir) / "error.exr").string(), error, ImageFormat::EXR);
+            writeImage((fs::path(dir) / "error.png").string(), errorMapColour(error, state_.view.metric, state_.view.errorMax), ImageFormat::PNG);
+        }
+        if (!prediction_.exportImages(dir)) return false;
+    } catch (const std::exception& e) {
+        state_.notify(panels::LogLevel::Error, "", std::string("export images: ") + e.what());
+        return false;
+    }
+    state_.notify(panels::LogLevel::Info, "", "exported images (EXR and PNG) to " + dir);
+    return true;
+}
+
+}  // namespace rrf
