@@ -6,6 +6,18 @@
 // by CPU time: on a machine shared with other work only the second counts just the time this
 // process ran.
 //
+// What the ratio compares, exactly:
+// - "The same rays" means the same distribution, not the same samples: the baseline replays the
+//   rays PathTracer::trace() shoots for 2 samples per pixel (seed 99), split into the closest-hit
+//   and the shadow queries, each list in the order the paths shot them; the tracer is then timed
+//   rendering --spp samples per pixel (the renderer's seed) with traceBatch().
+// - The baseline's rate is the harmonic mix of the two query kinds weighted by the logged shadow
+//   fraction, each timed one ray per call, over 4096-ray chunks on the same thread count.
+// - The tracer's time is the Renderer's pass: camera rays, its own math (BSDF and light sampling,
+//   hit records, ray offsets), the analytic test of the movable light against every query (that
+//   light is not in the BVH, so the baseline never pays for it), and the per-pixel sums. Its ray
+//   count is the same two kinds of query as the log's.
+//
 //   bench_render [project-or-scene.json] [--spp N] [--width W --height H]
 //
 // Default: the bundled Cornell box at 256x256, NEE.
