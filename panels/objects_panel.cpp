@@ -15,6 +15,7 @@
 #include <imgui.h>
 
 #include "core/eval/evaluation.h"
+#include "panels/figure_text.h"
 #include "panels/panels.h"
 
 namespace rrf::panels {
@@ -91,21 +92,21 @@ void drawHeader(WorkbenchState& state) {
     ImGui::SameLine();
     if (e.running) ImGui::TextUnformatted("evaluating...");
     else if (e.valid)
-        ImGui::Text("%s term, light (%.3g, %.3g, %.3g), ground truth %d spp, noise %s", termName(state.view.term),
+        figureText("%s term, light (%.3g, %.3g, %.3g), ground truth %d spp, noise %s", termName(state.view.term),
                     e.lightPosition.x, e.lightPosition.y, e.lightPosition.z, e.referenceSpp,
                     e.referenceNoiseKnown ? "known" : "unknown (no variance)");
-    else ImGui::TextDisabled("No evaluation yet: train, then Evaluate.");
+    else figureTextDisabled("No evaluation yet: train, then Evaluate.");
     if (e.valid) {
-        ImGui::TextDisabled("noise floor: the error the ground truth's own noise gives; corrected (noise subtracted): "
+        figureTextDisabled("noise floor: the error the ground truth's own noise gives; corrected (noise subtracted): "
                             "the error against the noise-free truth");
-        ImGui::TextDisabled("%s", e.footprint.describe().c_str());
+        figureTextDisabled("%s", e.footprint.describe().c_str());
         if (!std::isnan(e.flipHdr))
-            ImGui::TextDisabled("FLIP (global term): HDR-FLIP %.4g (noise floor %s), LDR-FLIP %.4g", e.flipHdr,
+            figureTextDisabled("FLIP (global term): HDR-FLIP %.4g (noise floor %s), LDR-FLIP %.4g", e.flipHdr,
                                 noiseFigureText(e.flipNoiseFloor).c_str(), e.flipLdr);
         if (!std::isnan(e.spreadSpearman)) {
             std::string per;
             for (const auto& [name, rho] : e.spreadSpearmanPerObject) per += "  " + name + " " + noiseFigureText(rho);
-            ImGui::TextDisabled("Uncertainty (ensemble members' spread, global term): mean relative spread %.4g, rank "
+            figureTextDisabled("Uncertainty (ensemble members' spread, global term): mean relative spread %.4g, rank "
                                 "correlation with the error %.3f;%s",
                                 e.spreadRelative, e.spreadSpearman, per.c_str());
         }
@@ -241,7 +242,7 @@ namespace {
 void drawPairTable(WorkbenchState& state) {
     const RunPair& p = state.runPair;
     if (!p.errorsA.valid && !p.errorsB.valid) {
-        ImGui::TextDisabled("No per-object errors: render a ground truth, then compare the runs again.");
+        figureTextDisabled("No per-object errors: render a ground truth, then compare the runs again.");
         return;
     }
     // Columns as wide as their content, scrolling sideways in a narrow pane (nothing cut off). Not
@@ -274,7 +275,7 @@ void drawPairTable(WorkbenchState& state) {
 void drawObjectsPanel(WorkbenchState& state) {
     drawHeader(state);
     const std::string mismatch = objectsTableMismatch(state);
-    if (!mismatch.empty()) ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", mismatch.c_str());
+    if (!mismatch.empty()) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", mismatch.c_str());
     if (state.view.compareSource == CompareSource::RunPair) {
         drawPairTable(state);
         return;
@@ -283,7 +284,7 @@ void drawObjectsPanel(WorkbenchState& state) {
     const int t = int(state.view.term);
     if (!e.valid) return;
     if (!e.available[t]) {
-        ImGui::TextDisabled("The networks do not predict the %s term (see the Network panel's targets).",
+        figureTextDisabled("The networks do not predict the %s term (see the Network panel's targets).",
                            termName(state.view.term));
         return;
     }
