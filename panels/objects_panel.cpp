@@ -78,21 +78,22 @@ std::string csvQuote(const std::string& s) {
     return out + "\"";
 }
 
-void drawHeader(WorkbenchState& state) {
-    const EvaluationInfo& e = state.evaluation;
-    ImGui::BeginDisabled(e.running || state.training.modelsDir.empty());
-    if (ImGui::Button("Evaluate")) state.request(Command::Evaluate);
+/// The buttons and the evaluation's summary above the table: `e` for term `term`; Evaluate needs
+/// loaded models (`modelsLoaded`); the buttons' requests go to `requests`.
+void drawHeader(const EvaluationInfo& e, Term term, bool modelsLoaded, std::vector<Request>& requests) {
+    ImGui::BeginDisabled(e.running || !modelsLoaded);
+    if (ImGui::Button("Evaluate")) requests.push_back({Command::Evaluate, {}, -1});
     ImGui::EndDisabled();
     if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
         ImGui::SetTooltip("compares the prediction of the trained models with the ground truth (CPU predictor)");
     ImGui::SameLine();
     ImGui::BeginDisabled(!e.valid);
-    if (ImGui::Button("Export CSV...")) state.request(Command::ExportObjectsCsv);
+    if (ImGui::Button("Export CSV...")) requests.push_back({Command::ExportObjectsCsv, {}, -1});
     ImGui::EndDisabled();
     ImGui::SameLine();
     if (e.running) ImGui::TextUnformatted("evaluating...");
     else if (e.valid)
-        figureText("%s term, light (%.3g, %.3g, %.3g), ground truth %d spp, noise %s", termName(state.view.term),
+        figureText("%s term, light (%.3g, %.3g, %.3g), ground truth %d spp, noise %s", termName(term),
                     e.lightPosition.x, e.lightPosition.y, e.lightPosition.z, e.referenceSpp,
                     e.referenceNoiseKnown ? "known" : "unknown (no variance)");
     else figureTextDisabled("No evaluation yet: train, then Evaluate.");
@@ -239,8 +240,8 @@ std::string objectsTableMismatch(const WorkbenchState& state) {
 }
 
 namespace {
-void drawPairTable(WorkbenchState& state) {
-    const RunPair& p = state.runPair;
+/// The per-object errors of the two runs `p` compares, for term `term`.
+void drawPairTable(const RunPair& p, Term term) {
     if (!p.errorsA.valid && !p.errorsB.valid) {
         figureTextDisabled("No per-object errors: render a ground truth, then compare the runs again.");
         return;
@@ -259,7 +260,7 @@ void drawPairTable(WorkbenchState& state) {
     ImGui::TableSetupColumn("B - A");
     ImGui::TableSetupColumn("noise floor");
     ImGui::TableHeadersRow();
-    for (const PairedObjectRow& r : pairedObjectRows(p.errorsA, p.errorsB, state.view.term)) {
+    for (const PairedObjectRow& r : pairedObjectRows(p.errorsA, p.errorsB, term)) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::Text("#%d %s", r.objectId, r.name.c_str());
@@ -273,11 +274,11 @@ void drawPairTable(WorkbenchState& state) {
 }  // namespace
 
 void drawObjectsPanel(WorkbenchState& state) {
-    drawHeader(state);
+    drawHeader(state.evaluation, state.view.term, !state.training.modelsDir.empty(), state.requests);
     const std::string mismatch = objectsTableMismatch(state);
     if (!mismatch.empty()) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", mismatch.c_str());
     if (state.view.compareSource == CompareSource::RunPair) {
-        drawPairTable(state);
+        drawPairTable(state.runPair, state.view.term);
         return;
     }
     const EvaluationInfo& e = state.evaluation;

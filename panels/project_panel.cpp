@@ -30,8 +30,9 @@ std::string errorWithFloorText(const RunSummary& r) {
     return numberText(r.error, "%.3g") + " (" + numberText(r.noiseFloor, "%.2g") + ")";
 }
 
-void drawRenderSettings(WorkbenchState& state) {
-    RenderSettings& r = state.project.render;
+/// The ground-truth render settings `r` of the project whose scene is `scene` (which estimator
+/// `auto` picks); `dirty` is set on an edit.
+void drawRenderSettings(RenderSettings& r, const Scene& scene, bool& dirty) {
     bool changed = false;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
     changed |= ImGui::InputInt("samples per pixel", &r.spp, 16, 256);
@@ -50,7 +51,7 @@ void drawRenderSettings(WorkbenchState& state) {
         r.estimator = kChoices[est];
         changed = true;
     }
-    const EstimatorChoice used = chooseEstimator(r.estimator, Effects::derive(state.project.scene));
+    const EstimatorChoice used = chooseEstimator(r.estimator, Effects::derive(scene));
     figureTextDisabled("runs: %s (%s)", estimatorName(used.estimator), used.reason.c_str());
     int seed = int(r.seed & 0x7fffffff);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
@@ -68,7 +69,7 @@ void drawRenderSettings(WorkbenchState& state) {
         r.height = std::max(0, std::min(size[1], kMaxImageSide));
         changed = true;
     }
-    if (changed) state.markDirty();
+    if (changed) dirty = true;
 }
 
 /// "1325 GLSL": one frame of prediction in ms and the path that drew it; "-" when not measured.
@@ -103,15 +104,28 @@ std::string runTooltipText(const Run& run) {
 
 namespace {
 
+/// What the runs table draws and edits, and nothing else of the workbench's state: the project's
+/// runs (names are edited in place), the A/B pair, the run shown in the compare view, and where its
+/// actions and edits go.
+struct RunsTableView {
+    std::vector<Run>& runs;
+    RunPair& pair;
+    int compareRun;                   ///< index into runs shown in the compare view, -1 = none
+    std::vector<Request>& requests;   ///< WorkbenchState::requests
+    bool& dirty;                      ///< WorkbenchState::dirty
+    void request(Command c, int index = -1) { requests.push_back({c, {}, index}); }
+    void markDirty() { dirty = true; }
+};
+
 /// Right-click menu of a run's row: rename it and the row's actions (also in the last column, which a
 /// narrow pane scrolls out of sight).
-void runMenu(WorkbenchState& state, Run& run, int i) {
+void runMenu(RunsTableView& t, Run& run, int i) {
     if (!ImGui::BeginPopupContextItem("##run menu")) return;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 16);
-    if (ImGui::InputText("name", &run.name)) state.markDirty();
-    if (ImGui::MenuItem("Re-open")) state.request(Command::ReopenRun, {}, i);
-    if (ImGui::MenuItem("Compare")) state.request(Command::CompareRun, {}, i);
-    if (ImGui::MenuItem("Delete")) state.request(Command::DeleteRun, {}, i);
+    if (ImGui::InputText("name", &run.name)) t.markDirty();
+    if (ImGui::MenuItem("Re-open")) t.request(Command::ReopenRun, i);
+    if (ImGui::MenuItem("Compare")) t.request(Command::CompareRun, i);
+    if (ImGui::MenuItem("Delete")) t.request(Command::DeleteRun, i);
     ImGui::EndPopup();
 }
 
@@ -119,8 +133,8 @@ void runMenu(WorkbenchState& state, Run& run, int i) {
 /// a narrow pane shows them without scrolling; the rest can be hidden from the header's context menu.
 enum RunColumn { kName, kKind, kError, kTime, kFrame, kA, kB, kActions, kState, kTrainer, kHidden, kLeaves, kRecords, kSpp, kCorrected, kRunColumns };
 
-void drawRuns(WorkbenchState& state) {
-    if (state.project.runs.empty()) {
+void drawRuns(RunsTableView& t) {
+    if (t.runs.empty()) {
         ImGui::PushTextWrapPos(0.f);
         ImGui::TextDisabled("No runs yet. \"Save run\" in the Views panel records the current ground truth.");
         ImGui::PopTextWrapPos();
@@ -144,19 +158,19 @@ void drawRuns(WorkbenchState& state) {
     ImGui::TableSetupScrollFreeze(1, 1);
     for (const Column& c : columns) ImGui::TableSetupColumn(c.header, c.flags);
     ImGui::TableHeadersRow();
-    const std::vector<std::string> names = shortRunNames(state.project.runs);
-    for (size_t i = 0; i < state.project.runs.size(); ++i) {
-        Run& run = state.project.runs[i];
+    const std::vector<std::string> names = shortRunNames(t.runs);
+    for (size_t i = 0; i < t.runs.size(); ++i) {
+        Run& run = t.runs[i];
         const RunSummary r = summarizeRun(run);
         ImGui::PushID(run.id.c_str());
         ImGui::TableNextRow();
         // The name spans the row, so hovering anywhere on it shows every field and a right click
         // opens its menu; the checkboxes and buttons of later cells stay clickable over it.
         ImGui::TableSetColumnIndex(kName);
-        ImGui::Selectable(names[i].c_str(), state.compareRun == int(i),
+        ImGui::Selectable(names[i].c_str(), t.compareRun == int(i),
                           ImGuiSelectableFlags_SpanAllColumns | ImGuiSelectableFlags_AllowItemOverlap);
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", runTooltipText(run).c_str());
-        runMenu(state, run, int(i));
+        runMenu(t, run, int(i));
         if (ImGui::TableSetColumnIndex(kKind)) ImGui::TextUnformatted(r.kind.c_str());
         if (ImGui::TableSetColumnIndex(kError)) ImGui::TextUnformatted(errorWithFloorText(r).c_str());
         if (ImGui::TableSetColumnIndex(kTime)) ImGui::TextUnformatted(numberText(r.seconds, "%.2f").c_str());
@@ -173,26 +187,26 @@ void drawRuns(WorkbenchState& state) {
             }
         }
         // A and B: the two training runs the Views show side by side (prediction A | B | difference).
-        for (int* pick : {&state.runPair.a, &state.runPair.b}) {
-            if (!ImGui::TableSetColumnIndex(pick == &state.runPair.a ? kA : kB) || run.kind != "train") continue;
+        for (int* pick : {&t.pair.a, &t.pair.b}) {
+            if (!ImGui::TableSetColumnIndex(pick == &t.pair.a ? kA : kB) || run.kind != "train") continue;
             bool on = *pick == int(i);
-            if (ImGui::Checkbox(pick == &state.runPair.a ? "##a" : "##b", &on)) {
+            if (ImGui::Checkbox(pick == &t.pair.a ? "##a" : "##b", &on)) {
                 *pick = on ? int(i) : -1;
-                if (state.runPair.a >= 0 && state.runPair.b >= 0 && state.runPair.a != state.runPair.b)
-                    state.request(Command::CompareRunPair);
+                if (t.pair.a >= 0 && t.pair.b >= 0 && t.pair.a != t.pair.b)
+                    t.request(Command::CompareRunPair);
             }
         }
         if (ImGui::TableSetColumnIndex(kActions)) {
-            if (ImGui::SmallButton("Re-open")) state.request(Command::ReopenRun, {}, int(i));
+            if (ImGui::SmallButton("Re-open")) t.request(Command::ReopenRun, int(i));
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("Restore this run's settings and show its images");
             ImGui::SameLine();
-            const bool comparing = state.compareRun == int(i);
-            if (ImGui::SmallButton(comparing ? "Comparing" : "Compare")) state.request(Command::CompareRun, {}, int(i));
+            const bool comparing = t.compareRun == int(i);
+            if (ImGui::SmallButton(comparing ? "Comparing" : "Compare")) t.request(Command::CompareRun, int(i));
             if (ImGui::IsItemHovered())
                 ImGui::SetTooltip(run.kind == "train" ? "Show this run's models' prediction next to the ground truth"
                                                       : "Show this run next to the ground truth, with the error map");
             ImGui::SameLine();
-            if (ImGui::SmallButton("Delete")) state.request(Command::DeleteRun, {}, int(i));
+            if (ImGui::SmallButton("Delete")) t.request(Command::DeleteRun, int(i));
         }
         if (ImGui::TableSetColumnIndex(kState)) {
             if (r.stopped) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", r.status.c_str());
@@ -239,8 +253,11 @@ void drawProjectPanel(WorkbenchState& state) {
     figureTextDisabled("scene  %s", state.project.sceneRef.empty() ? "(embedded)" : state.project.sceneRef.c_str());
     figureTextDisabled("%s", state.dirty ? "unsaved changes" : "saved");
 
-    if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen)) drawRenderSettings(state);
-    if (ImGui::CollapsingHeader("Runs", ImGuiTreeNodeFlags_DefaultOpen)) drawRuns(state);
+    if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen)) drawRenderSettings(state.project.render, state.project.scene, state.dirty);
+    if (ImGui::CollapsingHeader("Runs", ImGuiTreeNodeFlags_DefaultOpen)) {
+        RunsTableView runs{state.project.runs, state.runPair, state.compareRun, state.requests, state.dirty};
+        drawRuns(runs);
+    }
     if (ImGui::CollapsingHeader("Recent projects")) {
         if (state.recent.empty()) ImGui::TextDisabled("(none)");
         for (size_t i = 0; i < state.recent.size(); ++i) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include <imgui.h>
 
@@ -110,13 +111,14 @@ void dragRegion(ViewState& v, int index, const ViewRect& r, const Image& image, 
     }
 }
 
-void drawToolbar(WorkbenchState& state) {
-    ViewState& v = state.view;
-    const RenderProgress& r = state.render;
+/// The controls above the views: render, save run, reset view and the display settings of `v`;
+/// `r` for the render's progress; the buttons' requests go to `requests`.
+void drawToolbar(ViewState& v, const RenderProgress& r, std::vector<Request>& requests) {
+    auto request = [&](Command c) { requests.push_back({c, {}, -1}); };
     if (!r.running) {
-        if (ImGui::Button("Render")) state.request(Command::StartRender);
+        if (ImGui::Button("Render")) request(Command::StartRender);
     } else if (ImGui::Button("Stop render")) {
-        state.request(Command::CancelRender);
+        request(Command::CancelRender);
     }
     if (r.running || r.spp > 0) {
         char overlay[128];
@@ -135,7 +137,7 @@ void drawToolbar(WorkbenchState& state) {
                               r.etaSeconds >= 0 ? (", ETA " + std::to_string(int(r.etaSeconds + 0.5)) + " s").c_str() : "");
     }
     sameLineIfFits(ImGui::CalcTextSize("Save run").x + 2 * ImGui::GetStyle().FramePadding.x);
-    if (ImGui::Button("Save run")) state.request(Command::SaveRun);
+    if (ImGui::Button("Save run")) request(Command::SaveRun);
     ImGui::SameLine();
     if (ImGui::Button("Reset view")) {
         v.zoom = 1.f;
@@ -498,7 +500,7 @@ void drawViewsPanel(WorkbenchState& state) {
         v.lightHandle[i] = ImVec2(NAN, NAN);  // a view not drawn (single view) has no handle on screen
     }
     ImGui::BeginGroup();
-    drawToolbar(state);
+    drawToolbar(v, state.render, state.requests);
     ImGui::EndGroup();
     v.toolbarMin = ImGui::GetItemRectMin();
     v.toolbarMax = ImGui::GetItemRectMax();
