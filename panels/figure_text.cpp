@@ -10,6 +10,7 @@ namespace rrf::panels {
 namespace {
 /// What textUnbroken drew in frame `frame` (the UI thread's only; cleared per frame).
 struct FrameLines {
+    const ImGuiContext* context = nullptr;
     int frame = -1;
     std::vector<std::string> lines;
 };
@@ -21,7 +22,8 @@ FrameLines& frameLines() {
 
 void remember(const std::string& text) {
     FrameLines& l = frameLines();
-    if (l.frame != ImGui::GetFrameCount()) {
+    if (l.frame != ImGui::GetFrameCount() || l.context != ImGui::GetCurrentContext()) {
+        l.context = ImGui::GetCurrentContext();
         l.frame = ImGui::GetFrameCount();
         l.lines.clear();
     }
@@ -31,11 +33,25 @@ void remember(const std::string& text) {
     l.lines.push_back(text.substr(start));
 }
 
+/// The end of the longest start of [word, end) no wider than `width` (at least one character; a
+/// UTF-8 sequence is never cut).
+const char* fittingPrefix(const char* word, const char* end, float width,
+                          const std::function<float(const char*, const char*)>& measure) {
+    auto next = [&](const char* p) {
+        ++p;
+        while (p < end && (static_cast<unsigned char>(*p) & 0xC0) == 0x80) ++p;
+        return p;
+    };
+    const char* cut = next(word);
+    while (cut < end && measure(word, next(cut)) <= width) cut = next(cut);
+    return cut;
+}
+
 /// One paragraph (no '\n') of wrapAtSpaces.
 void wrapParagraph(const char* begin, const char* end, float width,
                    const std::function<float(const char*, const char*)>& measure, std::string& out) {
-    const char* line = begin;   // start of the current line
-    const char* last = nullptr; // end of the last word on it
+    const char* line = begin;    // start of the current line
+    const char* last = nullptr;  // end of the last word on it
     for (const char* p = begin; p < end;) {
         const char* word = p;
         while (word < end && *word == ' ') ++word;
@@ -46,6 +62,16 @@ void wrapParagraph(const char* begin, const char* end, float width,
             out.append(line, last);
             out += '\n';
             line = word;
+            last = nullptr;
+        }
+        // A word wider than a whole line (a long path; never a figure in a pane that shows any) is
+        // cut where it must be, as ImGui would, rather than run past the pane's edge.
+        while (!last && measure(word, wordEnd) > width) {
+            const char* cut = fittingPrefix(word, wordEnd, width, measure);
+            if (cut >= wordEnd) break;
+            out.append(word, cut);
+            out += '\n';
+            word = line = cut;
         }
         last = wordEnd;
         p = wordEnd;
@@ -118,7 +144,7 @@ void figureTextColored(const ImVec4& colour, const char* fmt, ...) {
 
 std::vector<std::string> unbrokenLinesThisFrame() {
     const FrameLines& l = frameLines();
-    return l.frame == ImGui::GetFrameCount() ? l.lines : std::vector<std::string>{};
+    return l.frame == ImGui::GetFrameCount() && l.context == ImGui::GetCurrentContext() ? l.lines : std::vector<std::string>{};
 }
 
 }  // namespace rrf::panels

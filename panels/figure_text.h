@@ -14,8 +14,8 @@
 namespace rrf::panels {
 
 /// `text` with line breaks put at spaces only, each line as wide as `width` allows by `measure`
-/// (the pixel width of [begin, end)); a word wider than `width` is left whole on a line of its own.
-/// Spaces at a break are dropped; line breaks already in `text` are kept.
+/// (the pixel width of [begin, end)). Only a word wider than a whole line (a long path) is cut inside,
+/// as ImGui would cut it. Spaces at a break are dropped; line breaks already in `text` are kept.
 std::string wrapAtSpaces(const std::string& text, float width, const std::function<float(const char*, const char*)>& measure);
 
 /// ImGui::TextUnformatted wrapped by wrapAtSpaces at the current wrap position (none: one line).

@@ -221,10 +221,11 @@ TEST_F(FigureText, ImGuisWrapBreaksAFigureAtItsPointWrapAtSpacesDoesNot) {
     });
 }
 
-TEST(WrapAtSpaces, KeepsLineBreaksAndLeavesAWideWordWhole) {
+TEST(WrapAtSpaces, KeepsLineBreaksAndCutsOnlyAWordWiderThanALine) {
     auto chars = [](const char* b, const char* e) { return float(e - b); };
     EXPECT_EQ(wrapAtSpaces("a bb ccc\ndd", 4.f, chars), "a bb\nccc\ndd");
-    EXPECT_EQ(wrapAtSpaces("0.123456789 x", 4.f, chars), "0.123456789\nx");
+    EXPECT_EQ(wrapAtSpaces("x 0.1234 /a/long/path.json", 8.f, chars), "x 0.1234\n/a/long/\npath.jso\nn")
+        << "the figure moves whole; the path wider than a line is cut";
     EXPECT_EQ(wrapAtSpaces("a  b", 10.f, chars), "a  b") << "spaces inside a line are kept";
 }
 
