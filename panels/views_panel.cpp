@@ -543,7 +543,7 @@ void drawViewsPanel(WorkbenchState& state) {
         // Too little room for three readable views: one at a time, the others a click away.
         const char* names[3] = {pair ? "A" : "ground truth", pair ? "B" : "compared", pair ? "difference" : "error"};
         for (int i = 0; i < 3; ++i) {
-            if (i) ImGui::SameLine();
+            if (i) sameLineIfFits(labelledWidth(ImGui::GetFrameHeight(), names[i]));
             ImGui::RadioButton(names[i], &v.singleView, i);
         }
         v.singleView = std::clamp(v.singleView, 0, 2);
