@@ -10,7 +10,9 @@
 
 #include "core/pipeline/run_summary.h"
 #include "core/util/text_format.h"
+#include "panels/clip_check.h"
 #include "panels/figure_text.h"
+#include "panels/layout.h"
 #include "panels/panels.h"
 #include "panels/status_text.h"
 
@@ -42,12 +44,16 @@ void drawRenderSettings(RenderSettings& r, const Scene& scene, bool& dirty) {
     int est = 0;
     for (int i = 0; i < 4; ++i)
         if (r.estimator == kChoices[i]) est = i;
-    // As wide as its longest entry, so the choice reads in full.
-    ImGui::SetNextItemWidth(ImGui::CalcTextSize("auto (bidirectional where there are caustics)").x + ImGui::GetFrameHeight() +
-                            2 * ImGui::GetStyle().FramePadding.x);
-    if (ImGui::Combo("estimator", &est,
-                     "auto (bidirectional where there are caustics)\0next-event estimation\0bidirectional (BDPT, MIS)\0"
-                     "naive (BRDF sampling only)\0")) {
+    // As wide as its longest entry, so the choice reads in full; in a pane too narrow for the label
+    // beside it the label goes above (the runs table's wide scrolling columns used to hide that both
+    // overran the left pane at 1280x720 from the clip check).
+    const char* items = "auto (BDPT where there are caustics)\0next-event estimation\0bidirectional (BDPT, MIS)\0"
+                        "naive (BRDF sampling only)\0";
+    const float comboW = fittedComboWidth(items);
+    const bool labelAbove = labelledWidth(comboW, "estimator") > ImGui::GetContentRegionAvail().x;
+    if (labelAbove) ImGui::TextUnformatted("estimator");
+    ImGui::SetNextItemWidth(comboW);
+    if (ImGui::Combo(labelAbove ? "##estimator" : "estimator", &est, items)) {
         r.estimator = kChoices[est];
         changed = true;
     }

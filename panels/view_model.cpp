@@ -205,11 +205,12 @@ ViewsLayout viewsLayout(ImVec2 avail, ImVec2 spacing, float line, const Image& i
     const float singleW = std::max(16.f, avail.x), singleH = std::max(16.f, avail.y - 2 * line);
     // The image's smaller side as shown: what decides whether it can be read.
     auto side = [&](float vw, float vh) { return std::min(shown(vw, vh), shown(vw, vh) * aspect); };
-    if (side(w, h) < ViewsLayout::kMinViewSide && side(singleW, singleH) > side(w, h)) {
+    const float minH = std::min(ViewsLayout::kMinViewSide / std::min(1.f, aspect), singleW / aspect);
+    const float singleViewH = std::max(shown(singleW, singleH), minH);
+    if (side(w, h) < ViewsLayout::kMinViewSide && side(singleW, singleViewH) > side(w, h)) {
         l.grid = false;
         l.single = true;
-        const float minH = std::min(ViewsLayout::kMinViewSide / std::min(1.f, aspect), singleW / aspect);
-        l.view = ImVec2(singleW, std::max(shown(singleW, singleH), minH));
+        l.view = ImVec2(singleW, singleViewH);
     }
     return l;
 }
