@@ -56,6 +56,7 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_frame_stats.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_prediction_draft.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_input_habits.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_readability.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/worker_priority.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp

@@ -21,6 +21,7 @@
 
 #include "core/pipeline/sweep.h"
 #include "core/util/text_format.h"
+#include "panels/figure_text.h"
 #include "panels/panels.h"
 #include "panels/plot.h"
 
@@ -303,7 +304,7 @@ void drawCostPanel(WorkbenchState& state) {
         ImGui::Dummy(ImVec2(font, font));
         marker(ImGui::GetWindowDrawList(), ImVec2(at.x + font * 0.5f, at.y + font * 0.5f), keyColour, k.shape, k.filled);
         ImGui::SameLine();
-        ImGui::TextDisabled("%s", k.text);
+        figureTextDisabled("%s", k.text);
         v.keyShapes += markerCode(k.shape, k.filled);
     }
     ImGui::TextDisabled("- - noise floor");
@@ -311,7 +312,7 @@ void drawCostPanel(WorkbenchState& state) {
     ImGui::EndGroup();
     if (!v.breakEvenLines.empty()) {
         ImGui::TextUnformatted("Break-even (the same reference and resolution for every point):");
-        for (const std::string& l : v.breakEvenLines) ImGui::TextWrapped("%s", l.c_str());
+        for (const std::string& l : v.breakEvenLines) figureText("%s", l.c_str());
     }
 }
 

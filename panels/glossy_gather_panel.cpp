@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include "core/predict/glossy_gather.h"
+#include "panels/figure_text.h"
 #include "panels/panels.h"
 
 namespace rrf::panels {
@@ -74,7 +75,7 @@ void drawGlossyGather(WorkbenchState& state) {
     }
     if (changed) setGlossyGather(state, g);
     const std::string names = gatheredObjectNames(state.project.scene, state.project.prediction);
-    ImGui::TextWrapped("%s", names.empty() ? "no object is gathered: every object's indirect light is its network's"
+    figureText("%s", names.empty() ? "no object is gathered: every object's indirect light is its network's"
                                            : ("gathered (CPU prediction; the GLSL view shows their networks until the "
                                               "CPU frame arrives): " + names).c_str());
     ImGui::TreePop();

@@ -24,14 +24,18 @@ struct WorkspaceDraw {
     PaneLayout& layout;
     const std::function<void(const std::string&)>& drawPanel;
     std::string& focusTab;
-    float thickness = 4.f;
+    float thickness = 10.f;  ///< the gap between panes: splitterWidth()
     std::optional<PendingMove> move;
     std::vector<std::string> reorder;  ///< a pane's tabs in the order its bar now shows them
     std::string undock, dock;          ///< a tab to float in a window of its own / to dock back
     bool floatingMoved = false;        ///< a floating window was moved or resized
 };
 
-/// One splitter between two panes along `axis`; `first` is the size of the pane before it.
+/// One splitter between two panes along `axis`; `first` is the size of the pane before it. The whole
+/// gap between the panes (`thickness`, at least 10 px) takes the mouse, while only a thin line is
+/// drawn in its middle, wider and brighter under the mouse or while dragged. The hit zone does not
+/// reach into the panes: the workspace is a child window, so ImGui would not let a splitter take the
+/// mouse over the panes' own child windows anyway, and their scrollbars lie right at its edges.
 void splitter(ImGuiID id, ImGuiAxis axis, const ImVec2& origin, float total, float cross, float thickness, float& first) {
     float second = total - first - thickness;
     const float minSize = total * PaneLayout::kMinFraction;
@@ -40,7 +44,23 @@ void splitter(ImGuiID id, ImGuiAxis axis, const ImVec2& origin, float total, flo
         bb = ImRect(ImVec2(origin.x + first, origin.y), ImVec2(origin.x + first + thickness, origin.y + cross));
     else
         bb = ImRect(ImVec2(origin.x, origin.y + first), ImVec2(origin.x + cross, origin.y + first + thickness));
-    ImGui::SplitterBehavior(bb, id, axis, &first, &second, minSize, minSize, 4.f, 0.f);
+    // ImGui fills the whole zone in the separator colours: make that fill invisible and draw the line.
+    ImGui::PushStyleColor(ImGuiCol_Separator, 0u);
+    ImGui::PushStyleColor(ImGuiCol_SeparatorHovered, 0u);
+    ImGui::PushStyleColor(ImGuiCol_SeparatorActive, 0u);
+    ImGui::SplitterBehavior(bb, id, axis, &first, &second, minSize, minSize, 0.f, 0.f);
+    ImGui::PopStyleColor(3);
+    const bool active = ImGui::IsItemActive(), hovered = ImGui::IsItemHovered();
+    if (hovered || active) ImGui::SetMouseCursor(axis == ImGuiAxis_X ? ImGuiMouseCursor_ResizeEW : ImGuiMouseCursor_ResizeNS);
+    // The line follows a drag in this frame: drawn where the splitter now is.
+    const float line = (hovered || active) ? 4.f : 2.f;
+    const float mid = first + 0.5f * thickness;
+    const ImRect l = axis == ImGuiAxis_X ? ImRect(ImVec2(origin.x + mid - 0.5f * line, origin.y),
+                                                  ImVec2(origin.x + mid + 0.5f * line, origin.y + cross))
+                                         : ImRect(ImVec2(origin.x, origin.y + mid - 0.5f * line),
+                                                  ImVec2(origin.x + cross, origin.y + mid + 0.5f * line));
+    ImGui::GetWindowDrawList()->AddRectFilled(
+        l.Min, l.Max, ImGui::GetColorU32(active ? ImGuiCol_SeparatorActive : hovered ? ImGuiCol_SeparatorHovered : ImGuiCol_Separator));
 }
 
 std::string joined(const std::vector<std::string>& tabs) {
@@ -227,6 +247,8 @@ void drawNode(WorkspaceDraw& w, PaneNode& node, const ImVec2& origin, const ImVe
 
 }  // namespace
 
+float splitterWidth() { return std::max(10.f, std::round(ImGui::GetFontSize() * 0.7f)); }
+
 DropSide dropSideAt(float u, float v) {
     constexpr float edge = 0.25f;
     const float d[4] = {u, 1.f - u, v, 1.f - v};  // distance to left, right, top, bottom
@@ -239,7 +261,7 @@ bool drawWorkspace(PaneLayout& layout, const std::function<void(const std::strin
                    std::string& focusTab) {
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const ImVec2 avail = ImGui::GetContentRegionAvail();
-    WorkspaceDraw w{layout, drawPanel, focusTab, std::max(4.f, std::round(ImGui::GetFontSize() * 0.35f)), {}, {}};
+    WorkspaceDraw w{layout, drawPanel, focusTab, splitterWidth(), {}, {}};
     if (avail.x < 4 * w.thickness || avail.y < 4 * w.thickness) return false;  // minimised window
     drawNode(w, layout.root, origin, avail, 0);
     // The panes' child windows were placed by hand: claim their area so the parent's layout knows it.

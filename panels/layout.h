@@ -26,6 +26,10 @@ inline constexpr const char* kTabPayload = "RRF_TAB";
 bool drawWorkspace(PaneLayout& layout, const std::function<void(const std::string&)>& drawPanel,
                    std::string& focusTab);
 
+/// The gap between two panes, all of which takes the mouse as the splitter (at least 10 px, so it
+/// is easy to hit; a thinner line is drawn in its middle).
+float splitterWidth();
+
 /// Draws the panel `name` (one of PaneLayout::panels()); an unknown name draws nothing.
 void drawPanel(WorkbenchState& state, const std::string& name);
 

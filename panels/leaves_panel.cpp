@@ -7,6 +7,7 @@
 
 #include <imgui.h>
 
+#include "panels/figure_text.h"
 #include "panels/panels.h"
 
 namespace rrf::panels {
@@ -43,7 +44,7 @@ void drawLeavesPanel(WorkbenchState& state) {
         models += r.leaf == 0;
         above += r.error > goal;
     }
-    ImGui::Text("%zu leaves in %d models; %d above the goal %.3g (validation relative RMSE)", info.rows.size(), models,
+    figureText("%zu leaves in %d models; %d above the goal %.3g (validation relative RMSE)", info.rows.size(), models,
                 above, goal);
     ImGui::SameLine();
     ImGui::Checkbox("tint view by leaf", &state.view.leafOverlay);
@@ -64,15 +65,15 @@ void drawLeavesPanel(WorkbenchState& state) {
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(r.target.c_str());
         ImGui::TableNextColumn();
-        ImGui::Text("%d/%d", r.leaf + 1, r.leafCount);
+        figureText("%d/%d", r.leaf + 1, r.leafCount);
         ImGui::TableNextColumn();
-        ImGui::Text("%d", r.depth);
+        figureText("%d", r.depth);
         ImGui::TableNextColumn();
-        ImGui::Text("%lld", (long long)r.records);
+        figureText("%lld", (long long)r.records);
         ImGui::TableNextColumn();
         if (std::isnan(r.error)) ImGui::TextDisabled("n/a");
-        else if (r.error > goal) ImGui::TextColored(ImVec4(1.f, 0.45f, 0.35f, 1.f), "%.4f", r.error);
-        else ImGui::Text("%.4f", r.error);
+        else if (r.error > goal) figureTextColored(ImVec4(1.f, 0.45f, 0.35f, 1.f), "%.4f", r.error);
+        else figureText("%.4f", r.error);
     }
     ImGui::EndTable();
 }

@@ -11,6 +11,7 @@
 #include <imgui.h>
 
 #include "core/project/scene_edits.h"
+#include "panels/figure_text.h"
 #include "panels/layout.h"
 #include "panels/panels.h"
 
@@ -42,7 +43,7 @@ void drawControls(WorkbenchState& state, bool modelsLoaded) {
                           LightRegionInfo::kMaxCount);
     const int points = lr.counts[0] * lr.counts[1] * lr.counts[2];
     sameLineIfFits(ImGui::GetFontSize() * 10);
-    ImGui::TextDisabled("%d references", points);
+    figureTextDisabled("%d references", points);
     if (lr.running) {
         if (ImGui::Button("Stop")) state.request(Command::CancelLightRegion);
         ImGui::SameLine();
@@ -58,7 +59,7 @@ void drawControls(WorkbenchState& state, bool modelsLoaded) {
     ImGui::EndDisabled();
     if (why) {
         ImGui::SameLine();
-        ImGui::TextDisabled("(%s)", why);
+        figureTextDisabled("(%s)", why);
     } else if (ImGui::IsItemHovered()) {
         ImGui::SetTooltip("judges the loaded models at every grid position against references of the project's "
                           "store at 64x64 (converged to its noise target, reused once rendered)");
@@ -91,10 +92,10 @@ void drawSlice(WorkbenchState& state, const LightGridMap& m, const std::vector<d
     const size_t n = m.grid.index(i, j, k);
     const Vec3& l = m.lights[n];
     ImGui::BeginTooltip();
-    ImGui::Text("light (%.3f, %.3f, %.3f)", l.x, l.y, l.z);
-    ImGui::Text("relative RMSE %s", figure(values[n]).c_str());
+    figureText("light (%.3f, %.3f, %.3f)", l.x, l.y, l.z);
+    figureText("relative RMSE %s", figure(values[n]).c_str());
     if (state.lightRegion.object < 0)
-        ImGui::Text("raw %s, reference noise floor %s", figure(m.globalRaw[n]).c_str(), figure(m.globalNoiseFloor[n]).c_str());
+        figureText("raw %s, reference noise floor %s", figure(m.globalRaw[n]).c_str(), figure(m.globalNoiseFloor[n]).c_str());
     ImGui::TextDisabled("click: move the light here");
     ImGui::EndTooltip();
     if (clicked) {
@@ -127,7 +128,7 @@ void drawLightRegionPanel(WorkbenchState& state) {
     }
     const std::vector<double>& values = lr.object < 0 ? m.global : m.objects[size_t(lr.object)];
     const double scale = LightGridMap::scaleOf(values);
-    ImGui::TextWrapped("Relative RMSE of the global term (noise-corrected where the reference's noise is known), %dx%d "
+    figureText("Relative RMSE of the global term (noise-corrected where the reference's noise is known), %dx%d "
                        "references; colour 0 (dark) to %s (yellow), magenta: not visible. Dots: training records' lights%s.",
                        lr.width, lr.height, figure(scale).c_str(),
                        m.marks.empty() ? (" (none: " + m.marksWhy + ")").c_str() : "");
@@ -142,11 +143,11 @@ void drawLightRegionPanel(WorkbenchState& state) {
     for (int j = 0; j < ny; ++j) {
         if (j > 0) sameLineIfFits(side);
         ImGui::BeginGroup();
-        ImGui::Text("y = %.3f", m.lights[m.grid.index(0, j, 0)].y);
+        figureText("y = %.3f", m.lights[m.grid.index(0, j, 0)].y);
         drawSlice(state, m, values, j, scale, side);
         ImGui::EndGroup();
     }
-    ImGui::TextDisabled("x to the right, z downwards; models %s; files in %s", lr.modelsDir.c_str(), lr.outDir.c_str());
+    figureTextDisabled("x to the right, z downwards; models %s; files in %s", lr.modelsDir.c_str(), lr.outDir.c_str());
 }
 
 }  // namespace rrf::panels

@@ -12,6 +12,7 @@
 
 #include "core/nn/encoding_presets.h"
 #include "core/util/error.h"
+#include "panels/figure_text.h"
 #include "panels/panels.h"
 
 namespace rrf::panels {
@@ -79,8 +80,8 @@ void drawObjectRow(WorkbenchState& state, const NetworkSettings& s, const std::s
     ImGui::TableNextColumn();
     const ObjectNetworkChoice c = s.options.choiceFor(name);
     const EncodingSettingView view = viewEncodingSetting(c.encoding, inputs, c.inputs);
-    if (view.fits) ImGui::TextDisabled("%s, [%s]", view.encoding.describe().c_str(), hiddenSizesText(c.hidden).c_str());
-    else ImGui::TextColored(ImVec4(1.f, .4f, .4f, 1.f), "%s", view.error.c_str());
+    if (view.fits) figureTextDisabled("%s, [%s]", view.encoding.describe().c_str(), hiddenSizesText(c.hidden).c_str());
+    else figureTextColored(ImVec4(1.f, .4f, .4f, 1.f), "%s", view.error.c_str());
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "core/nn/ensemble.h"
 #include "core/util/error.h"
 #include "panels/clip_check.h"
+#include "panels/figure_text.h"
 #include "panels/panels.h"
 #include "panels/pipeline_controls.h"
 #include "panels/status_text.h"
@@ -142,7 +143,7 @@ bool drawPartition(PartitionSettings& p, long long paramsPerNetwork) {
     changed |= ImGui::Checkbox("split on light", &p.axes.light);
     if (!p.axes.any()) ImGui::TextColored(ImVec4(1.f, .6f, .3f, 1.f), "no split axis: the trees will not grow");
     if (p.enabled() && paramsPerNetwork >= 0)
-        ImGui::TextDisabled("a node splits only if each half keeps >= %.0f records (%.3g x %lld weights)",
+        figureTextDisabled("a node splits only if each half keeps >= %.0f records (%.3g x %lld weights)",
                             std::ceil(p.minRecordsPerWeight * double(paramsPerNetwork)), p.minRecordsPerWeight,
                             paramsPerNetwork);
     return changed;
@@ -184,7 +185,7 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
     if (!view.fits) {
         // A project's own array may not fit this scene's records (e.g. a hash grid over more than 4
         // inputs); training would refuse it with this message, so show it in place of the count.
-        ImGui::TextColored(ImVec4(1.f, .4f, .4f, 1.f), "input encoding: %s", view.error.c_str());
+        figureTextColored(ImVec4(1.f, .4f, .4f, 1.f), "input encoding: %s", view.error.c_str());
         return;
     }
     const InputEncoding& encoding = view.encoding;
@@ -194,23 +195,23 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
     const long long params = (long long)arch.numParams() + table;
     const std::string hidden = hiddenSizesText(arch.hidden);
     if (encoding.isIdentity())
-        ImGui::Text("%d inputs%s -> [%s] -> %d outputs: %lld parameters per network", arch.inputs,
+        figureText("%d inputs%s -> [%s] -> %d outputs: %lld parameters per network", arch.inputs,
                     encoding.derived.any() ? " (with the reflected direction)" : "", hidden.c_str(), arch.outputs, params);
     else
-        ImGui::Text("%d inputs -> %s -> %d features -> [%s] -> %d outputs: %lld parameters per network (%lld in the encoding)",
+        figureText("%d inputs -> %s -> %d features -> [%s] -> %d outputs: %lld parameters per network (%lld in the encoding)",
                     inputCount(state), encoding.describe().c_str(), arch.inputs, hidden.c_str(), arch.outputs, params, table);
     if (s.options.ensemble > 1)
-        ImGui::TextDisabled("(the merged network of an ensemble of %d: block-diagonal layers, %d trainings per network)",
+        figureTextDisabled("(the merged network of an ensemble of %d: block-diagonal layers, %d trainings per network)",
                             s.options.ensemble, s.options.ensemble);
-    ImGui::Text("%d network%s per object, %zu objects: %lld parameters in all", perObject, perObject > 1 ? "s" : "",
+    figureText("%d network%s per object, %zu objects: %lld parameters in all", perObject, perObject > 1 ? "s" : "",
                 state.project.scene.objects.size(), params * perObject * (long long)state.project.scene.objects.size());
     if (!s.options.perObject.empty())
-        ImGui::TextDisabled("(counted with the section's networks; %zu object%s with its own entry differ%s)",
+        figureTextDisabled("(counted with the section's networks; %zu object%s with its own entry differ%s)",
                             s.options.perObject.size(), s.options.perObject.size() > 1 ? "s" : "",
                             s.options.perObject.size() > 1 ? "" : "s");
     if (s.options.trainer.type == TrainerType::LevenbergMarquardt) {
         const long long member = (long long)networkArch(state, s, encoding).numParams();  // LM trains each member alone
-        ImGui::TextDisabled("LM solves a %lld x %lld system per step", member, member);
+        figureTextDisabled("LM solves a %lld x %lld system per step", member, member);
     }
 }
 }  // namespace

@@ -15,6 +15,7 @@
 #include <imgui.h>
 
 #include "core/eval/evaluation.h"
+#include "panels/figure_text.h"
 #include "panels/panels.h"
 
 namespace rrf::panels {
@@ -77,35 +78,36 @@ std::string csvQuote(const std::string& s) {
     return out + "\"";
 }
 
-void drawHeader(WorkbenchState& state) {
-    const EvaluationInfo& e = state.evaluation;
-    ImGui::BeginDisabled(e.running || state.training.modelsDir.empty());
-    if (ImGui::Button("Evaluate")) state.request(Command::Evaluate);
+/// The buttons and the evaluation's summary above the table: `e` for term `term`; Evaluate needs
+/// loaded models (`modelsLoaded`); the buttons' requests go to `requests`.
+void drawHeader(const EvaluationInfo& e, Term term, bool modelsLoaded, std::vector<Request>& requests) {
+    ImGui::BeginDisabled(e.running || !modelsLoaded);
+    if (ImGui::Button("Evaluate")) requests.push_back({Command::Evaluate, {}, -1});
     ImGui::EndDisabled();
     if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
         ImGui::SetTooltip("compares the prediction of the trained models with the ground truth (CPU predictor)");
     ImGui::SameLine();
     ImGui::BeginDisabled(!e.valid);
-    if (ImGui::Button("Export CSV...")) state.request(Command::ExportObjectsCsv);
+    if (ImGui::Button("Export CSV...")) requests.push_back({Command::ExportObjectsCsv, {}, -1});
     ImGui::EndDisabled();
     ImGui::SameLine();
     if (e.running) ImGui::TextUnformatted("evaluating...");
     else if (e.valid)
-        ImGui::Text("%s term, light (%.3g, %.3g, %.3g), ground truth %d spp, noise %s", termName(state.view.term),
+        figureText("%s term, light (%.3g, %.3g, %.3g), ground truth %d spp, noise %s", termName(term),
                     e.lightPosition.x, e.lightPosition.y, e.lightPosition.z, e.referenceSpp,
                     e.referenceNoiseKnown ? "known" : "unknown (no variance)");
-    else ImGui::TextDisabled("No evaluation yet: train, then Evaluate.");
+    else figureTextDisabled("No evaluation yet: train, then Evaluate.");
     if (e.valid) {
-        ImGui::TextDisabled("noise floor: the error the ground truth's own noise gives; corrected (noise subtracted): "
+        figureTextDisabled("noise floor: the error the ground truth's own noise gives; corrected (noise subtracted): "
                             "the error against the noise-free truth");
-        ImGui::TextDisabled("%s", e.footprint.describe().c_str());
+        figureTextDisabled("%s", e.footprint.describe().c_str());
         if (!std::isnan(e.flipHdr))
-            ImGui::TextDisabled("FLIP (global term): HDR-FLIP %.4g (noise floor %s), LDR-FLIP %.4g", e.flipHdr,
+            figureTextDisabled("FLIP (global term): HDR-FLIP %.4g (noise floor %s), LDR-FLIP %.4g", e.flipHdr,
                                 noiseFigureText(e.flipNoiseFloor).c_str(), e.flipLdr);
         if (!std::isnan(e.spreadSpearman)) {
             std::string per;
             for (const auto& [name, rho] : e.spreadSpearmanPerObject) per += "  " + name + " " + noiseFigureText(rho);
-            ImGui::TextDisabled("Uncertainty (ensemble members' spread, global term): mean relative spread %.4g, rank "
+            figureTextDisabled("Uncertainty (ensemble members' spread, global term): mean relative spread %.4g, rank "
                                 "correlation with the error %.3f;%s",
                                 e.spreadRelative, e.spreadSpearman, per.c_str());
         }
@@ -238,10 +240,10 @@ std::string objectsTableMismatch(const WorkbenchState& state) {
 }
 
 namespace {
-void drawPairTable(WorkbenchState& state) {
-    const RunPair& p = state.runPair;
+/// The per-object errors of the two runs `p` compares, for term `term`.
+void drawPairTable(const RunPair& p, Term term) {
     if (!p.errorsA.valid && !p.errorsB.valid) {
-        ImGui::TextDisabled("No per-object errors: render a ground truth, then compare the runs again.");
+        figureTextDisabled("No per-object errors: render a ground truth, then compare the runs again.");
         return;
     }
     // Columns as wide as their content, scrolling sideways in a narrow pane (nothing cut off). Not
@@ -258,7 +260,7 @@ void drawPairTable(WorkbenchState& state) {
     ImGui::TableSetupColumn("B - A");
     ImGui::TableSetupColumn("noise floor");
     ImGui::TableHeadersRow();
-    for (const PairedObjectRow& r : pairedObjectRows(p.errorsA, p.errorsB, state.view.term)) {
+    for (const PairedObjectRow& r : pairedObjectRows(p.errorsA, p.errorsB, term)) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::Text("#%d %s", r.objectId, r.name.c_str());
@@ -272,18 +274,18 @@ void drawPairTable(WorkbenchState& state) {
 }  // namespace
 
 void drawObjectsPanel(WorkbenchState& state) {
-    drawHeader(state);
+    drawHeader(state.evaluation, state.view.term, !state.training.modelsDir.empty(), state.requests);
     const std::string mismatch = objectsTableMismatch(state);
-    if (!mismatch.empty()) ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", mismatch.c_str());
+    if (!mismatch.empty()) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", mismatch.c_str());
     if (state.view.compareSource == CompareSource::RunPair) {
-        drawPairTable(state);
+        drawPairTable(state.runPair, state.view.term);
         return;
     }
     const EvaluationInfo& e = state.evaluation;
     const int t = int(state.view.term);
     if (!e.valid) return;
     if (!e.available[t]) {
-        ImGui::TextDisabled("The networks do not predict the %s term (see the Network panel's targets).",
+        figureTextDisabled("The networks do not predict the %s term (see the Network panel's targets).",
                            termName(state.view.term));
         return;
     }

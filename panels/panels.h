@@ -27,6 +27,9 @@ void drawHelpWindow(const std::vector<ShortcutInfo>& shortcuts, bool* open, std:
 
 /// Project: name, file, render settings, recent projects and the runs table.
 void drawProjectPanel(WorkbenchState& state);
+/// The tooltip of a run's row in the runs table: its name, full id, creation time and every field of
+/// its row (the hidden columns' too), one a line.
+std::string runTooltipText(const Run& run);
 /// Scene: objects, materials (editable), lights, the movable light's position, derived effects.
 void drawScenePanel(WorkbenchState& state);
 /// Sampling: jitter grid, N_dir, spp per record, seed, light; estimates before and coverage after.

@@ -12,6 +12,7 @@
 #include "core/data/data_generator.h"
 #include "core/data/record_layout.h"
 #include "core/util/memory_budget.h"
+#include "panels/figure_text.h"
 
 namespace rrf::panels {
 
@@ -36,7 +37,7 @@ const PipelinePreset* presetCombo(const char* label, const PipelinePreset* curre
 }
 
 void drawEstimateLine(const char* what, const StageEstimate& e) {
-    ImGui::Text("estimated %s: %s", what, rangeText(e).c_str());
+    figureText("estimated %s: %s", what, rangeText(e).c_str());
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", e.basis.c_str());
     ImGui::SameLine();
     ImGui::TextDisabled("(?)");
@@ -194,11 +195,11 @@ void drawPipelineBar(WorkbenchState& state) {
             std::snprintf(overlay, sizeof overlay, "%d/4 %s  %.0f%%", stage + 1, kStageNames[stage], 100 * p.fraction);
         ImGui::ProgressBar(float(p.fraction), ImVec2(ImGui::GetFontSize() * 16, 0), overlay);
     } else if (!p.outcome.empty()) {
-        ImGui::TextDisabled("pipeline %s", p.outcome.c_str());
+        figureTextDisabled("pipeline %s", p.outcome.c_str());
     } else if (state.hasProject) {
         // What the next run gives, in sight before the click: a smoke test says so.
         const std::string brief = pipelineExpectation(state, p.preset, true);
-        ImGui::TextDisabled("expect %s, %s", brief.c_str(), rangeText(total(pipelineEstimates(state, preset))).c_str());
+        figureTextDisabled("expect %s, %s", brief.c_str(), rangeText(total(pipelineEstimates(state, preset))).c_str());
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", pipelineExpectation(state, p.preset, false).c_str());
     }
 }

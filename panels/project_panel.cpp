@@ -3,12 +3,16 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
 #include "core/pipeline/run_summary.h"
 #include "core/util/text_format.h"
+#include "panels/clip_check.h"
+#include "panels/figure_text.h"
+#include "panels/layout.h"
 #include "panels/panels.h"
 #include "panels/status_text.h"
 
@@ -28,8 +32,9 @@ std::string errorWithFloorText(const RunSummary& r) {
     return numberText(r.error, "%.3g") + " (" + numberText(r.noiseFloor, "%.2g") + ")";
 }
 
-void drawRenderSettings(WorkbenchState& state) {
-    RenderSettings& r = state.project.render;
+/// The ground-truth render settings `r` of the project whose scene is `scene` (which estimator
+/// `auto` picks); `dirty` is set on an edit.
+void drawRenderSettings(RenderSettings& r, const Scene& scene, bool& dirty) {
     bool changed = false;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
     changed |= ImGui::InputInt("samples per pixel", &r.spp, 16, 256);
@@ -39,17 +44,21 @@ void drawRenderSettings(WorkbenchState& state) {
     int est = 0;
     for (int i = 0; i < 4; ++i)
         if (r.estimator == kChoices[i]) est = i;
-    // As wide as its longest entry, so the choice reads in full.
-    ImGui::SetNextItemWidth(ImGui::CalcTextSize("auto (bidirectional where there are caustics)").x + ImGui::GetFrameHeight() +
-                            2 * ImGui::GetStyle().FramePadding.x);
-    if (ImGui::Combo("estimator", &est,
-                     "auto (bidirectional where there are caustics)\0next-event estimation\0bidirectional (BDPT, MIS)\0"
-                     "naive (BRDF sampling only)\0")) {
+    // As wide as its longest entry, so the choice reads in full; in a pane too narrow for the label
+    // beside it the label goes above (the runs table's wide scrolling columns used to hide that both
+    // overran the left pane at 1280x720 from the clip check).
+    const char* items = "auto (BDPT where there are caustics)\0next-event estimation\0bidirectional (BDPT, MIS)\0"
+                        "naive (BRDF sampling only)\0";
+    const float comboW = fittedComboWidth(items);
+    const bool labelAbove = labelledWidth(comboW, "estimator") > ImGui::GetContentRegionAvail().x;
+    if (labelAbove) ImGui::TextUnformatted("estimator");
+    ImGui::SetNextItemWidth(comboW);
+    if (ImGui::Combo(labelAbove ? "##estimator" : "estimator", &est, items)) {
         r.estimator = kChoices[est];
         changed = true;
     }
-    const EstimatorChoice used = chooseEstimator(r.estimator, Effects::derive(state.project.scene));
-    ImGui::TextDisabled("runs: %s (%s)", estimatorName(used.estimator), used.reason.c_str());
+    const EstimatorChoice used = chooseEstimator(r.estimator, Effects::derive(scene));
+    figureTextDisabled("runs: %s (%s)", estimatorName(used.estimator), used.reason.c_str());
     int seed = int(r.seed & 0x7fffffff);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
     if (ImGui::InputInt("seed", &seed)) {
@@ -66,97 +75,162 @@ void drawRenderSettings(WorkbenchState& state) {
         r.height = std::max(0, std::min(size[1], kMaxImageSide));
         changed = true;
     }
-    if (changed) state.markDirty();
+    if (changed) dirty = true;
 }
 
-void drawRuns(WorkbenchState& state) {
-    if (state.project.runs.empty()) {
+/// "1325 GLSL": one frame of prediction in ms and the path that drew it; "-" when not measured.
+std::string frameText(const RunSummary& r) {
+    if (!r.frameSeconds) return "-";
+    const double ms = *r.frameSeconds * 1e3;
+    // Three significant figures at most: the median of a few frames is not known better, and a
+    // shorter figure keeps the column in a narrow pane.
+    return numberText(ms, ms >= 100 ? "%.0f" : "%.3g") + (r.frameGlsl ? " GLSL" : " CPU");
+}
+
+}  // namespace
+
+std::string runTooltipText(const Run& run) {
+    const RunSummary r = summarizeRun(run);
+    std::string s = run.name + "\nid " + run.id + "\ncreated " + run.created + "\nkind " + r.kind;
+    if (!r.status.empty()) s += "\nstate " + r.status;
+    if (!r.trainer.empty()) s += "\ntrainer " + r.trainer + ", hidden " + hiddenText(r.hidden);
+    if (r.leaves) s += "\nleaves " + std::to_string(*r.leaves);
+    if (r.records) s += "\nrecords " + numberText(r.records, "%.0f");
+    if (r.spp) s += "\nspp " + numberText(r.spp, "%.0f");
+    if (r.seconds) s += "\ntime " + numberText(r.seconds, "%.2f") + " s";
+    if (r.error || r.noiseFloor)
+        s += "\nheld-out rel. RMSE " + numberText(r.error, "%.4g") + " (noise floor " + numberText(r.noiseFloor, "%.2g") +
+             ", corrected " + numberText(r.corrected, "%.4g") + ")";
+    if (r.frameSeconds) {
+        const std::string size = r.frameWidth > 0 ? sizeText(r.frameWidth, r.frameHeight) : std::string("the view's size");
+        s += "\nframe " + numberText(*r.frameSeconds * 1e3, "%.2f") + " ms, " + (r.frameGlsl ? "GLSL" : "CPU") + " at " + size;
+    }
+    return s + "\nright-click: rename, re-open, compare, delete";
+}
+
+namespace {
+
+/// What the runs table draws and edits, and nothing else of the workbench's state: the project's
+/// runs (names are edited in place), the A/B pair, the run shown in the compare view, and where its
+/// actions and edits go.
+struct RunsTableView {
+    std::vector<Run>& runs;
+    RunPair& pair;
+    int compareRun;                   ///< index into runs shown in the compare view, -1 = none
+    std::vector<Request>& requests;   ///< WorkbenchState::requests
+    bool& dirty;                      ///< WorkbenchState::dirty
+    void request(Command c, int index = -1) { requests.push_back({c, {}, index}); }
+    void markDirty() { dirty = true; }
+};
+
+/// Right-click menu of a run's row: rename it and the row's actions (also in the last column, which a
+/// narrow pane scrolls out of sight).
+void runMenu(RunsTableView& t, Run& run, int i) {
+    if (!ImGui::BeginPopupContextItem("##run menu")) return;
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 16);
+    if (ImGui::InputText("name", &run.name)) t.markDirty();
+    if (ImGui::MenuItem("Re-open")) t.request(Command::ReopenRun, i);
+    if (ImGui::MenuItem("Compare")) t.request(Command::CompareRun, i);
+    if (ImGui::MenuItem("Delete")) t.request(Command::DeleteRun, i);
+    ImGui::EndPopup();
+}
+
+/// The runs table's columns, in their order: what tells runs apart and what they achieved first, so
+/// a narrow pane shows them without scrolling; the rest can be hidden from the header's context menu.
+enum RunColumn { kName, kKind, kError, kTime, kFrame, kA, kB, kActions, kState, kTrainer, kHidden, kLeaves, kRecords, kSpp, kCorrected, kRunColumns };
+
+void drawRuns(RunsTableView& t) {
+    if (t.runs.empty()) {
         ImGui::PushTextWrapPos(0.f);
         ImGui::TextDisabled("No runs yet. \"Save run\" in the Views panel records the current ground truth.");
         ImGui::PopTextWrapPos();
         return;
     }
-    // Horizontal scrolling keeps the name column readable in a narrow left pane. Not resizable:
-    // ImGui stops fitting a resizable column to its content after the first frames, so figures
-    // that arrive later (a new run's error) would be cut.
+    // Horizontal scrolling reaches the columns a narrow pane cannot show. Not resizable: ImGui stops
+    // fitting a resizable column to its content after the first frames, so figures that arrive later
+    // (a new run's error) would be cut. Hideable: the header's context menu hides or shows columns.
     const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollX |
-                                  ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit;
-    const char* headers[] = {"A", "B", "kind", "state", "trainer", "hidden", "leaves", "records", "spp", "time (s)",
-                             "rel. RMSE (noise floor)", "frame (ms)", ""};
-    const int columns = 1 + int(sizeof headers / sizeof headers[0]);
-    if (!ImGui::BeginTable("##runs", columns, flags, ImVec2(0, ImGui::GetFontSize() * 14))) return;
+                                  ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_Hideable;
+    struct Column {
+        const char* header;
+        ImGuiTableColumnFlags flags;
+    };
+    constexpr ImGuiTableColumnFlags hide = ImGuiTableColumnFlags_DefaultHide;
+    const Column columns[kRunColumns] = {
+        {"name", ImGuiTableColumnFlags_NoHide}, {"kind", 0}, {"error (floor)", 0}, {"time (s)", 0}, {"frame (ms)", 0},
+        {"A", 0}, {"B", 0}, {"actions", 0}, {"state", hide}, {"trainer", hide}, {"hidden", hide}, {"leaves", hide},
+        {"records", hide}, {"spp", hide}, {"corrected", hide}};
+    if (!ImGui::BeginTable("##runs", kRunColumns, flags, ImVec2(0, ImGui::GetFontSize() * 14))) return;
     ImGui::TableSetupScrollFreeze(1, 1);
-    ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFontSize() * 9);
-    for (const char* h : headers) ImGui::TableSetupColumn(h);
+    for (const Column& c : columns) ImGui::TableSetupColumn(c.header, c.flags);
     ImGui::TableHeadersRow();
-    for (size_t i = 0; i < state.project.runs.size(); ++i) {
-        Run& run = state.project.runs[i];
+    const std::vector<std::string> names = shortRunNames(t.runs);
+    for (size_t i = 0; i < t.runs.size(); ++i) {
+        Run& run = t.runs[i];
         const RunSummary r = summarizeRun(run);
         ImGui::PushID(run.id.c_str());
         ImGui::TableNextRow();
-        ImGui::TableNextColumn();
-        ImGui::SetNextItemWidth(-1);
-        if (ImGui::InputText("##name", &run.name)) state.markDirty();
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\ncreated %s", run.id.c_str(), run.created.c_str());
-        // A and B: the two training runs the Views show side by side (prediction A | B | difference).
-        for (int* pick : {&state.runPair.a, &state.runPair.b}) {
-            ImGui::TableNextColumn();
-            if (run.kind != "train") continue;
-            bool on = *pick == int(i);
-            if (ImGui::Checkbox(pick == &state.runPair.a ? "##a" : "##b", &on)) {
-                *pick = on ? int(i) : -1;
-                if (state.runPair.a >= 0 && state.runPair.b >= 0 && state.runPair.a != state.runPair.b)
-                    state.request(Command::CompareRunPair);
+        // The name spans the row, so hovering anywhere on it shows every field and a right click
+        // opens its menu; the checkboxes and buttons of later cells stay clickable over it.
+        ImGui::TableSetColumnIndex(kName);
+        ImGui::Selectable(names[i].c_str(), t.compareRun == int(i),
+                          ImGuiSelectableFlags_SpanAllColumns | ImGuiSelectableFlags_AllowItemOverlap);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", runTooltipText(run).c_str());
+        runMenu(t, run, int(i));
+        if (ImGui::TableSetColumnIndex(kKind)) ImGui::TextUnformatted(r.kind.c_str());
+        if (ImGui::TableSetColumnIndex(kError)) ImGui::TextUnformatted(errorWithFloorText(r).c_str());
+        if (ImGui::TableSetColumnIndex(kTime)) ImGui::TextUnformatted(numberText(r.seconds, "%.2f").c_str());
+        if (ImGui::TableSetColumnIndex(kFrame)) {
+            ImGui::TextUnformatted(frameText(r).c_str());
+            if (r.frameSeconds && ImGui::IsItemHovered()) {
+                const std::string size = r.frameWidth > 0 ? sizeText(r.frameWidth, r.frameHeight) : std::string("the view's size");
+                ImGui::SetTooltip(r.frameGlsl ? "one full-quality GLSL frame at %s: the GPU time of the G-buffer and network passes\n"
+                                                "(GL timer queries, median of the last frames; read-back excluded).\n"
+                                                "On a software driver (Mesa llvmpipe) the GPU is this machine's CPU."
+                                              : "one CPU frame at %s: wall time of the G-buffer, the networks and the direct light\n"
+                                                "(median of the last frames)",
+                                  size.c_str());
             }
         }
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(r.kind.c_str());
-        ImGui::TableNextColumn();
-        if (r.stopped) ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", r.status.c_str());
-        else ImGui::TextUnformatted(r.status.c_str());
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(r.trainer.empty() ? "-" : r.trainer.c_str());
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(hiddenText(r.hidden).c_str());
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(numberText(r.leaves ? std::optional<double>(*r.leaves) : std::nullopt, "%.0f").c_str());
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(numberText(r.records, "%.0f").c_str());
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(numberText(r.spp, "%.0f").c_str());
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(numberText(r.seconds, "%.2f").c_str());
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(errorWithFloorText(r).c_str());
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(numberText(r.frameSeconds ? std::optional<double>(*r.frameSeconds * 1e3) : std::nullopt,
-                                          r.frameGlsl ? "%.2f GLSL" : "%.1f CPU")
-                                   .c_str());
-        if (r.frameSeconds && ImGui::IsItemHovered()) {
-            const std::string size = r.frameWidth > 0 ? sizeText(r.frameWidth, r.frameHeight) : std::string("the view's size");
-            ImGui::SetTooltip(r.frameGlsl ? "one full-quality GLSL frame at %s: the GPU time of the G-buffer and network passes\n"
-                                            "(GL timer queries, median of the last frames; read-back excluded).\n"
-                                            "On a software driver (Mesa llvmpipe) the GPU is this machine's CPU."
-                                          : "one CPU frame at %s: wall time of the G-buffer, the networks and the direct light\n"
-                                            "(median of the last frames)",
-                              size.c_str());
+        // A and B: the two training runs the Views show side by side (prediction A | B | difference).
+        for (int* pick : {&t.pair.a, &t.pair.b}) {
+            if (!ImGui::TableSetColumnIndex(pick == &t.pair.a ? kA : kB) || run.kind != "train") continue;
+            bool on = *pick == int(i);
+            if (ImGui::Checkbox(pick == &t.pair.a ? "##a" : "##b", &on)) {
+                *pick = on ? int(i) : -1;
+                if (t.pair.a >= 0 && t.pair.b >= 0 && t.pair.a != t.pair.b)
+                    t.request(Command::CompareRunPair);
+            }
         }
-        ImGui::TableNextColumn();
-        if (ImGui::SmallButton("Re-open")) state.request(Command::ReopenRun, {}, int(i));
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Restore this run's settings and show its images");
-        ImGui::SameLine();
-        const bool comparing = state.compareRun == int(i);
-        if (ImGui::SmallButton(comparing ? "Comparing" : "Compare")) state.request(Command::CompareRun, {}, int(i));
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip(run.kind == "train" ? "Show this run's models' prediction next to the ground truth"
-                                                  : "Show this run next to the ground truth, with the error map");
-        ImGui::SameLine();
-        if (ImGui::SmallButton("Delete")) state.request(Command::DeleteRun, {}, int(i));
+        if (ImGui::TableSetColumnIndex(kActions)) {
+            if (ImGui::SmallButton("Re-open")) t.request(Command::ReopenRun, int(i));
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("Restore this run's settings and show its images");
+            ImGui::SameLine();
+            const bool comparing = t.compareRun == int(i);
+            if (ImGui::SmallButton(comparing ? "Comparing" : "Compare")) t.request(Command::CompareRun, int(i));
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip(run.kind == "train" ? "Show this run's models' prediction next to the ground truth"
+                                                      : "Show this run next to the ground truth, with the error map");
+            ImGui::SameLine();
+            if (ImGui::SmallButton("Delete")) t.request(Command::DeleteRun, int(i));
+        }
+        if (ImGui::TableSetColumnIndex(kState)) {
+            if (r.stopped) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", r.status.c_str());
+            else ImGui::TextUnformatted(r.status.c_str());
+        }
+        if (ImGui::TableSetColumnIndex(kTrainer)) ImGui::TextUnformatted(r.trainer.empty() ? "-" : r.trainer.c_str());
+        if (ImGui::TableSetColumnIndex(kHidden)) ImGui::TextUnformatted(hiddenText(r.hidden).c_str());
+        if (ImGui::TableSetColumnIndex(kLeaves))
+            ImGui::TextUnformatted(numberText(r.leaves ? std::optional<double>(*r.leaves) : std::nullopt, "%.0f").c_str());
+        if (ImGui::TableSetColumnIndex(kRecords)) ImGui::TextUnformatted(numberText(r.records, "%.0f").c_str());
+        if (ImGui::TableSetColumnIndex(kSpp)) ImGui::TextUnformatted(numberText(r.spp, "%.0f").c_str());
+        if (ImGui::TableSetColumnIndex(kCorrected)) ImGui::TextUnformatted(numberText(r.corrected, "%.4g").c_str());
         ImGui::PopID();
     }
     ImGui::EndTable();
     ImGui::PushTextWrapPos(0.f);
-    ImGui::TextDisabled("Tick A and B on two training runs to see their predictions side by side.");
+    ImGui::TextDisabled("Tick A and B on two training runs to see their predictions side by side; hover a run for all its "
+                        "fields, right-click it to rename it; right-click the header to show or hide columns.");
     ImGui::PopTextWrapPos();
 }
 }  // namespace
@@ -181,12 +255,15 @@ void drawProjectPanel(WorkbenchState& state) {
         state.project.name = name;
         state.markDirty();
     }
-    ImGui::TextDisabled("file   %s", state.project.path.empty() ? "(not saved yet)" : state.project.path.c_str());
-    ImGui::TextDisabled("scene  %s", state.project.sceneRef.empty() ? "(embedded)" : state.project.sceneRef.c_str());
-    ImGui::TextDisabled("%s", state.dirty ? "unsaved changes" : "saved");
+    figureTextDisabled("file   %s", state.project.path.empty() ? "(not saved yet)" : state.project.path.c_str());
+    figureTextDisabled("scene  %s", state.project.sceneRef.empty() ? "(embedded)" : state.project.sceneRef.c_str());
+    figureTextDisabled("%s", state.dirty ? "unsaved changes" : "saved");
 
-    if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen)) drawRenderSettings(state);
-    if (ImGui::CollapsingHeader("Runs", ImGuiTreeNodeFlags_DefaultOpen)) drawRuns(state);
+    if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen)) drawRenderSettings(state.project.render, state.project.scene, state.dirty);
+    if (ImGui::CollapsingHeader("Runs", ImGuiTreeNodeFlags_DefaultOpen)) {
+        RunsTableView runs{state.project.runs, state.runPair, state.compareRun, state.requests, state.dirty};
+        drawRuns(runs);
+    }
     if (ImGui::CollapsingHeader("Recent projects")) {
         if (state.recent.empty()) ImGui::TextDisabled("(none)");
         for (size_t i = 0; i < state.recent.size(); ++i) {

@@ -7,6 +7,7 @@
 
 #include "core/data/record_layout.h"
 #include "core/data/sampling_settings.h"
+#include "panels/figure_text.h"
 #include "panels/panels.h"
 #include "panels/pipeline_controls.h"
 #include "panels/status_text.h"
@@ -19,7 +20,7 @@ void drawEstimate(const WorkbenchState& state, const SamplingSettings& s) {
     const double records = double(s.cellCount()) * double(s.directions);
     const int floats = RecordLayout::forScene(state.project.scene).floatsPerRecord();
     const double bytes = records * floats * 4.0;
-    ImGui::Text("at most %.3g records, %.3g MB (%d floats per record)", records, bytes / 1e6, floats);
+    figureText("at most %.3g records, %.3g MB (%d floats per record)", records, bytes / 1e6, floats);
 }
 
 void drawCoverage(const DatasetInfo& d) {
@@ -28,16 +29,16 @@ void drawCoverage(const DatasetInfo& d) {
         return;
     }
     const GeneratorStats& g = d.generator;
-    ImGui::TextWrapped("%s (%.1f s)", d.path.c_str(), d.seconds);
-    ImGui::Text("%llu records from %llu of %llu viewpoints (%llu inside objects, %llu outside the scene, %llu behind a "
+    figureText("%s (%.1f s)", d.path.c_str(), d.seconds);
+    figureText("%llu records from %llu of %llu viewpoints (%llu inside objects, %llu outside the scene, %llu behind a "
                 "surface)",
                 (unsigned long long)g.records, (unsigned long long)g.keptCells(), (unsigned long long)g.cells(),
                 (unsigned long long)g.cellsDroppedInsideObject, (unsigned long long)g.cellsDroppedOutsideScene,
                 (unsigned long long)g.cellsDroppedBehindSurface);
-    ImGui::Text("rays without a record: %llu escaped, %llu hit a light, %llu without a finite sample",
+    figureText("rays without a record: %llu escaped, %llu hit a light, %llu without a finite sample",
                 (unsigned long long)g.raysEscaped, (unsigned long long)g.raysHitEmitter,
                 (unsigned long long)g.recordsWithoutFiniteSample);
-    ImGui::Text("paths: %llu (%.1f per record); records at the path cap with noise above the target: %llu",
+    figureText("paths: %llu (%.1f per record); records at the path cap with noise above the target: %llu",
                 (unsigned long long)g.paths, g.records ? double(g.paths) / double(g.records) : 0.0,
                 (unsigned long long)g.recordsAtSppCap);
     // Columns share the width in proportion to their content (headers included), so none is cut.
@@ -56,13 +57,13 @@ void drawCoverage(const DatasetInfo& d) {
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(i < d.objectNames.size() ? d.objectNames[i].c_str() : "?");
         ImGui::TableNextColumn();
-        ImGui::Text("%llu%s", (unsigned long long)count, count == 0 ? "  (no data: cannot train)" : "");
+        figureText("%llu%s", (unsigned long long)count, count == 0 ? "  (no data: cannot train)" : "");
         const NoiseSummary* n = i < g.noisePerObject.size() ? &g.noisePerObject[i] : nullptr;
         ImGui::TableNextColumn();
-        if (n && n->known > 0) ImGui::Text("%.2f %%", 100.0 * n->median);
+        if (n && n->known > 0) figureText("%.2f %%", 100.0 * n->median);
         else ImGui::TextDisabled("unknown");
         ImGui::TableNextColumn();
-        if (n && n->known > 0) ImGui::Text("%.2f %%", 100.0 * n->p90);
+        if (n && n->known > 0) figureText("%.2f %%", 100.0 * n->p90);
         else ImGui::TextDisabled("unknown");
     }
     ImGui::EndTable();
@@ -123,7 +124,7 @@ void drawSamplingPanel(WorkbenchState& state) {
     }
     const Bounds3& r = state.project.scene.lightRegion;
     if (!r.empty())
-        ImGui::TextDisabled("light region (%.2f, %.2f, %.2f) .. (%.2f, %.2f, %.2f)", r.lo.x, r.lo.y, r.lo.z, r.hi.x, r.hi.y,
+        figureTextDisabled("light region (%.2f, %.2f, %.2f) .. (%.2f, %.2f, %.2f)", r.lo.x, r.lo.y, r.lo.z, r.hi.x, r.hi.y,
                             r.hi.z);
     drawEstimate(state, s);
 
@@ -135,7 +136,7 @@ void drawSamplingPanel(WorkbenchState& state) {
         ImGui::EndDisabled();
         if (!refusal.empty()) {
             ImGui::PushTextWrapPos(0.f);
-            ImGui::TextColored(ImVec4(1.f, 0.45f, 0.4f, 1.f), "Cannot generate: %s", refusal.c_str());
+            figureTextColored(ImVec4(1.f, 0.45f, 0.4f, 1.f), "Cannot generate: %s", refusal.c_str());
             ImGui::PopTextWrapPos();
         }
     } else {
@@ -146,7 +147,7 @@ void drawSamplingPanel(WorkbenchState& state) {
     if (state.notice && state.notice->panel == "Sampling") drawNotice(state);
     if (ImGui::CollapsingHeader("Coverage per object", ImGuiTreeNodeFlags_DefaultOpen)) {
         const std::string stale = datasetStaleReason(state.dataset, state.project);
-        if (!stale.empty()) ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", stale.c_str());
+        if (!stale.empty()) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", stale.c_str());
         drawCoverage(state.dataset);
     }
 }

@@ -8,6 +8,7 @@
 
 #include "core/scene/effects.h"
 #include "core/scene/scene_summary.h"
+#include "panels/figure_text.h"
 #include "panels/panels.h"
 #include "core/project/scene_edits.h"
 
@@ -37,9 +38,9 @@ void drawObjects(WorkbenchState& state) {
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(o.name.c_str());
         ImGui::TableNextColumn();
-        ImGui::Text("%s%s", objectKindName(o.kind), o.normals.empty() ? "" : ", smooth");
+        figureText("%s%s", objectKindName(o.kind), o.normals.empty() ? "" : ", smooth");
         ImGui::TableNextColumn();
-        ImGui::Text("%zu", o.primitiveCount());
+        figureText("%zu", o.primitiveCount());
         ImGui::TableNextColumn();
         const bool validMaterial = o.material >= 0 && o.material < int(scene.materials.size());
         ImGui::TextUnformatted(validMaterial ? scene.materials[size_t(o.material)].name.c_str() : "?");
@@ -79,10 +80,10 @@ void drawLights(WorkbenchState& state) {
         // Bullet + Text rather than BulletText, which does not wrap at the pane's edge.
         ImGui::Bullet();
         if (l.isArea())
-            ImGui::Text("%s: %s, area %.4g, radiance (%.3g, %.3g, %.3g)%s", l.name.c_str(), lightTypeName(l.type),
+            figureText("%s: %s, area %.4g, radiance (%.3g, %.3g, %.3g)%s", l.name.c_str(), lightTypeName(l.type),
                         l.area(), l.radiance.x, l.radiance.y, l.radiance.z, movable ? ", movable" : "");
         else
-            ImGui::Text("%s: point at (%.3g, %.3g, %.3g)%s", l.name.c_str(), c.x, c.y, c.z, movable ? ", movable" : "");
+            figureText("%s: point at (%.3g, %.3g, %.3g)%s", l.name.c_str(), c.x, c.y, c.z, movable ? ", movable" : "");
     }
     if (scene.lights.empty()) {
         ImGui::TextDisabled("The scene has no light.");
@@ -102,7 +103,7 @@ void drawLights(WorkbenchState& state) {
     const float hi[3] = {region.hi.x, region.hi.y, region.hi.z};
     for (int a = 0; a < 3; ++a) {
         if (lo[a] == hi[a]) {
-            ImGui::Text("%s = %.3f (fixed by the region)", axes[a], lo[a]);
+            figureText("%s = %.3f (fixed by the region)", axes[a], lo[a]);
             continue;
         }
         moved |= ImGui::SliderFloat(axes[a], comp[a], lo[a], hi[a], "%.3f", ImGuiSliderFlags_AlwaysClamp);
@@ -125,8 +126,8 @@ void drawScenePanel(WorkbenchState& state) {
         return;
     }
     const Scene& scene = state.project.scene;
-    ImGui::TextDisabled("%s", scene.sourcePath.empty() ? "(embedded scene)" : scene.sourcePath.c_str());
-    ImGui::Text("%zu objects, %zu materials, %zu lights, camera %dx%d", scene.objects.size(), scene.materials.size(),
+    figureTextDisabled("%s", scene.sourcePath.empty() ? "(embedded scene)" : scene.sourcePath.c_str());
+    figureText("%zu objects, %zu materials, %zu lights, camera %dx%d", scene.objects.size(), scene.materials.size(),
                 scene.lights.size(), scene.camera.width, scene.camera.height);
     if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) drawObjects(state);
     if (ImGui::CollapsingHeader("Materials", ImGuiTreeNodeFlags_DefaultOpen)) drawMaterials(state);

@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "core/pipeline/run_recording.h"
+#include "panels/figure_text.h"
 
 namespace rrf::panels {
 
@@ -72,7 +73,7 @@ void drawNotice(WorkbenchState& state, bool wrap) {
     // In a panel the text wraps at the pane's edge; on the one-line status bar it runs on, and
     // hovering shows it whole.
     if (wrap) ImGui::PushTextWrapPos(0.f);
-    ImGui::TextColored(colour, "%s", n.text.c_str());
+    figureTextColored(colour, "%s", n.text.c_str());
     if (wrap) ImGui::PopTextWrapPos();
     else if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", n.text.c_str());
     ImGui::PopID();

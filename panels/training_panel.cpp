@@ -10,6 +10,7 @@
 
 #include <imgui.h>
 
+#include "panels/figure_text.h"
 #include "panels/panels.h"
 #include "panels/layout.h"
 #include "panels/plot.h"
@@ -115,7 +116,7 @@ void drawCurve(ImDrawList* dl, const std::vector<LossPoint>& pts, bool validatio
 void drawStoppedChoice(WorkbenchState& state) {
     const TrainingInfo& t = state.training;
     if (t.running || !t.stopped || t.partialRun < 0 || t.partialRun >= int(state.project.runs.size())) return;
-    ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "Training %s.", trainingProgressText(t).c_str());
+    figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "Training %s.", trainingProgressText(t).c_str());
     ImGui::SameLine();
     ImGui::TextDisabled(t.modelsDir.empty() ? "No prediction is shown." : "The prediction keeps the last complete models.");
     ImGui::SameLine();
@@ -197,7 +198,7 @@ void drawTrainingBody(WorkbenchState& state) {
     // Legend: colour, network, last train / validation loss.
     ImGui::SameLine();
     ImGui::BeginGroup();
-    ImGui::TextDisabled("%s", shown.source.c_str());
+    figureTextDisabled("%s", shown.source.c_str());
     ImGui::TextDisabled("thick: train, thin: validation");
     for (size_t c = 0; c < curves.size(); ++c) legendEntry(curves[c].label(), legend[c].c_str(), seriesColour(int(c)), v.hidden);
     if (!v.plot.autoFit && ImGui::SmallButton("fit the data")) v.plot.autoFit = true;

@@ -200,6 +200,18 @@ ViewsLayout viewsLayout(ImVec2 avail, ImVec2 spacing, float line, const Image& i
     l.grid = shown(gridW, gridH) > shown(rowW, rowH);
     const float w = l.grid ? gridW : rowW, h = l.grid ? gridH : rowH;
     l.view = ImVec2(w, shown(w, h));
+    // Single: the whole width under the selector and title lines; the figures below it, where the
+    // pane scrolls to them. Never under kMinViewSide while the width allows it.
+    const float singleW = std::max(16.f, avail.x), singleH = std::max(16.f, avail.y - 2 * line);
+    // The image's smaller side as shown: what decides whether it can be read.
+    auto side = [&](float vw, float vh) { return std::min(shown(vw, vh), shown(vw, vh) * aspect); };
+    const float minH = std::min(ViewsLayout::kMinViewSide / std::min(1.f, aspect), singleW / aspect);
+    const float singleViewH = std::max(shown(singleW, singleH), minH);
+    if (side(w, h) < ViewsLayout::kMinViewSide && side(singleW, singleViewH) > side(w, h)) {
+        l.grid = false;
+        l.single = true;
+        l.view = ImVec2(singleW, singleViewH);
+    }
     return l;
 }
 

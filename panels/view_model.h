@@ -68,13 +68,19 @@ std::vector<int> objectsWithoutNetwork(const std::vector<int>& objectIds, const 
                                        const PredictionSettings& prediction);
 
 /// Where the Views panel puts its three views: in a row with the figures below, or two over two
-/// with the figures in the fourth cell, whichever shows the image larger in the space there is.
+/// with the figures in the fourth cell, whichever shows the image larger in the space there is; or,
+/// when both would show it under kMinViewSide (thumbnails nobody can read, in a split pane), one
+/// view at a time as large as the pane allows, chosen with a selector line above it.
 struct ViewsLayout {
+    static constexpr float kMinViewSide = 120.f;  ///< pixels: the smaller side of a readable view
     bool grid = false;
+    bool single = false;
     ImVec2 view;  ///< the size of each view (the image is fitted inside, keeping its aspect)
 };
 /// The layout for `avail` (the panel's free content region), ImGui's item spacing, one text line's
-/// height with spacing, and the image shown (its aspect; empty: square).
+/// height with spacing, and the image shown (its aspect; empty: square). Single view: a line for the
+/// selector, the view's title and the view, at least kMinViewSide where the width allows (the pane
+/// then scrolls to the figures below).
 ViewsLayout viewsLayout(ImVec2 avail, ImVec2 spacing, float line, const Image& image);
 
 /// Whether the compared view shows the spread map: it is on, the compared image is the live

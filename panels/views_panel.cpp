@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include <imgui.h>
 
@@ -16,6 +17,7 @@
 #include "core/project/scene_edits.h"
 #include "core/scene/light_drag.h"
 #include "panels/clip_check.h"
+#include "panels/figure_text.h"
 #include "panels/layout.h"
 #include "panels/panels.h"
 #include "panels/plot.h"
@@ -109,13 +111,14 @@ void dragRegion(ViewState& v, int index, const ViewRect& r, const Image& image, 
     }
 }
 
-void drawToolbar(WorkbenchState& state) {
-    ViewState& v = state.view;
-    const RenderProgress& r = state.render;
+/// The controls above the views: render, save run, reset view and the display settings of `v`;
+/// `r` for the render's progress; the buttons' requests go to `requests`.
+void drawToolbar(ViewState& v, const RenderProgress& r, std::vector<Request>& requests) {
+    auto request = [&](Command c) { requests.push_back({c, {}, -1}); };
     if (!r.running) {
-        if (ImGui::Button("Render")) state.request(Command::StartRender);
+        if (ImGui::Button("Render")) request(Command::StartRender);
     } else if (ImGui::Button("Stop render")) {
-        state.request(Command::CancelRender);
+        request(Command::CancelRender);
     }
     if (r.running || r.spp > 0) {
         char overlay[128];
@@ -134,7 +137,7 @@ void drawToolbar(WorkbenchState& state) {
                               r.etaSeconds >= 0 ? (", ETA " + std::to_string(int(r.etaSeconds + 0.5)) + " s").c_str() : "");
     }
     sameLineIfFits(ImGui::CalcTextSize("Save run").x + 2 * ImGui::GetStyle().FramePadding.x);
-    if (ImGui::Button("Save run")) state.request(Command::SaveRun);
+    if (ImGui::Button("Save run")) request(Command::SaveRun);
     ImGui::SameLine();
     if (ImGui::Button("Reset view")) {
         v.zoom = 1.f;
@@ -241,11 +244,13 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
     ImGui::BeginGroup();
     // A long title wraps within its view rather than running under the next one.
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + size.x);
-    ImGui::TextUnformatted(title);
+    textUnbroken(title);
     ImGui::PopTextWrapPos();
     const ImVec2 pos = ImGui::GetCursorScreenPos();
     // Left button: pan; right button: draw the region of interest.
     ImGui::InvisibleButton("##canvas", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+    v.viewMin[index] = pos;
+    v.viewMax[index] = ImVec2(pos.x + size.x, pos.y + size.y);
     const bool hovered = ImGui::IsItemHovered();
     const bool active = ImGui::IsItemActive();
     const bool activated = ImGui::IsItemActivated();
@@ -335,7 +340,7 @@ void drawHistogram(const ViewState& v, float width) {
         dl->AddRectFilled(ImVec2(x.toPixel(e0) + 1.f, y.toPixel(double(h.counts[i]))), ImVec2(x.toPixel(e1) - 1.f, max.y),
                           IM_COL32(120, 170, 230, 220));
     }
-    ImGui::TextDisabled("%llu pixels: %llu under 1e-5 (zeros included), %llu at 10 or over%s", (unsigned long long)h.total(),
+    figureTextDisabled("%llu pixels: %llu under 1e-5 (zeros included), %llu at 10 or over%s", (unsigned long long)h.total(),
                         (unsigned long long)h.below, (unsigned long long)h.above,
                         h.negative ? (", " + std::to_string(h.negative) + " negative (binned by |value|)").c_str() : "");
 }
@@ -345,42 +350,42 @@ void drawRegionFigures(WorkbenchState& state) {
     ViewState& v = state.view;
     if (v.region.empty()) return;
     const ViewRegion& g = v.region;
-    ImGui::Text("region (%d, %d)-(%d, %d):", g.x0, g.y0, g.x1 - 1, g.y1 - 1);
+    figureText("region (%d, %d)-(%d, %d):", g.x0, g.y0, g.x1 - 1, g.y1 - 1);
     ImGui::SameLine();
     if (ImGui::SmallButton("clear region")) v.region = {};
     const ViewErrorStats& f = v.regionStats;
     if (!f.valid) {
-        ImGui::TextDisabled("  no compared pixel inside (background, emitter or left out)");
+        figureTextDisabled("  no compared pixel inside (background, emitter or left out)");
         return;
     }
     const ErrorStats& e = f.stats;
-    ImGui::Text("  %llu pixels: rel. RMSE %.4g (noise floor %s, corrected %s)  RMSE %.4g (corrected %s)  bias %+.4g  "
+    figureText("  %llu pixels: rel. RMSE %.4g (noise floor %s, corrected %s)  RMSE %.4g (corrected %s)  bias %+.4g  "
                 "relMSE %.4g  SMAPE %.4g  MAE %.4g",
                 (unsigned long long)e.pixels, e.relativeRmse, noiseFigureText(e.relativeRmseNoiseFloor).c_str(),
                 noiseFigureText(e.relativeRmseCorrected).c_str(), e.rmse, noiseFigureText(e.rmseCorrected).c_str(),
                 e.signedRelativeMean, e.relMse, e.smape, e.mae);
     if (v.flip && v.regionFlip.pixels)
-        ImGui::Text("  HDR-FLIP mean %.4g, weighted median %.4g", v.regionFlip.mean, v.regionFlip.weightedMedian);
+        figureText("  HDR-FLIP mean %.4g, weighted median %.4g", v.regionFlip.mean, v.regionFlip.weightedMedian);
 }
 
 /// The figures of the error map: `rrf evaluate`'s overall row for the term, and what it leaves out.
 void drawErrorFigures(WorkbenchState& state) {
     const ViewErrorStats& f = state.view.errorStats;
     if (!f.valid && state.view.compareSource == CompareSource::RunPair) {
-        ImGui::TextDisabled("Run pair: the error map is |B - A|, prediction against prediction (no noise floor).");
+        figureTextDisabled("Run pair: the error map is |B - A|, prediction against prediction (no noise floor).");
         return;
     }
     if (!f.waiting.empty()) {
-        ImGui::TextWrapped("Error figures: %s.", f.waiting.c_str());
+        figureText("Error figures: %s.", f.waiting.c_str());
         return;
     }
     if (!f.valid) {
-        ImGui::TextDisabled(state.groundTruth.footprint ? "Error figures: need a compared image of the ground truth's size."
+        figureTextDisabled(state.groundTruth.footprint ? "Error figures: need a compared image of the ground truth's size."
                                                         : "Error figures: need the ground truth's footprint mask (render it).");
         return;
     }
     const ErrorStats& e = f.stats;
-    ImGui::Text("%s term, %llu pixels: rel. RMSE %.4g (noise floor %s, corrected (noise subtracted) %s)  RMSE %.4g "
+    figureText("%s term, %llu pixels: rel. RMSE %.4g (noise floor %s, corrected (noise subtracted) %s)  RMSE %.4g "
                 "(noise floor %s, corrected %s)  MAE %.4g",
                 termName(state.view.term), (unsigned long long)e.pixels, e.relativeRmse,
                 noiseFigureText(e.relativeRmseNoiseFloor).c_str(), noiseFigureText(e.relativeRmseCorrected).c_str(), e.rmse,
@@ -388,15 +393,15 @@ void drawErrorFigures(WorkbenchState& state) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("the figures rrf evaluate reports for all objects (per channel, footprint mask's pixels);\n"
                           "noise floor: what the ground truth's own noise gives; corrected: that noise subtracted");
-    ImGui::TextDisabled("hatched: %s", f.left.describe().c_str());
+    figureTextDisabled("hatched: %s", f.left.describe().c_str());
     drawRegionFigures(state);
     if (!state.view.flip) return;
     const FlipViewMap& m = state.view.flipMap;
     if (!flipShown(state)) {
-        ImGui::TextDisabled("FLIP: computing the map of these images...");
+        figureTextDisabled("FLIP: computing the map of these images...");
         return;
     }
-    ImGui::Text("HDR-FLIP %llu pixels: mean %.4g, weighted median %.4g (quartiles %.4g, %.4g), max %.4g",
+    figureText("HDR-FLIP %llu pixels: mean %.4g, weighted median %.4g (quartiles %.4g, %.4g), max %.4g",
                 (unsigned long long)m.stats.pixels, m.stats.mean, m.stats.weightedMedian, m.stats.weightedFirstQuartile,
                 m.stats.weightedThirdQuartile, m.stats.max);
     if (ImGui::IsItemHovered())
@@ -456,31 +461,31 @@ std::string objectUnder(const WorkbenchState& state, int px, int py, int width, 
 void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp) {
     const ViewState& v = state.view;
     if (v.hoverX < 0 || ref.empty() || v.hoverX >= ref.width || v.hoverY >= ref.height) {
-        ImGui::TextDisabled("Hover a view for pixel values; wheel zooms, drag pans, right-drag marks a region.");
+        figureTextDisabled("Hover a view for pixel values; wheel zooms, drag pans, right-drag marks a region.");
         return;
     }
     const Vec3 r = ref.at(v.hoverX, v.hoverY);
-    ImGui::Text("pixel (%d, %d)  %s", v.hoverX, v.hoverY, objectUnder(state, v.hoverX, v.hoverY, ref.width, ref.height).c_str());
-    ImGui::Text("%s (%.4g, %.4g, %.4g)", v.compareSource == CompareSource::RunPair ? "A" : "ground truth", r.x, r.y, r.z);
+    figureText("pixel (%d, %d)  %s", v.hoverX, v.hoverY, objectUnder(state, v.hoverX, v.hoverY, ref.width, ref.height).c_str());
+    figureText("%s (%.4g, %.4g, %.4g)", v.compareSource == CompareSource::RunPair ? "A" : "ground truth", r.x, r.y, r.z);
     if (!cmp.empty() && v.hoverX < cmp.width && v.hoverY < cmp.height) {
         const Vec3 c = cmp.at(v.hoverX, v.hoverY);
         ImGui::SameLine();
-        ImGui::Text("  compared (%.4g, %.4g, %.4g)", c.x, c.y, c.z);
+        figureText("  compared (%.4g, %.4g, %.4g)", c.x, c.y, c.z);
         if (spreadShown(state) && v.hoverX < state.view.spreadMap.map.width && v.hoverY < state.view.spreadMap.map.height) {
             ImGui::SameLine();
-            ImGui::Text("  spread %.4g", state.view.spreadMap.map.at(v.hoverX, v.hoverY).x);
+            figureText("  spread %.4g", state.view.spreadMap.map.at(v.hoverX, v.hoverY).x);
         }
         if (cmp.width == ref.width && cmp.height == ref.height) {
             ImGui::SameLine();
-            if (!v.flip) ImGui::Text("  error %.4g", pixelError(c, r, v.metric));
+            if (!v.flip) figureText("  error %.4g", pixelError(c, r, v.metric));
             else if (flipShown(state) && v.hoverX < state.view.flipMap.map.width && v.hoverY < state.view.flipMap.map.height)
-                ImGui::Text("  FLIP %.4g", state.view.flipMap.map.at(v.hoverX, v.hoverY).x);
-            else ImGui::TextDisabled("  FLIP computing");
+                figureText("  FLIP %.4g", state.view.flipMap.map.at(v.hoverX, v.hoverY).x);
+            else figureTextDisabled("  FLIP computing");
             const FootprintMask* mask = state.groundTruth.footprint.get();
             const size_t i = size_t(v.hoverY) * size_t(ref.width) + size_t(v.hoverX);
             if (mask && mask->width == ref.width && mask->height == ref.height && !mask->isKept(i)) {
                 ImGui::SameLine();
-                ImGui::TextDisabled("  left out (%s)", footprintName(mask->pixel[i]));
+                figureTextDisabled("  left out (%s)", footprintName(mask->pixel[i]));
             }
         }
     }
@@ -488,13 +493,23 @@ void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp
 }  // namespace
 
 void drawViewsPanel(WorkbenchState& state) {
-    drawToolbar(state);
+    ViewState& v = state.view;
+    v.drawnFrame = ImGui::GetFrameCount();
+    for (int i = 0; i < 3; ++i) {
+        v.viewMin[i] = v.viewMax[i] = ImVec2(0, 0);
+        v.lightHandle[i] = ImVec2(NAN, NAN);  // a view not drawn (single view) has no handle on screen
+    }
+    ImGui::BeginGroup();
+    drawToolbar(v, state.render, state.requests);
+    ImGui::EndGroup();
+    v.toolbarMin = ImGui::GetItemRectMin();
+    v.toolbarMax = ImGui::GetItemRectMax();
     if (state.notice && state.notice->panel == "Views") drawNotice(state);
     const Image& ref = state.reference().term(state.view.term);
     const Image& cmp = state.compared().term(state.view.term);
     const bool pair = state.view.compareSource == CompareSource::RunPair;
     if (pair) {
-        ImGui::TextColored(ImVec4(0.5f, 0.8f, 1.f, 1.f), "Comparing run A '%s' | run B '%s' | difference B - A",
+        figureTextColored(ImVec4(0.5f, 0.8f, 1.f, 1.f), "Comparing run A '%s' | run B '%s' | difference B - A",
                            state.runPair.nameA.c_str(), state.runPair.nameB.c_str());
         ImGui::SameLine();
         if (ImGui::SmallButton("Back to the ground truth")) state.view.compareSource = CompareSource::Prediction;
@@ -520,14 +535,28 @@ void drawViewsPanel(WorkbenchState& state) {
     const std::string errTitle = std::string(pair ? "Difference B vs A: " : "Error: ") + errorViewLabel(state.view);
 
     ImVec2 hover(-1, -1);
-    bool over = drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
-    ImGui::SameLine();
-    over |= drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
-    if (!layout.grid) ImGui::SameLine();
     static const Image kNoImage;
     const bool comparable = !cmp.empty() && cmp.width == ref.width && cmp.height == ref.height;
     const bool errorShown = comparable && (!state.view.flip || flipShown(state));
-    over |= drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
+    bool over = false;
+    if (layout.single) {
+        // Too little room for three readable views: one at a time, the others a click away.
+        const char* names[3] = {pair ? "A" : "ground truth", pair ? "B" : "compared", pair ? "difference" : "error"};
+        for (int i = 0; i < 3; ++i) {
+            if (i) sameLineIfFits(labelledWidth(ImGui::GetFrameHeight(), names[i]));
+            ImGui::RadioButton(names[i], &v.singleView, i);
+        }
+        v.singleView = std::clamp(v.singleView, 0, 2);
+        if (v.singleView == ViewModel::kReference) over = drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
+        else if (v.singleView == ViewModel::kCompared) over = drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
+        else over = drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
+    } else {
+        over = drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
+        ImGui::SameLine();
+        over |= drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
+        if (!layout.grid) ImGui::SameLine();
+        over |= drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
+    }
     state.view.hoverX = over ? int(hover.x) : -1;
     state.view.hoverY = over ? int(hover.y) : -1;
 
@@ -541,14 +570,14 @@ void drawViewsPanel(WorkbenchState& state) {
     if (state.view.spread) {
         const SpreadViewMap& m = state.view.spreadMap;
         if (state.view.compareSource != CompareSource::Prediction)
-            ImGui::TextDisabled("Spread: shown for the live prediction only (middle view: prediction).");
-        else if (!m.matches(state.prediction.revision)) ImGui::TextDisabled("Spread: computing on the CPU...");
-        else if (!m.why.empty()) ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "Spread: %s", m.why.c_str());
-        else ImGui::TextDisabled("Spread: %llu pixels, viridis over [0, %.3g] (p99); 0 where none is known",
+            figureTextDisabled("Spread: shown for the live prediction only (middle view: prediction).");
+        else if (!m.matches(state.prediction.revision)) figureTextDisabled("Spread: computing on the CPU...");
+        else if (!m.why.empty()) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "Spread: %s", m.why.c_str());
+        else figureTextDisabled("Spread: %llu pixels, viridis over [0, %.3g] (p99); 0 where none is known",
                                  (unsigned long long)m.pixels, m.scale);
     }
     const std::string partial = withoutNetworkText(compared, state.project.scene);
-    if (!partial.empty()) ImGui::TextColored(ImVec4(1.f, 0.3f, 1.f, 1.f), "%s", partial.c_str());
+    if (!partial.empty()) figureTextColored(ImVec4(1.f, 0.3f, 1.f, 1.f), "%s", partial.c_str());
     drawReadout(state, ref, cmp);
     drawLegend(state.view, std::min(size.x, ImGui::GetFontSize() * 18));
     if (state.view.histogram) drawHistogram(state.view, std::min(std::max(size.x, ImGui::GetFontSize() * 20), ImGui::GetFontSize() * 30));

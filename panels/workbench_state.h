@@ -215,6 +215,15 @@ struct ViewState {
     /// Where each view drew the light's handle in the last frame (screen pixels), for scripts and
     /// tests that drag it as a user would; NaN where it drew none.
     ImVec2 lightHandle[3] = {{NAN, NAN}, {NAN, NAN}, {NAN, NAN}};
+    /// The view shown when the pane is too small for three readable views side by side
+    /// (ViewsLayout::single): ViewModel::kReference, kCompared or kError, picked above it.
+    int singleView = 2;
+    /// Where the Views panel drew in frame `drawnFrame` (screen pixels): its toolbar (every control
+    /// above the views) and each view's image area (zero size for a view not drawn). Overlays use
+    /// them to cover images, never controls (panels/frame_overlay.h); tests to measure.
+    int drawnFrame = -1;
+    ImVec2 toolbarMin{0, 0}, toolbarMax{0, 0};
+    ImVec2 viewMin[3] = {}, viewMax[3] = {};
 };
 
 /// Progress of the ground-truth render, as last published by its job.

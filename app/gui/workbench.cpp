@@ -12,6 +12,8 @@
 #include <imgui.h>
 
 #include "core/util/memory_budget.h"
+#include "panels/clip_check.h"
+#include "panels/frame_overlay.h"
 #include "panels/panels.h"
 #include "panels/pipeline_controls.h"
 #include "panels/status_text.h"
@@ -264,7 +266,7 @@ void Workbench::drawStatusBar() {
         else std::snprintf(overlay, sizeof overlay, "%.0f%%", 100 * pipeline.fraction);
         ImGui::Text("pipeline: %s (stage %d of 4)", pipeline.stage.c_str(), pipeline.stageIndex + 1);
         ImGui::SameLine();
-        ImGui::ProgressBar(float(pipeline.fraction), ImVec2(ImGui::GetFontSize() * 10, 0), overlay);
+        panels::fittedProgressBar(float(pipeline.fraction), ImGui::GetFontSize() * 10, overlay);  // figures never cut
         ImGui::SameLine();
     }
     if (running.empty()) {
@@ -290,7 +292,7 @@ void Workbench::drawStatusBar() {
         else std::snprintf(overlay, sizeof overlay, "%.0f%%", 100 * j.progress);
         ImGui::TextUnformatted(j.name.c_str());
         ImGui::SameLine();
-        ImGui::ProgressBar(float(j.progress), ImVec2(ImGui::GetFontSize() * 10, 0), overlay);
+        panels::fittedProgressBar(float(j.progress), ImGui::GetFontSize() * 10, overlay);
         ImGui::SameLine();
         ImGui::TextUnformatted(j.status.c_str());
         ImGui::SameLine();
@@ -309,18 +311,14 @@ bool Workbench::busy() const {
 void Workbench::drawFrameOverlay() {
     if (!frameOverlay_) return;
     const FrameTimeSummary s = summarizeFrameTimes(frameStats_.recent());
+    char line[3][96];
+    std::snprintf(line[0], sizeof line[0], "frame %.1f ms", 1e3 * frameStats_.last());
+    std::snprintf(line[1], sizeof line[1], "median %.1f ms, p95 %.1f ms", 1e3 * s.median, 1e3 * s.p95);
+    std::snprintf(line[2], sizeof line[2], "last %zu frames, UI thread work", s.frames);
+    // Over the Views' images, clear of their toolbar; at the window's top-right when no view is shown.
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + vp->WorkSize.x - 10, vp->WorkPos.y + 30), ImGuiCond_Always, ImVec2(1, 0));
-    ImGui::SetNextWindowBgAlpha(0.7f);
-    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
-    if (ImGui::Begin("##frame-time", nullptr, flags)) {
-        ImGui::Text("frame %.1f ms", 1e3 * frameStats_.last());
-        ImGui::Text("median %.1f ms, p95 %.1f ms", 1e3 * s.median, 1e3 * s.p95);
-        ImGui::TextDisabled("last %zu frames, UI thread work", s.frames);
-    }
-    ImGui::End();
+    panels::drawFrameOverlay({line[0], line[1], line[2]}, state_.view,
+                             ImVec2(vp->WorkPos.x + vp->WorkSize.x - 10, vp->WorkPos.y + 30));
 }
 
 void Workbench::drawModals() {

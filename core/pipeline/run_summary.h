@@ -27,6 +27,7 @@ struct RunSummary {
     /// Train runs: the reference's relative RMSE noise floor of `error`; render runs: the render's own
     /// relative error estimate (its noise, the floor of any comparison against it).
     std::optional<double> noiseFloor;
+    std::optional<double> corrected;  ///< train runs: `error` less the reference's noise (evaluated runs)
     std::optional<double> frameSeconds;  ///< one frame of prediction: GLSL when measured, else CPU
     bool frameGlsl = false;           ///< frameSeconds is the GLSL figure
     int frameWidth = 0, frameHeight = 0;          ///< the frame's size (0: not recorded)
@@ -35,6 +36,15 @@ struct RunSummary {
 
 /// The table row of `run`.
 RunSummary summarizeRun(const Run& run);
+
+/// The names the runs table shows, one per run: a name the user chose is shown whole; a name that
+/// is still the run's id ("train-20261201-194512[-n]") is cut to its shortest ending that no other
+/// run's name ends with, cut at a '-' or inside a date at its month or day: "194512", or
+/// "01-194512" when another day has a run at that second; an ending keeps at least one part of 3 or
+/// more characters, so a "-2" counter keeps its time. A narrow column then shows what tells the
+/// runs apart instead of their common prefix. Names still alike (two runs named the same) get
+/// " #<row>" (1-based).
+std::vector<std::string> shortRunNames(const std::vector<Run>& runs);
 
 /// "20,10": hidden sizes for tables; "-" when empty.
 std::string hiddenText(const std::vector<int>& hidden);
