@@ -22,7 +22,7 @@ namespace {
 constexpr char kMagic[8] = {'R', 'R', 'F', 'P', 'R', 'O', 'G', '1'};
 constexpr size_t kHeader = 8 + 4 + 8 + 8;
 
-std::string glString(GLenum name) {
+std::string driverString(GLenum name) {
     const GLubyte* s = glGetString(name);
     return s ? reinterpret_cast<const char*>(s) : "";
 }
@@ -52,7 +52,7 @@ ProgramBinaryCache& ProgramBinaryCache::shared() {
 
 uint64_t ProgramBinaryCache::key(const std::string& vertexSource, const std::string& fragmentSource) {
     std::string all;
-    for (const std::string& s : {vertexSource, fragmentSource, glString(GL_VENDOR), glString(GL_RENDERER), glString(GL_VERSION)})
+    for (const std::string& s : {vertexSource, fragmentSource, driverString(GL_VENDOR), driverString(GL_RENDERER), driverString(GL_VERSION)})
         appendField(all, s);
     return checksum64(all.data(), all.size());
 }
@@ -89,7 +89,7 @@ bool ProgramBinaryCache::supported() {
         if (dir_.empty())
             note("program binary cache off (RRF_PROGRAM_CACHE is empty or no home directory): shaders compile at every start");
         else if (!supported_)
-            note("program binary cache unused: the driver (" + glString(GL_RENDERER) +
+            note("program binary cache unused: the driver (" + driverString(GL_RENDERER) +
                  ") offers no program binary format (GL_NUM_PROGRAM_BINARY_FORMATS 0), so shaders compile at every start");
     }
     return supported_ > 0 && !dir_.empty();
