@@ -213,6 +213,7 @@ void PredictionController::renderBand() {
         return;
     }
     secondsPerRow_ = bands_.wallSeconds / height;
+    lastFullFrame_ = BandedFrameSummary{bands_.gpuSeconds, bands_.longestBand, bands_.bands};
     if (!fullFrameLogged_) {
         fullFrameLogged_ = true;
         char line[200];

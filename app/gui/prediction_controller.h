@@ -53,6 +53,13 @@ public:
     /// True while a full-quality GLSL frame is being rendered in bands (app/gui/prediction_bands.h):
     /// the frames must keep coming until it is shown.
     bool bandsPending() const { return bands_.active; }
+    /// The last full-quality GLSL frame shown: its device seconds, its bands and its longest band's
+    /// wall seconds on the UI thread (0 before any): what tests check instead of frame times.
+    struct BandedFrameSummary {
+        double gpuSeconds = 0.0, longestBand = 0.0;
+        int bands = 0;
+    };
+    const BandedFrameSummary& lastFullFrame() const { return lastFullFrame_; }
 
     /// Forgets every job (a project was closed): nothing they still produce arrives.
     void drop();
@@ -124,6 +131,7 @@ private:
     BandedFrame bands_;
     double secondsPerRow_ = 0.0;  ///< wall seconds per row of the last full frame (0: none yet)
     bool fullFrameLogged_ = false;  ///< the first full frame of the loaded models was logged
+    BandedFrameSummary lastFullFrame_;
     /// The Views' leaf overlay, computed on a worker (a G-buffer and a leaf lookup per pixel).
     JobSession<LeafOverlay> overlayJob_;
     uint64_t overlayFor_ = 0;  ///< the prediction revision the last overlay job was started for

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/gl/program_binary_cache.h"
+#include "app/gui/prediction_bands.h"
 #include "app/gui/workbench.h"
 #include "core/nn/network_settings.h"
 #include "core/pipeline/presets.h"
@@ -66,7 +67,8 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
                        "pipeline_stopped", "prediction_label", "error_waiting", "flip_evaluated",
                        "region_pixels_min", "light_grid_points", "spread_shown", "spread_evaluated",
                        "ground_truth_stored", "help_open", "status_idle_while_pipeline",
-                       "undo_steps", "redo_steps", "light_position", "objects_rows", "programs_cached"}},
+                       "undo_steps", "redo_steps", "light_position", "objects_rows", "programs_cached",
+                       "full_frame_banded"}},
         };
     }();
     return keys;
@@ -414,6 +416,15 @@ bool Script::execute(Workbench& wb, const json& s) {
         flag("evaluated", st.evaluation.valid, "evaluation state");
         // objects_rows: the Objects table's rows (global term) of the evaluation shown.
         count("objects_rows", st.evaluation.valid ? st.evaluation.rows[int(Term::Global)].size() : 0, "Objects table rows");
+        // full_frame_banded: the last full-quality GLSL frame was not rendered in one go on the UI
+        // thread unless it was cheap: more than one band, or device time within a band's budget
+        // (a fast GPU). Structure, not a frame time: robust on a loaded machine.
+        if (const auto v = r.find("full_frame_banded"); v && v->boolean()) {
+            const auto& f = wb.prediction().lastFullFrame();
+            require(f.bands > 0, "no full-quality GLSL frame was shown");
+            require(f.bands > 1 || f.gpuSeconds <= kBandBudgetSeconds,
+                    "the full frame (" + std::to_string(f.gpuSeconds) + " s on the device) was rendered in one band");
+        }
         // programs_cached: the GLSL programs of the last model load came from the program binary
         // cache (app/gl/program_binary_cache.h), none compiled; passes with a note where the driver
         // offers no binary format (the cache is then a no-op by design).
