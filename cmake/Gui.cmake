@@ -57,6 +57,8 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_prediction_draft.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_input_habits.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_readability.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_stored_evaluation.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_prediction_bands.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/worker_priority.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp
@@ -64,7 +66,9 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/app/gui/prediction_draft.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/user_workspace.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/shortcuts.cpp
-    ${CMAKE_SOURCE_DIR}/app/gui/key_taps.cpp)
+    ${CMAKE_SOURCE_DIR}/app/gui/key_taps.cpp
+    ${CMAKE_SOURCE_DIR}/app/gui/stored_evaluation.cpp
+    ${CMAKE_SOURCE_DIR}/app/gui/prediction_bands.cpp)
   target_link_libraries(rrf_gui_tests PRIVATE rrf_panels GTest::gtest GTest::gtest_main rrf_warnings)
   target_compile_definitions(rrf_gui_tests PRIVATE RRF_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
   include(GoogleTest)
@@ -128,6 +132,14 @@ if(RRF_BUILD_TESTS)
                    ${CMAKE_SOURCE_DIR}/projects/cornell-glossy ${CMAKE_BINARY_DIR}/gui_test_glossy_gather 1
                    ${CMAKE_SOURCE_DIR}/tests/gui/session_glossy_gather.json)
   set_tests_properties(gui_glossy_gather PROPERTIES ENVIRONMENT "RRF_GUI_SIZE=1280x720" TIMEOUT 600)
+  # Reopen (issue 29): the Objects table of the last evaluation comes back when the ground truth and
+  # models it judged are the same, and not for another light; the GLSL programs come from the binary
+  # cache and the full frame follows the draft in bands, the UI thread never rendering it in one go.
+  add_test(NAME gui_reopen
+           COMMAND ${RRF_GUI_RUNNER} $<TARGET_FILE:rrf-workbench> $<TARGET_FILE:rrf_gui_shotcheck>
+                   ${CMAKE_SOURCE_DIR}/projects/cornell-box ${CMAKE_BINARY_DIR}/gui_test_reopen 3
+                   ${CMAKE_SOURCE_DIR}/tests/gui/session_reopen.json)
+  set_tests_properties(gui_reopen PROPERTIES TIMEOUT 600 COST 10)
   # A first start without a project works in the per-user workspace; the bundled project stays clean.
   add_test(NAME gui_first_start_workspace
            COMMAND ${CMAKE_SOURCE_DIR}/tests/gui/run_first_start.sh $<TARGET_FILE:rrf-workbench>

@@ -6,6 +6,8 @@
 
 #include <glad/gl.h>
 
+#include "app/gl/program_binary_cache.h"
+
 namespace rrf {
 
 std::string glErrorName(unsigned code) {
@@ -87,6 +89,17 @@ GLuint compile(GLenum type, const std::string& name, const std::string& source) 
 
 GlProgram::GlProgram(const std::string& vertexName, const std::string& vertexSource, const std::string& fragmentName,
                      const std::string& fragmentSource) {
+    // A binary linked by an earlier run of the same sources and driver skips compiling and linking
+    // (program_binary_cache.h); a miss or a refused file compiles as always.
+    ProgramBinaryCache& cache = ProgramBinaryCache::shared();
+    const uint64_t key = ProgramBinaryCache::key(vertexSource, fragmentSource);
+    id_ = glCreateProgram();
+    if (cache.load(key, id_)) {
+        checkGl(("loading the cached program " + vertexName + " + " + fragmentName).c_str());
+        return;
+    }
+    glDeleteProgram(id_);  // a refused binary may leave the object in a state a link does not clear
+    id_ = 0;
     const GLuint vs = compile(GL_VERTEX_SHADER, vertexName, vertexSource);
     GLuint fs = 0;
     try {
@@ -98,6 +111,7 @@ GlProgram::GlProgram(const std::string& vertexName, const std::string& vertexSou
     id_ = glCreateProgram();
     glAttachShader(id_, vs);
     glAttachShader(id_, fs);
+    glProgramParameteri(id_, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
     glLinkProgram(id_);
     glDeleteShader(vs);  // flagged for deletion; freed with the program
     glDeleteShader(fs);
@@ -110,6 +124,7 @@ GlProgram::GlProgram(const std::string& vertexName, const std::string& vertexSou
         throw GlError(vertexName + " + " + fragmentName + ": program does not link:\n" + log);
     }
     checkGl(("building program " + vertexName + " + " + fragmentName).c_str());
+    cache.store(key, id_);
 }
 
 GlProgram::~GlProgram() {

@@ -168,9 +168,9 @@ double GlslPredictor::gpuSeconds() const {
     if (!timed_) return std::numeric_limits<double>::quiet_NaN();
     // GL_QUERY_RESULT waits until the passes have run (read() has already waited for them).
     GLuint64 total = 0;
-    for (GLuint q : timerQueries_) {
+    for (size_t i = gbufferTimed_ ? 0 : 1; i < timerQueries_.size(); ++i) {
         GLuint64 ns = 0;
-        glGetQueryObjectui64v(q, GL_QUERY_RESULT, &ns);
+        glGetQueryObjectui64v(timerQueries_[i], GL_QUERY_RESULT, &ns);
         total += ns;
     }
     checkGl("reading the frame's timer queries");
@@ -285,9 +285,13 @@ void GlslPredictor::allocateTargets() {
     targetHeight_ = h;
 }
 
-void GlslPredictor::render() {
+void GlslPredictor::render(int rowBegin, int rowEnd) {
     GlStateGuard guard;
     checkGl("state before GlslPredictor::render");
+    rowBegin = std::max(0, rowBegin);
+    rowEnd = std::min(height(), rowEnd);
+    if (rowBegin >= rowEnd) return;
+    const bool wholeGBuffer = rowBegin == 0;
     const bool lightMoved = lightsDirty_;
     if (lightMoved) uploadLights();
     if (lightMoved && directMode_ == 1) uploadDirectScene();
@@ -314,58 +318,63 @@ void GlslPredictor::render() {
     far *= 1.01;
     const float nearFar[2] = {float(far * 1e-6), float(far)};
 
-    // ---- pass 1: G-buffer
-    glBindFramebuffer(GL_FRAMEBUFFER, gbufferFbo_);
-    glViewport(0, 0, w, h);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);  // surfaces are two-sided; the shader flips normals towards the viewer
-    glDisable(GL_SCISSOR_TEST);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    const float background[4] = {0.f, 0.f, 0.f, float(GlGBuffer::kBackgroundPixel)};
-    const float zero[4] = {0.f, 0.f, 0.f, 0.f};
-    const float one = 1.f;
-    glClearBufferfv(GL_COLOR, 0, background);
-    glClearBufferfv(GL_COLOR, 1, zero);
-    glClearBufferfv(GL_COLOR, 2, zero);
-    glClearBufferfv(GL_DEPTH, 0, &one);
+    // ---- pass 1: G-buffer (the first band renders it for the whole frame; it is cheap beside the networks)
+    gbufferTimed_ = wholeGBuffer;
+    if (wholeGBuffer) {
+        glBindFramebuffer(GL_FRAMEBUFFER, gbufferFbo_);
+        glViewport(0, 0, w, h);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);  // surfaces are two-sided; the shader flips normals towards the viewer
+        glDisable(GL_SCISSOR_TEST);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        const float background[4] = {0.f, 0.f, 0.f, float(GlGBuffer::kBackgroundPixel)};
+        const float zero[4] = {0.f, 0.f, 0.f, 0.f};
+        const float one = 1.f;
+        glClearBufferfv(GL_COLOR, 0, background);
+        glClearBufferfv(GL_COLOR, 1, zero);
+        glClearBufferfv(GL_COLOR, 2, zero);
+        glClearBufferfv(GL_DEPTH, 0, &one);
 
-    // The passes' GPU time (gpuSeconds): one query per pass, so that the CPU's work between them
-    // (mode 2's host direct light) is not counted as the GPU's.
-    glBeginQuery(GL_TIME_ELAPSED, timerQueries_[0]);
-    glUseProgram(gbufferProgram_.id());
-    glUniform3f(gbufferProgram_.uniform("uEye"), cam.eye.x, cam.eye.y, cam.eye.z);
-    glUniform3f(gbufferProgram_.uniform("uForward"), forward.x, forward.y, forward.z);
-    glUniform3f(gbufferProgram_.uniform("uRightUnit"), rightUnit.x, rightUnit.y, rightUnit.z);
-    glUniform3f(gbufferProgram_.uniform("uUpUnit"), upUnit.x, upUnit.y, upUnit.z);
-    glUniform2f(gbufferProgram_.uniform("uTanHalf"), tanX, tanHalf);
-    glUniform2f(gbufferProgram_.uniform("uNearFar"), nearFar[0], nearFar[1]);
-    glUniform3f(gbufferProgram_.uniform("uRight"), right.x, right.y, right.z);
-    glUniform3f(gbufferProgram_.uniform("uUp"), up.x, up.y, up.z);
-    glUniform2f(gbufferProgram_.uniform("uViewport"), float(w), float(h));
-    glUniform1f(gbufferProgram_.uniform("uFar"), nearFar[1]);
+        // The passes' GPU time (gpuSeconds): one query per pass, so that the CPU's work between them
+        // (mode 2's host direct light) is not counted as the GPU's.
+        glBeginQuery(GL_TIME_ELAPSED, timerQueries_[0]);
+        glUseProgram(gbufferProgram_.id());
+        glUniform3f(gbufferProgram_.uniform("uEye"), cam.eye.x, cam.eye.y, cam.eye.z);
+        glUniform3f(gbufferProgram_.uniform("uForward"), forward.x, forward.y, forward.z);
+        glUniform3f(gbufferProgram_.uniform("uRightUnit"), rightUnit.x, rightUnit.y, rightUnit.z);
+        glUniform3f(gbufferProgram_.uniform("uUpUnit"), upUnit.x, upUnit.y, upUnit.z);
+        glUniform2f(gbufferProgram_.uniform("uTanHalf"), tanX, tanHalf);
+        glUniform2f(gbufferProgram_.uniform("uNearFar"), nearFar[0], nearFar[1]);
+        glUniform3f(gbufferProgram_.uniform("uRight"), right.x, right.y, right.z);
+        glUniform3f(gbufferProgram_.uniform("uUp"), up.x, up.y, up.z);
+        glUniform2f(gbufferProgram_.uniform("uViewport"), float(w), float(h));
+        glUniform1f(gbufferProgram_.uniform("uFar"), nearFar[1]);
 
-    glBindVertexArray(vao_);
-    for (const auto& [vbo, count] : {std::pair<GLuint, int>{objectVbo_, objectVertices_}, {lightVbo_, lightVertices_}}) {
-        if (count == 0) continue;
-        glBindBuffer(GL_ARRAY_BUFFER, vbo);
-        const GLsizei stride = kFloatsPerVertex * sizeof(float);
-        const int sizes[6] = {3, 4, 3, 2, 3, 3};
-        size_t offset = 0;
-        for (GLuint a = 0; a < 6; ++a) {
-            glEnableVertexAttribArray(a);
-            glVertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset));
-            offset += size_t(sizes[a]) * sizeof(float);
+        glBindVertexArray(vao_);
+        for (const auto& [vbo, count] : {std::pair<GLuint, int>{objectVbo_, objectVertices_}, {lightVbo_, lightVertices_}}) {
+            if (count == 0) continue;
+            glBindBuffer(GL_ARRAY_BUFFER, vbo);
+            const GLsizei stride = kFloatsPerVertex * sizeof(float);
+            const int sizes[6] = {3, 4, 3, 2, 3, 3};
+            size_t offset = 0;
+            for (GLuint a = 0; a < 6; ++a) {
+                glEnableVertexAttribArray(a);
+                glVertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset));
+                offset += size_t(sizes[a]) * sizeof(float);
+            }
+            glDrawArrays(GL_TRIANGLES, 0, count);
         }
-        glDrawArrays(GL_TRIANGLES, 0, count);
+        glEndQuery(GL_TIME_ELAPSED);
+        checkGl("G-buffer pass");
     }
-    glEndQuery(GL_TIME_ELAPSED);
-    checkGl("G-buffer pass");
 
-    // ---- pass 2: networks
+    // ---- pass 2: networks (a band after the first comes without pass 1's state: set its own)
     glBindFramebuffer(GL_FRAMEBUFFER, outputFbo_);
     glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
     glUseProgram(predictProgram_.id());
     const Vec3 light = scene_.lightPosition();
     glUniform3f(predictProgram_.uniform("uEye"), cam.eye.x, cam.eye.y, cam.eye.z);
@@ -376,10 +385,10 @@ void GlslPredictor::render() {
     }
     glActiveTexture(GL_TEXTURE3);
     glBindTexture(GL_TEXTURE_2D, networkTex_);
+    hostDirectSeconds_ = 0.0;
     if (directMode_ != 0) {
         // Units 4 and 5 are the predictor's own (GlStateGuard restores units 0-3 only).
-        hostDirectSeconds_ = 0.0;
-        if (directMode_ == 2) {
+        if (directMode_ == 2 && wholeGBuffer) {
             const Stopwatch host;
             computeHostDirect();
             hostDirectSeconds_ = host.seconds();
@@ -398,9 +407,14 @@ void GlslPredictor::render() {
     }
     glUniform1i(predictProgram_.uniform("uDirectMode"), directMode_);
     glBindVertexArray(emptyVao_);
+    // The band's rows only: the networks run per fragment, so the scissor is what limits the work.
+    glViewport(0, 0, w, h);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, rowBegin, w, rowEnd - rowBegin);
     glBeginQuery(GL_TIME_ELAPSED, timerQueries_[1]);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glEndQuery(GL_TIME_ELAPSED);
+    glDisable(GL_SCISSOR_TEST);
     timed_ = true;
     checkGl("network pass");
 }

@@ -99,10 +99,16 @@ public:
 
     /// Renders the G-buffer and the three predictions. Asynchronous like any GL call: read() or
     /// glFinish() waits for the result. Throws GlError on a GL error.
-    void render();
+    void render() { render(0, height()); }
+    /// Renders the predictions of the rows [rowBegin, rowEnd) only (GL rows, bottom first), the
+    /// rest of the outputs kept: a full frame in bands over several UI frames, so that one frame
+    /// never waits for a whole prediction on a slow driver (issue 29: seconds under llvmpipe).
+    /// A band starting at row 0 also renders the G-buffer (and, in mode 2, the CPU's direct light);
+    /// later bands reuse them, so the light, camera and settings must not change within a frame.
+    void render(int rowBegin, int rowEnd);
 
-    /// The GPU time of the last render()'s G-buffer and network passes (GL timer queries), in
-    /// seconds; waits for the passes to finish. NaN before the first render(). Excludes read-back
+    /// The GPU time of the last render()'s G-buffer (when it rendered one) and network passes (GL
+    /// timer queries), in seconds; waits for the passes to finish. NaN before the first render(). Excludes read-back
     /// and CPU work (uploads, mode 2's host direct light); on a software driver (llvmpipe) the
     /// "GPU" is the CPU's rasteriser threads.
     double gpuSeconds() const;
@@ -153,6 +159,7 @@ private:
     std::unique_ptr<PathTracer> hostTracer_;   ///< mode 2 only
     std::array<unsigned, 2> timerQueries_{};   ///< GL_TIME_ELAPSED of the G-buffer and network passes
     bool timed_ = false;                       ///< a render() has issued the queries
+    bool gbufferTimed_ = false;                ///< the last render() issued the G-buffer's query
     double hostDirectSeconds_ = 0.0;           ///< the last render()'s computeHostDirect (mode 2), else 0
 };
 

@@ -11,6 +11,7 @@
 #include "core/util/atomic_file.h"
 #include "core/util/stopwatch.h"
 #include "core/eval/evaluation.h"
+#include "core/render/renderer.h"
 #include "core/pipeline/run_recording.h"
 #include "panels/panels.h"
 
@@ -34,12 +35,14 @@ EvaluationController::EvaluationController(ControllerContext& ctx, const Predict
       evaluateJob_(ctx.jobs, JobKind::Evaluate, ctx.state.log),
       pairJob_(ctx.jobs, JobKind::Compare, ctx.state.log),
       lightGridJob_(ctx.jobs, JobKind::LightGrid, ctx.state.log),
-      sweepJob_(ctx.jobs, JobKind::Sweep, ctx.state.log) {}
+      sweepJob_(ctx.jobs, JobKind::Sweep, ctx.state.log),
+      restoreJob_(ctx.jobs, JobKind::Sweep, ctx.state.log) {}
 
 EvaluationController::~EvaluationController() = default;
 
 void EvaluationController::drop() {
-    for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&evaluateJob_, &pairJob_, &lightGridJob_, &sweepJob_})
+    for (JobSessionBase* job :
+         std::initializer_list<JobSessionBase*>{&evaluateJob_, &pairJob_, &lightGridJob_, &sweepJob_, &restoreJob_})
         job->drop();
     evaluateDone_ = nullptr;
 }
@@ -47,6 +50,7 @@ void EvaluationController::drop() {
 void EvaluationController::pollAfterPrediction() {
     pollEvaluateAfterTrain();
     pollSweep();
+    pollRestoredSweeps();
     pollLightGrid();
     pollRunPair();
 }
@@ -168,6 +172,16 @@ void EvaluationController::pollEvaluation() {
         record.height = out.height;
         record.seconds = seconds;
         if (recordEvaluation(state_.project.runs, projectDir(), out.modelsDir, record) > 0) state_.markDirty();
+        // Kept beside a saved project, so that reopening it shows this table again; a failure
+        // costs only that.
+        if (ctx_.savedProject() && out.modelsDir == prediction_.live().dir()) {
+            try {
+                storeEvaluation((fs::path(projectDir()) / kEvaluationFile).string(), state_.evaluation,
+                                evaluationSource(light, out.width, out.height));
+            } catch (const std::exception& e) {
+                state_.log.warning(std::string("the evaluation was not kept for the next opening: ") + e.what());
+            }
+        }
         char line[320];
         std::snprintf(line, sizeof line,
                       "evaluated: global term relative RMSE %.4g (noise floor %s, corrected (noise subtracted) %s), RMSE %.4g "
@@ -181,6 +195,31 @@ void EvaluationController::pollEvaluation() {
         evaluateDone_ = nullptr;
         finished(delivered);
     }
+}
+
+EvaluationSource EvaluationController::evaluationSource(const Vec3& light, int width, int height) const {
+    EvaluationSource source;
+    source.key = ReferenceKey::of(state_.project.scene, light, width, height, state_.project.render);
+    source.models = projectRelative(projectDir(), prediction_.live().dir());
+    if (const auto models = prediction_.live().models())
+        source.modelsChecksum = models->index.value("index_checksum64", std::string());
+    return source;
+}
+
+void EvaluationController::restoreEvaluation() {
+    if (!ctx_.savedProject() || !prediction_.live().loaded()) return;
+    // The evaluation's reference was the ground truth, rendered at the project's render size.
+    const RenderOptions options = renderOptionsFor(state_.project.scene, state_.project.render, 1);
+    const std::string file = (fs::path(projectDir()) / kEvaluationFile).string();
+    StoredEvaluation stored = loadEvaluation(file, evaluationSource(state_.project.scene.lightPosition(), options.width, options.height));
+    if (!stored.info) {
+        if (stored.damaged) state_.log.warning(stored.why);
+        else if (!stored.why.empty()) state_.log.info("the last evaluation is not shown: " + stored.why);
+        return;
+    }
+    state_.evaluation = std::move(*stored.info);
+    state_.evaluation.modelsDir = prediction_.live().dir();
+    state_.log.info("restored the last evaluation (Objects table) from " + projectRelative(projectDir(), file));
 }
 
 bool EvaluationController::exportObjectsCsv(const std::string& path) {

@@ -11,6 +11,7 @@
 
 #include "app/gui/controller_context.h"
 #include "app/gui/job_session.h"
+#include "app/gui/stored_evaluation.h"
 
 namespace rrf {
 
@@ -19,6 +20,7 @@ struct EvaluationOutcome;
 struct PairOutcome;
 struct LightGridResult;
 struct SweepOutcome;
+struct RestoredSweeps;
 struct SweepResult;
 
 class EvaluationController {
@@ -51,8 +53,12 @@ public:
     bool startSweep(const std::string& what);
     bool sweepRunning() const { return sweepJob_.running(); }
     void cancelSweep() { sweepJob_.cancel(); }
+    /// The Objects table of the project's last evaluation (<project dir>/evaluation.json,
+    /// app/gui/stored_evaluation.h) when it judged the models now loaded against the ground truth
+    /// of the current scene, light and size: called when a project is opened, after its models.
+    void restoreEvaluation();
     /// The Cost panel's series of the project's sweeps on disk (<project dir>/sweeps/*.json), as they
-    /// were when they finished: called when a project is opened.
+    /// were when they finished: called when a project is opened; read on a worker, shown when read.
     void restoreSweeps();
 
     /// Each frame, before the prediction's poll: takes a finished evaluation.
@@ -73,11 +79,15 @@ private:
     /// it cannot be made (a notice on the Training panel).
     void pollEvaluateAfterTrain();
     void pollSweep();
+    void pollRestoredSweeps();
     void pollLightGrid();
     void pollRunPair();
     /// Adds `r`'s series to the Cost panel, named "sweep <what>" (" #n" for the n-th of a kind).
     void addSweepSeries(const SweepResult& r);
     std::string projectDir() const { return ctx_.projectDir(); }
+    /// What an evaluation of the loaded models against a ground truth of width × height of the
+    /// current scene with the light at `light` is made of (stored_evaluation.h).
+    EvaluationSource evaluationSource(const Vec3& light, int width, int height) const;
 
     ControllerContext& ctx_;
     panels::WorkbenchState& state_;  ///< ctx_.state: what the controller publishes into
@@ -88,6 +98,7 @@ private:
     JobSession<PairOutcome> pairJob_;
     JobSession<LightGridResult> lightGridJob_;
     JobSession<SweepOutcome> sweepJob_;
+    JobSession<RestoredSweeps> restoreJob_;  ///< the project's sweeps read back when it was opened
 };
 
 }  // namespace rrf

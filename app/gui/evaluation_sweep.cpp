@@ -121,22 +121,45 @@ void EvaluationController::addSweepSeries(const SweepResult& r) {
     for (panels::CostSeries& s : costSeries(r, name)) state_.cost.sweeps.push_back(std::move(s));
 }
 
+/// The sweeps of a project read back from disk (restoreSweeps), on a worker: their number grows
+/// with the project's history, and none of it is the UI thread's work.
+struct RestoredSweeps {
+    std::vector<SweepResult> results;  ///< in the order they ran, cancelled ones left out
+    std::vector<std::string> problems; ///< files that could not be read (each names its file)
+    std::string dir;                   ///< where they were read from, for the log
+};
+
 void EvaluationController::restoreSweeps() {
     // What the project's sweeps wrote (pollSweep below), read back in the order they ran; a file that
     // cannot be read is named in the Log and left out, the others still come back.
-    const std::vector<std::string> files = sweepFilesIn((fs::path(projectDir()) / "sweeps").string());
-    int restored = 0;
-    for (const std::string& file : files) {
-        try {
-            const SweepResult r = readSweepFile(file);
-            if (r.cancelled) continue;
-            addSweepSeries(r);
-            ++restored;
-        } catch (const std::exception& e) {
-            state_.log.warning(std::string("sweep not restored: ") + e.what());
+    const std::string dir = (fs::path(projectDir()) / "sweeps").string();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return;  // the common case costs no thread
+    restoreJob_.start("restore sweeps", [dir](JobContext& ctx) -> std::optional<RestoredSweeps> {
+        RestoredSweeps out;
+        out.dir = dir;
+        const std::vector<std::string> files = sweepFilesIn(dir);
+        for (size_t i = 0; i < files.size() && !ctx.cancelled(); ++i) {
+            try {
+                SweepResult r = readSweepFile(files[i]);
+                if (!r.cancelled) out.results.push_back(std::move(r));
+            } catch (const std::exception& e) {
+                out.problems.push_back(e.what());
+            }
+            ctx.setProgress(double(i + 1) / double(files.size()));
         }
-    }
-    if (restored > 0) state_.log.info("restored " + std::to_string(restored) + " sweep(s) from " + projectRelative(projectDir(), (fs::path(projectDir()) / "sweeps").string()));
+        return out;
+    });
+}
+
+void EvaluationController::pollRestoredSweeps() {
+    restoreJob_.poll([&](RestoredSweeps& restored) {
+        for (const std::string& problem : restored.problems) state_.log.warning("sweep not restored: " + problem);
+        for (const SweepResult& r : restored.results) addSweepSeries(r);
+        if (!restored.results.empty())
+            state_.log.info("restored " + std::to_string(restored.results.size()) + " sweep(s) from " +
+                            projectRelative(projectDir(), restored.dir));
+    });
 }
 
 bool EvaluationController::startSweep(const std::string& what) {

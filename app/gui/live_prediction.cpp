@@ -35,15 +35,27 @@ void LivePrediction::reset() {
 
 double LivePrediction::renderGlsl(const Camera& camera, const Vec3& lightPos, const PredictionSettings& prediction,
                                 Image out[kTermCount]) {
+    const double seconds = renderGlslRows(camera, lightPos, prediction, 0, camera.height);
+    readGlsl(out);
+    return seconds;
+}
+
+double LivePrediction::renderGlslRows(const Camera& camera, const Vec3& lightPos, const PredictionSettings& prediction,
+                                      int rowBegin, int rowEnd) {
     const Camera& current = glsl_->camera();
     if (current.width != camera.width || current.height != camera.height || !(current.eye == camera.eye) ||
         !(current.target == camera.target) || !(current.up == camera.up) || current.fovYDegrees != camera.fovYDegrees)
         glsl_->setCamera(camera);
-    glsl_->setLightPosition(lightPos);
+    // Moving the light re-uploads its geometry (and the shader's shadow casters): not per band.
+    if (!(glsl_->lightPosition() == lightPos)) glsl_->setLightPosition(lightPos);
     glsl_->setPrediction(prediction);
-    glsl_->render();
-    for (Term t : kTerms) out[int(t)] = glsl_->read(t);
+    // Image rows count from the top, GL's from the bottom.
+    glsl_->render(camera.height - rowEnd, camera.height - rowBegin);
     return glsl_->frameSeconds();
+}
+
+void LivePrediction::readGlsl(Image out[kTermCount]) const {
+    for (Term t : kTerms) out[int(t)] = glsl_->read(t);
 }
 
 }  // namespace rrf

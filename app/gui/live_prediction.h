@@ -53,6 +53,15 @@ public:
     /// Throws GlError on GL failure.
     double renderGlsl(const Camera& camera, const Vec3& lightPos, const PredictionSettings& prediction,
                     Image out[kTermCount]);
+    /// GLSL path only: renders the image rows [rowBegin, rowEnd) (top row first, as images count)
+    /// of the frame renderGlsl would render, the other rows kept from earlier bands of the same
+    /// camera, light and settings (GlslPredictor::render(rowBegin, rowEnd)); returns the band's
+    /// cost in seconds as renderGlsl does. A band that starts at the bottom of the image renders
+    /// the G-buffer too, so the bands of a frame go bottom up. Throws GlError on GL failure.
+    double renderGlslRows(const Camera& camera, const Vec3& lightPos, const PredictionSettings& prediction, int rowBegin,
+                          int rowEnd);
+    /// GLSL path only: the images of the bands rendered so far, out[int(Term)] (top row first).
+    void readGlsl(Image out[kTermCount]) const;
 
 private:
     std::shared_ptr<const ModelSet> models_;

@@ -6,6 +6,7 @@
 // (after the script, if any) and exits; --screenshot writes the last frame to a PNG. The exit status
 // is non-zero if the project cannot be opened, the script fails or the screenshot cannot be written
 // in these automated modes.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -130,6 +131,8 @@ int main(int argc, char** argv) {
         int framesDrawn = 0;
         std::string title;
         int eventFrames = 0;  // frames still drawn at full rate after an event
+        int slowFrames = 0;   // frames over 100 ms, and the longest frame (seconds)
+        double longestFrame = 0.0;
         while (status == 0) {
             // Automated runs poll quickly. Interactive ones redraw at 30 Hz while something changes
             // by itself (a job, a held mouse button) and for a few frames after input (ImGui settles
@@ -167,7 +170,11 @@ int main(int argc, char** argv) {
                 }
             }
             window.swap();
-            wb.frameStats().add(std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart).count());
+            const double frameSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart).count();
+            wb.frameStats().add(frameSeconds);
+            // Stalls of the whole run, start and opens included (issue 29: none over 100 ms).
+            if (frameSeconds > 0.1) ++slowFrames;
+            longestFrame = std::max(longestFrame, frameSeconds);
             if (last) break;
 
             const std::string t = wb.title();
@@ -181,7 +188,8 @@ int main(int argc, char** argv) {
         if (automated) {
             // CI reads what happened from the log.
             for (const rrf::panels::LogEntry& e : wb.state().log.entries())
-                std::printf("[%s] %s\n", rrf::panels::logLevelName(e.level), e.text.c_str());
+                std::printf("[%s %.2f s] %s\n", rrf::panels::logLevelName(e.level), e.time, e.text.c_str());
+            std::printf("rrf-workbench: %d frame(s) over 100 ms, the longest %.1f ms\n", slowFrames, 1e3 * longestFrame);
         }
     }
     return status;

@@ -4,9 +4,12 @@
 #include "app/gui/prediction_controller.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 
+#include "app/gl/program_binary_cache.h"
 #include "app/gui/cpu_frame.h"
+#include "app/gui/prediction_bands.h"
 #include "app/gui/prediction_draft.h"
 #include "app/gui/render_session.h"
 #include "core/eval/evaluation.h"
@@ -55,16 +58,23 @@ void PredictionController::drop() {
     for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&predictJob_, &overlayJob_, &flipJob_, &spreadJob_})
         job->drop();
     predictPending_ = false;
+    bands_.active = false;
 }
 
 bool PredictionController::loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded) {
     std::string glslError;
+    const Stopwatch clock;
+    const ProgramBinaryCache::Counts before = ProgramBinaryCache::shared().counts();
     try {
         live_.load(state_.project.scene, dir, true, glslError, std::move(preloaded));
     } catch (const std::exception& e) {
         state_.notify(panels::LogLevel::Error, "Project", std::string("loading the models failed: ") + e.what());
         return false;
     }
+    const double loadSeconds = clock.seconds();
+    // The program cache's notes (a driver without binaries, a damaged file, named) and what it did.
+    for (const std::string& line : ProgramBinaryCache::shared().takeNotes()) state_.log.warning(line);
+    const ProgramBinaryCache::Counts after = ProgramBinaryCache::shared().counts();
     if (!glslError.empty())
         state_.log.warning("GLSL prediction unavailable, using the CPU predictor (slower): " + glslError);
     state_.training.modelsDir = dir;
@@ -74,10 +84,17 @@ bool PredictionController::loadModels(const std::string& dir, std::shared_ptr<co
         frameSeconds_[k].clear();
         framesSinceRecorded_[k] = 0;
     }
-    predictedOnce_ = draftShown_ = false;  // the first frame of new models is a full one
+    predictedOnce_ = draftShown_ = false;  // the first frame of new models is a draft, then the full one in bands
+    bands_ = BandedFrame{};
+    secondsPerRow_ = 0.0;  // their full frame's cost is not known yet
+    fullFrameLogged_ = false;
     state_.leaves = panels::leavesOf(*live_.models());
     state_.view.compareSource = panels::CompareSource::Prediction;
-    state_.log.info("models loaded from " + dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)"));
+    char timing[160];
+    std::snprintf(timing, sizeof timing, " in %.2f s (GLSL programs: %d from the binary cache, %d compiled)", loadSeconds,
+                  after.hits - before.hits, after.misses - before.misses);
+    state_.log.info("models loaded from " + dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)") +
+                    (live_.usesGlsl() ? std::string(timing) : ""));
     refresh();
     return true;
 }
@@ -97,49 +114,119 @@ void PredictionController::refresh() {
     }
     const Camera camera = viewCamera(state_.project);
     if (live_.usesGlsl()) {
-        // A light that moved since the last frame is being dragged: draft until it rests.
+        // A light that moved since the last frame is being dragged: draft until it rests. The
+        // first frame of new models is a draft too, shown while the full frame renders in bands.
         const Vec3 light = scene.lightPosition();
-        const bool draft = predictedOnce_ && !(light == predictedLight_);
-        Image images[kTermCount];
-        try {
-            const Stopwatch clock;
-            if (draft) {
-                live_.renderGlsl(draftCamera(camera, draftDivisor_), light, draftPrediction(state_.project.prediction),
+        const bool draft = !predictedOnce_ || !(light == predictedLight_);
+        if (draft) {
+            Image images[kTermCount];
+            try {
+                const Stopwatch clock;
+                const int divisor = draftDivisor_;
+                live_.renderGlsl(draftCamera(camera, divisor), light, draftPrediction(state_.project.prediction),
                                  images);
                 for (Image& im : images) im = replicatePixels(im, camera.width, camera.height);
                 draftSeconds_.push_back(clock.seconds());
+                // Until a full frame has been timed, its cost per row is guessed from the draft's on
+                // the safe side: as if every pixel and every light sample cost what the draft's did.
+                if (!(secondsPerRow_ > 0.0))
+                    secondsPerRow_ = draftSeconds_.back() * divisor * divisor * kDraftSampleDivisor / camera.height;
                 draftDivisor_ = nextDraftDivisor(draftDivisor_, draftSeconds_.back());
                 if (draftSeconds_.size() > 64) draftSeconds_.erase(draftSeconds_.begin());
-            } else {
-                // The figure recorded is the frame's cost on the device (its passes' GPU time from
-                // timer queries, plus the CPU's direct light where the GPU cannot do it); read-back
-                // to the CPU is the workbench's own overhead.
-                noteFrameSeconds(FramePath::Glsl, live_.renderGlsl(camera, light, state_.project.prediction, images),
-                                 camera.width, camera.height);
+            } catch (const std::exception& e) {
+                state_.log.error(std::string("GLSL prediction failed: ") + e.what());
+                return;
             }
-        } catch (const std::exception& e) {
-            state_.log.error(std::string("GLSL prediction failed: ") + e.what());
-            return;
+            const bool first = !predictedOnce_;
+            showGlsl(images, camera, true);
+            bands_.active = false;  // a frame of the previous light is of no use now
+            if (!first) return;     // the full frame follows once the light has rested (finishDraft)
+            draftShown_ = false;    // ... or right away for new models
         }
-        predictedLight_ = light;
-        predictedOnce_ = true;
-        draftShown_ = draft;
-        if (draft) draftTime_ = std::chrono::steady_clock::now();
-        // The glossy gather runs on the CPU only (core/predict/glossy_gather.h): the GLSL frame shows
-        // the networks' own indirect light on the gathered objects until the CPU frame replaces it.
-        const bool gather = !draft && !gatheredObjects(scene, *live_.models(), state_.project.prediction).empty();
-        panels::ImageSet& p = state_.prediction;
-        for (Term t : kTerms) p.term(t) = std::move(images[int(t)]);
-        p.label = draft    ? "Prediction (GLSL, draft while the light moves)"
-                  : gather ? "Prediction (GLSL; the glossy gather follows on the CPU)"
-                           : "Prediction (GLSL)";
-        p.withoutNetwork = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
-        p.stamp = panels::ImageStamp{light, scene.contentHash(), camera.width, camera.height};
-        p.touch();
-        if (gather) startCpuPrediction(camera);
+        startBands(camera);
         return;
     }
     startCpuPrediction(camera);
+}
+
+void PredictionController::showGlsl(Image images[kTermCount], const Camera& camera, bool draft) {
+    const Scene& scene = state_.project.scene;
+    const Vec3 light = scene.lightPosition();
+    predictedLight_ = light;
+    predictedOnce_ = true;
+    draftShown_ = draft;
+    if (draft) draftTime_ = std::chrono::steady_clock::now();
+    // The glossy gather runs on the CPU only (core/predict/glossy_gather.h): the GLSL frame shows
+    // the networks' own indirect light on the gathered objects until the CPU frame replaces it.
+    const bool gather = !draft && !gatheredObjects(scene, *live_.models(), state_.project.prediction).empty();
+    panels::ImageSet& p = state_.prediction;
+    for (Term t : kTerms) p.term(t) = std::move(images[int(t)]);
+    p.label = draft    ? "Prediction (GLSL, draft until the full frame is done)"
+              : gather ? "Prediction (GLSL; the glossy gather follows on the CPU)"
+                       : "Prediction (GLSL)";
+    p.withoutNetwork = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
+    p.stamp = panels::ImageStamp{light, scene.contentHash(), camera.width, camera.height};
+    p.touch();
+    if (gather) startCpuPrediction(camera);
+}
+
+void PredictionController::startBands(const Camera& camera) {
+    bands_ = BandedFrame{};
+    bands_.active = true;
+    bands_.camera = camera;
+    bands_.light = state_.project.scene.lightPosition();
+    bands_.settings = state_.project.prediction;
+    bands_.bandRows = firstBandRows(camera.height, secondsPerRow_);
+    // The first band comes with the next frame's poll: this frame may already have paid for a draft.
+}
+
+void PredictionController::renderBand() {
+    if (!bands_.active) return;
+    if (!live_.loaded() || !live_.usesGlsl()) {
+        bands_.active = false;
+        return;
+    }
+    const int height = bands_.camera.height;
+    const int rows = std::min(bands_.bandRows, height - bands_.rowsDone);
+    const int end = height - bands_.rowsDone;  // image rows, from the bottom up (the G-buffer comes first)
+    try {
+        const Stopwatch clock;
+        bands_.gpuSeconds += live_.renderGlslRows(bands_.camera, bands_.light, bands_.settings, end - rows, end);
+        const double wall = clock.seconds();  // waited for the band: what this UI frame paid
+        bands_.wallSeconds += wall;
+        bands_.longestBand = std::max(bands_.longestBand, wall);
+        bands_.bandRows = nextBandRows(rows, wall, height);
+    } catch (const std::exception& e) {
+        bands_.active = false;
+        state_.log.error(std::string("GLSL prediction failed: ") + e.what());
+        return;
+    }
+    bands_.rowsDone += rows;
+    ++bands_.bands;
+    if (bands_.rowsDone < height) return;
+    bands_.active = false;
+    Image images[kTermCount];
+    try {
+        live_.readGlsl(images);
+    } catch (const std::exception& e) {
+        state_.log.error(std::string("GLSL prediction failed: ") + e.what());
+        return;
+    }
+    secondsPerRow_ = bands_.wallSeconds / height;
+    lastFullFrame_ = BandedFrameSummary{bands_.gpuSeconds, bands_.longestBand, bands_.bands};
+    if (!fullFrameLogged_) {
+        fullFrameLogged_ = true;
+        char line[200];
+        std::snprintf(line, sizeof line,
+                      "first full GLSL frame of these models: %.3f s on the device, in %d band(s) of at most %.3f s on the UI thread",
+                      bands_.gpuSeconds, bands_.bands, bands_.longestBand);
+        state_.log.info(line);
+    }
+    // The figure recorded is the frame's cost on the device (its bands' GPU time from timer
+    // queries, plus the CPU's direct light where the GPU cannot do it); read-back to the CPU and
+    // the split into bands are the workbench's own overhead.
+    noteFrameSeconds(FramePath::Glsl, bands_.gpuSeconds, bands_.camera.width, height);
+    showGlsl(images, bands_.camera, false);
 }
 
 void PredictionController::startCpuPrediction(const Camera& camera) {
@@ -224,6 +311,12 @@ void PredictionController::poll() {
         p.touch();
     });
     if (predictPending_ && !predictRunning() && !(holdCpuFrames && holdCpuFrames())) refresh();
+    // A band per frame of a full-quality frame of the light and camera it was started for; a light
+    // that moved meanwhile has its own draft (refresh) and full frame later.
+    if (bands_.active && (!(bands_.light == state_.project.scene.lightPosition()) ||
+                          !live_.loaded() || live_.sceneHash() != state_.project.scene.contentHash()))
+        bands_.active = false;
+    renderBand();
     updateLeafOverlay();
 }
 

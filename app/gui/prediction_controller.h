@@ -35,7 +35,10 @@ public:
     /// worker already read from `dir` (a finished training), so only the GL upload is left here.
     bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr);
     /// Forgets the models (another project was opened).
-    void reset() { live_.reset(); }
+    void reset() {
+        live_.reset();
+        bands_ = BandedFrame{};
+    }
     /// Brings the middle view's prediction up to date with the scene's light (GLSL now, or a CPU job).
     void refresh();
     /// Each frame: takes a finished CPU frame, predicts again when the light moved meanwhile, and
@@ -47,6 +50,17 @@ public:
     void updateSpreadMap();
     /// Renders the full-quality frame once the light has rested after a drag.
     void finishDraft();
+    /// True while a full-quality GLSL frame is being rendered in bands (app/gui/prediction_bands.h):
+    /// the frames must keep coming until it is shown.
+    bool bandsPending() const { return bands_.active; }
+    /// The last full-quality GLSL frame shown: its device seconds, its bands and its longest band's
+    /// wall seconds on the UI thread (0 before any): what tests check instead of frame times.
+    struct BandedFrameSummary {
+        double gpuSeconds = 0.0, longestBand = 0.0;
+        int bands = 0;
+    };
+    const BandedFrameSummary& lastFullFrame() const { return lastFullFrame_; }
+
     /// Forgets every job (a project was closed): nothing they still produce arrives.
     void drop();
     /// Adds the CPU prediction's images to an export directory (true without models: nothing to add).
@@ -74,6 +88,13 @@ private:
     void startCpuPrediction(const Camera& camera);
     /// Recomputes the leaf overlay (leaf per pixel) when it is on and the prediction changed.
     void updateLeafOverlay();
+    /// Starts the full-quality GLSL frame of `camera` at the current light and settings, rendered
+    /// a band per UI frame by renderBand().
+    void startBands(const Camera& camera);
+    /// Renders the next band of the full-quality frame; shows the frame once its last band is done.
+    void renderBand();
+    /// Shows GLSL `images` of the current light as the prediction (a draft or a full frame).
+    void showGlsl(Image images[kTermCount], const Camera& camera, bool draft);
     /// Adds a frame time of the loaded models; their median goes into the models' training run.
     void noteFrameSeconds(FramePath path, double seconds, int width, int height);
 
@@ -97,6 +118,20 @@ private:
     std::chrono::steady_clock::time_point draftTime_{};
     std::vector<double> draftSeconds_;
     int draftDivisor_ = kMaxDraftDivisor;  ///< resolution divisor of the next draft (adapts to its time)
+    /// The full-quality GLSL frame in progress (app/gui/prediction_bands.h): what it is of, the image
+    /// rows done (from the bottom), the next band's rows, its GPU seconds and wall seconds so far.
+    struct BandedFrame {
+        bool active = false;
+        Camera camera;
+        Vec3 light{0.f};
+        PredictionSettings settings;
+        int rowsDone = 0, bandRows = 1, bands = 0;
+        double gpuSeconds = 0.0, wallSeconds = 0.0, longestBand = 0.0;
+    };
+    BandedFrame bands_;
+    double secondsPerRow_ = 0.0;  ///< wall seconds per row of the last full frame (0: none yet)
+    bool fullFrameLogged_ = false;  ///< the first full frame of the loaded models was logged
+    BandedFrameSummary lastFullFrame_;
     /// The Views' leaf overlay, computed on a worker (a G-buffer and a leaf lookup per pixel).
     JobSession<LeafOverlay> overlayJob_;
     uint64_t overlayFor_ = 0;  ///< the prediction revision the last overlay job was started for

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "app/gl/program_binary_cache.h"
+#include "app/gui/prediction_bands.h"
 #include "app/gui/workbench.h"
 #include "core/nn/network_settings.h"
 #include "core/pipeline/presets.h"
@@ -65,7 +67,8 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
                        "pipeline_stopped", "prediction_label", "error_waiting", "flip_evaluated",
                        "region_pixels_min", "light_grid_points", "spread_shown", "spread_evaluated",
                        "ground_truth_stored", "help_open", "status_idle_while_pipeline",
-                       "undo_steps", "redo_steps", "light_position"}},
+                       "undo_steps", "redo_steps", "light_position", "objects_rows", "programs_cached",
+                       "full_frame_banded"}},
         };
     }();
     return keys;
@@ -164,8 +167,10 @@ bool Script::execute(Workbench& wb, const json& s) {
                           : on == "train_epoch"   ? wb.trainRunning() && st.training.epoch < 1
                           : on == "pipeline"      ? wb.pipelineRunning()
                           : on == "train_running" ? !wb.trainRunning()
-                          : on == "full_frame"    ? wb.draftShown() || !wb.jobs().drained() || wb.evaluationPending()
-                                                  : !wb.jobs().drained() || wb.evaluationPending();
+                          : on == "full_frame"    ? wb.draftShown() || wb.prediction().bandsPending() || !wb.jobs().drained() ||
+                                                        wb.evaluationPending()
+                                                  : !wb.jobs().drained() || wb.evaluationPending() ||
+                                                        wb.prediction().bandsPending();
         if (busy) {
             const double limit = r.numberOr("timeout_s", 300, 0, 1e9);
             const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart_).count();
@@ -409,6 +414,27 @@ bool Script::execute(Workbench& wb, const json& s) {
         flag("error_waiting", !st.view.errorStats.waiting.empty(), "error figures' waiting state");
         count("sweeps", st.cost.sweeps.size(), "sweeps");
         flag("evaluated", st.evaluation.valid, "evaluation state");
+        // objects_rows: the Objects table's rows (global term) of the evaluation shown.
+        count("objects_rows", st.evaluation.valid ? st.evaluation.rows[int(Term::Global)].size() : 0, "Objects table rows");
+        // full_frame_banded: the last full-quality GLSL frame was not rendered in one go on the UI
+        // thread unless it was cheap: more than one band, or device time within a band's budget
+        // (a fast GPU). Structure, not a frame time: robust on a loaded machine.
+        if (const auto v = r.find("full_frame_banded"); v && v->boolean()) {
+            const auto& f = wb.prediction().lastFullFrame();
+            require(f.bands > 0, "no full-quality GLSL frame was shown");
+            require(f.bands > 1 || f.gpuSeconds <= kBandBudgetSeconds,
+                    "the full frame (" + std::to_string(f.gpuSeconds) + " s on the device) was rendered in one band");
+        }
+        // programs_cached: the GLSL programs of the last model load came from the program binary
+        // cache (app/gl/program_binary_cache.h), none compiled; passes with a note where the driver
+        // offers no binary format (the cache is then a no-op by design).
+        if (const auto v = r.find("programs_cached"); v && v->boolean()) {
+            const ProgramBinaryCache::Counts c = ProgramBinaryCache::shared().counts();
+            if (c.hits + c.misses == 0)
+                st.log.info("check programs_cached: the driver offers no program binary format; nothing to check");
+            else
+                require(c.hits > 0, "no GLSL program came from the binary cache (" + std::to_string(c.misses) + " compiled)");
+        }
         // region_pixels_min: the Views' region has figures over at least this many pixels.
         if (const auto v = r.find("region_pixels_min"))
             require(st.view.regionStats.valid && st.view.regionStats.stats.pixels >= uint64_t(v->integer(0, std::numeric_limits<int>::max())),

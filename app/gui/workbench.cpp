@@ -305,7 +305,9 @@ void Workbench::drawStatusBar() {
 
 bool Workbench::busy() const {
     // A draft on screen is replaced by the full frame shortly: keep the frames coming until then.
-    return !jobs_.idle() || pipelineRunning() || prediction_.draftShown() || ImGui::IsAnyMouseDown();
+    // So is a full frame rendered in bands (app/gui/prediction_bands.h): a band per frame.
+    return !jobs_.idle() || pipelineRunning() || prediction_.draftShown() || prediction_.bandsPending() ||
+           ImGui::IsAnyMouseDown();
 }
 
 void Workbench::drawFrameOverlay() {

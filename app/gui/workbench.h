@@ -116,6 +116,8 @@ public:
     int statusIdleWhilePipeline() const { return statusIdleWhilePipeline_; }
     /// Whether the live prediction on screen is a draft (the light moved less than kDraftRestSeconds ago).
     bool draftShown() const { return prediction_.draftShown(); }
+    /// The live prediction's controller (read-only: tests and the script's checks).
+    const PredictionController& prediction() const { return prediction_; }
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
     bool exportObjectsCsv(const std::string& path) { return evaluation_.exportObjectsCsv(path); }
     /// The one-click pipeline (PipelineController): applies `preset` (core/pipeline/presets.h) to the

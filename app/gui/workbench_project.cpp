@@ -27,6 +27,7 @@ void Workbench::projectOpened() {
         if (fs::exists(models / "models.json", ec)) loadModels(models.string());
         break;
     }
+    evaluation_.restoreEvaluation();
     evaluation_.restoreSweeps();
     history_.reset(state_.project);  // undo never crosses into another project
     sceneChanged(true);

@@ -11,6 +11,7 @@
 #include "core/util/directory_replace.h"
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
+#include "core/util/staged_files.h"
 #include "core/util/text_format.h"
 
 namespace rrf {
@@ -128,11 +129,12 @@ nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectMode
                 const NetworkModel& net = p.leaves[size_t(l)];
                 const std::string file = p.leafCount() == 1 ? modelFileName(m.objectId, m.target)
                                                             : leafModelFileName(m.objectId, m.target, l);
-                const std::string path = (fs::path(staging) / file).string();
-                saveModel(net, path);
+                // Written plainly into the staging directory, which replaceDirectory syncs as a
+                // whole: a per-file fsync and rename made saving many leaves take seconds.
+                const std::string bytes = modelFileBytes(net);
+                writeStagedFile((fs::path(staging) / file).string(), bytes);
                 // The file's size and checksum tie it to this index: a file changed afterwards, or
                 // copied in from another set, no longer matches.
-                const std::string bytes = readFile(path);
                 const PartitionNode& n = p.tree.nodes[size_t(leafNodes[size_t(l)])];
                 leaves.push_back({{"file", file},
                                   {"bytes", bytes.size()},
@@ -165,7 +167,7 @@ nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectMode
         const std::string sum = hexString16(indexChecksum(text, digits));
         text.replace(digits, kHexDigits, sum);
         index["index_checksum64"] = sum;
-        writeFileAtomically((fs::path(staging) / "models.json").string(), text);
+        writeStagedFile((fs::path(staging) / "models.json").string(), text);
     });
     return index;
 }

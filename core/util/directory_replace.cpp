@@ -12,6 +12,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
+#include "core/util/staged_files.h"
 #include "core/util/temp_files.h"
 
 #ifndef RENAME_EXCHANGE
@@ -151,7 +152,9 @@ void replaceDirectory(const std::string& targetPath, const std::function<bool(co
     try {
         fill(staging.string());
         if (replacing) carryOver(target, staging, isMember);
-        syncDirectory(staging.string());
+        // The set's files and their names are durable before the swap makes them the target's;
+        // members written with writeStagedFile have not been synced yet.
+        syncStagedDirectory(staging.string());
     } catch (...) {
         fs::remove_all(staging, ec);
         // The user's spelling of the target (less trailing separators), not the resolved path.

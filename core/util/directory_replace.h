@@ -8,7 +8,8 @@
 /// Steps (each a crash point of core/util/temp_files.h, for tests):
 ///   1. leftovers of killed writers of the same target are removed (a directory swapped out by the
 ///      two-rename fallback below is put back first if the target is missing);
-///   2. `fill` writes the new set into `.<name>.<pid>.<n>.tmp` beside the target;
+///   2. `fill` writes the new set into `.<name>.<pid>.<n>.tmp` beside the target (plainly, with
+///      core/util/staged_files.h's writeStagedFile: every file there is fsynced, together, before step 4);
 ///   3. entries of the old directory that are not members of the set (a user's notes, another
 ///      program's output) are hard-linked (copied where links fail) into the new one, so replacing
 ///      the set never deletes them;                                        — "replace <name>: before swap"

@@ -3,8 +3,12 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <string>
+
+#include <unistd.h>
 
 #include "tests/gl/gl_test_env.h"
 
@@ -26,6 +30,11 @@ bool glSkipAllowed() {
 
 int main(int argc, char** argv) {
     ::testing::InitGoogleTest(&argc, argv);
+    // GLSL program binaries go to a directory of this run (app/gl/program_binary_cache.h), not the
+    // user's cache: the tests see a cold cache and leave nothing behind.
+    const std::filesystem::path programs =
+        std::filesystem::temp_directory_path() / ("rrf_gl_tests_programs_" + std::to_string(::getpid()));
+    ::setenv("RRF_PROGRAM_CACHE", programs.c_str(), 1);
     try {
         rrf::test::gContext = std::make_unique<rrf::GlContext>();
         std::cout << "OpenGL: " << rrf::test::gContext->renderer() << " | " << rrf::test::gContext->version() << "\n";
@@ -37,5 +46,7 @@ int main(int argc, char** argv) {
     }
     const int rc = RUN_ALL_TESTS();
     rrf::test::gContext.reset();
+    std::error_code ec;
+    std::filesystem::remove_all(programs, ec);
     return rc;
 }

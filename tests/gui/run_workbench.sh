@@ -18,6 +18,9 @@ for f in "$project_dir"/*.obj "$project_dir"/*.mtl; do
 done
 # Keep the user's config (recent projects, imgui.ini) out of the test and vice versa.
 export XDG_CONFIG_HOME="$out/config"
+# ... and its GLSL program binaries (app/gl/program_binary_cache.h): a session starts cold and finds
+# what it cached itself. (Mesa's own shader cache stays where it is: cold, every session compiles slowly.)
+export RRF_PROGRAM_CACHE="$out/programs"
 size=${RRF_GUI_SIZE:-1600x1000}
 set -- "$out/project/project.json" --frames 60 --screenshot "$out/shot.png" --size "$size"
 if [ -n "$script" ]; then

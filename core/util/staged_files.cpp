@@ -1,0 +1,60 @@
+// Staged files (staged_files.h): plain writes into a staging directory, synced together once.
+#include "core/util/staged_files.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
+#include "core/util/temp_files.h"
+
+namespace rrf {
+
+namespace fs = std::filesystem;
+
+void writeStagedFile(const std::string& path, const std::string& bytes) {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    // The staging directory is the target's: a failure here is the target's, and nothing of it exists yet.
+    if (!f) throw OutputError(path, std::string("cannot write the file: ") + std::strerror(errno), "no file was created");
+    const bool written = bytes.empty() || std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+    std::string err = written ? "" : std::strerror(errno);
+    const bool closed = std::fclose(f) == 0;
+    if (written && !closed) err = std::strerror(errno);
+    if (!(written && closed)) throw OutputError(path, "write failed: " + err, "no file was created");
+    crashPoint("commit " + fs::path(path).filename().string());
+}
+
+bool syncStagedDirectory(const std::string& dir) {
+    std::vector<std::string> files;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+        if (it->is_regular_file(ec)) files.push_back(it->path().string());
+    std::atomic<size_t> next{0};
+    std::atomic<bool> ok{!ec};
+    auto syncSome = [&] {
+        for (size_t i = next++; i < files.size(); i = next++) {
+            const int fd = ::open(files[i].c_str(), O_RDONLY);
+            if (fd < 0 || ::fsync(fd) != 0) ok = false;
+            if (fd >= 0) ::close(fd);
+        }
+    };
+    // A few fsyncs in flight at once: each waits mostly on the device, and concurrent ones share a
+    // journal commit; more threads than that only add start-up cost.
+    const size_t threads = std::min<size_t>(files.size(), 8);
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < threads; ++t) pool.emplace_back(syncSome);
+    syncSome();
+    for (std::thread& t : pool) t.join();
+    return syncDirectory(dir) && ok;
+}
+
+}  // namespace rrf

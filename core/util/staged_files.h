@@ -1,0 +1,24 @@
+#pragma once
+/// Files written into a staging directory that is swapped into place as a whole
+/// (core/util/directory_replace.h). Inside a private staging directory no reader can see a partial
+/// file, so a member needs neither its own temporary name nor its own fsync and rename: it is
+/// written plainly, and the directory's files are made durable together, once, just before the
+/// swap. Saving a set then costs its bytes plus one flush of them, not two fsyncs per file (a model
+/// set of many leaves took seconds of fsyncs for kilobytes of data, issue 29).
+
+#include <string>
+
+namespace rrf {
+
+/// Writes `bytes` to `path` (a file inside a staging directory) without syncing it; crash point
+/// "commit <file name>" (core/util/temp_files.h) after the write, as AtomicFile has before its
+/// rename. Throws OutputError naming `path` on failure.
+void writeStagedFile(const std::string& path, const std::string& bytes);
+
+/// Makes every regular file directly in `dir`, and the directory's entries, durable: the files'
+/// fsyncs run concurrently (a journalling file system commits them together), then one fsync of
+/// the directory. Returns false where a file or the directory could not be synced (best effort, as
+/// syncDirectory: the data was written either way).
+bool syncStagedDirectory(const std::string& dir);
+
+}  // namespace rrf
