@@ -261,7 +261,7 @@ bool drawWorkspace(PaneLayout& layout, const std::function<void(const std::strin
                    std::string& focusTab) {
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const ImVec2 avail = ImGui::GetContentRegionAvail();
-    WorkspaceDraw w{layout, drawPanel, focusTab, splitterWidth(), {}, {}};
+    WorkspaceDraw w{layout, drawPanel, focusTab, splitterWidth(), {}, {}, {}, {}, false};
     if (avail.x < 4 * w.thickness || avail.y < 4 * w.thickness) return false;  // minimised window
     drawNode(w, layout.root, origin, avail, 0);
     // The panes' child windows were placed by hand: claim their area so the parent's layout knows it.
