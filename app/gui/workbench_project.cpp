@@ -7,12 +7,11 @@
 #include "core/nn/network_settings.h"
 #include "core/pipeline/run_recording.h"
 #include "core/project/scene_edits.h"
-#include "core/util/json_reader.h"
+#include "core/util/error.h"
 
 namespace rrf {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 
 std::string Workbench::projectDir() const { return ctx_.projectDir(); }
 

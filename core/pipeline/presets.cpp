@@ -12,7 +12,9 @@ void quickSampling(SamplingSettings& s) {
     s.directions = 150;
     s.spp = 16;
 }
-void quickNetwork(ObjectTrainingOptions& t) { t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = 50; }
+void quickNetwork(ObjectTrainingOptions& t) {
+    for (TrainerCommon* c : t.trainer.everyTrainer()) c->maxEpochs = 50;
+}
 
 // paper: the seed report's data (15³ × 1200 directions) with a fixed path count per record (the
 // report had no adaptive sampling), the struct's own defaults being exactly that grid.
@@ -47,7 +49,7 @@ void defaultNetwork(ObjectTrainingOptions& t) {
     const uint64_t seed = t.trainer.seed();
     NetworkSettings n;
     n.options.trainer = NetworkSettings::defaultTrainer();
-    n.options.trainer.adam.seed = n.options.trainer.lm.seed = seed;
+    for (TrainerCommon* c : n.options.trainer.everyTrainer()) c->seed = seed;
     // Indirect networks (NetworkSettings' default): default and best predict direct light exactly.
     t = n.options;
 }
