@@ -17,10 +17,12 @@ void quickNetwork(ObjectTrainingOptions& t) {
 }
 
 // paper: the seed report's data (15³ × 1200 directions) with a fixed path count per record (the
-// report had no adaptive sampling), the struct's own defaults being exactly that grid.
+// report had no adaptive sampling); the rest are the defaults.
 void paperSampling(SamplingSettings& s) {
     SamplingSettings p;
     p.seed = s.seed;
+    p.nx = p.ny = p.nz = 15;
+    p.directions = 1200;
     p.maxSpp = p.spp;  // fixed 64 paths per record
     s = p;
 }
@@ -41,7 +43,7 @@ void paperNetwork(ObjectTrainingOptions& t) {
 
 // default: the project defaults, whatever they are.
 void defaultSampling(SamplingSettings& s) {
-    SamplingSettings d = SamplingSettings::projectDefault();
+    SamplingSettings d;
     d.seed = s.seed;
     s = d;
 }

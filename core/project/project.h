@@ -32,7 +32,7 @@ struct Project {
     Scene scene;                ///< the loaded scene with `overrides` applied
     SceneOverrides overrides;   ///< "scene_overrides": the workbench's edits of the scene
     RenderSettings render;      ///< "render"
-    /// "sampling"; empty when the file has none: SamplingSettings::projectDefault() then applies
+    /// "sampling"; empty when the file has none: SamplingSettings' defaults then apply
     /// (rrf pipeline --quick uses smaller sizes), and the section stays absent on save.
     std::optional<SamplingSettings> sampling;
     /// "network": hidden layers, activation and targets; empty when the file has none (see
@@ -55,8 +55,8 @@ struct Project {
     /// are in scene.warnings.
     std::vector<std::string> warnings;
 
-    /// The sampling settings in effect (SamplingSettings::projectDefault() when the file has none).
-    SamplingSettings samplingOrDefault() const { return sampling.value_or(SamplingSettings::projectDefault()); }
+    /// The sampling settings in effect (SamplingSettings' defaults when the file has none).
+    SamplingSettings samplingOrDefault() const { return sampling.value_or(SamplingSettings()); }
     /// The network and trainer settings in effect: each section's values, its defaults where absent.
     /// The targets follow the prediction: indirect networks beside exact direct light (the default),
     /// separate direct and indirect ones when direct light is learned.
