@@ -39,6 +39,14 @@ const char* adamLossName(AdamLoss loss) { return nameOf(adamLosses(), loss); }
 
 const char* TrainerConfig::typeName() const { return trainerTypeInfo(type).name; }
 
+TrainerConfig TrainerConfig::projectDefault() {
+    TrainerConfig t = TrainerConfig().withType(TrainerType::Adam);
+    t.adam.loss = AdamLoss::RelativeL2;
+    t.adam.errorGoal = 0.02;
+    t.adam.maxEpochs = 600;
+    return t;
+}
+
 TrainerConfig TrainerConfig::fromJson(const json& j, const std::string& file, const std::string& where) {
     return fromJson(JsonReader(j, file, where));
 }

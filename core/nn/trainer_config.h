@@ -123,6 +123,15 @@ struct TrainerConfig {
     /// The active trainer's error goal (validation relative RMSE; 0 = none).
     double errorGoal() const { return common().errorGoal; }
 
+    /// The project's trainer: what a project file without a "trainer" section trains with, and the
+    /// initialiser of ObjectTrainingOptions::trainer. Adam with the relative L2 loss (the error
+    /// metric's own weighting, so dark regions such as the light's shadow on the ceiling count as the
+    /// evaluation counts them) on all records, error goal 0.02 and at most 600 epochs. On the Cornell
+    /// box with the default data it generalises better than Levenberg–Marquardt, which costs 3·N·P²
+    /// per epoch and so cannot use all the records in the same time (docs/results-history.md, issue
+    /// 11). Unlike TrainerConfig() (a trainer object without keys: Levenberg–Marquardt with the
+    /// defaults above, which the file format fixes), this is a project setting.
+    static TrainerConfig projectDefault();
     /// Parses a trainer object (the project's "trainer" section, a run's or a model file's trainer).
     /// A missing "type" means levenberg_marquardt; "lm" is accepted as a short name. Every error names
     /// the reader's file and the JSON pointer of the offending key.

@@ -49,8 +49,7 @@ void defaultSampling(SamplingSettings& s) {
 }
 void defaultNetwork(ObjectTrainingOptions& t) {
     const uint64_t seed = t.trainer.seed();
-    NetworkSettings n;
-    n.options.trainer = NetworkSettings::defaultTrainer();
+    NetworkSettings n;  // the project's defaults, its trainer included
     for (TrainerCommon* c : n.options.trainer.everyTrainer()) c->seed = seed;
     // Indirect networks (NetworkSettings' default): default and best predict direct light exactly.
     t = n.options;

@@ -39,7 +39,7 @@ struct Project {
     /// `sampling`). Its options.trainer is not part of the section and is ignored here: the trainer
     /// is `trainer`, and networkOrDefault() combines the two.
     std::optional<NetworkSettings> network;
-    /// "trainer"; empty when the file has none: NetworkSettings::defaultTrainer() then applies, and
+    /// "trainer"; empty when the file has none: TrainerConfig::projectDefault() then applies, and
     /// the section stays absent on save (as it does when only "network" was edited).
     std::optional<TrainerConfig> trainer;
     PredictionSettings prediction;  ///< "prediction"
@@ -66,7 +66,7 @@ struct Project {
         // the Network panel while direct light was exact) become separate direct and indirect ones.
         if (prediction.direct == PredictionSettings::Direct::Network && s.options.targets == TargetMode::Indirect)
             s.options.targets = TargetMode::Separate;
-        s.options.trainer = trainer.value_or(NetworkSettings::defaultTrainer());
+        s.options.trainer = trainer.value_or(TrainerConfig::projectDefault());
         return s;
     }
 };
