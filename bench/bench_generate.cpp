@@ -63,7 +63,9 @@ int main(int argc, char** argv) {
     gen.nx = gen.ny = gen.nz = 6;
     gen.directions = 200;
     gen.spp = 16;
-    SamplingSettings mem;  // the default run: 15³ grid, 1200 directions
+    SamplingSettings mem;  // the report's run (the paper preset's data): 15³ grid, 1200 directions
+    mem.nx = mem.ny = mem.nz = 15;
+    mem.directions = 1200;
     mem.spp = 1;
     int renderSpp = 4, width = 256, height = 256;
     bool noMemory = false;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/pipeline/sweep.h"
+#include "tests/training_builders.h"
 
 namespace rrf::test {
 
@@ -13,6 +14,7 @@ namespace rrf::test {
 /// 2 paths, one epoch; one point per entry of `values` (hidden sizes).
 inline SweepOptions tinyHiddenSweep(std::vector<std::string> values) {
     SweepOptions o;
+    o.training = plainTraining();
     o.what = "hidden";
     o.values = std::move(values);
     o.width = o.height = 8;

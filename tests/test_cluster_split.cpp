@@ -23,6 +23,7 @@
 #include "core/nn/training_split.h"
 #include "core/project/project.h"
 #include "synthetic_samples.h"
+#include "tests/training_builders.h"
 
 namespace test_cluster_split {
 
@@ -130,7 +131,7 @@ TEST(ClusterParts, RankPartsOfTheCornellBoxJoinIntoTheSingleProcessBytes) {
 
 TEST(ClusterParts, TrainingSharesJoinIntoTheSingleProcessRunBitForBit) {
     const std::vector<ObjectSamples> objs = {syntheticObject(0, 400), syntheticObject(1, 250), syntheticObject(2, 300)};
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {6};
     o.targets = TargetMode::Separate;
     o.trainer = TrainerConfig::fromJson({{"type", "adam"}, {"max_epochs", 4}});

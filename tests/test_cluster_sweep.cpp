@@ -19,6 +19,7 @@
 #include "core/render/render_rows.h"
 #include "core/scene/accel.h"
 #include "scene_builders.h"
+#include "tests/training_builders.h"
 
 namespace test_cluster_sweep {
 
@@ -118,6 +119,7 @@ TEST(ClusterRender, PartsOfAnotherPassCountOrRowsOutOfRangeAreRefused) {
 TEST(ClusterSweep, TasksRunApartJoinIntoTheSingleProcessSweep) {
     const Scene scene = test::cornellLike(1.f, 16);
     SweepOptions o;
+    o.training = test::plainTraining();
     o.what = "hidden";
     o.values = {"3", "2,2"};
     o.width = o.height = 16;

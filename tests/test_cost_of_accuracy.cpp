@@ -15,6 +15,7 @@
 #include "core/scene/accel.h"
 #include "scene_builders.h"
 #include "sweep_builders.h"
+#include "tests/training_builders.h"
 
 namespace test_cost_of_accuracy {
 
@@ -156,6 +157,7 @@ TEST(SweepRun, ProgressMovesWithTheWorkAndNeverGoesBack) {
 TEST(SweepRun, EveryPointUsesOneFootprintMaskAndModelSweepsRenderThePathTracer) {
     const Scene scene = test::cornellLike(1.f, 16);
     SweepOptions o;
+    o.training = test::plainTraining();
     o.what = "hidden";
     o.values = {"3"};
     o.width = o.height = 16;

@@ -10,6 +10,7 @@
 #include "core/util/error.h"
 #include "scene_builders.h"
 #include "sweep_refusal.h"
+#include "tests/training_builders.h"
 
 namespace test_encoding_sweeps {
 
@@ -25,6 +26,7 @@ TEST(EncodingSweeps, BadNamesAndAHashGridUnderLmAreRefusedBeforeRendering) {
     EXPECT_EQ(defaultSweepValues("encoding"), (std::vector<std::string>{"raw", "frequency", "hash_grid"}));
     const Scene scene = test::cornellLike();
     SweepOptions o;
+    o.training = test::plainTraining();
     o.what = "encoding";
     o.width = o.height = 4096;  // a reference that would take long: the refusal must come first
     o.referenceSpp = 1 << 20;
@@ -38,6 +40,7 @@ TEST(EncodingSweeps, BadNamesAndAHashGridUnderLmAreRefusedBeforeRendering) {
 TEST(EncodingSweeps, RowsCountEncodingParametersAndModelBytes) {
     const Scene scene = test::cornellLike(1.f, 16);
     SweepOptions o;
+    o.training = test::plainTraining();
     o.what = "encoding";
     o.values = {"raw", "hash_grid"};
     o.width = o.height = 16;

@@ -13,6 +13,7 @@
 #include "core/util/rng.h"
 #include "core/util/stopwatch.h"
 #include "core/pipeline/sweep.h"
+#include "tests/training_builders.h"
 
 namespace test_end_to_end {
 
@@ -101,7 +102,7 @@ RunResult run(const Scene& scene, const GeneratedData& data, const std::vector<R
             }
         }
     }
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {20, 10};
     o.targets = TargetMode::Separate;
     o.trainer.lm.maxEpochs = 60;
@@ -181,6 +182,7 @@ TEST(EndToEnd, SmallRunLearnsAndBrokenPipelinesFail) {
 TEST(EndToEnd, SppSweepShowsTheMonteCarloSlope) {
     EXPECT_NEAR(logLogSlope({1, 4, 16}, {1.0, 0.5, 0.25}), -0.5, 1e-12);
     SweepOptions o;
+    o.training = test::plainTraining();
     o.what = "spp";
     o.values = {"1", "2", "4", "8", "16"};
     o.width = o.height = 48;

@@ -16,6 +16,7 @@
 #include "core/util/error.h"
 #include "core/util/rng.h"
 #include "tests/synthetic_samples.h"
+#include "tests/training_builders.h"
 
 namespace test_ensemble {
 
@@ -283,7 +284,7 @@ TEST(Ensemble, RefusalsNameTheSetting) {
     encodings.training.trainer = TrainerConfig().withType(TrainerType::Adam);
     encodings.training.ensemble = 2;
     EXPECT_THROW(sweepPoints(encodings), SettingError);
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {4};
     o.ensemble = 2;
     o.encoding = encodingPresetSettings("hash_grid");

@@ -19,6 +19,7 @@
 #include "core/util/error.h"
 #include "scene_builders.h"
 #include "tests/synthetic_samples.h"
+#include "tests/training_builders.h"
 
 namespace test_model_set_refusals {
 
@@ -37,7 +38,7 @@ struct SavedSet {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         dir = fs::temp_directory_path() / ("rrf_model_set_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
         fs::remove_all(dir);
-        ObjectTrainingOptions o;
+        ObjectTrainingOptions o = test::plainTraining();
         o.hidden = {3};
         o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 2}});
         for (int i = 0; i < 14; ++i) layout.push_back("in" + std::to_string(i));

@@ -16,6 +16,7 @@
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/rng.h"
+#include "tests/training_builders.h"
 
 namespace test_nn_encoded {
 
@@ -157,7 +158,7 @@ TEST(EncodedTraining, LevenbergMarquardtRefusesAHashGridNamingTheSetting) {
     MatX<float> x, y;
     records(50, -1.f, 1.f, 1, x, y);
     for (int c = 0; c < 50; ++c) s.add(x.col(c).data(), y.col(c).data(), y.col(c).data());
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.encoding = smallEncoding();
     o.trainer = TrainerConfig().withType(TrainerType::LevenbergMarquardt);
     o.hidden = {4};
@@ -221,7 +222,7 @@ TEST(EncodedTraining, ResultIsIdenticalForAnyThreadCount) {
         for (int c = 0; c < 120; ++c) s.add(x.col(c).data(), y.col(c).data(), y.col(c).data());
         objects.push_back(std::move(s));
     }
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.encoding = smallEncoding();
     o.trainer = adam(3);
     o.hidden = {8};

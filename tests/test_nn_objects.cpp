@@ -11,6 +11,7 @@
 #include "core/nn/training_samples.h"
 #include "core/util/error.h"
 #include "tests/synthetic_samples.h"
+#include "tests/training_builders.h"
 
 namespace test_nn_objects {
 
@@ -19,7 +20,7 @@ using namespace rrf;
 namespace {
 
 ObjectTrainingOptions lmOptions(int epochs) {
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", epochs}});
     return o;
 }
@@ -175,7 +176,7 @@ namespace {
 
 TEST(ObjectTraining, PerObjectEntriesChangeTheirObjectsNetworksOnly) {
     const std::vector<rrf::ObjectSamples> objs = {rrf::syntheticObject(0, 200), rrf::syntheticObject(1, 200)};
-    rrf::ObjectTrainingOptions o;
+    rrf::ObjectTrainingOptions o = rrf::test::plainTraining();
     o.hidden = {4};
     o.targets = rrf::TargetMode::Indirect;
     o.trainer = rrf::TrainerConfig().withType(rrf::TrainerType::Adam);

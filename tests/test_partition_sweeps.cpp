@@ -10,6 +10,7 @@
 #include "core/util/error.h"
 #include "scene_builders.h"
 #include "sweep_refusal.h"
+#include "tests/training_builders.h"
 
 namespace test_partition_sweeps {
 
@@ -22,6 +23,7 @@ using rrf::test::settingNamedBy;
 /// A sweep small enough for a unit test: 16² images, a 2³ grid, tiny networks.
 SweepOptions smallSweep(const std::string& what, std::vector<std::string> values) {
     SweepOptions o;
+    o.training = test::plainTraining();
     o.what = what;
     o.values = std::move(values);
     o.width = o.height = 16;
@@ -49,6 +51,7 @@ TEST(PartitionSweeps, DefaultsAndBadValues) {
     // A scene whose reference would take long: a bad value must be reported before it renders.
     const Scene scene = test::cornellLike();
     SweepOptions o;
+    o.training = test::plainTraining();
     o.width = o.height = 4096;
     o.referenceSpp = 1 << 20;
     const std::pair<const char*, std::vector<std::string>> bad[] = {

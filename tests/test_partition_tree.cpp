@@ -22,6 +22,7 @@
 #include "core/project/project.h"
 #include "core/util/error.h"
 #include "core/util/rng.h"
+#include "tests/training_builders.h"
 
 namespace test_partition_tree {
 
@@ -82,7 +83,7 @@ template <typename F> ObjectSamples samplesOf(F f, int n, uint64_t seed, int id 
 }
 
 ObjectTrainingOptions options(int maxLeaves, double goal) {
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {6};
     o.targets = TargetMode::Indirect;
     o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 40}, {"max_fail", 8}});

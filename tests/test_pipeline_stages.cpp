@@ -18,6 +18,7 @@
 #include "core/pipeline/train_stage.h"
 #include "tests/project_builders.h"
 #include "tests/test_dirs.h"
+#include "tests/training_builders.h"
 
 namespace test_pipeline_stages {
 
@@ -39,7 +40,7 @@ SamplingSettings tinySampling() {
 }
 
 ObjectTrainingOptions tinyTraining() {
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {8};
     o.trainer.adam.maxEpochs = o.trainer.lm.maxEpochs = 4;
     return o;

@@ -13,6 +13,7 @@
 #include "core/project/project.h"
 #include "project_builders.h"
 #include "core/pipeline/time_estimate.h"
+#include "tests/training_builders.h"
 
 namespace test_presets {
 
@@ -189,7 +190,7 @@ TEST(TimeEstimate, GenerateIsRecordsTimesPathsOverRate) {
 }
 
 TEST(TimeEstimate, LevenbergMarquardtCostsThreeNPSquaredPerEpoch) {
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {5};
     o.targets = TargetMode::Indirect;
     o.trainer = TrainerConfig().withType(TrainerType::LevenbergMarquardt);
@@ -217,7 +218,7 @@ TEST(TimeEstimate, LevenbergMarquardtCostsThreeNPSquaredPerEpoch) {
 }
 
 TEST(TimeEstimate, AdamCostsNPPerEpoch) {
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {5};
     o.targets = TargetMode::Joint;  // 6 outputs: P = 4·5 + 6·6 = 56
     o.trainer = TrainerConfig().withType(TrainerType::Adam);

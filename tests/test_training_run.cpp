@@ -9,6 +9,7 @@
 #include "core/nn/model_set.h"
 #include "core/nn/training_run.h"
 #include "tests/synthetic_samples.h"
+#include "tests/training_builders.h"
 
 namespace test_training_run {
 
@@ -16,7 +17,7 @@ using namespace rrf;
 
 TEST(TrainingRun, SameNetworksAsTrainObjectsWithOrderedCurves) {
     const std::vector<ObjectSamples> objs = {syntheticObject(2, 120), syntheticObject(0, 80), syntheticObject(1, 0)};
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {5};
     o.targets = TargetMode::Separate;
     o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 4}});
@@ -50,7 +51,7 @@ TEST(TrainingRun, SameNetworksAsTrainObjectsWithOrderedCurves) {
 
 TEST(TrainingRun, CancelledBeforeStartTrainsNothing) {
     const std::vector<ObjectSamples> objs = {syntheticObject(0, 50)};
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {3};
     std::atomic<bool> cancel{true};
     ObjectTrainingObserver observer;
@@ -62,7 +63,7 @@ TEST(TrainingRun, CancelledBeforeStartTrainsNothing) {
 }
 
 TEST(TrainingRun, SavedModelSetRecordsWhereTheRunCameFrom) {
-    ObjectTrainingOptions o;
+    ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {3};
     o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 2}});
     const TrainingRun run = trainNetworks({syntheticObject(0, 60)}, o);

@@ -4,11 +4,10 @@
 #include <cstdio>
 #include <limits>
 
-#include <nlohmann/json.hpp>
-
 #include "core/nn/mlp_kernel.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/network_settings.h"
+#include "core/nn/trainers/registry.h"
 #include "core/pipeline/presets.h"
 #include "core/project/project.h"
 
@@ -114,10 +113,9 @@ void addNetworkFlags(CLI::App* cmd, SettingFlags<ObjectTrainingOptions>& flags) 
         ->check(CLI::IsMember({"on", "off"}));
     flags.add<std::string>(cmd, "--trainer", "trainer",
                            [](ObjectTrainingOptions& t, const std::string& type) { t.trainer = t.trainer.withType(type); })
-        ->check(CLI::IsMember({"lm", "adam"}));
+        ->check(CLI::IsMember(trainerShortNames()));
     flags.add<int>(cmd, "--epochs", "maximum epochs", [](ObjectTrainingOptions& t, const int& n) {
-             t.trainer.lm.maxEpochs = n;
-             t.trainer.adam.maxEpochs = n;
+             for (TrainerCommon* c : t.trainer.everyTrainer()) c->maxEpochs = n;
          })->check(positive());
 }
 

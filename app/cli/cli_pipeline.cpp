@@ -12,8 +12,6 @@
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_evaluation.h"
 #include "core/pipeline/run_recording.h"

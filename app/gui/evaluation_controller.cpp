@@ -18,7 +18,6 @@
 namespace rrf {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 
 /// A finished evaluation: the Objects table, ready to show, and what the training run gets.
 struct EvaluationOutcome {

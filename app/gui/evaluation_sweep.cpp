@@ -195,8 +195,7 @@ bool EvaluationController::startSweep(const std::string& what) {
     o.sampling.nz = std::min(o.sampling.nz, 4);
     o.sampling.directions = std::min(o.sampling.directions, 100);
     o.sampling.spp = std::min(o.sampling.spp, 16);
-    o.training.trainer.lm.maxEpochs = std::min(o.training.trainer.lm.maxEpochs, 50);
-    o.training.trainer.adam.maxEpochs = std::min(o.training.trainer.adam.maxEpochs, 50);
+    for (TrainerCommon* c : o.training.trainer.everyTrainer()) c->maxEpochs = std::min(c->maxEpochs, 50);
     std::string outBase = (fs::path(projectDir()) / "sweeps" / (what + "-" + localTimestamp())).string();
     std::replace(outBase.end() - 8, outBase.end(), ':', '-');  // no ':' in file names
     const bool started = sweepJob_.start("sweep " + what, [scene, o, outBase, storeDir](JobContext& ctx) -> std::optional<SweepOutcome> {

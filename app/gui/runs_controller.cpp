@@ -9,6 +9,7 @@
 #include "core/eval/error_metrics.h"
 #include "core/pipeline/run_recording.h"
 #include "core/project/scene_edits.h"
+#include "core/util/error.h"
 #include "core/util/image_io.h"
 
 namespace rrf {

@@ -12,6 +12,7 @@
 #include "app/gui/prediction_bands.h"
 #include "app/gui/workbench.h"
 #include "core/nn/network_settings.h"
+#include "core/nn/trainers/registry.h"
 #include "core/pipeline/presets.h"
 #include "core/pipeline/run_recording.h"
 #include "core/project/scene_edits.h"
@@ -196,7 +197,7 @@ bool Script::execute(Workbench& wb, const json& s) {
             st.markDirty();
         }
         if (r.has("trainer")) {
-            const std::string type = r.choiceOr("trainer", "", {"levenberg_marquardt", "lm", "adam"});
+            const std::string type = r.choiceOr("trainer", "", trainerTypeNames());
             st.project.trainer = st.project.networkOrDefault().options.trainer.withType(type);
             st.markDirty();
         }
@@ -238,7 +239,8 @@ bool Script::execute(Workbench& wb, const json& s) {
         }
         if (r.has("epochs")) {
             TrainerConfig t = st.project.networkOrDefault().options.trainer;
-            t.lm.maxEpochs = t.adam.maxEpochs = intOr(r, "epochs", 1);
+            const int epochs = intOr(r, "epochs", 1);
+            for (TrainerCommon* c : t.everyTrainer()) c->maxEpochs = epochs;
             st.project.trainer = t;
         }
         st.markDirty();

@@ -186,7 +186,8 @@ bool TrainingController::startTrain(int maxEpochs, StageDone done) {
     TrainRequest request;
     request.settings = state.project.networkOrDefault();
     auto& trainer = request.settings.options.trainer;
-    if (maxEpochs > 0) trainer.lm.maxEpochs = trainer.adam.maxEpochs = maxEpochs;
+    if (maxEpochs > 0)
+        for (TrainerCommon* c : trainer.everyTrainer()) c->maxEpochs = maxEpochs;
     request.sampling = state.project.sampling;
     request.sceneHash = state.project.scene.contentHash();
     request.modelsDir = job.modelsDir;

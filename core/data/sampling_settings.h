@@ -22,9 +22,14 @@ constexpr int kMaxSamplingDepth = 1000;          ///< "max_depth"
 // Cell indices are int: the largest grid must not overflow it (1000³ = 1e9 < 2^31 − 1).
 static_assert(int64_t(kMaxGridCells) * kMaxGridCells * kMaxGridCells <= INT32_MAX, "grid cell count must fit an int");
 
+/// The initialisers are the project's defaults, the only ones: what a project file without a
+/// "sampling" section, or a section without the key, gets. The grid and directions are an 8³ grid ×
+/// 300 directions, 64 paths per record doubled adaptively up to max_spp: the data that lets the
+/// default networks reach the default preset's held-out error (docs/results.md,
+/// pipeline-cornell-default). The report's 15³ × 1200 is the paper preset (core/pipeline/presets.h).
 struct SamplingSettings {
-    int nx = 15, ny = 15, nz = 15;  ///< jitter grid over the scene bounds
-    int directions = 1200;          ///< random directions per viewpoint (N_dir)
+    int nx = 8, ny = 8, nz = 8;     ///< jitter grid over the scene bounds
+    int directions = 300;           ///< random directions per viewpoint (N_dir)
     /// Paths per record for the direct/indirect targets: all of them when max_spp ≤ spp, otherwise
     /// the first round of the adaptive sampling below.
     int spp = 64;
@@ -51,17 +56,7 @@ struct SamplingSettings {
     /// file and the JSON pointer for unknown keys, wrong types or out-of-range values.
     static SamplingSettings fromJson(const JsonReader& section, const SamplingSettings& base);
     /// fromJson over the project defaults (a project file's section).
-    static SamplingSettings fromJson(const JsonReader& section) { return fromJson(section, projectDefault()); }
-    /// A project's sampling when its file says nothing: an 8³ grid × 300 directions, 64 paths per
-    /// record doubled adaptively up to max_spp, the data that lets the default networks reach the
-    /// default preset's held-out error (docs/results.md, pipeline-cornell-default). The struct's own
-    /// grid and directions are the report's setting (15³ × 1200), many times the data and the time.
-    static SamplingSettings projectDefault() {
-        SamplingSettings s;
-        s.nx = s.ny = s.nz = 8;
-        s.directions = 300;
-        return s;
-    }
+    static SamplingSettings fromJson(const JsonReader& section) { return fromJson(section, SamplingSettings()); }
     /// The section's keys ("grid", "directions", ...), e.g. for a script step that takes them.
     static const std::vector<std::string>& keys();
     nlohmann::json toJson() const;

@@ -83,7 +83,7 @@ namespace {
 
 /// `cfg` with every trainer's seed replaced by `seed` (the split is drawn before, by the caller).
 TrainerConfig withSeed(TrainerConfig cfg, uint64_t seed) {
-    cfg.adam.seed = cfg.lm.seed = seed;
+    for (TrainerCommon* c : cfg.everyTrainer()) c->seed = seed;
     return cfg;
 }
 

@@ -41,36 +41,13 @@ constexpr int kMaxPartitionLeaves = 4096;  ///< "partition": {"max_leaves"}
 constexpr int kMaxEnsembleMembers = 16;    ///< "ensemble": networks averaged per leaf
 
 struct NetworkSettings {
-    ObjectTrainingOptions options;  ///< hidden sizes, activation, targets, trainer
+    /// Hidden sizes, activation, targets, trainer; default-constructed, the project's defaults
+    /// (ObjectTrainingOptions' initialisers).
+    ObjectTrainingOptions options;
 
-    /// The project defaults: ObjectTrainingOptions' defaults with networks for the indirect light only
-    /// (direct light is computed exactly by default, as in Ren et al.; Project::networkOrDefault
-    /// learns direct light too when the project predicts it with networks), each partitioned into at
-    /// most kDefaultMaxLeaves leaves.
-    NetworkSettings() {
-        options.targets = TargetMode::Indirect;
-        options.partition.maxLeaves = kDefaultMaxLeaves;
-        options.partition.minSplitGain = kDefaultMinSplitGain;
-    }
-    /// A project's trainer when its file has no "trainer" section: Adam with the relative L2 loss
-    /// (the error metric's own weighting, so dark regions such as the light's shadow on the ceiling
-    /// count as the evaluation counts them) on all records, error goal 0.02 and at most 600 epochs.
-    /// On the Cornell box with the default data it generalises better than Levenberg–Marquardt,
-    /// which costs 3·N·P² per epoch and so cannot use all the records in the same time (figures:
-    /// docs/results-history.md, issue 11). Levenberg–Marquardt (the report's trainer) stays
-    /// selectable.
-    static TrainerConfig defaultTrainer() {
-        TrainerConfig t = TrainerConfig().withType(TrainerType::Adam);
-        t.adam.loss = AdamLoss::RelativeL2;
-        t.adam.errorGoal = 0.02;
-        t.adam.maxEpochs = 600;
-        return t;
-    }
-    /// The project's default leaf budget per object and target.
-    static constexpr int kDefaultMaxLeaves = 16;
-    /// The project's default for keeping a split: its leaves must lower the node's validation error
-    /// by at least 10 % (a split that does not help only adds seams and parameters).
-    static constexpr double kDefaultMinSplitGain = 0.1;
+    /// The project's default leaf budget per object and target (its one definition is
+    /// PartitionSettings::kDefaultMaxLeaves).
+    static constexpr int kDefaultMaxLeaves = PartitionSettings::kDefaultMaxLeaves;
     /// Reads a "network" section over `base`: missing keys keep base's values, and the trainer is
     /// base's (it is the "trainer" section, read by TrainerConfig::fromJson). Throws InputError naming
     /// the reader's file and the JSON pointer for unknown keys or bad values, and, given the scene's

@@ -242,7 +242,7 @@ std::vector<ObjectModel> trainObjects(const std::vector<ObjectSamples>& objects,
     TrainerConfig leafTrainer = options.trainer;
     if (part.enabled()) {
         const double goal = std::min(leafTrainer.errorGoal(), part.goal / 2);
-        leafTrainer.lm.errorGoal = leafTrainer.adam.errorGoal = goal;
+        for (TrainerCommon* c : leafTrainer.everyTrainer()) c->errorGoal = goal;
     }
     std::vector<MatX<float>> targetsOf(jobs.size());
     std::vector<MatX<float>> variancesOf(jobs.size());  // empty = the targets' noise is unknown

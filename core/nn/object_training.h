@@ -73,14 +73,20 @@ TargetMode parseTargetMode(const std::string& s);
 /// over both children's validation records) must be at most (1 − minSplitGain) × the node's;
 /// otherwise the node stays a leaf with its own network (a plane through the feature that caused
 /// the error — e.g. a shadow that moves with the light — leaves each half as hard as the whole).
+///
+/// The initialisers are the project's defaults (the "partition" keys a project file leaves out).
 struct PartitionSettings {
+    /// The project's leaf budget per object and target.
+    static constexpr int kDefaultMaxLeaves = 16;
+
     double goal = 0.05;               ///< "goal": validation relative RMSE a leaf must reach (0, 10]
     int maxDepth = 8;                 ///< "max_depth": 0 … 20; 0 = one network per object
-    int maxLeaves = 1;                ///< "max_leaves": 1 … 4096; 1 = one network per object
+    int maxLeaves = kDefaultMaxLeaves;  ///< "max_leaves": 1 … 4096; 1 = one network per object
     double minRecordsPerWeight = 8;   ///< "min_records_per_weight": 1 … 1000 (Ren et al.: 8–10)
     /// "min_split_gain": 0 … 0.99, the relative error reduction a split must bring to be kept
-    /// (0 = keep every split; the project default is NetworkSettings::kDefaultMinSplitGain).
-    double minSplitGain = 0;
+    /// (0 = keep every split). The default keeps a split only when its leaves lower the node's
+    /// validation error by at least 10 % (a split that does not help only adds seams and parameters).
+    double minSplitGain = 0.1;
     PartitionAxes axes;               ///< "split_axes": any of "position", "light"
 
     /// True when a tree can grow beyond its root.
@@ -91,8 +97,11 @@ struct PartitionSettings {
     }
 };
 
+/// What to train and how. The initialisers are the project's defaults, the only ones: a project file
+/// without a "network" or "trainer" section, or a section without the key, gets them
+/// (NetworkSettings, Project::networkOrDefault). Tests and tools that want another setting say so.
 struct ObjectTrainingOptions {
-    std::vector<int> hidden{20, 10};
+    std::vector<int> hidden = MlpArch().hidden;  ///< the report's 20-10 network (nn/mlp.h)
     Activation activation = Activation::Tanh;
     /// "ensemble": networks trained per leaf from different initial weights and mini-batch orders
     /// (one split), merged into the one network that predicts their mean (nn/ensemble.h); 1 = one
@@ -105,9 +114,11 @@ struct ObjectTrainingOptions {
     DerivedInputs inputs;
     /// The "objects" map: hidden sizes, inputs and encoding of named objects (nn/object_network_overrides.h).
     ObjectNetworkOverrides perObject;
-    TargetMode targets = TargetMode::Global;
-    TrainerConfig trainer;
-    PartitionSettings partition;  ///< default: one network per object and target
+    /// Indirect light only: direct light is computed exactly by default, as in Ren et al.;
+    /// Project::networkOrDefault learns direct light too when the project predicts it with networks.
+    TargetMode targets = TargetMode::Indirect;
+    TrainerConfig trainer = TrainerConfig::projectDefault();
+    PartitionSettings partition;  ///< default: kd-trees of at most kDefaultMaxLeaves networks
     std::vector<int> objects;  ///< object ids to train; empty = all
     bool parallel = true;      ///< train objects concurrently (TBB); results are identical either way
 

@@ -9,6 +9,7 @@
 /// an unknown key, a wrong type or an out-of-range value is an InputError naming the file and the
 /// JSON path of the key, so a typo such as "mu_decrease" is reported instead of silently ignored.
 
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -18,9 +19,28 @@
 
 namespace rrf {
 
+/// The keys every trainer has, declared here once and read and written once (trainer_config.cpp), so
+/// that a trainer added to the registry (nn/trainers/registry.h) gets them by deriving from this.
+/// Each trainer keeps its own copy (TrainerConfig holds both trainers): switching trainers runs the
+/// new one with its own limits, and switching back loses no edit.
+struct TrainerCommon {
+    /// "max_epochs". No initialiser: each trainer's constructor says its own (they differ).
+    int maxEpochs;
+    /// "error_goal": stop when the validation relative RMSE, noise-corrected when the targets' variance
+    /// is known (nn/validation_monitor.h), reaches it; 0 = no goal. 0.05 is the accuracy the workbench
+    /// aims for (5 % relative, the figure of core/eval/error_metrics.h).
+    double errorGoal = 0.05;
+    /// "max_samples": bound on the training samples, 0 = all (the default: a partition's leaf is small
+    /// enough for LM to see every record).
+    int64_t maxSamples = 0;
+    uint64_t seed = 1;  ///< "seed": split, initial weights (and Adam's mini-batch order)
+
+    explicit TrainerCommon(int maxEpochs) : maxEpochs(maxEpochs) {}
+};
+
 /// Matlab trainlm semantics (see trainLevenbergMarquardt).
-struct LevenbergMarquardtConfig {
-    int maxEpochs = 1000;        ///< "max_epochs"
+struct LevenbergMarquardtConfig : TrainerCommon {
+    LevenbergMarquardtConfig() : TrainerCommon(1000) {}
     double mu = 1e-3;            ///< "mu": initial damping μ0
     double muDec = 0.1;          ///< "mu_dec": μ factor after a successful step
     double muInc = 10.0;         ///< "mu_inc": μ factor after a rejected step
@@ -29,19 +49,11 @@ struct LevenbergMarquardtConfig {
     int maxFail = 6;             ///< "max_fail": stop after this many validation failures in a row
                                  ///< (rises within the targets' noise do not count: nn/validation_monitor.h)
     double goal = 0.0;           ///< "goal": stop when the training MSE reaches it (trainlm's goal)
-    /// "error_goal": stop when the validation relative RMSE, noise-corrected when the targets' variance
-    /// is known (nn/validation_monitor.h), reaches it; 0 = no goal. 0.05 is the accuracy the workbench
-    /// aims for (5 % relative, the figure of core/eval/error_metrics.h).
-    double errorGoal = 0.05;
-    /// "max_samples": bound on the training samples, 0 = all (the default: a partition's leaf is small
-    /// enough for LM to see every record).
-    int64_t maxSamples = 0;
     /// "max_epoch_gflop": LM costs about 3·N·P² flops per epoch (N samples, P weights); when all N
     /// would exceed this budget, training uses the first N' = budget / (3 P²) samples of the random
     /// split and says so in the log. 100 GFLOP is 55 000 samples for the 20-10 network (P ≈ 600);
     /// its time per epoch at bench_nn's LM rate is in docs/results.md. 0 = no bound.
     double maxEpochGflop = 100.0;
-    uint64_t seed = 1;           ///< "seed": split, initial weights
 };
 
 /// Loss minimised by Adam (both on the network's outputs).
@@ -64,8 +76,8 @@ enum class LrSchedule {
     Cosine     ///< cosine decay from learning_rate to min_learning_rate over max_epochs
 };
 
-struct AdamConfig {
-    int maxEpochs = 300;              ///< "max_epochs"
+struct AdamConfig : TrainerCommon {
+    AdamConfig() : TrainerCommon(300) {}
     int batchSize = 256;              ///< "batch_size"
     double learningRate = 1e-2;       ///< "learning_rate"
     double minLearningRate = 1e-4;    ///< "min_learning_rate" (cosine schedule's end value)
@@ -88,9 +100,6 @@ struct AdamConfig {
     /// rate is high (with the cosine default, the last ~30 % of max_epochs). 1 = count every epoch
     /// (needed with the constant schedule, whose rate never decays).
     double patienceLrFraction = 0.2;
-    double errorGoal = 0.05;          ///< "error_goal": as LevenbergMarquardtConfig::errorGoal
-    int64_t maxSamples = 0;           ///< "max_samples": bound on training samples, 0 = all
-    uint64_t seed = 1;                ///< "seed": split, initial weights, mini-batch order
 };
 
 enum class TrainerType { LevenbergMarquardt, Adam };
@@ -102,11 +111,27 @@ struct TrainerConfig {
 
     /// "levenberg_marquardt" / "adam".
     const char* typeName() const;
-    uint64_t seed() const { return type == TrainerType::Adam ? adam.seed : lm.seed; }
-    int maxEpochs() const { return type == TrainerType::Adam ? adam.maxEpochs : lm.maxEpochs; }
+    /// The active trainer's shared keys.
+    const TrainerCommon& common() const { return type == TrainerType::Adam ? static_cast<const TrainerCommon&>(adam) : lm; }
+    TrainerCommon& common() { return type == TrainerType::Adam ? static_cast<TrainerCommon&>(adam) : lm; }
+    /// Both trainers' shared keys, for a setting that applies whichever trainer runs (--epochs, a
+    /// preset's epoch limit, a sweep's error goal, a run's seed): the active one and the one a switch
+    /// would bring back.
+    std::array<TrainerCommon*, 2> everyTrainer() { return {&lm, &adam}; }
+    uint64_t seed() const { return common().seed; }
+    int maxEpochs() const { return common().maxEpochs; }
     /// The active trainer's error goal (validation relative RMSE; 0 = none).
-    double errorGoal() const { return type == TrainerType::Adam ? adam.errorGoal : lm.errorGoal; }
+    double errorGoal() const { return common().errorGoal; }
 
+    /// The project's trainer: what a project file without a "trainer" section trains with, and the
+    /// initialiser of ObjectTrainingOptions::trainer. Adam with the relative L2 loss (the error
+    /// metric's own weighting, so dark regions such as the light's shadow on the ceiling count as the
+    /// evaluation counts them) on all records, error goal 0.02 and at most 600 epochs. On the Cornell
+    /// box with the default data it generalises better than Levenberg–Marquardt, which costs 3·N·P²
+    /// per epoch and so cannot use all the records in the same time (docs/results-history.md, issue
+    /// 11). Unlike TrainerConfig() (a trainer object without keys: Levenberg–Marquardt with the
+    /// defaults above, which the file format fixes), this is a project setting.
+    static TrainerConfig projectDefault();
     /// Parses a trainer object (the project's "trainer" section, a run's or a model file's trainer).
     /// A missing "type" means levenberg_marquardt; "lm" is accepted as a short name. Every error names
     /// the reader's file and the JSON pointer of the offending key.

@@ -12,13 +12,17 @@ void quickSampling(SamplingSettings& s) {
     s.directions = 150;
     s.spp = 16;
 }
-void quickNetwork(ObjectTrainingOptions& t) { t.trainer.lm.maxEpochs = t.trainer.adam.maxEpochs = 50; }
+void quickNetwork(ObjectTrainingOptions& t) {
+    for (TrainerCommon* c : t.trainer.everyTrainer()) c->maxEpochs = 50;
+}
 
 // paper: the seed report's data (15³ × 1200 directions) with a fixed path count per record (the
-// report had no adaptive sampling), the struct's own defaults being exactly that grid.
+// report had no adaptive sampling); the rest are the defaults.
 void paperSampling(SamplingSettings& s) {
     SamplingSettings p;
     p.seed = s.seed;
+    p.nx = p.ny = p.nz = 15;
+    p.directions = 1200;
     p.maxSpp = p.spp;  // fixed 64 paths per record
     s = p;
 }
@@ -39,15 +43,14 @@ void paperNetwork(ObjectTrainingOptions& t) {
 
 // default: the project defaults, whatever they are.
 void defaultSampling(SamplingSettings& s) {
-    SamplingSettings d = SamplingSettings::projectDefault();
+    SamplingSettings d;
     d.seed = s.seed;
     s = d;
 }
 void defaultNetwork(ObjectTrainingOptions& t) {
     const uint64_t seed = t.trainer.seed();
-    NetworkSettings n;
-    n.options.trainer = NetworkSettings::defaultTrainer();
-    n.options.trainer.adam.seed = n.options.trainer.lm.seed = seed;
+    NetworkSettings n;  // the project's defaults, its trainer included
+    for (TrainerCommon* c : n.options.trainer.everyTrainer()) c->seed = seed;
     // Indirect networks (NetworkSettings' default): default and best predict direct light exactly.
     t = n.options;
 }

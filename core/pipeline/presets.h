@@ -11,8 +11,8 @@
 ///   paper  the seed report's setting (docs/design.md §21): grid 15³ × 1200 directions, 64 paths per
 ///          record (fixed), one 20-10 tanh network per object and target, Levenberg–Marquardt with
 ///          at most 1000 epochs, by far the slowest;
-///   default the project defaults (SamplingSettings::projectDefault(), NetworkSettings() with
-///          NetworkSettings::defaultTrainer()): what a project without sections runs;
+///   default the project defaults (SamplingSettings(), NetworkSettings(): the structs'
+///          initialisers): what a project without sections runs;
 ///   best   the most accurate setting measured (issue 16): eight times the default's records at a
 ///          quarter of their paths each, 32-32-32 tanh networks (one per object), Adam with
 ///          relative L2 to the end of a cosine schedule, exact direct light at 256 samples per

@@ -96,7 +96,7 @@ std::vector<SweepPoint> sweepPoints(const SweepOptions& o) {
         } else if (o.what == "goal") {
             // One figure for both: the trainer stops at it and the kd-tree splits nodes above it.
             const double goal = positiveNumber(v, 10.0, "an error goal in (0, 10] (validation relative RMSE, e.g. 0.05)");
-            p.training.trainer.lm.errorGoal = p.training.trainer.adam.errorGoal = goal;
+            for (TrainerCommon* c : p.training.trainer.everyTrainer()) c->errorGoal = goal;
             p.training.partition.goal = goal;
         } else if (o.what == "leaves") {
             p.training.partition.maxLeaves = positiveValue(v, v, kMaxPartitionLeaves, "the most leaves per network, 1.." +

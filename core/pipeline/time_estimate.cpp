@@ -84,15 +84,13 @@ StageEstimate estimateTraining(const ObjectTrainingOptions& o, double records, i
     const TrainerConfig& t = o.trainer;
     double epochSeconds = 0;
     std::string cost;
+    double n = perNetwork;
+    if (t.common().maxSamples > 0) n = std::min(n, double(t.common().maxSamples));
     if (t.type == TrainerType::LevenbergMarquardt) {
-        double n = perNetwork;
-        if (t.lm.maxSamples > 0) n = std::min(n, double(t.lm.maxSamples));
         if (t.lm.maxEpochGflop > 0) n = std::min(n, std::floor(t.lm.maxEpochGflop * 1e9 / (3 * P * P)));
         epochSeconds = 3 * n * P * P / kLmFlopsPerThread;
         cost = format("LM 3 N P^2 with N = %.4g, P = %.0f at %.0f GFLOP/s per thread", n, P, kLmFlopsPerThread / 1e9);
     } else {
-        double n = perNetwork;
-        if (t.adam.maxSamples > 0) n = std::min(n, double(t.adam.maxSamples));
         epochSeconds = n * P / kAdamWeightSamplesPerThread;
         cost = format("Adam N P with N = %.4g, P = %.0f at %.3g M samples/s per thread for P = 583", n, P,
                       kAdamWeightSamplesPerThread / 583 / 1e6);

@@ -32,14 +32,14 @@ struct Project {
     Scene scene;                ///< the loaded scene with `overrides` applied
     SceneOverrides overrides;   ///< "scene_overrides": the workbench's edits of the scene
     RenderSettings render;      ///< "render"
-    /// "sampling"; empty when the file has none: SamplingSettings::projectDefault() then applies
+    /// "sampling"; empty when the file has none: SamplingSettings' defaults then apply
     /// (rrf pipeline --quick uses smaller sizes), and the section stays absent on save.
     std::optional<SamplingSettings> sampling;
     /// "network": hidden layers, activation and targets; empty when the file has none (see
     /// `sampling`). Its options.trainer is not part of the section and is ignored here: the trainer
     /// is `trainer`, and networkOrDefault() combines the two.
     std::optional<NetworkSettings> network;
-    /// "trainer"; empty when the file has none: NetworkSettings::defaultTrainer() then applies, and
+    /// "trainer"; empty when the file has none: TrainerConfig::projectDefault() then applies, and
     /// the section stays absent on save (as it does when only "network" was edited).
     std::optional<TrainerConfig> trainer;
     PredictionSettings prediction;  ///< "prediction"
@@ -55,8 +55,8 @@ struct Project {
     /// are in scene.warnings.
     std::vector<std::string> warnings;
 
-    /// The sampling settings in effect (SamplingSettings::projectDefault() when the file has none).
-    SamplingSettings samplingOrDefault() const { return sampling.value_or(SamplingSettings::projectDefault()); }
+    /// The sampling settings in effect (SamplingSettings' defaults when the file has none).
+    SamplingSettings samplingOrDefault() const { return sampling.value_or(SamplingSettings()); }
     /// The network and trainer settings in effect: each section's values, its defaults where absent.
     /// The targets follow the prediction: indirect networks beside exact direct light (the default),
     /// separate direct and indirect ones when direct light is learned.
@@ -66,7 +66,7 @@ struct Project {
         // the Network panel while direct light was exact) become separate direct and indirect ones.
         if (prediction.direct == PredictionSettings::Direct::Network && s.options.targets == TargetMode::Indirect)
             s.options.targets = TargetMode::Separate;
-        s.options.trainer = trainer.value_or(NetworkSettings::defaultTrainer());
+        s.options.trainer = trainer.value_or(TrainerConfig::projectDefault());
         return s;
     }
 };

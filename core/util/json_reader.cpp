@@ -204,13 +204,18 @@ uint64_t JsonReader::unsignedOr(const std::string& key, uint64_t fallback) const
 
 std::string JsonReader::choiceOr(const std::string& key, const std::string& fallback,
                                  std::initializer_list<const char*> allowed) const {
+    return choiceOr(key, fallback, std::vector<std::string>(allowed.begin(), allowed.end()));
+}
+
+std::string JsonReader::choiceOr(const std::string& key, const std::string& fallback,
+                                 const std::vector<std::string>& allowed) const {
     const auto r = find(key);
     if (!r) return fallback;
     const std::string s = r->string();
     std::string list;
-    for (const char* a : allowed) {
+    for (const std::string& a : allowed) {
         if (s == a) return s;
-        list += (list.empty() ? "\"" : ", \"") + std::string(a) + "\"";
+        list += (list.empty() ? "\"" : ", \"") + a + "\"";
     }
     r->fail("expected one of " + list + ", got \"" + s + "\"");
 }

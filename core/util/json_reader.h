@@ -77,6 +77,9 @@ public:
     /// A string member that must be one of `allowed` ("expected one of \"nee\", \"naive\", got \"bidir\"").
     std::string choiceOr(const std::string& key, const std::string& fallback,
                          std::initializer_list<const char*> allowed) const;
+    /// choiceOr with names known only at run time (a registry's names, e.g. nn/trainers/registry.h).
+    std::string choiceOr(const std::string& key, const std::string& fallback,
+                         const std::vector<std::string>& allowed) const;
 
     /// JSON pointer of `key` below `base` (escapes '~' and '/').
     static std::string child(const std::string& base, const std::string& key);

@@ -20,6 +20,7 @@
 #include "tests/gl/gl_test_env.h"
 #include "tests/gl/glsl_comparison.h"
 #include "tests/gl/test_models.h"
+#include "tests/training_builders.h"
 
 namespace rrf::test_glsl_predictor {
 namespace {
@@ -158,7 +159,7 @@ TEST(GlslPredictor, MatchesCpuPredictionOfTrainedNetworks) {
         }
         samples.push_back(std::move(s));
     }
-    ObjectTrainingOptions opt;
+    ObjectTrainingOptions opt = test::plainTraining();
     // Enough samples per weight that LM does not overfit into huge weights: an overfitted network is
     // so ill-conditioned that its float and double predictions differ by more than 1e-4, and then no
     // float implementation (CPU or GLSL) can agree with another to 1e-4.

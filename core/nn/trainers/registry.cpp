@@ -2,15 +2,22 @@
 
 namespace rrf {
 
+namespace {
+/// A trainer's own keys after "type" and the keys of TrainerCommon, which every trainer has.
+std::vector<std::string> withCommonKeys(std::vector<std::string> own) {
+    own.insert(own.begin(), {"type", "max_epochs", "error_goal", "max_samples", "seed"});
+    return own;
+}
+}  // namespace
+
 const std::vector<TrainerTypeInfo>& trainerTypes() {
     static const std::vector<TrainerTypeInfo> types = {
         {TrainerType::LevenbergMarquardt, "levenberg_marquardt", "lm",
-         {"type", "max_epochs", "mu", "mu_dec", "mu_inc", "mu_max", "min_grad", "max_fail", "goal", "error_goal",
-          "max_samples", "max_epoch_gflop", "seed"}},
+         withCommonKeys({"mu", "mu_dec", "mu_inc", "mu_max", "min_grad", "max_fail", "goal", "max_epoch_gflop"})},
         {TrainerType::Adam, "adam", nullptr,
-         {"type", "max_epochs", "batch_size", "learning_rate", "min_learning_rate", "schedule", "step_epochs",
-          "step_gamma", "beta1", "beta2", "epsilon", "weight_decay", "loss", "debias_targets", "patience",
-          "patience_lr_fraction", "error_goal", "max_samples", "seed"}},
+         withCommonKeys({"batch_size", "learning_rate", "min_learning_rate", "schedule", "step_epochs", "step_gamma",
+                         "beta1", "beta2", "epsilon", "weight_decay", "loss", "debias_targets", "patience",
+                         "patience_lr_fraction"})},
     };
     return types;
 }
@@ -60,19 +67,6 @@ const std::vector<NamedValue<LrSchedule>>& lrSchedules() {
     static const std::vector<NamedValue<LrSchedule>> schedules = {
         {LrSchedule::Constant, "constant"}, {LrSchedule::Step, "step"}, {LrSchedule::Cosine, "cosine"}};
     return schedules;
-}
-
-std::string readTrainerChoice(const JsonReader& r, const std::string& key, const std::string& fallback,
-                              const std::vector<std::string>& names) {
-    const auto v = r.find(key);
-    if (!v) return fallback;
-    const std::string s = v->string();
-    std::string list;
-    for (const std::string& n : names) {
-        if (s == n) return s;
-        list += (list.empty() ? "\"" : ", \"") + n + "\"";
-    }
-    v->fail("expected one of " + list + ", got \"" + s + "\"");
 }
 
 }  // namespace rrf

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "core/nn/trainer_config.h"
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -44,13 +43,10 @@ std::string trainerShortNamesText();
 const std::vector<NamedValue<AdamLoss>>& adamLosses();
 const std::vector<NamedValue<LrSchedule>>& lrSchedules();
 
-/// Reads the string at `key` of `r` as one of `names` (every name and short name of the table's
-/// rows); `fallback` when the key is absent. InputError names the file and pointer and lists the
-/// names, as JsonReader::choiceOr does.
-std::string readTrainerChoice(const JsonReader& r, const std::string& key, const std::string& fallback,
-                              const std::vector<std::string>& names);
-/// The names of a table's rows, for readTrainerChoice and messages.
+/// Every trainer's name and short name ("levenberg_marquardt", "lm", "adam"): what a "type" key, a
+/// script's "trainer" and JsonReader::choiceOr accept.
 std::vector<std::string> trainerTypeNames();
+/// The names of a table's rows, for JsonReader::choiceOr and messages.
 template <typename E>
 std::vector<std::string> valueNames(const std::vector<NamedValue<E>>& table) {
     std::vector<std::string> names;
@@ -64,7 +60,7 @@ const char* nameOf(const std::vector<NamedValue<E>>& table, E value) {
         if (v.value == value) return v.name;
     return table.front().name;
 }
-/// The value named `name` in `table` (a name readTrainerChoice accepted).
+/// The value named `name` in `table` (a name JsonReader::choiceOr accepted from valueNames(table)).
 template <typename E>
 E valueNamed(const std::vector<NamedValue<E>>& table, const std::string& name) {
     for (const NamedValue<E>& v : table)
