@@ -279,7 +279,9 @@ TEST(PartitionedTraining, UnpartitionedTreeIsTheSingleNetworkAndLimitsHold) {
     }
     EXPECT_EQ(total, 1500);
     for (const PartitionNode& n : t.tree.nodes) {
-        if (!n.isLeaf()) EXPECT_TRUE(n.axis <= 2 || (n.axis >= 6 && n.axis <= 8)) << n.axis;
+        if (!n.isLeaf()) {
+            EXPECT_TRUE(n.axis <= 2 || (n.axis >= 6 && n.axis <= 8)) << n.axis;
+        }
     }
 
     // Same tree and weights on one thread.

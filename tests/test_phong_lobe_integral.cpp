@@ -75,9 +75,6 @@ Light ceiling(float cx = 0.f, float cz = 0.f, bool oneSided = true) {
     return s.lights[0];
 }
 
-/// The view direction whose mirror direction about n is r.
-Vec3 viewFor(const Vec3& r, const Vec3& n) { return reflect(r, n); }
-
 /// Mirror direction from p towards the light point (u, v).
 Vec3 towards(const Light& l, const Vec3& p, float u, float v) { return normalize(l.corner + l.edge1 * u + l.edge2 * v - p); }
 

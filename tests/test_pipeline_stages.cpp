@@ -195,8 +195,11 @@ TEST(PipelineStages, ShareTrainsOnlyItsObjectsAndOnlyTheSaverWrites) {
     const TrainOutcome out = trainStage(samples, t, {});
     EXPECT_EQ(share.joins, 1);
     EXPECT_GT(out.run.networks, 0);
-    for (const ObjectModel& m : out.run.models)
-        if (!m.skipped) EXPECT_EQ(m.objectId, 0);
+    for (const ObjectModel& m : out.run.models) {
+        if (!m.skipped) {
+            EXPECT_EQ(m.objectId, 0);
+        }
+    }
     EXPECT_FALSE(out.saved);
     EXPECT_FALSE(fs::exists(dir / "models"));
 }

@@ -88,7 +88,9 @@ TEST(TrainerRegistry, EveryTypeWritesExactlyItsKeysAndReadsBackByEachName) {
         EXPECT_EQ(keysOf(written), std::set<std::string>(t.keys.begin(), t.keys.end()));
         EXPECT_EQ(written.at("type"), t.name);
         EXPECT_EQ(TrainerConfig::fromJson(json{{"type", t.name}}).type, t.type);
-        if (t.shortName) EXPECT_EQ(TrainerConfig::fromJson(json{{"type", t.shortName}}).type, t.type);
+        if (t.shortName) {
+            EXPECT_EQ(TrainerConfig::fromJson(json{{"type", t.shortName}}).type, t.type);
+        }
         EXPECT_EQ(TrainerConfig().withType(std::string(t.name)).type, t.type);
     }
     EXPECT_EQ(TrainerConfig::fromJson(json::object()).type, TrainerType::LevenbergMarquardt);

@@ -7,9 +7,11 @@
 namespace rrf {
 
 std::vector<int> PartitionAxes::columns() const {
+    // Pushed one by one: GCC 12 warns (falsely) of an overflow on insert() of a braced list here.
     std::vector<int> c;
-    if (position) c.insert(c.end(), {0, 1, 2});
-    if (light) c.insert(c.end(), {6, 7, 8});
+    for (int first : {position ? 0 : -1, light ? 6 : -1})
+        if (first >= 0)
+            for (int k = 0; k < 3; ++k) c.push_back(first + k);
     return c;
 }
 
