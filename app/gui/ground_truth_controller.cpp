@@ -15,7 +15,7 @@ GroundTruthController::GroundTruthController(ControllerContext& ctx)
     : ctx_(ctx), state_(ctx.state), job_(ctx.jobs, JobKind::Render, ctx.state.log) {}
 
 bool GroundTruthController::shown() const {
-    if (running()) return false;
+    if (running() || restart_) return false;
     if (!session_) return true;
     uint64_t revision = 0;
     (void)session_->latest(&revision);
@@ -23,7 +23,7 @@ bool GroundTruthController::shown() const {
 }
 
 bool GroundTruthController::converged() const {
-    return !running() && !state_.groundTruth.empty() && !state_.render.cancelled &&
+    return !running() && !restart_ && !state_.groundTruth.empty() && !state_.render.cancelled &&
            state_.render.spp >= state_.render.targetSpp && state_.render.targetSpp > 0;
 }
 
@@ -49,9 +49,15 @@ void GroundTruthController::drop() {
     done_ = nullptr;
 }
 
-void GroundTruthController::restart() {
+void GroundTruthController::restart(bool afterRest) {
+    const auto now = std::chrono::steady_clock::now();
+    restartAt_ = afterRest ? now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                       std::chrono::duration<double>(kRestartRestSeconds))
+                           : now;
     if (running()) {
         job_.cancel();
+        restart_ = true;
+    } else if (afterRest) {
         restart_ = true;
     } else {
         start();
@@ -128,7 +134,7 @@ void GroundTruthController::poll() {
             else if (!note.empty()) state_.log.info(note);
         }
     }
-    if (restart_ && !running()) {
+    if (restart_ && !running() && std::chrono::steady_clock::now() >= restartAt_) {
         restart_ = false;
         start();
     }

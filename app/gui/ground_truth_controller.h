@@ -5,14 +5,20 @@
 /// snapshots, with their variances and footprint mask) and state.render (panels::RenderProgress).
 /// UI thread only.
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 
 #include "app/gui/controller_context.h"
 #include "app/gui/job_session.h"
+#include "app/gui/prediction_draft.h"
 #include "app/gui/render_session.h"
 
 namespace rrf {
+
+/// Seconds without a material or light edit after which the ground truth restarts: the rest after
+/// which the prediction's draft gives way to the full frame (prediction_draft.h), so both settle together.
+inline constexpr double kRestartRestSeconds = kDraftRestSeconds;
 
 class GroundTruthController {
 public:
@@ -36,9 +42,11 @@ public:
     void cancel();
     /// The scene changed: the old render no longer matches it, so it is stopped and a new one starts
     /// once it has stopped (now, when none runs). A replacement the user asked for by editing, not a
-    /// queued conflicting job.
-    void restart();
-    /// A restart waits for the old render to stop.
+    /// queued conflicting job. `afterRest`: an edit of materials or the light, which come many to a
+    /// drag: the new render starts once no such edit came for kRestartRestSeconds, so a drag does
+    /// not start (and stop) a render with its BVH build every frame beside the UI's own work.
+    void restart(bool afterRest = false);
+    /// A restart waits for the old render to stop, or for the edits to rest.
     bool restartPending() const { return restart_; }
     /// Each frame: publishes the newest snapshot, notes how the render ended, carries out a restart.
     void poll();
@@ -54,7 +62,8 @@ private:
     JobSession<void> job_;
     uint64_t revision_ = 0;       ///< the snapshot revision last published
     panels::ImageStamp stamp_;    ///< what the current render's images are of (light, scene, size)
-    bool restart_ = false;        ///< a scene edit arrived while the old render was stopping
+    bool restart_ = false;        ///< a scene edit asked for a new render, not started yet
+    std::chrono::steady_clock::time_point restartAt_{};  ///< not before: the edits' rest
     StageDone done_;              ///< the pipeline's, while its render stage runs
 };
 

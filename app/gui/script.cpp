@@ -169,9 +169,9 @@ bool Script::execute(Workbench& wb, const json& s) {
                           : on == "pipeline"      ? wb.pipelineRunning()
                           : on == "train_running" ? !wb.trainRunning()
                           : on == "full_frame"    ? wb.draftShown() || wb.prediction().bandsPending() || !wb.jobs().drained() ||
-                                                        wb.evaluationPending()
+                                                        wb.evaluationPending() || wb.renderRestartPending()
                                                   : !wb.jobs().drained() || wb.evaluationPending() ||
-                                                        wb.prediction().bandsPending();
+                                                        wb.prediction().bandsPending() || wb.renderRestartPending();
         if (busy) {
             const double limit = r.numberOr("timeout_s", 300, 0, 1e9);
             const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart_).count();

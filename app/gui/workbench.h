@@ -73,6 +73,9 @@ public:
     /// Starts the ground-truth render of the current scene (refused while one runs).
     bool startRender() { return groundTruth_.start(); }
     bool renderRunning() const { return groundTruth_.running(); }
+    /// A scene edit asked for a new render that has not started yet (the old one stops, or the
+    /// edits of a drag have not rested).
+    bool renderRestartPending() const { return groundTruth_.restartPending(); }
     /// The render has ended and its last snapshot is what the views show (a render that ends after
     /// this frame's poll is not running but not shown yet).
     bool renderShown() const { return groundTruth_.shown(); }

@@ -14,8 +14,9 @@ void Workbench::sceneChanged(bool restartRender, bool geometryChanged) {
     // The prediction follows the light at once (GLSL: this frame); the ground truth restarts below.
     prediction_.refresh();
     if (!restartRender) return;
-    // The old render no longer matches the scene: it restarts once it has stopped.
-    groundTruth_.restart();
+    // The old render no longer matches the scene: it restarts once it has stopped (after an edit of
+    // materials or the light, once the edits rest).
+    groundTruth_.restart(/*afterRest=*/!geometryChanged);
 }
 
 void Workbench::rebuildPicking() {
