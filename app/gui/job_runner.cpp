@@ -18,11 +18,13 @@ const char* jobKindName(JobKind kind) {
         case JobKind::Overlay: return "view overlay";  // the leaf tint and the FLIP map
         case JobKind::LightGrid: return "light grid";
         case JobKind::Spread: return "spread map";
+        case JobKind::ReadBack: return "read back";
     }
     return "job";
 }
 
 bool jobsConflict(JobKind a, JobKind b) {
+    if (a == JobKind::ReadBack || b == JobKind::ReadBack) return false;  // writes nothing
     if (a == b) return true;  // two of a kind would write the same outputs
     // A sweep renders, generates and trains in its own memory and writes no project files; it only
     // competes for the cores, which the user decides about.

@@ -26,7 +26,9 @@ namespace rrf {
 /// Compare: two runs' models predicted (and judged) side by side; it loads its own models and copies
 /// the ground truth, so it conflicts only with another comparison. Overlay: the Views' leaf overlay
 /// (a leaf lookup per pixel of the loaded models), reading shared models only.
-enum class JobKind { Render, Generate, Train, Evaluate, Predict, Sweep, Compare, Overlay, LightGrid, Spread };
+/// ReadBack: a project's stored results read back when it opens (its sweeps): it writes nothing and
+/// conflicts with no job, not even the read-back of the project opened before it (dropped).
+enum class JobKind { Render, Generate, Train, Evaluate, Predict, Sweep, Compare, Overlay, LightGrid, Spread, ReadBack };
 const char* jobKindName(JobKind kind);
 /// True when jobs of kinds a and b must not run at the same time (one needs what the other makes,
 /// or both write the same outputs).

@@ -143,13 +143,16 @@ TEST(JobRunner, JobsRunBelowTheUiThreadsPriority) {
 }
 
 TEST(JobRunner, ConflictMatrixIsSymmetric) {
-    const JobKind kinds[] = {JobKind::Render, JobKind::Generate, JobKind::Train,
-                             JobKind::Evaluate, JobKind::Predict, JobKind::Sweep};
+    const JobKind kinds[] = {JobKind::Render,  JobKind::Generate, JobKind::Train,     JobKind::Evaluate,
+                             JobKind::Predict, JobKind::Sweep,    JobKind::Compare,   JobKind::Overlay,
+                             JobKind::LightGrid, JobKind::Spread, JobKind::ReadBack};
     for (JobKind a : kinds)
         for (JobKind b : kinds) EXPECT_EQ(jobsConflict(a, b), jobsConflict(b, a));
     EXPECT_FALSE(jobsConflict(JobKind::Render, JobKind::Generate));
     EXPECT_TRUE(jobsConflict(JobKind::Train, JobKind::Predict)) << "prediction reads the models training replaces";
     EXPECT_FALSE(jobsConflict(JobKind::Sweep, JobKind::Train)) << "a sweep writes no project files";
+    EXPECT_FALSE(jobsConflict(JobKind::ReadBack, JobKind::Sweep)) << "reading a project's sweeps back beside a running sweep";
+    EXPECT_FALSE(jobsConflict(JobKind::ReadBack, JobKind::ReadBack)) << "the previous project's dropped read-back blocks nothing";
 }
 
 TEST(JobSession, DeliversTheResultOnceAfterTheJobEnded) {
