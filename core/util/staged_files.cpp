@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -33,18 +34,27 @@ void writeStagedFile(const std::string& path, const std::string& bytes) {
     crashPoint("commit " + fs::path(path).filename().string());
 }
 
-bool syncStagedDirectory(const std::string& dir) {
+void syncStagedDirectory(const std::string& dir) {
     std::vector<std::string> files;
     std::error_code ec;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
         if (it->is_regular_file(ec)) files.push_back(it->path().string());
+    if (ec) throw OutputError(dir, "cannot list the new files: " + ec.message(), "");
     std::atomic<size_t> next{0};
-    std::atomic<bool> ok{!ec};
+    std::mutex failureMutex;
+    std::string failedFile, failure;  // the first file that could not be synced, and why
     auto syncSome = [&] {
         for (size_t i = next++; i < files.size(); i = next++) {
             const int fd = ::open(files[i].c_str(), O_RDONLY);
-            if (fd < 0 || ::fsync(fd) != 0) ok = false;
+            const bool synced = fd >= 0 && ::fsync(fd) == 0;
+            const int err = errno;
             if (fd >= 0) ::close(fd);
+            if (synced) continue;
+            std::lock_guard<std::mutex> lock(failureMutex);
+            if (failedFile.empty()) {
+                failedFile = files[i];
+                failure = std::strerror(err);
+            }
         }
     };
     // A few fsyncs in flight at once: each waits mostly on the device, and concurrent ones share a
@@ -54,7 +64,8 @@ bool syncStagedDirectory(const std::string& dir) {
     for (size_t t = 1; t < threads; ++t) pool.emplace_back(syncSome);
     syncSome();
     for (std::thread& t : pool) t.join();
-    return syncDirectory(dir) && ok;
+    if (!failedFile.empty()) throw OutputError(failedFile, "cannot be flushed to disk: " + failure, "");
+    (void)syncDirectory(dir);
 }
 
 }  // namespace rrf

@@ -17,8 +17,9 @@ void writeStagedFile(const std::string& path, const std::string& bytes);
 
 /// Makes every regular file directly in `dir`, and the directory's entries, durable: the files'
 /// fsyncs run concurrently (a journalling file system commits them together), then one fsync of
-/// the directory. Returns false where a file or the directory could not be synced (best effort, as
-/// syncDirectory: the data was written either way).
-bool syncStagedDirectory(const std::string& dir);
+/// the directory. A file whose data cannot be flushed (an I/O error, a full disk or quota that
+/// shows only now) throws OutputError naming it, as AtomicFile::commit does, so the set is not
+/// swapped in; the directory's own fsync is best effort (syncDirectory).
+void syncStagedDirectory(const std::string& dir);
 
 }  // namespace rrf
