@@ -25,6 +25,7 @@ struct EvaluationOutcome {
     ErrorStats global;         ///< the global term over all object pixels
     int width = 0, height = 0;  ///< the reference's size
     std::string modelsDir;     ///< the models that were judged
+    EvaluationSource source;   ///< what was judged against what, as the job started (stored with it)
 };
 
 EvaluationController::EvaluationController(ControllerContext& ctx, const PredictionController& prediction)
@@ -35,7 +36,7 @@ EvaluationController::EvaluationController(ControllerContext& ctx, const Predict
       pairJob_(ctx.jobs, JobKind::Compare, ctx.state.log),
       lightGridJob_(ctx.jobs, JobKind::LightGrid, ctx.state.log),
       sweepJob_(ctx.jobs, JobKind::Sweep, ctx.state.log),
-      restoreJob_(ctx.jobs, JobKind::Sweep, ctx.state.log) {}
+      restoreJob_(ctx.jobs, JobKind::ReadBack, ctx.state.log) {}
 
 EvaluationController::~EvaluationController() = default;
 
@@ -97,8 +98,10 @@ bool EvaluationController::startEvaluate(StageDone done) {
                                  panels::ImageStamp{reference->lightPosition, scene->contentHash(), gt.width, gt.height}))
         frame.reset();
     if (frame) state_.log.info("evaluate: reusing the CPU frame of these models (same light, scene and size)");
-    const bool started = evaluateJob_.start("evaluate", [scene, models, modelsDir, settings, reference,
-                                                         frame](JobContext& ctx) -> std::optional<EvaluationOutcome> {
+    // Keyed now: an edit while the job runs must not stamp this result as an evaluation of the new scene.
+    EvaluationSource source = evaluationSource(reference->lightPosition, gt.width, gt.height);
+    const bool started = evaluateJob_.start("evaluate", [scene, models, modelsDir, settings, reference, frame,
+                                                         source = std::move(source)](JobContext& ctx) -> std::optional<EvaluationOutcome> {
         const Stopwatch clock;
         Evaluation e;
         if (frame) {
@@ -118,6 +121,7 @@ bool EvaluationController::startEvaluate(StageDone done) {
         out.width = reference->images[int(Term::Global)].width;
         out.height = reference->images[int(Term::Global)].height;
         out.modelsDir = modelsDir;
+        out.source = source;
         ctx.setProgress(1.0);
         return out;
     });
@@ -175,8 +179,7 @@ void EvaluationController::pollEvaluation() {
         // costs only that.
         if (ctx_.savedProject() && out.modelsDir == prediction_.live().dir()) {
             try {
-                storeEvaluation((fs::path(projectDir()) / kEvaluationFile).string(), state_.evaluation,
-                                evaluationSource(light, out.width, out.height));
+                storeEvaluation((fs::path(projectDir()) / kEvaluationFile).string(), state_.evaluation, out.source);
             } catch (const std::exception& e) {
                 state_.log.warning(std::string("the evaluation was not kept for the next opening: ") + e.what());
             }
