@@ -95,7 +95,13 @@ GlProgram::GlProgram(const std::string& vertexName, const std::string& vertexSou
     const uint64_t key = ProgramBinaryCache::key(vertexSource, fragmentSource);
     id_ = glCreateProgram();
     if (cache.load(key, id_)) {
-        checkGl(("loading the cached program " + vertexName + " + " + fragmentName).c_str());
+        try {
+            checkGl(("loading the cached program " + vertexName + " + " + fragmentName).c_str());
+        } catch (...) {
+            glDeleteProgram(id_);  // the constructor throws: no destructor will
+            id_ = 0;
+            throw;
+        }
         return;
     }
     glDeleteProgram(id_);  // a refused binary may leave the object in a state a link does not clear

@@ -129,8 +129,9 @@ bool ProgramBinaryCache::load(uint64_t key, unsigned program) {
     glProgramBinary(program, GLenum(format), bytes.data() + kHeader, GLsizei(length));
     GLint ok = GL_FALSE;
     glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    // A rejected binary sets no error that is the caller's; clear what the driver may have flagged.
-    while (glGetError() != GL_NO_ERROR) {}
+    // A rejected binary sets no error that is the caller's; clear what the driver may have flagged
+    // (bounded: a lost context keeps reporting an error).
+    for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; ++i) {}
     if (ok != GL_TRUE) return refuse("refused by the driver (another driver build)");
     std::lock_guard<std::mutex> lock(mutex_);
     ++counts_.hits;
