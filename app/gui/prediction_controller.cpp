@@ -75,6 +75,8 @@ bool PredictionController::loadModels(const std::string& dir, std::shared_ptr<co
     // The program cache's notes (a driver without binaries, a damaged file, named) and what it did.
     for (const std::string& line : ProgramBinaryCache::shared().takeNotes()) state_.log.warning(line);
     const ProgramBinaryCache::Counts after = ProgramBinaryCache::shared().counts();
+    lastLoadPrograms_.hits = after.hits - before.hits;
+    lastLoadPrograms_.misses = after.misses - before.misses;
     if (!glslError.empty())
         state_.log.warning("GLSL prediction unavailable, using the CPU predictor (slower): " + glslError);
     state_.training.modelsDir = dir;
@@ -92,7 +94,7 @@ bool PredictionController::loadModels(const std::string& dir, std::shared_ptr<co
     state_.view.compareSource = panels::CompareSource::Prediction;
     char timing[160];
     std::snprintf(timing, sizeof timing, " in %.2f s (GLSL programs: %d from the binary cache, %d compiled)", loadSeconds,
-                  after.hits - before.hits, after.misses - before.misses);
+                  lastLoadPrograms_.hits, lastLoadPrograms_.misses);
     state_.log.info("models loaded from " + dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)") +
                     (live_.usesGlsl() ? std::string(timing) : ""));
     refresh();

@@ -14,6 +14,7 @@
 #include <tuple>
 #include <vector>
 
+#include "app/gl/program_binary_cache.h"
 #include "app/gui/controller_context.h"
 #include "app/gui/job_session.h"
 #include "app/gui/live_prediction.h"
@@ -53,6 +54,9 @@ public:
     /// True while a full-quality GLSL frame is being rendered in bands (app/gui/prediction_bands.h):
     /// the frames must keep coming until it is shown.
     bool bandsPending() const { return bands_.active; }
+    /// The GLSL programs of the last model load: how many came from the binary cache, how many were
+    /// compiled (both 0 where the driver offers no binary format, or the load fell back to the CPU).
+    const ProgramBinaryCache::Counts& lastLoadPrograms() const { return lastLoadPrograms_; }
     /// The last full-quality GLSL frame shown: its device seconds, its bands and its longest band's
     /// wall seconds on the UI thread (0 before any): what tests check instead of frame times.
     struct BandedFrameSummary {
@@ -144,6 +148,7 @@ private:
     JobSession<panels::SpreadViewMap> spreadJob_;
     uint64_t spreadFor_ = 0;   ///< the prediction revision the last spread job was started for
     uint64_t spreadMaps_ = 0;  ///< spread maps delivered (their revisions)
+    ProgramBinaryCache::Counts lastLoadPrograms_{};  ///< lastLoadPrograms()
 };
 
 }  // namespace rrf

@@ -431,11 +431,12 @@ bool Script::execute(Workbench& wb, const json& s) {
         // cache (app/gl/program_binary_cache.h), none compiled; passes with a note where the driver
         // offers no binary format (the cache is then a no-op by design).
         if (const auto v = r.find("programs_cached"); v && v->boolean()) {
-            const ProgramBinaryCache::Counts c = ProgramBinaryCache::shared().counts();
+            const ProgramBinaryCache::Counts c = wb.prediction().lastLoadPrograms();
             if (c.hits + c.misses == 0)
                 st.log.info("check programs_cached: the driver offers no program binary format; nothing to check");
             else
-                require(c.hits > 0, "no GLSL program came from the binary cache (" + std::to_string(c.misses) + " compiled)");
+                require(c.hits > 0 && c.misses == 0, "the last model load compiled " + std::to_string(c.misses) +
+                                                         " GLSL program(s); " + std::to_string(c.hits) + " came from the binary cache");
         }
         // region_pixels_min: the Views' region has figures over at least this many pixels.
         if (const auto v = r.find("region_pixels_min"))

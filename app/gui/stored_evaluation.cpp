@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/eval/error_metrics.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
@@ -21,15 +22,13 @@ namespace {
 
 constexpr const char* kFormat = "rrf-evaluation-1";
 
-/// NaN (an unknown figure) as null: JSON has no NaN.
-json figure(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 double figureOf(const JsonReader& r) {
     return r.value().is_null() ? std::numeric_limits<double>::quiet_NaN() : r.number();
 }
 
 json rowJson(const panels::ObjectErrorRow& row) {
     return {{"object", row.objectId}, {"name", row.name},          {"stats", row.stats.toJson()},
-            {"flip", figure(row.flip)}, {"samples", row.samples}, {"train_seconds", row.trainSeconds}};
+            {"flip", noiseFigureJson(row.flip)}, {"samples", row.samples}, {"train_seconds", row.trainSeconds}};
 }
 
 panels::ObjectErrorRow rowOf(const JsonReader& r) {
@@ -53,7 +52,7 @@ json infoJson(const panels::EvaluationInfo& e) {
         terms.push_back({{"term", termName(t)}, {"available", e.available[i]}, {"overall", e.overall[i].toJson()}, {"rows", rows}});
     }
     json spread = json::array();
-    for (const auto& [name, rho] : e.spreadSpearmanPerObject) spread.push_back({{"name", name}, {"rho", figure(rho)}});
+    for (const auto& [name, rho] : e.spreadSpearmanPerObject) spread.push_back({{"name", name}, {"rho", noiseFigureJson(rho)}});
     const FootprintCounts& f = e.footprint;
     return {{"light_position", {e.lightPosition.x, e.lightPosition.y, e.lightPosition.z}},
             {"reference_spp", e.referenceSpp},
@@ -63,11 +62,11 @@ json infoJson(const panels::EvaluationInfo& e) {
               {"depth_step", f.depthStep}, {"emitter_pixels", f.emitterPixels}}},
             {"seconds", e.seconds},
             {"terms", terms},
-            {"flip_hdr", figure(e.flipHdr)},
-            {"flip_noise_floor", figure(e.flipNoiseFloor)},
-            {"flip_ldr", figure(e.flipLdr)},
-            {"spread_spearman", figure(e.spreadSpearman)},
-            {"spread_relative", figure(e.spreadRelative)},
+            {"flip_hdr", noiseFigureJson(e.flipHdr)},
+            {"flip_noise_floor", noiseFigureJson(e.flipNoiseFloor)},
+            {"flip_ldr", noiseFigureJson(e.flipLdr)},
+            {"spread_spearman", noiseFigureJson(e.spreadSpearman)},
+            {"spread_relative", noiseFigureJson(e.spreadRelative)},
             {"spread_per_object", spread}};
 }
 
@@ -129,12 +128,7 @@ StoredEvaluation loadEvaluation(const std::string& path, const EvaluationSource&
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return out;
     try {
-        json doc;
-        try {
-            doc = json::parse(readFile(path));
-        } catch (const json::parse_error& e) {
-            throw InputError(path, "", std::string("not valid JSON: ") + e.what());
-        }
+        const json doc = readJsonFile(path);
         const JsonReader r(doc, path);
         r.checkKeys({"format", "key", "models", "models_checksum", "evaluation"});
         if (r.at("format").string() != kFormat) r.at("format").fail(std::string("expected \"") + kFormat + "\"");
