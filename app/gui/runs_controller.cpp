@@ -20,16 +20,20 @@ RunsController::RunsController(ControllerContext& ctx, GroundTruthController& gr
                                std::function<void()> sceneChanged)
     : ctx_(ctx), state_(ctx.state), groundTruth_(groundTruth), prediction_(prediction), sceneChanged_(std::move(sceneChanged)) {}
 
-bool RunsController::saveRun() {
+std::shared_ptr<RenderSession> RunsController::finishedRender(const std::string& action, const char* panel) {
     const std::shared_ptr<RenderSession>& render = groundTruth_.session();
-    if (!render || !render->latest()) {
-        state_.notify(panels::LogLevel::Error, "Views", "save run: no ground truth rendered yet");
-        return false;
-    }
-    if (groundTruth_.running()) {
-        state_.notify(panels::LogLevel::Error, "Views", "save run: the render is still running; wait for it or stop it first");
-        return false;
-    }
+    const char* why = !render || !render->latest()      ? "no ground truth rendered yet"
+                      : groundTruth_.running()          ? "the render is still running; wait for it or stop it first"
+                      : groundTruth_.restartPending()   ? "the render of the edited scene has not started yet; wait for it"
+                                                        : nullptr;
+    if (!why) return render;
+    state_.notify(panels::LogLevel::Error, panel, action + ": " + why);
+    return nullptr;
+}
+
+bool RunsController::saveRun() {
+    const std::shared_ptr<RenderSession> render = finishedRender("save run", "Views");
+    if (!render) return false;
     if (!ctx_.savedProject()) {
         state_.notify(panels::LogLevel::Error, "Views", "save run: save the project first (runs are stored next to it)");
         return false;
@@ -155,15 +159,8 @@ bool RunsController::loadTrainRun(const Run& run) {
 }
 
 bool RunsController::exportImages(const std::string& dir, const Image& error) {
-    const std::shared_ptr<RenderSession>& render = groundTruth_.session();
-    if (!render || !render->latest()) {
-        state_.notify(panels::LogLevel::Error, "", "export images: nothing rendered yet");
-        return false;
-    }
-    if (groundTruth_.running()) {
-        state_.notify(panels::LogLevel::Error, "", "export images: the render is still running; wait for it or stop it first");
-        return false;
-    }
+    const std::shared_ptr<RenderSession> render = finishedRender("export images", "");
+    if (!render) return false;
     try {
         // One set: a second write would replace the first (core/render/render_outputs.h).
         render->write(dir, ImageFormat::EXR, 0.f, {{ImageFormat::PNG, state_.view.exposure}});

@@ -6,6 +6,7 @@
 /// session and hands models to the prediction. UI thread only.
 
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "app/gui/controller_context.h"
@@ -14,6 +15,7 @@ namespace rrf {
 
 class GroundTruthController;
 class PredictionController;
+class RenderSession;
 struct Image;
 struct Run;
 
@@ -37,6 +39,9 @@ public:
     bool exportImages(const std::string& dir, const Image& error);
 
 private:
+    /// The ground truth's render when it has finished and is of the scene as it is; else null, with
+    /// a notice at `panel` saying why `action` cannot use it.
+    std::shared_ptr<RenderSession> finishedRender(const std::string& action, const char* panel);
     /// A training run "opens" as its settings and its models.
     bool loadTrainRun(const Run& run);
 
