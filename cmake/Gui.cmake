@@ -158,7 +158,7 @@ if(RRF_BUILD_TESTS)
   set_tests_properties(gui_pipeline PROPERTIES COST 25)
   set_tests_properties(gui_scripted_session gui_stop_and_switch PROPERTIES COST 15)
   set_tests_properties(gui_unclipped_1280x720 gui_unclipped_1600x1000 PROPERTIES COST 10)
-  # The GLSL tests compile a program per network layout, which llvmpipe does in seconds each when its
-  # shader cache is cold (a fresh CI machine): started late, they would run alone at the end.
-  set_tests_properties(rrf_gl_tests PROPERTIES COST 40)
+  # The GLSL tests compile a program per network layout, which llvmpipe does in a second or more each
+  # when its shader cache is cold (a fresh CI machine): started late, they would run alone at the end.
+  set_tests_properties(rrf_gl_tests PROPERTIES COST 15)
 endif()

@@ -10,7 +10,9 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${RRF_BUILD_DIR:-$root/build}
 "$root/scripts/install-deps.sh"
-RRF_BUILD_DIR=$build "$root/scripts/build.sh"
+# Only the programs and their data, in unity batches (cmake/Unity.cmake) as CI builds them: the
+# tests and benchmarks are the test command's (scripts/test.sh), which builds them into the same tree.
+RRF_BUILD_DIR=$build RRF_BUILD_TARGETS="rrf rrf-workbench rrf_data" "$root/scripts/build.sh" -DCMAKE_UNITY_BUILD=ON
 
 if [[ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" && -x "$build/rrf-workbench" ]]; then
   exec "$build/rrf-workbench" "$@"
