@@ -97,7 +97,8 @@ void fittedProgressBar(float fraction, float width, const char* overlay) {
     const float needed = ImGui::CalcTextSize(overlay).x + 2 * ImGui::GetStyle().FramePadding.x;
     const float avail = ImGui::GetContentRegionAvail().x;
     const float w = std::max(1.f, std::min(std::max(width, needed), avail));
-    if (needed > w + clip_check_detail::kSlack) clip_check_detail::report({std::string("progress bar text '") + overlay + "'", needed, w});
+    if (needed > w + clip_check_detail::kSlack)
+        clip_check_detail::report({std::string("progress bar text '") + overlay + "'", needed, w});
     ImGui::ProgressBar(fraction, ImVec2(w, 0), overlay);
 }
 

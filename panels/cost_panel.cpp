@@ -225,7 +225,8 @@ void drawCostPanel(WorkbenchState& state) {
             if (finite(q)) {
                 line.push_back(q);
                 hover(q, i, k);
-                cost_panel_detail::marker(dl, q, colour, s.kind == CostKind::Models ? 's' : s.kind == CostKind::Runs ? 'd' : 'o', true, &v.shapesDrawn);
+                const char shape = s.kind == CostKind::Models ? 's' : s.kind == CostKind::Runs ? 'd' : 'o';
+                cost_panel_detail::marker(dl, q, colour, shape, true, &v.shapesDrawn);
                 if (s.kind == CostKind::PathTracer) {
                     char spp[32];
                     std::snprintf(spp, sizeof spp, "%g spp", p.spp);
@@ -304,7 +305,8 @@ void drawCostPanel(WorkbenchState& state) {
     for (const KeyEntry& k : kKey) {
         const ImVec2 at = ImGui::GetCursorScreenPos();
         ImGui::Dummy(ImVec2(font, font));
-        cost_panel_detail::marker(ImGui::GetWindowDrawList(), ImVec2(at.x + font * 0.5f, at.y + font * 0.5f), keyColour, k.shape, k.filled);
+        cost_panel_detail::marker(ImGui::GetWindowDrawList(), ImVec2(at.x + font * 0.5f, at.y + font * 0.5f), keyColour, k.shape,
+                                  k.filled);
         ImGui::SameLine();
         figureTextDisabled("%s", k.text);
         v.keyShapes += cost_panel_detail::markerCode(k.shape, k.filled);

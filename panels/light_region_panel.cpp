@@ -130,10 +130,11 @@ void drawLightRegionPanel(WorkbenchState& state) {
     }
     const std::vector<double>& values = lr.object < 0 ? m.global : m.objects[size_t(lr.object)];
     const double scale = LightGridMap::scaleOf(values);
-    figureText("Relative RMSE of the global term (noise-corrected where the reference's noise is known), %dx%d "
-                       "references; colour 0 (dark) to %s (yellow), magenta: not visible. Dots: training records' lights%s.",
-                       lr.width, lr.height, light_region_panel_detail::figure(scale).c_str(),
-                       m.marks.empty() ? (" (none: " + m.marksWhy + ")").c_str() : "");
+    figureText(
+        "Relative RMSE of the global term (noise-corrected where the reference's noise is known), %dx%d "
+        "references; colour 0 (dark) to %s (yellow), magenta: not visible. Dots: training records' lights%s.",
+        lr.width, lr.height, light_region_panel_detail::figure(scale).c_str(),
+        m.marks.empty() ? (" (none: " + m.marksWhy + ")").c_str() : "");
     // The slices side by side where they fit, each labelled with its height.
     const int ny = m.grid.counts[1];
     // Square slices as large as the pane allows beside each other (up to three in a row) and below the

@@ -20,7 +20,8 @@ Log::Log() : start_(log_detail::nowSeconds()) {}
 
 void Log::add(LogLevel level, const std::string& text) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (entries_.size() >= log_detail::kMaxEntries) entries_.erase(entries_.begin(), entries_.begin() + log_detail::kMaxEntries / 10);
+    if (entries_.size() >= log_detail::kMaxEntries)
+        entries_.erase(entries_.begin(), entries_.begin() + log_detail::kMaxEntries / 10);
     entries_.push_back({level, log_detail::nowSeconds() - start_, text});
     ++revision_;
     if (level == LogLevel::Error) ++errors_;

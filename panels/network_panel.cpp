@@ -343,8 +343,10 @@ void drawNetworkPanel(WorkbenchState& state) {
     {
         // The records-per-weight bound counts the MLP's weights only (not an encoding's table entries);
         // unknown (-1) while the encoding does not fit the records (drawParameterCount says why).
-        const EncodingSettingView view = viewEncodingSetting(s.options.encoding, network_panel_detail::inputCount(state), s.options.inputs);
-        const long long weights = view.fits ? (long long)network_panel_detail::networkArch(state, s, view.encoding).numParams() : -1;
+        const EncodingSettingView view =
+            viewEncodingSetting(s.options.encoding, network_panel_detail::inputCount(state), s.options.inputs);
+        const long long weights =
+            view.fits ? (long long)network_panel_detail::networkArch(state, s, view.encoding).numParams() : -1;
         PartitionSettings p = s.options.partition;
         if (network_panel_detail::drawPartition(p, weights)) setPartition(state, p);
         s = network_panel_detail::current(state);
@@ -357,8 +359,9 @@ void drawNetworkPanel(WorkbenchState& state) {
         setTrainerType(state, TrainerType(trainer));
         s = network_panel_detail::current(state);
     }
-    const bool changed = s.options.trainer.type == TrainerType::Adam ? network_panel_detail::drawAdam(s.options.trainer.adam)
-                                                                      : network_panel_detail::drawLevenbergMarquardt(s.options.trainer.lm);
+    const bool changed = s.options.trainer.type == TrainerType::Adam
+                             ? network_panel_detail::drawAdam(s.options.trainer.adam)
+                             : network_panel_detail::drawLevenbergMarquardt(s.options.trainer.lm);
     if (changed) network_panel_detail::storeTrainer(state, s);
 
     ImGui::Separator();

@@ -191,10 +191,13 @@ std::string objectRowsCsv(const std::vector<ObjectErrorRow>& rows, const char* t
                       r.stats.mae, r.stats.maxError, (unsigned long long)r.stats.pixels, (unsigned long long)r.samples,
                       r.trainSeconds);
         csv += std::string(term) + "," + std::to_string(r.objectId) + "," + objects_panel_detail::csvQuote(r.name) + buf + "," +
-               objects_panel_detail::csvNumber(r.stats.rmseNoiseFloor) + "," + objects_panel_detail::csvNumber(r.stats.rmseCorrected) + "," +
-               objects_panel_detail::csvNumber(r.stats.relativeRmseNoiseFloor) + "," + objects_panel_detail::csvNumber(r.stats.relativeRmseCorrected) + "," +
-               objects_panel_detail::csvNumber(r.stats.signedRelativeMean) + "," + objects_panel_detail::csvNumber(r.stats.relMse) + "," +
-               objects_panel_detail::csvNumber(r.stats.relMseNoiseFloor) + "," + objects_panel_detail::csvNumber(r.stats.relMseCorrected) + "," +
+               objects_panel_detail::csvNumber(r.stats.rmseNoiseFloor) + "," +
+               objects_panel_detail::csvNumber(r.stats.rmseCorrected) + "," +
+               objects_panel_detail::csvNumber(r.stats.relativeRmseNoiseFloor) + "," +
+               objects_panel_detail::csvNumber(r.stats.relativeRmseCorrected) + "," +
+               objects_panel_detail::csvNumber(r.stats.signedRelativeMean) + "," +
+               objects_panel_detail::csvNumber(r.stats.relMse) + "," + objects_panel_detail::csvNumber(r.stats.relMseNoiseFloor) +
+               "," + objects_panel_detail::csvNumber(r.stats.relMseCorrected) + "," +
                objects_panel_detail::csvNumber(r.stats.smape) + "," + objects_panel_detail::csvNumber(r.flip) + "\n";
     }
     return csv;
@@ -300,7 +303,8 @@ void drawObjectsPanel(WorkbenchState& state) {
     if (!ImGui::BeginTable("##objects", int(ObjectColumn::Count), flags)) return;
     ImGui::TableSetupScrollFreeze(1, 1);
     for (int c = 0; c < int(ObjectColumn::Count); ++c)
-        ImGui::TableSetupColumn(objects_panel_detail::kColumnNames[c], c == 0 ? ImGuiTableColumnFlags_DefaultSort : 0, 0.f, ImGuiID(c));
+        ImGui::TableSetupColumn(objects_panel_detail::kColumnNames[c], c == 0 ? ImGuiTableColumnFlags_DefaultSort : 0, 0.f,
+                                ImGuiID(c));
     ImGui::TableHeadersRow();
     for (int c = 0; c < int(ObjectColumn::Count); ++c)
         if (ImGui::TableGetColumnFlags(c) & ImGuiTableColumnFlags_IsHovered) {

@@ -60,7 +60,9 @@ const char* const kProjectSettingsLabel = "project settings";
 }  // namespace
 }  // namespace pipeline_controls_detail
 
-PathRate pathRateOf(const WorkbenchState& state) { return PathRate::of(state.render.samplesPerSecond, pipeline_controls_detail::threads()); }
+PathRate pathRateOf(const WorkbenchState& state) {
+    return PathRate::of(state.render.samplesPerSecond, pipeline_controls_detail::threads());
+}
 
 double recordsPerRayOf(const WorkbenchState& state) {
     const DatasetInfo& d = state.dataset;
@@ -99,8 +101,9 @@ std::vector<StageEstimate> pipelineEstimates(const WorkbenchState& state, const 
 }
 
 void drawSamplingPresets(WorkbenchState& state) {
-    const PipelinePreset* chosen = pipeline_controls_detail::presetCombo("preset##sampling", matchingSamplingPreset(state.project),
-                                               [&](const PipelinePreset& p) { return dataEstimate(state, presetSampling(state.project, p)); });
+    const PipelinePreset* chosen = pipeline_controls_detail::presetCombo(
+        "preset##sampling", matchingSamplingPreset(state.project),
+        [&](const PipelinePreset& p) { return dataEstimate(state, presetSampling(state.project, p)); });
     if (chosen) {
         applySamplingPreset(state.project, *chosen);
         state.markDirty();
@@ -110,17 +113,20 @@ void drawSamplingPresets(WorkbenchState& state) {
 
 void drawNetworkPresets(WorkbenchState& state) {
     const SamplingSettings s = state.project.samplingOrDefault();
-    const PipelinePreset* chosen =
-        pipeline_controls_detail::presetCombo("preset##network", matchingNetworkPreset(state.project),
-                    [&](const PipelinePreset& p) { return trainingEstimate(state, s, presetNetwork(state.project, p)); });
+    const PipelinePreset* chosen = pipeline_controls_detail::presetCombo(
+        "preset##network", matchingNetworkPreset(state.project),
+        [&](const PipelinePreset& p) { return trainingEstimate(state, s, presetNetwork(state.project, p)); });
     if (chosen) {
         applyNetworkPreset(state.project, *chosen);
         state.markDirty();
     }
-    pipeline_controls_detail::drawEstimateLine("training time", trainingEstimate(state, s, state.project.networkOrDefault().options));
+    pipeline_controls_detail::drawEstimateLine("training time",
+                                               trainingEstimate(state, s, state.project.networkOrDefault().options));
 }
 
-std::string pipelineChoiceLabel(const std::string& preset) { return preset.empty() ? pipeline_controls_detail::kProjectSettingsLabel : preset; }
+std::string pipelineChoiceLabel(const std::string& preset) {
+    return preset.empty() ? pipeline_controls_detail::kProjectSettingsLabel : preset;
+}
 
 std::string pipelineExpectation(const WorkbenchState& state, const std::string& presetName, bool brief) {
     const PipelinePreset* preset = presetName.empty() ? matchingPreset(state.project) : findPreset(presetName);
@@ -192,17 +198,19 @@ void drawPipelineBar(WorkbenchState& state) {
         char overlay[96];
         const int stage = std::clamp(p.stageIndex, 0, 3);
         if (p.etaSeconds >= 0)
-            std::snprintf(overlay, sizeof overlay, "%d/4 %s  %.0f%%  ETA %s", stage + 1, pipeline_controls_detail::kStageNames[stage], 100 * p.fraction,
-                          durationText(p.etaSeconds).c_str());
+            std::snprintf(overlay, sizeof overlay, "%d/4 %s  %.0f%%  ETA %s", stage + 1,
+                          pipeline_controls_detail::kStageNames[stage], 100 * p.fraction, durationText(p.etaSeconds).c_str());
         else
-            std::snprintf(overlay, sizeof overlay, "%d/4 %s  %.0f%%", stage + 1, pipeline_controls_detail::kStageNames[stage], 100 * p.fraction);
+            std::snprintf(overlay, sizeof overlay, "%d/4 %s  %.0f%%", stage + 1, pipeline_controls_detail::kStageNames[stage],
+                          100 * p.fraction);
         ImGui::ProgressBar(float(p.fraction), ImVec2(ImGui::GetFontSize() * 16, 0), overlay);
     } else if (!p.outcome.empty()) {
         figureTextDisabled("pipeline %s", p.outcome.c_str());
     } else if (state.hasProject) {
         // What the next run gives, in sight before the click: a smoke test says so.
         const std::string brief = pipelineExpectation(state, p.preset, true);
-        figureTextDisabled("expect %s, %s", brief.c_str(), rangeText(pipeline_controls_detail::total(pipelineEstimates(state, preset))).c_str());
+        figureTextDisabled("expect %s, %s", brief.c_str(),
+                           rangeText(pipeline_controls_detail::total(pipelineEstimates(state, preset))).c_str());
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", pipelineExpectation(state, p.preset, false).c_str());
     }
 }

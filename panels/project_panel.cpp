@@ -101,11 +101,13 @@ std::string runTooltipText(const Run& run) {
     if (r.spp) s += "\nspp " + project_panel_detail::numberText(r.spp, "%.0f");
     if (r.seconds) s += "\ntime " + project_panel_detail::numberText(r.seconds, "%.2f") + " s";
     if (r.error || r.noiseFloor)
-        s += "\nheld-out rel. RMSE " + project_panel_detail::numberText(r.error, "%.4g") + " (noise floor " + project_panel_detail::numberText(r.noiseFloor, "%.2g") +
-             ", corrected " + project_panel_detail::numberText(r.corrected, "%.4g") + ")";
+        s += "\nheld-out rel. RMSE " + project_panel_detail::numberText(r.error, "%.4g") + " (noise floor " +
+             project_panel_detail::numberText(r.noiseFloor, "%.2g") + ", corrected " +
+             project_panel_detail::numberText(r.corrected, "%.4g") + ")";
     if (r.frameSeconds) {
         const std::string size = r.frameWidth > 0 ? sizeText(r.frameWidth, r.frameHeight) : std::string("the view's size");
-        s += "\nframe " + project_panel_detail::numberText(*r.frameSeconds * 1e3, "%.2f") + " ms, " + (r.frameGlsl ? "GLSL" : "CPU") + " at " + size;
+        s += "\nframe " + project_panel_detail::numberText(*r.frameSeconds * 1e3, "%.2f") + " ms, " +
+             (r.frameGlsl ? "GLSL" : "CPU") + " at " + size;
     }
     return s + "\nright-click: rename, re-open, compare, delete";
 }
@@ -263,9 +265,11 @@ void drawProjectPanel(WorkbenchState& state) {
     figureTextDisabled("scene  %s", state.project.sceneRef.empty() ? "(embedded)" : state.project.sceneRef.c_str());
     figureTextDisabled("%s", state.dirty ? "unsaved changes" : "saved");
 
-    if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen)) project_panel_detail::drawRenderSettings(state.project.render, state.project.scene, state.dirty);
+    if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen))
+        project_panel_detail::drawRenderSettings(state.project.render, state.project.scene, state.dirty);
     if (ImGui::CollapsingHeader("Runs", ImGuiTreeNodeFlags_DefaultOpen)) {
-        project_panel_detail::RunsTableView runs{state.project.runs, state.runPair, state.compareRun, state.requests, state.dirty};
+        project_panel_detail::RunsTableView runs{state.project.runs, state.runPair, state.compareRun, state.requests,
+                                                 state.dirty};
         project_panel_detail::drawRuns(runs);
     }
     if (ImGui::CollapsingHeader("Recent projects")) {

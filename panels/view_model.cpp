@@ -262,8 +262,9 @@ void ViewModel::update(WorkbenchState& s) {
         d.revision = ++counter_;
         if (img.empty()) d.rgba.clear();
         else if (error)
-            view_model_detail::falseColourRgba(img, s.view.flip ? flipColour(img) : errorMapColour(img, s.view.metric, s.view.errorMax), idsFor(img),
-                            k.selected, s.reference().footprint.get(), d.rgba);
+            view_model_detail::falseColourRgba(
+                img, s.view.flip ? flipColour(img) : errorMapColour(img, s.view.metric, s.view.errorMax), idsFor(img), k.selected,
+                s.reference().footprint.get(), d.rgba);
         else toneMapRgba(img, s.view.exposure, idsFor(img), k.selected, d.rgba);
     };
     // Never an error map against the ground truth of another light, scene or size.

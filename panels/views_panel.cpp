@@ -534,7 +534,8 @@ void drawViewsPanel(WorkbenchState& state) {
         std::snprintf(t, sizeof t, "Ensemble spread (global term, relative, 0 to %.3g)", state.view.spreadMap.scale);
         cmpTitle = t;
     }
-    const std::string errTitle = std::string(pair ? "Difference B vs A: " : "Error: ") + views_panel_detail::errorViewLabel(state.view);
+    const std::string errTitle =
+        std::string(pair ? "Difference B vs A: " : "Error: ") + views_panel_detail::errorViewLabel(state.view);
 
     ImVec2 hover(-1, -1);
     static const Image kNoImage;
@@ -549,15 +550,20 @@ void drawViewsPanel(WorkbenchState& state) {
             ImGui::RadioButton(names[i], &v.singleView, i);
         }
         v.singleView = std::clamp(v.singleView, 0, 2);
-        if (v.singleView == ViewModel::kReference) over = views_panel_detail::drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
-        else if (v.singleView == ViewModel::kCompared) over = views_panel_detail::drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
-        else over = views_panel_detail::drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
+        if (v.singleView == ViewModel::kReference)
+            over = views_panel_detail::drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
+        else if (v.singleView == ViewModel::kCompared)
+            over = views_panel_detail::drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
+        else
+            over = views_panel_detail::drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size,
+                                                hover);
     } else {
         over = views_panel_detail::drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
         ImGui::SameLine();
         over |= views_panel_detail::drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
         if (!layout.grid) ImGui::SameLine();
-        over |= views_panel_detail::drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
+        over |=
+            views_panel_detail::drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
     }
     state.view.hoverX = over ? int(hover.x) : -1;
     state.view.hoverY = over ? int(hover.y) : -1;
@@ -582,7 +588,9 @@ void drawViewsPanel(WorkbenchState& state) {
     if (!partial.empty()) figureTextColored(ImVec4(1.f, 0.3f, 1.f, 1.f), "%s", partial.c_str());
     views_panel_detail::drawReadout(state, ref, cmp);
     views_panel_detail::drawLegend(state.view, std::min(size.x, ImGui::GetFontSize() * 18));
-    if (state.view.histogram) views_panel_detail::drawHistogram(state.view, std::min(std::max(size.x, ImGui::GetFontSize() * 20), ImGui::GetFontSize() * 30));
+    if (state.view.histogram)
+        views_panel_detail::drawHistogram(state.view,
+                                          std::min(std::max(size.x, ImGui::GetFontSize() * 20), ImGui::GetFontSize() * 30));
     if (layout.grid) {
         ImGui::PopTextWrapPos();
         ImGui::EndGroup();
