@@ -10,5 +10,5 @@
 set(CMAKE_UNITY_BUILD_BATCH_SIZE 16 CACHE STRING "Sources per unity batch")
 set_source_files_properties(
   core/eval/reference_store.cpp core/nn/model_file.cpp core/nn/model_set.cpp core/project/scene_overrides.cpp
-  app/cli/cli_reference.cpp tests/quad_reference.cpp
+  tests/quad_reference.cpp
   PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
