@@ -4,14 +4,11 @@
 # instantiated once per batch instead of once per source: measured in docs/design.md §22.
 # A source that is part of a batch must not define file-local names that another source of the same
 # target defines too; the test sources therefore keep their helpers in a namespace named after the
-# file (tests/test_brdf.cpp: namespace test_brdf), and these sources, whose file-local helpers share
-# names with other sources', are compiled on their own.
+# file (tests/test_brdf.cpp: namespace test_brdf), and so do the panels' (panels/log_panel.cpp:
+# namespace rrf::panels::log_panel_detail, called qualified from the file's public functions).
+# These sources, whose file-local helpers share names with other sources', are compiled on their own.
 set(CMAKE_UNITY_BUILD_BATCH_SIZE 16 CACHE STRING "Sources per unity batch")
 set_source_files_properties(
   core/eval/reference_store.cpp core/nn/model_file.cpp core/nn/model_set.cpp core/project/scene_overrides.cpp
-  app/cli/cli_reference.cpp tests/quad_reference.cpp
+  tests/quad_reference.cpp
   PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
-# The panels' sources each keep their own file-local drawing helpers under shared names
-# (drawToolbar, ...): they are compiled one by one.
-file(GLOB rrf_panel_sources CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/panels/*.cpp)
-set_source_files_properties(${rrf_panel_sources} PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)

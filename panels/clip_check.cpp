@@ -9,6 +9,7 @@
 
 namespace rrf::panels {
 
+namespace clip_check_detail {
 namespace {
 /// What the fitted widgets reported in the frame `frame` (the UI thread's only; cleared per frame).
 struct FrameReports {
@@ -33,6 +34,7 @@ void report(ClippedContent c) {
 /// One pixel of slack: item widths are rounded, clip rectangles are not.
 constexpr float kSlack = 1.f;
 }  // namespace
+}  // namespace clip_check_detail
 
 std::string ClippedContent::describe() const {
     char buf[96];
@@ -52,7 +54,7 @@ std::vector<ClippedContent> findClippedContent() {
         for (int i = 0; i < mg.Tables.GetMapSize(); ++i) {
             const ImGuiTable* t = mg.Tables.TryGetMapData(i);
             if (t && t->LastFrameActive == g.FrameCount && t->OuterWindow == w && (t->Flags & ImGuiTableFlags_ScrollX) &&
-                t->OuterRect.Min.x + t->ColumnsAutoFitWidth >= right - kSlack)
+                t->OuterRect.Min.x + t->ColumnsAutoFitWidth >= right - clip_check_detail::kSlack)
                 return true;
         }
         return false;
@@ -61,7 +63,7 @@ std::vector<ClippedContent> findClippedContent() {
         // Windows that grow with their content or scroll sideways show all of it.
         if (!w->Active || w->Hidden || (w->Flags & grows) || w->ScrollbarX) continue;
         const float right = w->DC.CursorMaxPos.x, limit = w->InnerClipRect.Max.x;
-        if (right > limit + kSlack && !scrollingTableReaches(w, right))
+        if (right > limit + clip_check_detail::kSlack && !scrollingTableReaches(w, right))
             found.push_back({std::string("window ") + w->Name, right - w->WorkRect.Min.x, limit - w->WorkRect.Min.x});
     }
     // Tables are ImGui's persistent pool; only those drawn in this frame count.
@@ -74,13 +76,13 @@ std::vector<ClippedContent> findClippedContent() {
             const float content = std::max({col.ContentMaxXFrozen, col.ContentMaxXUnfrozen, col.ContentMaxXHeadersIdeal});
             // Against the column's own edge, not its clip rectangle: in a table that scrolls sideways
             // a column partly scrolled out of view is clipped by the view, not cut.
-            if (content > col.MaxX + kSlack)
+            if (content > col.MaxX + clip_check_detail::kSlack)
                 found.push_back({std::string("table in ") + (t->OuterWindow ? t->OuterWindow->Name : "?") + ", column '" +
                                      ImGui::TableGetColumnName(t, c) + "'",
                                  content - col.MinX, col.MaxX - col.MinX});
         }
     }
-    const FrameReports& r = reports();
+    const clip_check_detail::FrameReports& r = clip_check_detail::reports();
     if (r.frame == g.FrameCount) found.insert(found.end(), r.items.begin(), r.items.end());
     return found;
 }
@@ -95,7 +97,8 @@ void fittedProgressBar(float fraction, float width, const char* overlay) {
     const float needed = ImGui::CalcTextSize(overlay).x + 2 * ImGui::GetStyle().FramePadding.x;
     const float avail = ImGui::GetContentRegionAvail().x;
     const float w = std::max(1.f, std::min(std::max(width, needed), avail));
-    if (needed > w + kSlack) report({std::string("progress bar text '") + overlay + "'", needed, w});
+    if (needed > w + clip_check_detail::kSlack)
+        clip_check_detail::report({std::string("progress bar text '") + overlay + "'", needed, w});
     ImGui::ProgressBar(fraction, ImVec2(w, 0), overlay);
 }
 

@@ -27,6 +27,7 @@
 
 namespace rrf::panels {
 
+namespace cost_panel_detail {
 namespace {
 void drawToolbar(WorkbenchState& state) {
     CostView& v = state.costView;
@@ -90,6 +91,7 @@ void marker(ImDrawList* dl, const ImVec2& q, ImU32 colour, char shape, bool fill
     }
 }
 }  // namespace
+}  // namespace cost_panel_detail
 
 CostSeries runsCostSeries(const std::vector<Run>& runs) {
     CostSeries s;
@@ -130,7 +132,7 @@ std::vector<std::string> costBreakEvenLines(const std::vector<const CostSeries*>
     std::vector<std::string> lines;
     for (const CostSeries* s : series) {
         if (s->kind != CostKind::Models) continue;
-        const CostSeries* pt = findSeries(series, s->pathTracer);
+        const CostSeries* pt = cost_panel_detail::findSeries(series, s->pathTracer);
         for (const CostPoint& p : s->points) {
             const std::string head = s->name + " " + p.label + ": ";
             if (!pt) {
@@ -144,7 +146,7 @@ std::vector<std::string> costBreakEvenLines(const std::vector<const CostSeries*>
 }
 
 void drawCostPanel(WorkbenchState& state) {
-    drawToolbar(state);
+    cost_panel_detail::drawToolbar(state);
     CostView& v = state.costView;
     std::vector<const CostSeries*> series;
     for (const CostSeries& s : state.cost.sweeps) series.push_back(&s);
@@ -209,7 +211,7 @@ void drawCostPanel(WorkbenchState& state) {
         const CostSeries& s = *series[i];
         if (seriesHidden(v.hidden, s.name)) continue;
         const ImU32 colour = seriesColour(s.name);
-        const CostSeries* pt = s.kind == CostKind::Models ? findSeries(series, s.pathTracer) : nullptr;
+        const CostSeries* pt = s.kind == CostKind::Models ? cost_panel_detail::findSeries(series, s.pathTracer) : nullptr;
         // One dashed line per reference: a model series shares its path tracer's.
         if (s.noiseFloor > 0 && !pt) {
             const float fy = y.toPixel(s.noiseFloor);
@@ -223,7 +225,8 @@ void drawCostPanel(WorkbenchState& state) {
             if (finite(q)) {
                 line.push_back(q);
                 hover(q, i, k);
-                marker(dl, q, colour, s.kind == CostKind::Models ? 's' : s.kind == CostKind::Runs ? 'd' : 'o', true, &v.shapesDrawn);
+                const char shape = s.kind == CostKind::Models ? 's' : s.kind == CostKind::Runs ? 'd' : 'o';
+                cost_panel_detail::marker(dl, q, colour, shape, true, &v.shapesDrawn);
                 if (s.kind == CostKind::PathTracer) {
                     char spp[32];
                     std::snprintf(spp, sizeof spp, "%g spp", p.spp);
@@ -232,14 +235,14 @@ void drawCostPanel(WorkbenchState& state) {
             }
             if (s.kind == CostKind::PathTracer) continue;
             const ImVec2 cpu = at(p.frameSeconds, p.error), glsl = at(p.glslFrameSeconds, p.error);
-            if (finite(cpu)) marker(dl, cpu, colour, 's', false, &v.shapesDrawn), hover(cpu, i, k);
-            if (finite(glsl)) marker(dl, glsl, colour, 't', false, &v.shapesDrawn), hover(glsl, i, k);
+            if (finite(cpu)) cost_panel_detail::marker(dl, cpu, colour, 's', false, &v.shapesDrawn), hover(cpu, i, k);
+            if (finite(glsl)) cost_panel_detail::marker(dl, glsl, colour, 't', false, &v.shapesDrawn), hover(glsl, i, k);
             if (!pt) continue;
             const BreakEven b = costBreakEven(*pt, p);
             const ImVec2 e = at(b.seconds, p.error);
             if (!b.known || !finite(e)) continue;
             // The break-even: where the path tracer reaches this error, joined to the model's frame time.
-            marker(dl, e, seriesColour(pt->name), 'x', false, &v.shapesDrawn);
+            cost_panel_detail::marker(dl, e, seriesColour(pt->name), 'x', false, &v.shapesDrawn);
             const ImVec2 from = finite(glsl) ? glsl : finite(cpu) ? cpu : q;
             if (finite(from)) drawDashedLine(dl, from, e, seriesColour(s.name, 0.6f), 2.f);
         }
@@ -302,10 +305,11 @@ void drawCostPanel(WorkbenchState& state) {
     for (const KeyEntry& k : kKey) {
         const ImVec2 at = ImGui::GetCursorScreenPos();
         ImGui::Dummy(ImVec2(font, font));
-        marker(ImGui::GetWindowDrawList(), ImVec2(at.x + font * 0.5f, at.y + font * 0.5f), keyColour, k.shape, k.filled);
+        cost_panel_detail::marker(ImGui::GetWindowDrawList(), ImVec2(at.x + font * 0.5f, at.y + font * 0.5f), keyColour, k.shape,
+                                  k.filled);
         ImGui::SameLine();
         figureTextDisabled("%s", k.text);
-        v.keyShapes += markerCode(k.shape, k.filled);
+        v.keyShapes += cost_panel_detail::markerCode(k.shape, k.filled);
     }
     ImGui::TextDisabled("- - noise floor");
     ImGui::TextDisabled("wheel: zoom, drag: pan,\ndouble-click: fit");

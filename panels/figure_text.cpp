@@ -7,6 +7,7 @@
 
 namespace rrf::panels {
 
+namespace figure_text_detail {
 namespace {
 /// What textUnbroken drew in frame `frame` (the UI thread's only; cleared per frame).
 struct FrameLines {
@@ -92,15 +93,16 @@ void drawUnbroken(const ImVec4* colour, const char* fmt, va_list args) {
     if (colour) ImGui::PopStyleColor();
 }
 }  // namespace
+}  // namespace figure_text_detail
 
 std::string wrapAtSpaces(const std::string& text, float width, const std::function<float(const char*, const char*)>& measure) {
     std::string out;
     size_t start = 0;
     for (size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) {
-        wrapParagraph(text.data() + start, text.data() + end, width, measure, out);
+        figure_text_detail::wrapParagraph(text.data() + start, text.data() + end, width, measure, out);
         out += '\n';
     }
-    wrapParagraph(text.data() + start, text.data() + text.size(), width, measure, out);
+    figure_text_detail::wrapParagraph(text.data() + start, text.data() + text.size(), width, measure, out);
     return out;
 }
 
@@ -113,7 +115,7 @@ void textUnbroken(const char* text) {
         const float width = ImGui::CalcWrapWidthForPos(window->DC.CursorPos, wrapPos);
         shown = wrapAtSpaces(text, width, [](const char* b, const char* e) { return ImGui::CalcTextSize(b, e).x; });
     }
-    remember(shown);
+    figure_text_detail::remember(shown);
     // The breaks are made: ImGui must not add its own.
     ImGui::PushTextWrapPos(-1.f);
     ImGui::TextUnformatted(shown.c_str());
@@ -123,7 +125,7 @@ void textUnbroken(const char* text) {
 void figureText(const char* fmt, ...) {
     va_list args;
     va_start(args, fmt);
-    drawUnbroken(nullptr, fmt, args);
+    figure_text_detail::drawUnbroken(nullptr, fmt, args);
     va_end(args);
 }
 
@@ -131,19 +133,19 @@ void figureTextDisabled(const char* fmt, ...) {
     va_list args;
     va_start(args, fmt);
     const ImVec4 disabled = ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled);
-    drawUnbroken(&disabled, fmt, args);
+    figure_text_detail::drawUnbroken(&disabled, fmt, args);
     va_end(args);
 }
 
 void figureTextColored(const ImVec4& colour, const char* fmt, ...) {
     va_list args;
     va_start(args, fmt);
-    drawUnbroken(&colour, fmt, args);
+    figure_text_detail::drawUnbroken(&colour, fmt, args);
     va_end(args);
 }
 
 std::vector<std::string> unbrokenLinesThisFrame() {
-    const FrameLines& l = frameLines();
+    const figure_text_detail::FrameLines& l = figure_text_detail::frameLines();
     return l.frame == ImGui::GetFrameCount() && l.context == ImGui::GetCurrentContext() ? l.lines : std::vector<std::string>{};
 }
 

@@ -11,6 +11,7 @@ namespace rrf::panels {
 
 namespace fs = std::filesystem;
 
+namespace file_dialog_detail {
 namespace {
 bool hasExtension(const std::string& name, const std::string& ext) {
     if (ext.empty()) return true;
@@ -20,6 +21,7 @@ bool hasExtension(const std::string& name, const std::string& ext) {
     return tail == ext;
 }
 }  // namespace
+}  // namespace file_dialog_detail
 
 void FileDialog::open(Mode mode, const std::string& title, const std::string& initial, const std::string& extension) {
     mode_ = mode;
@@ -50,7 +52,7 @@ void FileDialog::list(const std::string& dir) {
         if (name.empty() || name[0] == '.') continue;  // hidden files clutter the list; type them if needed
         std::error_code e2;
         const bool isDir = it->is_directory(e2);
-        if (!isDir && (mode_ == Mode::Directory || !hasExtension(name, extension_))) continue;
+        if (!isDir && (mode_ == Mode::Directory || !file_dialog_detail::hasExtension(name, extension_))) continue;
         entries_.push_back({name, isDir});
     }
     std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
@@ -76,7 +78,7 @@ bool FileDialog::confirm() {
             error_ = "choose a file, not a directory";
             return false;
         }
-        if (mode_ == Mode::Save && !hasExtension(p.filename().string(), extension_)) p += extension_;
+        if (mode_ == Mode::Save && !file_dialog_detail::hasExtension(p.filename().string(), extension_)) p += extension_;
         if (mode_ == Mode::Open && !fs::is_regular_file(p, ec)) {
             error_ = "no such file: " + p.string();
             return false;

@@ -8,6 +8,7 @@
 
 namespace rrf::panels {
 
+namespace help_window_detail {
 namespace {
 struct Gesture {
     const char* where;
@@ -41,6 +42,7 @@ const char* const kTour[] = {
     "error per object; Cost: what accuracy costs in time; Project: the runs table; Log: everything.",
 };
 }  // namespace
+}  // namespace help_window_detail
 
 void drawHelpWindow(const std::vector<ShortcutInfo>& shortcuts, bool* open, std::vector<std::string>* linesShown) {
     if (!*open) return;
@@ -70,7 +72,7 @@ void drawHelpWindow(const std::vector<ShortcutInfo>& shortcuts, bool* open, std:
     ImGui::Spacing();
     ImGui::TextUnformatted("Mouse");
     if (ImGui::BeginTable("##mouse", 3, ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg)) {
-        for (const Gesture& g : kGestures) {
+        for (const help_window_detail::Gesture& g : help_window_detail::kGestures) {
             ImGui::TableNextColumn();
             ImGui::TextUnformatted(g.where);
             ImGui::TableNextColumn();
@@ -84,7 +86,7 @@ void drawHelpWindow(const std::vector<ShortcutInfo>& shortcuts, bool* open, std:
     ImGui::Spacing();
     ImGui::TextUnformatted("Where things are");
     ImGui::PushTextWrapPos(0.f);
-    for (const char* t : kTour) {
+    for (const char* t : help_window_detail::kTour) {
         ImGui::Bullet();
         ImGui::TextUnformatted(t);
         line(t);

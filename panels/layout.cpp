@@ -12,6 +12,7 @@
 
 namespace rrf::panels {
 
+namespace layout_detail {
 namespace {
 
 /// A change the user asked for while the tree was drawn; applied after the walk.
@@ -246,6 +247,7 @@ void drawNode(WorkspaceDraw& w, PaneNode& node, const ImVec2& origin, const ImVe
 }
 
 }  // namespace
+}  // namespace layout_detail
 
 float splitterWidth() { return std::max(10.f, std::round(ImGui::GetFontSize() * 0.7f)); }
 
@@ -261,13 +263,13 @@ bool drawWorkspace(PaneLayout& layout, const std::function<void(const std::strin
                    std::string& focusTab) {
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const ImVec2 avail = ImGui::GetContentRegionAvail();
-    WorkspaceDraw w{layout, drawPanel, focusTab, splitterWidth(), {}, {}, {}, {}, false};
+    layout_detail::WorkspaceDraw w{layout, drawPanel, focusTab, splitterWidth(), {}, {}, {}, {}, false};
     if (avail.x < 4 * w.thickness || avail.y < 4 * w.thickness) return false;  // minimised window
-    drawNode(w, layout.root, origin, avail, 0);
+    layout_detail::drawNode(w, layout.root, origin, avail, 0);
     // The panes' child windows were placed by hand: claim their area so the parent's layout knows it.
     ImGui::SetCursorScreenPos(origin);
     ImGui::Dummy(avail);
-    for (FloatingPanel& f : layout.floating) drawFloating(w, f);
+    for (FloatingPanel& f : layout.floating) layout_detail::drawFloating(w, f);
     bool changed = w.floatingMoved;
     if (w.move) changed |= layout.moveTab(w.move->tab, w.move->target, w.move->side);
     else if (!w.reorder.empty()) changed |= layout.reorderPane(w.reorder);

@@ -17,6 +17,7 @@
 
 namespace rrf::panels {
 
+namespace light_region_panel_detail {
 namespace {
 
 ImU32 viridisColour(double v, double scale) {
@@ -106,10 +107,11 @@ void drawSlice(WorkbenchState& state, const LightGridMap& m, const std::vector<d
 }
 
 }  // namespace
+}  // namespace light_region_panel_detail
 
 void drawLightRegionPanel(WorkbenchState& state) {
     LightRegionInfo& lr = state.lightRegion;
-    drawControls(state, !state.training.modelsDir.empty());
+    light_region_panel_detail::drawControls(state, !state.training.modelsDir.empty());
     if (!lr.map) {
         ImGui::TextDisabled("No evaluation over the light region yet.");
         return;
@@ -128,10 +130,11 @@ void drawLightRegionPanel(WorkbenchState& state) {
     }
     const std::vector<double>& values = lr.object < 0 ? m.global : m.objects[size_t(lr.object)];
     const double scale = LightGridMap::scaleOf(values);
-    figureText("Relative RMSE of the global term (noise-corrected where the reference's noise is known), %dx%d "
-                       "references; colour 0 (dark) to %s (yellow), magenta: not visible. Dots: training records' lights%s.",
-                       lr.width, lr.height, figure(scale).c_str(),
-                       m.marks.empty() ? (" (none: " + m.marksWhy + ")").c_str() : "");
+    figureText(
+        "Relative RMSE of the global term (noise-corrected where the reference's noise is known), %dx%d "
+        "references; colour 0 (dark) to %s (yellow), magenta: not visible. Dots: training records' lights%s.",
+        lr.width, lr.height, light_region_panel_detail::figure(scale).c_str(),
+        m.marks.empty() ? (" (none: " + m.marksWhy + ")").c_str() : "");
     // The slices side by side where they fit, each labelled with its height.
     const int ny = m.grid.counts[1];
     // Square slices as large as the pane allows beside each other (up to three in a row) and below the
@@ -144,7 +147,7 @@ void drawLightRegionPanel(WorkbenchState& state) {
         if (j > 0) sameLineIfFits(side);
         ImGui::BeginGroup();
         figureText("y = %.3f", m.lights[m.grid.index(0, j, 0)].y);
-        drawSlice(state, m, values, j, scale, side);
+        light_region_panel_detail::drawSlice(state, m, values, j, scale, side);
         ImGui::EndGroup();
     }
     figureTextDisabled("x to the right, z downwards; models %s; files in %s", lr.modelsDir.c_str(), lr.outDir.c_str());

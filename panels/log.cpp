@@ -5,6 +5,7 @@
 
 namespace rrf::panels {
 
+namespace log_detail {
 namespace {
 double nowSeconds() {
     using namespace std::chrono;
@@ -13,13 +14,15 @@ double nowSeconds() {
 // Bounded so that a job that reports in a tight loop cannot grow the log without limit.
 constexpr size_t kMaxEntries = 5000;
 }  // namespace
+}  // namespace log_detail
 
-Log::Log() : start_(nowSeconds()) {}
+Log::Log() : start_(log_detail::nowSeconds()) {}
 
 void Log::add(LogLevel level, const std::string& text) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (entries_.size() >= kMaxEntries) entries_.erase(entries_.begin(), entries_.begin() + kMaxEntries / 10);
-    entries_.push_back({level, nowSeconds() - start_, text});
+    if (entries_.size() >= log_detail::kMaxEntries)
+        entries_.erase(entries_.begin(), entries_.begin() + log_detail::kMaxEntries / 10);
+    entries_.push_back({level, log_detail::nowSeconds() - start_, text});
     ++revision_;
     if (level == LogLevel::Error) ++errors_;
 }

@@ -8,6 +8,7 @@
 
 namespace rrf::panels {
 
+namespace log_panel_detail {
 namespace {
 struct LogView {
     bool showInfo = true, showWarnings = true, showErrors = true;
@@ -31,10 +32,11 @@ bool shown(const LogView& v, const LogEntry& e) {
     return v.filter.empty() || e.text.find(v.filter) != std::string::npos;
 }
 }  // namespace
+}  // namespace log_panel_detail
 
 void drawLogPanel(WorkbenchState& state) {
     // One log view per ImGui context; the view settings are UI state, not project state.
-    static LogView view;
+    static log_panel_detail::LogView view;
     if (ImGui::Button("Copy all")) ImGui::SetClipboardText(state.log.text().c_str());
     ImGui::SameLine();
     if (ImGui::Button("Clear")) state.log.clear();
@@ -54,11 +56,11 @@ void drawLogPanel(WorkbenchState& state) {
         const std::vector<LogEntry> entries = state.log.entries();
         int n = 0;
         for (const LogEntry& e : entries) {
-            if (!shown(view, e)) continue;
+            if (!log_panel_detail::shown(view, e)) continue;
             ImGui::PushID(n++);
             ImGui::TextDisabled("%8.2f", e.time);
             ImGui::SameLine();
-            ImGui::PushStyleColor(ImGuiCol_Text, levelColour(e.level));
+            ImGui::PushStyleColor(ImGuiCol_Text, log_panel_detail::levelColour(e.level));
             ImGui::TextUnformatted(e.text.c_str());
             ImGui::PopStyleColor();
             // Right-click a line to copy just that message.

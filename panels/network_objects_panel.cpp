@@ -17,6 +17,7 @@
 
 namespace rrf::panels {
 
+namespace network_objects_panel_detail {
 namespace {
 
 /// The object's entry (an empty one when it has none).
@@ -85,6 +86,7 @@ void drawObjectRow(WorkbenchState& state, const NetworkSettings& s, const std::s
 }
 
 }  // namespace
+}  // namespace network_objects_panel_detail
 
 void storeNetworkSettings(WorkbenchState& state, const NetworkSettings& s) {
     state.project.network = s;
@@ -101,26 +103,26 @@ bool setReflectedInput(WorkbenchState& state, bool on) {
 
 bool setObjectReflected(WorkbenchState& state, const std::string& name, std::optional<bool> on) {
     const NetworkSettings s = state.project.networkOrDefault();
-    ObjectNetworkOverride entry = entryOf(s, name);
+    ObjectNetworkOverride entry = network_objects_panel_detail::entryOf(s, name);
     if (on) entry.inputs = DerivedInputs{*on};
     else entry.inputs.reset();
-    return storeEntry(state, s, name, entry);
+    return network_objects_panel_detail::storeEntry(state, s, name, entry);
 }
 
 bool setObjectHidden(WorkbenchState& state, const std::string& name, std::optional<std::vector<int>> hidden) {
     const NetworkSettings s = state.project.networkOrDefault();
-    ObjectNetworkOverride entry = entryOf(s, name);
+    ObjectNetworkOverride entry = network_objects_panel_detail::entryOf(s, name);
     if (hidden) {
         if (hidden->empty()) return false;  // the file format needs at least one hidden layer
         for (int& h : *hidden) h = std::clamp(h, 1, kMaxHiddenSize);
     }
     entry.hidden = std::move(hidden);
-    return storeEntry(state, s, name, entry);
+    return network_objects_panel_detail::storeEntry(state, s, name, entry);
 }
 
 bool setObjectEncoding(WorkbenchState& state, const std::string& name, const std::string& encoding) {
     const NetworkSettings s = state.project.networkOrDefault();
-    ObjectNetworkOverride entry = entryOf(s, name);
+    ObjectNetworkOverride entry = network_objects_panel_detail::entryOf(s, name);
     if (encoding.empty()) {
         entry.encoding.reset();
     } else {
@@ -128,7 +130,7 @@ bool setObjectEncoding(WorkbenchState& state, const std::string& name, const std
         if (!preset) return false;
         entry.encoding = preset->settings;
     }
-    return storeEntry(state, s, name, entry);
+    return network_objects_panel_detail::storeEntry(state, s, name, entry);
 }
 
 void drawObjectNetworks(WorkbenchState& state, int inputs) {
@@ -153,7 +155,7 @@ void drawObjectNetworks(WorkbenchState& state, int inputs) {
         ImGui::TableHeadersRow();
         for (const Object& o : state.project.scene.objects) {
             ImGui::PushID(o.id);
-            drawObjectRow(state, s, o.name, inputs);
+            network_objects_panel_detail::drawObjectRow(state, s, o.name, inputs);
             ImGui::PopID();
             s = state.project.networkOrDefault();  // a row's edit is stored already
         }

@@ -23,6 +23,7 @@
 
 namespace rrf::panels {
 
+namespace network_panel_detail {
 namespace {
 constexpr int kMaxLayers = 8;
 
@@ -215,64 +216,65 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
     }
 }
 }  // namespace
+}  // namespace network_panel_detail
 
 bool addHiddenLayer(WorkbenchState& state) {
-    NetworkSettings s = current(state);
-    if (int(s.options.hidden.size()) >= kMaxLayers) return false;
+    NetworkSettings s = network_panel_detail::current(state);
+    if (int(s.options.hidden.size()) >= network_panel_detail::kMaxLayers) return false;
     // A new layer repeats the last one's size: a sensible start that the user then resizes.
     s.options.hidden.push_back(s.options.hidden.empty() ? 10 : s.options.hidden.back());
-    storeNetwork(state, s);
+    network_panel_detail::storeNetwork(state, s);
     return true;
 }
 
 bool removeHiddenLayer(WorkbenchState& state, int index) {
-    NetworkSettings s = current(state);
+    NetworkSettings s = network_panel_detail::current(state);
     // The file format needs at least one hidden layer.
     if (s.options.hidden.size() <= 1 || index < 0 || index >= int(s.options.hidden.size())) return false;
     s.options.hidden.erase(s.options.hidden.begin() + index);
-    storeNetwork(state, s);
+    network_panel_detail::storeNetwork(state, s);
     return true;
 }
 
 bool resizeHiddenLayer(WorkbenchState& state, int index, int size) {
-    NetworkSettings s = current(state);
+    NetworkSettings s = network_panel_detail::current(state);
     if (index < 0 || index >= int(s.options.hidden.size())) return false;
     size = clampWithNotice(state, "Network", "a hidden layer's size", size, 1, kMaxHiddenSize);
     if (s.options.hidden[size_t(index)] == size) return false;
     s.options.hidden[size_t(index)] = size;
-    storeNetwork(state, s);
+    network_panel_detail::storeNetwork(state, s);
     return true;
 }
 
 bool setEnsemble(WorkbenchState& state, int members) {
-    NetworkSettings s = current(state);
+    NetworkSettings s = network_panel_detail::current(state);
     members = std::clamp(members, 1, kMaxEnsembleMembers);
     if (s.options.ensemble == members) return false;
     s.options.ensemble = members;
-    storeNetwork(state, s);
+    network_panel_detail::storeNetwork(state, s);
     return true;
 }
 
 bool setTrainerType(WorkbenchState& state, TrainerType type) {
-    NetworkSettings s = current(state);
+    NetworkSettings s = network_panel_detail::current(state);
     if (s.options.trainer.type == type) return false;
     s.options.trainer = s.options.trainer.withType(type);
-    storeTrainer(state, s);
+    network_panel_detail::storeTrainer(state, s);
     return true;
 }
 
 bool setPartition(WorkbenchState& state, const PartitionSettings& partition) {
-    NetworkSettings s = current(state);
+    NetworkSettings s = network_panel_detail::current(state);
     if (s.options.partition == partition) return false;
     s.options.partition = partition;
-    storeNetwork(state, s);
+    network_panel_detail::storeNetwork(state, s);
     return true;
 }
 
 bool setEncoding(WorkbenchState& state, const std::string& name) {
-    NetworkSettings s = current(state);
+    NetworkSettings s = network_panel_detail::current(state);
     if (!setNamedEncoding(s.options.encoding, name)) return false;
-    storeNetwork(state, s);
+    network_panel_detail::storeNetwork(state, s);
     return true;
 }
 
@@ -283,7 +285,7 @@ void drawNetworkPanel(WorkbenchState& state) {
     }
     drawNetworkPresets(state);
     if (state.notice && state.notice->panel == "Network") drawNotice(state);
-    NetworkSettings s = current(state);
+    NetworkSettings s = network_panel_detail::current(state);
 
     ImGui::TextUnformatted("Hidden layers");
     int remove = -1;
@@ -301,22 +303,22 @@ void drawNetworkPanel(WorkbenchState& state) {
         ImGui::PopID();
     }
     if (remove >= 0) removeHiddenLayer(state, remove);
-    ImGui::BeginDisabled(int(s.options.hidden.size()) >= kMaxLayers);
+    ImGui::BeginDisabled(int(s.options.hidden.size()) >= network_panel_detail::kMaxLayers);
     if (ImGui::Button("Add layer")) addHiddenLayer(state);
     ImGui::EndDisabled();
-    s = current(state);  // the layer edits above are stored already
+    s = network_panel_detail::current(state);  // the layer edits above are stored already
 
     int activation = int(s.options.activation);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
     if (ImGui::Combo("activation", &activation, "tanh\0relu\0")) {
         s.options.activation = Activation(activation);
-        storeNetwork(state, s);
+        network_panel_detail::storeNetwork(state, s);
     }
     int members = s.options.ensemble;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6);
     if (ImGui::InputInt("ensemble", &members, 1, 1)) {
         setEnsemble(state, members);
-        s = current(state);
+        s = network_panel_detail::current(state);
     }
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("networks trained per leaf from different initial weights, merged into one network that "
@@ -327,25 +329,27 @@ void drawNetworkPanel(WorkbenchState& state) {
     ImGui::SetNextItemWidth(fittedComboWidth(targetItems));  // the longest entry is readable when chosen
     if (ImGui::Combo("targets", &targets, targetItems)) {
         s.options.targets = TargetMode(targets);
-        storeNetwork(state, s);
+        network_panel_detail::storeNetwork(state, s);
     }
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("per object: one global net, one net per term (separate), or one 6-output net (joint)");
-    drawEncoding(state, s);
-    drawObjectNetworks(state, inputCount(state));
+    network_panel_detail::drawEncoding(state, s);
+    drawObjectNetworks(state, network_panel_detail::inputCount(state));
     drawGlossyGather(state);
-    s = current(state);
+    s = network_panel_detail::current(state);
 
     ImGui::Separator();
     ImGui::TextUnformatted("Partition (kd-tree of networks per object)");
     {
         // The records-per-weight bound counts the MLP's weights only (not an encoding's table entries);
         // unknown (-1) while the encoding does not fit the records (drawParameterCount says why).
-        const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state), s.options.inputs);
-        const long long weights = view.fits ? (long long)networkArch(state, s, view.encoding).numParams() : -1;
+        const EncodingSettingView view =
+            viewEncodingSetting(s.options.encoding, network_panel_detail::inputCount(state), s.options.inputs);
+        const long long weights =
+            view.fits ? (long long)network_panel_detail::networkArch(state, s, view.encoding).numParams() : -1;
         PartitionSettings p = s.options.partition;
-        if (drawPartition(p, weights)) setPartition(state, p);
-        s = current(state);
+        if (network_panel_detail::drawPartition(p, weights)) setPartition(state, p);
+        s = network_panel_detail::current(state);
     }
 
     ImGui::Separator();
@@ -353,14 +357,15 @@ void drawNetworkPanel(WorkbenchState& state) {
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
     if (ImGui::Combo("trainer", &trainer, "Levenberg-Marquardt\0Adam\0")) {
         setTrainerType(state, TrainerType(trainer));
-        s = current(state);
+        s = network_panel_detail::current(state);
     }
-    const bool changed = s.options.trainer.type == TrainerType::Adam ? drawAdam(s.options.trainer.adam)
-                                                                      : drawLevenbergMarquardt(s.options.trainer.lm);
-    if (changed) storeTrainer(state, s);
+    const bool changed = s.options.trainer.type == TrainerType::Adam
+                             ? network_panel_detail::drawAdam(s.options.trainer.adam)
+                             : network_panel_detail::drawLevenbergMarquardt(s.options.trainer.lm);
+    if (changed) network_panel_detail::storeTrainer(state, s);
 
     ImGui::Separator();
-    drawParameterCount(state, s);
+    network_panel_detail::drawParameterCount(state, s);
 }
 
 }  // namespace rrf::panels

@@ -20,6 +20,7 @@
 
 namespace rrf::panels {
 
+namespace objects_panel_detail {
 namespace {
 const char* const kColumnNames[] = {"object",         "RMSE",    "RMSE noise floor",   "RMSE corrected", "rel. RMSE",
                                     "rel. noise floor", "rel. corrected", "bias", "relMSE", "relMSE corrected",
@@ -114,6 +115,7 @@ void drawHeader(const EvaluationInfo& e, Term term, bool modelsLoaded, std::vect
     }
 }
 }  // namespace
+}  // namespace objects_panel_detail
 
 EvaluationInfo evaluationInfo(const Evaluation& e, const Scene& scene, const ModelSet& models) {
     EvaluationInfo info;
@@ -170,7 +172,7 @@ std::vector<ObjectErrorRow> sortedObjectRows(const std::vector<ObjectErrorRow>& 
     std::vector<ObjectErrorRow> out = rows;
     std::stable_sort(out.begin(), out.end(), [&](const ObjectErrorRow& a, const ObjectErrorRow& b) {
         if (column == ObjectColumn::Object) return ascending ? a.name < b.name : b.name < a.name;
-        const double ka = key(a, column), kb = key(b, column);
+        const double ka = objects_panel_detail::key(a, column), kb = objects_panel_detail::key(b, column);
         // Unknown figures (NaN) go last in either direction, which keeps the order strict and weak.
         if (std::isnan(ka) || std::isnan(kb)) return !std::isnan(ka) && std::isnan(kb);
         return ascending ? ka < kb : kb < ka;
@@ -188,12 +190,15 @@ std::string objectRowsCsv(const std::vector<ObjectErrorRow>& rows, const char* t
         std::snprintf(buf, sizeof buf, ",%.9g,%.9g,%.9g,%.9g,%llu,%llu,%.6g", r.stats.rmse, r.stats.relativeRmse,
                       r.stats.mae, r.stats.maxError, (unsigned long long)r.stats.pixels, (unsigned long long)r.samples,
                       r.trainSeconds);
-        csv += std::string(term) + "," + std::to_string(r.objectId) + "," + csvQuote(r.name) + buf + "," +
-               csvNumber(r.stats.rmseNoiseFloor) + "," + csvNumber(r.stats.rmseCorrected) + "," +
-               csvNumber(r.stats.relativeRmseNoiseFloor) + "," + csvNumber(r.stats.relativeRmseCorrected) + "," +
-               csvNumber(r.stats.signedRelativeMean) + "," + csvNumber(r.stats.relMse) + "," +
-               csvNumber(r.stats.relMseNoiseFloor) + "," + csvNumber(r.stats.relMseCorrected) + "," +
-               csvNumber(r.stats.smape) + "," + csvNumber(r.flip) + "\n";
+        csv += std::string(term) + "," + std::to_string(r.objectId) + "," + objects_panel_detail::csvQuote(r.name) + buf + "," +
+               objects_panel_detail::csvNumber(r.stats.rmseNoiseFloor) + "," +
+               objects_panel_detail::csvNumber(r.stats.rmseCorrected) + "," +
+               objects_panel_detail::csvNumber(r.stats.relativeRmseNoiseFloor) + "," +
+               objects_panel_detail::csvNumber(r.stats.relativeRmseCorrected) + "," +
+               objects_panel_detail::csvNumber(r.stats.signedRelativeMean) + "," +
+               objects_panel_detail::csvNumber(r.stats.relMse) + "," + objects_panel_detail::csvNumber(r.stats.relMseNoiseFloor) +
+               "," + objects_panel_detail::csvNumber(r.stats.relMseCorrected) + "," +
+               objects_panel_detail::csvNumber(r.stats.smape) + "," + objects_panel_detail::csvNumber(r.flip) + "\n";
     }
     return csv;
 }
@@ -239,6 +244,7 @@ std::string objectsTableMismatch(const WorkbenchState& state) {
     return {};
 }
 
+namespace objects_panel_detail {
 namespace {
 /// The per-object errors of the two runs `p` compares, for term `term`.
 void drawPairTable(const RunPair& p, Term term) {
@@ -272,13 +278,14 @@ void drawPairTable(const RunPair& p, Term term) {
     ImGui::EndTable();
 }
 }  // namespace
+}  // namespace objects_panel_detail
 
 void drawObjectsPanel(WorkbenchState& state) {
-    drawHeader(state.evaluation, state.view.term, !state.training.modelsDir.empty(), state.requests);
+    objects_panel_detail::drawHeader(state.evaluation, state.view.term, !state.training.modelsDir.empty(), state.requests);
     const std::string mismatch = objectsTableMismatch(state);
     if (!mismatch.empty()) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", mismatch.c_str());
     if (state.view.compareSource == CompareSource::RunPair) {
-        drawPairTable(state.runPair, state.view.term);
+        objects_panel_detail::drawPairTable(state.runPair, state.view.term);
         return;
     }
     const EvaluationInfo& e = state.evaluation;
@@ -296,7 +303,8 @@ void drawObjectsPanel(WorkbenchState& state) {
     if (!ImGui::BeginTable("##objects", int(ObjectColumn::Count), flags)) return;
     ImGui::TableSetupScrollFreeze(1, 1);
     for (int c = 0; c < int(ObjectColumn::Count); ++c)
-        ImGui::TableSetupColumn(kColumnNames[c], c == 0 ? ImGuiTableColumnFlags_DefaultSort : 0, 0.f, ImGuiID(c));
+        ImGui::TableSetupColumn(objects_panel_detail::kColumnNames[c], c == 0 ? ImGuiTableColumnFlags_DefaultSort : 0, 0.f,
+                                ImGuiID(c));
     ImGui::TableHeadersRow();
     for (int c = 0; c < int(ObjectColumn::Count); ++c)
         if (ImGui::TableGetColumnFlags(c) & ImGuiTableColumnFlags_IsHovered) {
@@ -333,12 +341,12 @@ void drawObjectsPanel(WorkbenchState& state) {
         if (ImGui::Selectable(label, selected, ImGuiSelectableFlags_SpanAllColumns))
             state.view.selectedObject = selected ? -1 : r.objectId;  // click again to clear the highlight
         ImGui::PopID();
-        for (double value : rmseFigures(r.stats)) {
+        for (double value : objects_panel_detail::rmseFigures(r.stats)) {
             ImGui::TableNextColumn();
             ImGui::TextUnformatted(noiseFigureText(value).c_str());
         }
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(flipText(r.flip).c_str());
+        ImGui::TextUnformatted(objects_panel_detail::flipText(r.flip).c_str());
         for (double value : {r.stats.mae, r.stats.maxError}) {
             ImGui::TableNextColumn();
             ImGui::Text("%.4g", value);
@@ -354,12 +362,12 @@ void drawObjectsPanel(WorkbenchState& state) {
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
     ImGui::TextDisabled("all objects");
-    for (double value : rmseFigures(o)) {
+    for (double value : objects_panel_detail::rmseFigures(o)) {
         ImGui::TableNextColumn();
         ImGui::TextDisabled("%s", noiseFigureText(value).c_str());
     }
     ImGui::TableNextColumn();
-    ImGui::TextDisabled("%s", flipText(state.view.term == Term::Global ? e.flipHdr : std::nan("")).c_str());
+    ImGui::TextDisabled("%s", objects_panel_detail::flipText(state.view.term == Term::Global ? e.flipHdr : std::nan("")).c_str());
     for (double value : {o.mae, o.maxError}) {
         ImGui::TableNextColumn();
         ImGui::TextDisabled("%.4g", value);

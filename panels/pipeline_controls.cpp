@@ -16,6 +16,7 @@
 
 namespace rrf::panels {
 
+namespace pipeline_controls_detail {
 namespace {
 int threads() { return std::max(1, int(std::thread::hardware_concurrency())); }
 
@@ -55,9 +56,13 @@ StageEstimate total(const std::vector<StageEstimate>& stages) {
 }
 
 const char* const kStageNames[] = {"render", "generate", "train", "evaluate"};
+const char* const kProjectSettingsLabel = "project settings";
 }  // namespace
+}  // namespace pipeline_controls_detail
 
-PathRate pathRateOf(const WorkbenchState& state) { return PathRate::of(state.render.samplesPerSecond, threads()); }
+PathRate pathRateOf(const WorkbenchState& state) {
+    return PathRate::of(state.render.samplesPerSecond, pipeline_controls_detail::threads());
+}
 
 double recordsPerRayOf(const WorkbenchState& state) {
     const DatasetInfo& d = state.dataset;
@@ -84,7 +89,7 @@ std::string generateRefusal(const WorkbenchState& state, const SamplingSettings&
 StageEstimate trainingEstimate(const WorkbenchState& state, const SamplingSettings& s, const ObjectTrainingOptions& o) {
     const Scene& scene = state.project.scene;
     return estimateTraining(o, expectedRecords(s, recordsPerRayOf(state)), int(scene.objects.size()),
-                            RecordLayout::forScene(scene).inputCount(), threads());
+                            RecordLayout::forScene(scene).inputCount(), pipeline_controls_detail::threads());
 }
 
 std::vector<StageEstimate> pipelineEstimates(const WorkbenchState& state, const PipelinePreset* preset) {
@@ -96,30 +101,32 @@ std::vector<StageEstimate> pipelineEstimates(const WorkbenchState& state, const 
 }
 
 void drawSamplingPresets(WorkbenchState& state) {
-    const PipelinePreset* chosen = presetCombo("preset##sampling", matchingSamplingPreset(state.project),
-                                               [&](const PipelinePreset& p) { return dataEstimate(state, presetSampling(state.project, p)); });
+    const PipelinePreset* chosen = pipeline_controls_detail::presetCombo(
+        "preset##sampling", matchingSamplingPreset(state.project),
+        [&](const PipelinePreset& p) { return dataEstimate(state, presetSampling(state.project, p)); });
     if (chosen) {
         applySamplingPreset(state.project, *chosen);
         state.markDirty();
     }
-    drawEstimateLine("data time", dataEstimate(state, state.project.samplingOrDefault()));
+    pipeline_controls_detail::drawEstimateLine("data time", dataEstimate(state, state.project.samplingOrDefault()));
 }
 
 void drawNetworkPresets(WorkbenchState& state) {
     const SamplingSettings s = state.project.samplingOrDefault();
-    const PipelinePreset* chosen =
-        presetCombo("preset##network", matchingNetworkPreset(state.project),
-                    [&](const PipelinePreset& p) { return trainingEstimate(state, s, presetNetwork(state.project, p)); });
+    const PipelinePreset* chosen = pipeline_controls_detail::presetCombo(
+        "preset##network", matchingNetworkPreset(state.project),
+        [&](const PipelinePreset& p) { return trainingEstimate(state, s, presetNetwork(state.project, p)); });
     if (chosen) {
         applyNetworkPreset(state.project, *chosen);
         state.markDirty();
     }
-    drawEstimateLine("training time", trainingEstimate(state, s, state.project.networkOrDefault().options));
+    pipeline_controls_detail::drawEstimateLine("training time",
+                                               trainingEstimate(state, s, state.project.networkOrDefault().options));
 }
 
-const char* const kProjectSettingsLabel = "project settings";
-
-std::string pipelineChoiceLabel(const std::string& preset) { return preset.empty() ? kProjectSettingsLabel : preset; }
+std::string pipelineChoiceLabel(const std::string& preset) {
+    return preset.empty() ? pipeline_controls_detail::kProjectSettingsLabel : preset;
+}
 
 std::string pipelineExpectation(const WorkbenchState& state, const std::string& presetName, bool brief) {
     const PipelinePreset* preset = presetName.empty() ? matchingPreset(state.project) : findPreset(presetName);
@@ -128,6 +135,7 @@ std::string pipelineExpectation(const WorkbenchState& state, const std::string& 
                  : "custom settings: no preset's figures apply; the run's own evaluation (Objects, Runs) says how good it is";
 }
 
+namespace pipeline_controls_detail {
 namespace {
 /// The bar's choice: the project's settings as the Sampling and Network panels show them (the
 /// default: what a new user runs is what the panels say), or a preset applied first.
@@ -152,6 +160,7 @@ void drawPipelineChoice(WorkbenchState& state) {
     ImGui::EndCombo();
 }
 }  // namespace
+}  // namespace pipeline_controls_detail
 
 void drawPipelineBar(WorkbenchState& state) {
     PipelineInfo& p = state.pipeline;
@@ -167,7 +176,7 @@ void drawPipelineBar(WorkbenchState& state) {
         ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
             const std::string estimate =
-                state.hasProject ? "\nestimated " + rangeText(total(pipelineEstimates(state, preset))) +
+                state.hasProject ? "\nestimated " + rangeText(pipeline_controls_detail::total(pipelineEstimates(state, preset))) +
                                        "\nexpect: " + pipelineExpectation(state, p.preset, false)
                                  : std::string();
             if (!refusal.empty()) ImGui::SetTooltip("cannot run: %s", refusal.c_str());
@@ -178,7 +187,7 @@ void drawPipelineBar(WorkbenchState& state) {
     }
     ImGui::SameLine();
     ImGui::BeginDisabled(p.running || !state.hasProject);
-    if (state.hasProject) drawPipelineChoice(state);
+    if (state.hasProject) pipeline_controls_detail::drawPipelineChoice(state);
     else {
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 9);
         if (ImGui::BeginCombo("##pipeline-preset", pipelineChoiceLabel(p.preset).c_str())) ImGui::EndCombo();
@@ -189,17 +198,19 @@ void drawPipelineBar(WorkbenchState& state) {
         char overlay[96];
         const int stage = std::clamp(p.stageIndex, 0, 3);
         if (p.etaSeconds >= 0)
-            std::snprintf(overlay, sizeof overlay, "%d/4 %s  %.0f%%  ETA %s", stage + 1, kStageNames[stage], 100 * p.fraction,
-                          durationText(p.etaSeconds).c_str());
+            std::snprintf(overlay, sizeof overlay, "%d/4 %s  %.0f%%  ETA %s", stage + 1,
+                          pipeline_controls_detail::kStageNames[stage], 100 * p.fraction, durationText(p.etaSeconds).c_str());
         else
-            std::snprintf(overlay, sizeof overlay, "%d/4 %s  %.0f%%", stage + 1, kStageNames[stage], 100 * p.fraction);
+            std::snprintf(overlay, sizeof overlay, "%d/4 %s  %.0f%%", stage + 1, pipeline_controls_detail::kStageNames[stage],
+                          100 * p.fraction);
         ImGui::ProgressBar(float(p.fraction), ImVec2(ImGui::GetFontSize() * 16, 0), overlay);
     } else if (!p.outcome.empty()) {
         figureTextDisabled("pipeline %s", p.outcome.c_str());
     } else if (state.hasProject) {
         // What the next run gives, in sight before the click: a smoke test says so.
         const std::string brief = pipelineExpectation(state, p.preset, true);
-        figureTextDisabled("expect %s, %s", brief.c_str(), rangeText(total(pipelineEstimates(state, preset))).c_str());
+        figureTextDisabled("expect %s, %s", brief.c_str(),
+                           rangeText(pipeline_controls_detail::total(pipelineEstimates(state, preset))).c_str());
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", pipelineExpectation(state, p.preset, false).c_str());
     }
 }

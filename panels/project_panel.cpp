@@ -18,6 +18,7 @@
 
 namespace rrf::panels {
 
+namespace project_panel_detail {
 namespace {
 std::string numberText(std::optional<double> v, const char* fmt) {
     if (!v) return "-";
@@ -88,6 +89,7 @@ std::string frameText(const RunSummary& r) {
 }
 
 }  // namespace
+}  // namespace project_panel_detail
 
 std::string runTooltipText(const Run& run) {
     const RunSummary r = summarizeRun(run);
@@ -95,19 +97,22 @@ std::string runTooltipText(const Run& run) {
     if (!r.status.empty()) s += "\nstate " + r.status;
     if (!r.trainer.empty()) s += "\ntrainer " + r.trainer + ", hidden " + hiddenText(r.hidden);
     if (r.leaves) s += "\nleaves " + std::to_string(*r.leaves);
-    if (r.records) s += "\nrecords " + numberText(r.records, "%.0f");
-    if (r.spp) s += "\nspp " + numberText(r.spp, "%.0f");
-    if (r.seconds) s += "\ntime " + numberText(r.seconds, "%.2f") + " s";
+    if (r.records) s += "\nrecords " + project_panel_detail::numberText(r.records, "%.0f");
+    if (r.spp) s += "\nspp " + project_panel_detail::numberText(r.spp, "%.0f");
+    if (r.seconds) s += "\ntime " + project_panel_detail::numberText(r.seconds, "%.2f") + " s";
     if (r.error || r.noiseFloor)
-        s += "\nheld-out rel. RMSE " + numberText(r.error, "%.4g") + " (noise floor " + numberText(r.noiseFloor, "%.2g") +
-             ", corrected " + numberText(r.corrected, "%.4g") + ")";
+        s += "\nheld-out rel. RMSE " + project_panel_detail::numberText(r.error, "%.4g") + " (noise floor " +
+             project_panel_detail::numberText(r.noiseFloor, "%.2g") + ", corrected " +
+             project_panel_detail::numberText(r.corrected, "%.4g") + ")";
     if (r.frameSeconds) {
         const std::string size = r.frameWidth > 0 ? sizeText(r.frameWidth, r.frameHeight) : std::string("the view's size");
-        s += "\nframe " + numberText(*r.frameSeconds * 1e3, "%.2f") + " ms, " + (r.frameGlsl ? "GLSL" : "CPU") + " at " + size;
+        s += "\nframe " + project_panel_detail::numberText(*r.frameSeconds * 1e3, "%.2f") + " ms, " +
+             (r.frameGlsl ? "GLSL" : "CPU") + " at " + size;
     }
     return s + "\nright-click: rename, re-open, compare, delete";
 }
 
+namespace project_panel_detail {
 namespace {
 
 /// What the runs table draws and edits, and nothing else of the workbench's state: the project's
@@ -234,6 +239,7 @@ void drawRuns(RunsTableView& t) {
     ImGui::PopTextWrapPos();
 }
 }  // namespace
+}  // namespace project_panel_detail
 
 void drawProjectPanel(WorkbenchState& state) {
     if (ImGui::Button("New")) state.request(Command::NewProject);
@@ -259,10 +265,12 @@ void drawProjectPanel(WorkbenchState& state) {
     figureTextDisabled("scene  %s", state.project.sceneRef.empty() ? "(embedded)" : state.project.sceneRef.c_str());
     figureTextDisabled("%s", state.dirty ? "unsaved changes" : "saved");
 
-    if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen)) drawRenderSettings(state.project.render, state.project.scene, state.dirty);
+    if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen))
+        project_panel_detail::drawRenderSettings(state.project.render, state.project.scene, state.dirty);
     if (ImGui::CollapsingHeader("Runs", ImGuiTreeNodeFlags_DefaultOpen)) {
-        RunsTableView runs{state.project.runs, state.runPair, state.compareRun, state.requests, state.dirty};
-        drawRuns(runs);
+        project_panel_detail::RunsTableView runs{state.project.runs, state.runPair, state.compareRun, state.requests,
+                                                 state.dirty};
+        project_panel_detail::drawRuns(runs);
     }
     if (ImGui::CollapsingHeader("Recent projects")) {
         if (state.recent.empty()) ImGui::TextDisabled("(none)");

@@ -14,6 +14,7 @@
 
 namespace rrf::panels {
 
+namespace sampling_panel_detail {
 namespace {
 void drawEstimate(const WorkbenchState& state, const SamplingSettings& s) {
     // Upper bounds: cells inside closed objects are dropped and escaping rays store nothing.
@@ -69,6 +70,7 @@ void drawCoverage(const DatasetInfo& d) {
     ImGui::EndTable();
 }
 }  // namespace
+}  // namespace sampling_panel_detail
 
 void drawSamplingPanel(WorkbenchState& state) {
     if (!state.hasProject) {
@@ -126,7 +128,7 @@ void drawSamplingPanel(WorkbenchState& state) {
     if (!r.empty())
         figureTextDisabled("light region (%.2f, %.2f, %.2f) .. (%.2f, %.2f, %.2f)", r.lo.x, r.lo.y, r.lo.z, r.hi.x, r.hi.y,
                             r.hi.z);
-    drawEstimate(state, s);
+    sampling_panel_detail::drawEstimate(state, s);
 
     if (!state.dataset.running) {
         // Refused at the button, before any work: the reason stays in sight while the settings change.
@@ -148,7 +150,7 @@ void drawSamplingPanel(WorkbenchState& state) {
     if (ImGui::CollapsingHeader("Coverage per object", ImGuiTreeNodeFlags_DefaultOpen)) {
         const std::string stale = datasetStaleReason(state.dataset, state.project);
         if (!stale.empty()) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", stale.c_str());
-        drawCoverage(state.dataset);
+        sampling_panel_detail::drawCoverage(state.dataset);
     }
 }
 

@@ -14,6 +14,7 @@
 
 namespace rrf::panels {
 
+namespace scene_panel_detail {
 namespace {
 void drawObjects(WorkbenchState& state) {
     const Scene& scene = state.project.scene;
@@ -119,6 +120,7 @@ void drawLights(WorkbenchState& state) {
     }
 }
 }  // namespace
+}  // namespace scene_panel_detail
 
 void drawScenePanel(WorkbenchState& state) {
     if (!state.hasProject) {
@@ -129,9 +131,9 @@ void drawScenePanel(WorkbenchState& state) {
     figureTextDisabled("%s", scene.sourcePath.empty() ? "(embedded scene)" : scene.sourcePath.c_str());
     figureText("%zu objects, %zu materials, %zu lights, camera %dx%d", scene.objects.size(), scene.materials.size(),
                 scene.lights.size(), scene.camera.width, scene.camera.height);
-    if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) drawObjects(state);
-    if (ImGui::CollapsingHeader("Materials", ImGuiTreeNodeFlags_DefaultOpen)) drawMaterials(state);
-    if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) drawLights(state);
+    if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) scene_panel_detail::drawObjects(state);
+    if (ImGui::CollapsingHeader("Materials", ImGuiTreeNodeFlags_DefaultOpen)) scene_panel_detail::drawMaterials(state);
+    if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) scene_panel_detail::drawLights(state);
     if (ImGui::CollapsingHeader("Effects", ImGuiTreeNodeFlags_DefaultOpen)) {
         for (const std::string& line : Effects::derive(scene).describe()) {
             ImGui::Bullet();

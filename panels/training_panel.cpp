@@ -18,6 +18,7 @@
 
 namespace rrf::panels {
 
+namespace training_panel_detail {
 namespace {
 struct Shown {
     const std::vector<LossCurve>* curves = nullptr;
@@ -206,12 +207,13 @@ void drawTrainingBody(WorkbenchState& state) {
     ImGui::EndGroup();
 }
 }  // namespace
+}  // namespace training_panel_detail
 
 void drawTrainingPanel(WorkbenchState& state) {
-    drawToolbar(state);
+    training_panel_detail::drawToolbar(state);
     if (state.notice && state.notice->panel == "Training") drawNotice(state);
-    drawStoppedChoice(state);
-    drawTrainingBody(state);
+    training_panel_detail::drawStoppedChoice(state);
+    training_panel_detail::drawTrainingBody(state);
 }
 
 }  // namespace rrf::panels

@@ -5,6 +5,7 @@
 
 namespace rrf::panels {
 
+namespace view_model_detail {
 namespace {
 uint8_t encode(float linear) {
     if (!(linear > 0.f)) return 0;  // also maps NaN to black; the renderer never publishes NaN
@@ -28,6 +29,7 @@ void falseColourRgba(const Image& error, const Image& fc, const std::vector<int>
         }
 }
 }  // namespace
+}  // namespace view_model_detail
 
 void leftOutColour(Footprint reason, int x, int y, uint8_t rgba[4]) {
     const bool object = reason != Footprint::Background && reason != Footprint::Emitter;
@@ -134,8 +136,8 @@ void toneMapRgba(const Image& image, float exposure, const std::vector<int>* ids
     const float scale = std::exp2(exposure);
     for (size_t i = 0; i < n; ++i) {
         // Dimming to a quarter keeps the context visible while the selected object stands out.
-        const float k = dimmed(ids, selected, i) ? 0.25f * scale : scale;
-        for (int c = 0; c < 3; ++c) rgba[4 * i + size_t(c)] = encode(image.data[3 * i + size_t(c)] * k);
+        const float k = view_model_detail::dimmed(ids, selected, i) ? 0.25f * scale : scale;
+        for (int c = 0; c < 3; ++c) rgba[4 * i + size_t(c)] = view_model_detail::encode(image.data[3 * i + size_t(c)] * k);
         rgba[4 * i + 3] = 255;
     }
 }
@@ -260,8 +262,9 @@ void ViewModel::update(WorkbenchState& s) {
         d.revision = ++counter_;
         if (img.empty()) d.rgba.clear();
         else if (error)
-            falseColourRgba(img, s.view.flip ? flipColour(img) : errorMapColour(img, s.view.metric, s.view.errorMax), idsFor(img),
-                            k.selected, s.reference().footprint.get(), d.rgba);
+            view_model_detail::falseColourRgba(
+                img, s.view.flip ? flipColour(img) : errorMapColour(img, s.view.metric, s.view.errorMax), idsFor(img), k.selected,
+                s.reference().footprint.get(), d.rgba);
         else toneMapRgba(img, s.view.exposure, idsFor(img), k.selected, d.rgba);
     };
     // Never an error map against the ground truth of another light, scene or size.

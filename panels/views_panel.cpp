@@ -26,6 +26,7 @@
 
 namespace rrf::panels {
 
+namespace views_panel_detail {
 namespace {
 constexpr float kMinZoom = 0.25f, kMaxZoom = 64.f;
 /// The term combo lists global first (what one looks at most); its entries map to core's Term here.
@@ -491,6 +492,7 @@ void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp
     }
 }
 }  // namespace
+}  // namespace views_panel_detail
 
 void drawViewsPanel(WorkbenchState& state) {
     ViewState& v = state.view;
@@ -500,7 +502,7 @@ void drawViewsPanel(WorkbenchState& state) {
         v.lightHandle[i] = ImVec2(NAN, NAN);  // a view not drawn (single view) has no handle on screen
     }
     ImGui::BeginGroup();
-    drawToolbar(v, state.render, state.requests);
+    views_panel_detail::drawToolbar(v, state.render, state.requests);
     ImGui::EndGroup();
     v.toolbarMin = ImGui::GetItemRectMin();
     v.toolbarMax = ImGui::GetItemRectMax();
@@ -517,7 +519,7 @@ void drawViewsPanel(WorkbenchState& state) {
     const ImageSet& compared = state.compared();
     // The histogram takes its height from the views (in a row it sits under them with the figures).
     ImVec2 avail = ImGui::GetContentRegionAvail();
-    if (state.view.histogram) avail.y -= histogramHeight();
+    if (state.view.histogram) avail.y -= views_panel_detail::histogramHeight();
     const ViewsLayout layout = viewsLayout(avail, ImGui::GetStyle().ItemSpacing,
                                            ImGui::GetTextLineHeightWithSpacing(), ref.empty() ? cmp : ref);
     const ImVec2 size = layout.view;
@@ -532,12 +534,13 @@ void drawViewsPanel(WorkbenchState& state) {
         std::snprintf(t, sizeof t, "Ensemble spread (global term, relative, 0 to %.3g)", state.view.spreadMap.scale);
         cmpTitle = t;
     }
-    const std::string errTitle = std::string(pair ? "Difference B vs A: " : "Error: ") + errorViewLabel(state.view);
+    const std::string errTitle =
+        std::string(pair ? "Difference B vs A: " : "Error: ") + views_panel_detail::errorViewLabel(state.view);
 
     ImVec2 hover(-1, -1);
     static const Image kNoImage;
     const bool comparable = !cmp.empty() && cmp.width == ref.width && cmp.height == ref.height;
-    const bool errorShown = comparable && (!state.view.flip || flipShown(state));
+    const bool errorShown = comparable && (!state.view.flip || views_panel_detail::flipShown(state));
     bool over = false;
     if (layout.single) {
         // Too little room for three readable views: one at a time, the others a click away.
@@ -547,15 +550,20 @@ void drawViewsPanel(WorkbenchState& state) {
             ImGui::RadioButton(names[i], &v.singleView, i);
         }
         v.singleView = std::clamp(v.singleView, 0, 2);
-        if (v.singleView == ViewModel::kReference) over = drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
-        else if (v.singleView == ViewModel::kCompared) over = drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
-        else over = drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
+        if (v.singleView == ViewModel::kReference)
+            over = views_panel_detail::drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
+        else if (v.singleView == ViewModel::kCompared)
+            over = views_panel_detail::drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
+        else
+            over = views_panel_detail::drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size,
+                                                hover);
     } else {
-        over = drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
+        over = views_panel_detail::drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
         ImGui::SameLine();
-        over |= drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
+        over |= views_panel_detail::drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
         if (!layout.grid) ImGui::SameLine();
-        over |= drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
+        over |=
+            views_panel_detail::drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
     }
     state.view.hoverX = over ? int(hover.x) : -1;
     state.view.hoverY = over ? int(hover.y) : -1;
@@ -566,7 +574,7 @@ void drawViewsPanel(WorkbenchState& state) {
         ImGui::BeginGroup();
         ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + size.x);
     }
-    drawErrorFigures(state);
+    views_panel_detail::drawErrorFigures(state);
     if (state.view.spread) {
         const SpreadViewMap& m = state.view.spreadMap;
         if (state.view.compareSource != CompareSource::Prediction)
@@ -578,9 +586,11 @@ void drawViewsPanel(WorkbenchState& state) {
     }
     const std::string partial = withoutNetworkText(compared, state.project.scene);
     if (!partial.empty()) figureTextColored(ImVec4(1.f, 0.3f, 1.f, 1.f), "%s", partial.c_str());
-    drawReadout(state, ref, cmp);
-    drawLegend(state.view, std::min(size.x, ImGui::GetFontSize() * 18));
-    if (state.view.histogram) drawHistogram(state.view, std::min(std::max(size.x, ImGui::GetFontSize() * 20), ImGui::GetFontSize() * 30));
+    views_panel_detail::drawReadout(state, ref, cmp);
+    views_panel_detail::drawLegend(state.view, std::min(size.x, ImGui::GetFontSize() * 18));
+    if (state.view.histogram)
+        views_panel_detail::drawHistogram(state.view,
+                                          std::min(std::max(size.x, ImGui::GetFontSize() * 20), ImGui::GetFontSize() * 30));
     if (layout.grid) {
         ImGui::PopTextWrapPos();
         ImGui::EndGroup();
