@@ -10,7 +10,7 @@
 #   fuzz   each fuzz target of that build mutates its seeds for RRF_FUZZ_SECONDS (default 12), two
 #          targets at a time; a crashing input is kept under <asan build>/fuzz-findings/. Six
 #          targets at 12 s take three rounds of 12 s, which keeps the whole CI run within its 20 minutes.
-#   tsan   clang, -O1, ThreadSanitizer: core + rrf_threaded_tests only (renderer, generator,
+#   tsan   clang, -O0, ThreadSanitizer: core + rrf_threaded_tests only (renderer, generator,
 #          training, job runner; cmake/ThreadedTests.cmake), the tests in $tsan_filter
 #
 # Usage: scripts/sanitize.sh [asan|fuzz|tsan]...   (no argument: all three, in that order)
@@ -56,7 +56,7 @@ asan_skip+='|DataGenerator\.SameSeedGivesTheSameBytesForAnyThreadCount|DataGener
 # workbench's job runner and job sessions, and one thread-count test. Left out: the convergence and
 # statistics tests, and the bit-identical-for-any-thread-count tests of the generator and trainers,
 # whose threads are TBB tasks that TSan cannot check here (see run_tsan) and which take minutes under
-# TSan (Eigen at -O1, every access instrumented); the generator's CLI tests check another process.
+# TSan (Eigen unoptimised, every access instrumented); the generator's CLI tests check another process.
 tsan_filter='Renderer.BitIdenticalForAnyThreadCount:Bdpt.IdenticalForAnyThreadCount*:Renderer.Cancel*:DataGenerator.Cancelled*'
 tsan_filter+=':LevenbergMarquardt.Cancel*:Adam.Cancel*:ObjectTraining.Cancelled*:TrainingRun.*'
 tsan_filter+=':JobRunner.*:JobSession.*'
@@ -69,17 +69,18 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_strin
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:second_deadlock_stack=1}
 
-configure() {  # configure <build dir> <cmake args...>
-  local dir=$1
-  shift
-  # -O1: the speed of the tests matters as much as that of the compiler; NDEBUG stays off, so the
+configure() {  # configure <build dir> <-O level> <cmake args...>
+  local dir=$1 opt=$2
+  shift 2
+  # ASan at -O1: the speed of its tests matters as much as that of the compiler. TSan at -O0: its few
+  # tests take seconds either way, and the compile is what it costs. NDEBUG stays off, so the
   # asserts of the code and of Eigen are checked too. Unity batches of 16 sources halve the compile
   # time (cmake/Unity.cmake lists the sources that must stay on their own). Without MPI: Open MPI's
   # own allocations would be leak reports, and the release job runs the MPI test.
   # Full paths, as CMake caches them: a bare name would differ from the cache and reset it every run.
   # shellcheck disable=SC2046  # the generator arguments are two words or none
   cmake -S "$root" -B "$dir" $(rrf_generator_args "$dir") -DCMAKE_C_COMPILER="$(command -v clang-14)" -DCMAKE_CXX_COMPILER="$(command -v clang++-14)" \
-        -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE=-O1 -DCMAKE_C_FLAGS_SANITIZE=-O1 \
+        -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="$opt" -DCMAKE_C_FLAGS_SANITIZE="$opt" \
         -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 \
         -DRRF_BUILD_GUI=OFF -DRRF_BUILD_BENCH=OFF -DRRF_WITH_MPI=OFF "$@" >/dev/null
 }
@@ -93,7 +94,7 @@ stamp() { echo "sanitize: $1 ($(date +%T), ${SECONDS} s since start, $(cpu_secon
 
 run_asan() {
   stamp "asan: building (clang, address+undefined, fuzzer coverage)"
-  configure "$asan_build" -DRRF_SANITIZE="address;undefined" -DRRF_BUILD_FUZZ=ON -DRRF_BUILD_TESTS=ON
+  configure "$asan_build" -O1 -DRRF_SANITIZE="address;undefined" -DRRF_BUILD_FUZZ=ON -DRRF_BUILD_TESTS=ON
   cmake --build "$asan_build" -j "$jobs"
   stamp "asan: running rrf_tests (less $asan_skip) and the fuzz corpora"
   (cd "$asan_build" && ctest --output-on-failure -j "$jobs" --timeout 600 \
@@ -141,7 +142,7 @@ run_fuzz() {
 
 run_tsan() {
   stamp "tsan: building core + rrf_threaded_tests (clang, thread)"
-  configure "$tsan_build" -DRRF_SANITIZE=thread -DRRF_BUILD_TESTS=ON
+  configure "$tsan_build" -O0 -DRRF_SANITIZE=thread -DRRF_BUILD_TESTS=ON
   cmake --build "$tsan_build" -j "$jobs" --target rrf_threaded_tests
   # libtbb is not built with TSan: the happens-before its scheduler gives between a parallel_for and
   # its tasks is invisible, so every access made inside a TBB task looks racy (reports inside
