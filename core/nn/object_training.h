@@ -107,9 +107,10 @@ struct ObjectTrainingOptions {
     /// (one split), merged into the one network that predicts their mean (nn/ensemble.h); 1 = one
     /// network, as Ren et al. Each member costs a full training run.
     int ensemble = 1;
-    /// The "encoding" array (nn/encoding.h, nn/encoding_presets.h); empty = the identity. Each network
-    /// gets networkEncoding(encoding, its records' input count); its first layer reads the features.
-    nlohmann::json encoding = nlohmann::json::array();
+    /// The "encoding" setting (nn/encoding_settings.h, nn/encoding_presets.h); empty = the identity.
+    /// Each network gets networkEncoding(encoding, its records' input count); its first layer reads
+    /// the features.
+    NetworkEncodingSettings encoding;
     /// The "inputs" object: inputs every network derives from its records (nn/derived_inputs.h).
     DerivedInputs inputs;
     /// The "objects" map: hidden sizes, inputs and encoding of named objects (nn/object_network_overrides.h).

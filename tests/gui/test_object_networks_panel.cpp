@@ -4,6 +4,7 @@
 // refuse them — instead of throwing out of the frame.
 #include <imgui_internal.h>
 
+#include "core/nn/encoding_settings_json.h"
 #include "core/nn/encoding_presets.h"
 #include "panels/panels.h"
 #include "panels/project_io.h"
@@ -73,7 +74,7 @@ TEST_F(ObjectNetworksPanelTest, RowsSayWhatEachObjectsNetworksReadOrWhyTheyCanno
     // An entry whose encoding reads the reflected rows while the object does not derive them.
     NetworkSettings n = s.project.networkOrDefault();
     ObjectNetworkOverride bad;
-    bad.encoding = nlohmann::json::parse(R"([{"type": "one_blob", "inputs": "reflected"}])");
+    bad.encoding = encodingSettingsFromJson(nlohmann::json::parse(R"([{"type": "one_blob", "inputs": "reflected"}])"));
     n.options.perObject["short-box"] = bad;
     s.project.network = n;
     s.dirty = false;
