@@ -89,7 +89,7 @@ StageEstimate trainingEstimate(const WorkbenchState& state, const SamplingSettin
 
 std::vector<StageEstimate> pipelineEstimates(const WorkbenchState& state, const PipelinePreset* preset) {
     const SamplingSettings s = preset ? presetSampling(state.project, *preset) : state.project.samplingOrDefault();
-    const ObjectTrainingOptions o = preset ? presetNetwork(state.project, *preset) : state.project.networkOrDefault().options;
+    const ObjectTrainingOptions o = preset ? presetNetwork(state.project, *preset) : state.project.trainingOptions();
     const PathRate rate = pathRateOf(state);
     return {estimateRender(state.project.render, state.project.scene, rate), dataEstimate(state, s), trainingEstimate(state, s, o),
             estimateEvaluate(state.project.render, state.project.scene, rate)};
@@ -114,7 +114,7 @@ void drawNetworkPresets(WorkbenchState& state) {
         applyNetworkPreset(state.project, *chosen);
         state.markDirty();
     }
-    drawEstimateLine("training time", trainingEstimate(state, s, state.project.networkOrDefault().options));
+    drawEstimateLine("training time", trainingEstimate(state, s, state.project.trainingOptions()));
 }
 
 const char* const kProjectSettingsLabel = "project settings";

@@ -224,7 +224,7 @@ TEST(Ensemble, ProjectSettingTrainsMergedNetworksWithTheirBudget) {
     EXPECT_EQ(s.networkJson().at("ensemble"), 3);
     EXPECT_EQ(NetworkSettings().networkJson().at("ensemble"), 1) << "one network unless asked";
 
-    ObjectTrainingOptions o = s.options;
+    ObjectTrainingOptions o(s.options, TrainerConfig::projectDefault());
     o.partition.maxLeaves = 1;
     o.trainer = TrainerConfig::fromJson({{"type", "adam"}, {"max_epochs", 5}, {"patience", 0}, {"error_goal", 0}});
     TrainingProgress progress;

@@ -236,11 +236,11 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     floor.inputs = DerivedInputs{false};
     floor.encoding = NetworkEncodingSettings{};
     network.options.perObject = {{"tall-box", tall}, {"floor", floor}};
-    network.options.trainer = network.options.trainer.withType("adam");
-    network.options.trainer.adam.learningRate = 3e-3;
-    network.options.trainer.adam.loss = AdamLoss::RelativeL2;
+    TrainerConfig trainer = TrainerConfig::projectDefault().withType("adam");
+    trainer.adam.learningRate = 3e-3;
+    trainer.adam.loss = AdamLoss::RelativeL2;
     p.network = network;
-    p.trainer = network.options.trainer;
+    p.trainer = trainer;
     p.prediction.direct = PredictionSettings::Direct::Exact;
     p.prediction.directSamples = 12;
     p.prediction.seed = 5;
@@ -273,8 +273,8 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     EXPECT_EQ(q.network->options.choiceFor("tall-box").hidden, (std::vector<int>{16, 8}));
     EXPECT_TRUE(q.network->options.choiceFor("tall-box").inputs.reflected) << "the section's";
     ASSERT_TRUE(q.trainer.has_value());
-    EXPECT_EQ(q.trainer->toJson(), network.trainerJson());
-    EXPECT_EQ(q.networkOrDefault().trainerJson(), network.trainerJson());
+    EXPECT_EQ(q.trainer->toJson(), trainer.toJson());
+    EXPECT_EQ(q.trainerOrDefault().toJson(), trainer.toJson());
     EXPECT_EQ(q.prediction.toJson(), p.prediction.toJson());
     ASSERT_EQ(q.runs.size(), 1u);
     EXPECT_EQ(q.runs[0].toJson(), run.toJson());
@@ -330,7 +330,7 @@ TEST(Project, NetworkWithoutTrainerStaysWithoutTrainerOnSave) {
     EXPECT_FALSE(p.trainer.has_value()) << "the file has no trainer section";
     EXPECT_EQ(p.networkOrDefault().options.hidden, (std::vector<int>{8, 4}));
     // The trainer in effect is the project default (README): Adam, relative L2, error goal 0.02, 600 epochs.
-    const TrainerConfig t = p.networkOrDefault().options.trainer;
+    const TrainerConfig t = p.trainerOrDefault();
     EXPECT_EQ(t.type, TrainerType::Adam);
     EXPECT_EQ(t.adam.loss, AdamLoss::RelativeL2);
     EXPECT_DOUBLE_EQ(t.adam.errorGoal, 0.02);
@@ -352,7 +352,7 @@ TEST(Project, TrainerWithoutNetworkStaysWithoutNetworkOnSave) {
     Project p = loadProjectOrScene(cornellWith(dir, "t.json", {{"trainer", {{"type", "adam"}, {"max_epochs", 7}}}}));
     EXPECT_FALSE(p.network.has_value());
     ASSERT_TRUE(p.trainer.has_value());
-    EXPECT_EQ(p.networkOrDefault().options.trainer.maxEpochs(), 7);
+    EXPECT_EQ(p.trainerOrDefault().maxEpochs(), 7);
     saveProject(p, dir + "/saved.json");
     const json doc = json::parse(readFile(dir + "/saved.json"));
     EXPECT_FALSE(doc.contains("network")) << doc.dump(2);

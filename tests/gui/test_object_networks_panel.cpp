@@ -47,7 +47,7 @@ TEST_F(ObjectNetworksPanelTest, SettersStoreOneSettingEachAndEmptyEntriesDisappe
     ASSERT_TRUE(setObjectEncoding(s, "short-box", "one_blob"));
     EXPECT_FALSE(setObjectEncoding(s, "short-box", "nerf")) << "an unknown name changes nothing";
     EXPECT_FALSE(setObjectHidden(s, "short-box", std::vector<int>{})) << "a network needs a hidden layer";
-    const ObjectTrainingOptions o = s.project.networkOrDefault().options;
+    const NetworkOptions o = s.project.networkOrDefault().options;
     EXPECT_FALSE(o.choiceFor("back-wall").inputs.reflected);
     EXPECT_EQ(o.choiceFor("back-wall").hidden, o.hidden) << "only the reflected input is the entry's";
     EXPECT_EQ(o.choiceFor("short-box").hidden, (std::vector<int>{32, 1})) << "sizes clamped to 1 …";
