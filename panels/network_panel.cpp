@@ -29,13 +29,14 @@ constexpr int kMaxLayers = 8;
 
 /// The settings in effect. A project without network/trainer sections keeps none until an edit.
 NetworkSettings current(const WorkbenchState& state) { return state.project.networkOrDefault(); }
+TrainerConfig currentTrainer(const WorkbenchState& state) { return state.project.trainerOrDefault(); }
 
 /// Stores the "network" part of `s` (layers, activation, targets).
 void storeNetwork(WorkbenchState& state, const NetworkSettings& s) { storeNetworkSettings(state, s); }
 
-/// Stores the trainer of `s`.
-void storeTrainer(WorkbenchState& state, const NetworkSettings& s) {
-    state.project.trainer = s.options.trainer;
+/// Stores the trainer (the project's "trainer" section).
+void storeTrainer(WorkbenchState& state, const TrainerConfig& t) {
+    state.project.trainer = t;
     state.markDirty();
 }
 
@@ -173,7 +174,7 @@ void drawEncoding(WorkbenchState& state, const NetworkSettings& s) {
         }
         ImGui::EndCombo();
     }
-    if (s.options.trainer.type == TrainerType::LevenbergMarquardt && view.hasParameters)
+    if (currentTrainer(state).type == TrainerType::LevenbergMarquardt && view.hasParameters)
         ImGui::TextColored(ImVec4(1.f, .6f, .3f, 1.f),
                            "a hash grid's tables train with Adam only: choose the Adam trainer (LM would refuse)");
     if (s.options.ensemble > 1 && view.hasParameters)
@@ -210,7 +211,7 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
         figureTextDisabled("(counted with the section's networks; %zu object%s with its own entry differ%s)",
                             s.options.perObject.size(), s.options.perObject.size() > 1 ? "s" : "",
                             s.options.perObject.size() > 1 ? "" : "s");
-    if (s.options.trainer.type == TrainerType::LevenbergMarquardt) {
+    if (currentTrainer(state).type == TrainerType::LevenbergMarquardt) {
         const long long member = (long long)networkArch(state, s, encoding).numParams();  // LM trains each member alone
         figureTextDisabled("LM solves a %lld x %lld system per step", member, member);
     }
@@ -256,10 +257,9 @@ bool setEnsemble(WorkbenchState& state, int members) {
 }
 
 bool setTrainerType(WorkbenchState& state, TrainerType type) {
-    NetworkSettings s = network_panel_detail::current(state);
-    if (s.options.trainer.type == type) return false;
-    s.options.trainer = s.options.trainer.withType(type);
-    network_panel_detail::storeTrainer(state, s);
+    const TrainerConfig t = network_panel_detail::currentTrainer(state);
+    if (t.type == type) return false;
+    network_panel_detail::storeTrainer(state, t.withType(type));
     return true;
 }
 
@@ -353,16 +353,16 @@ void drawNetworkPanel(WorkbenchState& state) {
     }
 
     ImGui::Separator();
-    int trainer = int(s.options.trainer.type);
+    TrainerConfig t = network_panel_detail::currentTrainer(state);
+    int trainer = int(t.type);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
     if (ImGui::Combo("trainer", &trainer, "Levenberg-Marquardt\0Adam\0")) {
         setTrainerType(state, TrainerType(trainer));
-        s = network_panel_detail::current(state);
+        t = network_panel_detail::currentTrainer(state);
     }
-    const bool changed = s.options.trainer.type == TrainerType::Adam
-                             ? network_panel_detail::drawAdam(s.options.trainer.adam)
-                             : network_panel_detail::drawLevenbergMarquardt(s.options.trainer.lm);
-    if (changed) network_panel_detail::storeTrainer(state, s);
+    const bool changed = t.type == TrainerType::Adam ? network_panel_detail::drawAdam(t.adam)
+                                                     : network_panel_detail::drawLevenbergMarquardt(t.lm);
+    if (changed) network_panel_detail::storeTrainer(state, t);
 
     ImGui::Separator();
     network_panel_detail::drawParameterCount(state, s);

@@ -94,7 +94,7 @@ StageEstimate trainingEstimate(const WorkbenchState& state, const SamplingSettin
 
 std::vector<StageEstimate> pipelineEstimates(const WorkbenchState& state, const PipelinePreset* preset) {
     const SamplingSettings s = preset ? presetSampling(state.project, *preset) : state.project.samplingOrDefault();
-    const ObjectTrainingOptions o = preset ? presetNetwork(state.project, *preset) : state.project.networkOrDefault().options;
+    const ObjectTrainingOptions o = preset ? presetNetwork(state.project, *preset) : state.project.trainingOptions();
     const PathRate rate = pathRateOf(state);
     return {estimateRender(state.project.render, state.project.scene, rate), dataEstimate(state, s), trainingEstimate(state, s, o),
             estimateEvaluate(state.project.render, state.project.scene, rate)};
@@ -121,7 +121,7 @@ void drawNetworkPresets(WorkbenchState& state) {
         state.markDirty();
     }
     pipeline_controls_detail::drawEstimateLine("training time",
-                                               trainingEstimate(state, s, state.project.networkOrDefault().options));
+                                               trainingEstimate(state, s, state.project.trainingOptions()));
 }
 
 std::string pipelineChoiceLabel(const std::string& preset) {

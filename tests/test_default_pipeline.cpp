@@ -30,7 +30,7 @@ Quick runQuick(const Project& p, bool decorrelateLight) {
     s.nx = s.ny = s.nz = 5;  // rrf pipeline --quick's grid and directions
     s.directions = 150;
     s.spp = s.maxSpp = 128;  // fixed, clean-enough targets: the bound does not move with the adaptive sampler
-    ObjectTrainingOptions o = p.networkOrDefault().options;
+    ObjectTrainingOptions o = p.trainingOptions();
     o.trainer.adam.maxEpochs = 150;
     const RecordLayout layout = RecordLayout::forScene(scene);
     const GeneratedData data = DataGenerator(scene, s).run();

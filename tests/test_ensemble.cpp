@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "core/nn/encoding_settings_json.h"
 #include "core/pipeline/sweep.h"
 #include "core/pipeline/sweep_values.h"
 #include "core/nn/ensemble.h"
@@ -223,7 +224,7 @@ TEST(Ensemble, ProjectSettingTrainsMergedNetworksWithTheirBudget) {
     EXPECT_EQ(s.networkJson().at("ensemble"), 3);
     EXPECT_EQ(NetworkSettings().networkJson().at("ensemble"), 1) << "one network unless asked";
 
-    ObjectTrainingOptions o = s.options;
+    ObjectTrainingOptions o(s.options, TrainerConfig::projectDefault());
     o.partition.maxLeaves = 1;
     o.trainer = TrainerConfig::fromJson({{"type", "adam"}, {"max_epochs", 5}, {"patience", 0}, {"error_goal", 0}});
     TrainingProgress progress;
@@ -271,7 +272,7 @@ TEST(Ensemble, RefusalsNameTheSetting) {
     // kind) and training refuse it, naming the setting. A project file may hold the pair (the panel
     // edits one setting at a time), as it may hold a hash grid under Levenberg–Marquardt.
     EXPECT_NO_THROW(NetworkSettings::fromJson(
-        JsonReader(nlohmann::json{{"ensemble", 2}, {"encoding", encodingPresetSettings("hash_grid")}}, "project.json", "/network"),
+        JsonReader(nlohmann::json{{"ensemble", 2}, {"encoding", encodingSettingsJson(encodingPresetSettings("hash_grid"))}}, "project.json", "/network"),
         NetworkSettings()));
     SweepOptions sweep;
     sweep.what = "ensemble";

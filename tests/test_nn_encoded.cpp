@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include "core/nn/encoding_settings_json.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/model.h"
 #include "core/nn/network_settings.h"
@@ -26,11 +27,11 @@ namespace fs = std::filesystem;
 namespace {
 
 /// A small hash grid over position and frequencies over light (1 + 2·2 features per light input).
-nlohmann::json smallEncoding() {
-    return nlohmann::json::array(
+NetworkEncodingSettings smallEncoding() {
+    return encodingSettingsFromJson(nlohmann::json::array(
         {{{"type", "hash_grid"}, {"inputs", "position"}, {"levels", 3}, {"log2_table_size", 10},
           {"features_per_level", 2}, {"base_resolution", 4}, {"growth", 2.0}},
-         {{"type", "frequency"}, {"inputs", "light"}, {"frequencies", 2}, {"include_input", true}}});
+         {{"type", "frequency"}, {"inputs", "light"}, {"frequencies", 2}, {"include_input", true}}}));
 }
 
 /// `n` records of 15 inputs whose positions lie in [lo, hi]³ (raw units), targets smooth in them.
@@ -245,7 +246,7 @@ TEST(NetworkSettingsEncoding, JsonRoundTripsAndNamesBadValues) {
     EXPECT_EQ(back.options.encoding, s.options.encoding);
     EXPECT_EQ(back.networkJson(), j);
     EXPECT_EQ(encodingPresetName(back.options.encoding), "hash_grid_one_blob");
-    EXPECT_EQ(encodingPresetName(nlohmann::json::array()), "raw");
+    EXPECT_EQ(encodingPresetName(NetworkEncodingSettings{}), "raw");
 
     nlohmann::json bad = j;
     bad["encoding"][0]["levls"] = 4;
@@ -257,6 +258,28 @@ TEST(NetworkSettingsEncoding, JsonRoundTripsAndNamesBadValues) {
         EXPECT_NE(e.where().find("/network/encoding/0"), std::string::npos) << e.what();
     }
     EXPECT_THROW(encodingPresetSettings("nerf"), SettingError);
+}
+
+TEST(NetworkSettingsEncoding, NamedEncodingsWriteTheArraysTheyStandFor) {
+    // The named encodings are typed values; what a project, model index or run record stores of
+    // them is the array each stood for when it was written as JSON.
+    const std::pair<const char*, const char*> arrays[] = {
+        {"raw", "[]"},
+        {"frequency", R"([{"type": "frequency", "inputs": ["position", "light"], "frequencies": 4, "include_input": true}])"},
+        {"one_blob", R"([{"type": "one_blob", "inputs": ["position", "view", "light", "normal"], "bins": 16}])"},
+        {"hash_grid", R"([{"type": "hash_grid", "inputs": "position", "levels": 8, "log2_table_size": 12,
+                           "features_per_level": 2, "base_resolution": 4, "growth": 1.5}])"},
+        {"hash_grid_one_blob", R"([{"type": "hash_grid", "inputs": "position", "levels": 8, "log2_table_size": 12,
+                                    "features_per_level": 2, "base_resolution": 4, "growth": 1.5},
+                                   {"type": "one_blob", "inputs": ["view", "light", "normal"], "bins": 16}])"},
+    };
+    ASSERT_EQ(encodingPresets().size(), std::size(arrays));
+    for (const auto& [name, text] : arrays) {
+        const nlohmann::json written = nlohmann::json::parse(text);
+        EXPECT_EQ(encodingSettingsJson(encodingPresetSettings(name)).dump(), written.dump()) << name;
+        EXPECT_EQ(encodingSettingsFromJson(written), encodingPresetSettings(name)) << name << ": read back";
+        EXPECT_EQ(encodingPresetName(encodingSettingsFromJson(written)), name);
+    }
 }
 
 }  // namespace test_nn_encoded

@@ -6,6 +6,7 @@
 
 #include <tbb/global_control.h>
 
+#include "core/nn/encoding_settings_json.h"
 #include "core/nn/model.h"
 #include "core/nn/object_training.h"
 #include "core/nn/training_samples.h"
@@ -185,7 +186,7 @@ TEST(ObjectTraining, PerObjectEntriesChangeTheirObjectsNetworksOnly) {
     rrf::ObjectNetworkOverride entry;
     entry.hidden = std::vector<int>{6, 3};
     entry.inputs = rrf::DerivedInputs{true};
-    entry.encoding = nlohmann::json::parse(R"([{"type": "one_blob", "inputs": "reflected", "bins": 4}])");
+    entry.encoding = rrf::encodingSettingsFromJson(nlohmann::json::parse(R"([{"type": "one_blob", "inputs": "reflected", "bins": 4}])"));
     o.perObject["object1"] = entry;
     o.perObject["not-in-the-data"] = entry;  // names no trained object: changes nothing
     const std::vector<rrf::ObjectModel> r = rrf::trainObjects(objs, o);

@@ -133,7 +133,7 @@ TEST(PipelineStages, TrainFromDatasetRecordsWhatItTrainedAndReadsTheModelsBack) 
 
     const Dataset data(g.datasetPath, true, p.scene.contentHash());
     TrainRequest t;
-    t.settings.options = tinyTraining();
+    t.options = tinyTraining();
     t.sampling = tinySampling();
     t.sceneHash = p.scene.contentHash();
     t.modelsDir = (dir / "models").string();
@@ -188,7 +188,7 @@ TEST(PipelineStages, ShareTrainsOnlyItsObjectsAndOnlyTheSaverWrites) {
     const std::vector<ObjectSamples> samples = samplesFromGenerated(generated.data, p.scene, generator.layout());
     FirstObjectShare share;
     TrainRequest t;
-    t.settings.options = tinyTraining();
+    t.options = tinyTraining();
     t.sceneHash = p.scene.contentHash();
     t.modelsDir = (dir / "models").string();
     t.share = &share;
@@ -213,7 +213,7 @@ TEST(PipelineStages, CancelledTrainingIsRecordedAsStopped) {
     StageObserver observer;
     observer.cancel = &cancel;
     TrainRequest t;
-    t.settings.options = tinyTraining();
+    t.options = tinyTraining();
     const TrainOutcome out = trainStage(samples, t, observer);
     EXPECT_TRUE(out.run.cancelled);
     EXPECT_TRUE(out.record.stopped);

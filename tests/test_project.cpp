@@ -8,6 +8,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
+#include "core/nn/encoding_settings_json.h"
 #include "core/project/project.h"
 #include "core/project/scene_edits.h"
 #include "core/util/json_reader.h"
@@ -227,18 +228,19 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     network.options.activation = Activation::Relu;
     network.options.targets = TargetMode::Joint;
     network.options.inputs.reflected = true;
-    network.options.encoding = json::parse(R"([{"type": "frequency", "inputs": "reflected", "frequencies": 2}])");
+    network.options.encoding =
+        encodingSettingsFromJson(json::parse(R"([{"type": "frequency", "inputs": "reflected", "frequencies": 2}])"));
     ObjectNetworkOverride tall;
     tall.hidden = std::vector<int>{16, 8};
     ObjectNetworkOverride floor;
     floor.inputs = DerivedInputs{false};
-    floor.encoding = json::array();
+    floor.encoding = NetworkEncodingSettings{};
     network.options.perObject = {{"tall-box", tall}, {"floor", floor}};
-    network.options.trainer = network.options.trainer.withType("adam");
-    network.options.trainer.adam.learningRate = 3e-3;
-    network.options.trainer.adam.loss = AdamLoss::RelativeL2;
+    TrainerConfig trainer = TrainerConfig::projectDefault().withType("adam");
+    trainer.adam.learningRate = 3e-3;
+    trainer.adam.loss = AdamLoss::RelativeL2;
     p.network = network;
-    p.trainer = network.options.trainer;
+    p.trainer = trainer;
     p.prediction.direct = PredictionSettings::Direct::Exact;
     p.prediction.directSamples = 12;
     p.prediction.seed = 5;
@@ -271,8 +273,8 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     EXPECT_EQ(q.network->options.choiceFor("tall-box").hidden, (std::vector<int>{16, 8}));
     EXPECT_TRUE(q.network->options.choiceFor("tall-box").inputs.reflected) << "the section's";
     ASSERT_TRUE(q.trainer.has_value());
-    EXPECT_EQ(q.trainer->toJson(), network.trainerJson());
-    EXPECT_EQ(q.networkOrDefault().trainerJson(), network.trainerJson());
+    EXPECT_EQ(q.trainer->toJson(), trainer.toJson());
+    EXPECT_EQ(q.trainerOrDefault().toJson(), trainer.toJson());
     EXPECT_EQ(q.prediction.toJson(), p.prediction.toJson());
     ASSERT_EQ(q.runs.size(), 1u);
     EXPECT_EQ(q.runs[0].toJson(), run.toJson());
@@ -283,6 +285,30 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     EXPECT_EQ(q.scene.contentHash(), p.scene.contentHash()) << "the overrides are applied at load";
     EXPECT_EQ(q.otherSections, p.otherSections);
     EXPECT_EQ(q.render.spp, p.render.spp);
+}
+
+TEST(Project, EncodingIsWrittenAsItWasRead) {
+    // Typed at load, the setting still writes the JSON it read: the keys the file left out stay out
+    // (their defaults apply), a lone group keeps its spelling, and so do the objects' entries.
+    const std::string dir = freshDir("encoding_spelling");
+    const json encoding = json::parse(R"([{"type": "hash_grid", "inputs": ["position"], "levels": 4, "growth": 2.5},
+                                           {"type": "one_blob", "inputs": "view"},
+                                           {"type": "frequency", "inputs": ["light", "normal"], "include_input": false}])");
+    const json entry = json::parse(R"([{"type": "one_blob", "inputs": ["normal"], "bins": 8}])");
+    Project p = loadProjectOrScene(cornellWith(
+        dir, "spelled.json", {{"network", {{"encoding", encoding}, {"objects", {{"floor", {{"encoding", entry}}}}}}}}));
+    ASSERT_TRUE(p.network.has_value());
+    const NetworkEncodingSettings& e = p.network->options.encoding;
+    ASSERT_EQ(e.size(), 3u);
+    EXPECT_EQ(std::get<HashGridSettings>(e[0].params).levels, 4);
+    EXPECT_EQ(std::get<HashGridSettings>(e[0].params).log2TableSize, HashGridSettings().log2TableSize) << "a default";
+    EXPECT_EQ(std::get<OneBlobSettings>(e[1].params).bins, OneBlobSettings().bins);
+    EXPECT_FALSE(std::get<FrequencySettings>(e[2].params).includeInput);
+    EXPECT_EQ(p.network->networkJson().at("encoding"), encoding);
+    saveProject(p, dir + "/saved.json");
+    const json saved = readJsonFile(dir + "/saved.json");
+    EXPECT_EQ(saved.at("network").at("encoding"), encoding);
+    EXPECT_EQ(saved.at("network").at("objects").at("floor").at("encoding"), entry);
 }
 
 TEST(Project, AbsentSectionsStayAbsentOnSave) {
@@ -304,7 +330,7 @@ TEST(Project, NetworkWithoutTrainerStaysWithoutTrainerOnSave) {
     EXPECT_FALSE(p.trainer.has_value()) << "the file has no trainer section";
     EXPECT_EQ(p.networkOrDefault().options.hidden, (std::vector<int>{8, 4}));
     // The trainer in effect is the project default (README): Adam, relative L2, error goal 0.02, 600 epochs.
-    const TrainerConfig t = p.networkOrDefault().options.trainer;
+    const TrainerConfig t = p.trainerOrDefault();
     EXPECT_EQ(t.type, TrainerType::Adam);
     EXPECT_EQ(t.adam.loss, AdamLoss::RelativeL2);
     EXPECT_DOUBLE_EQ(t.adam.errorGoal, 0.02);
@@ -326,7 +352,7 @@ TEST(Project, TrainerWithoutNetworkStaysWithoutNetworkOnSave) {
     Project p = loadProjectOrScene(cornellWith(dir, "t.json", {{"trainer", {{"type", "adam"}, {"max_epochs", 7}}}}));
     EXPECT_FALSE(p.network.has_value());
     ASSERT_TRUE(p.trainer.has_value());
-    EXPECT_EQ(p.networkOrDefault().options.trainer.maxEpochs(), 7);
+    EXPECT_EQ(p.trainerOrDefault().maxEpochs(), 7);
     saveProject(p, dir + "/saved.json");
     const json doc = json::parse(readFile(dir + "/saved.json"));
     EXPECT_FALSE(doc.contains("network")) << doc.dump(2);
@@ -419,6 +445,18 @@ TEST(Project, BadValueInEachSettingsSectionIsReportedAtLoad) {
                        {"encoding", {{{"type", "one_blob"}, {"inputs", "reflected"}}}},
                        {"objects", {{"floor", {{"inputs", {{"reflected", false}}}}}}}}}},
          "/network/objects/floor/inputs: the section's \"encoding\" reads an input this entry turns off"},
+        // The encoding setting is typed at load (nn/encoding_settings_json.h): unknown and mistyped keys
+        // of a component are errors naming their pointer, in the section and in an "objects" entry.
+        {{{"network", {{"encoding", {{{"type", "one_blob"}, {"inputs", "view"}, {"bin", 8}}}}}}},
+         "/network/encoding/0/bin: unknown key 'bin'"},
+        {{{"network", {{"encoding", {{{"type", "hash_grid"}, {"inputs", "position"}, {"levels", "many"}}}}}}},
+         "/network/encoding/0/levels: expected integer, got string"},
+        {{{"network", {{"encoding", {{{"type", "fourier"}, {"inputs", "view"}}}}}}},
+         "/network/encoding/0/type: unknown encoding type 'fourier'"},
+        {{{"network", {{"objects", {{"tall-box", {{"encoding", {{{"type", "frequency"}, {"inputs", "view"}, {"include_input", 1}}}}}}}}}}},
+         "/network/objects/tall-box/encoding/0/include_input: expected true or false, got number"},
+        {{{"network", {{"objects", {{"tall-box", {{"encoding", {{{"type", "one_blob"}, {"inputs", "view"}, {"levels", 4}}}}}}}}}}},
+         "/network/objects/tall-box/encoding/0/levels: unknown key 'levels'"},
     };
     int i = 0;
     for (const auto& [sections, expected] : cases) {

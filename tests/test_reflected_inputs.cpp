@@ -78,7 +78,7 @@ double lobeError(const DerivedInputs& derived) {
     MatX<float> x, y, xt, yt;
     lobeRecords(6000, 1, x, y);
     lobeRecords(3000, 2, xt, yt);
-    const InputEncoding e = networkEncoding(json::array(), 15, derived);
+    const InputEncoding e = networkEncoding(NetworkEncodingSettings{}, 15, derived);
     MlpArch a;
     a.inputs = e.outputs();
     a.hidden = {16, 8};
@@ -163,7 +163,7 @@ TEST(DerivedInputs, ReflectedGroupFollowsTheRecordInputsAndNeedsTheInput) {
     EXPECT_EQ(e.outputs(), 3 * 4 + 19);
     EXPECT_EQ(e.describe(), "frequency(reflected) +reflected");
     // Not encoded: the three rows pass through after the record inputs.
-    const InputEncoding id = networkEncoding(json::array(), 15, DerivedInputs{true});
+    const InputEncoding id = networkEncoding(NetworkEncodingSettings{}, 15, DerivedInputs{true});
     EXPECT_TRUE(id.isIdentity());
     EXPECT_EQ(id.outputs(), 18);
     const InputEncoding other = parseWith(R"([{"type": "one_blob", "inputs": "view", "bins": 4}])", 15, DerivedInputs{true});
@@ -230,7 +230,7 @@ TEST(DerivedInputs, EncodingGradientsOnTheReflectedRowsMatchFiniteDifferences) {
 
 TEST(DerivedInputs, PredictionDerivesTheRowsFromTheRawRecords) {
     MatX<float> x;
-    const NetworkModel m = smallModel(networkEncoding(json::array(), 15, DerivedInputs{true}), 400, 6, 3, 5, x);
+    const NetworkModel m = smallModel(networkEncoding(NetworkEncodingSettings{}, 15, DerivedInputs{true}), 400, 6, 3, 5, x);
     EXPECT_EQ(m.arch.inputs, 18);
     EXPECT_EQ(m.rawInputs(), 15);
     EXPECT_EQ(m.scaledInputs(), 18);
@@ -274,7 +274,7 @@ TEST(DerivedInputs, ModelFileRoundTripKeepsTheInputAndOlderFilesReadAsBefore) {
 
 TEST(DerivedInputs, AModelFileWithABadDerivedEntryNamesItsField) {
     MatX<float> x;
-    const NetworkModel m = smallModel(networkEncoding(json::array(), 15, DerivedInputs{true}), 50, 3, 1, 9, x);
+    const NetworkModel m = smallModel(networkEncoding(NetworkEncodingSettings{}, 15, DerivedInputs{true}), 50, 3, 1, 9, x);
     // Turning the input off in the header leaves a payload three scaler rows too long: refused, not
     // misread; a value of the wrong type or an unknown key names the field.
     const std::string bytes = modelFileBytes(m);

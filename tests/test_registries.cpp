@@ -45,6 +45,11 @@ TEST(EncodingRegistry, EveryTypeReadsItsNameAndWritesExactlyItsKeys) {
         ASSERT_EQ(e.components.size(), 1u);
         EXPECT_EQ(std::string(e.components[0].encoding->typeName()), t->name);
         EXPECT_EQ(&encodingTypeOf(*e.components[0].encoding), t);
+        // A typed setting's alternative is its type's row (encodings/encoding_params.h).
+        const json empty = json::object();
+        EXPECT_EQ(&encodingTypeOf(t->readParams(JsonReader(empty, "test.json"))), t);
+        EXPECT_EQ(keysOf(t->writeParams(t->readParams(JsonReader(empty, "test.json")))),
+                  std::set<std::string>(t->keys.begin(), t->keys.end()));
         // The keys the reader allows are the keys the implementation writes.
         EXPECT_EQ(keysOf(e.components[0].encoding->settingsJson()), std::set<std::string>(t->keys.begin(), t->keys.end()));
     }

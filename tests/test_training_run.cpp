@@ -68,18 +68,18 @@ TEST(TrainingRun, SavedModelSetRecordsWhereTheRunCameFrom) {
     o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 2}});
     const TrainingRun run = trainNetworks({syntheticObject(0, 60)}, o);
     NetworkSettings settings;
-    settings.options = o;
+    settings.options = o.network();
     const std::filesystem::path dir =
         std::filesystem::temp_directory_path() / ("rrf_training_run_" + std::to_string(::getpid()));
     std::vector<std::string> layout;
     for (int i = 0; i < 14; ++i) layout.push_back("in" + std::to_string(i));
-    saveTrainingRun(dir.string(), run, settings, 0x1234, layout, {"data/dataset.rrfd", "project.json"});
+    saveTrainingRun(dir.string(), run, o, 0x1234, layout, {"data/dataset.rrfd", "project.json"});
     const ModelSet set = loadModelSet(dir.string(), 0x1234);
     EXPECT_EQ(set.inputLayout, layout);
     EXPECT_EQ(set.index.at("dataset"), "data/dataset.rrfd");
     EXPECT_EQ(set.index.at("project"), "project.json");
     EXPECT_EQ(set.index.at("network"), settings.networkJson());
-    EXPECT_EQ(set.index.at("trainer"), settings.trainerJson());
+    EXPECT_EQ(set.index.at("trainer"), o.trainer.toJson());
     EXPECT_EQ(set.index.at("seconds").get<double>(), run.seconds);
     EXPECT_EQ(set.index.at("cancelled"), false);
     std::filesystem::remove_all(dir);

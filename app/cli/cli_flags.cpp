@@ -167,7 +167,7 @@ void addExperimentFlags(CLI::App* cmd, ExperimentFlags& flags) {
 void experimentSettings(const Project& p, const ExperimentFlags& flags, const PipelinePreset* preset, SamplingSettings& s,
                         ObjectTrainingOptions& t) {
     s = preset ? presetSampling(p, *preset) : p.samplingOrDefault();
-    t = preset ? presetNetwork(p, *preset) : p.networkOrDefault().options;
+    t = preset ? presetNetwork(p, *preset) : p.trainingOptions();
     flags.sampling.applyTo(s);
     flags.network.applyTo(t);
 }

@@ -70,8 +70,7 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
     std::vector<std::string> inputs = projectInputs(project);
     inputs.push_back(a.data);
     refuseOverwritingInputs(a.out, inputs);
-    NetworkSettings settings = project.networkOrDefault();
-    ObjectTrainingOptions& o = settings.options;
+    ObjectTrainingOptions o = project.trainingOptions();
     a.network.applyTo(o);
     if (!a.objects.empty()) o.objects = objectIds(a.objects, project.scene);
     auto threads = limitThreads(a.threads);
@@ -111,7 +110,7 @@ int runTrain(const TrainArgs& a, std::optional<Run> record) {
         std::fflush(stdout);
     };
     TrainRequest request;
-    request.settings = settings;
+    request.options = o;
     request.sampling = project.sampling;
     request.sceneHash = project.scene.contentHash();
     request.modelsDir = a.out;

@@ -173,7 +173,7 @@ bool EvaluationController::startSweep(const std::string& what) {
     try {
         defaultSweepValues(what);  // validates the kind
         o.sampling = state_.project.samplingOrDefault();
-        o.training = state_.project.networkOrDefault().options;
+        o.training = state_.project.trainingOptions();
         o.prediction = state_.project.prediction;
     } catch (const std::exception& e) {
         state_.log.error(std::string("sweep: ") + e.what());

@@ -198,7 +198,7 @@ bool Script::execute(Workbench& wb, const json& s) {
         }
         if (r.has("trainer")) {
             const std::string type = r.choiceOr("trainer", "", trainerTypeNames());
-            st.project.trainer = st.project.networkOrDefault().options.trainer.withType(type);
+            st.project.trainer = st.project.trainerOrDefault().withType(type);
             st.markDirty();
         }
         // "refused": true expects the workbench to refuse (e.g. no dataset yet) and say why.
@@ -238,7 +238,7 @@ bool Script::execute(Workbench& wb, const json& s) {
                 NetworkSettings::fromJson(JsonReader(network, r.file(), r.pointer()), st.project.networkOrDefault());
         }
         if (r.has("epochs")) {
-            TrainerConfig t = st.project.networkOrDefault().options.trainer;
+            TrainerConfig t = st.project.trainerOrDefault();
             const int epochs = intOr(r, "epochs", 1);
             for (TrainerCommon* c : t.everyTrainer()) c->maxEpochs = epochs;
             st.project.trainer = t;

@@ -184,8 +184,8 @@ bool TrainingController::startTrain(int maxEpochs, StageDone done) {
     job.runId = newRunId(state.project.runs, "train");
     job.modelsDir = (fs::path(ctx_.projectDir()) / "runs" / job.runId / "models").string();
     TrainRequest request;
-    request.settings = state.project.networkOrDefault();
-    auto& trainer = request.settings.options.trainer;
+    request.options = state.project.trainingOptions();
+    auto& trainer = request.options.trainer;
     if (maxEpochs > 0)
         for (TrainerCommon* c : trainer.everyTrainer()) c->maxEpochs = maxEpochs;
     request.sampling = state.project.sampling;
@@ -195,7 +195,7 @@ bool TrainingController::startTrain(int maxEpochs, StageDone done) {
     request.readBack = true;
     std::vector<std::string> names;
     for (const Object& o : state.project.scene.objects) names.push_back(o.name);
-    const ObjectTrainingOptions& o = request.settings.options;
+    const ObjectTrainingOptions& o = request.options;
     const std::string name = "train " + hiddenSizesText(o.hidden) +
                              (o.ensemble > 1 ? " x" + std::to_string(o.ensemble) : std::string()) + " " + o.trainer.typeName();
     auto live = std::make_shared<TrainingLive>();

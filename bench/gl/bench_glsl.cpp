@@ -38,6 +38,7 @@
 #include "core/data/record_layout.h"
 #include "core/nn/encoding.h"
 #include "core/nn/encoding_presets.h"
+#include "core/nn/encoding_settings_json.h"
 
 using namespace rrf;
 
@@ -46,7 +47,7 @@ namespace {
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 NetworkModel untrained(const Scene& scene, int object, const std::string& target, const std::vector<int>& hidden,
-                       const nlohmann::json& encoding = nlohmann::json::array()) {
+                       const NetworkEncodingSettings& encoding = {}) {
     NetworkModel m;
     const int inputs = RecordLayout::forScene(scene).inputCount();
     m.encoding = networkEncoding(encoding, inputs);
@@ -63,7 +64,7 @@ NetworkModel untrained(const Scene& scene, int object, const std::string& target
 }
 
 ModelSet untrainedSet(const Scene& scene, const std::vector<int>& hidden, const std::vector<std::string>& targets,
-                      const nlohmann::json& encoding = nlohmann::json::array()) {
+                      const NetworkEncodingSettings& encoding = {}) {
     ModelSet set;
     for (const Object& o : scene.objects) {
         ObjectNetworks on;
@@ -239,12 +240,12 @@ int main(int argc, char** argv) {
                     row("20-10 indirect, exact direct " + std::to_string(n), untrainedSet(scene, {20, 10}, {"indirect"}), n);
             }
             // Encoded networks, each beside the raw network of the same hidden sizes (global target).
-            std::vector<std::pair<std::string, nlohmann::json>> encodings;
+            std::vector<std::pair<std::string, NetworkEncodingSettings>> encodings;
             if (encodingText.empty()) {
                 for (const EncodingPreset& e : encodingPresets())
                     if (!e.settings.empty()) encodings.emplace_back(e.name, e.settings);
             } else if (!encodingText.empty() && encodingText.front() == '[') {
-                encodings.emplace_back("--encoding", nlohmann::json::parse(encodingText));
+                encodings.emplace_back("--encoding", encodingSettingsFromJson(nlohmann::json::parse(encodingText), "--encoding"));
             } else {
                 encodings.emplace_back(encodingText, encodingPresetSettings(encodingText, "--encoding"));
             }

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "core/nn/encoding_settings_json.h"
 #include "core/nn/encodings/registry.h"
 #include "core/util/error.h"
 
@@ -16,13 +17,6 @@ struct InputGroup {
 };
 constexpr InputGroup kGroups[] = {{"position", 0, 3}, {"view", 3, 3}, {"light", 6, 3}, {"normal", 9, 3}, {"brdf", 12, -1}};
 constexpr int kGeometryInputs = 12;
-
-/// Keys a component object of type `t` may have: "type", "inputs" and its hyperparameters.
-std::vector<std::string> componentKeys(const EncodingType& t) {
-    std::vector<std::string> keys = {"type", "inputs"};
-    keys.insert(keys.end(), t.keys.begin(), t.keys.end());
-    return keys;
-}
 
 /// The component's inputs as one contiguous block of rows, if they are (first row), else −1.
 int contiguousStart(const EncodingComponent& c) {
@@ -177,61 +171,7 @@ template void InputEncoding::backwardInputs<double>(const double*, const Eigen::
                                                     const Eigen::Ref<const MatX<double>>&, MatX<double>&) const;
 
 InputEncoding InputEncoding::fromJson(const JsonReader& r, int inputs, const DerivedInputs& derived) {
-    InputEncoding e;
-    e.inputs = inputs;
-    e.derived = derived;
-    const size_t count = r.requireArray();
-    std::vector<int> encodedBy(size_t(e.scaledInputs()), -1);  // component reading each input, −1: none yet
-    int64_t offset = 0;
-    for (size_t k = 0; k < count; ++k) {
-        const JsonReader cr = r.at(k);
-        cr.requireObject();
-        const JsonReader typeReader = cr.at("type");
-        const std::string typeName = typeReader.string();
-        const EncodingType* type = findEncodingType(typeName);
-        if (!type) typeReader.fail("unknown encoding type '" + typeName + "' (expected " + encodingTypeNames() + ")");
-        cr.checkKeys(componentKeys(*type));
-
-        EncodingComponent c;
-        const JsonReader in = cr.at("inputs");
-        std::vector<JsonReader> groupReaders;
-        if (in.value().is_string()) {
-            groupReaders.push_back(in);
-        } else {
-            if (!in.isArray()) in.fail("expected an input group name or an array of them, got " + JsonReader::describe(in.value()));
-            if (in.requireArray() == 0) in.fail("expected at least one input group");
-            for (size_t g = 0; g < in.value().size(); ++g) groupReaders.push_back(in.at(g));
-        }
-        for (const JsonReader& gr : groupReaders) {
-            const std::string group = gr.string();
-            std::vector<int> idx;
-            try {
-                idx = encodingGroupInputs(group, inputs, derived);
-            } catch (const std::invalid_argument& err) {
-                gr.fail(err.what());
-            }
-            if (idx.empty()) gr.fail("input group '" + group + "' is empty (the scene's materials have no BRDF parameters)");
-            for (int i : idx) {
-                if (encodedBy[size_t(i)] == int(k)) gr.fail("input group '" + group + "' is named twice");
-                if (encodedBy[size_t(i)] >= 0)
-                    gr.fail("input group '" + group + "' is already encoded by component " +
-                            std::to_string(encodedBy[size_t(i)]) + " (a group may be encoded once)");
-                encodedBy[size_t(i)] = int(k);
-            }
-            c.groups.push_back(group);
-            c.inputs.insert(c.inputs.end(), idx.begin(), idx.end());
-        }
-
-        const int dims = int(c.inputs.size());
-        if (dims > type->maxInputs)
-            in.fail("a " + std::string(type->name) + " reads at most " + std::to_string(type->maxInputs) +
-                    " inputs, these groups have " + std::to_string(dims));
-        c.encoding = type->fromJson(cr, dims);
-        c.paramOffset = offset;
-        offset += c.encoding->numParams();
-        e.components.push_back(std::move(c));
-    }
-    return e;
+    return buildInputEncoding(readEncodingSettings(r), inputs, derived, failAtReader(r));
 }
 
 nlohmann::json InputEncoding::toJson() const {

@@ -2,34 +2,40 @@
 
 #include "core/nn/ensemble.h"
 #include "core/util/error.h"
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
 namespace {
-using nlohmann::json;
 
 /// instant-NGP's grid scaled to the radiance networks' data (about 10^4–10^5 records per object):
 /// 8 levels from 4 to 4·1.5^7 ≈ 68 cells per axis, 2^12 entries of 2 features per level (65 536
 /// parameters, 512 KiB as float64 per network), so a coarse level is dense and a fine one hashed.
-json hashGridOverPosition() {
-    return {{"type", "hash_grid"},      {"inputs", "position"},    {"levels", 8},  {"log2_table_size", 12},
-            {"features_per_level", 2}, {"base_resolution", 4},     {"growth", 1.5}};
+EncodingSettings hashGridOverPosition() {
+    HashGridSettings g;
+    g.levels = 8;
+    g.log2TableSize = 12;
+    g.featuresPerLevel = 2;
+    g.baseResolution = 4;
+    g.growth = 1.5;
+    return encodingComponent(g, {"position"});
 }
+
+/// B one-blob bins per input over `groups`.
+EncodingSettings oneBlob(std::vector<std::string> groups) { return encodingComponent(OneBlobSettings{16}, std::move(groups)); }
+
 }  // namespace
 
 const std::vector<EncodingPreset>& encodingPresets() {
     static const std::vector<EncodingPreset> presets = {
-        {"raw", "the normalised inputs themselves (Ren et al. 2013)", json::array()},
+        {"raw", "the normalised inputs themselves (Ren et al. 2013)", {}},
         {"frequency", "sin/cos of 2^k*pi*x, k < 4, over position and light (NeRF), the rest raw",
-         json::array({{{"type", "frequency"}, {"inputs", {"position", "light"}}, {"frequencies", 4}, {"include_input", true}}})},
+         {encodingComponent(FrequencySettings{4, true}, {"position", "light"})}},
         {"one_blob", "16 one-blob bins per input over position, view, light and normal (NRC), the rest raw",
-         json::array({{{"type", "one_blob"}, {"inputs", {"position", "view", "light", "normal"}}, {"bins", 16}}})},
+         {oneBlob({"position", "view", "light", "normal"})}},
         {"hash_grid", "a trainable multiresolution hash grid over position (instant-NGP; adam only), the rest raw",
-         json::array({hashGridOverPosition()})},
+         {hashGridOverPosition()}},
         {"hash_grid_one_blob", "the hash grid over position, 16 one-blob bins over view, light and normal (adam only)",
-         json::array({hashGridOverPosition(),
-                      {{"type", "one_blob"}, {"inputs", {"view", "light", "normal"}}, {"bins", 16}}})},
+         {hashGridOverPosition(), oneBlob({"view", "light", "normal"})}},
     };
     return presets;
 }
@@ -40,7 +46,7 @@ const EncodingPreset* findEncodingPreset(const std::string& name) {
     return nullptr;
 }
 
-nlohmann::json encodingPresetSettings(const std::string& name, const std::string& setting) {
+NetworkEncodingSettings encodingPresetSettings(const std::string& name, const std::string& setting) {
     if (const EncodingPreset* p = findEncodingPreset(name)) return p->settings;
     throw SettingError(setting, "unknown encoding '" + name + "' (expected one of " + encodingPresetNames(", ") + ")");
 }
@@ -51,45 +57,25 @@ std::string encodingPresetNames(const char* separator) {
     return names;
 }
 
-std::string encodingPresetName(const nlohmann::json& encoding) {
-    const bool empty = encoding.is_null() || (encoding.is_array() && encoding.empty());
-    for (const EncodingPreset& p : encodingPresets()) {
-        if (empty && p.settings.empty()) return p.name;
-        if (!empty && encoding == p.settings) return p.name;
-    }
-    // A project's array may spell a named one with every key written (a saved model's toJson()).
-    if (!empty && encoding.is_array()) try {
-            const json written = networkEncoding(encoding, kEncodingCheckInputs).toJson();
-            for (const EncodingPreset& p : encodingPresets())
-                if (!p.settings.empty() && networkEncoding(p.settings, kEncodingCheckInputs).toJson() == written)
-                    return p.name;
-        } catch (const InputError&) {
-        }
+std::string encodingPresetName(const NetworkEncodingSettings& encoding) {
+    // A project's array may spell a named one with every key written (a saved model's components).
+    for (const EncodingPreset& p : encodingPresets())
+        if (sameEncoding(encoding, p.settings)) return p.name;
     return "";
 }
 
-InputEncoding networkEncoding(const nlohmann::json& encoding, int inputs, const DerivedInputs& derived) {
-    if (encoding.is_null() || (encoding.is_array() && encoding.empty())) {
-        InputEncoding identity;
-        identity.inputs = inputs;
-        identity.derived = derived;
-        return identity;
-    }
-    try {
-        return InputEncoding::fromJson(JsonReader(encoding, "settings", "/network/encoding"), inputs, derived);
-    } catch (const InputError& e) {
-        throw SettingError(kEncodingSetting, e.where() + ": " + e.detail() + " (records of " + std::to_string(inputs) +
-                                                 " inputs)");
-    } catch (const std::invalid_argument& e) {
-        throw SettingError(kEncodingSetting, e.what());
-    }
+InputEncoding networkEncoding(const NetworkEncodingSettings& encoding, int inputs, const DerivedInputs& derived) {
+    return buildInputEncoding(encoding, inputs, derived, [inputs](const std::string& at, const std::string& what) {
+        throw SettingError(kEncodingSetting, "/network/encoding" + at + ": " + what + " (records of " +
+                                                 std::to_string(inputs) + " inputs)");
+    });
 }
 
-bool encodingHasParameters(const nlohmann::json& encoding) {
+bool encodingHasParameters(const NetworkEncodingSettings& encoding) {
     return networkEncoding(encoding, kEncodingCheckInputs, kEncodingCheckDerived).numParams() > 0;
 }
 
-void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& trainer) {
+void checkEncodingTrainer(const NetworkEncodingSettings& encoding, const TrainerConfig& trainer) {
     if (trainer.type == TrainerType::Adam || !encodingHasParameters(encoding)) return;
     throw SettingError(kEncodingSetting, "the encoding " + networkEncoding(encoding, kEncodingCheckInputs, kEncodingCheckDerived).describe() +
                                              " has trainable parameters, which only the adam trainer trains (trainer.type is " +
@@ -97,13 +83,13 @@ void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& t
                                              "does not fit in memory)");
 }
 
-void checkEnsembleEncoding(const nlohmann::json& encoding, int ensemble) {
+void checkEnsembleEncoding(const NetworkEncodingSettings& encoding, int ensemble) {
     if (ensemble <= 1 || !encodingHasParameters(encoding)) return;
     throw SettingError("network.ensemble",
                        ensembleEncodingRefusal(networkEncoding(encoding, kEncodingCheckInputs, kEncodingCheckDerived).describe(), ensemble));
 }
 
-EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inputs, const DerivedInputs& derived) {
+EncodingSettingView viewEncodingSetting(const NetworkEncodingSettings& encoding, int inputs, const DerivedInputs& derived) {
     EncodingSettingView v;
     v.presetName = encodingPresetName(encoding);
     try {
@@ -122,7 +108,7 @@ EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inpu
     return v;
 }
 
-bool setNamedEncoding(nlohmann::json& encoding, const std::string& name) {
+bool setNamedEncoding(NetworkEncodingSettings& encoding, const std::string& name) {
     const EncodingPreset* preset = findEncodingPreset(name);
     if (!preset || encoding == preset->settings) return false;
     encoding = preset->settings;

@@ -1,6 +1,7 @@
 #pragma once
 /// The input encoding of a project's networks as a setting (docs/design.md §10a): the project's
-/// "network": {"encoding": [...]} array (nn/encoding.h), the named encodings that the CLI's
+/// "network": {"encoding": [...]} array (nn/encoding.h), read into NetworkEncodingSettings
+/// (nn/encoding_settings.h), the named encodings that the CLI's
 /// `--encoding NAME`, the sweeps' `encoding` kind and the Network panel offer, and the encoding each
 /// network gets from the array for its own input count.
 ///
@@ -16,9 +17,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/nn/encoding.h"
+#include "core/nn/encoding_settings.h"
 #include "core/nn/trainer_config.h"
 
 namespace rrf {
@@ -30,20 +30,21 @@ constexpr const char* kEncodingSetting = "network.encoding";
 struct EncodingPreset {
     const char* name;     ///< "raw", "frequency", …: the CLI's --encoding value and the panel's label
     const char* summary;  ///< one line for help texts and tooltips
-    nlohmann::json settings;  ///< the "encoding" array it stands for ([] for raw)
+    NetworkEncodingSettings settings;  ///< the "encoding" array it stands for (empty for raw)
 };
 
 /// Every named encoding, in the order menus list them.
 const std::vector<EncodingPreset>& encodingPresets();
 /// The named encoding called `name`, or null.
 const EncodingPreset* findEncodingPreset(const std::string& name);
-/// The "encoding" array of the named encoding `name`; SettingError naming `setting` for an unknown
+/// The setting of the named encoding `name`; SettingError naming `setting` for an unknown
 /// name, listing the known ones.
-nlohmann::json encodingPresetSettings(const std::string& name, const std::string& setting = kEncodingSetting);
+NetworkEncodingSettings encodingPresetSettings(const std::string& name, const std::string& setting = kEncodingSetting);
 /// The names joined by `separator` ("raw|frequency|…"), for help texts and error messages.
 std::string encodingPresetNames(const char* separator = "|");
-/// The name of the named encoding whose array is `encoding`, or "" (a project's own encoding).
-std::string encodingPresetName(const nlohmann::json& encoding);
+/// The name of the named encoding that `encoding` is (sameEncoding: however it is spelled), or ""
+/// (a project's own encoding).
+std::string encodingPresetName(const NetworkEncodingSettings& encoding);
 
 /// The record inputs a settings check assumes (12 geometric inputs and the 3 diffuse BRDF
 /// parameters every scene has): "encoding" arrays are checked against it when read.
@@ -53,32 +54,32 @@ constexpr int kEncodingCheckInputs = 15;
 constexpr DerivedInputs kEncodingCheckDerived{true};
 
 /// The encoding of a network whose records have `inputs` raw inputs and which derives `derived`
-/// (nn/derived_inputs.h), from an "encoding" array; the identity (with `inputs` and `derived`) for an
-/// empty one. A wrong array is a SettingError naming "network.encoding" and what is wrong (e.g. a
-/// group this network's records lack, or "reflected" in a network that does not derive it).
-InputEncoding networkEncoding(const nlohmann::json& encoding, int inputs, const DerivedInputs& derived = {});
+/// (nn/derived_inputs.h), from the setting; the identity (with `inputs` and `derived`) for an
+/// empty one. A setting that does not fit is a SettingError naming "network.encoding" and what is
+/// wrong (e.g. a group this network's records lack, or "reflected" in a network that does not derive it).
+InputEncoding networkEncoding(const NetworkEncodingSettings& encoding, int inputs, const DerivedInputs& derived = {});
 /// Throws SettingError naming "network.encoding" when the array has trainable parameters (a hash
 /// grid) and `trainer` is not Adam: Levenberg–Marquardt's JᵀJ over the table entries is out of reach.
-void checkEncodingTrainer(const nlohmann::json& encoding, const TrainerConfig& trainer);
-/// Throws SettingError naming "network.ensemble" when `ensemble` > 1 and the array has trainable
+void checkEncodingTrainer(const NetworkEncodingSettings& encoding, const TrainerConfig& trainer);
+/// Throws SettingError naming "network.ensemble" when `ensemble` > 1 and the setting has trainable
 /// parameters: an ensemble's members merge into one network only over one fixed input map (nn/ensemble.h).
-void checkEnsembleEncoding(const nlohmann::json& encoding, int ensemble);
-/// True when the array's encoding has trainable parameters (for the panel's warning).
-bool encodingHasParameters(const nlohmann::json& encoding);
+void checkEnsembleEncoding(const NetworkEncodingSettings& encoding, int ensemble);
+/// True when the setting's encoding has trainable parameters (for the panel's warning).
+bool encodingHasParameters(const NetworkEncodingSettings& encoding);
 
 /// What a front end shows of an "encoding" setting for records of `inputs` raw inputs (and the
 /// network's `derived` inputs), derived from
-/// the array in one place so that views (the Network panel) never read the JSON themselves.
+/// the setting in one place so that views (the Network panel) never build encodings themselves.
 struct EncodingSettingView {
-    std::string presetName;      ///< the named encoding the array is, or "" (a project's own array)
-    bool fits = true;            ///< false: the array does not fit these records (`error` says why)
+    std::string presetName;      ///< the named encoding the setting is, or "" (a project's own array)
+    bool fits = true;            ///< false: the setting does not fit these records (`error` says why)
     std::string error;           ///< networkEncoding's message when !fits
     InputEncoding encoding;      ///< the network's encoding when it fits (else the identity)
-    bool hasParameters = false;  ///< trainable tables (encodingHasParameters; false if the array is invalid)
+    bool hasParameters = false;  ///< trainable tables (encodingHasParameters; false if the setting is invalid)
 };
-EncodingSettingView viewEncodingSetting(const nlohmann::json& encoding, int inputs, const DerivedInputs& derived = {});
+EncodingSettingView viewEncodingSetting(const NetworkEncodingSettings& encoding, int inputs, const DerivedInputs& derived = {});
 
 /// Sets `encoding` to the named encoding `name`; false when the name is unknown or it already is.
-bool setNamedEncoding(nlohmann::json& encoding, const std::string& name);
+bool setNamedEncoding(NetworkEncodingSettings& encoding, const std::string& name);
 
 }  // namespace rrf

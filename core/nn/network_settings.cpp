@@ -1,6 +1,7 @@
 #include "core/nn/network_settings.h"
 
 #include "core/nn/encoding_presets.h"
+#include "core/nn/encoding_settings_json.h"
 
 #include <sstream>
 
@@ -56,16 +57,14 @@ NetworkSettings NetworkSettings::fromJson(const JsonReader& r, const NetworkSett
     s.options.ensemble = int(r.integerOr("ensemble", s.options.ensemble, 1, kMaxEnsembleMembers));
     if (const auto inputs = r.find("inputs")) s.options.inputs = DerivedInputs::fromJson(*inputs);
     if (const auto encoding = r.find("encoding")) {
-        // Read as every network will read it (errors name the file and the pointer of the bad value);
-        // kept as written, since each network builds it for its own records' input count.
-        encoding->requireArray();
-        InputEncoding::fromJson(*encoding, kEncodingCheckInputs, s.options.inputs);
-        s.options.encoding = encoding->value();
+        // Checked as every network will build it (errors name the file and the pointer of the bad
+        // value); kept as a setting, since each network builds it for its own records' input count.
+        s.options.encoding = readEncodingSettingsFor(*encoding, kEncodingCheckInputs, s.options.inputs);
     } else if (r.has("inputs") && !s.options.encoding.empty()) {
         // `base`'s encoding must still fit the inputs this section sets.
         try {
-            InputEncoding::fromJson(JsonReader(s.options.encoding, r.file(), r.pointer() + "/encoding"),
-                                    kEncodingCheckInputs, s.options.inputs);
+            buildInputEncoding(s.options.encoding, kEncodingCheckInputs, s.options.inputs,
+                               failAtPointer(r.file(), r.pointer() + "/encoding"));
         } catch (const InputError& e) {
             r.at("inputs").fail("the network's encoding reads an input these inputs do not have (" + e.detail() + ")");
         }
@@ -85,7 +84,7 @@ nlohmann::json NetworkSettings::networkJson() const {
             {"activation", activationName(options.activation)},
             {"ensemble", options.ensemble},
             {"inputs", options.inputs.toJson()},
-            {"encoding", options.encoding},
+            {"encoding", encodingSettingsJson(options.encoding)},
             {"objects", objectOverridesJson(options.perObject)},
             {"targets", targetModeName(options.targets)},
             {"partition", partitionJson(options.partition)}};

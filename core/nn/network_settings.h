@@ -1,6 +1,6 @@
 #pragma once
-/// Network and trainer settings of a project ("network" and "trainer" sections), shared by the CLI
-/// and the GUI:
+/// Network settings of a project (its "network" section), shared by the CLI and the GUI; the
+/// "trainer" section beside it is TrainerConfig (nn/trainer_config.h), held apart:
 ///
 ///     "network": {"hidden": [20, 10], "activation": "tanh", "targets": "separate",
 ///                 "inputs": {"reflected": false},
@@ -12,7 +12,7 @@
 ///     "trainer": {"type": "levenberg_marquardt", ...}   (see nn/trainer_config.h)
 ///
 /// "partition" sets the kd-tree of networks per object and target (PartitionSettings in
-/// nn/object_training.h); every key is optional, unknown keys are errors, and "max_leaves": 1 (or
+/// nn/network_options.h); every key is optional, unknown keys are errors, and "max_leaves": 1 (or
 /// "max_depth": 0) trains one network per object.
 /// "inputs" adds derived inputs to every network (nn/derived_inputs.h: "reflected", the view direction
 /// reflected about the normal; absent: none), which "encoding" components may then name as a group.
@@ -29,7 +29,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/nn/object_training.h"
+#include "core/nn/network_options.h"
 #include "core/util/json_reader.h"
 
 namespace rrf {
@@ -41,15 +41,14 @@ constexpr int kMaxPartitionLeaves = 4096;  ///< "partition": {"max_leaves"}
 constexpr int kMaxEnsembleMembers = 16;    ///< "ensemble": networks averaged per leaf
 
 struct NetworkSettings {
-    /// Hidden sizes, activation, targets, trainer; default-constructed, the project's defaults
-    /// (ObjectTrainingOptions' initialisers).
-    ObjectTrainingOptions options;
+    /// Hidden sizes, activation, targets, inputs, encoding, per-object entries, partition;
+    /// default-constructed, the project's defaults (NetworkOptions' initialisers).
+    NetworkOptions options;
 
     /// The project's default leaf budget per object and target (its one definition is
     /// PartitionSettings::kDefaultMaxLeaves).
     static constexpr int kDefaultMaxLeaves = PartitionSettings::kDefaultMaxLeaves;
-    /// Reads a "network" section over `base`: missing keys keep base's values, and the trainer is
-    /// base's (it is the "trainer" section, read by TrainerConfig::fromJson). Throws InputError naming
+    /// Reads a "network" section over `base`: missing keys keep base's values. Throws InputError naming
     /// the reader's file and the JSON pointer for unknown keys or bad values, and, given the scene's
     /// object names, for an "objects" entry that names none of them.
     static NetworkSettings fromJson(const JsonReader& network, const NetworkSettings& base,
@@ -62,7 +61,6 @@ struct NetworkSettings {
     /// "objects", "targets", "partition").
     static const std::vector<std::string>& keys();
     nlohmann::json networkJson() const;
-    nlohmann::json trainerJson() const { return options.trainer.toJson(); }
 };
 
 /// Reads a "hidden" array: at least one layer size, each 1 … kMaxHiddenSize (InputError naming the

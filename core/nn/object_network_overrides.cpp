@@ -2,6 +2,7 @@
 
 #include "core/nn/encoding.h"
 #include "core/nn/encoding_presets.h"
+#include "core/nn/encoding_settings_json.h"
 #include "core/nn/network_settings.h"
 #include "core/util/error.h"
 
@@ -11,7 +12,7 @@ nlohmann::json ObjectNetworkOverride::toJson() const {
     nlohmann::json j = nlohmann::json::object();
     if (hidden) j["hidden"] = *hidden;
     if (inputs) j["inputs"] = inputs->toJson();
-    if (encoding) j["encoding"] = *encoding;
+    if (encoding) j["encoding"] = encodingSettingsJson(*encoding);
     return j;
 }
 
@@ -39,14 +40,12 @@ ObjectNetworkOverrides objectOverridesFromJson(const JsonReader& objects, const 
         if (const auto inputs = entry.find("inputs")) o.inputs = DerivedInputs::fromJson(*inputs);
         if (const auto encoding = entry.find("encoding")) {
             // Checked as this object's networks will read it: against the entry's inputs, else the section's.
-            encoding->requireArray();
-            InputEncoding::fromJson(*encoding, kEncodingCheckInputs, o.inputs.value_or(base.inputs));
-            o.encoding = encoding->value();
+            o.encoding = readEncodingSettingsFor(*encoding, kEncodingCheckInputs, o.inputs.value_or(base.inputs));
         } else if (o.inputs && !o.inputs->reflected && !base.encoding.empty()) {
             // The section's encoding must still fit an entry that turns a derived input off.
             try {
-                InputEncoding::fromJson(JsonReader(base.encoding, entry.file(), entry.pointer() + "/inputs"),
-                                        kEncodingCheckInputs, *o.inputs);
+                buildInputEncoding(base.encoding, kEncodingCheckInputs, *o.inputs,
+                                   failAtPointer(entry.file(), entry.pointer() + "/inputs"));
             } catch (const InputError& e) {
                 entry.at("inputs").fail("the section's \"encoding\" reads an input this entry turns off (" + e.detail() +
                                         "); give the entry its own \"encoding\"");

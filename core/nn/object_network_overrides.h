@@ -28,6 +28,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/nn/derived_inputs.h"
+#include "core/nn/encoding_settings.h"
 #include "core/util/json_reader.h"
 
 namespace rrf {
@@ -36,7 +37,7 @@ namespace rrf {
 struct ObjectNetworkOverride {
     std::optional<std::vector<int>> hidden;   ///< "hidden"
     std::optional<DerivedInputs> inputs;      ///< "inputs"
-    std::optional<nlohmann::json> encoding;   ///< "encoding" (an array, as the section's)
+    std::optional<NetworkEncodingSettings> encoding;  ///< "encoding" (as the section's)
 
     bool empty() const { return !hidden && !inputs && !encoding; }
     bool operator==(const ObjectNetworkOverride& o) const {
@@ -54,7 +55,7 @@ using ObjectNetworkOverrides = std::map<std::string, ObjectNetworkOverride>;
 struct ObjectNetworkChoice {
     std::vector<int> hidden;
     DerivedInputs inputs;
-    nlohmann::json encoding = nlohmann::json::array();
+    NetworkEncodingSettings encoding;  ///< empty: the identity
 };
 
 /// The choice for object `name`: `base` with the override of `name` (if any) applied.

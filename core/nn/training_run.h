@@ -64,9 +64,9 @@ struct TrainingProvenance {
 /// Saves the models of `run` into `dir` as a model set (core/nn/model_set.h) for the scene with hash
 /// `sceneHash`, whose inputs are `inputLayout`. Every front end that trains (`rrf train`,
 /// `rrf pipeline`, the workbench's Train job) saves through here, so models.json holds the same
-/// fields whoever wrote it: "dataset", "project", "network", "trainer" (`settings`), "seconds" and
-/// "cancelled" (from `run`). Returns the index written.
-nlohmann::json saveTrainingRun(const std::string& dir, const TrainingRun& run, const NetworkSettings& settings,
+/// fields whoever wrote it: "dataset", "project", "network" and "trainer" (the two sections of
+/// `options`), "seconds" and "cancelled" (from `run`). Returns the index written.
+nlohmann::json saveTrainingRun(const std::string& dir, const TrainingRun& run, const ObjectTrainingOptions& options,
                                uint64_t sceneHash, const std::vector<std::string>& inputLayout,
                                const TrainingProvenance& provenance);
 

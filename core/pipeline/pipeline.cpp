@@ -92,7 +92,7 @@ PipelineOutcome runPipeline(const Project& project, const PipelineRequest& reque
     const std::vector<ObjectSamples> samples = samplesFromGenerated(data.data, scene, layout);
     const std::string modelDir = pipelineFile(request.out, "models");
     TrainRequest t;
-    t.settings.options = request.training;
+    t.options = request.training;
     t.sceneHash = scene.contentHash();
     t.inputLayout = layout.inputs;
     t.modelsDir = modelDir;

@@ -30,15 +30,15 @@ void paperSampling(SamplingSettings& s) {
 // epochs (its defaults, including the per-epoch GFLOP bound that keeps an epoch near 5 s).
 void paperNetwork(ObjectTrainingOptions& t) {
     const uint64_t seed = t.trainer.seed();
-    NetworkSettings n;
-    n.options.hidden = {20, 10};
-    n.options.activation = Activation::Tanh;
-    n.options.partition.maxLeaves = 1;
-    n.options.trainer = TrainerConfig().withType(TrainerType::LevenbergMarquardt);
-    n.options.trainer.lm.maxEpochs = 1000;
-    n.options.trainer.lm.seed = seed;
-    n.options.targets = t.targets;  // follows the prediction's direct light (Project::networkOrDefault)
-    t = n.options;
+    ObjectTrainingOptions n;
+    n.hidden = {20, 10};
+    n.activation = Activation::Tanh;
+    n.partition.maxLeaves = 1;
+    n.trainer = TrainerConfig().withType(TrainerType::LevenbergMarquardt);
+    n.trainer.lm.maxEpochs = 1000;
+    n.trainer.lm.seed = seed;
+    n.targets = t.targets;  // follows the prediction's direct light (Project::networkOrDefault)
+    t = n;
 }
 
 // default: the project defaults, whatever they are.
@@ -49,10 +49,10 @@ void defaultSampling(SamplingSettings& s) {
 }
 void defaultNetwork(ObjectTrainingOptions& t) {
     const uint64_t seed = t.trainer.seed();
-    NetworkSettings n;  // the project's defaults, its trainer included
-    for (TrainerCommon* c : n.options.trainer.everyTrainer()) c->seed = seed;
-    // Indirect networks (NetworkSettings' default): default and best predict direct light exactly.
-    t = n.options;
+    ObjectTrainingOptions n;  // the project's defaults, its trainer included
+    for (TrainerCommon* c : n.trainer.everyTrainer()) c->seed = seed;
+    // Indirect networks (NetworkOptions' default): default and best predict direct light exactly.
+    t = n;
 }
 // quick and paper keep the prediction settings (paper's networks follow its direct light, as the
 // report learned it); default and best make direct light exact with their samples, keeping the seed.
@@ -110,7 +110,7 @@ void bestPrediction(PredictionSettings& p) {
 /// A network section with `o`'s layers, activation, targets and partition (the trainer is separate).
 NetworkSettings networkOf(const ObjectTrainingOptions& o) {
     NetworkSettings n;
-    n.options = o;
+    n.options = o.network();
     return n;
 }
 }  // namespace
@@ -165,7 +165,7 @@ SamplingSettings presetSampling(const Project& project, const PipelinePreset& pr
 }
 
 ObjectTrainingOptions presetNetwork(const Project& project, const PipelinePreset& preset) {
-    ObjectTrainingOptions o = project.networkOrDefault().options;
+    ObjectTrainingOptions o = project.trainingOptions();
     preset.network(o);
     return o;
 }
@@ -194,9 +194,10 @@ const PipelinePreset* matchingSamplingPreset(const Project& project) {
 
 const PipelinePreset* matchingNetworkPreset(const Project& project) {
     const NetworkSettings current = project.networkOrDefault();
+    const nlohmann::json currentTrainer = project.trainerOrDefault().toJson();
     for (const PipelinePreset& p : pipelinePresets()) {
         const ObjectTrainingOptions o = presetNetwork(project, p);
-        if (networkOf(o).networkJson() == current.networkJson() && o.trainer.toJson() == current.trainerJson() &&
+        if (networkOf(o).networkJson() == current.networkJson() && o.trainer.toJson() == currentTrainer &&
             presetPrediction(project, p).toJson() == project.prediction.toJson())
             return &p;
     }

@@ -92,8 +92,8 @@ std::vector<LossCurve> lossCurves(const std::vector<NetworkCurve>& curves) {
 
 void setTrainRun(Run& run, const std::string& projectDir, TrainRecord r) {
     run.settings = RunSettings();
-    run.settings.network = r.settings;
-    run.settings.trainer = r.settings.options.trainer;
+    run.settings.network = r.network;
+    run.settings.trainer = r.trainer;
     run.settings.dataset = projectRelative(projectDir, r.dataset);
     run.settings.sceneHash = hexString(r.sceneHash);
     run.settings.sampling = r.sampling;

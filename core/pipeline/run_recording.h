@@ -46,7 +46,8 @@ void setRenderRun(Run& run, const std::string& projectDir, RenderSettings settin
 
 /// What a finished training job produced, for setTrainRun.
 struct TrainRecord {
-    NetworkSettings settings;                 ///< network and trainer it ran with
+    NetworkSettings network;                  ///< the network settings it ran with
+    TrainerConfig trainer = TrainerConfig::projectDefault();  ///< the trainer it ran with
     std::optional<SamplingSettings> sampling;  ///< the project's sampling section, when it has one
     std::string dataset;                      ///< dataset file it read
     std::string modelsDir;                    ///< where saveModelSet wrote models.json

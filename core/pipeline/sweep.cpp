@@ -48,7 +48,7 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
     StageObserver observer;
     observer.cancel = c.o.cancel;
     TrainRequest request;
-    request.settings.options = t;
+    request.options = t;
     TrainingRun run = trainStage(samples, request, observer).run;
     const std::vector<ObjectModel>& trained = run.models;
     row.stageSeconds.push_back({"train", run.seconds});

@@ -7,7 +7,7 @@
 namespace rrf {
 
 TrainOutcome trainStage(const std::vector<ObjectSamples>& samples, const TrainRequest& request, const StageObserver& observer) {
-    const ObjectTrainingOptions& options = request.settings.options;
+    const ObjectTrainingOptions& options = request.options;
     TrainingProgress progress;
     ObjectTrainingObserver o;
     o.cancel = observer.cancel;
@@ -37,14 +37,15 @@ TrainOutcome trainStage(const std::vector<ObjectSamples>& samples, const TrainRe
     const bool saves = !request.share || request.share->saves();
     if (saves && !request.modelsDir.empty() && run.networks > 0) {
         observer.setStatus("saving the models");
-        saveTrainingRun(request.modelsDir, run, request.settings, request.sceneHash, request.inputLayout, request.provenance);
+        saveTrainingRun(request.modelsDir, run, options, request.sceneHash, request.inputLayout, request.provenance);
         out.saved = true;
         // Read back as the prediction will load them: the files are what the run records.
         if (request.readBack && !run.cancelled)
             out.models = std::make_shared<const ModelSet>(loadModelSet(request.modelsDir, request.sceneHash));
     }
     TrainRecord& r = out.record;
-    r.settings = request.settings;
+    r.network.options = options.network();
+    r.trainer = options.trainer;
     r.sampling = request.sampling;
     r.dataset = request.provenance.dataset;
     r.modelsDir = request.modelsDir;

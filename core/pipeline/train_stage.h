@@ -36,7 +36,9 @@ public:
 
 /// What to train and where the models go.
 struct TrainRequest {
-    NetworkSettings settings;                  ///< network and trainer
+    /// The network settings and the trainer (Project::trainingOptions, changed by the front end's
+    /// flags or a sweep row) and the objects to train: joined here, where the training starts.
+    ObjectTrainingOptions options;
     std::optional<SamplingSettings> sampling;  ///< the project's sampling section, for the run record
     uint64_t sceneHash = 0;
     std::vector<std::string> inputLayout;      ///< the records' inputs (RecordLayout::inputs)

@@ -93,11 +93,11 @@ std::vector<std::pair<size_t, const EncodingComponent*>> writeEncoding(TexelWrit
         const int type = glslEncodingId(*c.encoding);
         w.texel4(float(type), float(d), float(first), float(outs));
         w.padded(d, [&](int i) { return float(c.inputs[size_t(i)]); });
-        const nlohmann::json s = c.encoding->settingsJson();
         if (type == kFrequency) {
-            w.texel4(float(s.at("frequencies").get<int>()), s.at("include_input").get<bool>() ? 1.f : 0.f, 0.f, 0.f);
+            const FrequencySettings& s = dynamic_cast<const FrequencyEncoding&>(*c.encoding).settings();
+            w.texel4(float(s.frequencies), s.includeInput ? 1.f : 0.f, 0.f, 0.f);
         } else if (type == kOneBlob) {
-            w.texel4(float(s.at("bins").get<int>()), 0.f, 0.f, 0.f);
+            w.texel4(float(dynamic_cast<const OneBlobEncoding&>(*c.encoding).settings().bins), 0.f, 0.f, 0.f);
         } else {
             const HashGridLayout g = hashGridLayout(c);
             tables.emplace_back(w.texel(), &c);

@@ -14,6 +14,7 @@
 #include "core/data/sampling_settings.h"
 #include "core/eval/reference_settings.h"
 #include "core/nn/network_settings.h"
+#include "core/nn/object_training.h"
 #include "core/nn/trainer_config.h"
 #include "core/predict/prediction_settings.h"
 #include "core/project/pane_layout.h"
@@ -35,9 +36,9 @@ struct Project {
     /// "sampling"; empty when the file has none: SamplingSettings' defaults then apply
     /// (rrf pipeline --quick uses smaller sizes), and the section stays absent on save.
     std::optional<SamplingSettings> sampling;
-    /// "network": hidden layers, activation and targets; empty when the file has none (see
-    /// `sampling`). Its options.trainer is not part of the section and is ignored here: the trainer
-    /// is `trainer`, and networkOrDefault() combines the two.
+    /// "network": hidden layers, activation, targets, inputs, encoding, per-object entries and
+    /// partition; empty when the file has none (see `sampling`). The trainer is `trainer`, held
+    /// apart; trainingOptions() joins the two where a training starts.
     std::optional<NetworkSettings> network;
     /// "trainer"; empty when the file has none: TrainerConfig::projectDefault() then applies, and
     /// the section stays absent on save (as it does when only "network" was edited).
@@ -57,7 +58,7 @@ struct Project {
 
     /// The sampling settings in effect (SamplingSettings' defaults when the file has none).
     SamplingSettings samplingOrDefault() const { return sampling.value_or(SamplingSettings()); }
-    /// The network and trainer settings in effect: each section's values, its defaults where absent.
+    /// The network settings in effect: the section's values, its defaults where absent.
     /// The targets follow the prediction: indirect networks beside exact direct light (the default),
     /// separate direct and indirect ones when direct light is learned.
     NetworkSettings networkOrDefault() const {
@@ -66,9 +67,13 @@ struct Project {
         // the Network panel while direct light was exact) become separate direct and indirect ones.
         if (prediction.direct == PredictionSettings::Direct::Network && s.options.targets == TargetMode::Indirect)
             s.options.targets = TargetMode::Separate;
-        s.options.trainer = trainer.value_or(TrainerConfig::projectDefault());
         return s;
     }
+    /// The trainer in effect: the "trainer" section, TrainerConfig::projectDefault() where absent.
+    TrainerConfig trainerOrDefault() const { return trainer.value_or(TrainerConfig::projectDefault()); }
+    /// What a training of every object with the project's settings is: networkOrDefault()'s network
+    /// trained by trainerOrDefault().
+    ObjectTrainingOptions trainingOptions() const { return {networkOrDefault().options, trainerOrDefault()}; }
 };
 
 /// Loads a project file, or a bare scene file (a document with "shapes" and no "scene" key), in

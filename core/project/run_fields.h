@@ -28,8 +28,7 @@ struct RunSettings {
     std::optional<Vec3> lightPosition;             ///< "light_position"
     std::optional<std::string> sceneHash;          ///< "scene_hash": the scene's content hash in hex
     std::optional<SceneOverrides> sceneOverrides;  ///< "scene_overrides"
-    /// "network"; its options.trainer is `trainer` when the run has one (the file keeps the two apart,
-    /// as a project does).
+    /// "network"; the trainer is `trainer`, held apart as a project holds it.
     std::optional<NetworkSettings> network;
     std::optional<TrainerConfig> trainer;          ///< "trainer"
     std::optional<std::string> dataset;            ///< "dataset", relative to the project directory

@@ -173,7 +173,6 @@ RunSettings settingsFromJson(const JsonReader& j, std::vector<std::string>& warn
                 [&](const JsonReader& v) { return SceneOverrides::fromJson(v, warnings); });
     readSection(j, "trainer", s.trainer, s, warnings, [](const JsonReader& v) { return TrainerConfig::fromJson(v); });
     readSection(j, "network", s.network, s, warnings, [](const JsonReader& v) { return NetworkSettings::fromJson(v); });
-    if (s.network && s.trainer) s.network->options.trainer = *s.trainer;
     if (const auto v = j.find("dataset")) s.dataset = v->string();
     readSection(j, "sampling", s.sampling, s, warnings, [](const JsonReader& v) { return SamplingSettings::fromJson(v); });
     if (const auto v = j.find("kernel")) s.kernel = v->string();

@@ -4,6 +4,7 @@
 // scene's records is shown as a message instead of throwing out of the frame.
 #include <imgui_internal.h>
 
+#include "core/nn/encoding_settings_json.h"
 #include "core/data/record_layout.h"
 #include "core/nn/encoding_presets.h"
 #include "core/util/error.h"
@@ -34,7 +35,7 @@ TEST_F(EncodingPanelTest, ChoosingANamedEncodingStoresItsArray) {
     const NetworkSettings n = s.project.networkOrDefault();
     EXPECT_EQ(n.options.encoding, findEncodingPreset("hash_grid")->settings);
     EXPECT_EQ(n.options.hidden, hidden) << "the other network settings are kept";
-    EXPECT_EQ(n.networkJson().at("encoding"), findEncodingPreset("hash_grid")->settings);
+    EXPECT_EQ(n.networkJson().at("encoding"), encodingSettingsJson(findEncodingPreset("hash_grid")->settings));
     EXPECT_FALSE(s.project.trainer.has_value()) << "choosing an encoding adds no trainer section";
 
     // Every named encoding draws, with Adam and (the warning for trainable ones) with LM.
@@ -53,7 +54,7 @@ TEST_F(EncodingPanelTest, AnEncodingTheRecordsCannotTakeShowsItsErrorInsteadOfTh
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-glossy/project.json", error)) << error;
     // A hash grid reads at most 4 inputs; the glossy scene's BRDF group has more.
-    const nlohmann::json overBrdf = nlohmann::json::parse(R"([{"type": "hash_grid", "inputs": "brdf"}])");
+    const NetworkEncodingSettings overBrdf = encodingSettingsFromJson(nlohmann::json::parse(R"([{"type": "hash_grid", "inputs": "brdf"}])"));
     const int inputs = RecordLayout::forScene(s.project.scene).inputCount();
     ASSERT_GT(inputs - 12, 4);
     ASSERT_THROW(networkEncoding(overBrdf, inputs), SettingError);

@@ -110,16 +110,16 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     EXPECT_EQ(s.project.networkOrDefault().options.ensemble, kMaxEnsembleMembers);
     ASSERT_TRUE(setEnsemble(s, 1));
 
-    EXPECT_EQ(s.project.networkOrDefault().options.trainer.type, TrainerType::Adam) << "the project default";
+    EXPECT_EQ(s.project.trainerOrDefault().type, TrainerType::Adam) << "the project default";
     ASSERT_TRUE(setTrainerType(s, TrainerType::LevenbergMarquardt));
     EXPECT_FALSE(setTrainerType(s, TrainerType::LevenbergMarquardt)) << "no change, nothing stored";
     ASSERT_TRUE(s.project.trainer.has_value()) << "switching the trainer stores the trainer section";
     EXPECT_EQ(s.project.trainer->toJson()["type"], "levenberg_marquardt");
     ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
     const NetworkSettings n = s.project.networkOrDefault();
-    EXPECT_EQ(n.options.trainer.type, TrainerType::Adam);
+    EXPECT_EQ(s.project.trainerOrDefault().type, TrainerType::Adam);
     EXPECT_EQ(s.project.trainer->toJson()["type"], "adam");
-    EXPECT_EQ(n.options.trainer.adam.batchSize, AdamConfig().batchSize) << "Adam starts from its defaults";
+    EXPECT_EQ(s.project.trainerOrDefault().adam.batchSize, AdamConfig().batchSize) << "Adam starts from its defaults";
     // The project default (exact direct light, networks for the indirect light) is kept by the edits.
     EXPECT_EQ(n.options.targets, TargetMode::Indirect) << "the project default is kept by the edits";
 
@@ -390,11 +390,12 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     ASSERT_TRUE(setTrainerType(s, TrainerType::LevenbergMarquardt));
     ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
     NetworkSettings edited = s.project.networkOrDefault();
-    edited.options.trainer.adam.learningRate = 3e-3;
-    edited.options.trainer.adam.loss = AdamLoss::RelativeL2;
+    TrainerConfig editedTrainer = s.project.trainerOrDefault();
+    editedTrainer.adam.learningRate = 3e-3;
+    editedTrainer.adam.loss = AdamLoss::RelativeL2;
     edited.options.targets = TargetMode::Joint;
     s.project.network = edited;
-    s.project.trainer = edited.options.trainer;
+    s.project.trainer = editedTrainer;
 
     rrf::Run run;
     run.id = run.name = "train-1";
@@ -402,7 +403,7 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     run.curves = {decadeCurve()};
     run.loss = aggregateLoss(run.curves);
     run.settings.network = edited;
-    run.settings.trainer = edited.options.trainer;
+    run.settings.trainer = editedTrainer;
     run.metrics.relativeRmse = 0.2;
     run.artifacts = {"runs/train-1/models/models.json"};
     s.project.runs.push_back(run);
@@ -412,7 +413,7 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     ASSERT_TRUE(loadProjectIntoState(t, (dir / "project.json").string(), error)) << error;
     const NetworkSettings back = t.project.networkOrDefault();
     EXPECT_EQ(back.networkJson(), edited.networkJson());
-    EXPECT_EQ(back.trainerJson(), edited.trainerJson());
+    EXPECT_EQ(t.project.trainerOrDefault().toJson(), editedTrainer.toJson());
     ASSERT_EQ(t.project.runs.size(), 1u);
     const rrf::Run& r = t.project.runs[0];
     ASSERT_EQ(r.curves.size(), 1u);

@@ -4,6 +4,7 @@
 // refuse them — instead of throwing out of the frame.
 #include <imgui_internal.h>
 
+#include "core/nn/encoding_settings_json.h"
 #include "core/nn/encoding_presets.h"
 #include "panels/panels.h"
 #include "panels/project_io.h"
@@ -46,7 +47,7 @@ TEST_F(ObjectNetworksPanelTest, SettersStoreOneSettingEachAndEmptyEntriesDisappe
     ASSERT_TRUE(setObjectEncoding(s, "short-box", "one_blob"));
     EXPECT_FALSE(setObjectEncoding(s, "short-box", "nerf")) << "an unknown name changes nothing";
     EXPECT_FALSE(setObjectHidden(s, "short-box", std::vector<int>{})) << "a network needs a hidden layer";
-    const ObjectTrainingOptions o = s.project.networkOrDefault().options;
+    const NetworkOptions o = s.project.networkOrDefault().options;
     EXPECT_FALSE(o.choiceFor("back-wall").inputs.reflected);
     EXPECT_EQ(o.choiceFor("back-wall").hidden, o.hidden) << "only the reflected input is the entry's";
     EXPECT_EQ(o.choiceFor("short-box").hidden, (std::vector<int>{32, 1})) << "sizes clamped to 1 …";
@@ -73,7 +74,7 @@ TEST_F(ObjectNetworksPanelTest, RowsSayWhatEachObjectsNetworksReadOrWhyTheyCanno
     // An entry whose encoding reads the reflected rows while the object does not derive them.
     NetworkSettings n = s.project.networkOrDefault();
     ObjectNetworkOverride bad;
-    bad.encoding = nlohmann::json::parse(R"([{"type": "one_blob", "inputs": "reflected"}])");
+    bad.encoding = encodingSettingsFromJson(nlohmann::json::parse(R"([{"type": "one_blob", "inputs": "reflected"}])"));
     n.options.perObject["short-box"] = bad;
     s.project.network = n;
     s.dirty = false;

@@ -28,8 +28,8 @@ ObjectErrorRow row(int id, const std::string& name, double rel, double floor) {
 TEST(RunsTable, ATrainRunRowCarriesItsSettingsCostsAndErrors) {
     rrf::Run run = beginRun({}, "train");
     TrainRecord r;
-    r.settings.options.hidden = {20, 10};
-    r.settings.options.trainer = TrainerConfig().withType("adam");
+    r.network.options.hidden = {20, 10};
+    r.trainer = TrainerConfig().withType("adam");
     r.modelsDir = "/p/runs/t/models";
     r.dataset = "/p/data/dataset.rrfd";
     r.networks = 7;

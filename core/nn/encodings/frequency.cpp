@@ -23,17 +23,19 @@ FrequencyEncoding::FrequencyEncoding(int inputDims, FrequencySettings settings)
 
 const EncodingType& FrequencyEncoding::type() {
     static const EncodingType t{"frequency", {"frequencies", "include_input"}, std::numeric_limits<int>::max(), kGlslId,
-                                [](const JsonReader& r, int inputDims) -> std::shared_ptr<const Encoding> {
-                                    return fromJson(r, inputDims);
+                                [](const JsonReader& r) -> EncodingParams { return readSettings(r); },
+                                [](const EncodingParams& s) { return settingsJson(std::get<FrequencySettings>(s)); },
+                                [](const EncodingParams& s, int inputDims) -> std::shared_ptr<const Encoding> {
+                                    return std::make_shared<const FrequencyEncoding>(inputDims, std::get<FrequencySettings>(s));
                                 }};
     return t;
 }
 
-std::shared_ptr<const FrequencyEncoding> FrequencyEncoding::fromJson(const JsonReader& r, int inputDims) {
+FrequencySettings FrequencyEncoding::readSettings(const JsonReader& r) {
     FrequencySettings s;
     s.frequencies = int(r.integerOr("frequencies", s.frequencies, 1, kMaxFrequencies));
     s.includeInput = r.booleanOr("include_input", s.includeInput);
-    return std::make_shared<const FrequencyEncoding>(inputDims, s);
+    return s;
 }
 
 template <typename S>
@@ -110,8 +112,8 @@ void FrequencyEncoding::backwardInputs(const double*, const Eigen::Ref<const Mat
     backwardInputsImpl<double>(x, dOut, dX);
 }
 
-nlohmann::json FrequencyEncoding::settingsJson() const {
-    return {{"frequencies", settings_.frequencies}, {"include_input", settings_.includeInput}};
+nlohmann::json FrequencyEncoding::settingsJson(const FrequencySettings& s) {
+    return {{"frequencies", s.frequencies}, {"include_input", s.includeInput}};
 }
 
 }  // namespace rrf

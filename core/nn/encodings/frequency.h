@@ -22,21 +22,17 @@
 
 namespace rrf {
 
-/// Hyperparameters of the frequency encoding.
-struct FrequencySettings {
-    int frequencies = 6;       ///< K, 1..16
-    bool includeInput = true;  ///< prepend x_j itself
-};
-
 class FrequencyEncoding final : public Encoding {
 public:
     static constexpr int kMaxFrequencies = 16;
 
     /// Throws std::invalid_argument unless 1 ≤ inputDims and 1 ≤ K ≤ 16.
     FrequencyEncoding(int inputDims, FrequencySettings settings);
-    /// Reads "frequencies" and "include_input" (defaults above) of a component object; InputError
-    /// names the reader's file and the key's pointer. Other keys are checked by InputEncoding.
-    static std::shared_ptr<const FrequencyEncoding> fromJson(const JsonReader& r, int inputDims);
+    /// Reads "frequencies" and "include_input" of a component object (defaults where absent); InputError names the
+    /// reader's file and the key's pointer. Other keys are checked by the caller (nn/encoding_settings_json.h).
+    static FrequencySettings readSettings(const JsonReader& r);
+    /// Every hyperparameter key of `s` (what settingsJson() and a component object write).
+    static nlohmann::json settingsJson(const FrequencySettings& s);
 
     const FrequencySettings& settings() const { return settings_; }
     /// ω_k = π·2^k computed in double and rounded once to S (the constant GLSL uses for float).
@@ -58,7 +54,7 @@ public:
     void backwardInputs(const double* params, const Eigen::Ref<const MatX<double>>& x,
                         const Eigen::Ref<const MatX<double>>& dOut, Eigen::Ref<MatX<double>> dX) const override;
 
-    nlohmann::json settingsJson() const override;
+    nlohmann::json settingsJson() const override { return settingsJson(settings_); }
 
 private:
     /// Outputs per input: 2K + include_input.

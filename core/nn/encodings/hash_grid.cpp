@@ -75,13 +75,15 @@ HashGridEncoding::HashGridEncoding(int inputDims, HashGridSettings s) : inputDim
 
 const EncodingType& HashGridEncoding::type() {
     static const EncodingType t{"hash_grid", {"levels", "log2_table_size", "features_per_level", "base_resolution", "growth"}, kMaxInputs, kGlslId,
-                                [](const JsonReader& r, int inputDims) -> std::shared_ptr<const Encoding> {
-                                    return fromJson(r, inputDims);
+                                [](const JsonReader& r) -> EncodingParams { return readSettings(r); },
+                                [](const EncodingParams& s) { return settingsJson(std::get<HashGridSettings>(s)); },
+                                [](const EncodingParams& s, int inputDims) -> std::shared_ptr<const Encoding> {
+                                    return std::make_shared<const HashGridEncoding>(inputDims, std::get<HashGridSettings>(s));
                                 }};
     return t;
 }
 
-std::shared_ptr<const HashGridEncoding> HashGridEncoding::fromJson(const JsonReader& r, int inputDims) {
+HashGridSettings HashGridEncoding::readSettings(const JsonReader& r) {
     HashGridSettings s;
     s.levels = int(r.integerOr("levels", s.levels, 1, kMaxLevels));
     s.log2TableSize = int(r.integerOr("log2_table_size", s.log2TableSize, kMinLog2TableSize, kMaxLog2TableSize));
@@ -92,10 +94,13 @@ std::shared_ptr<const HashGridEncoding> HashGridEncoding::fromJson(const JsonRea
     s.baseResolution = int(r.integerOr("base_resolution", s.baseResolution, kMinBaseResolution, kMaxBaseResolution));
     s.growth = r.numberOr("growth", s.growth, 1.0, kMaxGrowth);
     try {
-        return std::make_shared<const HashGridEncoding>(inputDims, s);
+        // The combination (finest resolution, table bytes) does not depend on the input count, which
+        // the reader does not know yet (the builder checks it against the type's maxInputs).
+        (void)HashGridEncoding(1, s);
     } catch (const std::invalid_argument& e) {
-        r.fail(e.what());  // the combination (finest resolution, table bytes, input count) is out of range
+        r.fail(e.what());
     }
+    return s;
 }
 
 uint32_t HashGridEncoding::entryIndex(int l, const int* v) const {
@@ -266,12 +271,12 @@ void HashGridEncoding::backwardInputs(const double* params, const Eigen::Ref<con
     backwardInputsImpl<double>(params, x, dOut, dX);
 }
 
-nlohmann::json HashGridEncoding::settingsJson() const {
-    return {{"levels", settings_.levels},
-            {"log2_table_size", settings_.log2TableSize},
-            {"features_per_level", settings_.featuresPerLevel},
-            {"base_resolution", settings_.baseResolution},
-            {"growth", settings_.growth}};
+nlohmann::json HashGridEncoding::settingsJson(const HashGridSettings& s) {
+    return {{"levels", s.levels},
+            {"log2_table_size", s.log2TableSize},
+            {"features_per_level", s.featuresPerLevel},
+            {"base_resolution", s.baseResolution},
+            {"growth", s.growth}};
 }
 
 }  // namespace rrf

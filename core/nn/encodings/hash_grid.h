@@ -45,15 +45,6 @@
 
 namespace rrf {
 
-/// Hyperparameters of the hash grid.
-struct HashGridSettings {
-    int levels = 16;            ///< L, 1..24
-    int log2TableSize = 14;     ///< log2 T, 10..22
-    int featuresPerLevel = 2;   ///< F: 1, 2, 4 or 8
-    int baseResolution = 16;    ///< b, 2..1024
-    double growth = 1.5;        ///< g, 1..4
-};
-
 class HashGridEncoding final : public Encoding {
 public:
     static constexpr int kMaxInputs = 4;
@@ -71,9 +62,11 @@ public:
     /// Throws std::invalid_argument (naming the setting) unless 1 ≤ inputDims ≤ 4 and every setting
     /// is in range (see the JSON above).
     HashGridEncoding(int inputDims, HashGridSettings settings);
-    /// Reads the keys above (defaults above) of a component object; InputError names the file and
-    /// the key's pointer. Other keys are checked by InputEncoding.
-    static std::shared_ptr<const HashGridEncoding> fromJson(const JsonReader& r, int inputDims);
+    /// Reads the keys above of a component object (defaults where absent); InputError names the
+    /// reader's file and the key's pointer. Other keys are checked by the caller (nn/encoding_settings_json.h).
+    static HashGridSettings readSettings(const JsonReader& r);
+    /// Every hyperparameter key of `s` (what settingsJson() and a component object write).
+    static nlohmann::json settingsJson(const HashGridSettings& s);
 
     const HashGridSettings& settings() const { return settings_; }
     /// T = 2^log2_table_size entries per level.
@@ -108,7 +101,7 @@ public:
     void backwardInputs(const double* params, const Eigen::Ref<const MatX<double>>& x,
                         const Eigen::Ref<const MatX<double>>& dOut, Eigen::Ref<MatX<double>> dX) const override;
 
-    nlohmann::json settingsJson() const override;
+    nlohmann::json settingsJson() const override { return settingsJson(settings_); }
 
 private:
     struct Level {

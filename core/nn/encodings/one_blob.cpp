@@ -17,16 +17,18 @@ OneBlobEncoding::OneBlobEncoding(int inputDims, OneBlobSettings settings) : inpu
 
 const EncodingType& OneBlobEncoding::type() {
     static const EncodingType t{"one_blob", {"bins"}, std::numeric_limits<int>::max(), kGlslId,
-                                [](const JsonReader& r, int inputDims) -> std::shared_ptr<const Encoding> {
-                                    return fromJson(r, inputDims);
+                                [](const JsonReader& r) -> EncodingParams { return readSettings(r); },
+                                [](const EncodingParams& s) { return settingsJson(std::get<OneBlobSettings>(s)); },
+                                [](const EncodingParams& s, int inputDims) -> std::shared_ptr<const Encoding> {
+                                    return std::make_shared<const OneBlobEncoding>(inputDims, std::get<OneBlobSettings>(s));
                                 }};
     return t;
 }
 
-std::shared_ptr<const OneBlobEncoding> OneBlobEncoding::fromJson(const JsonReader& r, int inputDims) {
+OneBlobSettings OneBlobEncoding::readSettings(const JsonReader& r) {
     OneBlobSettings s;
     s.bins = int(r.integerOr("bins", s.bins, kMinBins, kMaxBins));
-    return std::make_shared<const OneBlobEncoding>(inputDims, s);
+    return s;
 }
 
 template <typename S>
@@ -85,6 +87,6 @@ void OneBlobEncoding::backwardInputs(const double*, const Eigen::Ref<const MatX<
     backwardInputsImpl<double>(x, dOut, dX);
 }
 
-nlohmann::json OneBlobEncoding::settingsJson() const { return {{"bins", settings_.bins}}; }
+nlohmann::json OneBlobEncoding::settingsJson(const OneBlobSettings& s) { return {{"bins", s.bins}}; }
 
 }  // namespace rrf

@@ -25,6 +25,11 @@ const EncodingType& encodingTypeOf(const Encoding& encoding) {
     throw std::invalid_argument(std::string("encoding type '") + encoding.typeName() + "' is not registered");
 }
 
+const EncodingType& encodingTypeOf(const EncodingParams& params) {
+    // EncodingParams' alternatives follow encodingTypes() (encodings/encoding_params.h).
+    return *encodingTypes().at(params.index());
+}
+
 std::string encodingTypeNames() {
     const auto& types = encodingTypes();
     std::string s;

@@ -1,16 +1,19 @@
 #pragma once
 /// The encoding types by name, as tiny-cuda-nn's "otype" registry (docs/design.md §10a): each type's
 /// name, its hyperparameter keys, the most inputs one component may read, its component id in the
-/// GLSL predictor's network texture and its reader, in one row kept beside its implementation
-/// (FrequencyEncoding::type() in encodings/frequency.cpp, …). The "encoding" reader
-/// (InputEncoding::fromJson), the model file and the network texture look types up here, so a type's
-/// name is spelled once and a new encoding is one implementation plus one entry of encodingTypes().
+/// GLSL predictor's network texture, the reader and writer of its hyperparameters and its factory, in
+/// one row kept beside its implementation (FrequencyEncoding::type() in encodings/frequency.cpp, …).
+/// The "encoding" codec (nn/encoding_settings_json.h), the builder of a network's encoding
+/// (nn/encoding_settings.h), the model file and the network texture look types up here, so a type's
+/// name is spelled once and a new encoding is one implementation, one entry of encodingTypes() and
+/// one alternative of EncodingParams (encodings/encoding_params.h), at the same position.
 
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/nn/encoding.h"
+#include "core/nn/encodings/encoding_params.h"
 #include "core/util/json_reader.h"
 
 namespace rrf {
@@ -21,9 +24,15 @@ struct EncodingType {
     std::vector<std::string> keys;  ///< its hyperparameter keys (a component also has "type" and "inputs")
     int maxInputs;                  ///< most inputs one component of this type reads
     int glslId;                     ///< component type in the network texture (shaders/encoding.glsl)
-    /// Builds the component from its JSON object (its hyperparameter keys, defaults where absent) for
-    /// `inputDims` inputs; InputError names the reader's file and the pointer of a bad value.
-    std::shared_ptr<const Encoding> (*fromJson)(const JsonReader& component, int inputDims);
+    /// Reads its hyperparameter keys of a component object (defaults where absent; other keys are
+    /// checked by the caller); InputError names the reader's file and the pointer of a bad value.
+    EncodingParams (*readParams)(const JsonReader& component);
+    /// Every hyperparameter key of `params` (which holds this type's alternative).
+    nlohmann::json (*writeParams)(const EncodingParams& params);
+    /// The encoding of `params` (this type's alternative) over `inputDims` inputs; throws
+    /// std::invalid_argument (naming the setting) for a combination out of range (e.g. a hash grid's
+    /// finest resolution or table size).
+    std::shared_ptr<const Encoding> (*make)(const EncodingParams& params, int inputDims);
 };
 
 /// Every encoding type, in the order error messages list them.
@@ -33,6 +42,8 @@ const EncodingType* findEncodingType(const std::string& name);
 /// The type of `encoding` (its typeName() looked up); throws std::invalid_argument for an encoding
 /// that is not registered.
 const EncodingType& encodingTypeOf(const Encoding& encoding);
+/// The type of `params` (its alternative's row).
+const EncodingType& encodingTypeOf(const EncodingParams& params);
 /// The names quoted and joined for error messages: "\"frequency\", \"one_blob\" or \"hash_grid\"".
 std::string encodingTypeNames();
 
