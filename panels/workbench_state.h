@@ -313,11 +313,13 @@ struct WorkbenchState {
     bool hasProject = false;
     bool dirty = false;  ///< unsaved changes
 
-    /// Primary-ray picking on the UI thread (one ray per hover); rebuilt when the scene changes.
+    /// Primary-ray picking on the UI thread (one ray per hover); rebuilt on a worker when the
+    /// geometry changes (app/gui/picking_controller.h): null until the first build has arrived.
     std::shared_ptr<const Accel> pickAccel;
     /// Object id per camera pixel (pixel centres, -1 = background or light), for highlighting.
     std::vector<int> objectIds;
     int idWidth = 0, idHeight = 0;
+    uint64_t idsRevision = 0;  ///< bumped whenever objectIds is replaced (a map of the same size too)
 
     ImageSet groundTruth;
     ImageSet compare;     ///< a run's images ("Compare" in the runs table)

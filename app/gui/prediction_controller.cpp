@@ -295,6 +295,14 @@ void PredictionController::noteFrameSeconds(FramePath path, double seconds, int 
     recordFrameSeconds(state_.project.runs, ctx_.projectDir(), live_.dir(), path, sorted[sorted.size() / 2], width, height);
 }
 
+void PredictionController::objectIdsChanged() {
+    if (!live_.loaded() || state_.prediction.empty()) return;
+    std::vector<int> without = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
+    if (without == state_.prediction.withoutNetwork) return;  // the views redraw only for a change
+    state_.prediction.withoutNetwork = std::move(without);
+    state_.prediction.touch();
+}
+
 void PredictionController::poll() {
     predictJob_.poll([&](TimedPrediction& timed) {
         // Beside the GLSL view (the glossy gather's frame), a frame for a light that has moved on

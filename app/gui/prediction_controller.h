@@ -42,6 +42,9 @@ public:
     }
     /// Brings the middle view's prediction up to date with the scene's light (GLSL now, or a CPU job).
     void refresh();
+    /// The views' object-id map was replaced (it is built on a worker, app/gui/picking_controller.h):
+    /// the prediction's objects without a network are found again from it.
+    void objectIdsChanged();
     /// Each frame: takes a finished CPU frame, predicts again when the light moved meanwhile, and
     /// keeps the leaf overlay current.
     void poll();

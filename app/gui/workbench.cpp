@@ -35,6 +35,9 @@ Workbench::Workbench(const std::string& configDir)
         // The pipeline evaluates as its own stage; a manual training is evaluated here (issue 29 item 8).
         if (!pipelineRunning()) evaluation_.evaluateWhenReady();
     };
+    // Objects without a network are hatched by the id map: a map that arrives after the prediction
+    // (a project just opened) updates the hatching.
+    picking_.onPublished = [this] { prediction_.objectIdsChanged(); };
     evaluation_.holdEvaluation = [this] {
         return pipelineRunning() || groundTruth_.running() || groundTruth_.restartPending() || prediction_.predictRunning();
     };
@@ -89,6 +92,7 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 
 void Workbench::dropJobs() {
     groundTruth_.drop();
+    picking_.drop();
     training_.drop();
     evaluation_.drop();
     prediction_.drop();
@@ -115,6 +119,7 @@ void Workbench::frame() {
     // Ended jobs are logged first, so their results' lines follow "... finished after N s".
     logFinishedJobs();
     groundTruth_.poll();
+    picking_.poll();
     training_.poll();
     evaluation_.pollEvaluation();
     // After pollPredict: a CPU frame that has just ended is delivered before the evaluation that
@@ -306,7 +311,9 @@ void Workbench::drawStatusBar() {
 bool Workbench::busy() const {
     // A draft on screen is replaced by the full frame shortly: keep the frames coming until then.
     // So is a full frame rendered in bands (app/gui/prediction_bands.h): a band per frame.
-    return !jobs_.idle() || pipelineRunning() || prediction_.draftShown() || prediction_.bandsPending() ||
+    // drained(), not idle(): a job that ended after this frame's polls still has its result to hand
+    // over, and the window must not wait for an event to take it.
+    return !jobs_.drained() || pipelineRunning() || prediction_.draftShown() || prediction_.bandsPending() ||
            ImGui::IsAnyMouseDown();
 }
 

@@ -20,6 +20,7 @@
 #include "app/gui/controller_context.h"
 #include "app/gui/evaluation_controller.h"
 #include "app/gui/ground_truth_controller.h"
+#include "app/gui/picking_controller.h"
 #include "app/gui/pipeline_controller.h"
 #include "app/gui/project_controller.h"
 #include "app/gui/runs_controller.h"
@@ -180,7 +181,6 @@ private:
     /// The scene changed. `geometryChanged` false means materials or the movable light only: the
     /// light is not in the BVH, so the picking BVH and the object-id buffer stay valid then.
     void sceneChanged(bool restartRender, bool geometryChanged = true);
-    void rebuildPicking();
     /// A project was opened (ProjectController::onOpened): the controllers drop the previous
     /// project's jobs and take up this one (its last models, its sweeps, its ground truth).
     void projectOpened();
@@ -203,6 +203,7 @@ private:
     int statusIdleWhilePipeline_ = 0;  ///< frames whose status bar said idle while the pipeline ran
     // The controllers, each owning its jobs (job_session.h) and publishing its sections of state_.
     GroundTruthController groundTruth_{ctx_};
+    PickingController picking_{ctx_};  ///< the views' picking BVH and object-id map, built on a worker
     PredictionController prediction_{ctx_};
     TrainingController training_{ctx_, prediction_.live()};
     EvaluationController evaluation_{ctx_, prediction_};
