@@ -19,6 +19,7 @@
 #include "app/gui/job_session.h"
 #include "app/gui/live_prediction.h"
 #include "app/gui/prediction_draft.h"
+#include "app/gui/read_back.h"
 #include "core/pipeline/run_recording.h"
 
 namespace rrf {
@@ -33,10 +34,19 @@ public:
     ~PredictionController();
 
     /// Loads a model directory for the live prediction (GLSL, else CPU). `preloaded`: the set a
-    /// worker already read from `dir` (a finished training), so only the GL upload is left here.
-    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr);
-    /// Forgets the models (another project was opened).
+    /// worker already read from `dir` (a finished training), so only the GL upload is left here
+    /// and it happens in the call. Without it the set is read on a worker (a ReadBack job: 10-30 ms
+    /// for small sets, far more for big ones, issue 29) and uploaded when it arrives, the view
+    /// keeping the models it had meanwhile; a newer load replaces one in flight. `then` runs once
+    /// the models drive the prediction (not when the load failed). Returns false when the load
+    /// failed at once; a read that fails later says so in the log and at the Project panel.
+    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr,
+                    std::function<void()> then = nullptr);
+    /// True while a model set is being read on a worker.
+    bool modelsLoading() const { return modelRead_.pending(); }
+    /// Forgets the models (another project was opened), and a set still being read.
     void reset() {
+        modelRead_.drop();
         live_.reset();
         bands_ = BandedFrame{};
     }
@@ -91,6 +101,9 @@ public:
     std::function<bool()> holdCpuFrames;
 
 private:
+    /// The GL upload of a model set read from `dir` (GLSL programs, the network texture) and what
+    /// new models reset; `readSeconds`: how long reading it took, for the log.
+    bool uploadModels(const std::string& dir, std::shared_ptr<const ModelSet> models, double readSeconds);
     /// The CPU prediction as a job (the fallback path, and the glossy gather after a GLSL frame).
     void startCpuPrediction(const Camera& camera);
     /// Recomputes the leaf overlay (leaf per pixel) when it is on and the prediction changed.
@@ -152,6 +165,13 @@ private:
     uint64_t spreadFor_ = 0;   ///< the prediction revision the last spread job was started for
     uint64_t spreadMaps_ = 0;  ///< spread maps delivered (their revisions)
     ProgramBinaryCache::Counts lastLoadPrograms_{};  ///< lastLoadPrograms()
+    /// A model set read from disk on a worker (loadModels without a preloaded set).
+    struct ReadModels {
+        std::shared_ptr<const ModelSet> models;
+        std::string error;  ///< why it could not be read (names the file)
+        double seconds = 0.0;
+    };
+    ReadBack<ReadModels> modelRead_;
 };
 
 }  // namespace rrf

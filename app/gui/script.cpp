@@ -160,18 +160,24 @@ bool Script::execute(Workbench& wb, const json& s) {
         // pipeline: until the one-click pipeline has ended; train_running: until a training runs.
         // flip: until the Views' FLIP map of the images on screen has arrived; spread: until the
         // spread map of the prediction on screen has; full_frame: until the draft frames of a light
-        // move have been replaced by the full-quality prediction and every job has ended.
-        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running", "flip", "spread", "full_frame"});
-        const bool busy = on == "flip" ? !st.view.flipMap.matches(st.reference().revision, st.compared().revision, st.view.term)
+        // move have been replaced by the full-quality prediction and every job has ended; loads:
+        // until what an open, a Compare or a Re-open reads on workers has arrived (models, a run's
+        // images, the picking map), the render left running.
+        const std::string on =
+            r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running", "flip", "spread", "full_frame", "loads"});
+        const bool busy = on == "loads" ? wb.loadsPending()
+                          : on == "flip" ? !st.view.flipMap.matches(st.reference().revision, st.compared().revision, st.view.term)
                           : on == "spread"        ? st.view.spread && !st.view.spreadMap.matches(st.prediction.revision)
                           : on == "render"        ? !wb.renderShown()
                           : on == "train_epoch"   ? wb.trainRunning() && st.training.epoch < 1
                           : on == "pipeline"      ? wb.pipelineRunning()
                           : on == "train_running" ? !wb.trainRunning()
                           : on == "full_frame"    ? wb.draftShown() || wb.prediction().bandsPending() || !wb.jobs().drained() ||
+                                                        wb.loadsPending() ||
                                                         wb.evaluationPending() || wb.renderRestartPending()
                                                   : !wb.jobs().drained() || wb.evaluationPending() ||
-                                                        wb.prediction().bandsPending() || wb.renderRestartPending();
+                                                        wb.prediction().bandsPending() || wb.renderRestartPending() ||
+                                                        wb.loadsPending();
         if (busy) {
             const double limit = r.numberOr("timeout_s", 300, 0, 1e9);
             const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart_).count();

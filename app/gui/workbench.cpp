@@ -39,7 +39,8 @@ Workbench::Workbench(const std::string& configDir)
     // (a project just opened) updates the hatching.
     picking_.onPublished = [this] { prediction_.objectIdsChanged(); };
     evaluation_.holdEvaluation = [this] {
-        return pipelineRunning() || groundTruth_.running() || groundTruth_.restartPending() || prediction_.predictRunning();
+        return pipelineRunning() || groundTruth_.running() || groundTruth_.restartPending() || prediction_.predictRunning() ||
+               prediction_.modelsLoading();
     };
 }
 
@@ -93,6 +94,7 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 void Workbench::dropJobs() {
     groundTruth_.drop();
     picking_.drop();
+    runs_.drop();
     training_.drop();
     evaluation_.drop();
     prediction_.drop();
@@ -120,6 +122,7 @@ void Workbench::frame() {
     logFinishedJobs();
     groundTruth_.poll();
     picking_.poll();
+    runs_.poll();
     training_.poll();
     evaluation_.pollEvaluation();
     // After pollPredict: a CPU frame that has just ended is delivered before the evaluation that
@@ -313,7 +316,7 @@ bool Workbench::busy() const {
     // So is a full frame rendered in bands (app/gui/prediction_bands.h): a band per frame.
     // drained(), not idle(): a job that ended after this frame's polls still has its result to hand
     // over, and the window must not wait for an event to take it.
-    return !jobs_.drained() || pipelineRunning() || prediction_.draftShown() || prediction_.bandsPending() ||
+    return !jobs_.drained() || pipelineRunning() || prediction_.modelsLoading() || prediction_.draftShown() || prediction_.bandsPending() ||
            ImGui::IsAnyMouseDown();
 }
 

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -102,10 +103,16 @@ public:
     bool startTrain(int maxEpochs = 0) { return training_.startTrain(maxEpochs); }
     bool trainRunning() const { return training_.trainRunning(); }
     /// Loads a model directory for the live prediction (GLSL, else CPU). `preloaded`: the set a
-    /// worker already read from `dir` (a finished training), so only the GL upload is left here.
-    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr) {
-        return prediction_.loadModels(dir, std::move(preloaded));
+    /// worker already read from `dir` (a finished training), so only the GL upload is left here;
+    /// without it the set is read on a worker first (PredictionController::loadModels) and `then`
+    /// runs once it drives the prediction.
+    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr,
+                    std::function<void()> then = nullptr) {
+        return prediction_.loadModels(dir, std::move(preloaded), std::move(then));
     }
+    /// True while something the UI asked for is read or built on a worker and has not arrived:
+    /// the picking map, a model set, a run's images (what the scripts' "wait": "loads" waits for).
+    bool loadsPending() const { return picking_.pending() || prediction_.modelsLoading() || runs_.loading(); }
     /// Compares the prediction with the ground truth per object and term (fills the Objects panel).
     bool startEvaluate() { return evaluation_.startEvaluate(); }
     bool evaluateRunning() const { return evaluation_.evaluateRunning(); }
