@@ -59,17 +59,19 @@ void PredictionController::drop() {
     for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&predictJob_, &overlayJob_, &flipJob_, &spreadJob_})
         job->drop();
     modelRead_.drop();
+    upload_.reset();
     predictPending_ = false;
     bands_.active = false;
 }
 
 bool PredictionController::loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded,
                                       std::function<void()> then) {
+    if (dir.empty()) return false;
     if (preloaded) {
         modelRead_.drop();  // these replace whatever set was still being read
-        const bool loaded = uploadModels(dir, std::move(preloaded), 0.0);
-        if (loaded && then) then();
-        return loaded;
+        upload_ = PendingUpload{dir, std::move(preloaded), 0.0, state_.project.scene.contentHash(), std::move(then)};
+        uploadAnnounced_ = false;
+        return true;
     }
     // The weights are read (and checked against the scene) on a worker; the GL upload stays here.
     const uint64_t sceneHash = state_.project.scene.contentHash();
@@ -91,13 +93,28 @@ bool PredictionController::loadModels(const std::string& dir, std::shared_ptr<co
                 state_.notify(panels::LogLevel::Error, "Project", "loading the models failed: " + r.error);
                 return;
             }
-            // An edit while they were read: they were checked against the scene as it was.
-            if (state_.project.scene.contentHash() != sceneHash) {
-                state_.log.warning("the scene changed while the models of " + dir + " were read; train again for a prediction");
-                return;
-            }
-            if (uploadModels(dir, std::move(r.models), r.seconds) && then) then();
+            upload_ = PendingUpload{dir, std::move(r.models), r.seconds, sceneHash, then};
+            uploadAnnounced_ = false;
         });
+}
+
+void PredictionController::uploadPendingModels() {
+    if (!upload_) return;
+    // Not before a frame has shown the note (a set trained or read earlier in this very frame);
+    // should no frame draw it (no status bar), after one frame all the same.
+    if (!uploadAnnounced_ && ++upload_->polls < 2) return;
+    PendingUpload u = std::move(*upload_);
+    upload_.reset();
+    const bool announced = uploadAnnounced_;
+    uploadAnnounced_ = false;
+    // An edit since they were read or trained: they were checked against the scene as it was.
+    if (state_.project.scene.contentHash() != u.sceneHash) {
+        state_.log.warning("the scene changed while the models of " + u.dir + " were loaded; train again for a prediction");
+        return;
+    }
+    ++uploads_;
+    announcedUploads_ += announced;
+    if (uploadModels(u.dir, std::move(u.models), u.readSeconds) && u.then) u.then();
 }
 
 bool PredictionController::uploadModels(const std::string& dir, std::shared_ptr<const ModelSet> models, double readSeconds) {
@@ -345,7 +362,10 @@ void PredictionController::objectIdsChanged() {
 }
 
 void PredictionController::poll() {
-    modelRead_.poll();  // a set read on a worker is uploaded here (GL: the UI thread)
+    // A set waiting since the last frame (which announced it) is uploaded first, then a set whose
+    // read has just ended waits for the next frame.
+    uploadPendingModels();
+    modelRead_.poll();
     predictJob_.poll([&](TimedPrediction& timed) {
         // Beside the GLSL view (the glossy gather's frame), a frame for a light that has moved on
         // would replace the newer GLSL frame with the old light's image; the CPU-only view shows

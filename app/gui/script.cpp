@@ -69,7 +69,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
                        "region_pixels_min", "light_grid_points", "spread_shown", "spread_evaluated",
                        "ground_truth_stored", "help_open", "status_idle_while_pipeline",
                        "undo_steps", "redo_steps", "light_position", "objects_rows", "programs_cached",
-                       "full_frame_banded"}},
+                       "full_frame_banded", "uploads_announced"}},
         };
     }();
     return keys;
@@ -432,6 +432,14 @@ bool Script::execute(Workbench& wb, const json& s) {
             require(f.bands > 0, "no full-quality GLSL frame was shown");
             require(f.bands > 1 || f.gpuSeconds <= kBandBudgetSeconds,
                     "the full frame (" + std::to_string(f.gpuSeconds) + " s on the device) was rendered in one band");
+        }
+        // uploads_announced: every model set uploaded so far (compiling shaders on the UI thread)
+        // came after a frame whose status bar said so, and there was at least one.
+        if (const auto v = r.find("uploads_announced"); v && v->boolean()) {
+            const PredictionController& p = wb.prediction();
+            require(p.uploads() > 0, "no model set was uploaded");
+            require(p.announcedUploads() == p.uploads(), std::to_string(p.uploads() - p.announcedUploads()) + " of " +
+                                                             std::to_string(p.uploads()) + " model uploads came without a note");
         }
         // programs_cached: the GLSL programs of the last model load came from the program binary
         // cache (app/gl/program_binary_cache.h), none compiled; passes with a note where the driver

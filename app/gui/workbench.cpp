@@ -59,6 +59,7 @@ std::array<PipelineController::StageHooks, PipelineController::kStages> Workbenc
     evaluate.start = [this](StageDone done) { return evaluation_.startEvaluate(std::move(done)); };
     evaluate.progress = [this] { return evaluation_.evaluateProgress(); };
     evaluate.cancel = [this] { evaluation_.cancelEvaluate(); };
+    evaluate.ready = [this] { return !prediction_.modelsLoading(); };  // the trained models are uploaded first
     return {render, generate, train, evaluate};
 }
 
@@ -262,6 +263,14 @@ void Workbench::drawStatusBar() {
     if (state_.notice) {
         panels::drawNotice(state_, false);
         ImGui::SameLine();
+    }
+    // The next frame uploads new models, compiling their shaders: seconds without a frame when
+    // the driver's shader cache is cold (a first start). This frame, the last one on screen
+    // meanwhile, says why the window is about to pause.
+    if (prediction_.uploadPending()) {
+        ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "compiling GLSL shaders (seconds on a first start)");
+        ImGui::SameLine();
+        prediction_.uploadAnnounced();
     }
     const std::vector<JobInfo> running = jobs_.jobs();
     // The one-click pipeline is one entry of its own, before its stage's job: between two stages

@@ -103,9 +103,10 @@ public:
     bool startTrain(int maxEpochs = 0) { return training_.startTrain(maxEpochs); }
     bool trainRunning() const { return training_.trainRunning(); }
     /// Loads a model directory for the live prediction (GLSL, else CPU). `preloaded`: the set a
-    /// worker already read from `dir` (a finished training), so only the GL upload is left here;
-    /// without it the set is read on a worker first (PredictionController::loadModels) and `then`
-    /// runs once it drives the prediction.
+    /// worker already read from `dir` (a finished training), so only the GL upload is left;
+    /// without it the set is read on a worker first. The upload follows a frame whose status bar
+    /// says shaders are compiled (PredictionController::loadModels); `then` runs once the models
+    /// drive the prediction.
     bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr,
                     std::function<void()> then = nullptr) {
         return prediction_.loadModels(dir, std::move(preloaded), std::move(then));
