@@ -115,6 +115,7 @@ namespace {
 /// actions and edits go.
 struct RunsTableView {
     std::vector<Run>& runs;
+    ShortRunNames& names;             ///< WorkbenchState::runNames: the names shown, kept between frames
     RunPair& pair;
     int compareRun;                   ///< index into runs shown in the compare view, -1 = none
     std::vector<Request>& requests;   ///< WorkbenchState::requests
@@ -164,7 +165,8 @@ void drawRuns(RunsTableView& t) {
     ImGui::TableSetupScrollFreeze(1, 1);
     for (const Column& c : columns) ImGui::TableSetupColumn(c.header, c.flags);
     ImGui::TableHeadersRow();
-    const std::vector<std::string> names = shortRunNames(t.runs);
+    // Computed when the runs' ids or names changed (a rename below shows from the next frame on).
+    const std::vector<std::string>& names = t.names.of(t.runs);
     for (size_t i = 0; i < t.runs.size(); ++i) {
         Run& run = t.runs[i];
         const RunSummary r = summarizeRun(run);
@@ -261,7 +263,7 @@ void drawProjectPanel(WorkbenchState& state) {
 
     if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen)) drawRenderSettings(state.project.render, state.project.scene, state.dirty);
     if (ImGui::CollapsingHeader("Runs", ImGuiTreeNodeFlags_DefaultOpen)) {
-        RunsTableView runs{state.project.runs, state.runPair, state.compareRun, state.requests, state.dirty};
+        RunsTableView runs{state.project.runs, state.runNames, state.runPair, state.compareRun, state.requests, state.dirty};
         drawRuns(runs);
     }
     if (ImGui::CollapsingHeader("Recent projects")) {

@@ -27,6 +27,7 @@
 #include "panels/layout.h"
 #include "panels/log.h"
 #include "core/project/runs.h"
+#include "core/pipeline/run_summary.h"
 
 namespace rrf::panels {
 
@@ -343,6 +344,8 @@ struct WorkbenchState {
     uint64_t availableMemory = UINT64_MAX;
 
     int compareRun = -1;  ///< index into project.runs shown in the compare view, -1 = none
+    /// The runs table's short names, recomputed when the runs' ids or names change (not per frame).
+    ShortRunNames runNames;
     RunPair runPair;
     PipelineInfo pipeline;
     std::vector<std::string> recent;
