@@ -165,6 +165,24 @@ TEST_P(Readability, RunNamesAreComputedWhenTheRunsChangeNotEveryFrame) {
     EXPECT_EQ(s.runNames.of(s.project.runs), shortRunNames(s.project.runs));
 }
 
+TEST_P(Readability, LogToolbarWrapsInANarrowPane) {
+    // The Log's buttons, level filters and filter field ran on one line past a narrow pane's edge.
+    for (const float width : {180.f, 320.f, 900.f}) {
+        std::vector<ClippedContent> found;
+        frame([&] {
+            ImGui::SetNextWindowPos(ImVec2(10, 10));
+            ImGui::SetNextWindowSize(ImVec2(width, 300));
+            ImGui::Begin("Log pane", nullptr, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoScrollbar);
+            drawLogPanel(s);
+            ImGui::End();
+            found = findClippedContent();
+        });
+        std::string clipped;
+        for (const ClippedContent& c : found) clipped += c.describe() + "\n";
+        EXPECT_TRUE(clipped.empty()) << "pane " << width << " px wide:\n" << clipped;
+    }
+}
+
 TEST_P(Readability, RunsTableShowsShortUniqueWholeNamesAndTheFiguresFirst) {
     for (const char* id : {"train-20261201-194512", "train-20261201-194530", "train-20261201-194612", "train-20261202-194512",
                            "train-20261201-194512-2"})
