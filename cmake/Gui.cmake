@@ -60,6 +60,7 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/tests/gui/test_stored_evaluation.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_prediction_bands.cpp
     ${CMAKE_SOURCE_DIR}/tests/gui/test_ground_truth_restart.cpp
+    ${CMAKE_SOURCE_DIR}/tests/gui/test_read_back.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_runner.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/worker_priority.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/job_session.cpp
@@ -72,6 +73,7 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/app/gui/prediction_bands.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/ground_truth_controller.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/render_session.cpp
+    ${CMAKE_SOURCE_DIR}/app/gui/picking_controller.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/controller_context.cpp)
   target_link_libraries(rrf_gui_tests PRIVATE rrf_panels GTest::gtest GTest::gtest_main rrf_warnings)
   target_compile_definitions(rrf_gui_tests PRIVATE RRF_SOURCE_DIR="${CMAKE_SOURCE_DIR}")

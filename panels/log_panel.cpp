@@ -1,9 +1,11 @@
 // Log panel: every message the workbench and its jobs reported, filterable, copyable.
+#include <algorithm>
 #include <string>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "panels/layout.h"
 #include "panels/panels.h"
 
 namespace rrf::panels {
@@ -37,19 +39,25 @@ bool shown(const LogView& v, const LogEntry& e) {
 void drawLogPanel(WorkbenchState& state) {
     // One log view per ImGui context; the view settings are UI state, not project state.
     static log_panel_detail::LogView view;
+    // The toolbar wraps in a narrow pane (each item goes on the line when it fits, else starts the
+    // next one), and the filter field shrinks to the room left, down to a few characters: nothing
+    // is cut off at the pane's edge.
+    auto button = [](const char* label) { return ImGui::CalcTextSize(label, nullptr, true).x + 2 * ImGui::GetStyle().FramePadding.x; };
+    const float box = ImGui::GetFrameHeight();  // a checkbox's square
     if (ImGui::Button("Copy all")) ImGui::SetClipboardText(state.log.text().c_str());
-    ImGui::SameLine();
+    sameLineIfFits(button("Clear"));
     if (ImGui::Button("Clear")) state.log.clear();
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(box, "info"));
     ImGui::Checkbox("info", &view.showInfo);
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(box, "warnings"));
     ImGui::Checkbox("warnings", &view.showWarnings);
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(box, "errors"));
     ImGui::Checkbox("errors", &view.showErrors);
-    ImGui::SameLine();
+    sameLineIfFits(labelledWidth(box, "follow"));
     ImGui::Checkbox("follow", &view.autoScroll);
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
+    const float filterMin = ImGui::GetFontSize() * 6, filterWanted = ImGui::GetFontSize() * 12;
+    sameLineIfFits(filterMin);
+    ImGui::SetNextItemWidth(std::max(filterMin, std::min(filterWanted, ImGui::GetContentRegionAvail().x)));
     ImGui::InputTextWithHint("##filter", "filter", &view.filter);
 
     if (ImGui::BeginChild("##log-lines", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar)) {

@@ -120,6 +120,7 @@ namespace {
 /// actions and edits go.
 struct RunsTableView {
     std::vector<Run>& runs;
+    ShortRunNames& names;             ///< WorkbenchState::runNames: the names shown, kept between frames
     RunPair& pair;
     int compareRun;                   ///< index into runs shown in the compare view, -1 = none
     std::vector<Request>& requests;   ///< WorkbenchState::requests
@@ -169,7 +170,8 @@ void drawRuns(RunsTableView& t) {
     ImGui::TableSetupScrollFreeze(1, 1);
     for (const Column& c : columns) ImGui::TableSetupColumn(c.header, c.flags);
     ImGui::TableHeadersRow();
-    const std::vector<std::string> names = shortRunNames(t.runs);
+    // Computed when the runs' ids or names changed (a rename below shows from the next frame on).
+    const std::vector<std::string>& names = t.names.of(t.runs);
     for (size_t i = 0; i < t.runs.size(); ++i) {
         Run& run = t.runs[i];
         const RunSummary r = summarizeRun(run);
@@ -268,8 +270,8 @@ void drawProjectPanel(WorkbenchState& state) {
     if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen))
         project_panel_detail::drawRenderSettings(state.project.render, state.project.scene, state.dirty);
     if (ImGui::CollapsingHeader("Runs", ImGuiTreeNodeFlags_DefaultOpen)) {
-        project_panel_detail::RunsTableView runs{state.project.runs, state.runPair, state.compareRun, state.requests,
-                                                 state.dirty};
+        project_panel_detail::RunsTableView runs{state.project.runs, state.runNames, state.runPair, state.compareRun,
+                                                 state.requests, state.dirty};
         project_panel_detail::drawRuns(runs);
     }
     if (ImGui::CollapsingHeader("Recent projects")) {

@@ -233,6 +233,7 @@ void ViewModel::update(WorkbenchState& s) {
     k.errorMax = s.view.errorMax;
     k.selected = s.view.highlight ? s.view.selectedObject : -1;
     k.ids = s.objectIds.size();
+    k.idsRevision = s.idsRevision;
     k.leaves = s.view.leafOverlay ? s.leaves.revision : 0;
     k.flip = s.view.flip;
     k.flipRevision = s.view.flip ? s.view.flipMap.revision : 0;

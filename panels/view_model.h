@@ -125,7 +125,8 @@ private:
         ErrorMapKind metric = ErrorMapKind::Absolute;
         float exposure = 0.f, errorMax = 0.f;
         int selected = -2;
-        size_t ids = 0;
+        size_t ids = 0;            ///< the id map's size
+        uint64_t idsRevision = 0;  ///< and its revision: a new map of the same size counts too
         uint64_t leaves = 0;  ///< LeavesInfo::revision when the leaf overlay is on, else 0
         bool flip = false;
         uint64_t flipRevision = 0;  ///< FlipViewMap::revision while the FLIP map is shown, else 0
@@ -133,7 +134,7 @@ private:
         ViewRegion region;
         bool operator==(const Key& o) const {
             return gt == o.gt && cmp == o.cmp && source == o.source && term == o.term && metric == o.metric && exposure == o.exposure &&
-                   errorMax == o.errorMax && selected == o.selected && ids == o.ids && leaves == o.leaves && flip == o.flip &&
+                   errorMax == o.errorMax && selected == o.selected && ids == o.ids && idsRevision == o.idsRevision && leaves == o.leaves && flip == o.flip &&
                    flipRevision == o.flipRevision && spreadRevision == o.spreadRevision && region == o.region;
         }
     };

@@ -27,6 +27,7 @@
 #include "panels/layout.h"
 #include "panels/log.h"
 #include "core/project/runs.h"
+#include "core/pipeline/run_summary.h"
 
 namespace rrf::panels {
 
@@ -313,11 +314,13 @@ struct WorkbenchState {
     bool hasProject = false;
     bool dirty = false;  ///< unsaved changes
 
-    /// Primary-ray picking on the UI thread (one ray per hover); rebuilt when the scene changes.
+    /// Primary-ray picking on the UI thread (one ray per hover); rebuilt on a worker when the
+    /// geometry changes (app/gui/picking_controller.h): null until the first build has arrived.
     std::shared_ptr<const Accel> pickAccel;
     /// Object id per camera pixel (pixel centres, -1 = background or light), for highlighting.
     std::vector<int> objectIds;
     int idWidth = 0, idHeight = 0;
+    uint64_t idsRevision = 0;  ///< bumped whenever objectIds is replaced (a map of the same size too)
 
     ImageSet groundTruth;
     ImageSet compare;     ///< a run's images ("Compare" in the runs table)
@@ -341,6 +344,8 @@ struct WorkbenchState {
     uint64_t availableMemory = UINT64_MAX;
 
     int compareRun = -1;  ///< index into project.runs shown in the compare view, -1 = none
+    /// The runs table's short names, recomputed when the runs' ids or names change (not per frame).
+    ShortRunNames runNames;
     RunPair runPair;
     PipelineInfo pipeline;
     std::vector<std::string> recent;

@@ -145,6 +145,8 @@ void PipelineController::poll() {
             end("done in " + durationText(secondsSince(start_)) + (run ? "; run '" + run->name + "'" : std::string()));
             return;
         }
+        const StageHooks& next = stages_[index + 1];
+        if (next.ready && !next.ready()) return;  // asked again next frame
         begin(Stage(index + 1));
         return;
     }

@@ -33,6 +33,10 @@ public:
         /// True when the stage's result is on hand already and the pipeline may skip it (the
         /// ground truth of the current scene, converged); null: never skipped.
         std::function<bool()> finished;
+        /// False while what the stage needs from the one before is still on its way to the UI
+        /// (the evaluation: the trained models wait for their GL upload); the pipeline starts the
+        /// stage once it is true. Null: always ready.
+        std::function<bool()> ready;
     };
 
     PipelineController(ControllerContext& ctx, std::array<StageHooks, kStages> stages);

@@ -50,23 +50,79 @@ PredictionController::PredictionController(ControllerContext& ctx)
       predictJob_(ctx.jobs, JobKind::Predict, ctx.state.log),
       overlayJob_(ctx.jobs, JobKind::Overlay, ctx.state.log),
       flipJob_(ctx.jobs, JobKind::Overlay, ctx.state.log),
-      spreadJob_(ctx.jobs, JobKind::Spread, ctx.state.log) {}
+      spreadJob_(ctx.jobs, JobKind::Spread, ctx.state.log),
+      modelRead_(ctx.jobs, ctx.state.log) {}
 
 PredictionController::~PredictionController() = default;
 
 void PredictionController::drop() {
     for (JobSessionBase* job : std::initializer_list<JobSessionBase*>{&predictJob_, &overlayJob_, &flipJob_, &spreadJob_})
         job->drop();
+    modelRead_.drop();
+    upload_.reset();
     predictPending_ = false;
     bands_.active = false;
 }
 
-bool PredictionController::loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded) {
+bool PredictionController::loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded,
+                                      std::function<void()> then) {
+    if (dir.empty()) return false;
+    if (preloaded) {
+        modelRead_.drop();  // these replace whatever set was still being read
+        upload_ = PendingUpload{dir, std::move(preloaded), 0.0, state_.project.scene.contentHash(), std::move(then)};
+        uploadAnnounced_ = false;
+        return true;
+    }
+    // The weights are read (and checked against the scene) on a worker; the GL upload stays here.
+    const uint64_t sceneHash = state_.project.scene.contentHash();
+    return modelRead_.start(
+        "models",
+        [dir, sceneHash](JobContext&) -> std::optional<ReadModels> {
+            ReadModels r;
+            const Stopwatch clock;
+            try {
+                r.models = std::make_shared<const ModelSet>(loadModelSet(dir, sceneHash));
+            } catch (const std::exception& e) {
+                r.error = e.what();
+            }
+            r.seconds = clock.seconds();
+            return r;
+        },
+        [this, dir, sceneHash, then = std::move(then)](ReadModels& r) {
+            if (!r.error.empty()) {
+                state_.notify(panels::LogLevel::Error, "Project", "loading the models failed: " + r.error);
+                return;
+            }
+            upload_ = PendingUpload{dir, std::move(r.models), r.seconds, sceneHash, then};
+            uploadAnnounced_ = false;
+        });
+}
+
+void PredictionController::uploadPendingModels() {
+    if (!upload_) return;
+    // Not before a frame has shown the note (a set trained or read earlier in this very frame);
+    // should no frame draw it (no status bar), after one frame all the same.
+    if (!uploadAnnounced_ && ++upload_->polls < 2) return;
+    PendingUpload u = std::move(*upload_);
+    upload_.reset();
+    const bool announced = uploadAnnounced_;
+    uploadAnnounced_ = false;
+    // An edit since they were read or trained: they were checked against the scene as it was.
+    if (state_.project.scene.contentHash() != u.sceneHash) {
+        state_.log.warning("the scene changed while the models of " + u.dir + " were loaded; train again for a prediction");
+        return;
+    }
+    ++uploads_;
+    announcedUploads_ += announced;
+    if (uploadModels(u.dir, std::move(u.models), u.readSeconds) && u.then) u.then();
+}
+
+bool PredictionController::uploadModels(const std::string& dir, std::shared_ptr<const ModelSet> models, double readSeconds) {
     std::string glslError;
     const Stopwatch clock;
     const ProgramBinaryCache::Counts before = ProgramBinaryCache::shared().counts();
     try {
-        live_.load(state_.project.scene, dir, true, glslError, std::move(preloaded));
+        live_.load(state_.project.scene, dir, true, glslError, std::move(models));
     } catch (const std::exception& e) {
         state_.notify(panels::LogLevel::Error, "Project", std::string("loading the models failed: ") + e.what());
         return false;
@@ -92,9 +148,11 @@ bool PredictionController::loadModels(const std::string& dir, std::shared_ptr<co
     fullFrameLogged_ = false;
     state_.leaves = panels::leavesOf(*live_.models());
     state_.view.compareSource = panels::CompareSource::Prediction;
-    char timing[160];
-    std::snprintf(timing, sizeof timing, " in %.2f s (GLSL programs: %d from the binary cache, %d compiled)", loadSeconds,
-                  lastLoadPrograms_.hits, lastLoadPrograms_.misses);
+    char timing[224];
+    char read[64] = "";
+    if (readSeconds > 0.0) std::snprintf(read, sizeof read, " after %.2f s of reading on a worker", readSeconds);
+    std::snprintf(timing, sizeof timing, " in %.2f s on the UI thread%s (GLSL programs: %d from the binary cache, %d compiled)",
+                  loadSeconds, read, lastLoadPrograms_.hits, lastLoadPrograms_.misses);
     state_.log.info("models loaded from " + dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)") +
                     (live_.usesGlsl() ? std::string(timing) : ""));
     refresh();
@@ -295,7 +353,19 @@ void PredictionController::noteFrameSeconds(FramePath path, double seconds, int 
     recordFrameSeconds(state_.project.runs, ctx_.projectDir(), live_.dir(), path, sorted[sorted.size() / 2], width, height);
 }
 
+void PredictionController::objectIdsChanged() {
+    if (!live_.loaded() || state_.prediction.empty()) return;
+    std::vector<int> without = panels::objectsWithoutNetwork(state_.objectIds, *live_.models(), state_.project.prediction);
+    if (without == state_.prediction.withoutNetwork) return;  // the views redraw only for a change
+    state_.prediction.withoutNetwork = std::move(without);
+    state_.prediction.touch();
+}
+
 void PredictionController::poll() {
+    // A set waiting since the last frame (which announced it) is uploaded first, then a set whose
+    // read has just ended waits for the next frame.
+    uploadPendingModels();
+    modelRead_.poll();
     predictJob_.poll([&](TimedPrediction& timed) {
         // Beside the GLSL view (the glossy gather's frame), a frame for a light that has moved on
         // would replace the newer GLSL frame with the old light's image; the CPU-only view shows

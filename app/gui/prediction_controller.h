@@ -10,6 +10,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "app/gui/job_session.h"
 #include "app/gui/live_prediction.h"
 #include "app/gui/prediction_draft.h"
+#include "app/gui/read_back.h"
 #include "core/pipeline/run_recording.h"
 
 namespace rrf {
@@ -33,15 +35,38 @@ public:
     ~PredictionController();
 
     /// Loads a model directory for the live prediction (GLSL, else CPU). `preloaded`: the set a
-    /// worker already read from `dir` (a finished training), so only the GL upload is left here.
-    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr);
-    /// Forgets the models (another project was opened).
+    /// worker already read from `dir` (a finished training), so only the GL upload is left.
+    /// Without it the set is read on a worker (a ReadBack job: 10-30 ms for small sets, far more
+    /// for big ones, issue 29). Either way the GL upload (which compiles shaders) happens in the
+    /// next frame's poll(), after a frame that says so (uploadPending()); the view keeps the models
+    /// it had meanwhile, and a newer load replaces one in flight. `then` runs once the models drive
+    /// the prediction (not when the load failed). Returns false only for an empty `dir`; a load that
+    /// fails says so in the log and at the Project panel.
+    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr,
+                    std::function<void()> then = nullptr);
+    /// True while a model set is being read on a worker, or waits for its GL upload.
+    bool modelsLoading() const { return modelRead_.pending() || upload_.has_value(); }
+    /// True while a model set waits for its GL upload, which happens in the next frame's poll():
+    /// the upload compiles the GLSL programs (seconds with a cold shader cache, a first start, and
+    /// the window cannot draw meanwhile), so this frame says so first (the status bar's note).
+    bool uploadPending() const { return upload_.has_value(); }
+    /// The status bar has shown the note of the pending upload in this frame.
+    void uploadAnnounced() { uploadAnnounced_ = upload_.has_value(); }
+    /// Model sets uploaded, and how many of them after a frame that announced the upload.
+    int uploads() const { return uploads_; }
+    int announcedUploads() const { return announcedUploads_; }
+    /// Forgets the models (another project was opened), and a set still being read or uploaded.
     void reset() {
+        modelRead_.drop();
+        upload_.reset();
         live_.reset();
         bands_ = BandedFrame{};
     }
     /// Brings the middle view's prediction up to date with the scene's light (GLSL now, or a CPU job).
     void refresh();
+    /// The views' object-id map was replaced (it is built on a worker, app/gui/picking_controller.h):
+    /// the prediction's objects without a network are found again from it.
+    void objectIdsChanged();
     /// Each frame: takes a finished CPU frame, predicts again when the light moved meanwhile, and
     /// keeps the leaf overlay current.
     void poll();
@@ -88,6 +113,9 @@ public:
     std::function<bool()> holdCpuFrames;
 
 private:
+    /// The GL upload of a model set read from `dir` (GLSL programs, the network texture) and what
+    /// new models reset; `readSeconds`: how long reading it took, for the log.
+    bool uploadModels(const std::string& dir, std::shared_ptr<const ModelSet> models, double readSeconds);
     /// The CPU prediction as a job (the fallback path, and the glossy gather after a GLSL frame).
     void startCpuPrediction(const Camera& camera);
     /// Recomputes the leaf overlay (leaf per pixel) when it is on and the prediction changed.
@@ -149,6 +177,27 @@ private:
     uint64_t spreadFor_ = 0;   ///< the prediction revision the last spread job was started for
     uint64_t spreadMaps_ = 0;  ///< spread maps delivered (their revisions)
     ProgramBinaryCache::Counts lastLoadPrograms_{};  ///< lastLoadPrograms()
+    /// A model set read from disk on a worker (loadModels without a preloaded set).
+    struct ReadModels {
+        std::shared_ptr<const ModelSet> models;
+        std::string error;  ///< why it could not be read (names the file)
+        double seconds = 0.0;
+    };
+    ReadBack<ReadModels> modelRead_;
+    /// A set read (or trained) and waiting for its GL upload in the next poll() (uploadPending()).
+    struct PendingUpload {
+        std::string dir;
+        std::shared_ptr<const ModelSet> models;
+        double readSeconds = 0.0;
+        uint64_t sceneHash = 0;  ///< the scene it was checked against
+        std::function<void()> then;
+        int polls = 0;  ///< polls it has waited without a frame that announced it
+    };
+    std::optional<PendingUpload> upload_;
+    bool uploadAnnounced_ = false;
+    int uploads_ = 0, announcedUploads_ = 0;
+    /// Does the pending upload (poll()).
+    void uploadPendingModels();
 };
 
 }  // namespace rrf

@@ -6,6 +6,7 @@
 
 #include "app/gui/ground_truth_controller.h"
 #include "app/gui/prediction_controller.h"
+#include "core/project/project.h"
 #include "core/eval/error_metrics.h"
 #include "core/pipeline/run_recording.h"
 #include "core/project/scene_edits.h"
@@ -18,7 +19,14 @@ namespace fs = std::filesystem;
 
 RunsController::RunsController(ControllerContext& ctx, GroundTruthController& groundTruth, PredictionController& prediction,
                                std::function<void()> sceneChanged)
-    : ctx_(ctx), state_(ctx.state), groundTruth_(groundTruth), prediction_(prediction), sceneChanged_(std::move(sceneChanged)) {}
+    : ctx_(ctx),
+      state_(ctx.state),
+      groundTruth_(groundTruth),
+      prediction_(prediction),
+      sceneChanged_(std::move(sceneChanged)),
+      runImages_(ctx.jobs, ctx.state.log) {}
+
+RunsController::~RunsController() = default;
 
 std::shared_ptr<RenderSession> RunsController::finishedRender(const std::string& action, const char* panel) {
     const std::shared_ptr<RenderSession>& render = groundTruth_.session();
@@ -56,7 +64,7 @@ bool RunsController::saveRun() {
 }
 
 namespace {
-/// Loads a render run's global/direct/indirect EXR images.
+/// Reads a render run's global/direct/indirect EXR images (any thread).
 bool loadRunImages(const Run& run, const std::string& dir, panels::ImageSet& out, std::string& error) {
     Image* slots[3] = {&out.global, &out.direct, &out.indirect};
     const char* names[3] = {"global.exr", "direct.exr", "indirect.exr"};
@@ -81,35 +89,67 @@ bool loadRunImages(const Run& run, const std::string& dir, panels::ImageSet& out
 int runSpp(const Run& run) { return run.metrics.spp.value_or(0); }
 }  // namespace
 
+/// A render run's images read on a worker (readRunImages).
+struct RunsController::RunImages {
+    Run run;  ///< as it was when the read started (the project's list may change meanwhile)
+    int index = -1;
+    panels::ImageSet images;
+    std::string error;  ///< why they could not be read (names the file or the missing image)
+};
+
+bool RunsController::readRunImages(int index, const char* action, std::function<void(RunImages&)> then) {
+    // Three EXR images of the render's size: tens of milliseconds to seconds, never the UI
+    // thread's (issue 29). The views keep what they show until the images have arrived.
+    auto read = std::make_shared<RunImages>();
+    read->run = state_.project.runs[size_t(index)];
+    read->index = index;
+    const std::string dir = ctx_.projectDir();
+    return runImages_.start(
+        "run images",
+        [read, dir](JobContext&) -> std::optional<RunImages> {
+            RunImages r = std::move(*read);
+            loadRunImages(r.run, dir, r.images, r.error);
+            return r;
+        },
+        [this, action = std::string(action), then = std::move(then)](RunImages& r) {
+            if (!r.error.empty()) {
+                state_.notify(panels::LogLevel::Error, "Project", action + ": " + r.error);
+                return;
+            }
+            then(r);
+        });
+}
+
+void RunsController::poll() { runImages_.poll(); }
+
 bool RunsController::compareRun(int index) {
     if (index < 0 || index >= int(state_.project.runs.size())) return false;
     const Run& run = state_.project.runs[size_t(index)];
     if (run.kind == "train") return loadTrainRun(run);
-    panels::ImageSet set;
-    std::string error;
-    if (!loadRunImages(run, ctx_.projectDir(), set, error)) {
-        state_.notify(panels::LogLevel::Error, "Project", "compare run: " + error);
-        return false;
-    }
-    set.label = "Run '" + run.name + "' (" + std::to_string(runSpp(run)) + " spp)";
-    set.touch();
-    state_.compare = std::move(set);
-    state_.compareRun = index;
-    state_.view.compareSource = panels::CompareSource::Run;
-    state_.log.info("comparing the ground truth with run '" + run.name + "'");
-    return true;
+    return readRunImages(index, "compare run", [this](RunImages& r) {
+        panels::ImageSet& set = r.images;
+        set.label = "Run '" + r.run.name + "' (" + std::to_string(runSpp(r.run)) + " spp)";
+        set.touch();
+        state_.compare = std::move(set);
+        state_.compareRun = r.index;
+        state_.view.compareSource = panels::CompareSource::Run;
+        state_.log.info("comparing the ground truth with run '" + r.run.name + "'");
+    });
 }
 
 bool RunsController::reopenRun(int index) {
     if (index < 0 || index >= int(state_.project.runs.size())) return false;
-    const Run run = state_.project.runs[size_t(index)];
+    const Run& run = state_.project.runs[size_t(index)];
     if (run.kind == "train") return loadTrainRun(run);
-    panels::ImageSet set;
-    std::string error;
-    if (!loadRunImages(run, ctx_.projectDir(), set, error)) {
-        state_.notify(panels::LogLevel::Error, "Project", "re-open run: " + error);
-        return false;
-    }
+    // Nothing changes until the images are there: a run whose images cannot be read leaves the
+    // settings and the ground truth as they were.
+    return readRunImages(index, "re-open run", [this](RunImages& r) { showReopenedRun(r); });
+}
+
+void RunsController::showReopenedRun(RunImages& r) {
+    const Run& run = r.run;
+    const int index = r.index;
+    panels::ImageSet& set = r.images;
     groundTruth_.cancel();
     // The run's settings snapshot was read (and checked) with the project; what does not fit the
     // scene is reported and the current setting kept.
@@ -139,7 +179,6 @@ bool RunsController::reopenRun(int index) {
     state_.render.spp = state_.render.targetSpp = runSpp(run);
     state_.markDirty();
     state_.log.info("re-opened run '" + run.name + "': settings restored, its images shown as the ground truth");
-    return true;
 }
 
 bool RunsController::loadTrainRun(const Run& run) {

@@ -69,7 +69,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
                        "region_pixels_min", "light_grid_points", "spread_shown", "spread_evaluated",
                        "ground_truth_stored", "help_open", "status_idle_while_pipeline",
                        "undo_steps", "redo_steps", "light_position", "objects_rows", "programs_cached",
-                       "full_frame_banded"}},
+                       "full_frame_banded", "uploads_announced"}},
         };
     }();
     return keys;
@@ -160,18 +160,24 @@ bool Script::execute(Workbench& wb, const json& s) {
         // pipeline: until the one-click pipeline has ended; train_running: until a training runs.
         // flip: until the Views' FLIP map of the images on screen has arrived; spread: until the
         // spread map of the prediction on screen has; full_frame: until the draft frames of a light
-        // move have been replaced by the full-quality prediction and every job has ended.
-        const std::string on = r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running", "flip", "spread", "full_frame"});
-        const bool busy = on == "flip" ? !st.view.flipMap.matches(st.reference().revision, st.compared().revision, st.view.term)
+        // move have been replaced by the full-quality prediction and every job has ended; loads:
+        // until what an open, a Compare or a Re-open reads on workers has arrived (models, a run's
+        // images, the picking map), the render left running.
+        const std::string on =
+            r.choiceOr("for", "jobs", {"render", "jobs", "train_epoch", "pipeline", "train_running", "flip", "spread", "full_frame", "loads"});
+        const bool busy = on == "loads" ? wb.loadsPending()
+                          : on == "flip" ? !st.view.flipMap.matches(st.reference().revision, st.compared().revision, st.view.term)
                           : on == "spread"        ? st.view.spread && !st.view.spreadMap.matches(st.prediction.revision)
                           : on == "render"        ? !wb.renderShown()
                           : on == "train_epoch"   ? wb.trainRunning() && st.training.epoch < 1
                           : on == "pipeline"      ? wb.pipelineRunning()
                           : on == "train_running" ? !wb.trainRunning()
                           : on == "full_frame"    ? wb.draftShown() || wb.prediction().bandsPending() || !wb.jobs().drained() ||
+                                                        wb.loadsPending() ||
                                                         wb.evaluationPending() || wb.renderRestartPending()
                                                   : !wb.jobs().drained() || wb.evaluationPending() ||
-                                                        wb.prediction().bandsPending() || wb.renderRestartPending();
+                                                        wb.prediction().bandsPending() || wb.renderRestartPending() ||
+                                                        wb.loadsPending();
         if (busy) {
             const double limit = r.numberOr("timeout_s", 300, 0, 1e9);
             const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart_).count();
@@ -426,6 +432,14 @@ bool Script::execute(Workbench& wb, const json& s) {
             require(f.bands > 0, "no full-quality GLSL frame was shown");
             require(f.bands > 1 || f.gpuSeconds <= kBandBudgetSeconds,
                     "the full frame (" + std::to_string(f.gpuSeconds) + " s on the device) was rendered in one band");
+        }
+        // uploads_announced: every model set uploaded so far (compiling shaders on the UI thread)
+        // came after a frame whose status bar said so, and there was at least one.
+        if (const auto v = r.find("uploads_announced"); v && v->boolean()) {
+            const PredictionController& p = wb.prediction();
+            require(p.uploads() > 0, "no model set was uploaded");
+            require(p.announcedUploads() == p.uploads(), std::to_string(p.uploads() - p.announcedUploads()) + " of " +
+                                                             std::to_string(p.uploads()) + " model uploads came without a note");
         }
         // programs_cached: the GLSL programs of the last model load came from the program binary
         // cache (app/gl/program_binary_cache.h), none compiled; passes with a note where the driver

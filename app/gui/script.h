@@ -10,7 +10,7 @@
 /// estimator, max_depth}, train {epochs, trainer, refused (expect a refusal), and the "network"
 /// section's keys: hidden, activation, targets}, evaluate,
 /// sweep {what: spp|grid|dirs|hidden|trainer},
-/// wait {for: render|jobs|train_epoch, timeout_s}, save_run, compare_run {index},
+/// wait {for: render|jobs|train_epoch|loads (what open, compare_run and reopen_run read on workers), timeout_s}, save_run, compare_run {index},
 /// reopen_run {index}, request_open {path?: as File > Open, asking about unsaved changes},
 /// answer_unsaved {choice: save|discard|cancel}, stop {job: render|generate|train}, compare_runs {a, b:
 /// run indices, as ticking A and B}, set_light {position}, select_object {id}, view {term, metric, exposure,

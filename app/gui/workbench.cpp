@@ -35,8 +35,12 @@ Workbench::Workbench(const std::string& configDir)
         // The pipeline evaluates as its own stage; a manual training is evaluated here (issue 29 item 8).
         if (!pipelineRunning()) evaluation_.evaluateWhenReady();
     };
+    // Objects without a network are hatched by the id map: a map that arrives after the prediction
+    // (a project just opened) updates the hatching.
+    picking_.onPublished = [this] { prediction_.objectIdsChanged(); };
     evaluation_.holdEvaluation = [this] {
-        return pipelineRunning() || groundTruth_.running() || groundTruth_.restartPending() || prediction_.predictRunning();
+        return pipelineRunning() || groundTruth_.running() || groundTruth_.restartPending() || prediction_.predictRunning() ||
+               prediction_.modelsLoading();
     };
 }
 
@@ -55,6 +59,7 @@ std::array<PipelineController::StageHooks, PipelineController::kStages> Workbenc
     evaluate.start = [this](StageDone done) { return evaluation_.startEvaluate(std::move(done)); };
     evaluate.progress = [this] { return evaluation_.evaluateProgress(); };
     evaluate.cancel = [this] { evaluation_.cancelEvaluate(); };
+    evaluate.ready = [this] { return !prediction_.modelsLoading(); };  // the trained models are uploaded first
     return {render, generate, train, evaluate};
 }
 
@@ -89,6 +94,8 @@ void Workbench::showError(const std::string& title, const std::string& message) 
 
 void Workbench::dropJobs() {
     groundTruth_.drop();
+    picking_.drop();
+    runs_.drop();
     training_.drop();
     evaluation_.drop();
     prediction_.drop();
@@ -115,6 +122,8 @@ void Workbench::frame() {
     // Ended jobs are logged first, so their results' lines follow "... finished after N s".
     logFinishedJobs();
     groundTruth_.poll();
+    picking_.poll();
+    runs_.poll();
     training_.poll();
     evaluation_.pollEvaluation();
     // After pollPredict: a CPU frame that has just ended is delivered before the evaluation that
@@ -255,6 +264,14 @@ void Workbench::drawStatusBar() {
         panels::drawNotice(state_, false);
         ImGui::SameLine();
     }
+    // The next frame uploads new models, compiling their shaders: seconds without a frame when
+    // the driver's shader cache is cold (a first start). This frame, the last one on screen
+    // meanwhile, says why the window is about to pause.
+    if (prediction_.uploadPending()) {
+        ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "compiling GLSL shaders (seconds on a first start)");
+        ImGui::SameLine();
+        prediction_.uploadAnnounced();
+    }
     const std::vector<JobInfo> running = jobs_.jobs();
     // The one-click pipeline is one entry of its own, before its stage's job: between two stages
     // (a frame or two with no job) the bar keeps showing it instead of flickering to idle.
@@ -306,7 +323,9 @@ void Workbench::drawStatusBar() {
 bool Workbench::busy() const {
     // A draft on screen is replaced by the full frame shortly: keep the frames coming until then.
     // So is a full frame rendered in bands (app/gui/prediction_bands.h): a band per frame.
-    return !jobs_.idle() || pipelineRunning() || prediction_.draftShown() || prediction_.bandsPending() ||
+    // drained(), not idle(): a job that ended after this frame's polls still has its result to hand
+    // over, and the window must not wait for an event to take it.
+    return !jobs_.drained() || pipelineRunning() || prediction_.modelsLoading() || prediction_.draftShown() || prediction_.bandsPending() ||
            ImGui::IsAnyMouseDown();
 }
 

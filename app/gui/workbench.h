@@ -10,6 +10,7 @@
 
 #include <array>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -20,6 +21,7 @@
 #include "app/gui/controller_context.h"
 #include "app/gui/evaluation_controller.h"
 #include "app/gui/ground_truth_controller.h"
+#include "app/gui/picking_controller.h"
 #include "app/gui/pipeline_controller.h"
 #include "app/gui/project_controller.h"
 #include "app/gui/runs_controller.h"
@@ -101,10 +103,17 @@ public:
     bool startTrain(int maxEpochs = 0) { return training_.startTrain(maxEpochs); }
     bool trainRunning() const { return training_.trainRunning(); }
     /// Loads a model directory for the live prediction (GLSL, else CPU). `preloaded`: the set a
-    /// worker already read from `dir` (a finished training), so only the GL upload is left here.
-    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr) {
-        return prediction_.loadModels(dir, std::move(preloaded));
+    /// worker already read from `dir` (a finished training), so only the GL upload is left;
+    /// without it the set is read on a worker first. The upload follows a frame whose status bar
+    /// says shaders are compiled (PredictionController::loadModels); `then` runs once the models
+    /// drive the prediction.
+    bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr,
+                    std::function<void()> then = nullptr) {
+        return prediction_.loadModels(dir, std::move(preloaded), std::move(then));
     }
+    /// True while something the UI asked for is read or built on a worker and has not arrived:
+    /// the picking map, a model set, a run's images (what the scripts' "wait": "loads" waits for).
+    bool loadsPending() const { return picking_.pending() || prediction_.modelsLoading() || runs_.loading(); }
     /// Compares the prediction with the ground truth per object and term (fills the Objects panel).
     bool startEvaluate() { return evaluation_.startEvaluate(); }
     bool evaluateRunning() const { return evaluation_.evaluateRunning(); }
@@ -180,7 +189,6 @@ private:
     /// The scene changed. `geometryChanged` false means materials or the movable light only: the
     /// light is not in the BVH, so the picking BVH and the object-id buffer stay valid then.
     void sceneChanged(bool restartRender, bool geometryChanged = true);
-    void rebuildPicking();
     /// A project was opened (ProjectController::onOpened): the controllers drop the previous
     /// project's jobs and take up this one (its last models, its sweeps, its ground truth).
     void projectOpened();
@@ -203,6 +211,7 @@ private:
     int statusIdleWhilePipeline_ = 0;  ///< frames whose status bar said idle while the pipeline ran
     // The controllers, each owning its jobs (job_session.h) and publishing its sections of state_.
     GroundTruthController groundTruth_{ctx_};
+    PickingController picking_{ctx_};  ///< the views' picking BVH and object-id map, built on a worker
     PredictionController prediction_{ctx_};
     TrainingController training_{ctx_, prediction_.live()};
     EvaluationController evaluation_{ctx_, prediction_};

@@ -19,15 +19,16 @@ void Workbench::projectOpened() {
     // Models belong to the previous project; the last training run's models (if still on disk)
     // drive the prediction of this one.
     prediction_.reset();
+    // They are read on a worker; the last evaluation is restored once they are loaded, since it is
+    // shown only when it judged them.
     std::error_code ec;
     for (auto it = state_.project.runs.rbegin(); it != state_.project.runs.rend(); ++it) {
         // A stopped run's partial set is shown only when the user chooses it (Compare).
         if (it->kind != "train" || it->artifacts.empty() || isStoppedTrainRun(*it)) continue;
         const fs::path models = fs::path(projectDir()) / fs::path(it->artifacts.front()).parent_path();
-        if (fs::exists(models / "models.json", ec)) loadModels(models.string());
+        if (fs::exists(models / "models.json", ec)) loadModels(models.string(), nullptr, [this] { evaluation_.restoreEvaluation(); });
         break;
     }
-    evaluation_.restoreEvaluation();
     evaluation_.restoreSweeps();
     history_.reset(state_.project);  // undo never crosses into another project
     sceneChanged(true);

@@ -97,6 +97,17 @@ std::vector<std::string> shortRunNames(const std::vector<Run>& runs) {
     return shown;
 }
 
+const std::vector<std::string>& ShortRunNames::of(const std::vector<Run>& runs) {
+    bool same = key_.size() == runs.size();
+    for (size_t i = 0; same && i < runs.size(); ++i) same = key_[i].first == runs[i].id && key_[i].second == runs[i].name;
+    if (same) return names_;
+    key_.clear();
+    for (const Run& r : runs) key_.emplace_back(r.id, r.name);
+    names_ = shortRunNames(runs);
+    ++computations_;
+    return names_;
+}
+
 std::string hiddenText(const std::vector<int>& hidden) {
     return hidden.empty() ? "-" : hiddenSizesText(hidden);
 }

@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/project/runs.h"
@@ -45,6 +46,22 @@ RunSummary summarizeRun(const Run& run);
 /// runs apart instead of their common prefix. Names still alike (two runs named the same) get
 /// " #<row>" (1-based).
 std::vector<std::string> shortRunNames(const std::vector<Run>& runs);
+
+/// shortRunNames of a runs list, recomputed only when the list's ids or names change: the runs
+/// table is drawn every frame, and shortRunNames compares every name with every other (quadratic in
+/// the runs). Checking that nothing changed is one pass over the names.
+class ShortRunNames {
+public:
+    /// The names of `runs` (shortRunNames(runs)), from the last call's when they are the same runs.
+    const std::vector<std::string>& of(const std::vector<Run>& runs);
+    /// How many times the names were computed (tests).
+    int computations() const { return computations_; }
+
+private:
+    std::vector<std::pair<std::string, std::string>> key_;  ///< each run's id and name when computed
+    std::vector<std::string> names_;
+    int computations_ = 0;
+};
 
 /// "20,10": hidden sizes for tables; "-" when empty.
 std::string hiddenText(const std::vector<int>& hidden);

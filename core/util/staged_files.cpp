@@ -22,6 +22,13 @@ namespace rrf {
 
 namespace fs = std::filesystem;
 
+namespace {
+int fsyncFile(int fd, const char*) { return ::fsync(fd); }
+std::atomic<StagedFileFlush> flushFile{&fsyncFile};
+}  // namespace
+
+void setStagedFileFlushForTesting(StagedFileFlush flush) { flushFile = flush ? flush : &fsyncFile; }
+
 void writeStagedFile(const std::string& path, const std::string& bytes) {
     std::FILE* f = std::fopen(path.c_str(), "wb");
     // The staging directory is the target's: a failure here is the target's, and nothing of it exists yet.
@@ -46,7 +53,7 @@ void syncStagedDirectory(const std::string& dir) {
     auto syncSome = [&] {
         for (size_t i = next++; i < files.size(); i = next++) {
             const int fd = ::open(files[i].c_str(), O_RDONLY);
-            const bool synced = fd >= 0 && ::fsync(fd) == 0;
+            const bool synced = fd >= 0 && flushFile.load()(fd, files[i].c_str()) == 0;
             const int err = errno;
             if (fd >= 0) ::close(fd);
             if (synced) continue;

@@ -22,4 +22,11 @@ void writeStagedFile(const std::string& path, const std::string& bytes);
 /// swapped in; the directory's own fsync is best effort (syncDirectory).
 void syncStagedDirectory(const std::string& dir);
 
+/// Test seam: what syncStagedDirectory calls to flush one file (`fd` open read-only on `path`):
+/// 0 on success, else -1 with errno set, as fsync(2). A failing flush (EIO, ENOSPC) cannot be
+/// provoked on a healthy disk, so tests install one that fails for a chosen member. Null (the
+/// default) restores fsync. Set it only while no sync runs.
+using StagedFileFlush = int (*)(int fd, const char* path);
+void setStagedFileFlushForTesting(StagedFileFlush flush);
+
 }  // namespace rrf

@@ -143,6 +143,46 @@ TEST(RunNames, ChosenNamesStayWholeAndAlikeOnesGetTheirRow) {
     EXPECT_EQ(n[2], "201003");
 }
 
+TEST_P(Readability, RunNamesAreComputedWhenTheRunsChangeNotEveryFrame) {
+    // shortRunNames compares every name with every other: 300 runs drawn every frame made it the
+    // table's cost. The names are kept in the state and recomputed when a run's id or name changes.
+    for (int i = 0; i < 300; ++i) s.project.runs.push_back(trainRun("train-20261201-" + std::to_string(100000 + i), 0.03));
+    for (int i = 0; i < 5; ++i) draw();
+    EXPECT_EQ(s.runNames.computations(), 1) << "five frames of the same runs: the names are computed once";
+    EXPECT_EQ(s.runNames.of(s.project.runs), shortRunNames(s.project.runs));
+    s.project.runs[7].name = "baseline";  // renamed (the row's menu)
+    draw();
+    EXPECT_EQ(s.runNames.computations(), 2);
+    EXPECT_EQ(s.runNames.of(s.project.runs)[7], "baseline");
+    s.project.runs.push_back(trainRun("train-20261202-100008", 0.03));  // a new run (a training ended)
+    draw();
+    draw();
+    EXPECT_EQ(s.runNames.computations(), 3);
+    EXPECT_EQ(s.runNames.of(s.project.runs).back(), "02-100008") << "another day has a run at that second";
+    s.project.runs.erase(s.project.runs.begin());  // a run deleted
+    draw();
+    EXPECT_EQ(s.runNames.computations(), 4);
+    EXPECT_EQ(s.runNames.of(s.project.runs), shortRunNames(s.project.runs));
+}
+
+TEST_P(Readability, LogToolbarWrapsInANarrowPane) {
+    // The Log's buttons, level filters and filter field ran on one line past a narrow pane's edge.
+    for (const float width : {180.f, 320.f, 900.f}) {
+        std::vector<ClippedContent> found;
+        frame([&] {
+            ImGui::SetNextWindowPos(ImVec2(10, 10));
+            ImGui::SetNextWindowSize(ImVec2(width, 300));
+            ImGui::Begin("Log pane", nullptr, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoScrollbar);
+            drawLogPanel(s);
+            ImGui::End();
+            found = findClippedContent();
+        });
+        std::string clipped;
+        for (const ClippedContent& c : found) clipped += c.describe() + "\n";
+        EXPECT_TRUE(clipped.empty()) << "pane " << width << " px wide:\n" << clipped;
+    }
+}
+
 TEST_P(Readability, RunsTableShowsShortUniqueWholeNamesAndTheFiguresFirst) {
     for (const char* id : {"train-20261201-194512", "train-20261201-194530", "train-20261201-194612", "train-20261202-194512",
                            "train-20261201-194512-2"})
