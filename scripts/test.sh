@@ -9,7 +9,7 @@
 # (the last three: scripts/sanitize.sh, docs/design.md §22). RRF_SANITIZE_JOBS=0 runs the release job
 # only, for a quick local check. Every build is a unity build (cmake/Unity.cmake): CI builds from
 # scratch without a compiler cache, and batches of sources halve the compile time. The whole run takes
-# about 16 minutes on 2 cores (README). Exits non-zero on the first failing job; each job prints its
+# about 18 minutes on 2 cores (CHANGELOG.md). Exits non-zero on the first failing job; each job prints its
 # time.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
