@@ -28,6 +28,7 @@
 #include "core/util/temp_files.h"
 #include "scene_builders.h"
 #include "tests/model_builders.h"
+#include "tests/test_dirs.h"
 
 namespace test_atomic_sets {
 
@@ -37,15 +38,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        static int counter = 0;
-        path = fs::temp_directory_path() / ("rrf_atomic_sets_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
+/// A scratch directory of this file's tests (tests/test_dirs.h).
+struct TempDir : ScopedTempDir {
+    TempDir() : ScopedTempDir("rrf_atomic_sets") {}
 };
 
 /// Runs `write` in a child process killed at `step`; true if the child died of SIGKILL there.

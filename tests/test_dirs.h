@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <system_error>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -19,6 +20,25 @@ inline std::filesystem::path freshTestDir(const std::string& prefix) {
     std::filesystem::create_directories(dir);
     return dir;
 }
+
+/// `<temp>/<prefix>_<pid>_<n>` (n counts the directories the process made, so a test may hold
+/// several), emptied and created, and removed with its contents when it goes out of scope.
+struct ScopedTempDir {
+    std::filesystem::path path;
+    explicit ScopedTempDir(const std::string& prefix) {
+        static int counter = 0;
+        path = std::filesystem::temp_directory_path() /
+               (prefix + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+        std::filesystem::remove_all(path);
+        std::filesystem::create_directories(path);
+    }
+    ~ScopedTempDir() {
+        std::error_code ignored;
+        std::filesystem::remove_all(path, ignored);
+    }
+    ScopedTempDir(const ScopedTempDir&) = delete;
+    ScopedTempDir& operator=(const ScopedTempDir&) = delete;
+};
 
 /// True if `part` occurs in `s` (messages are checked for the parts that matter).
 inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }

@@ -22,6 +22,7 @@
 #include "core/project/project.h"
 #include "core/util/error.h"
 #include "core/util/rng.h"
+#include "tests/test_dirs.h"
 #include "tests/training_builders.h"
 
 namespace test_partition_tree {
@@ -33,14 +34,9 @@ namespace {
 
 constexpr int kInputs = 14;
 
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        static int counter = 0;
-        path = fs::temp_directory_path() / ("rrf_partition_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
+/// A scratch directory of this file's tests (tests/test_dirs.h).
+struct TempDir : rrf::test::ScopedTempDir {
+    TempDir() : rrf::test::ScopedTempDir("rrf_partition") {}
 };
 
 /// Records of a floor as the generator makes them, keyed by (seed, i): hit points on the plane

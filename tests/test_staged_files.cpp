@@ -18,6 +18,7 @@
 #include "core/util/error.h"
 #include "core/util/staged_files.h"
 #include "tests/model_builders.h"
+#include "tests/test_dirs.h"
 
 namespace test_staged_files {
 
@@ -27,15 +28,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        static int counter = 0;
-        path = fs::temp_directory_path() / ("rrf_staged_files_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
+/// A scratch directory of this file's tests (tests/test_dirs.h).
+struct TempDir : ScopedTempDir {
+    TempDir() : ScopedTempDir("rrf_staged_files") {}
 };
 
 /// The member whose flush fails (its file name), and how many flushes were asked for.
