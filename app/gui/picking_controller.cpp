@@ -6,21 +6,22 @@
 
 namespace rrf {
 
-std::optional<PickingMap> buildPickingMap(const Scene& scene, int width, int height, const std::atomic<bool>* cancel) {
+std::optional<PickingMap> buildPickingMap(std::shared_ptr<const Scene> scene, int width, int height,
+                                          const std::atomic<bool>* cancel) {
     // The accel reads smooth meshes' normals from the scene it was built from at every hit: it
     // keeps that scene alive beside it, at an address that never moves.
     struct Owned {
-        Scene scene;
+        std::shared_ptr<const Scene> scene;
         std::unique_ptr<Accel> accel;
     };
     auto owned = std::make_shared<Owned>();
-    owned->scene = scene;
-    owned->accel = std::make_unique<Accel>(owned->scene);
+    owned->scene = std::move(scene);
+    owned->accel = std::make_unique<Accel>(*owned->scene);
     PickingMap map;
     map.width = width;
     map.height = height;
     map.objectIds.assign(size_t(width) * size_t(height), -1);
-    CameraRays camera(owned->scene.camera, width, height);
+    CameraRays camera(owned->scene->camera, width, height);
     for (int y = 0; y < height; ++y) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return std::nullopt;
         for (int x = 0; x < width; ++x) {
@@ -48,7 +49,7 @@ void PickingController::sceneChanged(bool geometryChanged) {
         "picking map",
         [scene, w = camera.width, h = camera.height](JobContext& job) -> std::optional<PickingMap> {
             try {
-                return buildPickingMap(*scene, w, h, &job.cancelFlag());
+                return buildPickingMap(scene, w, h, &job.cancelFlag());
             } catch (const std::exception& e) {
                 job.post(std::string("building the picking BVH failed: ") + e.what());
                 return std::nullopt;

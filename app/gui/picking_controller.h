@@ -26,15 +26,16 @@ namespace rrf {
 
 /// A picking BVH and object-id map of one scene at one size.
 struct PickingMap {
-    /// Holds its own copy of the scene, which its smooth meshes' normals are read from at each hit.
+    /// Shares the scene it was built from, which its smooth meshes' normals are read from at each hit.
     std::shared_ptr<const Accel> accel;
     std::vector<int> objectIds;  ///< per pixel (top row first): the object hit, -1 background or light
     int width = 0, height = 0;
 };
 
-/// Builds the map of `scene` at width × height (a pure function of them, any thread). Stops early
+/// Builds the map of `scene` at width × height (a pure function of them, any thread). The map's
+/// accel shares the scene (never copied again: the caller's snapshot is the copy). Stops early
 /// (returning nothing) once `cancel` is set. Throws std::runtime_error when Embree fails.
-std::optional<PickingMap> buildPickingMap(const Scene& scene, int width, int height,
+std::optional<PickingMap> buildPickingMap(std::shared_ptr<const Scene> scene, int width, int height,
                                           const std::atomic<bool>* cancel = nullptr);
 
 class PickingController {

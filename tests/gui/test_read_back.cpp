@@ -107,7 +107,7 @@ TEST(PickingController, TheMapIsBuiltOnAWorkerAndPublishedWhenItArrives) {
     ASSERT_EQ(state.idHeight, camera.height);
     ASSERT_EQ(state.objectIds.size(), size_t(camera.width) * size_t(camera.height));
     // The same ids as the single-threaded build of the same scene and size.
-    const std::optional<PickingMap> direct = buildPickingMap(state.project.scene, camera.width, camera.height);
+    const std::optional<PickingMap> direct = buildPickingMap(std::make_shared<const Scene>(state.project.scene), camera.width, camera.height);
     ASSERT_TRUE(direct);
     EXPECT_EQ(state.objectIds, direct->objectIds);
     int objects = 0;
@@ -150,7 +150,7 @@ TEST(PickingController, ACancelledBuildStopsEarly) {
     panels::WorkbenchState state;
     loadCornellBox(state);
     std::atomic<bool> cancel{true};
-    EXPECT_FALSE(buildPickingMap(state.project.scene, 64, 64, &cancel));
+    EXPECT_FALSE(buildPickingMap(std::make_shared<const Scene>(state.project.scene), 64, 64, &cancel));
 }
 
 }  // namespace rrf::test::test_read_back
