@@ -282,4 +282,15 @@ json readJsonFile(const std::string& path) {
     return parseJsonText(text, path);
 }
 
+JsonText jsonText(const nlohmann::json& value) {
+    if (value.is_null() || (value.is_object() && value.empty())) return {};
+    return {value.dump()};
+}
+
+nlohmann::json parseJsonText(const JsonText& text) {
+    if (text.empty()) return nlohmann::json::object();
+    // Written by jsonText(), so it parses; a failure here is a bug, not the user's input.
+    return nlohmann::json::parse(text.text);
+}
+
 }  // namespace rrf

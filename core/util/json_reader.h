@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/util/error.h"
+#include "core/util/json_text.h"
 #include "core/util/vec3.h"
 
 namespace rrf {
@@ -101,6 +102,11 @@ std::string formatNumber(double v);
 /// Parses JSON text (comments allowed). Malformed input throws InputError naming `file` and the
 /// line, column and byte offset where the parser gave up.
 nlohmann::json parseJsonText(const std::string& text, const std::string& file);
+
+/// `value` as JsonText (compact; an empty object or null gives an empty JsonText).
+JsonText jsonText(const nlohmann::json& value);
+/// The value a JsonText holds; an empty one gives an empty object.
+nlohmann::json parseJsonText(const JsonText& text);
 
 /// Reads and parses a JSON file; an unreadable file throws InputError naming it.
 nlohmann::json readJsonFile(const std::string& path);
