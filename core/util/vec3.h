@@ -6,52 +6,63 @@
 #include <cmath>
 #include <ostream>
 
+// These one-line functions are always inlined. An inline function that a translation unit does not
+// inline is emitted there out of line, and the linker keeps one such copy for the whole program:
+// the test programs compile at -O0 (cmake/TestCode.cmake), so without this a library built with
+// little inlining (the sanitizer build at -O1) called their unoptimised copies on its hot paths, and
+// a copy from a kernel compiled for AVX2 could likewise end up called by the portable code.
+#if defined(__GNUC__)
+#define RRF_VEC_INLINE __attribute__((always_inline)) inline
+#else
+#define RRF_VEC_INLINE inline
+#endif
+
 namespace rrf {
 
 struct Vec3 {
     float x = 0, y = 0, z = 0;
 
     constexpr Vec3() = default;
-    constexpr Vec3(float x_, float y_, float z_) : x(x_), y(y_), z(z_) {}
-    constexpr explicit Vec3(float s) : x(s), y(s), z(s) {}
+    RRF_VEC_INLINE constexpr Vec3(float x_, float y_, float z_) : x(x_), y(y_), z(z_) {}
+    RRF_VEC_INLINE constexpr explicit Vec3(float s) : x(s), y(s), z(s) {}
 
-    constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-    float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+    RRF_VEC_INLINE constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+    RRF_VEC_INLINE float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
 
-    constexpr Vec3 operator+(const Vec3& o) const { return {x + o.x, y + o.y, z + o.z}; }
-    constexpr Vec3 operator-(const Vec3& o) const { return {x - o.x, y - o.y, z - o.z}; }
-    constexpr Vec3 operator*(const Vec3& o) const { return {x * o.x, y * o.y, z * o.z}; }
-    constexpr Vec3 operator/(const Vec3& o) const { return {x / o.x, y / o.y, z / o.z}; }
-    constexpr Vec3 operator*(float s) const { return {x * s, y * s, z * s}; }
-    constexpr Vec3 operator/(float s) const { return {x / s, y / s, z / s}; }
-    constexpr Vec3 operator-() const { return {-x, -y, -z}; }
-    Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-    Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-    Vec3& operator*=(const Vec3& o) { x *= o.x; y *= o.y; z *= o.z; return *this; }
-    Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
-    constexpr bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
-    constexpr bool operator!=(const Vec3& o) const { return !(*this == o); }
+    RRF_VEC_INLINE constexpr Vec3 operator+(const Vec3& o) const { return {x + o.x, y + o.y, z + o.z}; }
+    RRF_VEC_INLINE constexpr Vec3 operator-(const Vec3& o) const { return {x - o.x, y - o.y, z - o.z}; }
+    RRF_VEC_INLINE constexpr Vec3 operator*(const Vec3& o) const { return {x * o.x, y * o.y, z * o.z}; }
+    RRF_VEC_INLINE constexpr Vec3 operator/(const Vec3& o) const { return {x / o.x, y / o.y, z / o.z}; }
+    RRF_VEC_INLINE constexpr Vec3 operator*(float s) const { return {x * s, y * s, z * s}; }
+    RRF_VEC_INLINE constexpr Vec3 operator/(float s) const { return {x / s, y / s, z / s}; }
+    RRF_VEC_INLINE constexpr Vec3 operator-() const { return {-x, -y, -z}; }
+    RRF_VEC_INLINE Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
+    RRF_VEC_INLINE Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
+    RRF_VEC_INLINE Vec3& operator*=(const Vec3& o) { x *= o.x; y *= o.y; z *= o.z; return *this; }
+    RRF_VEC_INLINE Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+    RRF_VEC_INLINE constexpr bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
+    RRF_VEC_INLINE constexpr bool operator!=(const Vec3& o) const { return !(*this == o); }
 
-    constexpr float maxComponent() const { return std::max(x, std::max(y, z)); }
-    constexpr float minComponent() const { return std::min(x, std::min(y, z)); }
-    constexpr float sum() const { return x + y + z; }
-    constexpr bool isZero() const { return x == 0 && y == 0 && z == 0; }
-    bool isFinite() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
+    RRF_VEC_INLINE constexpr float maxComponent() const { return std::max(x, std::max(y, z)); }
+    RRF_VEC_INLINE constexpr float minComponent() const { return std::min(x, std::min(y, z)); }
+    RRF_VEC_INLINE constexpr float sum() const { return x + y + z; }
+    RRF_VEC_INLINE constexpr bool isZero() const { return x == 0 && y == 0 && z == 0; }
+    RRF_VEC_INLINE bool isFinite() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
 };
 
-constexpr Vec3 operator*(float s, const Vec3& v) { return v * s; }
-constexpr float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
+RRF_VEC_INLINE constexpr Vec3 operator*(float s, const Vec3& v) { return v * s; }
+RRF_VEC_INLINE constexpr float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+RRF_VEC_INLINE constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline float length(const Vec3& v) { return std::sqrt(dot(v, v)); }
-constexpr float lengthSquared(const Vec3& v) { return dot(v, v); }
-inline Vec3 normalize(const Vec3& v) { return v / length(v); }
-inline Vec3 vmin(const Vec3& a, const Vec3& b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
-inline Vec3 vmax(const Vec3& a, const Vec3& b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
-inline Vec3 vabs(const Vec3& a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
+RRF_VEC_INLINE float length(const Vec3& v) { return std::sqrt(dot(v, v)); }
+RRF_VEC_INLINE constexpr float lengthSquared(const Vec3& v) { return dot(v, v); }
+RRF_VEC_INLINE Vec3 normalize(const Vec3& v) { return v / length(v); }
+RRF_VEC_INLINE Vec3 vmin(const Vec3& a, const Vec3& b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
+RRF_VEC_INLINE Vec3 vmax(const Vec3& a, const Vec3& b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
+RRF_VEC_INLINE Vec3 vabs(const Vec3& a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
 /// Mirror direction of `w` about normal `n` (both pointing away from the surface).
-constexpr Vec3 reflect(const Vec3& w, const Vec3& n) { return 2.f * dot(w, n) * n - w; }
+RRF_VEC_INLINE constexpr Vec3 reflect(const Vec3& w, const Vec3& n) { return 2.f * dot(w, n) * n - w; }
 
 inline std::ostream& operator<<(std::ostream& os, const Vec3& v) {
     return os << '(' << v.x << ", " << v.y << ", " << v.z << ')';
@@ -61,15 +72,15 @@ inline std::ostream& operator<<(std::ostream& os, const Vec3& v) {
 struct Frame {
     Vec3 s, t, n;
     Frame() = default;
-    explicit Frame(const Vec3& normal) : n(normal) {
+    RRF_VEC_INLINE explicit Frame(const Vec3& normal) : n(normal) {
         const float sign = std::copysign(1.0f, n.z);
         const float a = -1.0f / (sign + n.z);
         const float b = n.x * n.y * a;
         s = Vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
         t = Vec3(b, sign + n.y * n.y * a, -n.y);
     }
-    Vec3 toWorld(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
-    Vec3 toLocal(const Vec3& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+    RRF_VEC_INLINE Vec3 toWorld(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
+    RRF_VEC_INLINE Vec3 toLocal(const Vec3& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
 };
 
 /// Axis-aligned bounding box.
