@@ -36,6 +36,7 @@
 #include "core/predict/footprint_mask.h"
 #include "core/predict/predictor.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "core/util/stopwatch.h"
 
 using namespace rrf;

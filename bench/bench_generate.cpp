@@ -24,6 +24,7 @@
 #include <unistd.h>
 
 #include "bench/bench_args.h"
+#include "core/project/project_file.h"
 #include "core/scene/accel.h"
 #include "core/data/data_generator.h"
 #include "core/util/text_format.h"

@@ -30,6 +30,7 @@
 #include "core/nn/network_settings.h"
 #include "core/predict/predictor.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "core/util/stopwatch.h"
 
 using namespace rrf;

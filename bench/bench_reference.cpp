@@ -32,6 +32,7 @@
 #include "core/eval/reference_store.h"
 #include "core/pipeline/sweep.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 
 using namespace rrf;
 namespace fs = std::filesystem;

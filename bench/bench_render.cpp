@@ -33,6 +33,7 @@
 #include <tbb/parallel_for.h>
 
 #include "bench/bench_args.h"
+#include "core/project/project_file.h"
 #include "core/scene/accel.h"
 #include "core/scene/camera_rays.h"
 #include "core/project/project.h"

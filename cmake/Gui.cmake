@@ -69,7 +69,7 @@ if(RRF_BUILD_TESTS)
     ${CMAKE_SOURCE_DIR}/app/gui/user_workspace.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/shortcuts.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/key_taps.cpp
-    ${CMAKE_SOURCE_DIR}/app/gui/stored_evaluation.cpp
+    ${CMAKE_SOURCE_DIR}/app/gui/stored_evaluation_file.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/prediction_bands.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/ground_truth_controller.cpp
     ${CMAKE_SOURCE_DIR}/app/gui/render_session.cpp

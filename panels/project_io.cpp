@@ -3,6 +3,7 @@
 #include <exception>
 #include <filesystem>
 
+#include "core/project/project_file.h"
 #include "core/project/project_files.h"
 #include "core/pipeline/run_recording.h"
 

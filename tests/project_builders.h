@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 
 namespace rrf::test {
 

@@ -16,6 +16,8 @@
 #include "core/project/project.h"
 #include "core/pipeline/run_recording.h"
 
+#include "core/project/project_file.h"
+#include "core/project/runs_json.h"
 #include "tests/cli_runner.h"
 
 namespace fs = std::filesystem;

@@ -22,6 +22,7 @@
 #include "core/nn/training_part.h"
 #include "core/nn/training_split.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "synthetic_samples.h"
 #include "tests/training_builders.h"
 

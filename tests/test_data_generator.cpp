@@ -25,6 +25,7 @@
 #include <tbb/global_control.h>
 #include <unistd.h>
 
+#include "core/project/project_file.h"
 #include "core/scene/camera_rays.h"
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"

@@ -11,6 +11,7 @@
 #include "core/pipeline/experiment.h"
 #include "core/eval/held_out.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 
 namespace test_default_pipeline {
 

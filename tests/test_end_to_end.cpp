@@ -10,6 +10,7 @@
 #include "core/pipeline/experiment.h"
 #include "core/eval/held_out.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "core/util/rng.h"
 #include "core/util/stopwatch.h"
 #include "core/pipeline/sweep.h"

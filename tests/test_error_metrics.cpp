@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/eval/error_metrics.h"
+#include "core/eval/error_metrics_json.h"
 #include "core/util/image.h"
 #include "tests/image_builders.h"
 
@@ -150,7 +151,7 @@ TEST(ErrorMetrics, SignedRelMseAndSmapeKnownAnswers) {
     EXPECT_NEAR(errorMap(ref, pred, ErrorMapKind::Signed).at(1, 0).x, -d1 / double(0.61f), 1e-6);
     EXPECT_NEAR(errorMap(pred, ref, ErrorMapKind::RelativeSquared).at(1, 0).x, d1 * d1 / 0.26, 1e-6);
     EXPECT_NEAR(errorMap(pred, ref, ErrorMapKind::Smape).at(1, 0).x, d1 / 1.11, 1e-6);
-    const nlohmann::json j = s.toJson();
+    const nlohmann::json j = toJson(s);
     EXPECT_DOUBLE_EQ(j["signed_relative_mean"].get<double>(), s.signedRelativeMean);
     EXPECT_DOUBLE_EQ(j["relmse"].get<double>(), s.relMse);
     EXPECT_DOUBLE_EQ(j["smape"].get<double>(), s.smape);

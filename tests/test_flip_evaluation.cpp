@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/eval/evaluation.h"
+#include "core/eval/evaluation_json.h"
 #include "core/eval/flip_evaluation.h"
 #include "core/util/image.h"
 #include "tests/test_dirs.h"
@@ -152,7 +153,7 @@ TEST(FlipEvaluation, ReportTableAndMapsCarryTheFlipFigures) {
     EXPECT_NE(evaluationTable(scene, e).find("HDR-FLIP"), std::string::npos);
 
     const std::string dir = rrf::test::freshTestDir("flip_evaluation_maps").string();
-    const nlohmann::json images = writeEvaluationImages(dir, e, reference);
+    const nlohmann::json images = toJson(writeEvaluationImages(dir, e, reference));
     for (const char* f : {"flip_hdr_global.exr", "flip_hdr_global.png", "flip_ldr_global.exr", "flip_ldr_global.png"})
         EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / f)) << f;
     EXPECT_EQ(images["false_colour_ranges"]["flip_hdr_global"], nlohmann::json({0.0, 1.0}));

@@ -12,6 +12,7 @@
 #include "core/predict/footprint_mask.h"
 #include "core/predict/predictor.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "core/scene/camera_rays.h"
 #include "scene_builders.h"
 

@@ -6,6 +6,7 @@
 
 #include "core/predict/gbuffer.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 
 namespace test_gbuffer {
 

@@ -11,6 +11,7 @@
 #include "core/data/dataset_file.h"
 #include "core/data/generator_stats.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "core/util/error.h"
 
 namespace test_generator_stats {

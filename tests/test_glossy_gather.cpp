@@ -8,6 +8,7 @@
 
 #include "core/predict/glossy_gather.h"
 #include "core/predict/predictor.h"
+#include "core/project/project_file.h"
 #include "core/util/error.h"
 #include "core/project/project.h"
 #include "core/util/json_reader.h"

@@ -23,6 +23,7 @@
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
 #include "core/project/scene_overrides.h"
+#include "core/project/scene_overrides_json.h"
 #include "core/render/render_settings.h"
 #include "core/render/renderer.h"
 #include "core/scene/accel.h"
@@ -394,7 +395,7 @@ TEST(HostileInput, EveryRecordNonFiniteIsRefusedNamingTheScene) {
 TEST(HostileInput, UnknownKeysInMaterialOverridesWarnAndKeepTheRest) {
     const json doc = json::parse(R"({"materials": {"white": {"kd": [0.5, 0.4, 0.3], "albedo": [1, 1, 1]}}})");
     std::vector<std::string> warnings;
-    const SceneOverrides o = SceneOverrides::fromJson(JsonReader(doc, "project.json", "/scene_overrides"), warnings);
+    const SceneOverrides o = sceneOverridesFromJson(JsonReader(doc, "project.json", "/scene_overrides"), warnings);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_TRUE(contains(warnings[0], "project.json: /scene_overrides/materials/white/albedo: unknown key 'albedo'"))
         << warnings[0];

@@ -12,6 +12,7 @@
 #include "core/data/data_generator.h"
 #include "core/data/jitter_grid.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "scene_builders.h"
 
 namespace test_jitter_grid {

@@ -20,7 +20,9 @@
 #include <gtest/gtest.h>
 
 #include "core/eval/error_metrics.h"
+#include "core/eval/error_metrics_json.h"
 #include "core/eval/evaluation.h"
+#include "core/eval/reference_file.h"
 #include "core/render/render_outputs.h"
 #include "core/scene/accel.h"
 #include "core/util/atomic_file.h"
@@ -168,8 +170,8 @@ TEST(NoiseFloor, UnknownWithoutVarianceNeverZero) {
         EXPECT_FALSE(s.noiseKnown);
         EXPECT_TRUE(std::isnan(s.rmseNoiseFloor));
         EXPECT_TRUE(std::isnan(s.relativeRmseCorrected));
-        EXPECT_TRUE(s.toJson()["relative_rmse_noise_floor"].is_null());
-        EXPECT_TRUE(s.toJson()["rmse_corrected"].is_null());
+        EXPECT_TRUE(toJson(s)["relative_rmse_noise_floor"].is_null());
+        EXPECT_TRUE(toJson(s)["rmse_corrected"].is_null());
         EXPECT_EQ(noiseFigureText(s.relativeRmseNoiseFloor), "unknown");
     }
     EXPECT_EQ(noiseFigureText(0.0), "0");

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/project/pane_layout.h"
+#include "core/project/pane_layout_json.h"
 
 namespace rrf::test::test_pane_layout {
 
@@ -25,7 +26,7 @@ bool holdsEveryPanelOnce(const PaneLayout& l) {
 }
 
 PaneLayout read(const json& j, std::vector<std::string>& warnings) {
-    return PaneLayout::fromJson(JsonReader(j, "p.json", "/layout"), warnings);
+    return paneLayoutFromJson(JsonReader(j, "p.json", "/layout"), warnings);
 }
 }  // namespace
 
@@ -110,7 +111,7 @@ TEST(PaneLayout, JsonRoundTripKeepsTheTree) {
     ASSERT_TRUE(l.moveTab("Log", "Views", DropSide::Centre));
     l.root.children[0].fraction = 0.4f;
     ASSERT_TRUE(l.showTab("Cost"));
-    const json j = l.toJson();
+    const json j = toJson(l);
     EXPECT_EQ(j["root"]["split"], "row");
     EXPECT_EQ(j["root"]["panes"][0]["split"], "column");
     EXPECT_EQ(j["root"]["panes"][0]["panes"][1]["tabs"], json::array({"Sampling"}));
@@ -204,14 +205,14 @@ TEST(PaneLayout, FloatingPanelsLeaveThePanesAndDockBack) {
 TEST(PaneLayout, FloatingPanelsSurviveJsonAndDamageIsRepaired) {
     PaneLayout l;
     ASSERT_TRUE(l.floatTab("Objects", 700.5f, 90, 420, 300));
-    const json j = l.toJson();
+    const json j = toJson(l);
     EXPECT_EQ(j["floating"][0]["rect"], json::array({700.5, 90.0, 420.0, 300.0}));
     std::vector<std::string> warnings;
     EXPECT_EQ(read(j, warnings), l);
     EXPECT_TRUE(warnings.empty()) << warnings.front();
-    EXPECT_FALSE(PaneLayout().toJson().contains("floating")) << "layouts without floating panels are written as before";
+    EXPECT_FALSE(toJson(PaneLayout()).contains("floating")) << "layouts without floating panels are written as before";
 
-    json bad = PaneLayout().toJson();
+    json bad = toJson(PaneLayout());
     bad["floating"] = json::array({{{"tab", "Bogus"}, {"rect", {0, 0, 10, 10}}},
                                    {{"tab", "Log"}, {"rect", {0, 0, 10}}},
                                    {{"tab", "Views"}, {"rect", {0, 0, 10, 10}}}});

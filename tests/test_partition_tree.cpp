@@ -20,6 +20,7 @@
 #include "core/nn/training_run.h"
 #include "core/predict/predictor.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "core/util/error.h"
 #include "core/util/rng.h"
 #include "tests/test_dirs.h"

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include "core/project/project_file.h"
 #include "core/util/error.h"
 #include "core/eval/evaluation.h"
 #include "core/nn/ensemble.h"

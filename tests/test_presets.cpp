@@ -11,6 +11,7 @@
 #include "core/nn/network_settings.h"
 #include "core/pipeline/presets.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "project_builders.h"
 #include "core/pipeline/time_estimate.h"
 #include "tests/training_builders.h"

@@ -6,6 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/project/project_file.h"
+#include "core/project/runs_json.h"
+#include "core/project/scene_overrides_json.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/nn/encoding_settings_json.h"
@@ -112,7 +115,7 @@ TEST(Project, RoundTripKeepsUnknownSectionsAndRebasesSceneRef) {
     ASSERT_TRUE(q.network.has_value());
     EXPECT_EQ(q.network->networkJson(), p.network->networkJson());
     ASSERT_EQ(q.runs.size(), 1u);
-    EXPECT_EQ(q.runs[0].toJson(), p.runs[0].toJson());
+    EXPECT_EQ(toJson(q.runs[0]), toJson(p.runs[0]));
     EXPECT_EQ(q.layout, p.layout);
     EXPECT_EQ(q.name, "Cornell box");
 }
@@ -145,7 +148,7 @@ TEST(Project, EmbeddedSceneRebasesObjPathsOnSave) {
     EXPECT_TRUE(p.sceneRef.empty());
     EXPECT_EQ(p.scene.objects[0].primitiveCount(), 6u);
     saveProject(p, dir + "/b/moved.json");
-    EXPECT_EQ(p.sceneJson["shapes"][0]["file"], "../a/mesh/pyramid.obj");
+    EXPECT_EQ(parseJsonText(p.sceneJson)["shapes"][0]["file"], "../a/mesh/pyramid.obj");
 
     const Project q = loadProjectOrScene(dir + "/b/moved.json");
     EXPECT_EQ(q.scene.contentHash(), p.scene.contentHash());
@@ -250,14 +253,16 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     run.loss = {{0, 1.0, 2.0, 0.5}};
     run.curves = {{0, "floor", "global", {{0, 1.0, 2.0, 0.5}}}};
     run.artifacts = {"runs/train-1/models/models.json"};
-    run.extra = {{"future", true}};
+    run.extra = jsonText({{"future", true}});
     p.runs = {run};
     p.layout.root = PaneLayout::defaultRoot(0.4f, 0.2f);
     const Vec3 light = moveLight(p, Vec3(0.1f, 0.99f, -0.05f));
     Material white = p.scene.materials[0];
     white.kd = Vec3(0.5f, 0.4f, 0.3f);
     editMaterial(p, 0, white, true);
-    p.otherSections["future_section"] = {{"kept", {1, 2, 3}}};
+    json other = parseJsonText(p.otherSections);
+    other["future_section"] = {{"kept", {1, 2, 3}}};
+    p.otherSections = jsonText(other);
 
     const std::string path = dir + "/typed.json";
     saveProject(p, path);
@@ -277,9 +282,9 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     EXPECT_EQ(q.trainerOrDefault().toJson(), trainer.toJson());
     EXPECT_EQ(q.prediction.toJson(), p.prediction.toJson());
     ASSERT_EQ(q.runs.size(), 1u);
-    EXPECT_EQ(q.runs[0].toJson(), run.toJson());
+    EXPECT_EQ(toJson(q.runs[0]), toJson(run));
     EXPECT_EQ(q.layout, p.layout);
-    EXPECT_EQ(q.overrides.toJson(), p.overrides.toJson());
+    EXPECT_EQ(toJson(q.overrides), toJson(p.overrides));
     EXPECT_FLOAT_EQ(q.scene.lightPosition().y, light.y);
     EXPECT_FLOAT_EQ(q.scene.materials[0].kd.x, 0.5f);
     EXPECT_EQ(q.scene.contentHash(), p.scene.contentHash()) << "the overrides are applied at load";

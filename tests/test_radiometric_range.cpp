@@ -16,6 +16,7 @@
 
 #include "core/predict/exact_direct.h"
 #include "core/project/scene_overrides.h"
+#include "core/project/scene_overrides_json.h"
 #include "core/render/render_outputs.h"
 #include "core/render/render_settings.h"
 #include "core/render/renderer.h"
@@ -133,7 +134,7 @@ TEST(RadiometricRange, MtlEmitterBeyondTheBoundIsRefusedBeforeAnyWork) {
 TEST(RadiometricRange, OverridesBeyondTheExponentBoundAreIgnoredWithAWarning) {
     const json doc = json::parse(R"({"materials": {"shiny": {"exponent": 1e7, "kd": [0.1, 0.1, 0.1]}}})");
     std::vector<std::string> warnings;
-    const SceneOverrides o = SceneOverrides::fromJson(JsonReader(doc, "project.json", "/scene_overrides"), warnings);
+    const SceneOverrides o = sceneOverridesFromJson(JsonReader(doc, "project.json", "/scene_overrides"), warnings);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_TRUE(contains(warnings[0], "project.json: /scene_overrides/materials/shiny/exponent: value 1e+07 out of range")) << warnings[0];
     // The workbench's typed value is clamped, like kd + ks.

@@ -19,6 +19,7 @@
 #include "core/data/record_noise.h"
 #include "core/nn/training_samples.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 
 namespace test_record_noise {
 

@@ -30,9 +30,12 @@
 
 #include "core/data/record_layout.h"
 #include "core/eval/error_metrics.h"
+#include "core/eval/reference_file.h"
+#include "core/eval/reference_settings_json.h"
 #include "core/eval/reference_store.h"
 #include "core/project/project.h"
 #include "core/predict/gbuffer.h"
+#include "core/project/project_file.h"
 #include "core/scene/accel.h"
 #include "core/util/error.h"
 #include "scene_builders.h"
@@ -369,7 +372,7 @@ TEST(ReferenceSettings, ProjectSectionIsParsedStrictlyAndRoundTrips) {
     Project copy = p;
     saveProject(copy, (dir / "saved.json").string());
     const Project q = loadProjectOrScene((dir / "saved.json").string());
-    EXPECT_EQ(q.reference.toJson(), p.reference.toJson());
+    EXPECT_EQ(toJson(q.reference), toJson(p.reference));
     const std::vector<std::pair<std::string, std::string>> bad = {
         {R"({"noize": 0.01})", "/reference/noize"},
         {R"({"noise": 0})", "/reference/noise"},

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/project/runs.h"
+#include "core/project/runs_json.h"
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
 
@@ -82,7 +83,7 @@ TEST(RunRecords, AMistypedSettingIsRefused) {
 TEST(RunRecords, KnownFiguresReadIntoFields) {
     std::vector<std::string> warnings;
     const json doc = trainRun();
-    const rrf::Run r = rrf::Run::fromJson(JsonReader(doc, kFile, "/runs/0"), warnings);
+    const rrf::Run r = rrf::runFromJson(JsonReader(doc, kFile, "/runs/0"), warnings);
     EXPECT_TRUE(warnings.empty());
     EXPECT_EQ(r.metrics.networks, 7);
     EXPECT_EQ(r.metrics.records, 4096);
@@ -112,7 +113,7 @@ TEST(RunRecords, ASettingsSectionThisBuildCannotReadKeepsTheRun) {
     EXPECT_EQ(read[0].metrics.networks, 7);
     ASSERT_EQ(warnings.size(), 1u);
     expectMentions(warnings[0], {kFile, "/runs/0/settings/trainer", "kept as written"});
-    EXPECT_EQ(read[0].toJson(), doc) << "saving writes the section back unchanged";
+    EXPECT_EQ(toJson(read[0]), doc) << "saving writes the section back unchanged";
 }
 
 TEST(RunRecords, UnknownKeysAndNullFiguresComeBackVerbatim) {
@@ -123,13 +124,13 @@ TEST(RunRecords, UnknownKeysAndNullFiguresComeBackVerbatim) {
     doc["timings"]["future_stage"] = 1.5;
     doc["future_section"] = true;
     std::vector<std::string> warnings;
-    const rrf::Run r = rrf::Run::fromJson(JsonReader(doc, kFile, "/runs/0"), warnings);
+    const rrf::Run r = rrf::runFromJson(JsonReader(doc, kFile, "/runs/0"), warnings);
     ASSERT_TRUE(r.metrics.relativeRmse.has_value());
     EXPECT_TRUE(std::isnan(*r.metrics.relativeRmse));
     EXPECT_EQ(finiteOrNone(r.metrics.relativeRmse), std::nullopt) << "a null figure is unknown in tables";
-    EXPECT_EQ(r.metrics.other.at("future_metric"), "text");
-    EXPECT_EQ(r.toJson(), doc);
-    EXPECT_EQ(r.toJson().dump(), doc.dump());
+    EXPECT_EQ(parseJsonText(r.metrics.other).at("future_metric"), "text");
+    EXPECT_EQ(toJson(r), doc);
+    EXPECT_EQ(toJson(r).dump(), doc.dump());
 }
 
 }  // namespace rrf::test::test_run_records

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "core/project/scene_edits.h"
 #include "core/project/settings_history.h"
 

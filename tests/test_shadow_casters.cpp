@@ -12,6 +12,7 @@
 #include "core/predict/exact_direct.h"
 #include "core/predict/predictor.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "scene_builders.h"
 
 namespace test_shadow_casters {

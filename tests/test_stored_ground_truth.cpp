@@ -1,4 +1,4 @@
-// The workbench's stored ground truth (core/eval/stored_ground_truth.h): a stored render is exactly
+// The workbench's stored ground truth (core/eval/stored_ground_truth_file.h): a stored render is exactly
 // the render a new one of the same key and spp gives (checked against an independent second render,
 // not against what was written), another key or spp is never used, and a damaged set says why.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 
 #include <unistd.h>
 
-#include "core/eval/stored_ground_truth.h"
+#include "core/eval/stored_ground_truth_file.h"
 #include "core/render/render_settings.h"
 #include "core/scene/accel.h"
 #include "scene_builders.h"

@@ -15,9 +15,11 @@
 #include "app/cli/commands.h"
 #include "app/mpi/ranks.h"
 #include "core/eval/held_out.h"
+#include "core/eval/reference_file.h"
 #include "core/nn/model_set.h"
 #include "core/project/project.h"
 #include "core/pipeline/run_recording.h"
+#include "core/project/project_file.h"
 #include "core/util/error.h"
 #include "core/util/stopwatch.h"
 #include "core/render/render_outputs.h"
@@ -112,7 +114,9 @@ int runEvaluate(EvaluateArgs a) {
                                                        : "known from its variance images");
         const Stopwatch clock;
         const ReferenceSource given = [&](size_t, const Vec3&) {
-            return ObtainedReference{ref, {{"directory", a.reference}}};
+            ObtainedReference o{ref, {}};
+            o.info.directory = a.reference;
+            return o;
         };
         const std::vector<Evaluation> evals = evaluateAll(p, predictor, {ref.lightPosition}, given, a.out, a.exposure);
         const Image& refImage = ref.images[int(Term::Global)];

@@ -16,6 +16,7 @@
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "core/util/error.h"
 #include "core/util/stopwatch.h"
 

@@ -8,6 +8,7 @@
 #include "core/data/dataset_file.h"
 #include "core/data/dataset_summary.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "core/scene/effects.h"
 #include "core/scene/scene_summary.h"
 

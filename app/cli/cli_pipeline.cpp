@@ -28,6 +28,7 @@
 #include "core/project/project.h"
 #include "core/pipeline/time_estimate.h"
 #include "core/data/record_layout.h"
+#include "core/project/project_file.h"
 #include "core/util/stopwatch.h"
 
 namespace rrf::cli {

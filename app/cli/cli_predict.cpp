@@ -13,6 +13,7 @@
 #include "core/eval/evaluation.h"
 #include "core/nn/model_set.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "core/render/render_settings.h"
 #include "core/util/stopwatch.h"
 

@@ -5,6 +5,7 @@
 
 #include "core/project/project.h"
 #include "core/pipeline/run_recording.h"
+#include "core/project/project_file.h"
 #include "core/util/error.h"
 
 namespace rrf::cli {

@@ -15,6 +15,7 @@
 #include "app/cli/commands.h"
 #include "core/eval/held_out.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 
 namespace rrf::cli {
 

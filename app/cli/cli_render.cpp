@@ -7,6 +7,7 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
+#include "core/project/project_file.h"
 #include "core/scene/accel.h"
 #include "core/util/error.h"
 #include "core/render/render_outputs.h"

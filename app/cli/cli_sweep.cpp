@@ -23,6 +23,7 @@
 #include "core/nn/training_split.h"
 #include "core/pipeline/time_estimate.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "core/render/render_outputs.h"
 #include "core/util/byte_stream.h"
 #include "core/util/stopwatch.h"

@@ -15,6 +15,7 @@
 #include "app/cli/cli_flags.h"
 #include "app/cli/commands.h"
 #include "core/data/dataset_file.h"
+#include "core/project/project_file.h"
 #include "core/util/error.h"
 #include "core/nn/mlp_kernel.h"
 #include "core/nn/model_set.h"

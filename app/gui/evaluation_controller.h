@@ -11,7 +11,7 @@
 
 #include "app/gui/controller_context.h"
 #include "app/gui/job_session.h"
-#include "app/gui/stored_evaluation.h"
+#include "app/gui/stored_evaluation_file.h"
 
 namespace rrf {
 
@@ -54,7 +54,7 @@ public:
     bool sweepRunning() const { return sweepJob_.running(); }
     void cancelSweep() { sweepJob_.cancel(); }
     /// The Objects table of the project's last evaluation (<project dir>/evaluation.json,
-    /// app/gui/stored_evaluation.h) when it judged the models now loaded against the ground truth
+    /// app/gui/stored_evaluation_file.h) when it judged the models now loaded against the ground truth
     /// of the current scene, light and size: called when a project is opened, after its models.
     void restoreEvaluation();
     /// The Cost panel's series of the project's sweeps on disk (<project dir>/sweeps/*.json), as they
@@ -86,7 +86,7 @@ private:
     void addSweepSeries(const SweepResult& r);
     std::string projectDir() const { return ctx_.projectDir(); }
     /// What an evaluation of the loaded models against a ground truth of width × height of the
-    /// current scene with the light at `light` is made of (stored_evaluation.h).
+    /// current scene with the light at `light` is made of (stored_evaluation_file.h).
     EvaluationSource evaluationSource(const Vec3& light, int width, int height) const;
 
     ControllerContext& ctx_;

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/eval/stored_ground_truth.h"
+#include "core/eval/stored_ground_truth_file.h"
 
 namespace rrf {
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/pipeline/run_recording.h"
+#include "core/project/project_file.h"
 #include "panels/project_io.h"
 
 namespace rrf {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "core/eval/reference_noise.h"
-#include "core/eval/stored_ground_truth.h"
+#include "core/eval/stored_ground_truth_file.h"
 #include "core/predict/gbuffer.h"
 
 namespace rrf {

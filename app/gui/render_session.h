@@ -10,7 +10,7 @@
 /// image's relative noise over that mask (relativeNoiseFloor of the global term,
 /// core/eval/reference_noise.h), so the UI thread does no per-pixel work for the render status.
 ///
-/// With a store (the project's ground_truth directory, core/eval/stored_ground_truth.h) the worker
+/// With a store (the project's ground_truth directory, core/eval/stored_ground_truth_file.h) the worker
 /// first looks there: a stored render of the same key and spp is published as the one snapshot
 /// instead of rendering (the same pixels, by determinism), and a render that finishes is stored.
 

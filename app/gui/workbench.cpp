@@ -11,6 +11,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "core/project/project_file.h"
 #include "core/util/memory_budget.h"
 #include "panels/clip_check.h"
 #include "panels/frame_overlay.h"

@@ -39,6 +39,7 @@
 #include "core/nn/encoding.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/encoding_settings_json.h"
+#include "core/project/project_file.h"
 
 using namespace rrf;
 

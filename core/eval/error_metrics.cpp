@@ -6,7 +6,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -167,56 +166,6 @@ const char* errorMapFormula(ErrorMapKind k) {
     return "?";
 }
 
-nlohmann::json ErrorStats::toJson() const {
-    return {{"pixels", pixels},
-            {"non_finite_pixels", nonFinite},
-            {"rmse", rmse},
-            {"rmse_noise_floor", noiseFigureJson(rmseNoiseFloor)},
-            {"rmse_corrected", noiseFigureJson(rmseCorrected)},
-            {"relative_rmse", relativeRmse},
-            {"relative_rmse_noise_floor", noiseFigureJson(relativeRmseNoiseFloor)},
-            {"relative_rmse_corrected", noiseFigureJson(relativeRmseCorrected)},
-            {"signed_relative_mean", signedRelativeMean},
-            {"relmse", relMse},
-            {"relmse_noise_floor", noiseFigureJson(relMseNoiseFloor)},
-            {"relmse_corrected", noiseFigureJson(relMseCorrected)},
-            {"smape", smape},
-            {"mae", mae},
-            {"max_error", maxError},
-            {"mean_reference", meanReference}};
-}
-
-ErrorStats ErrorStats::fromJson(const nlohmann::json& j, const std::string& file, const std::string& pointer) {
-    const JsonReader r(j, file, pointer);
-    r.requireObject();
-    auto count = [&](const char* key) { return r.at(key).unsignedInteger(); };
-    auto number = [&](const char* key) { return r.at(key).number(); };
-    // A noise figure: a number, or null for unknown (noiseFigureJson).
-    auto noise = [&](const char* key) {
-        const JsonReader v = r.at(key);
-        return v.value().is_null() ? kUnknownNoise : v.number();
-    };
-    ErrorStats s;
-    s.pixels = count("pixels");
-    s.nonFinite = count("non_finite_pixels");
-    s.rmse = number("rmse");
-    s.rmseNoiseFloor = noise("rmse_noise_floor");
-    s.rmseCorrected = noise("rmse_corrected");
-    s.relativeRmse = number("relative_rmse");
-    s.relativeRmseNoiseFloor = noise("relative_rmse_noise_floor");
-    s.relativeRmseCorrected = noise("relative_rmse_corrected");
-    s.signedRelativeMean = number("signed_relative_mean");
-    s.relMse = number("relmse");
-    s.relMseNoiseFloor = noise("relmse_noise_floor");
-    s.relMseCorrected = noise("relmse_corrected");
-    s.smape = number("smape");
-    s.mae = number("mae");
-    s.maxError = number("max_error");
-    s.meanReference = number("mean_reference");
-    s.noiseKnown = !std::isnan(s.relativeRmseNoiseFloor);
-    return s;
-}
-
 ErrorStats errorStats(const Image& prediction, const Image& reference, const std::vector<uint32_t>& mask) {
     return maskedStats(prediction, reference, nullptr, mask);
 }
@@ -231,8 +180,6 @@ ErrorStats errorStatsWithNoise(const Image& prediction, const Image& reference, 
 ErrorStats errorStatsWithNoise(const Image& prediction, const Image& reference, const Image& referenceVariance) {
     return allPixelStats(prediction, reference, knownVariance(referenceVariance, reference));
 }
-
-nlohmann::json noiseFigureJson(double value) { return std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value); }
 
 std::string noiseFigureText(double value) {
     if (std::isnan(value)) return "unknown";

@@ -47,8 +47,6 @@
 #include <string_view>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/util/image.h"
 #include "core/util/relative_error.h"
 
@@ -87,14 +85,6 @@ struct ErrorStats {
     double rmseNoiseFloor = kUnknownNoise, rmseCorrected = kUnknownNoise;
     double relativeRmseNoiseFloor = kUnknownNoise, relativeRmseCorrected = kUnknownNoise;
     double relMseNoiseFloor = kUnknownNoise, relMseCorrected = kUnknownNoise;
-    /// {"pixels", "non_finite_pixels", "rmse", "rmse_noise_floor", "rmse_corrected", "relative_rmse",
-    /// "relative_rmse_noise_floor", "relative_rmse_corrected", "signed_relative_mean", "relmse",
-    /// "relmse_noise_floor", "relmse_corrected", "smape", "mae", "max_error", "mean_reference"};
-    /// the noise figures are null when unknown.
-    nlohmann::json toJson() const;
-    /// Reads what toJson() wrote (null noise figures → unknown, noiseKnown from them). Throws
-    /// InputError naming `file` and the member's pointer for a missing or mistyped member.
-    static ErrorStats fromJson(const nlohmann::json& j, const std::string& file, const std::string& pointer);
 
     static constexpr double kUnknownNoise = std::numeric_limits<double>::quiet_NaN();
 };
@@ -118,8 +108,6 @@ ErrorStats errorStatsWithNoise(const Image& prediction, const Image& reference, 
 /// A noise figure for tables: the number as printf "%.4g" writes it, or "unknown" for NaN (a
 /// reference without its variance) — an unknown floor is never shown as 0.
 std::string noiseFigureText(double value);
-/// A noise figure in JSON: the number, or null for NaN (unknown).
-nlohmann::json noiseFigureJson(double value);
 
 /// Error of one pixel as the maps define it (the mean over R, G, B of the kind's per-channel term);
 /// NaN where a channel of either input is non-finite. errorMap() is this function at every pixel, so a

@@ -19,7 +19,6 @@ namespace {
 double since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
-nlohmann::json vec(const Vec3& v) { return {v.x, v.y, v.z}; }
 
 std::string num(double v) {
     char buf[32];
@@ -69,58 +68,6 @@ Reference referenceOf(const RenderSnapshot& s, const Vec3& lightPosition) {
     return r;
 }
 
-Reference loadReference(const std::string& dir) {
-    const std::string meta = (fs::path(dir) / "render.json").string();
-    Reference r;
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(readFile(meta));
-        const auto lp = j.at("light_position").get<std::vector<float>>();
-        if (lp.size() != 3) throw InputError(meta, "/light_position", "expected 3 numbers");
-        r.lightPosition = Vec3(lp[0], lp[1], lp[2]);
-        r.spp = j.value("spp_completed", 0);
-        r.seconds = j.value("seconds", 0.0);
-        r.nonFinite = j.value("non_finite_samples_dropped", uint64_t(0));
-    } catch (const nlohmann::json::exception& e) {
-        throw InputError(meta, "", std::string("not a render.json written by rrf render: ") + e.what());
-    } catch (const std::runtime_error& e) {
-        throw InputError(meta, "", std::string("no reference render here: ") + e.what());
-    }
-    for (int t = 0; t < kTermCount; ++t) {
-        std::string path;
-        for (const char* ext : {".exr", ".pfm"}) {
-            const std::string p = (fs::path(dir) / (std::string(termName(Term(t))) + ext)).string();
-            if (fs::exists(p)) {
-                path = p;
-                break;
-            }
-        }
-        if (path.empty())
-            throw InputError((fs::path(dir) / termName(Term(t))).string() + ".exr", "",
-                             "missing: render the reference with --format exr or pfm");
-        r.images[t] = readImage(path);
-    }
-    // Variances are optional: a render.json without "variance_images" leaves the noise unknown.
-    if (j.contains("variance_images")) {
-        const nlohmann::json& files = j["variance_images"];
-        for (Term t : kTerms) {
-            const std::string pointer = std::string("/variance_images/") + termName(t);
-            if (!files.is_object() || !files.contains(termName(t)) || !files[termName(t)].is_string())
-                throw InputError(meta, pointer, "expected the file name of the variance image");
-            const std::string path = (fs::path(dir) / files[termName(t)].get<std::string>()).string();
-            if (!fs::exists(path)) throw InputError(path, "", std::string("missing: listed in ") + meta + " at " + pointer);
-            Image v = readImage(path);
-            const Image& im = r.image(t);
-            if (v.width != im.width || v.height != im.height)
-                throw InputError(path, "", "expected a " + std::to_string(im.width) + "x" + std::to_string(im.height) +
-                                               " variance image like " + termName(t) + ", got " + std::to_string(v.width) +
-                                               "x" + std::to_string(v.height));
-            r.variances[int(t)] = std::move(v);
-        }
-    }
-    return r;
-}
-
 Evaluation evaluate(const Predictor& predictor, const Reference& reference) {
     const Image& ref = reference.image(Term::Global);
     if (ref.empty()) throw std::invalid_argument("evaluate: the reference has no pixels");
@@ -161,62 +108,6 @@ Evaluation evaluatePrediction(const GBuffer& gb, Prediction prediction, const Re
     }
     e.uncertainty = evaluateUncertainty(e.prediction, ref, masks, covered);
     return e;
-}
-
-nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
-    const Prediction& p = e.prediction;
-    nlohmann::json terms = nlohmann::json::object();
-    for (int t = 0; t < kTermCount; ++t) {
-        const TermErrors& te = e.terms[t];
-        nlohmann::json objects = nlohmann::json::array();
-        for (size_t id = 0; id < te.perObject.size(); ++id) {
-            nlohmann::json o = te.perObject[id].toJson();
-            o["id"] = int(id);
-            o["name"] = id < scene.objects.size() ? scene.objects[id].name : "";
-            objects.push_back(o);
-        }
-        terms[termName(Term(t))] = {{"available", te.available}, {"overall", te.overall.toJson()}, {"objects", objects}};
-    }
-    nlohmann::json report = {
-        {"light_position", vec(e.lightPosition)},
-        {"footprint_mask", e.footprint.counts.toJson()},
-        {"reference",
-         {{"spp", e.referenceSpp},
-          {"seconds", e.referenceSeconds},
-          {"non_finite_samples_dropped", e.referenceNonFinite},
-          {"noise", e.referenceNoiseKnown ? "per-pixel variance of the mean known: noise floor and corrected figures given"
-                                          : "unknown (the reference has no variance images): noise floor and corrected figures are null"}}},
-        {"prediction",
-         {{"gbuffer_seconds", e.gbufferSeconds},
-          {"inference_seconds", p.inferenceSeconds},
-          {"exact_direct_seconds", p.directSeconds},
-          {"gather_seconds", p.gatherSeconds},
-          {"pixels_gathered", p.pixelsGathered},
-          {"pixels_predicted", p.pixelsPredicted},
-          {"pixels_without_network", p.pixelsWithoutNetwork},
-          {"objects_without_network", p.objectsWithoutNetwork},
-          {"non_finite_values", p.nonFinite},
-          {"unavailable", p.unavailableWhy}}},
-        {"metric",
-         "per channel, averaged over RGB; relative error |d|/(|ref|+0.01); overall = all object pixels the footprint mask keeps; "
-         "*_noise_floor = the figure the reference's own noise gives (sqrt of the mean variance of the mean, relative: "
-         "divided by (|ref|+0.01)^2); *_corrected = sqrt(max(0, mean(d^2 - variance))) (relative: each term divided by "
-         "(|ref|+0.01)^2), an estimate of the error against the noise-free truth"},
-        {"terms", terms},
-    };
-    if (e.flip.available) {
-        std::vector<std::string> names;
-        for (const auto& o : scene.objects) names.push_back(o.name);
-        report["flip"] = flipJson(e.flip, names);
-    }
-    if (e.uncertainty.available) {
-        std::vector<std::string> names;
-        for (const auto& o : scene.objects) names.push_back(o.name);
-        report["uncertainty"] = e.uncertainty.toJson(names);
-        report["prediction"]["spread_pixels"] = p.spreadPixels;
-        report["prediction"]["spread_seconds"] = p.spreadSeconds;
-    }
-    return report;
 }
 
 std::string evaluationTable(const Scene& scene, const Evaluation& e) {
@@ -326,11 +217,12 @@ std::vector<std::string> writePredictionImages(const std::string& dir, const Pre
     return files;
 }
 
-nlohmann::json writeEvaluationImages(const std::string& dir, const Evaluation& e, const Reference& reference,
-                                     float exposureStops) {
-    nlohmann::json files = writePredictionImages(dir, e.prediction, exposureStops);
-    nlohmann::json ranges = nlohmann::json::object();
-    uint64_t nonFinite = 0;
+EvaluationImages writeEvaluationImages(const std::string& dir, const Evaluation& e, const Reference& reference,
+                                      float exposureStops) {
+    EvaluationImages out;
+    out.files = writePredictionImages(dir, e.prediction, exposureStops);
+    std::vector<std::string>& files = out.files;
+    uint64_t& nonFinite = out.nonFiniteMapPixels;
     for (int t = 0; t < kTermCount; ++t) {
         if (!e.prediction.available[t]) continue;
         const std::string term = termName(Term(t));
@@ -347,7 +239,7 @@ nlohmann::json writeEvaluationImages(const std::string& dir, const Evaluation& e
             // a signed map over ±p99 of |value|, centred at 0.
             const float hi = errorMapScale(map, k);
             writeImage(base + ".png", errorMapColour(map, k, hi), ImageFormat::PNG);
-            ranges[std::string(errorMapName(k)) + "_" + term] = {errorMapIsSigned(k) ? -double(hi) : 0.0, double(hi)};
+            out.falseColourRanges[std::string(errorMapName(k)) + "_" + term] = {errorMapIsSigned(k) ? -double(hi) : 0.0, double(hi)};
             files.push_back(base + ".exr");
             files.push_back(base + ".png");
         }
@@ -360,11 +252,11 @@ nlohmann::json writeEvaluationImages(const std::string& dir, const Evaluation& e
             writeImage(base + ".exr", finiteMap(*map, replaced), ImageFormat::EXR);
             nonFinite += replaced;
             writeImage(base + ".png", flipColour(*map), ImageFormat::PNG);  // magma over [0, 1], FLIP's own scale
-            ranges[name] = {0.0, 1.0};
+            out.falseColourRanges[name] = {0.0, 1.0};
             files.push_back(base + ".exr");
             files.push_back(base + ".png");
         }
-    return {{"files", files}, {"false_colour_ranges", ranges}, {"non_finite_map_pixels", nonFinite}};
+    return out;
 }
 
 }  // namespace rrf

@@ -1,14 +1,15 @@
 #pragma once
 /// Evaluation of a prediction against a path-traced reference at the same light position
 /// (docs/design.md §14): per term (direct, indirect, global) and per object (masks from the
-/// G-buffer's object ids) error statistics, error maps, a JSON report and a readable table.
-/// Metric conventions are in core/eval/error_metrics.h.
+/// G-buffer's object ids) error statistics, error maps, a JSON report (core/eval/evaluation_json.h)
+/// and a readable table. Metric conventions are in core/eval/error_metrics.h.
 
 #include <atomic>
+#include <cstdint>
+#include <map>
+#include <utility>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/eval/error_metrics.h"
 #include "core/eval/flip_evaluation.h"
@@ -62,12 +63,6 @@ LightRender renderAtLight(const Scene& scene, const Vec3& lightPos, const Render
 Reference renderReference(const Scene& scene, const Vec3& lightPos, const RenderOptions& options,
                           const std::atomic<bool>* cancel = nullptr, std::atomic<double>* progress = nullptr);
 
-/// Reads a directory written by `rrf render` (direct/indirect/global.exr or .pfm and render.json,
-/// whose light position and spp it takes) and the variance images render.json lists under
-/// "variance_images"; a render.json without that key (an older render) gives a reference whose
-/// noise is unknown. Throws InputError naming the file.
-Reference loadReference(const std::string& dir);
-
 /// Errors of one term: per object (index = object id; pixels = 0 for objects out of view) and over
 /// all object pixels ("overall"; emitter and background pixels are exact by construction and left out),
 /// both over the pixels the footprint mask keeps.
@@ -108,21 +103,24 @@ Evaluation evaluate(const Predictor& predictor, const Reference& reference);
 /// compared with one prediction this way (the measured error its noise target follows).
 Evaluation evaluatePrediction(const GBuffer& gb, Prediction prediction, const Reference& reference);
 
-/// Report of one evaluation: settings, timings, NaN/Inf counts, errors per term and object (each with
-/// the reference's noise floor and the noise-corrected figures, null when unknown), and "flip"
-/// (flipJson) when the FLIP figures were computed.
-nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e);
 /// Fixed-width table: one row per term and object, then the overall row of each term; RMSE and
 /// relative RMSE each with "noise floor" and "corrected" columns ("unknown" without the variance);
 /// then the FLIP figures when computed.
 std::string evaluationTable(const Scene& scene, const Evaluation& e);
 
+/// The files writeEvaluationImages wrote (core/eval/evaluation_json.h lists them in a report).
+struct EvaluationImages {
+    std::vector<std::string> files;  ///< every file written, in the order written
+    /// The value range each PNG's false colours span, by map name ("<kind>_<term>", "flip_hdr_global").
+    std::map<std::string, std::pair<double, double>> falseColourRanges;
+    uint64_t nonFiniteMapPixels = 0;  ///< non-finite error-map pixels zeroed in the EXR maps
+};
+
 /// Writes into `dir`: prediction_<term>.exr/.png, reference_<term>.exr, error_<kind>_<term>.exr (float
 /// maps, non-finite pixels zeroed and counted) and error_<kind>_<term>.png (viridis over [0, p99] of
-/// the map, the range recorded in the returned JSON). Unavailable terms are skipped. With the FLIP
+/// the map, the range recorded in the result). Unavailable terms are skipped. With the FLIP
 /// figures: flip_hdr_global and flip_ldr_global (.exr, and .png in magma over [0, 1]).
-/// Returns {"files": [...], "ranges": {...}, "non_finite_map_pixels": n}.
-nlohmann::json writeEvaluationImages(const std::string& dir, const Evaluation& e, const Reference& reference,
+EvaluationImages writeEvaluationImages(const std::string& dir, const Evaluation& e, const Reference& reference,
                                      float exposureStops = 0.f);
 
 /// Writes the prediction images (prediction_<term>.exr and .png) of the available terms into `dir`.

@@ -13,12 +13,10 @@
 /// when the reference has no variance.
 ///
 /// Only the global term: the direct and indirect terms are parts of an image nobody looks at alone,
-/// and a perceptual metric is about what is seen.
+/// and a perceptual metric is about what is seen. core/eval/flip_evaluation_json.h writes the figures.
 
 #include <cstdint>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/eval/error_metrics.h"
 #include "core/eval/flip.h"
@@ -56,13 +54,5 @@ Image withDrawnNoise(const Image& image, const Image& variance, uint64_t seed);
 /// The FLIP figures of `e` (its prediction and footprint mask) against `reference` (the one `e` was
 /// evaluated against); not available when the global term was not predicted.
 FlipEvaluation flipEvaluation(const Evaluation& e, const Reference& reference, const FlipSettings& settings = {});
-
-/// {"method", "pixels_per_degree", "exposures": {"start", "stop", "count"}, "hdr": stats,
-/// "hdr_noise_floor" (null when unknown), "ldr": stats, "objects": [{"id", "name", "hdr": stats}]}
-/// with stats = {"mean", "weighted_median", "weighted_first_quartile", "weighted_third_quartile",
-/// "min", "max", "pixels", "non_finite_pixels"}; `names` are the objects' names by id.
-nlohmann::json flipJson(const FlipEvaluation& f, const std::vector<std::string>& names);
-/// FlipStats as flipJson writes them.
-nlohmann::json flipStatsJson(const FlipStats& s);
 
 }  // namespace rrf

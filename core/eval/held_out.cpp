@@ -34,11 +34,6 @@ void Spread::add(double v) {
     ++count;
 }
 
-nlohmann::json Spread::toJson() const {
-    auto value = [&](double v) { return count ? nlohmann::json(v) : nlohmann::json(nullptr); };
-    return {{"mean", value(mean)}, {"min", value(min)}, {"max", value(max)}, {"count", count}};
-}
-
 void HeldOutSummary::Row::add(const ErrorStats& s) {
     rmse.add(s.rmse);
     relativeRmse.add(s.relativeRmse);
@@ -47,15 +42,6 @@ void HeldOutSummary::Row::add(const ErrorStats& s) {
     rmseCorrected.add(s.rmseCorrected);
     relativeRmseNoiseFloor.add(s.relativeRmseNoiseFloor);
     relativeRmseCorrected.add(s.relativeRmseCorrected);
-}
-
-nlohmann::json HeldOutSummary::Row::toJson() const {
-    return {{"rmse", rmse.toJson()},
-            {"rmse_noise_floor", rmseNoiseFloor.toJson()},
-            {"rmse_corrected", rmseCorrected.toJson()},
-            {"relative_rmse", relativeRmse.toJson()},
-            {"relative_rmse_noise_floor", relativeRmseNoiseFloor.toJson()},
-            {"relative_rmse_corrected", relativeRmseCorrected.toJson()}};
 }
 
 HeldOutSummary summarizeHeldOut(const std::vector<Evaluation>& evaluations, size_t objectCount) {
@@ -84,38 +70,6 @@ HeldOutSummary summarizeHeldOut(const std::vector<Evaluation>& evaluations, size
             if (std::isfinite(e.uncertainty.perObject[id].spearman)) s.spearmanPerObject[id].add(e.uncertainty.perObject[id].spearman);
     }
     return s;
-}
-
-nlohmann::json HeldOutSummary::uncertaintyJson(const Scene& scene) const {
-    if (!spearman.count) return nullptr;
-    nlohmann::json objects = nlohmann::json::array();
-    for (size_t id = 0; id < spearmanPerObject.size(); ++id) {
-        if (!spearmanPerObject[id].count) continue;
-        objects.push_back({{"id", int(id)},
-                           {"name", id < scene.objects.size() ? scene.objects[id].name : ""},
-                           {"spearman", spearmanPerObject[id].toJson()}});
-    }
-    return {{"spearman", spearman.toJson()}, {"objects", objects}};
-}
-
-nlohmann::json HeldOutSummary::flipJson() const {
-    if (!flipHdr.count) return nullptr;
-    return {{"hdr", flipHdr.toJson()}, {"hdr_noise_floor", flipHdrNoiseFloor.toJson()}, {"ldr", flipLdr.toJson()}};
-}
-
-nlohmann::json heldOutJson(const Scene& scene, const HeldOutSummary& s) {
-    nlohmann::json terms = nlohmann::json::object();
-    for (int t = 0; t < kTermCount; ++t) {
-        nlohmann::json objects = nlohmann::json::array();
-        for (size_t id = 0; id < s.perObject[t].size(); ++id) {
-            nlohmann::json o = s.perObject[t][id].toJson();
-            o["id"] = int(id);
-            o["name"] = id < scene.objects.size() ? scene.objects[id].name : "";
-            objects.push_back(o);
-        }
-        terms[termName(Term(t))] = {{"available", s.available[t]}, {"overall", s.overall[t].toJson()}, {"objects", objects}};
-    }
-    return terms;
 }
 
 std::string heldOutTable(const Scene& scene, const HeldOutSummary& s) {

@@ -2,12 +2,11 @@
 /// Held-out light positions (docs/design.md §15): evaluation at K light positions drawn
 /// from the light region on a random stream that the data generator never uses, and the spread
 /// (mean, min, max) of the errors across them — the generalisation a user cares about.
+/// core/eval/held_out_json.h writes the summary.
 
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/eval/evaluation.h"
 
@@ -24,8 +23,6 @@ struct Spread {
     void add(double v);
     /// Mean, or NaN (an unknown figure, "unknown" in tables) when no evaluation had it.
     double meanOrUnknown() const { return count ? mean : ErrorStats::kUnknownNoise; }
-    /// {"mean", "min", "max", "count"}; the three numbers are null when count is 0.
-    nlohmann::json toJson() const;
 };
 
 /// Spread of RMSE and relative RMSE per term, per object and overall, across evaluations, each with
@@ -36,7 +33,6 @@ struct HeldOutSummary {
         Spread rmse, relativeRmse;
         Spread rmseNoiseFloor, rmseCorrected, relativeRmseNoiseFloor, relativeRmseCorrected;
         void add(const ErrorStats& s);
-        nlohmann::json toJson() const;
     };
     bool available[kTermCount] = {true, true, true};
     std::vector<Row> perObject[kTermCount];  ///< index = object id
@@ -45,19 +41,13 @@ struct HeldOutSummary {
     /// evaluations that computed it: HDR-FLIP mean, its noise floor (where the noise was known) and
     /// LDR-FLIP mean.
     Spread flipHdr, flipHdrNoiseFloor, flipLdr;
-    /// {"hdr", "hdr_noise_floor", "ldr"} spreads, or null when no evaluation had FLIP figures.
-    nlohmann::json flipJson() const;
     /// The ensemble spread's rank correlation with the true error (core/eval/uncertainty.h) per
     /// object id and over all objects, across the evaluations whose prediction had a spread.
     std::vector<Spread> spearmanPerObject;
     Spread spearman;
-    /// {"spearman": spread, "objects": [{"id", "name", "spearman": spread}]}, or null when no
-    /// evaluation had a spread.
-    nlohmann::json uncertaintyJson(const Scene& scene) const;
 };
 
 HeldOutSummary summarizeHeldOut(const std::vector<Evaluation>& evaluations, size_t objectCount);
-nlohmann::json heldOutJson(const Scene& scene, const HeldOutSummary& s);
 /// Fixed-width table: term, object, K, relative RMSE mean/min/max, its noise floor (mean), its
 /// corrected value mean/min/max, then RMSE mean/min/max, noise floor and corrected (means); then a
 /// line of the FLIP spread when the evaluations had FLIP figures.

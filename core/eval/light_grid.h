@@ -5,11 +5,10 @@
 /// dense and sparse draws) rather than one average over a few random held-out lights. The figures
 /// are laid out as slices of constant height (y): one x-by-z map per y of the grid, every slice on
 /// one colour scale, with the training records' light positions of that height band marked.
+/// core/eval/light_grid_json.h writes the figures.
 
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/eval/evaluation.h"
 #include "core/scene/scene.h"
@@ -80,10 +79,6 @@ std::vector<Vec3> datasetLightPositions(const Dataset& dataset, size_t maxCount)
 /// z downwards, each grid point a `cell` x `cell` square on viridis over [0, scale] (magenta: no
 /// figure), and the marks whose y lies in the slice's height band as white dots at their (x, z).
 Image lightGridSlice(const LightGridMap& map, const std::vector<double>& values, int j, int cell, double scale);
-
-/// {"grid", "region", "axes", "scale", "lights": [{"index", "position", "global": {...},
-/// "objects": {name: figure}}], "marks": {"source", "count", "why"}}; unknown figures are null.
-nlohmann::json lightGridJson(const Scene& scene, const LightGridMap& map);
 
 /// Per slice, a table of the global figure with x across and z down, then the worst light position
 /// per object.

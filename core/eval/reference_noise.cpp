@@ -8,13 +8,6 @@ ReferenceNoise::ReferenceNoise() {
     for (int t = 0; t < kTermCount; ++t) rmse[t] = relativeRmse[t] = ErrorStats::kUnknownNoise;
 }
 
-nlohmann::json ReferenceNoise::toJson() const {
-    nlohmann::json j = nlohmann::json::object();
-    for (Term t : kTerms)
-        j[termName(t)] = {{"rmse", noiseFigureJson(rmse[int(t)])}, {"relative_rmse", noiseFigureJson(relativeRmse[int(t)])}};
-    return j;
-}
-
 namespace {
 // The floors are the error statistics of the reference against itself with its variance given: the
 // difference is 0, so only the noise terms of error_metrics' formulas remain (one definition).

@@ -5,9 +5,7 @@
 /// footprint mask. This is the one convergence figure of a render: the reference store renders until
 /// it is small enough (core/eval/reference_store.h) and the workbench's render status shows it. (The
 /// standard error of the image mean is not one: it averages the noise away and reads as "converged"
-/// on a visibly noisy image.)
-
-#include <nlohmann/json.hpp>
+/// on a visibly noisy image.) core/eval/reference_noise_json.h writes and reads it.
 
 #include "core/eval/evaluation.h"
 #include "core/predict/footprint_mask.h"
@@ -20,8 +18,6 @@ struct ReferenceNoise {
     double rmse[kTermCount];
     double relativeRmse[kTermCount];
     ReferenceNoise();
-    /// {"direct": {"rmse", "relative_rmse"}, "indirect": …, "global": …}; unknown figures are null.
-    nlohmann::json toJson() const;
 };
 
 /// Relative RMSE noise floor, sqrt(mean v / (|ref| + 0.01)²), of `image` with per-pixel variance of

@@ -1,11 +1,7 @@
 #pragma once
 /// How converged the references of a project must be (the project's "reference" section,
 /// docs/file-formats.md): the noise target the reference store renders to (core/eval/reference_store.h)
-/// and the size of its references.
-
-#include <nlohmann/json.hpp>
-
-#include "core/util/json_reader.h"
+/// and the size of its references. core/eval/reference_settings_json.h reads and writes the section.
 
 namespace rrf {
 
@@ -27,12 +23,6 @@ struct NoiseTarget {
 struct ReferenceSettings {
     NoiseTarget target;
     int width = 0, height = 0;  ///< 0 = the "render" section's size (which in turn 0 = the camera's)
-
-    /// {"noise", "error_fraction", "spp_cap", "spp_per_pass", "width", "height"} (every key written).
-    nlohmann::json toJson() const;
-    /// Parses a "reference" section (missing keys keep their defaults). Throws InputError naming the
-    /// reader's file and the JSON pointer for unknown keys or values out of range.
-    static ReferenceSettings fromJson(const JsonReader& section);
 };
 
 }  // namespace rrf

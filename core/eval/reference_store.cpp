@@ -12,6 +12,7 @@
 
 #include "core/data/dataset_file.h"
 #include "core/data/record_layout.h"
+#include "core/eval/reference_store_file.h"
 #include "core/predict/gbuffer.h"
 #include "core/render/render_outputs.h"
 #include "core/scene/accel.h"
@@ -19,19 +20,16 @@
 #include "core/util/directory_replace.h"
 #include "core/util/error.h"
 #include "core/util/image_io.h"
-#include "core/util/json_reader.h"
 #include "core/util/text_format.h"
 
 namespace rrf {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 
 namespace {
 
-constexpr const char* kMetaFile = "reference.json";
+constexpr const char* kMetaFile = kReferenceEntryFile;
 constexpr const char* kStateFile = "state.rrfs";
-constexpr const char* kFormat = "rrf reference 1";
 constexpr char kStateMagic[8] = {'R', 'R', 'F', 'S', 'T', 'A', 'T', 'E'};
 constexpr uint32_t kStateVersion = 1;
 /// A partial render is saved this often, so a killed process (not only a cancelled one) loses little.
@@ -46,7 +44,6 @@ void put(std::string& out, const T& v) {
     static_assert(std::is_trivially_copyable<T>::value, "raw bytes only");
     out.append(reinterpret_cast<const char*>(&v), sizeof v);
 }
-
 
 std::string num(double v) {
     if (!std::isfinite(v)) return "unknown";
@@ -135,42 +132,6 @@ RenderState decodeState(const std::string& path, int width, int height) {
 
 // ---- entries ----------------------------------------------------------------------------------
 
-double noiseValue(const json& j) { return j.is_number() ? j.get<double>() : ErrorStats::kUnknownNoise; }
-
-ReferenceNoise noiseFromJson(const json& j) {
-    ReferenceNoise n;
-    for (Term t : kTerms) {
-        if (!j.contains(termName(t))) continue;
-        const json& o = j.at(termName(t));
-        n.rmse[int(t)] = noiseValue(o.at("rmse"));
-        n.relativeRmse[int(t)] = noiseValue(o.at("relative_rmse"));
-    }
-    return n;
-}
-
-/// Reads an entry's reference.json; throws InputError naming it.
-StoredReference readEntry(const fs::path& dir) {
-    const std::string meta = (dir / kMetaFile).string();
-    const json j = readJsonFile(meta);
-    StoredReference r;
-    try {
-        if (j.at("format").get<std::string>() != kFormat)
-            throw InputError(meta, "/format", std::string("expected \"") + kFormat + "\"");
-        r.key = ReferenceKey::fromJson(j.at("key"), meta, "/key");
-        r.spp = j.at("spp").get<int>();
-        r.seconds = j.at("seconds").get<double>();
-        r.noise = noiseFromJson(j.at("noise"));
-        r.complete = j.at("complete").get<bool>();
-        r.wantedNoise = noiseValue(j.at("wanted_noise"));
-    } catch (const json::exception& e) {
-        throw InputError(meta, "", std::string("not a reference entry written by the reference store: ") + e.what());
-    }
-    r.dir = dir.string();
-    if (dir.filename().string() != r.key.id())
-        throw InputError(meta, "/key", "the key's id is " + r.key.id() + ", the directory is " + dir.filename().string());
-    return r;
-}
-
 bool isTemporary(const fs::path& p) { return !p.filename().empty() && p.filename().string()[0] == '.'; }
 
 /// The pixels of a state, with the variances once there are 2 samples per pixel (unknown before).
@@ -197,31 +158,8 @@ void writeEntry(const fs::path& storeDir, const ReferenceKey& key, const RenderS
             writeFileAtomically((tmp / kStateFile).string(), state);
             for (Term t : kTerms)
                 writeImage((tmp / (std::string(termName(t)) + ".exr")).string(), ref.image(t), ImageFormat::EXR);
-            json render{{"light_position", {ref.lightPosition.x, ref.lightPosition.y, ref.lightPosition.z}},
-                        {"spp_completed", ref.spp},
-                        {"seconds", ref.seconds},
-                        {"non_finite_samples_dropped", ref.nonFinite},
-                        {"width", key.width},
-                        {"height", key.height},
-                        {"written_by", "reference store"}};
-            if (!ref.variance(Term::Global).empty()) {
-                std::vector<std::string> written;
-                render["variance_images"] =
-                    writeVarianceImages(dir, {&ref.variance(Term::Direct), &ref.variance(Term::Indirect), &ref.variance(Term::Global)},
-                                        ImageFormat::EXR, written);
-            }
-            writeFileAtomically((tmp / "render.json").string(), render.dump(2) + "\n");
-            const json meta{{"format", kFormat},
-                            {"key", key.toJson()},
-                            {"spp", st.sppDone},
-                            {"seconds", st.seconds},
-                            {"noise", noise.toJson()},
-                            {"noise_metric", "relative RMSE noise floor over the footprint mask (docs/design.md §14)"},
-                            {"complete", complete},
-                            {"wanted_noise", noiseFigureJson(wanted)},
-                            {"non_finite_samples_dropped", st.nonFinite},
-                            {"state", {{"file", kStateFile}, {"checksum64", hexString16(checksum64(state.data(), state.size()))}}}};
-            writeFileAtomically((tmp / kMetaFile).string(), meta.dump(2) + "\n");
+            writeReferenceEntryFiles(dir, key, ref, noise, {st.sppDone, st.seconds, st.nonFinite, complete, wanted},
+                                     kStateFile, hexString16(checksum64(state.data(), state.size())));
         });
     } catch (const InputError&) {
         throw;
@@ -274,37 +212,6 @@ std::string ReferenceKey::id() const {
     return hexString16(checksum64(b.data(), b.size()));
 }
 
-json ReferenceKey::toJson() const {
-    return {{"scene_hash", hexString16(sceneHash)}, {"camera_hash", hexString16(cameraHash)},
-            {"light_position", {lightPosition.x, lightPosition.y, lightPosition.z}},
-            {"width", width}, {"height", height}, {"estimator", estimatorName(estimator)},
-            {"max_depth", maxDepth}, {"seed", seed}};
-}
-
-ReferenceKey ReferenceKey::fromJson(const json& j, const std::string& file, const std::string& pointer) {
-    const JsonReader r(j, file, pointer);
-    r.checkKeys({"scene_hash", "camera_hash", "light_position", "width", "height", "estimator", "max_depth", "seed"});
-    auto hash = [&](const char* name) {
-        const JsonReader f = r.at(name);
-        const std::string s = f.string();
-        if (s.size() != 16 || s.find_first_not_of("0123456789abcdef") != std::string::npos)
-            f.fail("expected 16 hex digits, got \"" + s + "\"");
-        return uint64_t(std::stoull(s, nullptr, 16));
-    };
-    ReferenceKey k;
-    k.sceneHash = hash("scene_hash");
-    k.cameraHash = hash("camera_hash");
-    k.lightPosition = r.at("light_position").vec3();
-    k.width = int(r.at("width").integer(1, kMaxImageSide));
-    k.height = int(r.at("height").integer(1, kMaxImageSide));
-    const std::string e = r.choiceOr("estimator", "", {"nee", "naive", "bdpt"});
-    if (e.empty()) r.fail("missing required field 'estimator'");
-    k.estimator = *parseEstimator(e);
-    k.maxDepth = int(r.at("max_depth").integer(1, 1 << 16));
-    k.seed = r.at("seed").unsignedInteger();
-    return k;
-}
-
 bool ReferenceKey::operator==(const ReferenceKey& o) const {
     return sceneHash == o.sceneHash && cameraHash == o.cameraHash && lightPosition.x == o.lightPosition.x &&
            lightPosition.y == o.lightPosition.y && lightPosition.z == o.lightPosition.z && width == o.width &&
@@ -318,7 +225,7 @@ ReferenceStore::ReferenceStore(std::string dir) : dir_(std::move(dir)) {}
 std::optional<StoredReference> ReferenceStore::find(const ReferenceKey& key) const {
     const fs::path dir = fs::path(dir_) / key.id();
     if (!fs::exists(dir / kMetaFile)) return std::nullopt;
-    StoredReference r = readEntry(dir);
+    StoredReference r = readReferenceEntry(dir.string());
     if (!(r.key == key)) throw InputError((dir / kMetaFile).string(), "/key", "another key under this key's id");
     return r;
 }
@@ -333,7 +240,7 @@ std::vector<StoredReference> ReferenceStore::list(uint64_t currentSceneHash) con
     std::sort(dirs.begin(), dirs.end());
     for (const fs::path& d : dirs) {
         try {
-            StoredReference r = readEntry(d);
+            StoredReference r = readReferenceEntry(d.string());
             r.stale = r.key.sceneHash != currentSceneHash;
             out.push_back(std::move(r));
         } catch (const InputError& e) {

@@ -25,6 +25,7 @@
 ///                                      pixels obtain() returns are computed from it
 /// An entry is written whole (a temporary directory renamed into place), never mixed. A damaged entry
 /// (unreadable JSON, a state file whose size or checksum is wrong) is an InputError naming the file.
+/// core/eval/reference_store_file.h reads and writes the JSON files of an entry.
 
 #include <atomic>
 #include <cstdint>
@@ -32,8 +33,6 @@
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/eval/evaluation.h"
 #include "core/eval/reference_noise.h"
@@ -59,11 +58,6 @@ struct ReferenceKey {
                            const RenderSettings& render);
     /// A 16-hex-digit digest of every field: the entry's directory name.
     std::string id() const;
-    /// {"scene_hash", "camera_hash" (16 hex digits), "light_position", "width", "height", "estimator"
-    /// ("nee"|"naive"|"bdpt": the estimator that ran, never "auto"), "max_depth", "seed"}.
-    nlohmann::json toJson() const;
-    /// The key written by toJson(); throws InputError naming `file` and the pointer below `pointer`.
-    static ReferenceKey fromJson(const nlohmann::json& j, const std::string& file, const std::string& pointer);
     bool operator==(const ReferenceKey& o) const;
 };
 

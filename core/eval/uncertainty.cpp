@@ -78,30 +78,6 @@ float relativeSpreadScale(const Image& rel, const std::vector<uint8_t>& known) {
     return std::max(percentile(knownOnly, 0.99), 1e-6f);
 }
 
-nlohmann::json UncertaintyStats::toJson() const {
-    // Undefined figures (no pixels, a constant side) are null, as unknown noise figures are.
-    return {{"pixels", pixels},
-            {"mean_relative_spread", noiseFigureJson(meanRelativeSpread)},
-            {"mean_relative_error", noiseFigureJson(meanRelativeError)},
-            {"spearman", noiseFigureJson(spearman)}};
-}
-
-nlohmann::json UncertaintyEvaluation::toJson(const std::vector<std::string>& objectNames) const {
-    nlohmann::json objects = nlohmann::json::array();
-    for (size_t id = 0; id < perObject.size(); ++id) {
-        if (!perObject[id].pixels) continue;
-        nlohmann::json o = perObject[id].toJson();
-        o["id"] = int(id);
-        o["name"] = id < objectNames.size() ? objectNames[id] : "";
-        objects.push_back(o);
-    }
-    return {{"available", available},
-            {"measure", "relative spread mean_c sd_c / (|pred_c| + 0.01) of the ensemble members against the relative "
-                        "error mean_c |d_c| / (|ref_c| + 0.01): Spearman rank correlation over the pixels"},
-            {"overall", overall.toJson()},
-            {"objects", objects}};
-}
-
 UncertaintyEvaluation evaluateUncertainty(const Prediction& prediction, const Image& reference,
                                           const std::vector<std::vector<uint32_t>>& masks,
                                           const std::vector<uint32_t>& covered) {

@@ -18,8 +18,6 @@
 #include <cstdint>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/util/image.h"
 
 namespace rrf {
@@ -45,8 +43,6 @@ struct UncertaintyStats {
     double meanRelativeSpread = 0;   ///< mean relative spread
     double meanRelativeError = 0;    ///< mean relative error against the reference
     double spearman = 0;             ///< rank correlation; NaN when undefined (null in JSON)
-    /// {"pixels", "mean_relative_spread", "mean_relative_error", "spearman"}.
-    nlohmann::json toJson() const;
 };
 
 /// The uncertainty of a prediction judged against a reference (global term).
@@ -54,8 +50,6 @@ struct UncertaintyEvaluation {
     bool available = false;                 ///< the prediction carried a spread
     std::vector<UncertaintyStats> perObject;  ///< by object id
     UncertaintyStats overall;
-    /// {"available", "overall", "objects": [{id, name, ...}]}, names from `objectNames` by id.
-    nlohmann::json toJson(const std::vector<std::string>& objectNames) const;
 };
 
 /// The statistics of `prediction`'s spread against `reference` (global images) over `masks`

@@ -11,6 +11,7 @@
 
 #include "core/data/dataset_file.h"
 #include "core/eval/held_out.h"
+#include "core/pipeline/evaluation_reports_file.h"
 #include "core/pipeline/run_recording.h"
 #include "core/eval/reference_noise.h"
 #include "core/util/atomic_file.h"
@@ -115,10 +116,8 @@ ObtainedReference obtainReference(ReferenceStore& store, const Project& p, const
                       figureText(e->noise.relativeRmse[int(Term::Indirect)]).c_str(),
                       figureText(e->noise.relativeRmse[int(Term::Global)]).c_str(), figureText(e->wantedNoise).c_str());
         observer.note(line);
-        out.info = {{"store_entry", e->dir}, {"id", key.id()}, {"spp", e->spp}, {"seconds", e->seconds},
-                    {"noise", e->noise.toJson()}, {"wanted_noise", noiseFigureJson(e->wantedNoise)},
-                    {"noise_target", {{"noise", target.relativeRmse}, {"error_fraction", target.errorFraction},
-                                      {"spp_cap", target.sppCap}}}};
+        out.info.storeEntry = *e;
+        out.info.noiseTarget = target;
     }
     return out;
 }
@@ -130,7 +129,8 @@ ObtainedReference renderFixedReference(const Scene& scene, const Vec3& lp, const
     ObtainedReference o;
     o.reference = result.get();
     if (o.reference.cancelled) throw std::runtime_error("interrupted while rendering the reference");
-    o.info = {{"fixed_spp", ro.spp}, {"seed", ro.seed}};
+    o.info.fixedSpp = ro.spp;
+    o.info.seed = ro.seed;
     return o;
 }
 
@@ -158,7 +158,7 @@ std::vector<Evaluation> evaluateAtLights(const Project& p, const Predictor& pred
                                          const ReferenceSource& source, const std::string& out, float exposure,
                                          const StageObserver& observer) {
     std::vector<Evaluation> evals;
-    nlohmann::json reports = nlohmann::json::array();
+    EvaluationReports reports;
     for (size_t k = 0; k < lights.size(); ++k) {
         if (observer.cancelled()) throw std::runtime_error("interrupted while evaluating");
         const ObtainedReference obtained = source(k, lights[k]);
@@ -167,10 +167,8 @@ std::vector<Evaluation> evaluateAtLights(const Project& p, const Predictor& pred
         evals.push_back(evaluate(predictor, ref));
         evals.back().flip = flipEvaluation(evals.back(), ref);
         const Evaluation& e = evals.back();
-        nlohmann::json report = evaluationJson(p.scene, e);
-        if (!obtained.info.is_null()) report["reference_source"] = obtained.info;
-        report["images"] = writeEvaluationImages(dir, e, ref, exposure);
-        writeFileAtomically(evaluationFile(dir, "evaluation.json"), report.dump(2) + "\n");
+        reports.writeLight(evaluationFile(dir, "evaluation.json"), p.scene, e, obtained.info,
+                           writeEvaluationImages(dir, e, ref, exposure));
         const std::string table = evaluationTable(p.scene, e);
         writeFileAtomically(evaluationFile(dir, "evaluation.txt"), table);
         observer.note("\n" + withoutFinalNewline(table));
@@ -183,7 +181,6 @@ std::vector<Evaluation> evaluateAtLights(const Project& p, const Predictor& pred
                       e.referenceSeconds, dir.c_str());
         observer.note(line);
         for (const std::string& why : e.prediction.unavailableWhy) observer.note("unavailable: " + why);
-        reports.push_back(report);
         if (lights.size() > 1) dropPixels(evals.back());
         observer.setProgress(double(k + 1) / double(lights.size()));
     }
@@ -194,7 +191,7 @@ std::vector<Evaluation> evaluateAtLights(const Project& p, const Predictor& pred
         const std::string text = evaluationFile(out, "held_out.txt"), json = evaluationFile(out, "held_out.json");
         writeFileAtomically(text, table);
         observer.note("wrote " + text);
-        writeFileAtomically(json, nlohmann::json{{"summary", heldOutJson(p.scene, s)}, {"flip", s.flipJson()}, {"uncertainty", s.uncertaintyJson(p.scene)}, {"evaluations", reports}}.dump(2) + "\n");
+        reports.writeHeldOut(json, p.scene, s);
         observer.note("wrote " + json);
     }
     return evals;
@@ -240,17 +237,15 @@ LightGridOutcome evaluateLightGrid(const Project& p, const Predictor& predictor,
     map.marks = marks.positions;
     map.marksSource = marks.source;
     map.marksWhy = marks.why;
-    nlohmann::json report = lightGridJson(p.scene, map);
     // Cells large enough to read a mark's place in them, the slice at least 256 pixels across.
     const int cell = std::max(8, 256 / std::max(grid.counts[0], grid.counts[2]));
     const double scale = LightGridMap::scaleOf(map.global);
-    nlohmann::json slices = nlohmann::json::array();
+    std::vector<LightGridSlice> slices;
     for (int j = 0; j < grid.counts[1]; ++j) {
         const std::string name = "light_grid_y" + std::to_string(j) + ".png";
         writeImage(evaluationFile(out, name), lightGridSlice(map, map.global, j, cell, scale), ImageFormat::PNG);
-        slices.push_back({{"y", map.lights[grid.index(0, j, 0)].y}, {"image", name}});
+        slices.push_back({map.lights[grid.index(0, j, 0)].y, name});
     }
-    report["slices"] = slices;
     // The set of slices is replaced whole: slices of an earlier, taller grid in `out` go.
     for (int j = grid.counts[1];; ++j) {
         std::error_code ec;
@@ -258,7 +253,7 @@ LightGridOutcome evaluateLightGrid(const Project& p, const Predictor& predictor,
     }
     const std::string table = lightGridTable(p.scene, map);
     writeFileAtomically(evaluationFile(out, "light_grid.txt"), table);
-    writeFileAtomically(evaluationFile(out, "light_grid.json"), report.dump(2) + "\n");
+    writeLightGridReport(evaluationFile(out, "light_grid.json"), p.scene, map, slices);
     observer.note("\nerror across the light region (" + grid.text() + ", colour scale 0.." + figureText(scale) + "; " +
                   (map.marks.empty() ? "no training lights marked: " + map.marksWhy
                                      : std::to_string(map.marks.size()) + " training records' lights marked from " + map.marksSource) +

@@ -5,13 +5,12 @@
 /// summary. `rrf evaluate`, `rrf reference` and `rrf pipeline` run them; the workbench judges against
 /// the ground truth its views show with core/eval/evaluation.h directly.
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/eval/evaluation.h"
 #include "core/eval/light_grid.h"
@@ -53,10 +52,25 @@ private:
     Prediction prediction_;
 };
 
-/// A reference and what the report says about where it came from (null: nothing to add).
+/// Where a reference came from, as an evaluation report's "reference_source" records it
+/// (core/pipeline/evaluation_reports_file.h); a field left empty is not written, and an empty origin
+/// adds nothing to the report.
+struct ReferenceOrigin {
+    /// The store's entry it was obtained from ("store_entry", "id", "spp", "seconds", "noise",
+    /// "wanted_noise") and the target it was obtained for ("noise_target").
+    std::optional<StoredReference> storeEntry;
+    NoiseTarget noiseTarget;
+    std::optional<int> fixedSpp;           ///< "fixed_spp": rendered at a fixed spp
+    std::optional<uint64_t> seed;          ///< "seed" of that render
+    std::optional<std::string> directory;  ///< "directory" it was read from or written to
+
+    bool empty() const { return !storeEntry && !fixedSpp && !seed && !directory; }
+};
+
+/// A reference and what the report says about where it came from.
 struct ObtainedReference {
     Reference reference;
-    nlohmann::json info;
+    ReferenceOrigin info;
 };
 
 /// The reference stage: the reference at `lp` from `store` (ReferenceStore::obtain; `measuredError`

@@ -4,9 +4,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include <nlohmann/json.hpp>
-
 #include "core/eval/held_out.h"
+#include "core/eval/reference_file.h"
 #include "core/pipeline/experiment.h"
 #include "core/render/render_outputs.h"
 #include "core/util/atomic_file.h"
@@ -36,15 +35,7 @@ void writeGroundTruth(const std::string& dir, const Reference& gt, const RenderO
     for (int k = 0; k < kTermCount; ++k)
         writeImage(pipelineFile(dir, std::string(termName(Term(k))) + ".exr"), gt.images[k], ImageFormat::EXR);
     writeImage(pipelineFile(dir, "global.png"), gt.image(Term::Global), ImageFormat::PNG, exposure);
-    const Vec3 lp = gt.lightPosition;
-    nlohmann::json meta{{"light_position", {lp.x, lp.y, lp.z}}, {"spp_completed", gt.spp}, {"seconds", gt.seconds},
-                        {"non_finite_samples_dropped", gt.nonFinite}, {"width", ro.width}, {"height", ro.height}};
-    if (!gt.variance(Term::Global).empty()) {
-        std::vector<std::string> written;
-        meta["variance_images"] = writeVarianceImages(
-            dir, {&gt.variance(Term::Direct), &gt.variance(Term::Indirect), &gt.variance(Term::Global)}, ImageFormat::EXR, written);
-    }
-    writeFileAtomically(pipelineFile(dir, "render.json"), meta.dump(2) + "\n");
+    writeReferenceDescription(dir, gt, ro.width, ro.height);
 }
 }  // namespace
 
@@ -117,7 +108,10 @@ PipelineOutcome runPipeline(const Project& project, const PipelineRequest& reque
     if (writes) {
         notes.note("[4/4] evaluate at the ground truth's light:");
         const ReferenceSource groundTruth = [&](size_t, const Vec3&) {
-            return ObtainedReference{gt, {{"fixed_spp", gt.spp}, {"directory", gtDir}}};
+            ObtainedReference o{gt, {}};
+            o.info.fixedSpp = gt.spp;
+            o.info.directory = gtDir;
+            return o;
         };
         outcome.atGroundTruth = evaluateAtLights(project, predictor, {gt.lightPosition}, groundTruth,
                                                  pipelineFile(request.out, "evaluation"), project.render.exposure, notes);

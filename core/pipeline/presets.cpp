@@ -2,6 +2,7 @@
 
 #include "core/nn/network_settings.h"
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 
 namespace rrf {
 
@@ -186,19 +187,20 @@ void applyNetworkPreset(Project& project, const PipelinePreset& preset) {
 }
 
 const PipelinePreset* matchingSamplingPreset(const Project& project) {
-    const nlohmann::json current = project.samplingOrDefault().toJson();
+    const std::string current = sectionText(project.samplingOrDefault());
     for (const PipelinePreset& p : pipelinePresets())
-        if (presetSampling(project, p).toJson() == current) return &p;
+        if (sectionText(presetSampling(project, p)) == current) return &p;
     return nullptr;
 }
 
 const PipelinePreset* matchingNetworkPreset(const Project& project) {
-    const NetworkSettings current = project.networkOrDefault();
-    const nlohmann::json currentTrainer = project.trainerOrDefault().toJson();
+    const std::string current = sectionText(project.networkOrDefault());
+    const std::string currentTrainer = sectionText(project.trainerOrDefault());
+    const std::string currentPrediction = sectionText(project.prediction);
     for (const PipelinePreset& p : pipelinePresets()) {
         const ObjectTrainingOptions o = presetNetwork(project, p);
-        if (networkOf(o).networkJson() == current.networkJson() && o.trainer.toJson() == currentTrainer &&
-            presetPrediction(project, p).toJson() == project.prediction.toJson())
+        if (sectionText(networkOf(o)) == current && sectionText(o.trainer) == currentTrainer &&
+            sectionText(presetPrediction(project, p)) == currentPrediction)
             return &p;
     }
     return nullptr;

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "core/nn/mlp_kernel.h"
+#include "core/project/project_file.h"
 #include "core/util/error.h"
 #include "core/util/text_format.h"
 

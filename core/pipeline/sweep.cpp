@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "core/eval/error_metrics_json.h"
 #include "core/util/error.h"
 #include "core/eval/evaluation.h"
 #include "core/pipeline/experiment.h"

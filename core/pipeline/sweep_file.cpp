@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/eval/error_metrics_json.h"
 #include "core/util/atomic_file.h"
 #include "core/util/json_reader.h"
 
@@ -23,13 +24,13 @@ SweepRow sweepFileRow(const JsonReader& r) {
     const JsonReader stages = r.at("stage_seconds");
     stages.requireObject();
     for (const auto& kv : stages.value().items()) row.stageSeconds.emplace_back(kv.key(), stages.at(kv.key()).number());
-    row.overall = ErrorStats::fromJson(r.at("error").value(), r.file(), JsonReader::child(r.pointer(), "error"));
+    row.overall = errorStatsFromJson(r.at("error").value(), r.file(), JsonReader::child(r.pointer(), "error"));
     const JsonReader objects = r.at("objects");
     for (size_t i = 0, n = objects.requireArray(); i < n; ++i) {
         const JsonReader o = objects.at(i);
         const size_t id = size_t(o.at("id").integer(0, 1 << 20));
         if (row.perObject.size() <= id) row.perObject.resize(id + 1);
-        row.perObject[id] = ErrorStats::fromJson(o.value(), o.file(), o.pointer());
+        row.perObject[id] = errorStatsFromJson(o.value(), o.file(), o.pointer());
     }
     row.extra = r.at("extra").value();
     row.spp = int(r.integerOr("spp", 0, 0, 1 << 30));

@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "core/eval/error_metrics_json.h"
 #include "core/pipeline/sweep.h"
 
 namespace rrf {
@@ -129,12 +130,12 @@ nlohmann::json sweepJson(const Scene& scene, const SweepResult& r) {
             nlohmann::json stages = nlohmann::json::object(), objects = nlohmann::json::array();
             for (const auto& kv : row.stageSeconds) stages[kv.first] = kv.second;
             for (size_t id = 0; id < row.perObject.size(); ++id) {
-                nlohmann::json o = row.perObject[id].toJson();
+                nlohmann::json o = toJson(row.perObject[id]);
                 o["id"] = int(id);
                 o["name"] = id < scene.objects.size() ? scene.objects[id].name : "";
                 objects.push_back(o);
             }
-            nlohmann::json j = {{"setting", row.setting}, {"stage_seconds", stages}, {"error", row.overall.toJson()},
+            nlohmann::json j = {{"setting", row.setting}, {"stage_seconds", stages}, {"error", toJson(row.overall)},
                                 {"objects", objects}, {"extra", row.extra}};
             if (row.spp > 0) j["spp"] = row.spp;
             if (isModelRow(row)) {

@@ -22,14 +22,11 @@
 ///
 /// Files of earlier versions have {"left": 0.27, "bottom": 0.32} (the two splitters of the fixed
 /// three-pane arrangement) and still load as that arrangement. Only data lives here; panels/layout
-/// draws the workspace from it.
+/// draws the workspace from it;
+/// core/project/pane_layout_json.h reads and writes the section.
 
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
-
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -118,15 +115,12 @@ struct PaneLayout {
     /// Makes `tab` the shown tab of its pane; false if no pane holds it or it is shown already.
     bool showTab(const std::string& tab);
 
-    /// {"root": node[, "floating": [...]]}; nodes as in the header comment.
-    nlohmann::json toJson() const;
-    /// Reads the section. A damaged layout must never make the workspace unusable (nor the project
-    /// unopenable): a damaged tree is replaced by the default arrangement, an unknown or repeated tab
-    /// is dropped (a floating one too, and a floating panel that a pane also holds), a panel no pane
-    /// or window holds is added to the first pane, an out-of-range fraction is
-    /// clamped, and each repair is described in `warnings` (file, JSON pointer, what was expected).
-    /// The old form {"left", "bottom"} is read as the default arrangement with those fractions.
-    static PaneLayout fromJson(const JsonReader& section, std::vector<std::string>& warnings);
+    /// Makes the tree `root` and the windows `floating` hold every panel exactly once: unknown and
+    /// repeated tabs are dropped, missing panels join the first pane, empty panes collapse, and each
+    /// pane shows one of its tabs. Each repair is described in `warnings`, naming `file` and the JSON
+    /// `pointer` of the layout it was read from.
+    static void normalise(PaneNode& root, std::vector<FloatingPanel>& floating, const std::string& file,
+                          const std::string& pointer, std::vector<std::string>& warnings);
 };
 
 }  // namespace rrf

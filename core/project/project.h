@@ -1,15 +1,14 @@
 #pragma once
 /// Project file: a JSON document that references (or embeds) a scene and holds the settings of every
-/// stage. The document is typed: every section is parsed once, by loadProjectOrScene, into the fields
-/// below, which are the only live copy; saveProject writes them back. Top-level sections this build
-/// does not know are kept verbatim (otherSections) so a newer program's sections survive a round trip.
+/// stage. The document is typed: every section is parsed once, by loadProjectOrScene
+/// (core/project/project_file.h), into the fields below, which are the only live copy; saveProject
+/// writes them back. Top-level sections this build does not know are kept verbatim (otherSections)
+/// so a newer program's sections survive a round trip.
 /// The format is described in docs/file-formats.md.
 
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/data/sampling_settings.h"
 #include "core/eval/reference_settings.h"
@@ -22,6 +21,7 @@
 #include "core/project/scene_overrides.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
+#include "core/util/json_text.h"
 
 namespace rrf {
 
@@ -29,7 +29,7 @@ struct Project {
     std::string path;           ///< where the project was loaded from / will be saved to
     std::string name;           ///< "name": display name; empty = none
     std::string sceneRef;       ///< scene file relative to the project dir; empty if embedded
-    nlohmann::json sceneJson;   ///< the embedded scene (when sceneRef is empty), written back as given
+    JsonText sceneJson;         ///< the embedded scene (when sceneRef is empty), written back as given
     Scene scene;                ///< the loaded scene with `overrides` applied
     SceneOverrides overrides;   ///< "scene_overrides": the workbench's edits of the scene
     RenderSettings render;      ///< "render"
@@ -50,7 +50,7 @@ struct Project {
     std::vector<Run> runs;          ///< "runs"
     PaneLayout layout;              ///< "layout": the workbench's pane sizes
     /// Top-level sections this build does not know (an object), kept only for load/save round trips.
-    nlohmann::json otherSections = nlohmann::json::object();
+    JsonText otherSections;
     /// Problems in the workbench's own sections (layout, runs, scene_overrides) that did not stop the
     /// load, each naming the file and the JSON pointer. Problems applying the overrides to the scene
     /// are in scene.warnings.
@@ -75,15 +75,5 @@ struct Project {
     /// trained by trainerOrDefault().
     ObjectTrainingOptions trainingOptions() const { return {networkOrDefault().options, trainerOrDefault()}; }
 };
-
-/// Loads a project file, or a bare scene file (a document with "shapes" and no "scene" key), in
-/// which case default settings are used. Every section is parsed here: a bad value in a settings
-/// section (render, sampling, network, trainer, prediction) throws InputError naming the file, the
-/// JSON pointer and what was expected; damaged workbench sections are reported in `warnings`.
-Project loadProjectOrScene(const std::string& path);
-
-/// Serialises `project` and writes it atomically (temporary file + rename), re-basing relative scene
-/// and OBJ references onto the new directory. Throws std::runtime_error on I/O failure.
-void saveProject(Project& project, const std::string& path);
 
 }  // namespace rrf

@@ -1,7 +1,7 @@
 #pragma once
 /// The typed parts of a run record (core/project/runs.h): its settings snapshot, its metrics and its
 /// timings. Each figure the workbench writes is a field, so a misspelt name fails to compile instead
-/// of reading as "unknown" in a table. Only runs.cpp turns them into JSON and back, under the key
+/// of reading as "unknown" in a table. Only runs_json.cpp turns them into JSON and back, under the key
 /// named beside each field; keys this build does not know are kept in `other` and written back as
 /// they were, so a newer workbench's runs survive a round trip through an older one.
 
@@ -10,13 +10,12 @@
 #include <optional>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "core/data/sampling_settings.h"
 #include "core/nn/network_settings.h"
 #include "core/nn/trainer_config.h"
 #include "core/project/scene_overrides.h"
 #include "core/render/render_settings.h"
+#include "core/util/json_text.h"
 #include "core/util/vec3.h"
 
 namespace rrf {
@@ -34,7 +33,7 @@ struct RunSettings {
     std::optional<std::string> dataset;            ///< "dataset", relative to the project directory
     std::optional<SamplingSettings> sampling;      ///< "sampling": the project's section, when it had one
     std::optional<std::string> kernel;             ///< "kernel": the MLP kernel it trained with
-    nlohmann::json other = nlohmann::json::object();  ///< keys this build does not know
+    JsonText other;  ///< keys this build does not know
 };
 
 /// What a run measured. An unknown figure is empty, never 0. A non-finite double is written as null
@@ -71,7 +70,7 @@ struct RunMetrics {
     std::optional<double> glslFrameSeconds;       ///< "glsl_frame_seconds": in GLSL
     std::optional<int> glslFrameWidth;            ///< "glsl_frame_width"
     std::optional<int> glslFrameHeight;           ///< "glsl_frame_height"
-    nlohmann::json other = nlohmann::json::object();  ///< keys this build does not know
+    JsonText other;  ///< keys this build does not know
 };
 
 /// Seconds per stage of a run.
@@ -80,7 +79,7 @@ struct RunTimings {
     std::optional<double> train;     ///< "train": training wall time
     std::optional<double> generate;  ///< "generate": making the training data, when known
     std::optional<double> evaluate;  ///< "evaluate": the last evaluation of the models
-    nlohmann::json other = nlohmann::json::object();  ///< keys this build does not know
+    JsonText other;  ///< keys this build does not know
 };
 
 /// `v` when it holds a finite number, else empty (for tables: a figure recorded as null is unknown).

@@ -3,16 +3,14 @@
 /// (a ground-truth render or a training run; an evaluation adds its metrics to the training run whose
 /// models it judged): the settings it ran with, its loss history, its metrics, its timings and the files it produced.
 /// Sections this build does not know are kept verbatim, so a newer workbench's runs survive a
-/// round trip through an older one.
+/// round trip through an older one. core/project/runs_json.h reads and writes the section.
 
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/project/run_fields.h"
-#include "core/util/json_reader.h"
+#include "core/util/json_text.h"
 
 namespace rrf {
 
@@ -45,22 +43,9 @@ struct Run {
     RunMetrics metrics;                                   ///< what it measured
     RunTimings timings;                                   ///< seconds per stage
     std::vector<std::string> artifacts;                   ///< files, relative to the project directory
-    nlohmann::json extra = nlohmann::json::object();     ///< unknown keys, kept for round trips
+    JsonText extra;                                       ///< unknown keys, kept for round trips
 
-    nlohmann::json toJson() const;
-    /// Reads one run. Throws InputError naming the file, the JSON pointer and what was expected when
-    /// `r` is not a run object or a key this build knows (in the run, its settings, metrics or
-    /// timings) has the wrong type. Damaged scene overrides in its settings are described in
-    /// `warnings` (SceneOverrides::fromJson) and the rest of them kept.
-    static Run fromJson(const JsonReader& r, std::vector<std::string>& warnings);
 };
-
-/// Reads the project's "runs" section. Runs are the workbench's own records, so one damaged entry
-/// must not lock the user out of the project: it is skipped and described in `warnings` (file, JSON
-/// pointer, what was expected), and the other runs are kept.
-std::vector<Run> readRuns(const JsonReader& section, std::vector<std::string>& warnings);
-/// The "runs" section for `runs`.
-nlohmann::json runsToJson(const std::vector<Run>& runs);
 
 /// Mean of several networks' curves per epoch. A network that stopped earlier contributes its last
 /// value (its kept weights do not change after it stops), so the mean does not jump when one

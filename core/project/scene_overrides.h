@@ -10,17 +10,15 @@
 ///
 /// They are applied right after the scene is loaded, so the CLI and the GUI see the same scene (and
 /// datasets and models record the same scene hash). Editing goes through core/project/scene_edits.h,
-/// which records the override and applies it in one step.
+/// which records the override and applies it in one step; core/project/scene_overrides_json.h reads
+/// and writes the section.
 
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/scene/scene.h"
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -35,11 +33,6 @@ struct SceneOverrides {
     std::map<std::string, MaterialOverride> materials;  ///< by material name
 
     bool empty() const { return !lightPosition && materials.empty(); }
-    nlohmann::json toJson() const;
-    /// Reads the section. The overrides are the workbench's own record of the user's edits, so a
-    /// damaged entry must not lock the user out of the project: an entry of the wrong shape is
-    /// skipped and described in `warnings` (file, JSON pointer, what was expected); the rest is kept.
-    static SceneOverrides fromJson(const JsonReader& section, std::vector<std::string>& warnings);
 };
 
 /// Applies `overrides` to `scene`. Entries that do not fit the scene (unknown material, a light

@@ -1,8 +1,9 @@
 // Undo and redo of setting edits (see settings_history.h).
 #include "core/project/settings_history.h"
 
-#include <nlohmann/json.hpp>
+#include <cstdio>
 
+#include "core/project/project_file.h"
 #include "core/project/scene_edits.h"
 
 namespace rrf {
@@ -30,16 +31,19 @@ bool ProjectSettings::applyTo(Project& project) const {
 }
 
 std::string ProjectSettings::fingerprint() const {
-    // The project writer's own encodings of the sections (core/project/project.cpp), so two
-    // settings that save alike compare alike.
-    nlohmann::json j;
-    j["render"] = renderSettingsToJson(render);
-    if (sampling) j["sampling"] = sampling->toJson();
-    if (network) j["network"] = network->networkJson();
-    if (trainer) j["trainer"] = trainer->toJson();
-    j["prediction"] = prediction.toJson();
-    if (light) j["light"] = {light->x, light->y, light->z};
-    return j.dump();
+    // The project writer's own encodings of the sections (sectionText), so two settings that save
+    // alike compare alike; one section per line, an absent one without its line.
+    std::string f = "render " + sectionText(render);
+    if (sampling) f += "\nsampling " + sectionText(*sampling);
+    if (network) f += "\nnetwork " + sectionText(*network);
+    if (trainer) f += "\ntrainer " + sectionText(*trainer);
+    f += "\nprediction " + sectionText(prediction);
+    if (light) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "\nlight %.9g %.9g %.9g", double(light->x), double(light->y), double(light->z));
+        f += buf;
+    }
+    return f;
 }
 
 void SettingsHistory::reset(const Project& project) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/project/project.h"
+#include "core/project/project_file.h"
 #include "tests/fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/project/pane_layout_json.h"
+#include "core/project/runs_json.h"
 #include "panels/file_dialog.h"
 #include "panels/project_io.h"
 #include "core/project/scene_edits.h"
@@ -40,13 +42,13 @@ rrf::Run sampleRun(const std::string& id) {
     r.created = "2024-01-02T03:04:05";
     r.settings.render = RenderSettings();
     r.settings.render->spp = 16;
-    r.settings.other = {{"hidden", {20, 10}}};  // a key a newer workbench wrote
+    r.settings.other = jsonText({{"hidden", {20, 10}}});  // a key a newer workbench wrote
     r.loss = {{0, 1.0, 2.0, 0.0}, {1, 0.5, std::numeric_limits<double>::quiet_NaN(), 0.25}};
     r.metrics.rmse = 0.125;
-    r.metrics.other = {{"future_metric", 2}};
+    r.metrics.other = jsonText({{"future_metric", 2}});
     r.timings.train = 3.5;
     r.artifacts = {"runs/" + id + "/model.rrfm"};
-    r.extra = {{"future_key", {{"x", 1}}}};
+    r.extra = jsonText({{"future_key", {{"x", 1}}}});
     return r;
 }
 }  // namespace
@@ -95,9 +97,9 @@ TEST(ProjectIo, SaveAndReopenKeepsEverySettingAndRun) {
     EXPECT_FLOAT_EQ(b.project.layout.root.fraction, 0.4f);
     EXPECT_FLOAT_EQ(1.f - b.project.layout.root.children[1].fraction, 0.2f);
     ASSERT_EQ(b.project.runs.size(), 2u);
-    for (size_t i = 0; i < 2; ++i) EXPECT_EQ(b.project.runs[i].toJson(), a.project.runs[i].toJson());
+    for (size_t i = 0; i < 2; ++i) EXPECT_EQ(toJson(b.project.runs[i]), toJson(a.project.runs[i]));
     EXPECT_TRUE(std::isnan(b.project.runs[0].loss[1].validation));
-    EXPECT_EQ(b.project.runs[0].extra["future_key"]["x"], 1);
+    EXPECT_EQ(parseJsonText(b.project.runs[0].extra)["future_key"]["x"], 1);
     const Material& w = b.project.scene.materials[0];
     EXPECT_FLOAT_EQ(w.kd.y, 0.4f);
     EXPECT_FLOAT_EQ(w.ks.x, 0.2f);
@@ -164,7 +166,7 @@ TEST(ProjectIo, DamagedWorkbenchSectionsAreReportedNotFatal) {
     const fs::path dir = copyCornell("damaged");
     nlohmann::json doc = nlohmann::json::parse(std::ifstream(dir / "project.json"));
     doc["layout"] = {{"left", "wide"}, {"bottom", 5.0}};
-    doc["runs"] = nlohmann::json::array({sampleRun("ok").toJson(), {{"name", "no id"}}});
+    doc["runs"] = nlohmann::json::array({toJson(sampleRun("ok")), {{"name", "no id"}}});
     doc["scene_overrides"] = {{"light_position", {9, 9, 9}}, {"materials", {{"nope", {{"kd", {1, 1, 1}}}}}}};
     std::ofstream(dir / "project.json") << doc.dump(2);
     WorkbenchState s;
@@ -200,10 +202,10 @@ TEST(SceneOverrides, EnergyConservationLowersTheOtherCoefficient) {
 
 TEST(Layout, JsonRoundTripAndReset) {
     std::vector<std::string> warnings;
-    auto read = [&](const nlohmann::json& j) { return PaneLayout::fromJson(JsonReader(j, "p.json", "/layout"), warnings); };
+    auto read = [&](const nlohmann::json& j) { return paneLayoutFromJson(JsonReader(j, "p.json", "/layout"), warnings); };
     PaneLayout l;
     l.root = PaneLayout::defaultRoot(0.5f, 0.1f);
-    EXPECT_EQ(read(l.toJson()), l);
+    EXPECT_EQ(read(toJson(l)), l);
     l.reset();
     EXPECT_EQ(l, PaneLayout());
     EXPECT_TRUE(warnings.empty());

@@ -1,4 +1,4 @@
-// The workbench's stored evaluation (app/gui/stored_evaluation.h, issue 29 item 7): the Objects table
+// The workbench's stored evaluation (app/gui/stored_evaluation_file.h, issue 29 item 7): the Objects table
 // comes back exactly as it was for the same ground truth and model set, is stale (not shown) for
 // another light or a retrained set, and a damaged file is a warning naming it, never a crash.
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/gui/stored_evaluation.h"
+#include "app/gui/stored_evaluation_file.h"
 
 namespace rrf::test::test_stored_evaluation {
 

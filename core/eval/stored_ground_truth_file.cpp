@@ -1,11 +1,12 @@
-// The last finished ground-truth render beside a project (see stored_ground_truth.h).
-#include "core/eval/stored_ground_truth.h"
+// The last finished ground-truth render beside a project (see stored_ground_truth_file.h).
+#include "core/eval/stored_ground_truth_file.h"
 
 #include <filesystem>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
+#include "core/eval/reference_store_file.h"
 #include "core/render/term.h"
 #include "core/util/atomic_file.h"
 #include "core/util/directory_replace.h"
@@ -46,7 +47,7 @@ void storeGroundTruth(const std::string& dir, const ReferenceKey& key, const Ren
             if (variance) writeImage((tmp / varianceName(t)).string(), snapshot.varianceOf(t), ImageFormat::EXR);
         }
         const json meta{{"format", kFormat},
-                        {"key", key.toJson()},
+                        {"key", toJson(key)},
                         {"spp", snapshot.sppCompleted},
                         {"passes", snapshot.passes},
                         {"samples", snapshot.samples},
@@ -73,7 +74,7 @@ StoredGroundTruth loadGroundTruth(const std::string& dir, const ReferenceKey& ke
         if (r.at("format").string() != kFormat)
             r.at("format").fail(std::string("unknown format (expected \"") + kFormat + "\")");
         r.at("key").requireObject();  // an InputError naming the file when it is missing
-        const ReferenceKey stored = ReferenceKey::fromJson(j.at("key"), meta.string(), "/key");
+        const ReferenceKey stored = referenceKeyFromJson(j.at("key"), meta.string(), "/key");
         if (!(stored == key)) {
             out.why = "the stored one is of another scene, light, camera or size";
             return out;

@@ -1,11 +1,15 @@
-#include "core/project/project.h"
+#include "core/project/project_file.h"
 
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <stdexcept>
 
+#include "core/eval/reference_settings_json.h"
 #include "core/nn/object_network_overrides.h"
+#include "core/project/pane_layout_json.h"
+#include "core/project/runs_json.h"
+#include "core/project/scene_overrides_json.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
@@ -37,10 +41,10 @@ void writeSections(const Project& p, json& doc) {
     if (p.network) doc["network"] = p.network->networkJson();
     if (p.trainer) doc["trainer"] = p.trainer->toJson();
     doc["prediction"] = p.prediction.toJson();
-    if (p.reference.toJson() != ReferenceSettings().toJson()) doc["reference"] = p.reference.toJson();
+    if (toJson(p.reference) != toJson(ReferenceSettings())) doc["reference"] = toJson(p.reference);
     if (!p.runs.empty()) doc["runs"] = runsToJson(p.runs);
-    doc["layout"] = p.layout.toJson();
-    if (!p.overrides.empty()) doc["scene_overrides"] = p.overrides.toJson();
+    doc["layout"] = toJson(p.layout);
+    if (!p.overrides.empty()) doc["scene_overrides"] = toJson(p.overrides);
 }
 
 /// Absolute, lexically normalised form of `p` (no symlink resolution: the user's spelling of the
@@ -82,17 +86,19 @@ void readSections(const JsonReader& root, Project& p) {
             requireSceneObjectName(prediction->at("gather").at("objects").at(i), p.prediction.gather.objects[i],
                                    objectNames);
     }
-    if (const auto reference = root.find("reference")) p.reference = ReferenceSettings::fromJson(*reference);
+    if (const auto reference = root.find("reference")) p.reference = referenceSettingsFromJson(*reference);
     if (const auto runs = root.find("runs")) p.runs = readRuns(*runs, p.warnings);
-    if (const auto layout = root.find("layout")) p.layout = PaneLayout::fromJson(*layout, p.warnings);
+    if (const auto layout = root.find("layout")) p.layout = paneLayoutFromJson(*layout, p.warnings);
     if (const auto overrides = root.find("scene_overrides")) {
-        p.overrides = SceneOverrides::fromJson(*overrides, p.warnings);
+        p.overrides = sceneOverridesFromJson(*overrides, p.warnings);
         std::vector<std::string> problems;
         applySceneOverrides(p.overrides, p.scene, problems);
         for (const std::string& m : problems) p.scene.warnings.push_back("scene_overrides: " + m);
     }
+    json other = json::object();
     for (auto it = root.value().begin(); it != root.value().end(); ++it)
-        if (!isKnownSection(it.key())) p.otherSections[it.key()] = it.value();
+        if (!isKnownSection(it.key())) other[it.key()] = it.value();
+    p.otherSections = jsonText(other);
 }
 
 }  // namespace
@@ -131,7 +137,7 @@ Project loadProjectOrScene(const std::string& path) {
             sceneField.fail("cannot open scene file '" + scenePath + "'");
         p.scene = loadScene(scenePath);
     } else if (sceneField.isObject()) {
-        p.sceneJson = sceneField.value();
+        p.sceneJson = jsonText(sceneField.value());
         p.scene = parseSceneAt(sceneField, dir);
     } else {
         sceneField.fail("expected a scene file name (string) or an embedded scene (object), got " +
@@ -144,12 +150,12 @@ Project loadProjectOrScene(const std::string& path) {
 void saveProject(Project& project, const std::string& path) {
     const std::string oldDir = directoryOf(project.path);
     const std::string newDir = directoryOf(path);
-    json doc = project.otherSections.is_object() ? project.otherSections : json::object();
+    json doc = parseJsonText(project.otherSections);
     doc["rrf_project"] = kProjectVersion;
     if (!project.name.empty()) doc["name"] = project.name;
 
     std::string newRef;
-    json newSceneJson = project.sceneJson;
+    json newSceneJson = parseJsonText(project.sceneJson);
     if (!project.sceneRef.empty()) {
         const fs::path sceneFile = absoluteNormal(fs::path(resolvePath(oldDir, project.sceneRef)));
         if (sceneFile == absoluteNormal(fs::path(path)))
@@ -172,7 +178,13 @@ void saveProject(Project& project, const std::string& path) {
     // Only after a successful write does the in-memory project follow the file.
     project.path = path;
     project.sceneRef = newRef;
-    project.sceneJson = std::move(newSceneJson);
+    project.sceneJson = jsonText(newSceneJson);
 }
+
+std::string sectionText(const RenderSettings& s) { return renderSettingsToJson(s).dump(); }
+std::string sectionText(const SamplingSettings& s) { return s.toJson().dump(); }
+std::string sectionText(const NetworkSettings& s) { return s.networkJson().dump(); }
+std::string sectionText(const TrainerConfig& s) { return s.toJson().dump(); }
+std::string sectionText(const PredictionSettings& s) { return s.toJson().dump(); }
 
 }  // namespace rrf

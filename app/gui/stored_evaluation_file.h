@@ -3,7 +3,7 @@
 /// that reopening it shows the table again (issue 29 item 7: everything a project shows is restored).
 ///
 /// An evaluation judged one model set against one ground truth: it is kept with the ground truth's
-/// ReferenceKey (the same key that invalidates the stored ground truth, core/eval/stored_ground_truth.h:
+/// ReferenceKey (the same key that invalidates the stored ground truth, core/eval/stored_ground_truth_file.h:
 /// scene, camera, light, size, estimator) and the model set's directory (relative to the project)
 /// and index checksum (models.json's index_checksum64). On reopen it is shown only when all three
 /// still hold: another scene, light, size or a retrained set makes it stale, and it is dropped with

@@ -10,7 +10,7 @@
 /// used, and the next finished render replaces it.
 ///
 /// On disk, one directory (the workbench's is <project dir>/ground_truth):
-///   ground_truth.json          {"format": "rrf-ground-truth-1", "key": ReferenceKey::toJson(), "spp",
+///   ground_truth.json          {"format": "rrf-ground-truth-1", "key": the ReferenceKey (core/eval/reference_store_file.h), "spp",
 ///                               "passes", "samples", "non_finite_samples", "seconds", "relative_error",
 ///                               "rays", "shadow_rays", "variance": whether the variance images are there}
 ///   {direct,indirect,global}.exr, and variance_{direct,indirect,global}.exr when "variance"

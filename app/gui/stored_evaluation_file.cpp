@@ -1,6 +1,6 @@
-// The workbench's stored evaluation (stored_evaluation.h): the Objects table as JSON, with the key
+// The workbench's stored evaluation (stored_evaluation_file.h): the Objects table as JSON, with the key
 // and model set it is valid for.
-#include "app/gui/stored_evaluation.h"
+#include "app/gui/stored_evaluation_file.h"
 
 #include <cmath>
 #include <filesystem>
@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/eval/error_metrics.h"
+#include "core/eval/error_metrics_json.h"
+#include "core/eval/reference_store_file.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
@@ -27,7 +29,7 @@ double figureOf(const JsonReader& r) {
 }
 
 json rowJson(const panels::ObjectErrorRow& row) {
-    return {{"object", row.objectId}, {"name", row.name},          {"stats", row.stats.toJson()},
+    return {{"object", row.objectId}, {"name", row.name},          {"stats", toJson(row.stats)},
             {"flip", noiseFigureJson(row.flip)}, {"samples", row.samples}, {"train_seconds", row.trainSeconds}};
 }
 
@@ -36,7 +38,7 @@ panels::ObjectErrorRow rowOf(const JsonReader& r) {
     panels::ObjectErrorRow row;
     row.objectId = int(r.at("object").integer(-1, std::numeric_limits<int>::max()));
     row.name = r.at("name").string();
-    row.stats = ErrorStats::fromJson(r.at("stats").value(), r.file(), r.pointer() + "/stats");
+    row.stats = errorStatsFromJson(r.at("stats").value(), r.file(), r.pointer() + "/stats");
     row.flip = figureOf(r.at("flip"));
     row.samples = r.at("samples").unsignedInteger();
     row.trainSeconds = r.at("train_seconds").number();
@@ -49,7 +51,7 @@ json infoJson(const panels::EvaluationInfo& e) {
         const int i = int(t);
         json rows = json::array();
         for (const panels::ObjectErrorRow& row : e.rows[i]) rows.push_back(rowJson(row));
-        terms.push_back({{"term", termName(t)}, {"available", e.available[i]}, {"overall", e.overall[i].toJson()}, {"rows", rows}});
+        terms.push_back({{"term", termName(t)}, {"available", e.available[i]}, {"overall", toJson(e.overall[i])}, {"rows", rows}});
     }
     json spread = json::array();
     for (const auto& [name, rho] : e.spreadSpearmanPerObject) spread.push_back({{"name", name}, {"rho", noiseFigureJson(rho)}});
@@ -93,7 +95,7 @@ panels::EvaluationInfo infoOf(const JsonReader& r) {
         term.checkKeys({"term", "available", "overall", "rows"});
         if (term.at("term").string() != termName(t)) term.at("term").fail(std::string("expected \"") + termName(t) + "\"");
         e.available[i] = term.at("available").boolean();
-        e.overall[i] = ErrorStats::fromJson(term.at("overall").value(), r.file(), term.pointer() + "/overall");
+        e.overall[i] = errorStatsFromJson(term.at("overall").value(), r.file(), term.pointer() + "/overall");
         const JsonReader rows = term.at("rows");
         for (size_t k = 0, n = rows.requireArray(); k < n; ++k) e.rows[i].push_back(rowOf(rows.at(k)));
     }
@@ -116,7 +118,7 @@ panels::EvaluationInfo infoOf(const JsonReader& r) {
 
 void storeEvaluation(const std::string& path, const panels::EvaluationInfo& e, const EvaluationSource& source) {
     const json doc = {{"format", kFormat},
-                      {"key", source.key.toJson()},
+                      {"key", toJson(source.key)},
                       {"models", source.models},
                       {"models_checksum", source.modelsChecksum},
                       {"evaluation", infoJson(e)}};
@@ -132,7 +134,7 @@ StoredEvaluation loadEvaluation(const std::string& path, const EvaluationSource&
         const JsonReader r(doc, path);
         r.checkKeys({"format", "key", "models", "models_checksum", "evaluation"});
         if (r.at("format").string() != kFormat) r.at("format").fail(std::string("expected \"") + kFormat + "\"");
-        const ReferenceKey key = ReferenceKey::fromJson(r.at("key").value(), path, "/key");
+        const ReferenceKey key = referenceKeyFromJson(r.at("key").value(), path, "/key");
         const std::string models = r.at("models").string();
         const std::string checksum = r.at("models_checksum").string();
         // Stale is not damaged: the evaluation judged another ground truth or model set.
