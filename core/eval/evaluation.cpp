@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/predict/footprint_mask_json.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/image_io.h"
@@ -179,7 +180,7 @@ nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
     }
     nlohmann::json report = {
         {"light_position", vec(e.lightPosition)},
-        {"footprint_mask", e.footprint.counts.toJson()},
+        {"footprint_mask", toJson(e.footprint.counts)},
         {"reference",
          {{"spp", e.referenceSpp},
           {"seconds", e.referenceSeconds},

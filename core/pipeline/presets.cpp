@@ -1,6 +1,10 @@
 #include "core/pipeline/presets.h"
 
 #include "core/nn/network_settings.h"
+#include "core/data/sampling_settings_json.h"
+#include "core/nn/network_settings_json.h"
+#include "core/nn/trainer_config_json.h"
+#include "core/predict/prediction_settings_json.h"
 #include "core/project/project.h"
 
 namespace rrf {
@@ -186,19 +190,19 @@ void applyNetworkPreset(Project& project, const PipelinePreset& preset) {
 }
 
 const PipelinePreset* matchingSamplingPreset(const Project& project) {
-    const nlohmann::json current = project.samplingOrDefault().toJson();
+    const nlohmann::json current = toJson(project.samplingOrDefault());
     for (const PipelinePreset& p : pipelinePresets())
-        if (presetSampling(project, p).toJson() == current) return &p;
+        if (toJson(presetSampling(project, p)) == current) return &p;
     return nullptr;
 }
 
 const PipelinePreset* matchingNetworkPreset(const Project& project) {
     const NetworkSettings current = project.networkOrDefault();
-    const nlohmann::json currentTrainer = project.trainerOrDefault().toJson();
+    const nlohmann::json currentTrainer = toJson(project.trainerOrDefault());
     for (const PipelinePreset& p : pipelinePresets()) {
         const ObjectTrainingOptions o = presetNetwork(project, p);
-        if (networkOf(o).networkJson() == current.networkJson() && o.trainer.toJson() == currentTrainer &&
-            presetPrediction(project, p).toJson() == project.prediction.toJson())
+        if (toJson(networkOf(o)) == toJson(current) && toJson(o.trainer) == currentTrainer &&
+            toJson(presetPrediction(project, p)) == toJson(project.prediction))
             return &p;
     }
     return nullptr;

@@ -3,7 +3,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/data/sampling_settings_json.h"
+#include "core/nn/network_settings_json.h"
+#include "core/nn/trainer_config_json.h"
+#include "core/predict/prediction_settings_json.h"
 #include "core/project/scene_edits.h"
+#include "core/render/render_settings_json.h"
 
 namespace rrf {
 
@@ -34,10 +39,10 @@ std::string ProjectSettings::fingerprint() const {
     // settings that save alike compare alike.
     nlohmann::json j;
     j["render"] = renderSettingsToJson(render);
-    if (sampling) j["sampling"] = sampling->toJson();
-    if (network) j["network"] = network->networkJson();
-    if (trainer) j["trainer"] = trainer->toJson();
-    j["prediction"] = prediction.toJson();
+    if (sampling) j["sampling"] = toJson(*sampling);
+    if (network) j["network"] = toJson(*network);
+    if (trainer) j["trainer"] = toJson(*trainer);
+    j["prediction"] = toJson(prediction);
     if (light) j["light"] = {light->x, light->y, light->z};
     return j.dump();
 }
