@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "core/nn/network_settings_json.h"
+#include "core/nn/trainer_config_json.h"
 #include "panels/panels.h"
 #include "panels/plot.h"
 #include "panels/project_io.h"
