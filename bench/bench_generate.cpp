@@ -25,6 +25,7 @@
 
 #include "bench/bench_args.h"
 #include "core/project/project_file.h"
+#include "core/data/dataset_header_json.h"
 #include "core/scene/accel.h"
 #include "core/data/data_generator.h"
 #include "core/util/text_format.h"
@@ -112,7 +113,7 @@ int main(int argc, char** argv) {
     // 2. Generator throughput.
     const DataGenerator generator(scene, gen);
     const GeneratedData g = generator.run();
-    const uint64_t records = g.header.at("stats").at("records").get<uint64_t>();
+    const uint64_t records = datasetHeader(g).at("stats").at("records").get<uint64_t>();
     const double genRaysPerS = double(g.stats.rays + g.stats.shadowRays) / g.seconds;
 
     std::printf("| measurement | work | time (s) | records/s | path samples/s | rays/s (incl. shadow) |\n");
@@ -138,20 +139,20 @@ int main(int argc, char** argv) {
     const double genSeconds = seconds(start);
     const double rssGenerated = maxRssMiB();
     const auto writeStart = Clock::now();
-    writeDataset(out, d.header, d.sceneHash, d.perObject);
+    writeDataset(out, datasetHeader(d), d.sceneHash, d.perObject);
     const double writeSeconds = seconds(writeStart);
     const double rssWritten = maxRssMiB();
-    const uint64_t bigRecords = d.header.at("stats").at("records").get<uint64_t>();
+    const uint64_t bigRecords = datasetHeader(d).at("stats").at("records").get<uint64_t>();
     const double fileMiB = double(std::filesystem::file_size(out)) / (1024.0 * 1024.0);
     const double payloadMiB = double(bigRecords) * big.layout().floatsPerRecord() * 4.0 / (1024.0 * 1024.0);
     std::printf("\n| default run (grid %dx%dx%d, %d dirs, spp %d) | value |\n|---|---:|\n", mem.nx, mem.ny, mem.nz,
                 mem.directions, mem.spp);
     std::printf("| records | %llu (%s) |\n", (unsigned long long)bigRecords, humanCount(double(bigRecords)).c_str());
     std::printf("| cells kept / dropped inside / dropped outside | %llu / %llu / %llu |\n",
-                (unsigned long long)(mem.cellCount() - d.header.at("stats").at("cells_dropped_inside_object").get<uint64_t>() -
-                                     d.header.at("stats").at("cells_dropped_outside_scene").get<uint64_t>()),
-                (unsigned long long)d.header.at("stats").at("cells_dropped_inside_object").get<uint64_t>(),
-                (unsigned long long)d.header.at("stats").at("cells_dropped_outside_scene").get<uint64_t>());
+                (unsigned long long)(mem.cellCount() - datasetHeader(d).at("stats").at("cells_dropped_inside_object").get<uint64_t>() -
+                                     datasetHeader(d).at("stats").at("cells_dropped_outside_scene").get<uint64_t>()),
+                (unsigned long long)datasetHeader(d).at("stats").at("cells_dropped_inside_object").get<uint64_t>(),
+                (unsigned long long)datasetHeader(d).at("stats").at("cells_dropped_outside_scene").get<uint64_t>());
     std::printf("| generation time | %.2f s (%s records/s) |\n", genSeconds, humanCount(double(bigRecords) / genSeconds).c_str());
     std::printf("| write time | %.2f s |\n", writeSeconds);
     std::printf("| payload (records x %d floats x 4 B) | %.1f MiB |\n", big.layout().floatsPerRecord(), payloadMiB);

@@ -25,6 +25,7 @@
 #include "bench/bench_args.h"
 #include "core/nn/adam_step.h"
 #include "core/nn/encoding.h"
+#include "core/nn/encoding_json.h"
 #include "core/nn/mlp_kernel.h"
 #include "core/nn/model.h"
 #include "core/util/json_reader.h"
@@ -146,7 +147,7 @@ struct EncodedNetwork {
 EncodedNetwork encodedNetwork(const std::string& label, const char* encodingJson, std::vector<int> hidden) {
     const nlohmann::json j = nlohmann::json::parse(encodingJson);
     EncodedNetwork e;
-    e.encoding = InputEncoding::fromJson(JsonReader(j, "bench_nn", ""), 16);
+    e.encoding = inputEncodingFromJson(JsonReader(j, "bench_nn", ""), 16);
     e.arch = arch(std::move(hidden), e.encoding.outputs());
     e.arch.activation = Activation::Relu;
     e.label = label + " + " + e.arch.describe().substr(0, e.arch.describe().find(' '));

@@ -9,6 +9,6 @@
 # These sources, whose file-local helpers share names with other sources', are compiled on their own.
 set(CMAKE_UNITY_BUILD_BATCH_SIZE 16 CACHE STRING "Sources per unity batch")
 set_source_files_properties(
-  core/eval/reference_store.cpp core/nn/model_file.cpp core/nn/model_set.cpp core/project/scene_overrides.cpp
+  core/eval/reference_store.cpp core/nn/model_file.cpp core/nn/model_set_file.cpp core/project/scene_overrides.cpp
   tests/quad_reference.cpp
   PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)

@@ -34,7 +34,7 @@ std::string datasetStaleReason(const DatasetInfo& d, const Project& project) {
     if (d.lastCancelled) return "stale: the last generation was cancelled or failed; this is the dataset before it";
     if (d.sceneHash != 0 && d.sceneHash != project.scene.contentHash())
         return "stale: the scene changed since this dataset was generated";
-    if (d.madeWith && d.madeWith->toJson() != project.samplingOrDefault().toJson())
+    if (d.madeWith && *d.madeWith != project.samplingOrDefault())
         return "stale: the sampling settings changed since this dataset was generated";
     return {};
 }

@@ -13,6 +13,7 @@
 #include "core/nn/model_set.h"
 #include "core/nn/trainer_config.h"
 #include "core/data/record_layout.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/scene/scene.h"
 #include "core/util/rng.h"
 
@@ -33,7 +34,7 @@ inline ObjectModel tinyModel(int id, uint64_t seed) {
         for (int r = 0; r < kTinyModelInputs; ++r) x(r, c) = rng.uniform();
         for (int r = 0; r < 3; ++r) y(r, c) = rng.uniform() + float(id);
     }
-    NetworkModel net = fitNetwork(a, TrainerConfig::fromJson({{"max_epochs", 2}}), x, y);
+    NetworkModel net = fitNetwork(a, trainerConfigFromJson({{"max_epochs", 2}}), x, y);
     net.objectId = id;
     net.objectName = "object " + std::to_string(id);
     net.target = "global";

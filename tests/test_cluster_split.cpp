@@ -18,7 +18,9 @@
 #include "core/data/cell_split.h"
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
+#include "core/data/dataset_header_json.h"
 #include "core/data/dataset_part.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/nn/training_part.h"
 #include "core/nn/training_split.h"
 #include "core/project/project.h"
@@ -114,8 +116,8 @@ TEST(ClusterParts, RankPartsOfTheCornellBoxJoinIntoTheSingleProcessBytes) {
     for (size_t c = 0; c < costs.size(); ++c) EXPECT_EQ(costs[c] / 4, whole.stats.recordsPerCell[c]) << "cell " << c;
     const fs::path dir = fs::temp_directory_path() / ("rrf_cluster_" + std::to_string(::getpid()));
     fs::create_directories(dir);
-    writeDataset((dir / "joined.rrfd").string(), joined.header, joined.sceneHash, joined.perObject);
-    writeDataset((dir / "whole.rrfd").string(), whole.header, whole.sceneHash, whole.perObject);
+    writeDataset((dir / "joined.rrfd").string(), datasetHeader(joined), joined.sceneHash, joined.perObject);
+    writeDataset((dir / "whole.rrfd").string(), datasetHeader(whole), whole.sceneHash, whole.perObject);
     const std::string a = readBytes((dir / "joined.rrfd").string()), b = readBytes((dir / "whole.rrfd").string());
     ASSERT_FALSE(a.empty());
     EXPECT_TRUE(a == b) << "the joined ranks' parts differ from the single-process dataset";
@@ -135,7 +137,7 @@ TEST(ClusterParts, TrainingSharesJoinIntoTheSingleProcessRunBitForBit) {
     ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {6};
     o.targets = TargetMode::Separate;
-    o.trainer = TrainerConfig::fromJson({{"type", "adam"}, {"max_epochs", 4}});
+    o.trainer = trainerConfigFromJson({{"type", "adam"}, {"max_epochs", 4}});
     // A kd-tree that splits once, so trees with two leaves cross too.
     o.partition.maxDepth = 1;
     o.partition.maxLeaves = 2;

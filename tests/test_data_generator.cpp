@@ -26,6 +26,7 @@
 #include <unistd.h>
 
 #include "core/project/project_file.h"
+#include "core/data/dataset_header_json.h"
 #include "core/scene/camera_rays.h"
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
@@ -89,7 +90,7 @@ void generateTo(const Scene& scene, const SamplingSettings& s, const std::string
     const DataGenerator gen(scene, s);
     const GeneratedData d = gen.run(shard, shards);
     ASSERT_FALSE(d.cancelled);
-    writeDataset(path, d.header, d.sceneHash, d.perObject);
+    writeDataset(path, datasetHeader(d), d.sceneHash, d.perObject);
 }
 
 /// Runs a shell command, returns its exit status and captures stdout+stderr.
@@ -432,16 +433,16 @@ TEST(DataGenerator, LambertSceneRecordsCarryAlbedoOnly) {
     ASSERT_EQ(gen.layout().inputCount(), 15);
     ASSERT_EQ(gen.layout().floatsPerRecord(), 27) << "15 inputs, 6 targets, 6 target variances";
     const GeneratedData d = gen.run();
-    EXPECT_EQ(d.header.at("input_layout").size(), 15u);
-    EXPECT_EQ(d.header.at("input_layout")[12], "kd_r");
-    EXPECT_EQ(d.header.at("floats_per_record"), 27);
+    EXPECT_EQ(datasetHeader(d).at("input_layout").size(), 15u);
+    EXPECT_EQ(datasetHeader(d).at("input_layout")[12], "kd_r");
+    EXPECT_EQ(datasetHeader(d).at("floats_per_record"), 27);
     uint64_t n = 0;
     forEachRecord(d, 27, [&](size_t obj, const float* r) {
         const Vec3 kd = scene.materials[size_t(scene.objects[obj].material)].kd;
         EXPECT_TRUE(r[12] == kd.x && r[13] == kd.y && r[14] == kd.z) << scene.objects[obj].name;
         ++n;
     });
-    EXPECT_EQ(n, d.header.at("stats").at("records").get<uint64_t>());
+    EXPECT_EQ(n, datasetHeader(d).at("stats").at("records").get<uint64_t>());
     // Every object of the room gets records from a 3×3×3 grid.
     for (size_t i = 0; i < d.perObject.size(); ++i) EXPECT_GT(d.perObject[i].size(), 0u) << scene.objects[i].name;
 }
@@ -467,7 +468,7 @@ TEST(DataGenerator, PhongMaterialAddsSpecularParameters) {
     const DataGenerator gen(scene, s);
     ASSERT_EQ(gen.layout().inputCount(), 19);
     const GeneratedData d = gen.run();
-    const std::vector<std::string> names = d.header.at("input_layout").get<std::vector<std::string>>();
+    const std::vector<std::string> names = datasetHeader(d).at("input_layout").get<std::vector<std::string>>();
     ASSERT_EQ(names.size(), 19u);
     EXPECT_EQ(names[15], "ks_r");
     EXPECT_EQ(names[18], "log10_exponent_plus_1");
@@ -521,7 +522,7 @@ TEST(DataGenerator, RecordsAreFiniteWithUnitNormalsFacingTheViewer) {
         ++n;
     });
     EXPECT_GT(n, 500u);
-    const nlohmann::json& st = d.header.at("stats");
+    const nlohmann::json st = datasetHeader(d).at("stats");
     EXPECT_EQ(st.at("non_finite_samples_dropped").get<uint64_t>(), 0u);
     // Every ray of every kept cell is accounted for: a record, an escape, an emitter hit, or a hit
     // without a finite sample.

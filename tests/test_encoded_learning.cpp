@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/nn/encoding_json.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/model.h"
 #include "core/util/rng.h"
@@ -50,7 +51,7 @@ TEST(EncodedLearning, FrequencyEncodingFitsWhatARawNetworkOfTheSameSizeCannot) {
     MatX<float> x, y;
     samples(8000, 1, x, y);
     // Frequencies π·2^k, k < 4, of the three inputs (3·(2·4 + 1) = 27 features), then 32-32 tanh.
-    InputEncoding encoded = InputEncoding::fromJson(
+    InputEncoding encoded = inputEncodingFromJson(
         JsonReader(nlohmann::json::array({{{"type", "frequency"}, {"inputs", "position"}, {"frequencies", 4}}}), "test"), 3);
     MlpArch a;
     a.inputs = encoded.outputs();

@@ -8,6 +8,7 @@
 #include <limits>
 #include <set>
 
+#include "core/nn/encoding_json.h"
 #include "core/nn/encoding.h"
 #include "core/nn/encodings/frequency.h"
 #include "core/nn/encodings/hash_grid.h"
@@ -35,7 +36,7 @@ MatX<double> randomInputs(int rows, int cols, uint64_t seed, double range = 1.0)
 /// Parses an "encoding" array written as JSON text, for a network of `inputs` inputs.
 InputEncoding parse(const std::string& text, int inputs = 16) {
     const nlohmann::json value = nlohmann::json::parse(text);
-    return InputEncoding::fromJson(JsonReader(value, "project.json", "/network/encoding"), inputs);
+    return inputEncodingFromJson(JsonReader(value, "project.json", "/network/encoding"), inputs);
 }
 
 /// The InputError of parsing `text`, or an empty one if it parsed.
@@ -576,8 +577,8 @@ TEST(Encoding, ToJsonWritesEveryKeyAndReadsBackEqual) {
          "base_resolution": 16, "growth": 1.5},
         {"type": "frequency", "inputs": ["view", "normal"], "frequencies": 6, "include_input": true},
         {"type": "one_blob", "inputs": "light", "bins": 16}])");
-    EXPECT_EQ(e.toJson(), expected);
-    EXPECT_EQ(parse(e.toJson().dump()), e);
+    EXPECT_EQ(toJson(e), expected);
+    EXPECT_EQ(parse(toJson(e).dump()), e);
     EXPECT_NE(parse(R"([{"type": "one_blob", "inputs": "light", "bins": 8}])"), e);
     EXPECT_EQ(e.describe(), "hash_grid(position) + frequency(view,normal) + one_blob(light)");
     EXPECT_EQ(e.outputs(), 16 * 2 + 6 * 13 + 3 * 16 + 4);

@@ -7,6 +7,8 @@
 #include <cmath>
 
 #include "core/nn/encoding_settings_json.h"
+#include "core/nn/network_settings_json.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/pipeline/sweep.h"
 #include "core/pipeline/sweep_values.h"
 #include "core/nn/ensemble.h"
@@ -75,7 +77,7 @@ MlpArch twoLayers(int width) {
 }
 
 TrainerConfig adam(int epochs) {
-    return TrainerConfig::fromJson({{"type", "adam"}, {"max_epochs", epochs}, {"learning_rate", 1e-2},
+    return trainerConfigFromJson({{"type", "adam"}, {"max_epochs", epochs}, {"learning_rate", 1e-2},
                                     {"batch_size", 64}, {"error_goal", 0}, {"patience", 0}});
 }
 
@@ -218,15 +220,15 @@ TEST(Ensemble, MeanOfNoisyFitsIsCloserToTheTruthThanItsMembers) {
 }
 
 TEST(Ensemble, ProjectSettingTrainsMergedNetworksWithTheirBudget) {
-    const NetworkSettings s = NetworkSettings::fromJson(
+    const NetworkSettings s = networkSettingsFromJson(
         JsonReader(nlohmann::json{{"hidden", {4}}, {"ensemble", 3}}, "project.json", "/network"), NetworkSettings());
     EXPECT_EQ(s.options.ensemble, 3);
-    EXPECT_EQ(s.networkJson().at("ensemble"), 3);
-    EXPECT_EQ(NetworkSettings().networkJson().at("ensemble"), 1) << "one network unless asked";
+    EXPECT_EQ(toJson(s).at("ensemble"), 3);
+    EXPECT_EQ(toJson(NetworkSettings()).at("ensemble"), 1) << "one network unless asked";
 
     ObjectTrainingOptions o(s.options, TrainerConfig::projectDefault());
     o.partition.maxLeaves = 1;
-    o.trainer = TrainerConfig::fromJson({{"type", "adam"}, {"max_epochs", 5}, {"patience", 0}, {"error_goal", 0}});
+    o.trainer = trainerConfigFromJson({{"type", "adam"}, {"max_epochs", 5}, {"patience", 0}, {"error_goal", 0}});
     TrainingProgress progress;
     const TrainingRun run = trainNetworks({syntheticObject(0, 150), syntheticObject(1, 90)}, o, {}, &progress);
     ASSERT_EQ(run.models.size(), 2u);
@@ -260,7 +262,7 @@ TEST(Ensemble, SweepsVaryTheMembers) {
 TEST(Ensemble, RefusalsNameTheSetting) {
     for (const nlohmann::json& bad : {nlohmann::json(0), nlohmann::json(kMaxEnsembleMembers + 1), nlohmann::json("two")}) {
         try {
-            NetworkSettings::fromJson(JsonReader(nlohmann::json{{"ensemble", bad}}, "project.json", "/network"),
+            networkSettingsFromJson(JsonReader(nlohmann::json{{"ensemble", bad}}, "project.json", "/network"),
                                       NetworkSettings());
             ADD_FAILURE() << "accepted ensemble " << bad;
         } catch (const std::exception& e) {
@@ -271,7 +273,7 @@ TEST(Ensemble, RefusalsNameTheSetting) {
     // A trainable encoding cannot be shared by the members of one merged network: sweeps (either
     // kind) and training refuse it, naming the setting. A project file may hold the pair (the panel
     // edits one setting at a time), as it may hold a hash grid under Levenberg–Marquardt.
-    EXPECT_NO_THROW(NetworkSettings::fromJson(
+    EXPECT_NO_THROW(networkSettingsFromJson(
         JsonReader(nlohmann::json{{"ensemble", 2}, {"encoding", encodingSettingsJson(encodingPresetSettings("hash_grid"))}}, "project.json", "/network"),
         NetworkSettings()));
     SweepOptions sweep;
@@ -289,7 +291,7 @@ TEST(Ensemble, RefusalsNameTheSetting) {
     o.hidden = {4};
     o.ensemble = 2;
     o.encoding = encodingPresetSettings("hash_grid");
-    o.trainer = TrainerConfig::fromJson({{"type", "adam"}, {"max_epochs", 1}});
+    o.trainer = trainerConfigFromJson({{"type", "adam"}, {"max_epochs", 1}});
     try {
         trainObjects({syntheticObject(0, 40)}, o);
         ADD_FAILURE() << "an ensemble with a trainable encoding trained";

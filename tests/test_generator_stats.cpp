@@ -9,7 +9,9 @@
 
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
+#include "core/data/dataset_header_json.h"
 #include "core/data/generator_stats.h"
+#include "core/data/generator_stats_json.h"
 #include "core/project/project.h"
 #include "core/project/project_file.h"
 #include "core/util/error.h"
@@ -36,7 +38,7 @@ TEST(GeneratorStats, RunCountsAreTheHeaderStats) {
     const SamplingSettings s = tinySettings();
     const GeneratedData d = DataGenerator(project.scene, s).run();
     const GeneratorStats& st = d.stats;
-    EXPECT_EQ(st.toJson(), d.header.at("stats")) << "the header stores exactly the typed counters";
+    EXPECT_EQ(toJson(st), datasetHeader(d).at("stats")) << "the header stores exactly the typed counters";
     EXPECT_EQ(st.cells(), uint64_t(s.nx * s.ny * s.nz));
     ASSERT_EQ(st.recordsPerObject.size(), project.scene.objects.size());
     EXPECT_EQ(std::accumulate(st.recordsPerObject.begin(), st.recordsPerObject.end(), uint64_t(0)), st.records);
@@ -51,10 +53,10 @@ TEST(GeneratorStats, WrittenDatasetReadsBackTheSameStats) {
     const Project project = loadProjectOrScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/project.json");
     const GeneratedData d = DataGenerator(project.scene, tinySettings()).run();
     const fs::path path = fs::temp_directory_path() / ("rrf_generator_stats_" + std::to_string(::getpid()) + ".rrfd");
-    writeDataset(path.string(), d.header, d.sceneHash, d.perObject);
+    writeDataset(path.string(), datasetHeader(d), d.sceneHash, d.perObject);
     const Dataset file(path.string());
-    const GeneratorStats read = GeneratorStats::fromHeader(file.header(), file.path());
-    EXPECT_EQ(read.toJson(), d.stats.toJson());
+    const GeneratorStats read = generatorStatsFromHeader(file.header(), file.path());
+    EXPECT_EQ(toJson(read), toJson(d.stats));
     EXPECT_EQ(read.recordsPerObject, d.stats.recordsPerObject);
     EXPECT_EQ(read.paths, 0u) << "work counters are not stored";
     fs::remove(path);
@@ -63,14 +65,14 @@ TEST(GeneratorStats, WrittenDatasetReadsBackTheSameStats) {
 TEST(GeneratorStats, MistypedCounterNamesItsPointer) {
     nlohmann::json header = {{"stats", {{"records", "many"}}}};
     try {
-        GeneratorStats::fromHeader(header, "data.rrfd");
+        generatorStatsFromHeader(header, "data.rrfd");
         FAIL() << "a string counter must be rejected";
     } catch (const InputError& e) {
         EXPECT_EQ(e.file(), "data.rrfd");
         EXPECT_EQ(e.where(), "/stats/records");
     }
     header["stats"] = {{"records", 3}};
-    EXPECT_EQ(GeneratorStats::fromHeader(header, "data.rrfd").records, 3u) << "older files: finer counters read as 0";
+    EXPECT_EQ(generatorStatsFromHeader(header, "data.rrfd").records, 3u) << "older files: finer counters read as 0";
 }
 
 TEST(GeneratorStats, AddingTheNextShardSumsCountersAndAppendsCells) {

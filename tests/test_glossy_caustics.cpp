@@ -8,6 +8,7 @@
 
 #include "core/predict/glossy_caustics.h"
 #include "core/predict/phong_lobe_integral.h"
+#include "core/predict/prediction_settings_json.h"
 #include "core/predict/predictor.h"
 #include "core/util/json_reader.h"
 #include "model_builders.h"
@@ -112,7 +113,7 @@ TEST(GlossyCaustics, GatherFromTheLightSideEqualsTheCosineRays) {
             {"direct", "exact"},
             {"gather", {{"objects", {"ceiling"}}, {"diffuse_samples", diffuse}, {"caustic_samples", caustic},
                         {"second_lobe_samples", 0}, {"second_diffuse_samples", 0}}}};
-        const Predictor pred(s, set, PredictionSettings::fromJson(JsonReader(section, "p.json", "/prediction")));
+        const Predictor pred(s, set, predictionSettingsFromJson(JsonReader(section, "p.json", "/prediction")));
         const GBuffer g = pred.gbuffer(s.lightPosition(), 16, 16);
         const Prediction out = pred.predict(g);
         EXPECT_EQ(out.nonFinite, 0u);

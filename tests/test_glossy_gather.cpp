@@ -7,6 +7,7 @@
 #include <tbb/global_control.h>
 
 #include "core/predict/glossy_gather.h"
+#include "core/predict/prediction_settings_json.h"
 #include "core/predict/predictor.h"
 #include "core/project/project_file.h"
 #include "core/util/error.h"
@@ -50,7 +51,7 @@ Scene glossyFloorBox(int size) {
 ModelSet albedoModels(const Scene& s) { return rrf::test::albedoModels(s, {"direct", "indirect"}); }
 
 PredictionSettings settings(const nlohmann::json& section) {
-    return PredictionSettings::fromJson(JsonReader(section, "p.json", "/prediction"));
+    return predictionSettingsFromJson(JsonReader(section, "p.json", "/prediction"));
 }
 }  // namespace
 
@@ -182,8 +183,8 @@ TEST(GlossyGather, SameImageForAnyThreadCount) {
 TEST(GlossyGather, SectionReadsWritesAndRefuses) {
     const PredictionSettings d;
     EXPECT_TRUE(d.gather.on());
-    const PredictionSettings r = settings(d.toJson());
-    EXPECT_EQ(r.toJson(), d.toJson());
+    const PredictionSettings r = settings(toJson(d));
+    EXPECT_EQ(toJson(r), toJson(d));
     const PredictionSettings s = settings({{"gather", {{"min_exponent", 0}}}});
     EXPECT_FALSE(s.gather.on());
     EXPECT_TRUE(settings({{"gather", {{"min_exponent", 0}, {"objects", {"walls"}}}}}).gather.on()) << "named objects";

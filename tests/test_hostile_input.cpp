@@ -22,6 +22,7 @@
 
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
+#include "core/data/dataset_header_json.h"
 #include "core/project/scene_overrides.h"
 #include "core/project/scene_overrides_json.h"
 #include "core/render/render_settings.h"
@@ -337,7 +338,7 @@ TEST(HostileInput, ObjectsWithoutRecordsWriteAndReadBack) {
     for (const auto& v : d.perObject) empty += v.empty();
     ASSERT_GE(empty, 2u);
     const std::string path = (dir / "few.rrfd").string();
-    writeDataset(path, d.header, d.sceneHash, d.perObject);
+    writeDataset(path, datasetHeader(d), d.sceneHash, d.perObject);
     const Dataset back(path);
     uint64_t total = 0;
     for (const auto& v : d.perObject) total += v.size() / size_t(gen.layout().floatsPerRecord());

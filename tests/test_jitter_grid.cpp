@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/data/data_generator.h"
+#include "core/data/dataset_header_json.h"
 #include "core/data/jitter_grid.h"
 #include "core/project/project.h"
 #include "core/project/project_file.h"
@@ -201,7 +202,7 @@ TEST(ViewpointClassifier, GeneratorDropsExactlyTheCellsTheClassifierRejects) {
     const JitterGrid grid(scene.bounds(), settings.nx, settings.ny, settings.nz);
     const ViewpointClassifier classifier(gen.tracer());
     uint64_t inside = 0, outside = 0;
-    const nlohmann::json& perCell = data.header.at("stats").at("records_per_cell");
+    const nlohmann::json perCell = datasetHeader(data).at("stats").at("records_per_cell");
     ASSERT_EQ(perCell.size(), size_t(grid.cellCount()));
     for (int cell = 0; cell < grid.cellCount(); ++cell) {
         const ViewpointStatus st = classifier.classify(grid.viewpoint(cell, settings.seed));
@@ -215,8 +216,8 @@ TEST(ViewpointClassifier, GeneratorDropsExactlyTheCellsTheClassifierRejects) {
     // The test is only meaningful if both kinds of drop occur with this seed and grid.
     EXPECT_GT(inside, 0u);
     EXPECT_GT(outside, 0u);
-    EXPECT_EQ(data.header.at("stats").at("cells_dropped_inside_object").get<uint64_t>(), inside);
-    EXPECT_EQ(data.header.at("stats").at("cells_dropped_outside_scene").get<uint64_t>(), outside);
+    EXPECT_EQ(datasetHeader(data).at("stats").at("cells_dropped_inside_object").get<uint64_t>(), inside);
+    EXPECT_EQ(datasetHeader(data).at("stats").at("cells_dropped_outside_scene").get<uint64_t>(), outside);
 }
 
 TEST(ViewpointClassifier, InsideMeansAnOddNumberOfCrossings) {

@@ -15,6 +15,7 @@
 #include "core/data/dataset_file.h"
 #include "core/data/record_layout.h"
 #include "core/nn/model_set.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/predict/predictor.h"
 #include "core/util/error.h"
 #include "scene_builders.h"
@@ -40,7 +41,7 @@ struct SavedSet {
         fs::remove_all(dir);
         ObjectTrainingOptions o = test::plainTraining();
         o.hidden = {3};
-        o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 2}});
+        o.trainer = trainerConfigFromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 2}});
         for (int i = 0; i < 14; ++i) layout.push_back("in" + std::to_string(i));
         saveModelSet(dir.string(), trainObjects({syntheticObject(0, 40)}, o), kHash, layout);
     }

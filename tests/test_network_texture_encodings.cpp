@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/nn/encoding_json.h"
 #include "core/predict/network_texture.h"
 #include "tests/gl/test_models.h"
 
@@ -26,7 +27,7 @@ constexpr double kPiD = 3.14159265358979323846;
 NetworkModel featureProbe(const Scene& scene, const json& encoding, const int (&features)[3]) {
     NetworkModel m;
     const int inputs = RecordLayout::forScene(scene).inputCount();
-    m.encoding = InputEncoding::fromJson(JsonReader(encoding, "test encoding"), inputs);
+    m.encoding = inputEncodingFromJson(JsonReader(encoding, "test encoding"), inputs);
     m.arch.inputs = m.encoding.outputs();
     m.arch.hidden = {};
     m.arch.outputs = 3;

@@ -13,6 +13,7 @@
 #include "core/nn/encoding_presets.h"
 #include "core/nn/model.h"
 #include "core/nn/network_settings.h"
+#include "core/nn/network_settings_json.h"
 #include "core/nn/object_training.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
@@ -241,17 +242,17 @@ TEST(EncodedTraining, ResultIsIdenticalForAnyThreadCount) {
 TEST(NetworkSettingsEncoding, JsonRoundTripsAndNamesBadValues) {
     NetworkSettings s;
     s.options.encoding = encodingPresetSettings("hash_grid_one_blob");
-    const nlohmann::json j = s.networkJson();
-    const NetworkSettings back = NetworkSettings::fromJson(JsonReader(j, "project.json", "/network"));
+    const nlohmann::json j = toJson(s);
+    const NetworkSettings back = networkSettingsFromJson(JsonReader(j, "project.json", "/network"));
     EXPECT_EQ(back.options.encoding, s.options.encoding);
-    EXPECT_EQ(back.networkJson(), j);
+    EXPECT_EQ(toJson(back), j);
     EXPECT_EQ(encodingPresetName(back.options.encoding), "hash_grid_one_blob");
     EXPECT_EQ(encodingPresetName(NetworkEncodingSettings{}), "raw");
 
     nlohmann::json bad = j;
     bad["encoding"][0]["levls"] = 4;
     try {
-        NetworkSettings::fromJson(JsonReader(bad, "project.json", "/network"));
+        networkSettingsFromJson(JsonReader(bad, "project.json", "/network"));
         FAIL() << "an unknown key was accepted";
     } catch (const InputError& e) {
         EXPECT_EQ(e.file(), "project.json");

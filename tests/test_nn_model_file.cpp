@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/data/dataset_file.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/nn/model.h"
@@ -48,7 +49,7 @@ NetworkModel trainedModel() {
         for (int r = 0; r < 5; ++r) x(r, c) = rng.uniform() * 10.f - 3.f;
         for (int r = 0; r < 6; ++r) y(r, c) = std::exp(0.3f * x(r % 5, c)) + 0.1f * r;
     }
-    NetworkModel m = fitNetwork(a, TrainerConfig::fromJson({{"max_epochs", 5}}), x, y);
+    NetworkModel m = fitNetwork(a, trainerConfigFromJson({{"max_epochs", 5}}), x, y);
     m.objectId = 4;
     m.objectName = "small box";
     m.target = "joint";
@@ -115,7 +116,7 @@ TEST(ModelFile, RoundTripIsBitExact) {
     EXPECT_EQ(l.objectId, 4);
     EXPECT_EQ(l.objectName, "small box");
     EXPECT_EQ(l.target, "joint");
-    EXPECT_EQ(l.trainer.toJson(), m.trainer.toJson());
+    EXPECT_EQ(toJson(l.trainer), toJson(m.trainer));
     ASSERT_EQ(l.training.history.size(), m.training.history.size());
     for (size_t i = 0; i < l.training.history.size(); ++i) {
         EXPECT_EQ(l.training.history[i].trainLoss, m.training.history[i].trainLoss);
@@ -145,7 +146,7 @@ TEST(ModelFile, EmptyValidationSetRoundTrips) {
     MatX<float> x(2, 1), y(3, 1);
     x << 1, 2;
     y << 3, 4, 5;
-    const NetworkModel m = fitNetwork(a, TrainerConfig::fromJson({{"max_epochs", 3}}), x, y);
+    const NetworkModel m = fitNetwork(a, trainerConfigFromJson({{"max_epochs", 3}}), x, y);
     EXPECT_TRUE(std::isnan(m.errors.validation));
     saveModel(m, dir.file("one.rrfm"));
     const NetworkModel l = loadModel(dir.file("one.rrfm"));

@@ -9,6 +9,7 @@
 #include "core/nn/encoding_settings_json.h"
 #include "core/nn/model.h"
 #include "core/nn/object_training.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/nn/training_samples.h"
 #include "core/util/error.h"
 #include "tests/synthetic_samples.h"
@@ -22,7 +23,7 @@ namespace {
 
 ObjectTrainingOptions lmOptions(int epochs) {
     ObjectTrainingOptions o = test::plainTraining();
-    o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", epochs}});
+    o.trainer = trainerConfigFromJson({{"type", "levenberg_marquardt"}, {"max_epochs", epochs}});
     return o;
 }
 
@@ -146,7 +147,7 @@ TEST(ObjectTraining, EachTargetModeLearnsItsOwnTarget) {
 TEST(ObjectTraining, BitIdenticalForAnyThreadCountAndSelection) {
     const std::vector<ObjectSamples> objs = {syntheticObject(0, 400), syntheticObject(1, 250), syntheticObject(2, 300)};
     ObjectTrainingOptions o = lmOptions(4);
-    o.trainer = TrainerConfig::fromJson({{"type", "adam"}, {"max_epochs", 3}});
+    o.trainer = trainerConfigFromJson({{"type", "adam"}, {"max_epochs", 3}});
     auto run = [&](int threads, std::vector<int> which) {
         tbb::global_control gc(tbb::global_control::max_allowed_parallelism, size_t(threads));
         ObjectTrainingOptions oo = o;

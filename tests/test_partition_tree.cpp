@@ -15,8 +15,10 @@
 #include "core/data/dataset_file.h"
 #include "core/nn/model_set.h"
 #include "core/nn/network_settings.h"
+#include "core/nn/network_settings_json.h"
 #include "core/nn/object_training.h"
 #include "core/nn/partition_tree.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/nn/training_run.h"
 #include "core/predict/predictor.h"
 #include "core/project/project.h"
@@ -83,7 +85,7 @@ ObjectTrainingOptions options(int maxLeaves, double goal) {
     ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {6};
     o.targets = TargetMode::Indirect;
-    o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 40}, {"max_fail", 8}});
+    o.trainer = trainerConfigFromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 40}, {"max_fail", 8}});
     o.partition.maxLeaves = maxLeaves;
     o.partition.maxDepth = 8;
     o.partition.goal = goal;
@@ -371,7 +373,7 @@ TEST(PartitionedModelSet, RoundTripIsBitExactAndOldSetsLoadAsSingleLeaves) {
     const std::vector<ObjectSamples> objs = {samplesOf(discontinuous, 2000, 4, 2)};
     ObjectTrainingOptions o = options(3, 0.001);
     o.partition.minRecordsPerWeight = 2;
-    o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 3}});
+    o.trainer = trainerConfigFromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 3}});
     const std::vector<ObjectModel> trained = trainObjects(objs, o);
     ASSERT_EQ(trained[0].model.leafCount(), 3);
     TempDir dir;
@@ -441,20 +443,20 @@ TEST(PartitionedModelSet, RoundTripIsBitExactAndOldSetsLoadAsSingleLeaves) {
 TEST(PartitionSettings, StrictParsingAndRoundTrip) {
     const nlohmann::json ok = {{"partition", {{"goal", 0.02}, {"max_depth", 5}, {"max_leaves", 12},
                                               {"min_records_per_weight", 10}, {"split_axes", {"light"}}}}};
-    const NetworkSettings s = NetworkSettings::fromJson(JsonReader(ok, "p.json", "/network"));
+    const NetworkSettings s = networkSettingsFromJson(JsonReader(ok, "p.json", "/network"));
     EXPECT_EQ(s.options.partition.goal, 0.02);
     EXPECT_EQ(s.options.partition.maxDepth, 5);
     EXPECT_EQ(s.options.partition.maxLeaves, 12);
     EXPECT_EQ(s.options.partition.minRecordsPerWeight, 10);
     EXPECT_TRUE(s.options.partition.axes == (PartitionAxes{false, true}));
-    const nlohmann::json written = s.networkJson();
-    EXPECT_TRUE(NetworkSettings::fromJson(JsonReader(written, "q.json", "/network")).options.partition == s.options.partition);
+    const nlohmann::json written = toJson(s);
+    EXPECT_TRUE(networkSettingsFromJson(JsonReader(written, "q.json", "/network")).options.partition == s.options.partition);
     EXPECT_EQ(NetworkSettings().options.partition.maxLeaves, NetworkSettings::kDefaultMaxLeaves);
 
     auto error = [](const nlohmann::json& partition) {
         const nlohmann::json j = {{"partition", partition}};
         try {
-            NetworkSettings::fromJson(JsonReader(j, "p.json", "/network"));
+            networkSettingsFromJson(JsonReader(j, "p.json", "/network"));
         } catch (const InputError& e) {
             return std::string(e.what());
         }

@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 
 #include "core/project/project_file.h"
+#include "core/predict/prediction_settings_json.h"
 #include "core/util/error.h"
 #include "core/eval/evaluation.h"
 #include "core/nn/ensemble.h"
@@ -48,7 +49,7 @@ const Vec3 kLight(0.2f, 0.9f, -0.1f);
 
 /// A "prediction" section as the project reader reads it.
 PredictionSettings readPrediction(const nlohmann::json& section) {
-    return PredictionSettings::fromJson(JsonReader(section, "p.json", "/prediction"));
+    return predictionSettingsFromJson(JsonReader(section, "p.json", "/prediction"));
 }
 
 /// Direct light from the networks (the default is exact direct light): for the tests of the term rules.
@@ -290,7 +291,7 @@ TEST(Predictor, SpreadIsTheMembersDisagreementOnTheirObjectsPixelsOnly) {
         else n.byTarget.emplace("global", rrf::test::copyInputNet(15, {3, 4, 5}));
         models.objects.push_back(std::move(n));
     }
-    const Predictor pred(s, models, PredictionSettings::fromJson(JsonReader(nlohmann::json{{"direct", "network"}}, "p.json", "/prediction")));
+    const Predictor pred(s, models, predictionSettingsFromJson(JsonReader(nlohmann::json{{"direct", "network"}}, "p.json", "/prediction")));
     const GBuffer g = pred.gbuffer(Vec3(0.2f, 0.9f, -0.1f), 32, 32);
     const Prediction out = pred.predict(g);
     ASSERT_FALSE(out.spread.empty());

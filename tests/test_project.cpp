@@ -9,6 +9,10 @@
 #include "core/project/project_file.h"
 #include "core/project/runs_json.h"
 #include "core/project/scene_overrides_json.h"
+#include "core/data/sampling_settings_json.h"
+#include "core/nn/network_settings_json.h"
+#include "core/nn/trainer_config_json.h"
+#include "core/predict/prediction_settings_json.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/nn/encoding_settings_json.h"
@@ -113,7 +117,7 @@ TEST(Project, RoundTripKeepsUnknownSectionsAndRebasesSceneRef) {
     EXPECT_EQ(q.render.width, 128);
     EXPECT_EQ(q.render.maxDepth, 64);
     ASSERT_TRUE(q.network.has_value());
-    EXPECT_EQ(q.network->networkJson(), p.network->networkJson());
+    EXPECT_EQ(toJson(*q.network), toJson(*p.network));
     ASSERT_EQ(q.runs.size(), 1u);
     EXPECT_EQ(toJson(q.runs[0]), toJson(p.runs[0]));
     EXPECT_EQ(q.layout, p.layout);
@@ -270,17 +274,17 @@ TEST(Project, EveryTypedSectionAndUnknownSectionsSurviveARoundTrip) {
     EXPECT_TRUE(q.warnings.empty());
     EXPECT_EQ(q.name, "typed");
     ASSERT_TRUE(q.sampling.has_value());
-    EXPECT_EQ(q.sampling->toJson(), sampling.toJson());
+    EXPECT_EQ(toJson(*q.sampling), toJson(sampling));
     ASSERT_TRUE(q.network.has_value());
-    EXPECT_EQ(q.network->networkJson(), network.networkJson());
+    EXPECT_EQ(toJson(*q.network), toJson(network));
     EXPECT_EQ(q.network->options.perObject, network.options.perObject);
     EXPECT_EQ(q.network->options.choiceFor("floor").inputs, DerivedInputs{});
     EXPECT_EQ(q.network->options.choiceFor("tall-box").hidden, (std::vector<int>{16, 8}));
     EXPECT_TRUE(q.network->options.choiceFor("tall-box").inputs.reflected) << "the section's";
     ASSERT_TRUE(q.trainer.has_value());
-    EXPECT_EQ(q.trainer->toJson(), trainer.toJson());
-    EXPECT_EQ(q.trainerOrDefault().toJson(), trainer.toJson());
-    EXPECT_EQ(q.prediction.toJson(), p.prediction.toJson());
+    EXPECT_EQ(toJson(*q.trainer), toJson(trainer));
+    EXPECT_EQ(toJson(q.trainerOrDefault()), toJson(trainer));
+    EXPECT_EQ(toJson(q.prediction), toJson(p.prediction));
     ASSERT_EQ(q.runs.size(), 1u);
     EXPECT_EQ(toJson(q.runs[0]), toJson(run));
     EXPECT_EQ(q.layout, p.layout);
@@ -309,7 +313,7 @@ TEST(Project, EncodingIsWrittenAsItWasRead) {
     EXPECT_EQ(std::get<HashGridSettings>(e[0].params).log2TableSize, HashGridSettings().log2TableSize) << "a default";
     EXPECT_EQ(std::get<OneBlobSettings>(e[1].params).bins, OneBlobSettings().bins);
     EXPECT_FALSE(std::get<FrequencySettings>(e[2].params).includeInput);
-    EXPECT_EQ(p.network->networkJson().at("encoding"), encoding);
+    EXPECT_EQ(toJson(*p.network).at("encoding"), encoding);
     saveProject(p, dir + "/saved.json");
     const json saved = readJsonFile(dir + "/saved.json");
     EXPECT_EQ(saved.at("network").at("encoding"), encoding);
@@ -376,11 +380,11 @@ TEST(Project, SectionReadersNameTheirPointerBelowAnyBase) {
         }
         return std::string("no error");
     };
-    std::string msg = message([&] { NetworkSettings::fromJson(settings.at("network")); });
+    std::string msg = message([&] { networkSettingsFromJson(settings.at("network")); });
     EXPECT_NE(msg.find("p.json: /runs/3/settings/network/hidden/0: integer 0 out of range"), std::string::npos) << msg;
-    msg = message([&] { TrainerConfig::fromJson(settings.at("trainer")); });
+    msg = message([&] { trainerConfigFromJson(settings.at("trainer")); });
     EXPECT_NE(msg.find("p.json: /runs/3/settings/trainer/typo: unknown key"), std::string::npos) << msg;
-    msg = message([&] { SamplingSettings::fromJson(settings.at("sampling")); });
+    msg = message([&] { samplingSettingsFromJson(settings.at("sampling")); });
     EXPECT_NE(msg.find("p.json: /runs/3/settings/sampling/grid: expected an array of 3 integers"), std::string::npos)
         << msg;
 }
@@ -391,7 +395,7 @@ TEST(Project, SectionReadersKeepTheBaseForOmittedKeys) {
     base.directions = 17;
     base.fixedLight = true;
     const json section = {{"spp", 5}};
-    const SamplingSettings s = SamplingSettings::fromJson(JsonReader(section, "script.json", "/2"), base);
+    const SamplingSettings s = samplingSettingsFromJson(JsonReader(section, "script.json", "/2"), base);
     EXPECT_EQ(s.nx, 3);
     EXPECT_EQ(s.directions, 17);
     EXPECT_TRUE(s.fixedLight);
@@ -401,7 +405,7 @@ TEST(Project, SectionReadersKeepTheBaseForOmittedKeys) {
     n.options.hidden = {9, 9};
     n.options.activation = Activation::Relu;
     const json targets = {{"targets", "joint"}};
-    const NetworkSettings m = NetworkSettings::fromJson(JsonReader(targets, "script.json", "/3"), n);
+    const NetworkSettings m = networkSettingsFromJson(JsonReader(targets, "script.json", "/3"), n);
     EXPECT_EQ(m.options.hidden, (std::vector<int>{9, 9}));
     EXPECT_EQ(m.options.activation, Activation::Relu);
     EXPECT_EQ(m.options.targets, TargetMode::Joint);
@@ -416,8 +420,8 @@ TEST(Project, SwitchingTheTrainerKeepsBothTrainersParameters) {
     EXPECT_EQ(adam.adam.learningRate, 2e-3);
     EXPECT_EQ(adam.maxEpochs(), AdamConfig().maxEpochs) << "Adam runs with its own epoch limit";
     const TrainerConfig back = adam.withType(TrainerType::LevenbergMarquardt);
-    EXPECT_EQ(back.toJson(), c.toJson()) << "switching back loses nothing";
-    EXPECT_EQ(c.withType("lm").toJson(), c.toJson());
+    EXPECT_EQ(toJson(back), toJson(c)) << "switching back loses nothing";
+    EXPECT_EQ(toJson(c.withType("lm")), toJson(c));
     EXPECT_THROW(c.withType("sgd"), SettingError);
 }
 

@@ -14,6 +14,7 @@
 
 #include "core/data/data_generator.h"
 #include "core/data/dataset_file.h"
+#include "core/data/dataset_header_json.h"
 #include "core/data/dataset_summary.h"
 #include "core/data/jitter_grid.h"
 #include "core/data/record_noise.h"
@@ -157,7 +158,7 @@ TEST(DatasetVersion, VersionTwoRoundTripsTheNoiseAndVersionOneLoadsWithNoiseUnkn
     const DataGenerator gen(p.scene, s);
     const GeneratedData d = gen.run();
     const fs::path v2 = tempFile("v2");
-    writeDataset(v2.string(), d.header, d.sceneHash, d.perObject);
+    writeDataset(v2.string(), datasetHeader(d), d.sceneHash, d.perObject);
     {
         const Dataset file(v2.string());
         EXPECT_EQ(file.version(), 2u);
@@ -178,7 +179,7 @@ TEST(DatasetVersion, VersionTwoRoundTripsTheNoiseAndVersionOneLoadsWithNoiseUnkn
     }
     // A version-1 file: the same records without their noise columns, the header without "noise_layout",
     // and version 1 in the fixed header (bytes 8–11; the fixed header is not under a checksum).
-    nlohmann::json h1 = d.header;
+    nlohmann::json h1 = datasetHeader(d);
     h1.erase("noise_layout");
     const int in = gen.layout().inputCount(), fpr = gen.layout().floatsPerRecord();
     h1["floats_per_record"] = in + 6;

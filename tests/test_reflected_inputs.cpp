@@ -9,6 +9,9 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/nn/derived_inputs_json.h"
+#include "core/nn/encoding_json.h"
+#include "core/nn/model_file.h"
 #include "core/data/dataset_file.h"
 #include "core/nn/encoding_presets.h"
 #include "core/nn/model.h"
@@ -29,7 +32,7 @@ std::vector<float> record(const float v[3], const float n[3]) {
 }
 
 InputEncoding parseWith(const std::string& text, int inputs, DerivedInputs derived) {
-    return InputEncoding::fromJson(JsonReader(json::parse(text), "project.json", "/network/encoding"), inputs, derived);
+    return inputEncodingFromJson(JsonReader(json::parse(text), "project.json", "/network/encoding"), inputs, derived);
 }
 
 MatX<double> randomMatrix(int rows, int cols, uint64_t seed) {
@@ -138,13 +141,13 @@ TEST(DerivedInputs, ReflectedDirectionIsTheViewMirroredAboutTheNormal) {
 }
 
 TEST(DerivedInputs, JsonReadsBackAndNamesFileAndPointerOfABadValue) {
-    const DerivedInputs on = DerivedInputs::fromJson(JsonReader(json::parse(R"({"reflected": true})"), "p.json", "/network/inputs"));
+    const DerivedInputs on = derivedInputsFromJson(JsonReader(json::parse(R"({"reflected": true})"), "p.json", "/network/inputs"));
     EXPECT_TRUE(on.reflected);
-    EXPECT_EQ(DerivedInputs::fromJson(JsonReader(on.toJson(), "p.json")), on);
-    EXPECT_FALSE(DerivedInputs::fromJson(JsonReader(json::object(), "p.json")).any());
+    EXPECT_EQ(derivedInputsFromJson(JsonReader(toJson(on), "p.json")), on);
+    EXPECT_FALSE(derivedInputsFromJson(JsonReader(json::object(), "p.json")).any());
     for (const char* bad : {R"({"reflected": 1})", R"({"reflectd": true})", R"(true)"}) {
         try {
-            DerivedInputs::fromJson(JsonReader(json::parse(bad), "p.json", "/network/inputs"));
+            derivedInputsFromJson(JsonReader(json::parse(bad), "p.json", "/network/inputs"));
             ADD_FAILURE() << bad << " was accepted";
         } catch (const InputError& e) {
             EXPECT_EQ(e.file(), "p.json") << bad;

@@ -9,8 +9,11 @@
 #include <vector>
 
 #include "core/nn/encoding.h"
+#include "core/nn/encoding_json.h"
+#include "core/nn/encodings/encodings_json.h"
 #include "core/nn/encodings/registry.h"
 #include "core/nn/trainer_config.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/nn/trainers/registry.h"
 #include "core/util/error.h"
 
@@ -30,7 +33,7 @@ std::set<std::string> keysOf(const json& j) {
 /// A one-component "encoding" array of type `name` over position, read for 15 record inputs.
 InputEncoding readOne(const std::string& name) {
     const json a = json::array({{{"type", name}, {"inputs", "position"}}});
-    return InputEncoding::fromJson(JsonReader(a, "test.json", "/encoding"), 15);
+    return inputEncodingFromJson(JsonReader(a, "test.json", "/encoding"), 15);
 }
 
 }  // namespace test_registries
@@ -47,11 +50,11 @@ TEST(EncodingRegistry, EveryTypeReadsItsNameAndWritesExactlyItsKeys) {
         EXPECT_EQ(&encodingTypeOf(*e.components[0].encoding), t);
         // A typed setting's alternative is its type's row (encodings/encoding_params.h).
         const json empty = json::object();
-        EXPECT_EQ(&encodingTypeOf(t->readParams(JsonReader(empty, "test.json"))), t);
-        EXPECT_EQ(keysOf(t->writeParams(t->readParams(JsonReader(empty, "test.json")))),
+        EXPECT_EQ(&encodingTypeOf(encodingParamsFromJson(*t, JsonReader(empty, "test.json"))), t);
+        EXPECT_EQ(keysOf(toJson(encodingParamsFromJson(*t, JsonReader(empty, "test.json")))),
                   std::set<std::string>(t->keys.begin(), t->keys.end()));
         // The keys the reader allows are the keys the implementation writes.
-        EXPECT_EQ(keysOf(e.components[0].encoding->settingsJson()), std::set<std::string>(t->keys.begin(), t->keys.end()));
+        EXPECT_EQ(keysOf(toJson(e.components[0].encoding->params())), std::set<std::string>(t->keys.begin(), t->keys.end()));
     }
     EXPECT_EQ(findEncodingType("sh"), nullptr);
 }
@@ -68,7 +71,7 @@ TEST(EncodingRegistry, UnknownTypesAndKeysAreNamedWithTheRegisteredOnes) {
     }
     const json a = json::array({{{"type", "one_blob"}, {"inputs", "position"}, {"levels", 4}}});
     try {
-        InputEncoding::fromJson(JsonReader(a, "test.json", "/encoding"), 15);
+        inputEncodingFromJson(JsonReader(a, "test.json", "/encoding"), 15);
         FAIL() << "a hash grid key was accepted by one_blob";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("/encoding/0/levels"), std::string::npos) << e.what();
@@ -76,7 +79,7 @@ TEST(EncodingRegistry, UnknownTypesAndKeysAreNamedWithTheRegisteredOnes) {
     // The hash grid's input bound comes from its row: brdf (3) + position (3) is 6 > 4 inputs.
     const json wide = json::array({{{"type", "hash_grid"}, {"inputs", json::array({"position", "brdf"})}}});
     try {
-        InputEncoding::fromJson(JsonReader(wide, "test.json", "/encoding"), 15);
+        inputEncodingFromJson(JsonReader(wide, "test.json", "/encoding"), 15);
         FAIL() << "a six-input hash grid was accepted";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("a hash_grid reads at most 4 inputs, these groups have 6"), std::string::npos)
@@ -89,16 +92,16 @@ TEST(TrainerRegistry, EveryTypeWritesExactlyItsKeysAndReadsBackByEachName) {
     for (const TrainerTypeInfo& t : trainerTypes()) {
         SCOPED_TRACE(t.name);
         const TrainerConfig c = TrainerConfig().withType(t.type);
-        const json written = c.toJson();
+        const json written = toJson(c);
         EXPECT_EQ(keysOf(written), std::set<std::string>(t.keys.begin(), t.keys.end()));
         EXPECT_EQ(written.at("type"), t.name);
-        EXPECT_EQ(TrainerConfig::fromJson(json{{"type", t.name}}).type, t.type);
+        EXPECT_EQ(trainerConfigFromJson(json{{"type", t.name}}).type, t.type);
         if (t.shortName) {
-            EXPECT_EQ(TrainerConfig::fromJson(json{{"type", t.shortName}}).type, t.type);
+            EXPECT_EQ(trainerConfigFromJson(json{{"type", t.shortName}}).type, t.type);
         }
         EXPECT_EQ(TrainerConfig().withType(std::string(t.name)).type, t.type);
     }
-    EXPECT_EQ(TrainerConfig::fromJson(json::object()).type, TrainerType::LevenbergMarquardt);
+    EXPECT_EQ(trainerConfigFromJson(json::object()).type, TrainerType::LevenbergMarquardt);
     EXPECT_EQ(trainerShortNames(), (std::vector<std::string>{"lm", "adam"}));
     try {
         TrainerConfig().withType(std::string("sgd"), "trainer.type");
@@ -112,18 +115,18 @@ TEST(TrainerRegistry, LossesAndSchedulesRoundTripByName) {
     using namespace test_registries;
     for (const auto& loss : adamLosses()) {
         SCOPED_TRACE(loss.name);
-        const TrainerConfig c = TrainerConfig::fromJson(json{{"type", "adam"}, {"loss", loss.name}});
+        const TrainerConfig c = trainerConfigFromJson(json{{"type", "adam"}, {"loss", loss.name}});
         EXPECT_EQ(c.adam.loss, loss.value);
-        EXPECT_EQ(c.toJson().at("loss"), loss.name);
+        EXPECT_EQ(toJson(c).at("loss"), loss.name);
     }
     for (const auto& s : lrSchedules()) {
         SCOPED_TRACE(s.name);
-        const TrainerConfig c = TrainerConfig::fromJson(json{{"type", "adam"}, {"schedule", s.name}});
+        const TrainerConfig c = trainerConfigFromJson(json{{"type", "adam"}, {"schedule", s.name}});
         EXPECT_EQ(c.adam.schedule, s.value);
-        EXPECT_EQ(c.toJson().at("schedule"), s.name);
+        EXPECT_EQ(toJson(c).at("schedule"), s.name);
     }
     try {
-        TrainerConfig::fromJson(json{{"type", "adam"}, {"loss", "l1"}}, "p.json");
+        trainerConfigFromJson(json{{"type", "adam"}, {"loss", "l1"}}, "p.json");
         FAIL() << "an unknown loss was accepted";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("expected one of \"mse\", \"relative_l2\", \"relative_l2_prediction\""),

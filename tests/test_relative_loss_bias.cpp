@@ -9,6 +9,7 @@
 
 #include "core/nn/model.h"
 #include "core/nn/trainer_config.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/nn/training_loss.h"
 #include "core/util/rng.h"
 
@@ -163,7 +164,7 @@ TEST(RelativeL2, NetworkOnNoisyRecordsIsUnbiasedWithDebiasedTargets) {
     arch.hidden = {6};
     arch.outputs = 1;
     auto meanRatio = [&](bool debias) {
-        TrainerConfig cfg = TrainerConfig::fromJson({{"type", "adam"}, {"loss", "relative_l2"}, {"max_epochs", 40},
+        TrainerConfig cfg = trainerConfigFromJson({{"type", "adam"}, {"loss", "relative_l2"}, {"max_epochs", 40},
                                                      {"learning_rate", 1e-2}, {"error_goal", 0}, {"patience", 0},
                                                      {"debias_targets", debias}});
         const NetworkModel m = fitNetwork(arch, cfg, x, y, v);
@@ -181,13 +182,13 @@ TEST(RelativeL2, NetworkOnNoisyRecordsIsUnbiasedWithDebiasedTargets) {
 }
 
 TEST(TrainerConfig, RelativeL2PredictionLossRoundTripsThroughJson) {
-    const TrainerConfig c = TrainerConfig::fromJson({{"type", "adam"}, {"loss", "relative_l2_prediction"}});
+    const TrainerConfig c = trainerConfigFromJson({{"type", "adam"}, {"loss", "relative_l2_prediction"}});
     EXPECT_EQ(c.adam.loss, AdamLoss::RelativeL2Prediction);
-    EXPECT_EQ(c.toJson().at("loss"), "relative_l2_prediction");
-    EXPECT_EQ(TrainerConfig::fromJson(c.toJson()).adam.loss, AdamLoss::RelativeL2Prediction);
-    const TrainerConfig off = TrainerConfig::fromJson({{"type", "adam"}, {"debias_targets", false}});
+    EXPECT_EQ(toJson(c).at("loss"), "relative_l2_prediction");
+    EXPECT_EQ(trainerConfigFromJson(toJson(c)).adam.loss, AdamLoss::RelativeL2Prediction);
+    const TrainerConfig off = trainerConfigFromJson({{"type", "adam"}, {"debias_targets", false}});
     EXPECT_FALSE(off.adam.debiasTargets);
-    EXPECT_EQ(off.toJson().at("debias_targets"), false);
-    EXPECT_FALSE(TrainerConfig::fromJson(off.toJson()).adam.debiasTargets);
-    EXPECT_THROW(TrainerConfig::fromJson({{"type", "adam"}, {"debias_targets", "yes"}}), std::exception);
+    EXPECT_EQ(toJson(off).at("debias_targets"), false);
+    EXPECT_FALSE(trainerConfigFromJson(toJson(off)).adam.debiasTargets);
+    EXPECT_THROW(trainerConfigFromJson({{"type", "adam"}, {"debias_targets", "yes"}}), std::exception);
 }

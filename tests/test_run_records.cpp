@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/nn/trainer_config_json.h"
 #include "core/project/runs.h"
 #include "core/project/runs_json.h"
 #include "core/util/error.h"
@@ -34,7 +35,7 @@ json trainRun() {
         "artifacts": ["runs/train-1/models/models.json"]
     })");
     // The workbench writes every key of the trainer (TrainerConfig::toJson).
-    run["settings"]["trainer"] = TrainerConfig().withType(TrainerType::Adam).toJson();
+    run["settings"]["trainer"] = toJson(TrainerConfig().withType(TrainerType::Adam));
     return run;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/nn/model.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/nn/training_loss.h"
 #include "core/nn/validation_monitor.h"
 #include "core/util/rng.h"
@@ -54,7 +55,7 @@ double trueValidationError(const NetworkModel& m, const MatX<float>& x, uint64_t
 
 TrainerConfig lm(nlohmann::json extra) {
     extra["type"] = "levenberg_marquardt";
-    return TrainerConfig::fromJson(extra);
+    return trainerConfigFromJson(extra);
 }
 
 }  // namespace
@@ -184,7 +185,7 @@ TEST(AdamSchedule, PatienceCannotStopWhileTheRateIsHigh) {
     const MatX<float> x = inputs1d(200, 2);
     MatX<float> y(1, x.cols());
     for (Eigen::Index i = 0; i < x.cols(); ++i) y(0, i) = truth(x(0, i));
-    TrainerConfig cfg = TrainerConfig::fromJson({{"type", "adam"}, {"max_epochs", 100}, {"learning_rate", 1e-12},
+    TrainerConfig cfg = trainerConfigFromJson({{"type", "adam"}, {"max_epochs", 100}, {"learning_rate", 1e-12},
                                                  {"min_learning_rate", 1e-14}, {"patience", 5}, {"error_goal", 0}});
     const NetworkModel m = fitNetwork(a, cfg, x, y);
     EXPECT_EQ(m.training.stopReason, "validation stop");

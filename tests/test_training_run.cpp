@@ -7,7 +7,10 @@
 #include <unistd.h>
 
 #include "core/nn/model_set.h"
+#include "core/nn/network_settings_json.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/nn/training_run.h"
+#include "core/util/json_reader.h"
 #include "tests/synthetic_samples.h"
 #include "tests/training_builders.h"
 
@@ -20,7 +23,7 @@ TEST(TrainingRun, SameNetworksAsTrainObjectsWithOrderedCurves) {
     ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {5};
     o.targets = TargetMode::Separate;
-    o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 4}});
+    o.trainer = trainerConfigFromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 4}});
     TrainingProgress progress;
     const TrainingRun run = trainNetworks(objs, o, {}, &progress);
     const std::vector<ObjectModel> direct = trainObjects(objs, o);
@@ -65,7 +68,7 @@ TEST(TrainingRun, CancelledBeforeStartTrainsNothing) {
 TEST(TrainingRun, SavedModelSetRecordsWhereTheRunCameFrom) {
     ObjectTrainingOptions o = test::plainTraining();
     o.hidden = {3};
-    o.trainer = TrainerConfig::fromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 2}});
+    o.trainer = trainerConfigFromJson({{"type", "levenberg_marquardt"}, {"max_epochs", 2}});
     const TrainingRun run = trainNetworks({syntheticObject(0, 60)}, o);
     NetworkSettings settings;
     settings.options = o.network();
@@ -76,12 +79,13 @@ TEST(TrainingRun, SavedModelSetRecordsWhereTheRunCameFrom) {
     saveTrainingRun(dir.string(), run, o, 0x1234, layout, {"data/dataset.rrfd", "project.json"});
     const ModelSet set = loadModelSet(dir.string(), 0x1234);
     EXPECT_EQ(set.inputLayout, layout);
-    EXPECT_EQ(set.index.at("dataset"), "data/dataset.rrfd");
-    EXPECT_EQ(set.index.at("project"), "project.json");
-    EXPECT_EQ(set.index.at("network"), settings.networkJson());
-    EXPECT_EQ(set.index.at("trainer"), o.trainer.toJson());
-    EXPECT_EQ(set.index.at("seconds").get<double>(), run.seconds);
-    EXPECT_EQ(set.index.at("cancelled"), false);
+    const nlohmann::json index = readJsonFile((dir / "models.json").string());
+    EXPECT_EQ(index.at("dataset"), "data/dataset.rrfd");
+    EXPECT_EQ(index.at("project"), "project.json");
+    EXPECT_EQ(index.at("network"), toJson(settings));
+    EXPECT_EQ(index.at("trainer"), toJson(o.trainer));
+    EXPECT_EQ(index.at("seconds").get<double>(), run.seconds);
+    EXPECT_EQ(index.at("cancelled"), false);
     std::filesystem::remove_all(dir);
 }
 

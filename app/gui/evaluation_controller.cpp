@@ -204,7 +204,7 @@ EvaluationSource EvaluationController::evaluationSource(const Vec3& light, int w
     source.key = ReferenceKey::of(state_.project.scene, light, width, height, state_.project.render);
     source.models = projectRelative(projectDir(), prediction_.live().dir());
     if (const auto models = prediction_.live().models())
-        source.modelsChecksum = models->index.value("index_checksum64", std::string());
+        source.modelsChecksum = models->indexChecksum;
     return source;
 }
 

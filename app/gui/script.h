@@ -24,13 +24,14 @@
 /// sweeps, unsaved_prompt, dirty, stopped_runs, prediction_partial, render_cancelled, notice, pair,
 /// panes (how many), same_pane [tab, tab], clipped (how many texts are cut off in this frame,
 /// panels/clip_check.h), pipeline_done, pipeline_stopped}. An unknown step or key fails the script
-/// when it is loaded (it never skips silently), naming the file and the step's JSON pointer.
+/// when it is loaded (it never skips silently), naming the file and the step's JSON pointer; so does
+/// a value of the wrong type or out of range (app/gui/script_file.h reads the file).
 
 #include <chrono>
 #include <string>
+#include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "app/gui/script_file.h"
 #include "core/util/vec3.h"
 
 namespace rrf {
@@ -52,9 +53,9 @@ public:
 private:
     Status fail(const std::string& message);
     /// Runs one step; returns true when it is complete (false: keep waiting).
-    bool execute(Workbench& wb, const nlohmann::json& s);
+    bool execute(Workbench& wb, const ScriptStep& s);
 
-    nlohmann::json steps_ = nlohmann::json::array();
+    std::vector<ScriptStep> steps_;
     std::string file_;  ///< the script's path, for messages
     size_t next_ = 0;
     bool waiting_ = false;

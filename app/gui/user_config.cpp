@@ -4,10 +4,8 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include <nlohmann/json.hpp>
-
-#include "core/util/atomic_file.h"
-#include "core/util/json_reader.h"
+#include "app/gui/recent_projects_file.h"
+#include "core/util/error.h"
 
 namespace rrf {
 
@@ -26,12 +24,8 @@ void RecentProjects::load() {
     std::error_code ec;
     if (!fs::exists(file_, ec)) return;
     try {
-        const nlohmann::json j = readJsonFile(file_);
-        const JsonReader list(j, file_);
-        const size_t n = list.requireArray();
         // Entries that are not strings are skipped: the list is only a convenience.
-        for (size_t i = 0; i < n && paths_.size() < kMaxRecent; ++i)
-            if (list.at(i).value().is_string()) paths_.push_back(list.at(i).string());
+        paths_ = readRecentProjectsFile(file_, kMaxRecent);
     } catch (const InputError&) {
         paths_.clear();
     }
@@ -45,7 +39,7 @@ bool RecentProjects::add(const std::string& path) {
     if (paths_.size() > kMaxRecent) paths_.resize(kMaxRecent);
     try {
         fs::create_directories(fs::path(file_).parent_path(), ec);
-        writeFileAtomically(file_, nlohmann::json(paths_).dump(2) + "\n");
+        writeRecentProjectsFile(file_, paths_);
         return true;
     } catch (const std::exception&) {
         return false;

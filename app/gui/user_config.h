@@ -1,7 +1,7 @@
 #pragma once
 /// Per-user workbench settings outside any project: the config directory
 /// ($XDG_CONFIG_HOME/rrf-workbench, else ~/.config/rrf-workbench) with imgui.ini and the list of
-/// recently opened projects (recent.json).
+/// recently opened projects (recent.json, app/gui/recent_projects_file.h).
 
 #include <string>
 #include <vector>

@@ -8,10 +8,10 @@
 
 #include "core/util/error.h"
 #include "core/util/memory_budget.h"
+#include "core/data/dataset_header_json.h"
 #include "core/data/jitter_grid.h"
 #include "core/data/record_noise.h"
 #include "core/util/warp.h"
-#include "core/util/text_format.h"
 
 namespace rrf {
 
@@ -299,25 +299,9 @@ GeneratedData DataGenerator::runCells(int begin, int end, int shardIndex, int sh
     st.rays = rays;
     st.shadowRays = shadowRays;
 
-    nlohmann::json objects = nlohmann::json::array();
-    for (const Object& o : scene_.objects) objects.push_back({{"id", o.id}, {"name", o.name}});
-    data.header = {
-        {"format", "rrf-dataset"},
-        {"scene_hash", hexString(data.sceneHash)},
-        {"settings", settings_.toJson()},
-        {"light_region", {{"min", {region.lo.x, region.lo.y, region.lo.z}}, {"max", {region.hi.x, region.hi.y, region.hi.z}}}},
-        {"grid_bounds", {{"min", {grid.bounds().lo.x, grid.bounds().lo.y, grid.bounds().lo.z}},
-                         {"max", {grid.bounds().hi.x, grid.bounds().hi.y, grid.bounds().hi.z}}}},
-        {"input_layout", layout_.inputs},
-        {"target_layout", layout_.targets},
-        {"noise_layout", layout_.noise},
-        {"floats_per_record", fpr},
-        {"effects", tracer_.effects().toJson()},
-        {"estimator", {{"used", estimatorName(choice_.estimator)}, {"reason", choice_.reason}}},
-        {"shard", {{"index", shardIndex}, {"count", shardCount}, {"cell_begin", begin}, {"cell_end", end}, {"cells_total", cells}}},
-        {"objects", objects},
-        {"stats", st.toJson()},
-    };
+    data.description = datasetDescription(scene_, data.sceneHash, settings_, region, grid.bounds(), tracer_.effects(), choice_);
+    data.layout = layout_;
+    data.shard = {shardIndex, shardCount, begin, end, cells};
     return data;
 }
 

@@ -19,13 +19,12 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/render/bdpt.h"
 #include "core/render/path_tracer.h"
 #include "core/data/generator_stats.h"
 #include "core/data/record_layout.h"
 #include "core/data/sampling_settings.h"
+#include "core/util/json_text.h"
 
 namespace rrf {
 
@@ -38,10 +37,30 @@ struct GeneratorProgress {
     double fraction() const { return cellsInShard ? double(cellsDone) / double(cellsInShard) : 1.0; }
 };
 
+/// The cells of the jitter grid one run covers: the dataset header's "shard".
+struct DatasetShard {
+    int index = 0, count = 1;        ///< part k of n
+    int cellBegin = 0, cellEnd = 0;  ///< cells [cellBegin, cellEnd) of the grid
+    int cellsTotal = 0;              ///< cells of the whole grid
+};
+
+/// A run's records and what its dataset header says about them. The header (core/data/dataset_file.h)
+/// is written and read by its codec (core/data/dataset_header_json.h) from the typed fields here.
 struct GeneratedData {
-    nlohmann::json header;                        ///< dataset header (settings, layout, shard, stats.toJson())
+    /// The header's descriptive keys, which travel to the file unchanged and are only compared as a
+    /// whole between parts of one run: "format", "scene_hash", "settings", "light_region",
+    /// "grid_bounds", "effects", "estimator", "objects" (ids and names), and any key of a part read
+    /// back that this build does not know.
+    JsonText description;
+    /// The record columns ("input_layout", "target_layout", "noise_layout"; "floats_per_record" is
+    /// layout.floatsPerRecord()).
+    RecordLayout layout;
+    /// The header names the noise columns: false only for a version 1 dataset read back (no
+    /// "noise_layout"), which a merge writes back without one.
+    bool noiseLayoutWritten = true;
+    DatasetShard shard;                           ///< "shard"
     std::vector<std::vector<float>> perObject;    ///< records per object (in Scene::objects order)
-    GeneratorStats stats;                         ///< what the run did, typed
+    GeneratorStats stats;                         ///< what the run did (the header's "stats")
     uint64_t sceneHash = 0;
     double seconds = 0.0;                         ///< wall time (reported, never stored in the file)
     bool cancelled = false;

@@ -11,8 +11,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/data/dataset_header_json.h"
 #include "core/data/dataset_part.h"
 #include "core/data/generator_stats.h"
+#include "core/data/generator_stats_json.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
@@ -224,7 +226,7 @@ void Dataset::readHeader(const std::string& text) {
                      ", but the layouts name " + std::to_string(inputLayout_.size()) + " inputs, " +
                      std::to_string(targets.size()) + " targets and " + std::to_string(noiseLayout_.size()) +
                      " noise columns (at least one target)");
-        GeneratorStats::fromHeader(header_, path_);  // checks "stats" (counters, records_per_cell)
+        generatorStatsFromHeader(header_, path_);  // checks "stats" (counters, records_per_cell)
         const JsonReader objects = h.at("objects");
         const size_t n = objects.requireArray();
         for (size_t i = 0; i < n; ++i) {
@@ -263,9 +265,8 @@ void mergeDatasets(const std::vector<std::string>& inputs, const std::string& ou
         const Dataset d(path);
         NamedPart p;
         p.name = path;
-        p.data.header = d.header();
+        readDatasetHeader(d.header(), path, p.data);
         p.data.sceneHash = d.sceneHash();
-        p.data.stats = GeneratorStats::fromHeader(d.header(), path);
         for (size_t i = 0; i < d.objects().size(); ++i) {
             const float* r = d.records(i);
             p.data.perObject.emplace_back(r, r + d.objects()[i].count * size_t(d.floatsPerRecord()));
@@ -273,7 +274,24 @@ void mergeDatasets(const std::vector<std::string>& inputs, const std::string& ou
         parts.push_back(std::move(p));
     }
     const GeneratedData joined = joinGeneratedParts(std::move(parts));
-    writeDataset(output, joined.header, joined.sceneHash, joined.perObject);
+    writeDataset(output, datasetHeader(joined), joined.sceneHash, joined.perObject);
+}
+
+DatasetReportFields datasetReportFields(const Dataset& data) {
+    const nlohmann::json& h = data.header();
+    DatasetReportFields f;
+    f.sceneHash = h.value("scene_hash", "?");
+    f.settings = h.at("settings").dump();
+    // Datasets before the bidirectional tracer name only the setting (nee or naive), which is what ran.
+    if (h.contains("estimator") && h["estimator"].is_object()) {
+        f.estimator = true;
+        f.estimatorUsed = h["estimator"].value("used", "?");
+        f.estimatorReason = h["estimator"].value("reason", "");
+    }
+    f.shard = h.at("shard").dump();
+    for (const auto& t : h.at("target_layout")) f.targetLayout.push_back(t.get<std::string>());
+    f.stats = generatorStatsFromHeader(h, data.path());
+    return f;
 }
 
 }  // namespace rrf

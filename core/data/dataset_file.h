@@ -25,6 +25,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/data/generator_stats.h"
+
 namespace rrf {
 
 /// Version written by this build.
@@ -115,5 +117,21 @@ private:
 /// run. Shards may be given in any order; they must cover the grid exactly once. Throws
 /// std::runtime_error naming the offending file.
 void mergeDatasets(const std::vector<std::string>& inputs, const std::string& output);
+
+/// The header fields a dataset report prints (formatDatasetReport, core/data/dataset_summary.h).
+struct DatasetReportFields {
+    std::string sceneHash;  ///< "scene_hash" as written, "?" when absent
+    std::string settings;   ///< the "settings" object as compact JSON text
+    /// The header has an "estimator" object (its "used" and "reason"): datasets before the
+    /// bidirectional tracer name only the setting, which is what ran.
+    bool estimator = false;
+    std::string estimatorUsed, estimatorReason;
+    std::string shard;                      ///< the "shard" object as compact JSON text
+    std::vector<std::string> targetLayout;  ///< "target_layout"
+    GeneratorStats stats;                   ///< "stats" and the objects' counts (generatorStatsFromHeader)
+};
+
+/// Reads the report's fields of `data`'s header; a malformed "stats" is an InputError naming the file.
+DatasetReportFields datasetReportFields(const Dataset& data);
 
 }  // namespace rrf

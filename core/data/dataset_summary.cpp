@@ -40,16 +40,15 @@ std::vector<ObjectSummary> summarizeDataset(const Dataset& data) {
 
 std::string formatDatasetReport(const Dataset& data, const std::vector<ObjectSummary>& summary) {
     std::ostringstream os;
-    const nlohmann::json& h = data.header();
+    const DatasetReportFields h = datasetReportFields(data);
     os << "dataset: " << data.path() << "\n";
-    os << "scene hash: " << h.value("scene_hash", "?") << "\n";
-    os << "settings: " << h.at("settings").dump() << "\n";
+    os << "scene hash: " << h.sceneHash << "\n";
+    os << "settings: " << h.settings << "\n";
     // Datasets before the bidirectional tracer name only the setting (nee or naive), which is what ran.
-    if (h.contains("estimator") && h["estimator"].is_object())
-        os << "estimator: " << h["estimator"].value("used", "?") << " (" << h["estimator"].value("reason", "") << ")\n";
-    os << "shard: " << h.at("shard").dump() << "\n";
+    if (h.estimator) os << "estimator: " << h.estimatorUsed << " (" << h.estimatorReason << ")\n";
+    os << "shard: " << h.shard << "\n";
     os << "records: " << data.totalRecords() << " (" << data.floatsPerRecord() << " floats each)\n";
-    const GeneratorStats typed = GeneratorStats::fromHeader(h, data.path());
+    const GeneratorStats& typed = h.stats;
     char line[256];
     os << "format version: " << data.version() << "\n";
     os << "generator: " << typed.records << " records; viewpoint cells dropped: " << typed.cellsDroppedInsideObject
@@ -79,7 +78,7 @@ std::string formatDatasetReport(const Dataset& data, const std::vector<ObjectSum
         }
     }
     std::vector<std::string> names = data.inputLayout();
-    for (const auto& t : h.at("target_layout")) names.push_back(t.get<std::string>());
+    for (const std::string& t : h.targetLayout) names.push_back(t);
     for (const std::string& n : data.noiseLayout()) names.push_back(n);
     for (const ObjectSummary& s : summary) {
         os << "\nobject " << s.id << " '" << s.name << "': " << s.count << " records\n";

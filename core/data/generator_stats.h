@@ -8,14 +8,12 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/data/record_noise.h"
 
 namespace rrf {
 
 struct GeneratorStats {
-    // ---- stored in the header's "stats" section (the keys toJson() writes) -----------------------
+    // ---- stored in the header's "stats" section (data/generator_stats_json.h) ---------------------
     uint64_t records = 0;
     uint64_t cellsDroppedInsideObject = 0;   ///< viewpoints inside a closed object
     uint64_t cellsDroppedOutsideScene = 0;   ///< viewpoints outside the scene's walls
@@ -49,12 +47,6 @@ struct GeneratorStats {
     /// Adds the run `other` that covers the cells after this one's (the next shard, the next worker's
     /// cells): sums the counters and the per-object records, appends `other`'s per-cell counts.
     GeneratorStats& operator+=(const GeneratorStats& other);
-
-    /// The header's "stats" section.
-    nlohmann::json toJson() const;
-    /// Reads a dataset header's "stats" section and its objects' counts. `file` names the dataset in
-    /// errors; a missing or mistyped field is an InputError naming its JSON pointer.
-    static GeneratorStats fromHeader(const nlohmann::json& header, const std::string& file);
 };
 
 }  // namespace rrf

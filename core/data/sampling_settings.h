@@ -1,15 +1,13 @@
 #pragma once
 /// Settings of the training-data generator (the project's "sampling" section), shared by the CLI and
-/// the GUI so both generate the same data from the same project.
+/// the GUI so both generate the same data from the same project; read and written as JSON by
+/// data/sampling_settings_json.h.
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/render/render_settings.h"
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -50,16 +48,16 @@ struct SamplingSettings {
     int maxDepth = 64;
 
     int cellCount() const { return nx * ny * nz; }
+    /// Every setting equal (what the section's JSON compares).
+    bool operator==(const SamplingSettings& o) const {
+        return nx == o.nx && ny == o.ny && nz == o.nz && directions == o.directions && spp == o.spp &&
+               maxSpp == o.maxSpp && noiseTarget == o.noiseTarget && seed == o.seed && fixedLight == o.fixedLight &&
+               estimator == o.estimator && maxDepth == o.maxDepth;
+    }
+    bool operator!=(const SamplingSettings& o) const { return !(*this == o); }
     bool adaptive() const { return maxSpp > spp; }
-    /// Reads a "sampling" section over `base`: missing keys keep base's values (the defaults for a
-    /// project file, the current settings for a script step). Throws InputError naming the reader's
-    /// file and the JSON pointer for unknown keys, wrong types or out-of-range values.
-    static SamplingSettings fromJson(const JsonReader& section, const SamplingSettings& base);
-    /// fromJson over the project defaults (a project file's section).
-    static SamplingSettings fromJson(const JsonReader& section) { return fromJson(section, SamplingSettings()); }
     /// The section's keys ("grid", "directions", ...), e.g. for a script step that takes them.
     static const std::vector<std::string>& keys();
-    nlohmann::json toJson() const;
 };
 
 }  // namespace rrf

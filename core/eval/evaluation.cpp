@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/predict/footprint_mask_json.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/image_io.h"

@@ -4,6 +4,7 @@
 #include "core/eval/error_metrics_json.h"
 #include "core/eval/flip_evaluation_json.h"
 #include "core/eval/uncertainty_json.h"
+#include "core/predict/footprint_mask_json.h"
 
 namespace rrf {
 
@@ -27,7 +28,7 @@ nlohmann::json evaluationJson(const Scene& scene, const Evaluation& e) {
     }
     nlohmann::json report = {
         {"light_position", vec(e.lightPosition)},
-        {"footprint_mask", e.footprint.counts.toJson()},
+        {"footprint_mask", toJson(e.footprint.counts)},
         {"reference",
          {{"spp", e.referenceSpp},
           {"seconds", e.referenceSeconds},

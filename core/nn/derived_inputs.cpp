@@ -32,14 +32,4 @@ void DerivedInputs::append(const Eigen::Ref<const MatX<S>>& record, MatX<S>& out
 template void DerivedInputs::append<float>(const Eigen::Ref<const MatX<float>>&, MatX<float>&) const;
 template void DerivedInputs::append<double>(const Eigen::Ref<const MatX<double>>&, MatX<double>&) const;
 
-DerivedInputs DerivedInputs::fromJson(const JsonReader& r) {
-    r.requireObject();
-    r.checkKeys({"reflected"});
-    DerivedInputs d;
-    d.reflected = r.booleanOr("reflected", false);
-    return d;
-}
-
-nlohmann::json DerivedInputs::toJson() const { return {{"reflected", reflected}}; }
-
 }  // namespace rrf

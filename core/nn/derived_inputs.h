@@ -19,15 +19,13 @@
 /// Derived rows follow the record inputs, in this order (one group today):
 ///   "reflected" (3): reflected_x, reflected_y, reflected_z
 ///
-/// Project / model JSON: {"reflected": true}; a missing key is false, and {} is no derived input.
+/// Project / model JSON: {"reflected": true}; a missing key is false, and {} is no derived input
+/// (read and written by nn/derived_inputs_json.h).
 
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/nn/mlp.h"
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -65,12 +63,6 @@ struct DerivedInputs {
     /// (training, prediction) or double (predictDouble).
     template <typename S>
     void append(const Eigen::Ref<const MatX<S>>& record, MatX<S>& out) const;
-
-    /// Reads {"reflected": bool}; InputError names the file and pointer of an unknown key or a
-    /// value that is not a boolean.
-    static DerivedInputs fromJson(const JsonReader& r);
-    /// Every key written.
-    nlohmann::json toJson() const;
 };
 
 }  // namespace rrf

@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 
-#include "core/nn/encoding_settings_json.h"
 #include "core/nn/encodings/registry.h"
 #include "core/util/error.h"
 
@@ -170,19 +169,15 @@ template void InputEncoding::backwardInputs<float>(const float*, const Eigen::Re
 template void InputEncoding::backwardInputs<double>(const double*, const Eigen::Ref<const MatX<double>>&,
                                                     const Eigen::Ref<const MatX<double>>&, MatX<double>&) const;
 
-InputEncoding InputEncoding::fromJson(const JsonReader& r, int inputs, const DerivedInputs& derived) {
-    return buildInputEncoding(readEncodingSettings(r), inputs, derived, failAtReader(r));
-}
-
-nlohmann::json InputEncoding::toJson() const {
-    nlohmann::json a = nlohmann::json::array();
-    for (const EncodingComponent& c : components) {
-        nlohmann::json j = c.encoding->settingsJson();
-        j["type"] = c.encoding->typeName();
-        j["inputs"] = c.groups.size() == 1 ? nlohmann::json(c.groups[0]) : nlohmann::json(c.groups);
-        a.push_back(std::move(j));
+bool InputEncoding::sameComponents(const InputEncoding& o) const {
+    if (components.size() != o.components.size()) return false;
+    for (size_t k = 0; k < components.size(); ++k) {
+        const EncodingComponent &a = components[k], &b = o.components[k];
+        if (std::string(a.encoding->typeName()) != b.encoding->typeName() || a.groups != b.groups ||
+            a.encoding->params() != b.encoding->params())
+            return false;
     }
-    return a;
+    return true;
 }
 
 std::string InputEncoding::describe() const {

@@ -38,11 +38,9 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/nn/derived_inputs.h"
+#include "core/nn/encodings/encoding_params.h"
 #include "core/nn/mlp.h"
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -87,8 +85,8 @@ public:
     virtual void backwardInputs(const double* params, const Eigen::Ref<const MatX<double>>& x,
                                 const Eigen::Ref<const MatX<double>>& dOut, Eigen::Ref<MatX<double>> dX) const = 0;
 
-    /// Its hyperparameters, every key written ("type" and "inputs" are added by InputEncoding).
-    virtual nlohmann::json settingsJson() const = 0;
+    /// Its hyperparameters (its type's alternative; written with every key by encodings/encodings_json.h).
+    virtual EncodingParams params() const = 0;
 };
 
 /// One configured component: the encoding and the normalised input indices it reads, in order.
@@ -148,13 +146,6 @@ struct InputEncoding {
     template <typename S>
     void backwardInputs(const S* params, const EncodingIn<S>& x, const EncodingIn<S>& dFeatures, MatX<S>& dX) const;
 
-    /// Reads an "encoding" array for a network of `inputs` record inputs (12 + brdfCount) and the
-    /// `derived` inputs; InputError names the reader's file and the JSON pointer of an unknown type
-    /// or key, a wrong value, an unknown or repeated input group, or "reflected" in a network that
-    /// does not derive it. An empty array is the identity.
-    static InputEncoding fromJson(const JsonReader& r, int inputs, const DerivedInputs& derived = {});
-    /// The array, every key of every component written (what a model file stores).
-    nlohmann::json toJson() const;
     /// "identity" or e.g. "hash_grid(position) + frequency(view,normal)", for tables and logs; a
     /// network with derived inputs adds them: "identity +reflected", "one_blob(reflected) +reflected".
     std::string describe() const;
@@ -162,9 +153,11 @@ struct InputEncoding {
     /// Same components with the same settings and the same derived inputs (the parameters are not
     /// part of an encoding).
     bool operator==(const InputEncoding& o) const {
-        return toJson() == o.toJson() && inputs == o.inputs && derived == o.derived;
+        return sameComponents(o) && inputs == o.inputs && derived == o.derived;
     }
     bool operator!=(const InputEncoding& o) const { return !(*this == o); }
+    /// Same components: types, hyperparameters and input groups, in order (what their JSON holds).
+    bool sameComponents(const InputEncoding& o) const;
 };
 
 /// Input indices of an input group for `inputs` record inputs and the `derived` ones ("position" →

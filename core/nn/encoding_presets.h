@@ -50,7 +50,7 @@ std::string encodingPresetName(const NetworkEncodingSettings& encoding);
 /// parameters every scene has): "encoding" arrays are checked against it when read.
 constexpr int kEncodingCheckInputs = 15;
 /// The derived inputs a check that knows no network assumes (all of them: whether a network derives
-/// the group an array names is checked where its settings are known, NetworkSettings::fromJson).
+/// the group an array names is checked where its settings are known, networkSettingsFromJson).
 constexpr DerivedInputs kEncodingCheckDerived{true};
 
 /// The encoding of a network whose records have `inputs` raw inputs and which derives `derived`

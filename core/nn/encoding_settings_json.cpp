@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/nn/encodings/encodings_json.h"
 #include "core/nn/encodings/registry.h"
 #include "core/util/error.h"
 
@@ -34,7 +35,7 @@ EncodingSettings readComponent(const JsonReader& cr) {
         c.groupsListed = true;
         for (size_t g = 0; g < in.value().size(); ++g) c.groups.push_back(in.at(g).string());
     }
-    c.params = type->readParams(cr);
+    c.params = encodingParamsFromJson(*type, cr);
     for (const std::string& key : type->keys)
         if (cr.has(key)) c.keys.push_back(key);
     std::sort(c.keys.begin(), c.keys.end());
@@ -63,7 +64,7 @@ NetworkEncodingSettings readEncodingSettingsFor(const JsonReader& r, int inputs,
 nlohmann::json encodingSettingsJson(const NetworkEncodingSettings& s) {
     nlohmann::json a = nlohmann::json::array();
     for (const EncodingSettings& c : s) {
-        const nlohmann::json every = c.type().writeParams(c.params);
+        const nlohmann::json every = toJson(c.params);
         nlohmann::json j = nlohmann::json::object();
         for (const std::string& key : c.keys) j[key] = every.at(key);
         j["type"] = c.type().name;

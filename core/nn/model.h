@@ -14,7 +14,7 @@
 ///     offset 16  u64       checksum64 (core/data/dataset_file.h) of the H header bytes
 ///     offset 24  H bytes   JSON header (UTF-8): architecture, object, target, trainer settings,
 ///                          input encoding ("input_encoding": {"inputs": raw input count,
-///                          "derived": DerivedInputs::toJson(), "components": InputEncoding::toJson()}),
+///                          "derived": toJson(DerivedInputs), "components": toJson(InputEncoding)}),
 ///                          training record (history, stop
 ///                          reason, errors), payload description with the payload's byte count and
 ///                          FNV-1a 64 checksum; for a merged ensemble "ensemble": {"members": K,
@@ -34,8 +34,6 @@
 /// bit-identically. Files are written atomically (temporary file + rename).
 
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "core/nn/encoding.h"
 #include "core/nn/mlp.h"
@@ -199,8 +197,5 @@ NetworkModel loadModel(const std::string& path);
 
 /// Parses the bytes of a model file read from `path` (named in errors), as loadModel does.
 NetworkModel parseModel(const std::string& bytes, const std::string& path);
-
-/// Header of a model (everything but the payload) as JSON; what saveModel writes.
-nlohmann::json modelHeader(const NetworkModel& model);
 
 }  // namespace rrf

@@ -6,7 +6,10 @@
 #include <stdexcept>
 
 #include "core/data/dataset_file.h"
-#include "core/nn/model.h"
+#include "core/nn/derived_inputs_json.h"
+#include "core/nn/encoding_json.h"
+#include "core/nn/model_file.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
@@ -76,10 +79,10 @@ json modelHeader(const NetworkModel& m) {
           {"activation", activationName(m.arch.activation)}, {"parameters", m.arch.numParams()}}},
         {"input_encoding",
          {{"inputs", m.rawInputs()},
-          {"derived", m.encoding.derived.toJson()},
-          {"components", m.encoding.isIdentity() ? json::array() : m.encoding.toJson()},
+          {"derived", toJson(m.encoding.derived)},
+          {"components", m.encoding.isIdentity() ? json::array() : toJson(m.encoding)},
           {"parameters", m.encodingParams.size()}}},
-        {"trainer", m.trainer.toJson()},
+        {"trainer", toJson(m.trainer)},
         {"training",
          {{"epochs", t.epochs}, {"best_epoch", t.bestEpoch}, {"stop_reason", t.stopReason},
           {"members", t.members}, {"member_epochs", t.memberEpochs},
@@ -212,11 +215,11 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
         const JsonReader e = header.at("input_encoding");
         const int inputs = int(e.at("inputs").integer(1, kMaxEncodingInputs));
         // Version 3 files derive nothing; version 4 files always say what they derive.
-        const DerivedInputs derived = version >= 4 ? DerivedInputs::fromJson(e.at("derived")) : DerivedInputs();
+        const DerivedInputs derived = version >= 4 ? derivedInputsFromJson(e.at("derived")) : DerivedInputs();
         if (derived.any() && inputs < kNormalInput + 3)
             fail("header/input_encoding/derived", "derived inputs need the 12 geometric record inputs, the network reads " +
                                                       std::to_string(inputs));
-        m.encoding = InputEncoding::fromJson(e.at("components"), inputs, derived);
+        m.encoding = inputEncodingFromJson(e.at("components"), inputs, derived);
         const int features = m.encoding.outputs();  // the identity: the raw and derived inputs
         if (features != m.arch.inputs)
             fail("header/input_encoding", "the encoding " + m.encoding.describe() + " writes " + std::to_string(features) +
@@ -224,7 +227,7 @@ NetworkModel parseModel(const std::string& bytes, const std::string& path) {
                                               std::to_string(m.arch.inputs));
     }
     try {
-        m.trainer = TrainerConfig::fromJson(header.at("trainer"));
+        m.trainer = trainerConfigFromJson(header.at("trainer"));
     } catch (const InputError&) {
         throw;
     } catch (const std::exception& e) {

@@ -11,15 +11,14 @@
 /// itself. The set is written as a whole (core/util/directory_replace.h) and the loader refuses a
 /// changed index and any file that is missing, changed or from another set, naming it. Version 2
 /// indexes (no checksums) and version 1 (one "file" per model, loading as single-leaf trees) still
-/// load, unverified.
+/// load, unverified. The set's files are read and written in nn/model_set_file.cpp.
 
 #include <map>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/nn/model.h"
+#include "core/nn/network_settings.h"
 #include "core/nn/object_training.h"
 #include "core/scene/scene.h"
 
@@ -39,7 +38,9 @@ struct ModelSet {
     uint64_t sceneHash = 0;
     std::vector<std::string> inputLayout;
     std::vector<ObjectNetworks> objects;  ///< objects with at least one network
-    nlohmann::json index;                 ///< models.json as read
+    /// models.json's "index_checksum64" as read ("" for an index older than version 3): it names this
+    /// set's exact networks (an evaluation records which models it measured).
+    std::string indexChecksum;
     const ObjectNetworks* find(int objectId) const;
 };
 
@@ -47,12 +48,22 @@ struct ModelSet {
 /// 3: checksums of the index and of every model file).
 constexpr int kModelSetVersion = 3;
 
+/// Where a set's networks came from and how they were trained, written into models.json beside them
+/// ("dataset", "project", "network", "trainer", "seconds", "cancelled"; nn/training_run.h).
+struct ModelSetRecord {
+    std::string dataset;      ///< the dataset file the samples were read from
+    std::string project;      ///< the project (or bare scene) file the settings came from
+    NetworkSettings network;  ///< the "network" section the networks were built with
+    TrainerConfig trainer;    ///< the "trainer" section they were trained with
+    double seconds = 0.0;     ///< wall time of the training run
+    bool cancelled = false;   ///< the run was cancelled before every network finished
+};
+
 /// Replaces directory `dir` (created if missing) with a set holding every non-skipped model of
 /// `trained` and the index, as a whole: the previous set's models.json and *.rrfm files go, other
-/// files in `dir` are kept. `extra` is merged into models.json (dataset path, settings, timings).
-/// Returns the index.
-nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectModel>& trained, uint64_t sceneHash,
-                            const std::vector<std::string>& inputLayout, const nlohmann::json& extra = {});
+/// files in `dir` are kept. `record` (may be null) is written into models.json too.
+void saveModelSet(const std::string& dir, const std::vector<ObjectModel>& trained, uint64_t sceneHash,
+                  const std::vector<std::string>& inputLayout, const ModelSetRecord* record = nullptr);
 
 /// Loads a model directory. `expectedSceneHash` ≠ 0 rejects models trained for another scene.
 /// Throws InputError / std::runtime_error naming the file.

@@ -1,6 +1,7 @@
 #pragma once
 /// Network settings of a project (its "network" section), shared by the CLI and the GUI; the
-/// "trainer" section beside it is TrainerConfig (nn/trainer_config.h), held apart:
+/// "trainer" section beside it is TrainerConfig (nn/trainer_config.h), held apart; both sections are
+/// read and written by their codecs (nn/network_settings_json.h, nn/trainer_config_json.h):
 ///
 ///     "network": {"hidden": [20, 10], "activation": "tanh", "targets": "separate",
 ///                 "inputs": {"reflected": false},
@@ -27,10 +28,7 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/nn/network_options.h"
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -48,24 +46,10 @@ struct NetworkSettings {
     /// The project's default leaf budget per object and target (its one definition is
     /// PartitionSettings::kDefaultMaxLeaves).
     static constexpr int kDefaultMaxLeaves = PartitionSettings::kDefaultMaxLeaves;
-    /// Reads a "network" section over `base`: missing keys keep base's values. Throws InputError naming
-    /// the reader's file and the JSON pointer for unknown keys or bad values, and, given the scene's
-    /// object names, for an "objects" entry that names none of them.
-    static NetworkSettings fromJson(const JsonReader& network, const NetworkSettings& base,
-                                    const std::vector<std::string>* sceneObjects = nullptr);
-    /// fromJson over the project defaults (a project file's section).
-    static NetworkSettings fromJson(const JsonReader& network, const std::vector<std::string>* sceneObjects = nullptr) {
-        return fromJson(network, NetworkSettings(), sceneObjects);
-    }
     /// The "network" section's keys ("hidden", "activation", "ensemble", "inputs", "encoding",
     /// "objects", "targets", "partition").
     static const std::vector<std::string>& keys();
-    nlohmann::json networkJson() const;
 };
-
-/// Reads a "hidden" array: at least one layer size, each 1 … kMaxHiddenSize (InputError naming the
-/// file and pointer otherwise).
-std::vector<int> hiddenSizesFromJson(const JsonReader& hidden);
 
 /// Reads hidden sizes written as text, "20,10" (the spelling of `network.hidden` = [20, 10] outside a
 /// JSON file, e.g. a sweep value); throws SettingError naming `setting` if malformed or out of 1..kMaxHiddenSize.
@@ -73,10 +57,5 @@ std::vector<int> parseHiddenSizes(const std::string& text, const std::string& se
 /// The one text spelling of hidden sizes, "20,10" (what parseHiddenSizes reads back), for tables,
 /// logs, job names and text fields; "" for none.
 std::string hiddenSizesText(const std::vector<int>& sizes);
-
-/// Reads a "partition" object over `base` (missing keys keep base's values); InputError names the
-/// file and JSON pointer of an unknown key, a wrong type or an out-of-range value.
-PartitionSettings partitionFromJson(const JsonReader& r, const PartitionSettings& base);
-nlohmann::json partitionJson(const PartitionSettings& p);
 
 }  // namespace rrf

@@ -25,11 +25,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/nn/derived_inputs.h"
 #include "core/nn/encoding_settings.h"
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -44,8 +41,6 @@ struct ObjectNetworkOverride {
         return hidden == o.hidden && inputs == o.inputs && encoding == o.encoding;
     }
     bool operator!=(const ObjectNetworkOverride& o) const { return !(*this == o); }
-    /// The keys it sets (only those).
-    nlohmann::json toJson() const;
 };
 
 /// Overrides by object name.
@@ -61,21 +56,6 @@ struct ObjectNetworkChoice {
 /// The choice for object `name`: `base` with the override of `name` (if any) applied.
 ObjectNetworkChoice objectNetworkChoice(const ObjectNetworkChoice& base, const ObjectNetworkOverrides& overrides,
                                         const std::string& name);
-
-/// Reads an "objects" map. `base` holds the section's values (an entry's "encoding" is checked
-/// against the entry's inputs, else base's). InputError names the file and the JSON pointer of a
-/// value that is not an object, an unknown key, a bad hidden size (hiddenSizesFromJson), a bad
-/// "inputs" or an "encoding" the entry's inputs cannot take. An empty entry is dropped.
-ObjectNetworkOverrides objectOverridesFromJson(const JsonReader& objects, const ObjectNetworkChoice& base);
-/// The map with every entry's keys (empty entries left out).
-nlohmann::json objectOverridesJson(const ObjectNetworkOverrides& overrides);
-
-/// Throws InputError at `at` (its file and pointer) unless `name` is one of `sceneObjects`, listing
-/// them: "no object named \"x\" in the scene (expected one of \"a\", \"b\")".
-void requireSceneObjectName(const JsonReader& at, const std::string& name, const std::vector<std::string>& sceneObjects);
-/// Throws InputError naming `objects`' file and /…/objects/<name> for the first entry whose name is
-/// not in `sceneObjects`, listing them.
-void checkOverrideNames(const JsonReader& objects, const std::vector<std::string>& sceneObjects);
 
 /// The setting for every network: the section's value set, each entry's override of it dropped
 /// (entries left with nothing are removed).

@@ -1,6 +1,6 @@
 #pragma once
 /// Trainer settings, read from and written to JSON (the project file's "trainer" section and every
-/// model file). The JSON is an object with a "type" key, as in tiny-cuda-nn:
+/// model file) by nn/trainer_config_json.h. The JSON is an object with a "type" key, as in tiny-cuda-nn:
 ///
 ///     {"type": "levenberg_marquardt", "max_epochs": 1000, "mu": 1e-3, ...}
 ///     {"type": "adam", "learning_rate": 5e-3, "loss": "relative_l2", "error_goal": 0.05, ...}
@@ -13,13 +13,9 @@
 #include <cstdint>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
-#include "core/util/json_reader.h"
-
 namespace rrf {
 
-/// The keys every trainer has, declared here once and read and written once (trainer_config.cpp), so
+/// The keys every trainer has, declared here once and read and written once (trainer_config_json.cpp), so
 /// that a trainer added to the registry (nn/trainers/registry.h) gets them by deriving from this.
 /// Each trainer keeps its own copy (TrainerConfig holds both trainers): switching trainers runs the
 /// new one with its own limits, and switching back loses no edit.
@@ -132,18 +128,6 @@ struct TrainerConfig {
     /// 11). Unlike TrainerConfig() (a trainer object without keys: Levenberg–Marquardt with the
     /// defaults above, which the file format fixes), this is a project setting.
     static TrainerConfig projectDefault();
-    /// Parses a trainer object (the project's "trainer" section, a run's or a model file's trainer).
-    /// A missing "type" means levenberg_marquardt; "lm" is accepted as a short name. Every error names
-    /// the reader's file and the JSON pointer of the offending key.
-    static TrainerConfig fromJson(const JsonReader& r);
-    /// The same for a bare JSON object; `file` and `where` (the JSON pointer of `j`) only label errors.
-    static TrainerConfig fromJson(const nlohmann::json& j, const std::string& file = "",
-                                  const std::string& where = "/trainer");
-    /// The same for an object written inline, fromJson({{"type", "adam"}}) (tests): without this
-    /// overload such a braced list could also build a JsonReader, and the call would be ambiguous.
-    static TrainerConfig fromJson(nlohmann::json::initializer_list_t object) { return fromJson(nlohmann::json(object)); }
-    /// Full settings, every key written, so a model file records exactly what trained it.
-    nlohmann::json toJson() const;
     /// Switches the trainer, the one way every front end does it (CLI --trainer, sweeps, the Network
     /// panel, scripts): only `type` changes. Both trainers' parameters are kept, so switching back
     /// and forth loses no edit; the new trainer runs with its own parameters (its own epoch limit

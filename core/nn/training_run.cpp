@@ -69,14 +69,12 @@ TrainingRun trainNetworks(const std::vector<ObjectSamples>& samples, const Objec
     return run;
 }
 
-nlohmann::json saveTrainingRun(const std::string& dir, const TrainingRun& run, const ObjectTrainingOptions& options,
-                               uint64_t sceneHash, const std::vector<std::string>& inputLayout,
-                               const TrainingProvenance& provenance) {
-    const nlohmann::json extra = {{"dataset", provenance.dataset},       {"project", provenance.project},
-                                  {"network", NetworkSettings{options.network()}.networkJson()},
-                                  {"trainer", options.trainer.toJson()},
-                                  {"seconds", run.seconds},              {"cancelled", run.cancelled}};
-    return saveModelSet(dir, run.models, sceneHash, inputLayout, extra);
+void saveTrainingRun(const std::string& dir, const TrainingRun& run, const ObjectTrainingOptions& options,
+                     uint64_t sceneHash, const std::vector<std::string>& inputLayout,
+                     const TrainingProvenance& provenance) {
+    const ModelSetRecord record{provenance.dataset, provenance.project, NetworkSettings{options.network()},
+                                options.trainer,    run.seconds,        run.cancelled};
+    saveModelSet(dir, run.models, sceneHash, inputLayout, &record);
 }
 
 }  // namespace rrf

@@ -9,8 +9,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/nn/network_settings.h"
 #include "core/nn/object_training.h"
 
@@ -65,8 +63,8 @@ struct TrainingProvenance {
 /// `sceneHash`, whose inputs are `inputLayout`. Every front end that trains (`rrf train`,
 /// `rrf pipeline`, the workbench's Train job) saves through here, so models.json holds the same
 /// fields whoever wrote it: "dataset", "project", "network" and "trainer" (the two sections of
-/// `options`), "seconds" and "cancelled" (from `run`). Returns the index written.
-nlohmann::json saveTrainingRun(const std::string& dir, const TrainingRun& run, const ObjectTrainingOptions& options,
+/// `options`), "seconds" and "cancelled" (from `run`).
+void saveTrainingRun(const std::string& dir, const TrainingRun& run, const ObjectTrainingOptions& options,
                                uint64_t sceneHash, const std::vector<std::string>& inputLayout,
                                const TrainingProvenance& provenance);
 

@@ -5,6 +5,7 @@
 #include <future>
 
 #include "core/data/dataset_file.h"
+#include "core/data/dataset_header_json.h"
 
 namespace rrf {
 
@@ -30,7 +31,7 @@ GenerateOutcome generateStage(const DataGenerator& generator, const GenerateRequ
         const std::filesystem::path parent = std::filesystem::path(request.datasetPath).parent_path();
         std::error_code ec;
         if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-        writeDataset(request.datasetPath, out.data.header, out.data.sceneHash, out.data.perObject);
+        writeDataset(request.datasetPath, datasetHeader(out.data), out.data.sceneHash, out.data.perObject);
         out.written = true;
         observer.setStatus("written");
     }

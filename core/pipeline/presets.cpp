@@ -1,6 +1,10 @@
 #include "core/pipeline/presets.h"
 
 #include "core/nn/network_settings.h"
+#include "core/data/sampling_settings_json.h"
+#include "core/nn/network_settings_json.h"
+#include "core/nn/trainer_config_json.h"
+#include "core/predict/prediction_settings_json.h"
 #include "core/project/project.h"
 #include "core/project/project_file.h"
 

@@ -77,12 +77,6 @@ const char* footprintName(Footprint f) {
     return "?";
 }
 
-nlohmann::json FootprintCounts::toJson() const {
-    return {{"next_to_light", nextToLight}, {"object_edge", objectEdge},         {"normal_edge", normalEdge},
-            {"depth_step", depthStep},      {"total", total()},                   {"emitter_pixels", emitterPixels},
-            {"normal_degrees", kFootprintNormalDegrees}, {"depth_fraction", kFootprintDepthFraction}};
-}
-
 std::string FootprintCounts::describe() const {
     char line[320];
     std::snprintf(line, sizeof line,

@@ -30,8 +30,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/predict/gbuffer.h"
 
 namespace rrf {
@@ -64,9 +62,6 @@ struct FootprintCounts {
     uint64_t emitterPixels = 0;
     /// Object pixels left out of the statistics (each counted once, under its first reason).
     uint64_t total() const { return nextToLight + objectEdge + normalEdge + depthStep; }
-    /// {"next_to_light", "object_edge", "normal_edge", "depth_step", "total", "emitter_pixels",
-    ///  "normal_degrees", "depth_fraction"}: the counts and the thresholds that produced them.
-    nlohmann::json toJson() const;
     /// One line: "N object pixels left out (footprint may cover more than one surface): a next to the
     /// light, b at object edges, c at normal edges (> 5°), d at depth steps (> 1 % of distance)".
     std::string describe() const;

@@ -15,10 +15,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "core/util/json_reader.h"
-
 namespace rrf {
 
 /// Largest "direct_samples" (each value is 1 … this).
@@ -67,10 +63,6 @@ struct PredictionSettings {
         return direct == o.direct && directSamples == o.directSamples && seed == o.seed && gather == o.gather;
     }
 
-    /// Reads the section (missing keys keep their defaults). Throws InputError naming the reader's
-    /// file and the JSON pointer for unknown keys or bad values.
-    static PredictionSettings fromJson(const JsonReader& section);
-    nlohmann::json toJson() const;
     const char* directName() const { return direct == Direct::Exact ? "exact" : "network"; }
 };
 

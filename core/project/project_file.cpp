@@ -10,6 +10,12 @@
 #include "core/project/pane_layout_json.h"
 #include "core/project/runs_json.h"
 #include "core/project/scene_overrides_json.h"
+#include "core/data/sampling_settings_json.h"
+#include "core/nn/network_settings_json.h"
+#include "core/nn/object_network_overrides_json.h"
+#include "core/nn/trainer_config_json.h"
+#include "core/predict/prediction_settings_json.h"
+#include "core/render/render_settings_json.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/util/json_reader.h"
@@ -37,10 +43,10 @@ bool isKnownSection(const std::string& key) {
 /// "the front end's defaults"); workbench records are written only when there are some.
 void writeSections(const Project& p, json& doc) {
     doc["render"] = renderSettingsToJson(p.render);
-    if (p.sampling) doc["sampling"] = p.sampling->toJson();
-    if (p.network) doc["network"] = p.network->networkJson();
-    if (p.trainer) doc["trainer"] = p.trainer->toJson();
-    doc["prediction"] = p.prediction.toJson();
+    if (p.sampling) doc["sampling"] = toJson(*p.sampling);
+    if (p.network) doc["network"] = toJson(*p.network);
+    if (p.trainer) doc["trainer"] = toJson(*p.trainer);
+    doc["prediction"] = toJson(p.prediction);
     if (toJson(p.reference) != toJson(ReferenceSettings())) doc["reference"] = toJson(p.reference);
     if (!p.runs.empty()) doc["runs"] = runsToJson(p.runs);
     doc["layout"] = toJson(p.layout);
@@ -74,14 +80,14 @@ void rebaseEmbeddedScene(json& scene, const std::string& oldDir, const std::stri
 void readSections(const JsonReader& root, Project& p) {
     if (const auto name = root.find("name")) p.name = name->string();
     if (const auto render = root.find("render")) p.render = parseRenderSettings(*render);
-    if (const auto sampling = root.find("sampling")) p.sampling = SamplingSettings::fromJson(*sampling);
+    if (const auto sampling = root.find("sampling")) p.sampling = samplingSettingsFromJson(*sampling);
     // Per-object network entries and the gather's "objects" are the scene's object names (loaded already).
     std::vector<std::string> objectNames;
     for (const Object& o : p.scene.objects) objectNames.push_back(o.name);
-    if (const auto network = root.find("network")) p.network = NetworkSettings::fromJson(*network, &objectNames);
-    if (const auto trainer = root.find("trainer")) p.trainer = TrainerConfig::fromJson(*trainer);
+    if (const auto network = root.find("network")) p.network = networkSettingsFromJson(*network, &objectNames);
+    if (const auto trainer = root.find("trainer")) p.trainer = trainerConfigFromJson(*trainer);
     if (const auto prediction = root.find("prediction")) {
-        p.prediction = PredictionSettings::fromJson(*prediction);
+        p.prediction = predictionSettingsFromJson(*prediction);
         for (size_t i = 0; i < p.prediction.gather.objects.size(); ++i)
             requireSceneObjectName(prediction->at("gather").at("objects").at(i), p.prediction.gather.objects[i],
                                    objectNames);
@@ -182,9 +188,9 @@ void saveProject(Project& project, const std::string& path) {
 }
 
 std::string sectionText(const RenderSettings& s) { return renderSettingsToJson(s).dump(); }
-std::string sectionText(const SamplingSettings& s) { return s.toJson().dump(); }
-std::string sectionText(const NetworkSettings& s) { return s.networkJson().dump(); }
-std::string sectionText(const TrainerConfig& s) { return s.toJson().dump(); }
-std::string sectionText(const PredictionSettings& s) { return s.toJson().dump(); }
+std::string sectionText(const SamplingSettings& s) { return toJson(s).dump(); }
+std::string sectionText(const NetworkSettings& s) { return toJson(s).dump(); }
+std::string sectionText(const TrainerConfig& s) { return toJson(s).dump(); }
+std::string sectionText(const PredictionSettings& s) { return toJson(s).dump(); }
 
 }  // namespace rrf

@@ -5,7 +5,11 @@
 #include <cmath>
 #include <limits>
 
+#include "core/data/sampling_settings_json.h"
+#include "core/nn/network_settings_json.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/project/scene_overrides_json.h"
+#include "core/render/render_settings_json.h"
 
 namespace rrf {
 
@@ -166,10 +170,10 @@ RunSettings settingsFromJson(const JsonReader& j, std::vector<std::string>& warn
     if (const auto v = j.find("scene_hash")) s.sceneHash = v->string();
     readSection(j, "scene_overrides", s.sceneOverrides, other, warnings,
                 [&](const JsonReader& v) { return sceneOverridesFromJson(v, warnings); });
-    readSection(j, "trainer", s.trainer, other, warnings, [](const JsonReader& v) { return TrainerConfig::fromJson(v); });
-    readSection(j, "network", s.network, other, warnings, [](const JsonReader& v) { return NetworkSettings::fromJson(v); });
+    readSection(j, "trainer", s.trainer, other, warnings, [](const JsonReader& v) { return trainerConfigFromJson(v); });
+    readSection(j, "network", s.network, other, warnings, [](const JsonReader& v) { return networkSettingsFromJson(v); });
     if (const auto v = j.find("dataset")) s.dataset = v->string();
-    readSection(j, "sampling", s.sampling, other, warnings, [](const JsonReader& v) { return SamplingSettings::fromJson(v); });
+    readSection(j, "sampling", s.sampling, other, warnings, [](const JsonReader& v) { return samplingSettingsFromJson(v); });
     if (const auto v = j.find("kernel")) s.kernel = v->string();
     for (auto it = j.value().begin(); it != j.value().end(); ++it)
         if (std::find_if(std::begin(kSettingsKeys), std::end(kSettingsKeys),
@@ -185,10 +189,10 @@ json settingsToJson(const RunSettings& s) {
     if (s.lightPosition) j["light_position"] = toJsonValue(*s.lightPosition);
     if (s.sceneHash) j["scene_hash"] = *s.sceneHash;
     if (s.sceneOverrides) j["scene_overrides"] = toJson(*s.sceneOverrides);
-    if (s.network) j["network"] = s.network->networkJson();
-    if (s.trainer) j["trainer"] = s.trainer->toJson();
+    if (s.network) j["network"] = toJson(*s.network);
+    if (s.trainer) j["trainer"] = toJson(*s.trainer);
     if (s.dataset) j["dataset"] = *s.dataset;
-    if (s.sampling) j["sampling"] = s.sampling->toJson();
+    if (s.sampling) j["sampling"] = toJson(*s.sampling);
     if (s.kernel) j["kernel"] = *s.kernel;
     return j;
 }

@@ -1,10 +1,10 @@
 #include "core/render/render_outputs.h"
 
-#include "core/scene/scene_summary.h"
-
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
+#include "core/render/render_metadata_json.h"
 #include "core/render/term.h"
 #include "core/util/atomic_file.h"
 #include "core/util/directory_replace.h"
@@ -20,44 +20,12 @@ void makeDirectories(const std::string& dir) {
     if (ec || !fs::is_directory(dir)) throw std::runtime_error(dir + ": cannot create output directory" + (ec ? ": " + ec.message() : ""));
 }
 
-nlohmann::json renderMetadata(const Scene& scene, const Renderer& renderer, const RenderSnapshot& snapshot,
-                              const RenderStats* stats) {
-    const RenderOptions& o = renderer.options();
-    const RenderStats st = stats ? *stats : renderer.stats();
-    const Vec3 lp = scene.lightPosition();
-    return {
-        {"scene", scene.sourcePath},
-        {"scene_hash", hexString(scene.contentHash())},
-        {"width", o.width},
-        {"height", o.height},
-        {"spp_requested", o.spp},
-        {"spp_completed", snapshot.sppCompleted},
-        {"complete", snapshot.sppCompleted >= o.spp},
-        {"estimator", estimatorName(renderer.estimatorChoice().estimator)},
-        {"estimator_reason", renderer.estimatorChoice().reason},
-        {"seed", o.seed},
-        {"max_depth", o.maxDepth},
-        {"light_position", {lp.x, lp.y, lp.z}},
-        {"effects", renderer.tracer().effects().toJson()},
-        {"scene_contents", sceneSummaryJson(scene)},
-        {"seconds", st.seconds},
-        {"samples", st.samples},
-        {"rays", st.rays},
-        {"shadow_rays", st.shadowRays},
-        {"samples_per_second", st.samplesPerSecond()},
-        {"rays_per_second", st.raysPerSecond()},
-        {"non_finite_samples_dropped", st.nonFinite},
-        {"relative_error_of_mean", snapshot.relativeError},
-        {"mean_global", {snapshot.global.mean().x, snapshot.global.mean().y, snapshot.global.mean().z}},
-    };
-}
-
-nlohmann::json writeVarianceImages(const std::string& dir, const std::array<const Image*, kTermCount>& variances,
-                                   ImageFormat format, std::vector<std::string>& written) {
+VarianceImageNames writeVarianceImages(const std::string& dir, const std::array<const Image*, kTermCount>& variances,
+                                       ImageFormat format, std::vector<std::string>& written) {
     makeDirectories(dir);
     // A variance is a float per channel; an 8-bit format would round it away.
     const ImageFormat floatFormat = format == ImageFormat::PFM ? ImageFormat::PFM : ImageFormat::EXR;
-    nlohmann::json files = nlohmann::json::object();
+    VarianceImageNames files;
     for (Term t : kTerms) {
         const std::string name = std::string("variance_") + termName(t) + "." + imageFormatName(floatFormat);
         const std::string path = (fs::path(dir) / name).string();
@@ -96,17 +64,18 @@ RenderOutputs writeRenderOutputs(const std::string& dir, const Scene& scene, con
                 writeImage((fs::path(staging) / file).string(), *image, f, exposure);
                 out.images.push_back((fs::path(dir) / file).string());
             }
-        nlohmann::json meta = renderMetadata(scene, renderer, snapshot, stats);
         // With fewer than 2 samples per pixel the variance cannot be estimated (the snapshot holds 0):
         // no files, so a reader sees "unknown" instead of a floor of 0.
+        std::optional<VarianceImageNames> varianceImages;
         if (snapshot.varianceKnown()) {
             std::vector<std::string> written;
-            meta["variance_images"] = writeVarianceImages(
+            varianceImages = writeVarianceImages(
                 staging, {&snapshot.varianceOf(Term::Direct), &snapshot.varianceOf(Term::Indirect), &snapshot.varianceOf(Term::Global)},
                 format, written);
             for (const std::string& w : written) out.variances.push_back((fs::path(dir) / fs::path(w).filename()).string());
         }
-        writeFileAtomically((fs::path(staging) / "render.json").string(), meta.dump(2) + "\n");
+        writeFileAtomically((fs::path(staging) / "render.json").string(),
+                            renderMetadataText(scene, renderer, snapshot, stats, varianceImages ? &*varianceImages : nullptr));
     });
     out.metadata = (fs::path(dir) / "render.json").string();
     return out;

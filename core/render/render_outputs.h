@@ -6,11 +6,10 @@
 /// and the variance files — so an image never travels without what made it or how noisy it is.
 
 #include <array>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/util/image_io.h"
 #include "core/render/renderer.h"
@@ -18,23 +17,20 @@
 
 namespace rrf {
 
+/// render.json's "variance_images": the file name in the output directory by term name.
+using VarianceImageNames = std::map<std::string, std::string>;
+
 struct RenderOutputs {
     std::vector<std::string> images;     ///< paths written, global first
     std::vector<std::string> variances;  ///< variance_<term> paths written, direct, indirect, global
     std::string metadata;                ///< path of render.json
 };
 
-/// Metadata of a render as JSON (settings, effects, statistics, light position, scene hash). The
-/// statistics are `stats` when given (a render restored from a store, whose renderer never ran),
-/// else the renderer's.
-nlohmann::json renderMetadata(const Scene& scene, const Renderer& renderer, const RenderSnapshot& snapshot,
-                              const RenderStats* stats = nullptr);
-
 /// Writes each term's variance of the mean, `variances[int(t)]`, as variance_<term>.<ext> into `dir`
 /// (created if missing), in `format` if it holds floats (EXR, PFM) and EXR otherwise. Appends the paths
 /// to `written` and returns render.json's "variance_images" entry: {"<term>": file name in `dir`}.
-nlohmann::json writeVarianceImages(const std::string& dir, const std::array<const Image*, kTermCount>& variances,
-                                   ImageFormat format, std::vector<std::string>& written);
+VarianceImageNames writeVarianceImages(const std::string& dir, const std::array<const Image*, kTermCount>& variances,
+                                       ImageFormat format, std::vector<std::string>& written);
 
 /// Replaces directory `dir` (created if missing) as a whole (core/util/directory_replace.h) with
 /// global/direct/indirect.<ext> in `format` at `exposureStops` and in each of `moreFormats` (format,

@@ -4,7 +4,6 @@
 
 #include "core/render/renderer.h"
 #include "core/util/error.h"
-#include "core/util/json_reader.h"
 #include "core/util/memory_budget.h"
 
 namespace rrf {
@@ -44,24 +43,6 @@ EstimatorChoice chooseEstimator(Estimator requested, const Effects& effects) {
                                            : "auto: no glossy surfaces, so no caustics; the path tracer suffices"};
 }
 
-RenderSettings parseRenderSettings(const JsonReader& r) {
-    r.checkKeys({"spp", "width", "height", "mode", "seed", "max_depth", "exposure"});
-    RenderSettings s;
-    s.spp = int(r.integerOr("spp", s.spp, 1, 1 << 30));
-    s.width = int(r.integerOr("width", s.width, 0, kMaxImageSide));
-    s.height = int(r.integerOr("height", s.height, 0, kMaxImageSide));
-    if (auto mode = r.find("mode")) {
-        const std::string m = mode->string();
-        const std::optional<Estimator> e = parseEstimator(m);
-        if (!e) mode->fail("unknown render mode '" + m + "' (known: " + estimatorNames() + ")");
-        s.estimator = *e;
-    }
-    if (auto seed = r.find("seed")) s.seed = seed->unsignedInteger();
-    s.maxDepth = int(r.integerOr("max_depth", s.maxDepth, 1, 1 << 16));
-    s.exposure = r.floatOr("exposure", s.exposure);
-    return s;
-}
-
 uint64_t renderMemoryBytes(int width, int height) {
     const uint64_t perPixel = 2 * sizeof(PixelSums) + 2 * 6 * 3 * sizeof(float);
     return saturatingProduct(uint64_t(std::max(width, 0)), uint64_t(std::max(height, 0)), perPixel);
@@ -77,16 +58,6 @@ void requireRenderMemory(int width, int height) {
         throw SettingError("image size", "a " + std::to_string(width) + " x " + std::to_string(height) + " render " + why +
                                              "; choose a smaller width and height (each 1 ... " +
                                              std::to_string(kMaxImageSide) + ")");
-}
-
-nlohmann::json renderSettingsToJson(const RenderSettings& s) {
-    return {{"spp", s.spp},
-            {"width", s.width},
-            {"height", s.height},
-            {"mode", estimatorName(s.estimator)},
-            {"seed", s.seed},
-            {"max_depth", s.maxDepth},
-            {"exposure", s.exposure}};
 }
 
 }  // namespace rrf

@@ -8,11 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/scene/effects.h"
 #include "core/scene/scene.h"
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -48,7 +45,7 @@ uint64_t renderMemoryBytes(int width, int height);
 /// exceeds the memory available to the process (core/util/memory_budget.h).
 void requireRenderMemory(int width, int height);
 
-/// Ground-truth render settings ("render" section).
+/// Ground-truth render settings ("render" section; its JSON is render/render_settings_json.h's).
 struct RenderSettings {
     int spp = 64;              ///< samples per pixel
     int width = 0, height = 0; ///< 0 = the scene camera's size
@@ -57,11 +54,5 @@ struct RenderSettings {
     int maxDepth = 64;         ///< hard bound on path length (Russian roulette ends paths before)
     float exposure = 0.f;      ///< stops, for PNG output
 };
-
-/// The "render" section for `s` (every key written).
-nlohmann::json renderSettingsToJson(const RenderSettings& s);
-/// Parses a "render" section (missing keys keep their defaults). Throws InputError naming the
-/// reader's file and the JSON pointer (below the section's own) for unknown keys or bad values.
-RenderSettings parseRenderSettings(const JsonReader& section);
 
 }  // namespace rrf

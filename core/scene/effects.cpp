@@ -68,12 +68,4 @@ std::vector<std::string> Effects::describe() const {
     return out;
 }
 
-nlohmann::json Effects::toJson() const {
-    return {{"diffuse", diffuse},       {"glossy", glossy},
-            {"rect_lights", rectLights}, {"triangle_lights", triangleLights}, {"point_lights", pointLights},
-            {"reflective_emitters", reflectiveEmitters},
-            {"indirect", indirect},     {"caustics", caustics},     {"max_albedo", maxAlbedo},
-            {"max_phong_exponent", maxPhongExponent}, {"description", describe()}};
-}
-
 }  // namespace rrf

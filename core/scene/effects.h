@@ -2,12 +2,10 @@
 /// The light-transport effects a scene calls for, derived from its materials, lights and geometry.
 /// The path tracer runs only the code paths listed here (no Phong evaluation in a Lambert scene, no
 /// bounce rays when no surface can light another), and the list is printed and stored with every
-/// output so a user sees what was simulated.
+/// output so a user sees what was simulated (as JSON by scene/effects_json.h).
 
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/scene/scene.h"
 
@@ -36,7 +34,6 @@ struct Effects {
     static Effects derive(const Scene& scene);
     /// One human-readable line per effect, e.g. "glossy reflection (Phong, exponent up to 100)".
     std::vector<std::string> describe() const;
-    nlohmann::json toJson() const;
 };
 
 }  // namespace rrf

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/nn/encoding.h"
+#include "core/nn/encoding_json.h"
 #include "core/nn/model_set.h"
 #include "core/util/json_reader.h"
 #include "core/data/record_layout.h"
@@ -91,7 +92,7 @@ inline NetworkModel encodedNetwork(const Scene& scene, int objectId, const std::
                                    Activation act, uint64_t seed, const nlohmann::json& encoding,
                                    const DerivedInputs& derived = {}) {
     NetworkModel m = randomNetwork(scene, objectId, target, std::move(hidden), act, seed, derived);
-    m.encoding = InputEncoding::fromJson(JsonReader(encoding, "test encoding"), m.rawInputs(), derived);
+    m.encoding = inputEncodingFromJson(JsonReader(encoding, "test encoding"), m.rawInputs(), derived);
     m.arch.inputs = m.encoding.outputs();
     m.params = initialParams(m.arch, seed, uint64_t(objectId) * 4 + uint64_t(target.size()));
     TestRandom rnd(seed * 977 + uint64_t(objectId));

@@ -7,6 +7,7 @@
 #include "core/nn/encoding_settings_json.h"
 #include "core/data/record_layout.h"
 #include "core/nn/encoding_presets.h"
+#include "core/nn/network_settings_json.h"
 #include "core/util/error.h"
 #include "panels/panels.h"
 #include "panels/project_io.h"
@@ -35,7 +36,7 @@ TEST_F(EncodingPanelTest, ChoosingANamedEncodingStoresItsArray) {
     const NetworkSettings n = s.project.networkOrDefault();
     EXPECT_EQ(n.options.encoding, findEncodingPreset("hash_grid")->settings);
     EXPECT_EQ(n.options.hidden, hidden) << "the other network settings are kept";
-    EXPECT_EQ(n.networkJson().at("encoding"), encodingSettingsJson(findEncodingPreset("hash_grid")->settings));
+    EXPECT_EQ(toJson(n).at("encoding"), encodingSettingsJson(findEncodingPreset("hash_grid")->settings));
     EXPECT_FALSE(s.project.trainer.has_value()) << "choosing an encoding adds no trainer section";
 
     // Every named encoding draws, with Adam and (the warning for trainable ones) with LM.

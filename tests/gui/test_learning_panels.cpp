@@ -9,6 +9,8 @@
 #include <unistd.h>
 
 #include "core/project/runs_json.h"
+#include "core/nn/network_settings_json.h"
+#include "core/nn/trainer_config_json.h"
 #include "panels/panels.h"
 #include "panels/plot.h"
 #include "panels/project_io.h"
@@ -106,7 +108,7 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     ASSERT_TRUE(setEnsemble(s, 3));
     EXPECT_FALSE(setEnsemble(s, 3)) << "no change, nothing stored";
     EXPECT_EQ(s.project.networkOrDefault().options.ensemble, 3);
-    EXPECT_EQ(s.project.network->networkJson().at("ensemble"), 3);
+    EXPECT_EQ(toJson(*s.project.network).at("ensemble"), 3);
     EXPECT_TRUE(setEnsemble(s, 1000)) << "clamped, not refused";
     EXPECT_EQ(s.project.networkOrDefault().options.ensemble, kMaxEnsembleMembers);
     ASSERT_TRUE(setEnsemble(s, 1));
@@ -115,11 +117,11 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     ASSERT_TRUE(setTrainerType(s, TrainerType::LevenbergMarquardt));
     EXPECT_FALSE(setTrainerType(s, TrainerType::LevenbergMarquardt)) << "no change, nothing stored";
     ASSERT_TRUE(s.project.trainer.has_value()) << "switching the trainer stores the trainer section";
-    EXPECT_EQ(s.project.trainer->toJson()["type"], "levenberg_marquardt");
+    EXPECT_EQ(toJson(*s.project.trainer)["type"], "levenberg_marquardt");
     ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
     const NetworkSettings n = s.project.networkOrDefault();
     EXPECT_EQ(s.project.trainerOrDefault().type, TrainerType::Adam);
-    EXPECT_EQ(s.project.trainer->toJson()["type"], "adam");
+    EXPECT_EQ(toJson(*s.project.trainer)["type"], "adam");
     EXPECT_EQ(s.project.trainerOrDefault().adam.batchSize, AdamConfig().batchSize) << "Adam starts from its defaults";
     // The project default (exact direct light, networks for the indirect light) is kept by the edits.
     EXPECT_EQ(n.options.targets, TargetMode::Indirect) << "the project default is kept by the edits";
@@ -413,8 +415,8 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     WorkbenchState t;
     ASSERT_TRUE(loadProjectIntoState(t, (dir / "project.json").string(), error)) << error;
     const NetworkSettings back = t.project.networkOrDefault();
-    EXPECT_EQ(back.networkJson(), edited.networkJson());
-    EXPECT_EQ(t.project.trainerOrDefault().toJson(), editedTrainer.toJson());
+    EXPECT_EQ(toJson(back), toJson(edited));
+    EXPECT_EQ(toJson(t.project.trainerOrDefault()), toJson(editedTrainer));
     ASSERT_EQ(t.project.runs.size(), 1u);
     const rrf::Run& r = t.project.runs[0];
     ASSERT_EQ(r.curves.size(), 1u);

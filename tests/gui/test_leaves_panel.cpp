@@ -2,6 +2,7 @@
 // depth, records and error from the model set; the tint changes exactly the pixels that have a leaf.
 #include <cmath>
 
+#include "core/nn/network_settings_json.h"
 #include "panels/panels.h"
 #include "panels/project_io.h"
 #include "panels/view_model.h"
@@ -115,7 +116,7 @@ TEST_F(LeavesPanelTest, PartitionEditsAreStoredInTheNetworkSection) {
     EXPECT_FALSE(n.options.partition.axes.light);
     EXPECT_EQ(n.options.targets, TargetMode::Indirect) << "the other network settings are kept";
     // What the project file will say: the section written and read back gives the same partition.
-    const nlohmann::json section = n.networkJson();
+    const nlohmann::json section = toJson(n);
     EXPECT_EQ(section.at("partition").at("max_leaves"), 7);
     EXPECT_EQ(section.at("partition").at("split_axes"), nlohmann::json::array({"position"}));
     frame([&] { drawNetworkPanel(s); });

@@ -23,19 +23,10 @@ FrequencyEncoding::FrequencyEncoding(int inputDims, FrequencySettings settings)
 
 const EncodingType& FrequencyEncoding::type() {
     static const EncodingType t{"frequency", {"frequencies", "include_input"}, std::numeric_limits<int>::max(), kGlslId,
-                                [](const JsonReader& r) -> EncodingParams { return readSettings(r); },
-                                [](const EncodingParams& s) { return settingsJson(std::get<FrequencySettings>(s)); },
                                 [](const EncodingParams& s, int inputDims) -> std::shared_ptr<const Encoding> {
                                     return std::make_shared<const FrequencyEncoding>(inputDims, std::get<FrequencySettings>(s));
                                 }};
     return t;
-}
-
-FrequencySettings FrequencyEncoding::readSettings(const JsonReader& r) {
-    FrequencySettings s;
-    s.frequencies = int(r.integerOr("frequencies", s.frequencies, 1, kMaxFrequencies));
-    s.includeInput = r.booleanOr("include_input", s.includeInput);
-    return s;
 }
 
 template <typename S>
@@ -110,10 +101,6 @@ void FrequencyEncoding::backwardInputs(const float*, const Eigen::Ref<const MatX
 void FrequencyEncoding::backwardInputs(const double*, const Eigen::Ref<const MatX<double>>& x,
                                        const Eigen::Ref<const MatX<double>>& dOut, Eigen::Ref<MatX<double>> dX) const {
     backwardInputsImpl<double>(x, dOut, dX);
-}
-
-nlohmann::json FrequencyEncoding::settingsJson(const FrequencySettings& s) {
-    return {{"frequencies", s.frequencies}, {"include_input", s.includeInput}};
 }
 
 }  // namespace rrf

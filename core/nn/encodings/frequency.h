@@ -28,11 +28,6 @@ public:
 
     /// Throws std::invalid_argument unless 1 ≤ inputDims and 1 ≤ K ≤ 16.
     FrequencyEncoding(int inputDims, FrequencySettings settings);
-    /// Reads "frequencies" and "include_input" of a component object (defaults where absent); InputError names the
-    /// reader's file and the key's pointer. Other keys are checked by the caller (nn/encoding_settings_json.h).
-    static FrequencySettings readSettings(const JsonReader& r);
-    /// Every hyperparameter key of `s` (what settingsJson() and a component object write).
-    static nlohmann::json settingsJson(const FrequencySettings& s);
 
     const FrequencySettings& settings() const { return settings_; }
     /// ω_k = π·2^k computed in double and rounded once to S (the constant GLSL uses for float).
@@ -54,7 +49,7 @@ public:
     void backwardInputs(const double* params, const Eigen::Ref<const MatX<double>>& x,
                         const Eigen::Ref<const MatX<double>>& dOut, Eigen::Ref<MatX<double>> dX) const override;
 
-    nlohmann::json settingsJson() const override { return settingsJson(settings_); }
+    EncodingParams params() const override { return settings_; }
 
 private:
     /// Outputs per input: 2K + include_input.

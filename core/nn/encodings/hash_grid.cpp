@@ -75,32 +75,10 @@ HashGridEncoding::HashGridEncoding(int inputDims, HashGridSettings s) : inputDim
 
 const EncodingType& HashGridEncoding::type() {
     static const EncodingType t{"hash_grid", {"levels", "log2_table_size", "features_per_level", "base_resolution", "growth"}, kMaxInputs, kGlslId,
-                                [](const JsonReader& r) -> EncodingParams { return readSettings(r); },
-                                [](const EncodingParams& s) { return settingsJson(std::get<HashGridSettings>(s)); },
                                 [](const EncodingParams& s, int inputDims) -> std::shared_ptr<const Encoding> {
                                     return std::make_shared<const HashGridEncoding>(inputDims, std::get<HashGridSettings>(s));
                                 }};
     return t;
-}
-
-HashGridSettings HashGridEncoding::readSettings(const JsonReader& r) {
-    HashGridSettings s;
-    s.levels = int(r.integerOr("levels", s.levels, 1, kMaxLevels));
-    s.log2TableSize = int(r.integerOr("log2_table_size", s.log2TableSize, kMinLog2TableSize, kMaxLog2TableSize));
-    if (const auto f = r.find("features_per_level")) {
-        s.featuresPerLevel = int(f->integer(1, 8));
-        if (s.featuresPerLevel & (s.featuresPerLevel - 1)) f->fail("expected 1, 2, 4 or 8, got " + std::to_string(s.featuresPerLevel));
-    }
-    s.baseResolution = int(r.integerOr("base_resolution", s.baseResolution, kMinBaseResolution, kMaxBaseResolution));
-    s.growth = r.numberOr("growth", s.growth, 1.0, kMaxGrowth);
-    try {
-        // The combination (finest resolution, table bytes) does not depend on the input count, which
-        // the reader does not know yet (the builder checks it against the type's maxInputs).
-        (void)HashGridEncoding(1, s);
-    } catch (const std::invalid_argument& e) {
-        r.fail(e.what());
-    }
-    return s;
 }
 
 uint32_t HashGridEncoding::entryIndex(int l, const int* v) const {
@@ -269,14 +247,6 @@ void HashGridEncoding::backwardInputs(const float* params, const Eigen::Ref<cons
 void HashGridEncoding::backwardInputs(const double* params, const Eigen::Ref<const MatX<double>>& x,
                                       const Eigen::Ref<const MatX<double>>& dOut, Eigen::Ref<MatX<double>> dX) const {
     backwardInputsImpl<double>(params, x, dOut, dX);
-}
-
-nlohmann::json HashGridEncoding::settingsJson(const HashGridSettings& s) {
-    return {{"levels", s.levels},
-            {"log2_table_size", s.log2TableSize},
-            {"features_per_level", s.featuresPerLevel},
-            {"base_resolution", s.baseResolution},
-            {"growth", s.growth}};
 }
 
 }  // namespace rrf

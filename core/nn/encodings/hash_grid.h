@@ -62,11 +62,6 @@ public:
     /// Throws std::invalid_argument (naming the setting) unless 1 ≤ inputDims ≤ 4 and every setting
     /// is in range (see the JSON above).
     HashGridEncoding(int inputDims, HashGridSettings settings);
-    /// Reads the keys above of a component object (defaults where absent); InputError names the
-    /// reader's file and the key's pointer. Other keys are checked by the caller (nn/encoding_settings_json.h).
-    static HashGridSettings readSettings(const JsonReader& r);
-    /// Every hyperparameter key of `s` (what settingsJson() and a component object write).
-    static nlohmann::json settingsJson(const HashGridSettings& s);
 
     const HashGridSettings& settings() const { return settings_; }
     /// T = 2^log2_table_size entries per level.
@@ -101,7 +96,7 @@ public:
     void backwardInputs(const double* params, const Eigen::Ref<const MatX<double>>& x,
                         const Eigen::Ref<const MatX<double>>& dOut, Eigen::Ref<MatX<double>> dX) const override;
 
-    nlohmann::json settingsJson() const override { return settingsJson(settings_); }
+    EncodingParams params() const override { return settings_; }
 
 private:
     struct Level {

@@ -17,18 +17,10 @@ OneBlobEncoding::OneBlobEncoding(int inputDims, OneBlobSettings settings) : inpu
 
 const EncodingType& OneBlobEncoding::type() {
     static const EncodingType t{"one_blob", {"bins"}, std::numeric_limits<int>::max(), kGlslId,
-                                [](const JsonReader& r) -> EncodingParams { return readSettings(r); },
-                                [](const EncodingParams& s) { return settingsJson(std::get<OneBlobSettings>(s)); },
                                 [](const EncodingParams& s, int inputDims) -> std::shared_ptr<const Encoding> {
                                     return std::make_shared<const OneBlobEncoding>(inputDims, std::get<OneBlobSettings>(s));
                                 }};
     return t;
-}
-
-OneBlobSettings OneBlobEncoding::readSettings(const JsonReader& r) {
-    OneBlobSettings s;
-    s.bins = int(r.integerOr("bins", s.bins, kMinBins, kMaxBins));
-    return s;
 }
 
 template <typename S>
@@ -86,7 +78,5 @@ void OneBlobEncoding::backwardInputs(const double*, const Eigen::Ref<const MatX<
                                      const Eigen::Ref<const MatX<double>>& dOut, Eigen::Ref<MatX<double>> dX) const {
     backwardInputsImpl<double>(x, dOut, dX);
 }
-
-nlohmann::json OneBlobEncoding::settingsJson(const OneBlobSettings& s) { return {{"bins", s.bins}}; }
 
 }  // namespace rrf

@@ -30,11 +30,6 @@ public:
 
     /// Throws std::invalid_argument unless 1 ≤ inputDims and 2 ≤ B ≤ 64.
     OneBlobEncoding(int inputDims, OneBlobSettings settings);
-    /// Reads "bins" of a component object (defaults where absent); InputError names the
-    /// reader's file and the key's pointer. Other keys are checked by the caller (nn/encoding_settings_json.h).
-    static OneBlobSettings readSettings(const JsonReader& r);
-    /// Every hyperparameter key of `s` (what settingsJson() and a component object write).
-    static nlohmann::json settingsJson(const OneBlobSettings& s);
 
     const OneBlobSettings& settings() const { return settings_; }
 
@@ -53,7 +48,7 @@ public:
     void backwardInputs(const double* params, const Eigen::Ref<const MatX<double>>& x,
                         const Eigen::Ref<const MatX<double>>& dOut, Eigen::Ref<MatX<double>> dX) const override;
 
-    nlohmann::json settingsJson() const override { return settingsJson(settings_); }
+    EncodingParams params() const override { return settings_; }
 
 private:
     template <typename S>

@@ -1,12 +1,14 @@
 #pragma once
 /// The encoding types by name, as tiny-cuda-nn's "otype" registry (docs/design.md §10a): each type's
 /// name, its hyperparameter keys, the most inputs one component may read, its component id in the
-/// GLSL predictor's network texture, the reader and writer of its hyperparameters and its factory, in
-/// one row kept beside its implementation (FrequencyEncoding::type() in encodings/frequency.cpp, …).
+/// GLSL predictor's network texture, and its factory, in
+/// one row kept beside its implementation (FrequencyEncoding::type() in encodings/frequency.cpp, …);
+/// the JSON of its hyperparameters is read and written by encodings/encodings_json.h.
 /// The "encoding" codec (nn/encoding_settings_json.h), the builder of a network's encoding
 /// (nn/encoding_settings.h), the model file and the network texture look types up here, so a type's
-/// name is spelled once and a new encoding is one implementation, one entry of encodingTypes() and
-/// one alternative of EncodingParams (encodings/encoding_params.h), at the same position.
+/// name is spelled once and a new encoding is one implementation, one entry of encodingTypes(),
+/// one alternative of EncodingParams (encodings/encoding_params.h), at the same position, and its
+/// reader and writer in encodings/encodings_json.cpp.
 
 #include <memory>
 #include <string>
@@ -14,7 +16,6 @@
 
 #include "core/nn/encoding.h"
 #include "core/nn/encodings/encoding_params.h"
-#include "core/util/json_reader.h"
 
 namespace rrf {
 
@@ -24,11 +25,6 @@ struct EncodingType {
     std::vector<std::string> keys;  ///< its hyperparameter keys (a component also has "type" and "inputs")
     int maxInputs;                  ///< most inputs one component of this type reads
     int glslId;                     ///< component type in the network texture (shaders/encoding.glsl)
-    /// Reads its hyperparameter keys of a component object (defaults where absent; other keys are
-    /// checked by the caller); InputError names the reader's file and the pointer of a bad value.
-    EncodingParams (*readParams)(const JsonReader& component);
-    /// Every hyperparameter key of `params` (which holds this type's alternative).
-    nlohmann::json (*writeParams)(const EncodingParams& params);
     /// The encoding of `params` (this type's alternative) over `inputDims` inputs; throws
     /// std::invalid_argument (naming the setting) for a combination out of range (e.g. a hash grid's
     /// finest resolution or table size).

@@ -1,7 +1,7 @@
 #pragma once
 /// The trainers, Adam's losses and its learning-rate schedules by name (docs/design.md §11), as
 /// tiny-cuda-nn's "otype" registries: one table each maps the enum to the name the JSON spells
-/// (TrainerConfig::fromJson / toJson, nn/trainer_config.h), so that each name is written once and a
+/// (trainerConfigFromJson / toJson, nn/trainer_config_json.h), so that each name is written once and a
 /// new trainer, loss or schedule is one more row. The implementations beside it: lm.cpp
 /// (trainLevenbergMarquardt), adam.cpp (trainAdam) and sparse_adam.h (the encoding tables' update).
 

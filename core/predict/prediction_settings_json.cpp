@@ -1,11 +1,11 @@
-#include "core/predict/prediction_settings.h"
+#include "core/predict/prediction_settings_json.h"
 
 namespace rrf {
 
-PredictionSettings PredictionSettings::fromJson(const JsonReader& r) {
+PredictionSettings predictionSettingsFromJson(const JsonReader& r) {
     r.checkKeys({"direct", "direct_samples", "seed", "gather"});
     PredictionSettings s;
-    s.direct = r.choiceOr("direct", s.directName(), {"network", "exact"}) == "exact" ? Direct::Exact : Direct::Network;
+    s.direct = r.choiceOr("direct", s.directName(), {"network", "exact"}) == "exact" ? PredictionSettings::Direct::Exact : PredictionSettings::Direct::Network;
     s.directSamples = int(r.integerOr("direct_samples", s.directSamples, 1, kMaxDirectSamples));
     s.seed = r.unsignedOr("seed", s.seed);
     if (const std::optional<JsonReader> found = r.find("gather")) {
@@ -28,10 +28,11 @@ PredictionSettings PredictionSettings::fromJson(const JsonReader& r) {
     return s;
 }
 
-nlohmann::json PredictionSettings::toJson() const {
-    return {{"direct", directName()},
-            {"direct_samples", directSamples},
-            {"seed", seed},
+nlohmann::json toJson(const PredictionSettings& s) {
+    const PredictionSettings::Gather& gather = s.gather;
+    return {{"direct", s.directName()},
+            {"direct_samples", s.directSamples},
+            {"seed", s.seed},
             {"gather",
              {{"min_exponent", gather.minExponent},
               {"lobe_samples", gather.lobeSamples},

@@ -1,3 +1,4 @@
+// The model set's files (format in nn/model_set.h): models.json and the model files it lists.
 #include "core/nn/model_set.h"
 
 #include <cmath>
@@ -7,6 +8,8 @@
 #include <stdexcept>
 
 #include "core/data/dataset_file.h"
+#include "core/nn/network_settings_json.h"
+#include "core/nn/trainer_config_json.h"
 #include "core/util/atomic_file.h"
 #include "core/util/directory_replace.h"
 #include "core/util/error.h"
@@ -102,9 +105,13 @@ bool isModelSetEntry(const std::string& name) {
 
 }  // namespace
 
-nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectModel>& trained, uint64_t sceneHash,
-                            const std::vector<std::string>& inputLayout, const nlohmann::json& extra) {
-    nlohmann::json index = extra.is_object() ? extra : nlohmann::json::object();
+void saveModelSet(const std::string& dir, const std::vector<ObjectModel>& trained, uint64_t sceneHash,
+                  const std::vector<std::string>& inputLayout, const ModelSetRecord* record) {
+    nlohmann::json index = nlohmann::json::object();
+    if (record)
+        index = {{"dataset", record->dataset},       {"project", record->project},
+                 {"network", toJson(record->network)}, {"trainer", toJson(record->trainer)},
+                 {"seconds", record->seconds},         {"cancelled", record->cancelled}};
     for (const ObjectModel& m : trained)
         if (!m.skipped) m.model.validate();
     // The whole set goes into a new directory that replaces the old one in one rename
@@ -169,7 +176,6 @@ nlohmann::json saveModelSet(const std::string& dir, const std::vector<ObjectMode
         index["index_checksum64"] = sum;
         writeStagedFile((fs::path(staging) / "models.json").string(), text);
     });
-    return index;
 }
 
 ModelSet loadModelSet(const std::string& dir, uint64_t expectedSceneHash) {
@@ -187,13 +193,15 @@ ModelSet loadModelSet(const std::string& dir, uint64_t expectedSceneHash) {
     if (digits != std::string::npos && text.compare(digits, kHexDigits, hexString16(indexChecksum(text, digits))) != 0)
         throw InputError(indexPath, "/index_checksum64",
                          "checksum mismatch: the index was changed or damaged after it was written (train the models again)");
+    nlohmann::json indexJson;
     try {
-        set.index = nlohmann::json::parse(text);
+        indexJson = nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
         throw InputError(indexPath, "", std::string("malformed JSON: ") + e.what());
     }
-    const JsonReader index(set.index, indexPath);
+    const JsonReader index(indexJson, indexPath);
     index.requireObject();
+    if (const auto sum = index.find("index_checksum64"); sum && sum->value().is_string()) set.indexChecksum = sum->string();
     const int version = index.has("version") ? int(index.at("version").integer(1, kMaxInt)) : 1;
     if (version > kModelSetVersion)
         throw InputError(indexPath, "/version", "model index version " + std::to_string(version) +
