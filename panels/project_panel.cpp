@@ -123,10 +123,9 @@ struct RunsTableView {
     ShortRunNames& names;             ///< WorkbenchState::runNames: the names shown, kept between frames
     RunPair& pair;
     int compareRun;                   ///< index into runs shown in the compare view, -1 = none
-    std::vector<Request>& requests;   ///< WorkbenchState::requests
-    bool& dirty;                      ///< WorkbenchState::dirty
-    void request(Command c, int index = -1) { requests.push_back({c, {}, index}); }
-    void markDirty() { dirty = true; }
+    PanelActions actions;             ///< the panel's: requests, and the dirty flag a rename sets
+    void request(Command c, int index = -1) const { actions.request(c, {}, index); }
+    void markDirty() const { actions.markDirty(); }
 };
 
 /// Right-click menu of a run's row: rename it and the row's actions (also in the last column, which a
@@ -271,7 +270,7 @@ void drawProjectPanel(const ProjectPanelView& panel) {
         project_panel_detail::drawRenderSettings(panel.project.render, panel.project.scene, panel.actions.dirty);
     if (ImGui::CollapsingHeader("Runs", ImGuiTreeNodeFlags_DefaultOpen)) {
         project_panel_detail::RunsTableView runs{panel.project.runs, panel.runNames, panel.runPair, panel.compareRun,
-                                                 panel.actions.requests, panel.actions.dirty};
+                                                 panel.actions};
         project_panel_detail::drawRuns(runs);
     }
     if (ImGui::CollapsingHeader("Recent projects")) {
