@@ -29,8 +29,8 @@ namespace rrf::panels {
 
 namespace cost_panel_detail {
 namespace {
-void drawToolbar(WorkbenchState& state) {
-    CostView& v = state.costView;
+void drawToolbar(const CostPanelView& panel) {
+    CostView& v = panel.costView;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6);
     ImGui::Combo("sweep", &v.what, kSweepKinds, kSweepKindCount);
     if (ImGui::IsItemHovered())
@@ -40,14 +40,15 @@ void drawToolbar(WorkbenchState& state) {
                           "ensemble: networks averaged per leaf (merged into one wider network)\n"
                           "model sweeps also render the path tracer against the same reference, for the break-even");
     ImGui::SameLine();
-    if (!state.cost.running) {
-        ImGui::BeginDisabled(!state.hasProject);
-        if (ImGui::Button("Run sweep")) state.request(Command::RunSweep, kSweepKinds[std::clamp(v.what, 0, kSweepKindCount - 1)]);
+    if (!panel.cost.running) {
+        ImGui::BeginDisabled(!panel.hasProject);
+        if (ImGui::Button("Run sweep"))
+            panel.actions.request(Command::RunSweep, kSweepKinds[std::clamp(v.what, 0, kSweepKindCount - 1)]);
         ImGui::EndDisabled();
     } else {
-        if (ImGui::Button("Stop sweep")) state.request(Command::CancelSweep);
+        if (ImGui::Button("Stop sweep")) panel.actions.request(Command::CancelSweep);
         ImGui::SameLine();
-        ImGui::ProgressBar(float(state.cost.progress), ImVec2(ImGui::GetFontSize() * 8, 0));
+        ImGui::ProgressBar(float(panel.cost.progress), ImVec2(ImGui::GetFontSize() * 8, 0));
     }
     ImGui::SameLine();
     ImGui::Checkbox("project runs", &v.showRuns);
@@ -55,7 +56,7 @@ void drawToolbar(WorkbenchState& state) {
         ImGui::SetTooltip("the project's evaluated training runs: each against its own ground truth (raw error),\n"
                           "so they do not compare with the sweeps' points");
     ImGui::SameLine();
-    if (ImGui::Button("Clear sweeps")) state.cost.sweeps.clear();
+    if (ImGui::Button("Clear sweeps")) panel.cost.sweeps.clear();
 }
 
 const CostSeries* findSeries(const std::vector<const CostSeries*>& series, const std::string& name) {
@@ -145,12 +146,12 @@ std::vector<std::string> costBreakEvenLines(const std::vector<const CostSeries*>
     return lines;
 }
 
-void drawCostPanel(WorkbenchState& state) {
-    cost_panel_detail::drawToolbar(state);
-    CostView& v = state.costView;
+void drawCostPanel(const CostPanelView& panel) {
+    cost_panel_detail::drawToolbar(panel);
+    CostView& v = panel.costView;
     std::vector<const CostSeries*> series;
-    for (const CostSeries& s : state.cost.sweeps) series.push_back(&s);
-    const CostSeries runs = runsCostSeries(state.project.runs);
+    for (const CostSeries& s : panel.cost.sweeps) series.push_back(&s);
+    const CostSeries runs = runsCostSeries(panel.runs);
     if (v.showRuns && !runs.points.empty()) series.push_back(&runs);
     v.breakEvenLines = costBreakEvenLines(series);
 

@@ -14,24 +14,24 @@
 
 namespace rrf::panels {
 
-bool setGlossyGather(WorkbenchState& state, const PredictionSettings::Gather& gather) {
+bool setGlossyGather(const NetworkPanelView& panel, const PredictionSettings::Gather& gather) {
     PredictionSettings::Gather g = gather;
     g.minExponent = std::clamp(g.minExponent, 0.0, 1e6);
     g.lobeSamples = std::clamp(g.lobeSamples, 0, kMaxGatherSamples);
     g.diffuseSamples = std::clamp(g.diffuseSamples, 0, kMaxGatherSamples);
     g.directSamples = std::clamp(g.directSamples, 1, kMaxDirectSamples);
     g.causticSamples = std::clamp(g.causticSamples, 0, kMaxGatherSamples);
-    const PredictionSettings::Gather& old = state.project.prediction.gather;
+    const PredictionSettings::Gather& old = panel.project.prediction.gather;
     if (g.minExponent == old.minExponent && g.lobeSamples == old.lobeSamples && g.diffuseSamples == old.diffuseSamples &&
         g.directSamples == old.directSamples && g.causticSamples == old.causticSamples)
         return false;
-    state.project.prediction.gather.minExponent = g.minExponent;
-    state.project.prediction.gather.lobeSamples = g.lobeSamples;
-    state.project.prediction.gather.diffuseSamples = g.diffuseSamples;
-    state.project.prediction.gather.directSamples = g.directSamples;
-    state.project.prediction.gather.causticSamples = g.causticSamples;
-    state.markDirty();
-    state.request(Command::PredictionChanged);
+    panel.project.prediction.gather.minExponent = g.minExponent;
+    panel.project.prediction.gather.lobeSamples = g.lobeSamples;
+    panel.project.prediction.gather.diffuseSamples = g.diffuseSamples;
+    panel.project.prediction.gather.directSamples = g.directSamples;
+    panel.project.prediction.gather.causticSamples = g.causticSamples;
+    panel.actions.markDirty();
+    panel.actions.request(Command::PredictionChanged);
     return true;
 }
 
@@ -42,8 +42,8 @@ std::string gatheredObjectNames(const Scene& scene, const PredictionSettings& pr
     return names;
 }
 
-void drawGlossyGather(WorkbenchState& state) {
-    PredictionSettings::Gather g = state.project.prediction.gather;
+void drawGlossyGather(const NetworkPanelView& panel) {
+    PredictionSettings::Gather g = panel.project.prediction.gather;
     if (!ImGui::TreeNodeEx("Glossy gather (prediction)", ImGuiTreeNodeFlags_DefaultOpen)) return;
     bool on = g.minExponent > 0.0;
     bool changed = false;
@@ -73,8 +73,8 @@ void drawGlossyGather(WorkbenchState& state) {
             ImGui::SetTooltip("light a gathered pixel receives diffusely by way of a polished face, sampled from the\n"
                               "light per face plane (0: left to the diffuse directions, which find it as fireflies)");
     }
-    if (changed) setGlossyGather(state, g);
-    const std::string names = gatheredObjectNames(state.project.scene, state.project.prediction);
+    if (changed) setGlossyGather(panel, g);
+    const std::string names = gatheredObjectNames(panel.project.scene, panel.project.prediction);
     figureText("%s", names.empty() ? "no object is gathered: every object's indirect light is its network's"
                                            : ("gathered (CPU prediction; the GLSL view shows their networks until the "
                                               "CPU frame arrives): " + names).c_str());

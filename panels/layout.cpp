@@ -284,11 +284,20 @@ bool drawWorkspace(PaneLayout& layout, const std::function<void(const std::strin
 }
 
 void drawPanel(WorkbenchState& state, const std::string& name) {
-    static const std::pair<const char*, void (*)(WorkbenchState&)> kPanels[] = {
-        {"Project", drawProjectPanel}, {"Scene", drawScenePanel},       {"Sampling", drawSamplingPanel},
-        {"Network", drawNetworkPanel}, {"Views", drawViewsPanel},       {"Training", drawTrainingPanel},
-        {"Objects", drawObjectsPanel}, {"Cost", drawCostPanel},         {"Leaves", drawLeavesPanel},
-        {"Light region", drawLightRegionPanel}, {"Log", drawLogPanel},
+    // Each panel gets the view of what it draws (panels/panel_views.h), never the whole state.
+    using Draw = void (*)(WorkbenchState&);
+    static const std::pair<const char*, Draw> kPanels[] = {
+        {"Project", [](WorkbenchState& s) { drawProjectPanel(projectPanelView(s)); }},
+        {"Scene", [](WorkbenchState& s) { drawScenePanel(scenePanelView(s)); }},
+        {"Sampling", [](WorkbenchState& s) { drawSamplingPanel(samplingPanelView(s)); }},
+        {"Network", [](WorkbenchState& s) { drawNetworkPanel(networkPanelView(s)); }},
+        {"Views", [](WorkbenchState& s) { drawViewsPanel(viewsPanelView(s)); }},
+        {"Training", [](WorkbenchState& s) { drawTrainingPanel(trainingPanelView(s)); }},
+        {"Objects", [](WorkbenchState& s) { drawObjectsPanel(objectsPanelView(s)); }},
+        {"Cost", [](WorkbenchState& s) { drawCostPanel(costPanelView(s)); }},
+        {"Leaves", [](WorkbenchState& s) { drawLeavesPanel(leavesPanelView(s)); }},
+        {"Light region", [](WorkbenchState& s) { drawLightRegionPanel(lightRegionPanelView(s)); }},
+        {"Log", [](WorkbenchState& s) { drawLogPanel(logPanelView(s)); }},
     };
     for (const auto& [panel, draw] : kPanels)
         if (name == panel) draw(state);

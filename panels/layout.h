@@ -30,7 +30,8 @@ bool drawWorkspace(PaneLayout& layout, const std::function<void(const std::strin
 /// is easy to hit; a thinner line is drawn in its middle).
 float splitterWidth();
 
-/// Draws the panel `name` (one of PaneLayout::panels()); an unknown name draws nothing.
+/// Draws the panel `name` (one of PaneLayout::panels()) with the view its builder makes from `state`
+/// (panels/panel_views.h); an unknown name draws nothing.
 void drawPanel(WorkbenchState& state, const std::string& name);
 
 /// Which part of a pane a drop at `(u, v)` (the pointer's position in the pane, each 0 … 1) lands

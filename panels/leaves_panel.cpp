@@ -32,13 +32,13 @@ LeavesInfo leavesOf(const ModelSet& models) {
     return info;
 }
 
-void drawLeavesPanel(WorkbenchState& state) {
-    const LeavesInfo& info = state.leaves;
+void drawLeavesPanel(const LeavesPanelView& panel) {
+    const LeavesInfo& info = panel.leaves;
     if (info.rows.empty()) {
         ImGui::TextDisabled("No models loaded: train, or open a project with a training run.");
         return;
     }
-    const double goal = state.project.networkOrDefault().options.partition.goal;
+    const double goal = panel.project.networkOrDefault().options.partition.goal;
     int models = 0, above = 0;
     for (const LeafRow& r : info.rows) {
         models += r.leaf == 0;
@@ -47,7 +47,7 @@ void drawLeavesPanel(WorkbenchState& state) {
     figureText("%zu leaves in %d models; %d above the goal %.3g (validation relative RMSE)", info.rows.size(), models,
                 above, goal);
     ImGui::SameLine();
-    ImGui::Checkbox("tint view by leaf", &state.view.leafOverlay);
+    ImGui::Checkbox("tint view by leaf", &panel.view.leafOverlay);
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY |
                                   ImGuiTableFlags_SizingFixedFit;
     if (!ImGui::BeginTable("##leaves", 6, flags)) return;
@@ -60,8 +60,8 @@ void drawLeavesPanel(WorkbenchState& state) {
         ImGui::TableNextColumn();
         char label[160];
         std::snprintf(label, sizeof label, "%d %s##leaf%zu", r.objectId, r.object.c_str(), i);
-        if (ImGui::Selectable(label, state.view.selectedObject == r.objectId, ImGuiSelectableFlags_SpanAllColumns))
-            state.view.selectedObject = r.objectId;
+        if (ImGui::Selectable(label, panel.view.selectedObject == r.objectId, ImGuiSelectableFlags_SpanAllColumns))
+            panel.view.selectedObject = r.objectId;
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(r.target.c_str());
         ImGui::TableNextColumn();

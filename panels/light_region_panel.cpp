@@ -34,8 +34,8 @@ std::string figure(double v) {
 }
 
 /// The controls: grid counts, the Evaluate / Stop button, progress.
-void drawControls(WorkbenchState& state, bool modelsLoaded) {
-    LightRegionInfo& lr = state.lightRegion;
+void drawControls(const LightRegionPanelView& panel, bool modelsLoaded) {
+    LightRegionInfo& lr = panel.lightRegion;
     ImGui::SetNextItemWidth(fieldWidth(ImGui::GetFontSize() * 9, "grid x, y, z"));
     if (ImGui::InputInt3("grid x, y, z", lr.counts))
         for (int& c : lr.counts) c = std::clamp(c, 1, LightRegionInfo::kMaxCount);
@@ -46,17 +46,17 @@ void drawControls(WorkbenchState& state, bool modelsLoaded) {
     sameLineIfFits(ImGui::GetFontSize() * 10);
     figureTextDisabled("%d references", points);
     if (lr.running) {
-        if (ImGui::Button("Stop")) state.request(Command::CancelLightRegion);
+        if (ImGui::Button("Stop")) panel.actions.request(Command::CancelLightRegion);
         ImGui::SameLine();
         ImGui::ProgressBar(float(lr.progress), ImVec2(-1, 0));
         return;
     }
-    const char* why = !state.hasProject                    ? "no project is open"
+    const char* why = !panel.hasProject                    ? "no project is open"
                       : !modelsLoaded                      ? "no models are loaded: train first"
-                      : state.project.scene.lightRegion.empty() ? "the scene's light does not move (no light region)"
+                      : panel.project.scene.lightRegion.empty() ? "the scene's light does not move (no light region)"
                                                                 : nullptr;
     ImGui::BeginDisabled(why != nullptr);
-    if (ImGui::Button("Evaluate over the light region")) state.request(Command::EvaluateLightRegion);
+    if (ImGui::Button("Evaluate over the light region")) panel.actions.request(Command::EvaluateLightRegion);
     ImGui::EndDisabled();
     if (why) {
         ImGui::SameLine();
@@ -68,7 +68,7 @@ void drawControls(WorkbenchState& state, bool modelsLoaded) {
 }
 
 /// One slice: cells coloured by figure, marks as dots; hover read-out, click moves the light.
-void drawSlice(WorkbenchState& state, const LightGridMap& m, const std::vector<double>& values, int j, double scale,
+void drawSlice(const LightRegionPanelView& panel, const LightGridMap& m, const std::vector<double>& values, int j, double scale,
                float side) {
     const int nx = m.grid.counts[0], nz = m.grid.counts[2];
     const float cell = side / float(std::max(nx, nz));
@@ -95,30 +95,30 @@ void drawSlice(WorkbenchState& state, const LightGridMap& m, const std::vector<d
     ImGui::BeginTooltip();
     figureText("light (%.3f, %.3f, %.3f)", l.x, l.y, l.z);
     figureText("relative RMSE %s", figure(values[n]).c_str());
-    if (state.lightRegion.object < 0)
+    if (panel.lightRegion.object < 0)
         figureText("raw %s, reference noise floor %s", figure(m.globalRaw[n]).c_str(), figure(m.globalNoiseFloor[n]).c_str());
     ImGui::TextDisabled("click: move the light here");
     ImGui::EndTooltip();
     if (clicked) {
-        moveLight(state.project, l);
-        state.markDirty();
-        state.request(Command::SceneChanged);
+        moveLight(panel.project, l);
+        panel.actions.markDirty();
+        panel.actions.request(Command::SceneChanged);
     }
 }
 
 }  // namespace
 }  // namespace light_region_panel_detail
 
-void drawLightRegionPanel(WorkbenchState& state) {
-    LightRegionInfo& lr = state.lightRegion;
-    light_region_panel_detail::drawControls(state, !state.training.modelsDir.empty());
+void drawLightRegionPanel(const LightRegionPanelView& panel) {
+    LightRegionInfo& lr = panel.lightRegion;
+    light_region_panel_detail::drawControls(panel, !panel.modelsDir.empty());
     if (!lr.map) {
         ImGui::TextDisabled("No evaluation over the light region yet.");
         return;
     }
     const LightGridMap& m = *lr.map;
     // What is shown: the global figure or one object's.
-    const auto& objects = state.project.scene.objects;
+    const auto& objects = panel.project.scene.objects;
     if (lr.object >= int(std::min(m.objects.size(), objects.size()))) lr.object = -1;
     const std::string shown = lr.object < 0 ? "all objects" : objects[size_t(lr.object)].name;
     ImGui::SetNextItemWidth(fieldWidth(ImGui::GetFontSize() * 10, "show"));
@@ -147,7 +147,7 @@ void drawLightRegionPanel(WorkbenchState& state) {
         if (j > 0) sameLineIfFits(side);
         ImGui::BeginGroup();
         figureText("y = %.3f", m.lights[m.grid.index(0, j, 0)].y);
-        light_region_panel_detail::drawSlice(state, m, values, j, scale, side);
+        light_region_panel_detail::drawSlice(panel, m, values, j, scale, side);
         ImGui::EndGroup();
     }
     figureTextDisabled("x to the right, z downwards; models %s; files in %s", lr.modelsDir.c_str(), lr.outDir.c_str());

@@ -36,7 +36,7 @@ bool shown(const LogView& v, const LogEntry& e) {
 }  // namespace
 }  // namespace log_panel_detail
 
-void drawLogPanel(WorkbenchState& state) {
+void drawLogPanel(const LogPanelView& panel) {
     // One log view per ImGui context; the view settings are UI state, not project state.
     static log_panel_detail::LogView view;
     // The toolbar wraps in a narrow pane (each item goes on the line when it fits, else starts the
@@ -44,9 +44,9 @@ void drawLogPanel(WorkbenchState& state) {
     // is cut off at the pane's edge.
     auto button = [](const char* label) { return ImGui::CalcTextSize(label, nullptr, true).x + 2 * ImGui::GetStyle().FramePadding.x; };
     const float box = ImGui::GetFrameHeight();  // a checkbox's square
-    if (ImGui::Button("Copy all")) ImGui::SetClipboardText(state.log.text().c_str());
+    if (ImGui::Button("Copy all")) ImGui::SetClipboardText(panel.log.text().c_str());
     sameLineIfFits(button("Clear"));
-    if (ImGui::Button("Clear")) state.log.clear();
+    if (ImGui::Button("Clear")) panel.log.clear();
     sameLineIfFits(labelledWidth(box, "info"));
     ImGui::Checkbox("info", &view.showInfo);
     sameLineIfFits(labelledWidth(box, "warnings"));
@@ -61,7 +61,7 @@ void drawLogPanel(WorkbenchState& state) {
     ImGui::InputTextWithHint("##filter", "filter", &view.filter);
 
     if (ImGui::BeginChild("##log-lines", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar)) {
-        const std::vector<LogEntry> entries = state.log.entries();
+        const std::vector<LogEntry> entries = panel.log.entries();
         int n = 0;
         for (const LogEntry& e : entries) {
             if (!log_panel_detail::shown(view, e)) continue;
@@ -78,7 +78,7 @@ void drawLogPanel(WorkbenchState& state) {
             }
             ImGui::PopID();
         }
-        const uint64_t rev = state.log.revision();
+        const uint64_t rev = panel.log.revision();
         if (view.autoScroll && rev != view.seenRevision) ImGui::SetScrollHereY(1.f);
         view.seenRevision = rev;
     }

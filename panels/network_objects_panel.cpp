@@ -27,17 +27,17 @@ ObjectNetworkOverride entryOf(const NetworkSettings& s, const std::string& name)
 }
 
 /// Stores `entry` as the object's (an empty entry removes it); false when nothing changed.
-bool storeEntry(WorkbenchState& state, NetworkSettings s, const std::string& name, const ObjectNetworkOverride& entry) {
+bool storeEntry(const NetworkPanelView& panel, NetworkSettings s, const std::string& name, const ObjectNetworkOverride& entry) {
     if (entryOf(s, name) == entry) return false;
     if (entry.empty()) s.options.perObject.erase(name);
     else s.options.perObject[name] = entry;
-    storeNetworkSettings(state, s);
+    storeNetworkSettings(panel, s);
     return true;
 }
 
 /// One object's row: reflected (section's / on / off), hidden sizes (empty: the section's), encoding
 /// (section's or a named one), then what its networks read.
-void drawObjectRow(WorkbenchState& state, const NetworkSettings& s, const std::string& name, int inputs) {
+void drawObjectRow(const NetworkPanelView& panel, const NetworkSettings& s, const std::string& name, int inputs) {
     const ObjectNetworkOverride entry = entryOf(s, name);
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
@@ -48,7 +48,7 @@ void drawObjectRow(WorkbenchState& state, const NetworkSettings& s, const std::s
     const char* items = s.options.inputs.reflected ? "section's (on)\0on\0off\0" : "section's (off)\0on\0off\0";
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 7);
     if (ImGui::Combo("##reflected", &reflected, items))
-        setObjectReflected(state, name, reflected == 0 ? std::nullopt : std::optional<bool>(reflected == 1));
+        setObjectReflected(panel, name, reflected == 0 ? std::nullopt : std::optional<bool>(reflected == 1));
 
     ImGui::TableNextColumn();
     char buf[64];
@@ -58,7 +58,7 @@ void drawObjectRow(WorkbenchState& state, const NetworkSettings& s, const std::s
                                  ImGuiInputTextFlags_EnterReturnsTrue)) {
         const std::string text = buf;
         try {
-            setObjectHidden(state, name, text.empty() ? std::nullopt : std::optional(parseHiddenSizes(text, "hidden")));
+            setObjectHidden(panel, name, text.empty() ? std::nullopt : std::optional(parseHiddenSizes(text, "hidden")));
         } catch (const SettingError&) {
             // Not a list of sizes: the field shows the stored value again next frame.
         }
@@ -70,9 +70,9 @@ void drawObjectRow(WorkbenchState& state, const NetworkSettings& s, const std::s
     const char* shown = !entry.encoding ? "section's" : own.empty() ? "custom (the project file's)" : own.c_str();
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 9);
     if (ImGui::BeginCombo("##encoding", shown)) {
-        if (ImGui::Selectable("section's", !entry.encoding)) setObjectEncoding(state, name, "");
+        if (ImGui::Selectable("section's", !entry.encoding)) setObjectEncoding(panel, name, "");
         for (const EncodingPreset& p : encodingPresets()) {
-            if (ImGui::Selectable(p.name, entry.encoding && own == p.name)) setObjectEncoding(state, name, p.name);
+            if (ImGui::Selectable(p.name, entry.encoding && own == p.name)) setObjectEncoding(panel, name, p.name);
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.summary);
         }
         ImGui::EndCombo();
@@ -88,40 +88,40 @@ void drawObjectRow(WorkbenchState& state, const NetworkSettings& s, const std::s
 }  // namespace
 }  // namespace network_objects_panel_detail
 
-void storeNetworkSettings(WorkbenchState& state, const NetworkSettings& s) {
-    state.project.network = s;
-    state.markDirty();
+void storeNetworkSettings(const NetworkPanelView& panel, const NetworkSettings& s) {
+    panel.project.network = s;
+    panel.actions.markDirty();
 }
 
-bool setReflectedInput(WorkbenchState& state, bool on) {
-    NetworkSettings s = state.project.networkOrDefault();
+bool setReflectedInput(const NetworkPanelView& panel, bool on) {
+    NetworkSettings s = panel.project.networkOrDefault();
     if (s.options.inputs.reflected == on) return false;
     s.options.inputs.reflected = on;
-    storeNetworkSettings(state, s);
+    storeNetworkSettings(panel, s);
     return true;
 }
 
-bool setObjectReflected(WorkbenchState& state, const std::string& name, std::optional<bool> on) {
-    const NetworkSettings s = state.project.networkOrDefault();
+bool setObjectReflected(const NetworkPanelView& panel, const std::string& name, std::optional<bool> on) {
+    const NetworkSettings s = panel.project.networkOrDefault();
     ObjectNetworkOverride entry = network_objects_panel_detail::entryOf(s, name);
     if (on) entry.inputs = DerivedInputs{*on};
     else entry.inputs.reset();
-    return network_objects_panel_detail::storeEntry(state, s, name, entry);
+    return network_objects_panel_detail::storeEntry(panel, s, name, entry);
 }
 
-bool setObjectHidden(WorkbenchState& state, const std::string& name, std::optional<std::vector<int>> hidden) {
-    const NetworkSettings s = state.project.networkOrDefault();
+bool setObjectHidden(const NetworkPanelView& panel, const std::string& name, std::optional<std::vector<int>> hidden) {
+    const NetworkSettings s = panel.project.networkOrDefault();
     ObjectNetworkOverride entry = network_objects_panel_detail::entryOf(s, name);
     if (hidden) {
         if (hidden->empty()) return false;  // the file format needs at least one hidden layer
         for (int& h : *hidden) h = std::clamp(h, 1, kMaxHiddenSize);
     }
     entry.hidden = std::move(hidden);
-    return network_objects_panel_detail::storeEntry(state, s, name, entry);
+    return network_objects_panel_detail::storeEntry(panel, s, name, entry);
 }
 
-bool setObjectEncoding(WorkbenchState& state, const std::string& name, const std::string& encoding) {
-    const NetworkSettings s = state.project.networkOrDefault();
+bool setObjectEncoding(const NetworkPanelView& panel, const std::string& name, const std::string& encoding) {
+    const NetworkSettings s = panel.project.networkOrDefault();
     ObjectNetworkOverride entry = network_objects_panel_detail::entryOf(s, name);
     if (encoding.empty()) {
         entry.encoding.reset();
@@ -130,15 +130,15 @@ bool setObjectEncoding(WorkbenchState& state, const std::string& name, const std
         if (!preset) return false;
         entry.encoding = preset->settings;
     }
-    return network_objects_panel_detail::storeEntry(state, s, name, entry);
+    return network_objects_panel_detail::storeEntry(panel, s, name, entry);
 }
 
-void drawObjectNetworks(WorkbenchState& state, int inputs) {
-    NetworkSettings s = state.project.networkOrDefault();
+void drawObjectNetworks(const NetworkPanelView& panel, int inputs) {
+    NetworkSettings s = panel.project.networkOrDefault();
     bool reflected = s.options.inputs.reflected;
     if (ImGui::Checkbox("reflected direction input", &reflected)) {
-        setReflectedInput(state, reflected);
-        s = state.project.networkOrDefault();
+        setReflectedInput(panel, reflected);
+        s = panel.project.networkOrDefault();
     }
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("every network also reads the view direction reflected about the normal (Ref-NeRF):\n"
@@ -153,11 +153,11 @@ void drawObjectNetworks(WorkbenchState& state, int inputs) {
         ImGui::TableSetupColumn("encoding");
         ImGui::TableSetupColumn("networks read");
         ImGui::TableHeadersRow();
-        for (const Object& o : state.project.scene.objects) {
+        for (const Object& o : panel.project.scene.objects) {
             ImGui::PushID(o.id);
-            network_objects_panel_detail::drawObjectRow(state, s, o.name, inputs);
+            network_objects_panel_detail::drawObjectRow(panel, s, o.name, inputs);
             ImGui::PopID();
-            s = state.project.networkOrDefault();  // a row's edit is stored already
+            s = panel.project.networkOrDefault();  // a row's edit is stored already
         }
         ImGui::EndTable();
     }

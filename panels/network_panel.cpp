@@ -28,23 +28,23 @@ namespace {
 constexpr int kMaxLayers = 8;
 
 /// The settings in effect. A project without network/trainer sections keeps none until an edit.
-NetworkSettings current(const WorkbenchState& state) { return state.project.networkOrDefault(); }
-TrainerConfig currentTrainer(const WorkbenchState& state) { return state.project.trainerOrDefault(); }
+NetworkSettings current(const NetworkPanelView& panel) { return panel.project.networkOrDefault(); }
+TrainerConfig currentTrainer(const NetworkPanelView& panel) { return panel.project.trainerOrDefault(); }
 
 /// Stores the "network" part of `s` (layers, activation, targets).
-void storeNetwork(WorkbenchState& state, const NetworkSettings& s) { storeNetworkSettings(state, s); }
+void storeNetwork(const NetworkPanelView& panel, const NetworkSettings& s) { storeNetworkSettings(panel, s); }
 
 /// Stores the trainer (the project's "trainer" section).
-void storeTrainer(WorkbenchState& state, const TrainerConfig& t) {
-    state.project.trainer = t;
-    state.markDirty();
+void storeTrainer(const NetworkPanelView& panel, const TrainerConfig& t) {
+    panel.project.trainer = t;
+    panel.actions.markDirty();
 }
 
 /// Network inputs: the generated dataset's count when there is one, else the scene's record layout
 /// (the same number unless the scene changed since).
-int inputCount(const WorkbenchState& state) {
-    if (state.dataset.inputCount > 0) return state.dataset.inputCount;
-    return RecordLayout::forScene(state.project.scene).inputCount();
+int inputCount(const NetworkPanelView& panel) {
+    if (panel.dataset.inputCount > 0) return panel.dataset.inputCount;
+    return RecordLayout::forScene(panel.project.scene).inputCount();
 }
 
 bool inputDouble(const char* label, double& v, double lo, double hi, const char* fmt = "%.4g") {
@@ -152,7 +152,7 @@ bool drawPartition(PartitionSettings& p, long long paramsPerNetwork) {
 }
 
 /// The MLP of one network under `s`: its first layer reads the encoding's features.
-MlpArch networkArch(const WorkbenchState& /*state*/, const NetworkSettings& s, const InputEncoding& encoding) {
+MlpArch networkArch(const NetworkPanelView& /*panel*/, const NetworkSettings& s, const InputEncoding& encoding) {
     MlpArch arch;
     arch.inputs = encoding.outputs();  // the identity: the record inputs and the derived ones
     arch.hidden = s.options.hidden;
@@ -163,18 +163,18 @@ MlpArch networkArch(const WorkbenchState& /*state*/, const NetworkSettings& s, c
 
 /// The encoding combo (the named encodings, plus "custom" when the project's own array is none of
 /// them) and the warning for a trainable encoding under Levenberg–Marquardt.
-void drawEncoding(WorkbenchState& state, const NetworkSettings& s) {
-    const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state), s.options.inputs);
+void drawEncoding(const NetworkPanelView& panel, const NetworkSettings& s) {
+    const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(panel), s.options.inputs);
     const std::string& name = view.presetName;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
     if (ImGui::BeginCombo("input encoding", name.empty() ? "custom (the project file's)" : name.c_str())) {
         for (const EncodingPreset& p : encodingPresets()) {
-            if (ImGui::Selectable(p.name, name == p.name)) setEncoding(state, p.name);
+            if (ImGui::Selectable(p.name, name == p.name)) setEncoding(panel, p.name);
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.summary);
         }
         ImGui::EndCombo();
     }
-    if (currentTrainer(state).type == TrainerType::LevenbergMarquardt && view.hasParameters)
+    if (currentTrainer(panel).type == TrainerType::LevenbergMarquardt && view.hasParameters)
         ImGui::TextColored(ImVec4(1.f, .6f, .3f, 1.f),
                            "a hash grid's tables train with Adam only: choose the Adam trainer (LM would refuse)");
     if (s.options.ensemble > 1 && view.hasParameters)
@@ -182,8 +182,8 @@ void drawEncoding(WorkbenchState& state, const NetworkSettings& s) {
                            "an ensemble's members cannot share a hash grid's tables: ensemble 1 or a fixed encoding");
 }
 
-void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
-    const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(state), s.options.inputs);
+void drawParameterCount(const NetworkPanelView& panel, const NetworkSettings& s) {
+    const EncodingSettingView view = viewEncodingSetting(s.options.encoding, inputCount(panel), s.options.inputs);
     if (!view.fits) {
         // A project's own array may not fit this scene's records (e.g. a hash grid over more than 4
         // inputs); training would refuse it with this message, so show it in place of the count.
@@ -191,7 +191,7 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
         return;
     }
     const InputEncoding& encoding = view.encoding;
-    const MlpArch arch = ensembleArch(networkArch(state, s, encoding), s.options.ensemble);
+    const MlpArch arch = ensembleArch(networkArch(panel, s, encoding), s.options.ensemble);
     const int perObject = s.options.targets == TargetMode::Separate ? 2 : 1;
     const long long table = (long long)encoding.numParams();
     const long long params = (long long)arch.numParams() + table;
@@ -201,91 +201,91 @@ void drawParameterCount(const WorkbenchState& state, const NetworkSettings& s) {
                     encoding.derived.any() ? " (with the reflected direction)" : "", hidden.c_str(), arch.outputs, params);
     else
         figureText("%d inputs -> %s -> %d features -> [%s] -> %d outputs: %lld parameters per network (%lld in the encoding)",
-                    inputCount(state), encoding.describe().c_str(), arch.inputs, hidden.c_str(), arch.outputs, params, table);
+                    inputCount(panel), encoding.describe().c_str(), arch.inputs, hidden.c_str(), arch.outputs, params, table);
     if (s.options.ensemble > 1)
         figureTextDisabled("(the merged network of an ensemble of %d: block-diagonal layers, %d trainings per network)",
                             s.options.ensemble, s.options.ensemble);
     figureText("%d network%s per object, %zu objects: %lld parameters in all", perObject, perObject > 1 ? "s" : "",
-                state.project.scene.objects.size(), params * perObject * (long long)state.project.scene.objects.size());
+                panel.project.scene.objects.size(), params * perObject * (long long)panel.project.scene.objects.size());
     if (!s.options.perObject.empty())
         figureTextDisabled("(counted with the section's networks; %zu object%s with its own entry differ%s)",
                             s.options.perObject.size(), s.options.perObject.size() > 1 ? "s" : "",
                             s.options.perObject.size() > 1 ? "" : "s");
-    if (currentTrainer(state).type == TrainerType::LevenbergMarquardt) {
-        const long long member = (long long)networkArch(state, s, encoding).numParams();  // LM trains each member alone
+    if (currentTrainer(panel).type == TrainerType::LevenbergMarquardt) {
+        const long long member = (long long)networkArch(panel, s, encoding).numParams();  // LM trains each member alone
         figureTextDisabled("LM solves a %lld x %lld system per step", member, member);
     }
 }
 }  // namespace
 }  // namespace network_panel_detail
 
-bool addHiddenLayer(WorkbenchState& state) {
-    NetworkSettings s = network_panel_detail::current(state);
+bool addHiddenLayer(const NetworkPanelView& panel) {
+    NetworkSettings s = network_panel_detail::current(panel);
     if (int(s.options.hidden.size()) >= network_panel_detail::kMaxLayers) return false;
     // A new layer repeats the last one's size: a sensible start that the user then resizes.
     s.options.hidden.push_back(s.options.hidden.empty() ? 10 : s.options.hidden.back());
-    network_panel_detail::storeNetwork(state, s);
+    network_panel_detail::storeNetwork(panel, s);
     return true;
 }
 
-bool removeHiddenLayer(WorkbenchState& state, int index) {
-    NetworkSettings s = network_panel_detail::current(state);
+bool removeHiddenLayer(const NetworkPanelView& panel, int index) {
+    NetworkSettings s = network_panel_detail::current(panel);
     // The file format needs at least one hidden layer.
     if (s.options.hidden.size() <= 1 || index < 0 || index >= int(s.options.hidden.size())) return false;
     s.options.hidden.erase(s.options.hidden.begin() + index);
-    network_panel_detail::storeNetwork(state, s);
+    network_panel_detail::storeNetwork(panel, s);
     return true;
 }
 
-bool resizeHiddenLayer(WorkbenchState& state, int index, int size) {
-    NetworkSettings s = network_panel_detail::current(state);
+bool resizeHiddenLayer(const NetworkPanelView& panel, int index, int size) {
+    NetworkSettings s = network_panel_detail::current(panel);
     if (index < 0 || index >= int(s.options.hidden.size())) return false;
-    size = clampWithNotice(state, "Network", "a hidden layer's size", size, 1, kMaxHiddenSize);
+    size = clampWithNotice(panel.actions, "Network", "a hidden layer's size", size, 1, kMaxHiddenSize);
     if (s.options.hidden[size_t(index)] == size) return false;
     s.options.hidden[size_t(index)] = size;
-    network_panel_detail::storeNetwork(state, s);
+    network_panel_detail::storeNetwork(panel, s);
     return true;
 }
 
-bool setEnsemble(WorkbenchState& state, int members) {
-    NetworkSettings s = network_panel_detail::current(state);
+bool setEnsemble(const NetworkPanelView& panel, int members) {
+    NetworkSettings s = network_panel_detail::current(panel);
     members = std::clamp(members, 1, kMaxEnsembleMembers);
     if (s.options.ensemble == members) return false;
     s.options.ensemble = members;
-    network_panel_detail::storeNetwork(state, s);
+    network_panel_detail::storeNetwork(panel, s);
     return true;
 }
 
-bool setTrainerType(WorkbenchState& state, TrainerType type) {
-    const TrainerConfig t = network_panel_detail::currentTrainer(state);
+bool setTrainerType(const NetworkPanelView& panel, TrainerType type) {
+    const TrainerConfig t = network_panel_detail::currentTrainer(panel);
     if (t.type == type) return false;
-    network_panel_detail::storeTrainer(state, t.withType(type));
+    network_panel_detail::storeTrainer(panel, t.withType(type));
     return true;
 }
 
-bool setPartition(WorkbenchState& state, const PartitionSettings& partition) {
-    NetworkSettings s = network_panel_detail::current(state);
+bool setPartition(const NetworkPanelView& panel, const PartitionSettings& partition) {
+    NetworkSettings s = network_panel_detail::current(panel);
     if (s.options.partition == partition) return false;
     s.options.partition = partition;
-    network_panel_detail::storeNetwork(state, s);
+    network_panel_detail::storeNetwork(panel, s);
     return true;
 }
 
-bool setEncoding(WorkbenchState& state, const std::string& name) {
-    NetworkSettings s = network_panel_detail::current(state);
+bool setEncoding(const NetworkPanelView& panel, const std::string& name) {
+    NetworkSettings s = network_panel_detail::current(panel);
     if (!setNamedEncoding(s.options.encoding, name)) return false;
-    network_panel_detail::storeNetwork(state, s);
+    network_panel_detail::storeNetwork(panel, s);
     return true;
 }
 
-void drawNetworkPanel(WorkbenchState& state) {
-    if (!state.hasProject) {
+void drawNetworkPanel(const NetworkPanelView& panel) {
+    if (!panel.hasProject) {
         ImGui::TextDisabled("No project is open.");
         return;
     }
-    drawNetworkPresets(state);
-    if (state.notice && state.notice->panel == "Network") drawNotice(state);
-    NetworkSettings s = network_panel_detail::current(state);
+    drawNetworkPresets(panel);
+    if (panel.actions.notice && panel.actions.notice->panel == "Network") drawNotice(panel.actions.notice);
+    NetworkSettings s = network_panel_detail::current(panel);
 
     ImGui::TextUnformatted("Hidden layers");
     int remove = -1;
@@ -295,30 +295,30 @@ void drawNetworkPanel(WorkbenchState& state) {
         ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6);
         char label[32];
         std::snprintf(label, sizeof label, "layer %zu", i + 1);
-        if (ImGui::InputInt(label, &size, 1, 5)) resizeHiddenLayer(state, int(i), size);
+        if (ImGui::InputInt(label, &size, 1, 5)) resizeHiddenLayer(panel, int(i), size);
         ImGui::SameLine();
         ImGui::BeginDisabled(s.options.hidden.size() <= 1);
         if (ImGui::SmallButton("remove")) remove = int(i);
         ImGui::EndDisabled();
         ImGui::PopID();
     }
-    if (remove >= 0) removeHiddenLayer(state, remove);
+    if (remove >= 0) removeHiddenLayer(panel, remove);
     ImGui::BeginDisabled(int(s.options.hidden.size()) >= network_panel_detail::kMaxLayers);
-    if (ImGui::Button("Add layer")) addHiddenLayer(state);
+    if (ImGui::Button("Add layer")) addHiddenLayer(panel);
     ImGui::EndDisabled();
-    s = network_panel_detail::current(state);  // the layer edits above are stored already
+    s = network_panel_detail::current(panel);  // the layer edits above are stored already
 
     int activation = int(s.options.activation);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
     if (ImGui::Combo("activation", &activation, "tanh\0relu\0")) {
         s.options.activation = Activation(activation);
-        network_panel_detail::storeNetwork(state, s);
+        network_panel_detail::storeNetwork(panel, s);
     }
     int members = s.options.ensemble;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6);
     if (ImGui::InputInt("ensemble", &members, 1, 1)) {
-        setEnsemble(state, members);
-        s = network_panel_detail::current(state);
+        setEnsemble(panel, members);
+        s = network_panel_detail::current(panel);
     }
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("networks trained per leaf from different initial weights, merged into one network that "
@@ -329,14 +329,14 @@ void drawNetworkPanel(WorkbenchState& state) {
     ImGui::SetNextItemWidth(fittedComboWidth(targetItems));  // the longest entry is readable when chosen
     if (ImGui::Combo("targets", &targets, targetItems)) {
         s.options.targets = TargetMode(targets);
-        network_panel_detail::storeNetwork(state, s);
+        network_panel_detail::storeNetwork(panel, s);
     }
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("per object: one global net, one net per term (separate), or one 6-output net (joint)");
-    network_panel_detail::drawEncoding(state, s);
-    drawObjectNetworks(state, network_panel_detail::inputCount(state));
-    drawGlossyGather(state);
-    s = network_panel_detail::current(state);
+    network_panel_detail::drawEncoding(panel, s);
+    drawObjectNetworks(panel, network_panel_detail::inputCount(panel));
+    drawGlossyGather(panel);
+    s = network_panel_detail::current(panel);
 
     ImGui::Separator();
     ImGui::TextUnformatted("Partition (kd-tree of networks per object)");
@@ -344,28 +344,28 @@ void drawNetworkPanel(WorkbenchState& state) {
         // The records-per-weight bound counts the MLP's weights only (not an encoding's table entries);
         // unknown (-1) while the encoding does not fit the records (drawParameterCount says why).
         const EncodingSettingView view =
-            viewEncodingSetting(s.options.encoding, network_panel_detail::inputCount(state), s.options.inputs);
+            viewEncodingSetting(s.options.encoding, network_panel_detail::inputCount(panel), s.options.inputs);
         const long long weights =
-            view.fits ? (long long)network_panel_detail::networkArch(state, s, view.encoding).numParams() : -1;
+            view.fits ? (long long)network_panel_detail::networkArch(panel, s, view.encoding).numParams() : -1;
         PartitionSettings p = s.options.partition;
-        if (network_panel_detail::drawPartition(p, weights)) setPartition(state, p);
-        s = network_panel_detail::current(state);
+        if (network_panel_detail::drawPartition(p, weights)) setPartition(panel, p);
+        s = network_panel_detail::current(panel);
     }
 
     ImGui::Separator();
-    TrainerConfig t = network_panel_detail::currentTrainer(state);
+    TrainerConfig t = network_panel_detail::currentTrainer(panel);
     int trainer = int(t.type);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12);
     if (ImGui::Combo("trainer", &trainer, "Levenberg-Marquardt\0Adam\0")) {
-        setTrainerType(state, TrainerType(trainer));
-        t = network_panel_detail::currentTrainer(state);
+        setTrainerType(panel, TrainerType(trainer));
+        t = network_panel_detail::currentTrainer(panel);
     }
     const bool changed = t.type == TrainerType::Adam ? network_panel_detail::drawAdam(t.adam)
                                                      : network_panel_detail::drawLevenbergMarquardt(t.lm);
-    if (changed) network_panel_detail::storeTrainer(state, t);
+    if (changed) network_panel_detail::storeTrainer(panel, t);
 
     ImGui::Separator();
-    network_panel_detail::drawParameterCount(state, s);
+    network_panel_detail::drawParameterCount(panel, s);
 }
 
 }  // namespace rrf::panels

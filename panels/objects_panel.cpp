@@ -222,9 +222,9 @@ std::vector<PairedObjectRow> pairedObjectRows(const EvaluationInfo& a, const Eva
     return out;
 }
 
-std::string objectsTableMismatch(const WorkbenchState& state) {
-    const EvaluationInfo& e = state.evaluation;
-    if (state.view.compareSource == CompareSource::RunPair)
+std::string objectsTableMismatch(const ObjectsPanelView& panel) {
+    const EvaluationInfo& e = panel.evaluation;
+    if (panel.view.compareSource == CompareSource::RunPair)
         return "The Views show two runs: their per-object errors are in the table below.";
     if (!e.valid) return {};
     // "runs/x/models/" and "runs/x/models" are one directory.
@@ -234,12 +234,12 @@ std::string objectsTableMismatch(const WorkbenchState& state) {
     };
     // Models live in runs/<run id>/models: the run id names them.
     auto runOf = [&](const std::string& modelsDir) { return normal(modelsDir).parent_path().filename().string(); };
-    if (state.training.modelsDir.empty())
+    if (panel.modelsDir.empty())
         return "This table judged the models of " + runOf(e.modelsDir) + "; no models are loaded now.";
-    if (!e.modelsDir.empty() && normal(e.modelsDir) != normal(state.training.modelsDir))
+    if (!e.modelsDir.empty() && normal(e.modelsDir) != normal(panel.modelsDir))
         return "This table judged the models of " + runOf(e.modelsDir) + "; the prediction shows " +
-               runOf(state.training.modelsDir) + ". Press Evaluate for the models shown.";
-    if (state.view.compareSource == CompareSource::Run)
+               runOf(panel.modelsDir) + ". Press Evaluate for the models shown.";
+    if (panel.view.compareSource == CompareSource::Run)
         return "This table judged the prediction; the Views compare a saved run instead.";
     return {};
 }
@@ -280,20 +280,20 @@ void drawPairTable(const RunPair& p, Term term) {
 }  // namespace
 }  // namespace objects_panel_detail
 
-void drawObjectsPanel(WorkbenchState& state) {
-    objects_panel_detail::drawHeader(state.evaluation, state.view.term, !state.training.modelsDir.empty(), state.requests);
-    const std::string mismatch = objectsTableMismatch(state);
+void drawObjectsPanel(const ObjectsPanelView& panel) {
+    objects_panel_detail::drawHeader(panel.evaluation, panel.view.term, !panel.modelsDir.empty(), panel.actions.requests);
+    const std::string mismatch = objectsTableMismatch(panel);
     if (!mismatch.empty()) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", mismatch.c_str());
-    if (state.view.compareSource == CompareSource::RunPair) {
-        objects_panel_detail::drawPairTable(state.runPair, state.view.term);
+    if (panel.view.compareSource == CompareSource::RunPair) {
+        objects_panel_detail::drawPairTable(panel.runPair, panel.view.term);
         return;
     }
-    const EvaluationInfo& e = state.evaluation;
-    const int t = int(state.view.term);
+    const EvaluationInfo& e = panel.evaluation;
+    const int t = int(panel.view.term);
     if (!e.valid) return;
     if (!e.available[t]) {
         figureTextDisabled("The networks do not predict the %s term (see the Network panel's targets).",
-                           termName(state.view.term));
+                           termName(panel.view.term));
         return;
     }
     // Columns as wide as their content, the object column frozen while the figures scroll sideways
@@ -323,7 +323,7 @@ void drawObjectsPanel(WorkbenchState& state) {
                 ImGui::SetTooltip("FLIP: mean HDR-FLIP (Andersson et al.), the perceived difference in [0, 1], over the\n"
                                   "reference's exposure range; global term only (\"-\" for the others)");
         }
-    ObjectsView& v = state.objectsView;
+    ObjectsView& v = panel.objectsView;
     if (ImGuiTableSortSpecs* specs = ImGui::TableGetSortSpecs()) {
         if (specs->SpecsDirty && specs->SpecsCount > 0) {
             v.sortColumn = ObjectColumn(specs->Specs[0].ColumnUserID);
@@ -335,11 +335,11 @@ void drawObjectsPanel(WorkbenchState& state) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::PushID(r.objectId);
-        const bool selected = state.view.selectedObject == r.objectId;
+        const bool selected = panel.view.selectedObject == r.objectId;
         char label[96];
         std::snprintf(label, sizeof label, "#%d %s", r.objectId, r.name.c_str());
         if (ImGui::Selectable(label, selected, ImGuiSelectableFlags_SpanAllColumns))
-            state.view.selectedObject = selected ? -1 : r.objectId;  // click again to clear the highlight
+            panel.view.selectedObject = selected ? -1 : r.objectId;  // click again to clear the highlight
         ImGui::PopID();
         for (double value : objects_panel_detail::rmseFigures(r.stats)) {
             ImGui::TableNextColumn();
@@ -367,7 +367,7 @@ void drawObjectsPanel(WorkbenchState& state) {
         ImGui::TextDisabled("%s", noiseFigureText(value).c_str());
     }
     ImGui::TableNextColumn();
-    ImGui::TextDisabled("%s", objects_panel_detail::flipText(state.view.term == Term::Global ? e.flipHdr : std::nan("")).c_str());
+    ImGui::TextDisabled("%s", objects_panel_detail::flipText(panel.view.term == Term::Global ? e.flipHdr : std::nan("")).c_str());
     for (double value : {o.mae, o.maxError}) {
         ImGui::TableNextColumn();
         ImGui::TextDisabled("%.4g", value);

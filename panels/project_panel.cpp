@@ -123,10 +123,9 @@ struct RunsTableView {
     ShortRunNames& names;             ///< WorkbenchState::runNames: the names shown, kept between frames
     RunPair& pair;
     int compareRun;                   ///< index into runs shown in the compare view, -1 = none
-    std::vector<Request>& requests;   ///< WorkbenchState::requests
-    bool& dirty;                      ///< WorkbenchState::dirty
-    void request(Command c, int index = -1) { requests.push_back({c, {}, index}); }
-    void markDirty() { dirty = true; }
+    PanelActions actions;             ///< the panel's: requests, and the dirty flag a rename sets
+    void request(Command c, int index = -1) const { actions.request(c, {}, index); }
+    void markDirty() const { actions.markDirty(); }
 };
 
 /// Right-click menu of a run's row: rename it and the row's actions (also in the last column, which a
@@ -243,42 +242,42 @@ void drawRuns(RunsTableView& t) {
 }  // namespace
 }  // namespace project_panel_detail
 
-void drawProjectPanel(WorkbenchState& state) {
-    if (ImGui::Button("New")) state.request(Command::NewProject);
+void drawProjectPanel(const ProjectPanelView& panel) {
+    if (ImGui::Button("New")) panel.actions.request(Command::NewProject);
     ImGui::SameLine();
-    if (ImGui::Button("Open...")) state.request(Command::OpenProject);
+    if (ImGui::Button("Open...")) panel.actions.request(Command::OpenProject);
     ImGui::SameLine();
-    if (ImGui::Button("Save")) state.request(Command::SaveProject);
+    if (ImGui::Button("Save")) panel.actions.request(Command::SaveProject);
     ImGui::SameLine();
-    if (ImGui::Button("Save as...")) state.request(Command::SaveProjectAs);
+    if (ImGui::Button("Save as...")) panel.actions.request(Command::SaveProjectAs);
 
-    if (state.notice && state.notice->panel == "Project") drawNotice(state);
-    if (!state.hasProject) {
+    if (panel.actions.notice && panel.actions.notice->panel == "Project") drawNotice(panel.actions.notice);
+    if (!panel.hasProject) {
         ImGui::TextDisabled("No project is open.");
         return;
     }
     ImGui::Separator();
-    std::string name = state.projectName();
+    std::string name = projectDisplayName(panel.project, panel.hasProject);
     if (ImGui::InputText("name", &name)) {
-        state.project.name = name;
-        state.markDirty();
+        panel.project.name = name;
+        panel.actions.markDirty();
     }
-    figureTextDisabled("file   %s", state.project.path.empty() ? "(not saved yet)" : state.project.path.c_str());
-    figureTextDisabled("scene  %s", state.project.sceneRef.empty() ? "(embedded)" : state.project.sceneRef.c_str());
-    figureTextDisabled("%s", state.dirty ? "unsaved changes" : "saved");
+    figureTextDisabled("file   %s", panel.project.path.empty() ? "(not saved yet)" : panel.project.path.c_str());
+    figureTextDisabled("scene  %s", panel.project.sceneRef.empty() ? "(embedded)" : panel.project.sceneRef.c_str());
+    figureTextDisabled("%s", panel.actions.dirty ? "unsaved changes" : "saved");
 
     if (ImGui::CollapsingHeader("Ground-truth render", ImGuiTreeNodeFlags_DefaultOpen))
-        project_panel_detail::drawRenderSettings(state.project.render, state.project.scene, state.dirty);
+        project_panel_detail::drawRenderSettings(panel.project.render, panel.project.scene, panel.actions.dirty);
     if (ImGui::CollapsingHeader("Runs", ImGuiTreeNodeFlags_DefaultOpen)) {
-        project_panel_detail::RunsTableView runs{state.project.runs, state.runNames, state.runPair, state.compareRun,
-                                                 state.requests, state.dirty};
+        project_panel_detail::RunsTableView runs{panel.project.runs, panel.runNames, panel.runPair, panel.compareRun,
+                                                 panel.actions};
         project_panel_detail::drawRuns(runs);
     }
     if (ImGui::CollapsingHeader("Recent projects")) {
-        if (state.recent.empty()) ImGui::TextDisabled("(none)");
-        for (size_t i = 0; i < state.recent.size(); ++i) {
+        if (panel.recent.empty()) ImGui::TextDisabled("(none)");
+        for (size_t i = 0; i < panel.recent.size(); ++i) {
             ImGui::PushID(int(i));
-            if (ImGui::Selectable(state.recent[i].c_str())) state.request(Command::OpenProject, state.recent[i]);
+            if (ImGui::Selectable(panel.recent[i].c_str())) panel.actions.request(Command::OpenProject, panel.recent[i]);
             ImGui::PopID();
         }
     }

@@ -16,10 +16,10 @@ namespace rrf::panels {
 
 namespace sampling_panel_detail {
 namespace {
-void drawEstimate(const WorkbenchState& state, const SamplingSettings& s) {
+void drawEstimate(const Scene& scene, const SamplingSettings& s) {
     // Upper bounds: cells inside closed objects are dropped and escaping rays store nothing.
     const double records = double(s.cellCount()) * double(s.directions);
-    const int floats = RecordLayout::forScene(state.project.scene).floatsPerRecord();
+    const int floats = RecordLayout::forScene(scene).floatsPerRecord();
     const double bytes = records * floats * 4.0;
     figureText("at most %.3g records, %.3g MB (%d floats per record)", records, bytes / 1e6, floats);
 }
@@ -72,14 +72,14 @@ void drawCoverage(const DatasetInfo& d) {
 }  // namespace
 }  // namespace sampling_panel_detail
 
-void drawSamplingPanel(WorkbenchState& state) {
-    if (!state.hasProject) {
+void drawSamplingPanel(const SamplingPanelView& panel) {
+    if (!panel.hasProject) {
         ImGui::TextDisabled("No project is open.");
         return;
     }
-    drawSamplingPresets(state);
+    drawSamplingPresets(panel);
     // Edits a copy: a project without a sampling section keeps none until the user changes something.
-    SamplingSettings s = state.project.samplingOrDefault();
+    SamplingSettings s = panel.project.samplingOrDefault();
     bool changed = false;
     const float w = fieldWidth(ImGui::GetFontSize() * 10, "paths per record (first round)");  // the longest label
     int grid[3] = {s.nx, s.ny, s.nz};
@@ -114,27 +114,27 @@ void drawSamplingPanel(WorkbenchState& state) {
     changed |= ImGui::Checkbox("fixed light (ignore the light region)", &s.fixedLight);
     if (changed) {
         // A typed value outside a field's range is kept at the bound, and the Sampling panel says so.
-        const char* panel = "Sampling";
-        s.nx = clampWithNotice(state, panel, "the grid's cells per axis", s.nx, 1, kMaxGridCells);
-        s.ny = clampWithNotice(state, panel, "the grid's cells per axis", s.ny, 1, kMaxGridCells);
-        s.nz = clampWithNotice(state, panel, "the grid's cells per axis", s.nz, 1, kMaxGridCells);
-        s.directions = clampWithNotice(state, panel, "directions", s.directions, 1, kMaxDirections);
-        s.spp = clampWithNotice(state, panel, "paths per record (first round)", s.spp, 1, kMaxSamplesPerRecord);
-        s.maxSpp = clampWithNotice(state, panel, "max paths per record", s.maxSpp, 1, kMaxSamplesPerRecord);
-        state.project.sampling = s;
-        state.markDirty();
+        const char* tab = "Sampling";
+        s.nx = clampWithNotice(panel.actions, tab, "the grid's cells per axis", s.nx, 1, kMaxGridCells);
+        s.ny = clampWithNotice(panel.actions, tab, "the grid's cells per axis", s.ny, 1, kMaxGridCells);
+        s.nz = clampWithNotice(panel.actions, tab, "the grid's cells per axis", s.nz, 1, kMaxGridCells);
+        s.directions = clampWithNotice(panel.actions, tab, "directions", s.directions, 1, kMaxDirections);
+        s.spp = clampWithNotice(panel.actions, tab, "paths per record (first round)", s.spp, 1, kMaxSamplesPerRecord);
+        s.maxSpp = clampWithNotice(panel.actions, tab, "max paths per record", s.maxSpp, 1, kMaxSamplesPerRecord);
+        panel.project.sampling = s;
+        panel.actions.markDirty();
     }
-    const Bounds3& r = state.project.scene.lightRegion;
+    const Bounds3& r = panel.project.scene.lightRegion;
     if (!r.empty())
         figureTextDisabled("light region (%.2f, %.2f, %.2f) .. (%.2f, %.2f, %.2f)", r.lo.x, r.lo.y, r.lo.z, r.hi.x, r.hi.y,
                             r.hi.z);
-    sampling_panel_detail::drawEstimate(state, s);
+    sampling_panel_detail::drawEstimate(panel.project.scene, s);
 
-    if (!state.dataset.running) {
+    if (!panel.dataset.running) {
         // Refused at the button, before any work: the reason stays in sight while the settings change.
-        const std::string refusal = generateRefusal(state, s);
+        const std::string refusal = generateRefusal(panel.estimates, s);
         ImGui::BeginDisabled(!refusal.empty());
-        if (ImGui::Button("Generate dataset")) state.request(Command::Generate);
+        if (ImGui::Button("Generate dataset")) panel.actions.request(Command::Generate);
         ImGui::EndDisabled();
         if (!refusal.empty()) {
             ImGui::PushTextWrapPos(0.f);
@@ -142,15 +142,15 @@ void drawSamplingPanel(WorkbenchState& state) {
             ImGui::PopTextWrapPos();
         }
     } else {
-        if (ImGui::Button("Stop generating")) state.request(Command::CancelGenerate);
+        if (ImGui::Button("Stop generating")) panel.actions.request(Command::CancelGenerate);
         ImGui::SameLine();
-        ImGui::ProgressBar(float(state.dataset.progress), ImVec2(ImGui::GetFontSize() * 10, 0));
+        ImGui::ProgressBar(float(panel.dataset.progress), ImVec2(ImGui::GetFontSize() * 10, 0));
     }
-    if (state.notice && state.notice->panel == "Sampling") drawNotice(state);
+    if (panel.actions.notice && panel.actions.notice->panel == "Sampling") drawNotice(panel.actions.notice);
     if (ImGui::CollapsingHeader("Coverage per object", ImGuiTreeNodeFlags_DefaultOpen)) {
-        const std::string stale = datasetStaleReason(state.dataset, state.project);
+        const std::string stale = datasetStaleReason(panel.dataset, panel.project);
         if (!stale.empty()) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "%s", stale.c_str());
-        sampling_panel_detail::drawCoverage(state.dataset);
+        sampling_panel_detail::drawCoverage(panel.dataset);
     }
 }
 

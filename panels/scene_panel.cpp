@@ -16,8 +16,8 @@ namespace rrf::panels {
 
 namespace scene_panel_detail {
 namespace {
-void drawObjects(WorkbenchState& state) {
-    const Scene& scene = state.project.scene;
+void drawObjects(const ScenePanelView& panel) {
+    const Scene& scene = panel.project.scene;
     const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit;
     if (!ImGui::BeginTable("##objects", 5, flags)) return;
     // Columns fitted to their content: wrapping their text at the column's edge would keep them narrow.
@@ -33,9 +33,9 @@ void drawObjects(WorkbenchState& state) {
         ImGui::TableNextColumn();
         char id[16];
         std::snprintf(id, sizeof id, "%d", o.id);
-        const bool selected = state.view.selectedObject == o.id;
+        const bool selected = panel.selectedObject == o.id;
         if (ImGui::Selectable(id, selected, ImGuiSelectableFlags_SpanAllColumns))
-            state.view.selectedObject = selected ? -1 : o.id;  // click again to clear the highlight
+            panel.selectedObject = selected ? -1 : o.id;  // click again to clear the highlight
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(o.name.c_str());
         ImGui::TableNextColumn();
@@ -50,8 +50,8 @@ void drawObjects(WorkbenchState& state) {
     ImGui::EndTable();
 }
 
-void drawMaterials(WorkbenchState& state) {
-    const Scene& scene = state.project.scene;
+void drawMaterials(const ScenePanelView& panel) {
+    const Scene& scene = panel.project.scene;
     for (size_t i = 0; i < scene.materials.size(); ++i) {
         Material m = scene.materials[i];  // edited as a copy: editMaterial applies and records it
         ImGui::PushID(int(i));
@@ -62,9 +62,9 @@ void drawMaterials(WorkbenchState& state) {
             if (m.type == Material::Type::Phong || ks)
                 ex = ImGui::DragFloat("exponent", &m.exponent, 1.f, 0.f, 1e6f, "%.1f", ImGuiSliderFlags_Logarithmic);
             if (kd || ks || ex) {
-                if (editMaterial(state.project, int(i), m, kd)) ImGui::SetTooltip("kd + ks limited to 1 per channel");
-                state.markDirty();
-                state.request(Command::SceneChanged);
+                if (editMaterial(panel.project, int(i), m, kd)) ImGui::SetTooltip("kd + ks limited to 1 per channel");
+                panel.actions.markDirty();
+                panel.actions.request(Command::SceneChanged);
             }
             ImGui::TreePop();
         }
@@ -72,8 +72,8 @@ void drawMaterials(WorkbenchState& state) {
     }
 }
 
-void drawLights(WorkbenchState& state) {
-    const Scene& scene = state.project.scene;
+void drawLights(const ScenePanelView& panel) {
+    const Scene& scene = panel.project.scene;
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         const Light& l = scene.lights[i];
         const Vec3 c = l.center();
@@ -114,26 +114,26 @@ void drawLights(WorkbenchState& state) {
         moved = true;
     }
     if (moved) {
-        moveLight(state.project, p);
-        state.markDirty();
-        state.request(Command::SceneChanged);
+        moveLight(panel.project, p);
+        panel.actions.markDirty();
+        panel.actions.request(Command::SceneChanged);
     }
 }
 }  // namespace
 }  // namespace scene_panel_detail
 
-void drawScenePanel(WorkbenchState& state) {
-    if (!state.hasProject) {
+void drawScenePanel(const ScenePanelView& panel) {
+    if (!panel.hasProject) {
         ImGui::TextDisabled("No project is open.");
         return;
     }
-    const Scene& scene = state.project.scene;
+    const Scene& scene = panel.project.scene;
     figureTextDisabled("%s", scene.sourcePath.empty() ? "(embedded scene)" : scene.sourcePath.c_str());
     figureText("%zu objects, %zu materials, %zu lights, camera %dx%d", scene.objects.size(), scene.materials.size(),
                 scene.lights.size(), scene.camera.width, scene.camera.height);
-    if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) scene_panel_detail::drawObjects(state);
-    if (ImGui::CollapsingHeader("Materials", ImGuiTreeNodeFlags_DefaultOpen)) scene_panel_detail::drawMaterials(state);
-    if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) scene_panel_detail::drawLights(state);
+    if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) scene_panel_detail::drawObjects(panel);
+    if (ImGui::CollapsingHeader("Materials", ImGuiTreeNodeFlags_DefaultOpen)) scene_panel_detail::drawMaterials(panel);
+    if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) scene_panel_detail::drawLights(panel);
     if (ImGui::CollapsingHeader("Effects", ImGuiTreeNodeFlags_DefaultOpen)) {
         for (const std::string& line : Effects::derive(scene).describe()) {
             ImGui::Bullet();

@@ -51,18 +51,18 @@ std::string withoutNetworkText(const ImageSet& set, const Scene& scene) {
     return t + "): a partial model set";
 }
 
-int clampWithNotice(WorkbenchState& state, const char* panel, const std::string& what, int value, int lo, int hi) {
+int clampWithNotice(const PanelActions& actions, const char* panel, const std::string& what, int value, int lo, int hi) {
     const int kept = std::clamp(value, lo, hi);
     if (kept != value)
-        state.notify(LogLevel::Warning, panel,
+        actions.notify(LogLevel::Warning, panel,
                      what + " is " + std::to_string(lo) + " ... " + std::to_string(hi) + "; " + std::to_string(value) +
                          " was set to " + std::to_string(kept));
     return kept;
 }
 
-void drawNotice(WorkbenchState& state, bool wrap) {
-    if (!state.notice) return;
-    const Notice& n = *state.notice;
+void drawNotice(std::optional<Notice>& notice, bool wrap) {
+    if (!notice) return;
+    const Notice& n = *notice;
     // Errors red, warnings amber, a finished action (saved, exported, written) green.
     const ImVec4 colour = n.level == LogLevel::Error     ? ImVec4(1.f, 0.45f, 0.4f, 1.f)
                           : n.level == LogLevel::Warning ? ImVec4(1.f, 0.8f, 0.3f, 1.f)
@@ -77,7 +77,7 @@ void drawNotice(WorkbenchState& state, bool wrap) {
     if (wrap) ImGui::PopTextWrapPos();
     else if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", n.text.c_str());
     ImGui::PopID();
-    if (dismiss) state.notice.reset();
+    if (dismiss) notice.reset();
 }
 
 }  // namespace rrf::panels

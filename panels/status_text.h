@@ -4,6 +4,7 @@
 /// a cancelled render says "cancelled at 42/64 spp", a stopped training "stopped at epoch N, 2 of 14
 /// networks", and a coverage table whose dataset no longer matches the settings says why it is stale.
 
+#include <optional>
 #include <string>
 
 #include "panels/workbench_state.h"
@@ -27,15 +28,15 @@ std::string datasetStaleReason(const DatasetInfo& d, const Project& project);
 /// ...)" naming the objects of `set.withoutNetwork`; empty when every object has one.
 std::string withoutNetworkText(const ImageSet& set, const Scene& scene);
 
-/// Draws the state's notice (the newest problem the user has not dismissed) as a coloured line with
-/// a Dismiss button; nothing when there is none. The status bar and the panel the notice concerns
-/// both draw it, so an error shows where the user is looking and not only in the Log. `wrap`: wrap
+/// Draws `notice` (the newest problem the user has not dismissed; WorkbenchState::notice) as a
+/// coloured line with a Dismiss button, which clears it; nothing when there is none. The status bar
+/// and the panel the notice concerns both draw it, so an error shows where the user is looking and not only in the Log. `wrap`: wrap
 /// the text at the window's edge (panels); else one line with the whole text on hover (status bar).
-void drawNotice(WorkbenchState& state, bool wrap = true);
+void drawNotice(std::optional<Notice>& notice, bool wrap = true);
 
 /// `value` clamped to [lo, hi]; a value outside (typed into a field) also makes a warning notice on
 /// `panel` that names the setting, its bounds and what was kept ("hidden layer size is 1 ... 1024;
 /// 0 was set to 1"), so no bound is applied silently.
-int clampWithNotice(WorkbenchState& state, const char* panel, const std::string& what, int value, int lo, int hi);
+int clampWithNotice(const PanelActions& actions, const char* panel, const std::string& what, int value, int lo, int hi);
 
 }  // namespace rrf::panels

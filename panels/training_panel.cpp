@@ -25,28 +25,28 @@ struct Shown {
     std::string source;  ///< where the curves come from, for the header line
 };
 
-Shown shownCurves(const WorkbenchState& state) {
-    if (!state.training.curves.empty() || state.training.running)
-        return {&state.training.curves, state.training.running ? "live" : "this session"};
-    for (auto it = state.project.runs.rbegin(); it != state.project.runs.rend(); ++it)
+Shown shownCurves(const TrainingPanelView& panel) {
+    if (!panel.training.curves.empty() || panel.training.running)
+        return {&panel.training.curves, panel.training.running ? "live" : "this session"};
+    for (auto it = panel.runs.rbegin(); it != panel.runs.rend(); ++it)
         if (it->kind == "train" && !it->curves.empty()) return {&it->curves, "run '" + it->name + "'"};
-    return {&state.training.curves, ""};
+    return {&panel.training.curves, ""};
 }
 
-void drawToolbar(WorkbenchState& state) {
-    const TrainingInfo& t = state.training;
+void drawToolbar(const TrainingPanelView& panel) {
+    const TrainingInfo& t = panel.training;
     if (!t.running) {
-        ImGui::BeginDisabled(!state.hasProject);
-        if (ImGui::Button("Train")) state.request(Command::Train);
+        ImGui::BeginDisabled(!panel.hasProject);
+        if (ImGui::Button("Train")) panel.actions.request(Command::Train);
         ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
             ImGui::SetTooltip("trains the Network panel's networks on the Sampling panel's dataset");
     } else if (ImGui::Button("Stop")) {
-        state.request(Command::CancelTrain);
+        panel.actions.request(Command::CancelTrain);
     }
     ImGui::SameLine();
     ImGui::BeginDisabled(t.running || t.modelsDir.empty());
-    if (ImGui::Button("Evaluate")) state.request(Command::Evaluate);
+    if (ImGui::Button("Evaluate")) panel.actions.request(Command::Evaluate);
     ImGui::EndDisabled();
     if (t.running || t.epoch > 0) {
         const std::string overlay = trainingProgressText(t);
@@ -62,11 +62,11 @@ void drawToolbar(WorkbenchState& state) {
     // The toolbar wraps in a narrow pane instead of cutting the checkboxes off.
     const float box = ImGui::GetFrameHeight();
     sameLineIfFits(labelledWidth(box, "mean of all networks"));
-    ImGui::Checkbox("mean of all networks", &state.trainingView.aggregate);
+    ImGui::Checkbox("mean of all networks", &panel.trainingView.aggregate);
     sameLineIfFits(labelledWidth(box, "train"));
-    ImGui::Checkbox("train", &state.trainingView.showTrain);
+    ImGui::Checkbox("train", &panel.trainingView.showTrain);
     sameLineIfFits(labelledWidth(box, "validation"));
-    ImGui::Checkbox("validation", &state.trainingView.showValidation);
+    ImGui::Checkbox("validation", &panel.trainingView.showValidation);
 }
 
 /// Finds the displayed point nearest to the mouse (within a few pixels) and shows its values.
@@ -114,22 +114,22 @@ void drawCurve(ImDrawList* dl, const std::vector<LossPoint>& pts, bool validatio
 }
 
 /// After a stop: what the prediction shows, and the choice of the partial models.
-void drawStoppedChoice(WorkbenchState& state) {
-    const TrainingInfo& t = state.training;
-    if (t.running || !t.stopped || t.partialRun < 0 || t.partialRun >= int(state.project.runs.size())) return;
+void drawStoppedChoice(const TrainingPanelView& panel) {
+    const TrainingInfo& t = panel.training;
+    if (t.running || !t.stopped || t.partialRun < 0 || t.partialRun >= int(panel.runs.size())) return;
     figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "Training %s.", trainingProgressText(t).c_str());
     ImGui::SameLine();
     ImGui::TextDisabled(t.modelsDir.empty() ? "No prediction is shown." : "The prediction keeps the last complete models.");
     ImGui::SameLine();
-    if (ImGui::SmallButton("Use the partial models")) state.request(Command::CompareRun, {}, t.partialRun);
+    if (ImGui::SmallButton("Use the partial models")) panel.actions.request(Command::CompareRun, {}, t.partialRun);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("show the stopped run's networks; objects without one are drawn hatched magenta");
 }
 
-void drawTrainingBody(WorkbenchState& state) {
-    TrainingView& v = state.trainingView;
+void drawTrainingBody(const TrainingPanelView& panel) {
+    TrainingView& v = panel.trainingView;
     v.hoverCurve = v.hoverEpoch = -1;
-    const Shown shown = shownCurves(state);
+    const Shown shown = shownCurves(panel);
     std::vector<LossCurve> mean;
     if (v.aggregate && !shown.curves->empty()) {
         LossCurve c;
@@ -184,7 +184,7 @@ void drawTrainingBody(WorkbenchState& state) {
     drawAxes(dl, pmin, pmax, x, y, "epoch", "loss (normalised units)");
     if (curves.empty()) {
         dl->AddText(ImVec2(pmin.x + font, pmin.y + font * 1.5f), IM_COL32(170, 170, 170, 255),
-                    state.hasProject ? "No training yet: generate a dataset, then press Train." : "No project is open.");
+                    panel.hasProject ? "No training yet: generate a dataset, then press Train." : "No project is open.");
         return;
     }
     dl->PushClipRect(pmin, pmax, true);
@@ -209,11 +209,11 @@ void drawTrainingBody(WorkbenchState& state) {
 }  // namespace
 }  // namespace training_panel_detail
 
-void drawTrainingPanel(WorkbenchState& state) {
-    training_panel_detail::drawToolbar(state);
-    if (state.notice && state.notice->panel == "Training") drawNotice(state);
-    training_panel_detail::drawStoppedChoice(state);
-    training_panel_detail::drawTrainingBody(state);
+void drawTrainingPanel(const TrainingPanelView& panel) {
+    training_panel_detail::drawToolbar(panel);
+    if (panel.actions.notice && panel.actions.notice->panel == "Training") drawNotice(panel.actions.notice);
+    training_panel_detail::drawStoppedChoice(panel);
+    training_panel_detail::drawTrainingBody(panel);
 }
 
 }  // namespace rrf::panels

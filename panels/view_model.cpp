@@ -217,10 +217,12 @@ ViewsLayout viewsLayout(ImVec2 avail, ImVec2 spacing, float line, const Image& i
     return l;
 }
 
-bool spreadShown(const WorkbenchState& s) {
-    return s.view.spread && s.view.compareSource == CompareSource::Prediction &&
-           s.view.spreadMap.matches(s.prediction.revision) && !s.view.spreadMap.map.empty();
+bool spreadShown(const ViewState& view, const ImageSet& prediction) {
+    return view.spread && view.compareSource == CompareSource::Prediction && view.spreadMap.matches(prediction.revision) &&
+           !view.spreadMap.map.empty();
 }
+
+bool spreadShown(const WorkbenchState& s) { return spreadShown(s.view, s.prediction); }
 
 void ViewModel::update(WorkbenchState& s) {
     Key k;

@@ -85,6 +85,8 @@ ViewsLayout viewsLayout(ImVec2 avail, ImVec2 spacing, float line, const Image& i
 
 /// Whether the compared view shows the spread map: it is on, the compared image is the live
 /// prediction, and the map was made for exactly that prediction.
+bool spreadShown(const ViewState& view, const ImageSet& prediction);
+/// spreadShown for the state's view settings and prediction.
 bool spreadShown(const WorkbenchState& state);
 
 /// One displayable image.

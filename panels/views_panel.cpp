@@ -64,8 +64,8 @@ constexpr const char* kFlipLabel = "FLIP: HDR-FLIP, perceived difference in [0, 
 const char* errorViewLabel(const ViewState& v) { return v.flip ? kFlipLabel : errorMapLabel(v.metric); }
 
 /// True when the FLIP map on hand was computed from the images on screen.
-bool flipShown(const WorkbenchState& state) {
-    return state.view.flip && state.view.flipMap.matches(state.reference().revision, state.compared().revision, state.view.term);
+bool flipShown(const ViewsPanelView& panel) {
+    return panel.view.flip && panel.view.flipMap.matches(panel.reference().revision, panel.compared().revision, panel.view.term);
 }
 
 /// Screen mapping of one view: image pixel q ↦ centre + (q − imageCentre − pan) · scale.
@@ -199,9 +199,9 @@ void drawToolbar(ViewState& v, const RenderProgress& r, std::vector<Request>& re
 /// The movable light's handle where its centre projects into view `r`: a drag moves the light in the
 /// plane facing the camera (Shift: the horizontal plane, keeping its height) within the light region,
 /// as the Scene panel's sliders do.
-void lightHandle(WorkbenchState& state, int index, const ViewRect& r, const Image& image, bool activated, bool active) {
-    ViewState& v = state.view;
-    const Scene& scene = state.project.scene;
+void lightHandle(const ViewsPanelView& panel, int index, const ViewRect& r, const Image& image, bool activated, bool active) {
+    ViewState& v = panel.view;
+    const Scene& scene = panel.project.scene;
     v.lightHandle[index] = ImVec2(NAN, NAN);
     if (scene.lights.empty() || scene.lightRegion.empty()) return;
     const ImGuiIO& io = ImGui::GetIO();
@@ -211,9 +211,9 @@ void lightHandle(WorkbenchState& state, int index, const ViewRect& r, const Imag
         const Vec3 p = lightUnderPointer(scene.camera, image.width, image.height, q.x, q.y, v.lightDragStart, plane,
                                          scene.lightRange());
         if (p != scene.lightPosition()) {
-            moveLight(state.project, p);
-            state.markDirty();
-            state.request(Command::SceneChanged);
+            moveLight(panel.project, p);
+            panel.actions.markDirty();
+            panel.actions.request(Command::SceneChanged);
         }
     } else if (v.lightDragView == index) {
         v.lightDragView = -1;
@@ -239,8 +239,8 @@ void lightHandle(WorkbenchState& state, int index, const ViewRect& r, const Imag
 }
 
 /// Draws one view and handles zoom/pan on it; returns true while the mouse is over it.
-bool drawView(WorkbenchState& state, int index, const char* title, const Image& image, ImVec2 size, ImVec2& hoverPixel) {
-    ViewState& v = state.view;
+bool drawView(const ViewsPanelView& panel, int index, const char* title, const Image& image, ImVec2 size, ImVec2& hoverPixel) {
+    ViewState& v = panel.view;
     ImGui::PushID(index);
     ImGui::BeginGroup();
     // A long title wraps within its view rather than running under the next one.
@@ -284,13 +284,13 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
         const ImVec2 a = r.toScreen(0.f, 0.f, v);
         const ImVec2 b = r.toScreen(float(image.width), float(image.height), v);
         dl->PushClipRect(r.min, r.max, true);
-        if (state.viewTextures[index]) dl->AddImage(state.viewTextures[index], a, b);
+        if (panel.viewTextures[index]) dl->AddImage(panel.viewTextures[index], a, b);
         else dl->AddRect(a, b, IM_COL32(200, 200, 200, 255));  // no GL (tests): outline only
         if (!v.region.empty())
             dl->AddRect(r.toScreen(float(v.region.x0), float(v.region.y0), v), r.toScreen(float(v.region.x1), float(v.region.y1), v),
                         IM_COL32(255, 220, 60, 255), 0.f, 0, 2.f);
         dl->PopClipRect();
-        lightHandle(state, index, r, image, activated, active);
+        lightHandle(panel, index, r, image, activated, active);
         if (hovered) {
             const ImVec2 q = r.toImage(io.MousePos, v);
             if (q.x >= 0.f && q.y >= 0.f && q.x < float(image.width) && q.y < float(image.height)) {
@@ -299,11 +299,11 @@ bool drawView(WorkbenchState& state, int index, const char* title, const Image& 
             }
         }
     } else {
-        const Image& gt = state.reference().term(v.term);
-        const Image& cmp = state.compared().term(v.term);
+        const Image& gt = panel.reference().term(v.term);
+        const Image& cmp = panel.compared().term(v.term);
         const bool flipPending = v.flip && !gt.empty() && cmp.width == gt.width && cmp.height == gt.height;
         const char* msg = index == ViewModel::kCompared
-                              ? (state.view.compareSource == CompareSource::Prediction
+                              ? (panel.view.compareSource == CompareSource::Prediction
                                      ? "No prediction yet: generate a dataset\n(Sampling) and train (Training)."
                                      : "No run compared: \"Compare\" a run\nin the Project panel.")
                               : index == ViewModel::kError ? (flipPending ? "FLIP: computing the map\nof these images..."
@@ -347,8 +347,8 @@ void drawHistogram(const ViewState& v, float width) {
 }
 
 /// The region of interest's figures (every metric over its kept pixels) and a button to clear it.
-void drawRegionFigures(WorkbenchState& state) {
-    ViewState& v = state.view;
+void drawRegionFigures(const ViewsPanelView& panel) {
+    ViewState& v = panel.view;
     if (v.region.empty()) return;
     const ViewRegion& g = v.region;
     figureText("region (%d, %d)-(%d, %d):", g.x0, g.y0, g.x1 - 1, g.y1 - 1);
@@ -370,9 +370,9 @@ void drawRegionFigures(WorkbenchState& state) {
 }
 
 /// The figures of the error map: `rrf evaluate`'s overall row for the term, and what it leaves out.
-void drawErrorFigures(WorkbenchState& state) {
-    const ViewErrorStats& f = state.view.errorStats;
-    if (!f.valid && state.view.compareSource == CompareSource::RunPair) {
+void drawErrorFigures(const ViewsPanelView& panel) {
+    const ViewErrorStats& f = panel.view.errorStats;
+    if (!f.valid && panel.view.compareSource == CompareSource::RunPair) {
         figureTextDisabled("Run pair: the error map is |B - A|, prediction against prediction (no noise floor).");
         return;
     }
@@ -381,24 +381,24 @@ void drawErrorFigures(WorkbenchState& state) {
         return;
     }
     if (!f.valid) {
-        figureTextDisabled(state.groundTruth.footprint ? "Error figures: need a compared image of the ground truth's size."
+        figureTextDisabled(panel.images.groundTruth.footprint ? "Error figures: need a compared image of the ground truth's size."
                                                         : "Error figures: need the ground truth's footprint mask (render it).");
         return;
     }
     const ErrorStats& e = f.stats;
     figureText("%s term, %llu pixels: rel. RMSE %.4g (noise floor %s, corrected (noise subtracted) %s)  RMSE %.4g "
                 "(noise floor %s, corrected %s)  MAE %.4g",
-                termName(state.view.term), (unsigned long long)e.pixels, e.relativeRmse,
+                termName(panel.view.term), (unsigned long long)e.pixels, e.relativeRmse,
                 noiseFigureText(e.relativeRmseNoiseFloor).c_str(), noiseFigureText(e.relativeRmseCorrected).c_str(), e.rmse,
                 noiseFigureText(e.rmseNoiseFloor).c_str(), noiseFigureText(e.rmseCorrected).c_str(), e.mae);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("the figures rrf evaluate reports for all objects (per channel, footprint mask's pixels);\n"
                           "noise floor: what the ground truth's own noise gives; corrected: that noise subtracted");
     figureTextDisabled("hatched: %s", f.left.describe().c_str());
-    drawRegionFigures(state);
-    if (!state.view.flip) return;
-    const FlipViewMap& m = state.view.flipMap;
-    if (!flipShown(state)) {
+    drawRegionFigures(panel);
+    if (!panel.view.flip) return;
+    const FlipViewMap& m = panel.view.flipMap;
+    if (!flipShown(panel)) {
         figureTextDisabled("FLIP: computing the map of these images...");
         return;
     }
@@ -447,42 +447,43 @@ void drawLegend(const ViewState& v, float width) {
     ImGui::TextUnformatted(hi);
 }
 
-std::string objectUnder(const WorkbenchState& state, int px, int py, int width, int height) {
-    if (!state.pickAccel) return "?";
-    const Scene& scene = state.project.scene;
+std::string objectUnder(const ViewsPanelView& panel, int px, int py, int width, int height) {
+    if (!panel.pickAccel) return "?";
+    const Scene& scene = panel.project.scene;
     CameraRays camera(scene.camera, width, height);
     Hit hit;
-    if (!state.pickAccel->intersect(camera.generate(px, py, 0.5f, 0.5f), hit)) return "(background)";
+    if (!panel.pickAccel->intersect(camera.generate(px, py, 0.5f, 0.5f), hit)) return "(background)";
     if (hit.light >= 0 && hit.light < int(scene.lights.size())) return "light '" + scene.lights[size_t(hit.light)].name + "'";
     if (hit.object >= 0 && hit.object < int(scene.objects.size()))
         return "#" + std::to_string(hit.object) + " " + scene.objects[size_t(hit.object)].name;
     return "?";
 }
 
-void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp) {
-    const ViewState& v = state.view;
+void drawReadout(const ViewsPanelView& panel, const Image& ref, const Image& cmp) {
+    const ViewState& v = panel.view;
     if (v.hoverX < 0 || ref.empty() || v.hoverX >= ref.width || v.hoverY >= ref.height) {
         figureTextDisabled("Hover a view for pixel values; wheel zooms, drag pans, right-drag marks a region.");
         return;
     }
     const Vec3 r = ref.at(v.hoverX, v.hoverY);
-    figureText("pixel (%d, %d)  %s", v.hoverX, v.hoverY, objectUnder(state, v.hoverX, v.hoverY, ref.width, ref.height).c_str());
+    figureText("pixel (%d, %d)  %s", v.hoverX, v.hoverY, objectUnder(panel, v.hoverX, v.hoverY, ref.width, ref.height).c_str());
     figureText("%s (%.4g, %.4g, %.4g)", v.compareSource == CompareSource::RunPair ? "A" : "ground truth", r.x, r.y, r.z);
     if (!cmp.empty() && v.hoverX < cmp.width && v.hoverY < cmp.height) {
         const Vec3 c = cmp.at(v.hoverX, v.hoverY);
         ImGui::SameLine();
         figureText("  compared (%.4g, %.4g, %.4g)", c.x, c.y, c.z);
-        if (spreadShown(state) && v.hoverX < state.view.spreadMap.map.width && v.hoverY < state.view.spreadMap.map.height) {
+        if (spreadShown(panel.view, panel.images.prediction) && v.hoverX < panel.view.spreadMap.map.width &&
+            v.hoverY < panel.view.spreadMap.map.height) {
             ImGui::SameLine();
-            figureText("  spread %.4g", state.view.spreadMap.map.at(v.hoverX, v.hoverY).x);
+            figureText("  spread %.4g", panel.view.spreadMap.map.at(v.hoverX, v.hoverY).x);
         }
         if (cmp.width == ref.width && cmp.height == ref.height) {
             ImGui::SameLine();
             if (!v.flip) figureText("  error %.4g", pixelError(c, r, v.metric));
-            else if (flipShown(state) && v.hoverX < state.view.flipMap.map.width && v.hoverY < state.view.flipMap.map.height)
-                figureText("  FLIP %.4g", state.view.flipMap.map.at(v.hoverX, v.hoverY).x);
+            else if (flipShown(panel) && v.hoverX < panel.view.flipMap.map.width && v.hoverY < panel.view.flipMap.map.height)
+                figureText("  FLIP %.4g", panel.view.flipMap.map.at(v.hoverX, v.hoverY).x);
             else figureTextDisabled("  FLIP computing");
-            const FootprintMask* mask = state.groundTruth.footprint.get();
+            const FootprintMask* mask = panel.images.groundTruth.footprint.get();
             const size_t i = size_t(v.hoverY) * size_t(ref.width) + size_t(v.hoverX);
             if (mask && mask->width == ref.width && mask->height == ref.height && !mask->isKept(i)) {
                 ImGui::SameLine();
@@ -494,53 +495,53 @@ void drawReadout(const WorkbenchState& state, const Image& ref, const Image& cmp
 }  // namespace
 }  // namespace views_panel_detail
 
-void drawViewsPanel(WorkbenchState& state) {
-    ViewState& v = state.view;
+void drawViewsPanel(const ViewsPanelView& panel) {
+    ViewState& v = panel.view;
     v.drawnFrame = ImGui::GetFrameCount();
     for (int i = 0; i < 3; ++i) {
         v.viewMin[i] = v.viewMax[i] = ImVec2(0, 0);
         v.lightHandle[i] = ImVec2(NAN, NAN);  // a view not drawn (single view) has no handle on screen
     }
     ImGui::BeginGroup();
-    views_panel_detail::drawToolbar(v, state.render, state.requests);
+    views_panel_detail::drawToolbar(v, panel.render, panel.actions.requests);
     ImGui::EndGroup();
     v.toolbarMin = ImGui::GetItemRectMin();
     v.toolbarMax = ImGui::GetItemRectMax();
-    if (state.notice && state.notice->panel == "Views") drawNotice(state);
-    const Image& ref = state.reference().term(state.view.term);
-    const Image& cmp = state.compared().term(state.view.term);
-    const bool pair = state.view.compareSource == CompareSource::RunPair;
+    if (panel.actions.notice && panel.actions.notice->panel == "Views") drawNotice(panel.actions.notice);
+    const Image& ref = panel.reference().term(panel.view.term);
+    const Image& cmp = panel.compared().term(panel.view.term);
+    const bool pair = panel.view.compareSource == CompareSource::RunPair;
     if (pair) {
         figureTextColored(ImVec4(0.5f, 0.8f, 1.f, 1.f), "Comparing run A '%s' | run B '%s' | difference B - A",
-                           state.runPair.nameA.c_str(), state.runPair.nameB.c_str());
+                           panel.images.runPair.nameA.c_str(), panel.images.runPair.nameB.c_str());
         ImGui::SameLine();
-        if (ImGui::SmallButton("Back to the ground truth")) state.view.compareSource = CompareSource::Prediction;
+        if (ImGui::SmallButton("Back to the ground truth")) panel.view.compareSource = CompareSource::Prediction;
     }
-    const ImageSet& compared = state.compared();
+    const ImageSet& compared = panel.compared();
     // The histogram takes its height from the views (in a row it sits under them with the figures).
     ImVec2 avail = ImGui::GetContentRegionAvail();
-    if (state.view.histogram) avail.y -= views_panel_detail::histogramHeight();
+    if (panel.view.histogram) avail.y -= views_panel_detail::histogramHeight();
     const ViewsLayout layout = viewsLayout(avail, ImGui::GetStyle().ItemSpacing,
                                            ImGui::GetTextLineHeightWithSpacing(), ref.empty() ? cmp : ref);
     const ImVec2 size = layout.view;
 
     char gtTitle[160];
-    if (pair) std::snprintf(gtTitle, sizeof gtTitle, "A: %s", state.runPair.imagesA.label.c_str());
-    else std::snprintf(gtTitle, sizeof gtTitle, "Ground truth (%s, %d spp)", termName(state.view.term), state.render.spp);
-    std::string cmpTitle = compared.empty() ? std::string(state.view.compareSource == CompareSource::Run ? "Compared run" : "Prediction")
+    if (pair) std::snprintf(gtTitle, sizeof gtTitle, "A: %s", panel.images.runPair.imagesA.label.c_str());
+    else std::snprintf(gtTitle, sizeof gtTitle, "Ground truth (%s, %d spp)", termName(panel.view.term), panel.render.spp);
+    std::string cmpTitle = compared.empty() ? std::string(panel.view.compareSource == CompareSource::Run ? "Compared run" : "Prediction")
                                             : compared.label;
-    if (spreadShown(state)) {
+    if (spreadShown(panel.view, panel.images.prediction)) {
         char t[160];
-        std::snprintf(t, sizeof t, "Ensemble spread (global term, relative, 0 to %.3g)", state.view.spreadMap.scale);
+        std::snprintf(t, sizeof t, "Ensemble spread (global term, relative, 0 to %.3g)", panel.view.spreadMap.scale);
         cmpTitle = t;
     }
     const std::string errTitle =
-        std::string(pair ? "Difference B vs A: " : "Error: ") + views_panel_detail::errorViewLabel(state.view);
+        std::string(pair ? "Difference B vs A: " : "Error: ") + views_panel_detail::errorViewLabel(panel.view);
 
     ImVec2 hover(-1, -1);
     static const Image kNoImage;
     const bool comparable = !cmp.empty() && cmp.width == ref.width && cmp.height == ref.height;
-    const bool errorShown = comparable && (!state.view.flip || views_panel_detail::flipShown(state));
+    const bool errorShown = comparable && (!panel.view.flip || views_panel_detail::flipShown(panel));
     bool over = false;
     if (layout.single) {
         // Too little room for three readable views: one at a time, the others a click away.
@@ -551,22 +552,22 @@ void drawViewsPanel(WorkbenchState& state) {
         }
         v.singleView = std::clamp(v.singleView, 0, 2);
         if (v.singleView == ViewModel::kReference)
-            over = views_panel_detail::drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
+            over = views_panel_detail::drawView(panel, ViewModel::kReference, gtTitle, ref, size, hover);
         else if (v.singleView == ViewModel::kCompared)
-            over = views_panel_detail::drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
+            over = views_panel_detail::drawView(panel, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
         else
-            over = views_panel_detail::drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size,
+            over = views_panel_detail::drawView(panel, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size,
                                                 hover);
     } else {
-        over = views_panel_detail::drawView(state, ViewModel::kReference, gtTitle, ref, size, hover);
+        over = views_panel_detail::drawView(panel, ViewModel::kReference, gtTitle, ref, size, hover);
         ImGui::SameLine();
-        over |= views_panel_detail::drawView(state, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
+        over |= views_panel_detail::drawView(panel, ViewModel::kCompared, cmpTitle.c_str(), cmp, size, hover);
         if (!layout.grid) ImGui::SameLine();
         over |=
-            views_panel_detail::drawView(state, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
+            views_panel_detail::drawView(panel, ViewModel::kError, errTitle.c_str(), errorShown ? ref : kNoImage, size, hover);
     }
-    state.view.hoverX = over ? int(hover.x) : -1;
-    state.view.hoverY = over ? int(hover.y) : -1;
+    panel.view.hoverX = over ? int(hover.x) : -1;
+    panel.view.hoverY = over ? int(hover.y) : -1;
 
     // In the grid the figures fill the cell beside the error map; in a row they go below.
     if (layout.grid) {
@@ -574,22 +575,22 @@ void drawViewsPanel(WorkbenchState& state) {
         ImGui::BeginGroup();
         ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + size.x);
     }
-    views_panel_detail::drawErrorFigures(state);
-    if (state.view.spread) {
-        const SpreadViewMap& m = state.view.spreadMap;
-        if (state.view.compareSource != CompareSource::Prediction)
+    views_panel_detail::drawErrorFigures(panel);
+    if (panel.view.spread) {
+        const SpreadViewMap& m = panel.view.spreadMap;
+        if (panel.view.compareSource != CompareSource::Prediction)
             figureTextDisabled("Spread: shown for the live prediction only (middle view: prediction).");
-        else if (!m.matches(state.prediction.revision)) figureTextDisabled("Spread: computing on the CPU...");
+        else if (!m.matches(panel.images.prediction.revision)) figureTextDisabled("Spread: computing on the CPU...");
         else if (!m.why.empty()) figureTextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "Spread: %s", m.why.c_str());
         else figureTextDisabled("Spread: %llu pixels, viridis over [0, %.3g] (p99); 0 where none is known",
                                  (unsigned long long)m.pixels, m.scale);
     }
-    const std::string partial = withoutNetworkText(compared, state.project.scene);
+    const std::string partial = withoutNetworkText(compared, panel.project.scene);
     if (!partial.empty()) figureTextColored(ImVec4(1.f, 0.3f, 1.f, 1.f), "%s", partial.c_str());
-    views_panel_detail::drawReadout(state, ref, cmp);
-    views_panel_detail::drawLegend(state.view, std::min(size.x, ImGui::GetFontSize() * 18));
-    if (state.view.histogram)
-        views_panel_detail::drawHistogram(state.view,
+    views_panel_detail::drawReadout(panel, ref, cmp);
+    views_panel_detail::drawLegend(panel.view, std::min(size.x, ImGui::GetFontSize() * 18));
+    if (panel.view.histogram)
+        views_panel_detail::drawHistogram(panel.view,
                                           std::min(std::max(size.x, ImGui::GetFontSize() * 20), ImGui::GetFontSize() * 30));
     if (layout.grid) {
         ImGui::PopTextWrapPos();

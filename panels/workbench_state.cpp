@@ -5,7 +5,7 @@
 
 namespace rrf::panels {
 
-std::string WorkbenchState::projectName() const {
+std::string projectDisplayName(const Project& project, bool hasProject) {
     if (!hasProject) return "untitled";
     if (!project.name.empty()) return project.name;
     if (!project.path.empty()) return std::filesystem::path(project.path).stem().string();

@@ -307,6 +307,52 @@ struct LightRegionInfo {
     int object = -1;                     ///< shown: -1 the global figure, else an object id
 };
 
+/// Where a panel's actions and edits go, and nothing else of the state: the application's request
+/// queue, the unsaved-changes flag, the Log and the notice. Panels that ask for work or edit the
+/// project get one in their view (panels/panel_views.h); WorkbenchState's own request() and
+/// notify() go through it, so there is one definition of each.
+struct PanelActions {
+    std::vector<Request>& requests;
+    bool& dirty;
+    Log& log;
+    std::optional<Notice>& notice;
+
+    void request(Command c, std::string path = {}, int index = -1) const {
+        requests.push_back({c, std::move(path), index});
+    }
+    void markDirty() const { dirty = true; }
+    /// Logs `text` and makes it the notice shown in the status bar and in `panel`.
+    void notify(LogLevel level, const std::string& panel, const std::string& text) const {
+        log.add(level, text);
+        notice = Notice{level, panel, text};
+    }
+};
+
+/// The image sets the three views choose from, and the choice between them: which set is the
+/// reference (left view) and which the compared one (middle view) for a CompareSource. One
+/// definition for WorkbenchState and the Views panel's view.
+struct ViewImages {
+    const ImageSet& groundTruth;
+    const ImageSet& compare;
+    const ImageSet& prediction;
+    const RunPair& runPair;
+
+    /// The images of the middle view: the prediction, the compared run, or run B of a pair.
+    const ImageSet& compared(CompareSource source) const {
+        return source == CompareSource::Run       ? compare
+               : source == CompareSource::RunPair ? runPair.imagesB
+                                                  : prediction;
+    }
+    /// The images of the left view, what the error map measures against: the ground truth, or run A
+    /// of a pair.
+    const ImageSet& reference(CompareSource source) const {
+        return source == CompareSource::RunPair ? runPair.imagesA : groundTruth;
+    }
+};
+
+/// Name for titles: the project's name, else its file name, else "untitled" (also without a project).
+std::string projectDisplayName(const Project& project, bool hasProject);
+
 struct WorkbenchState {
     /// The open project: its typed sections (settings, runs, pane layout, scene overrides) are what
     /// the panels edit.
@@ -355,27 +401,20 @@ struct WorkbenchState {
     /// A tab the application wants in front ("Training", "Objects", ...); cleared once shown.
     std::string focusTab;
 
-    void request(Command c, std::string path = {}, int index = -1) {
-        requests.push_back({c, std::move(path), index});
-    }
+    /// The request queue, dirty flag, Log and notice as a panel's view holds them.
+    PanelActions actions() { return {requests, dirty, log, notice}; }
+    void request(Command c, std::string path = {}, int index = -1) { actions().request(c, std::move(path), index); }
     void markDirty() { dirty = true; }
     /// Logs `text` and makes it the notice shown in the status bar and in `panel`.
-    void notify(LogLevel level, const std::string& panel, const std::string& text) {
-        log.add(level, text);
-        notice = Notice{level, panel, text};
-    }
-    /// Name for titles: the project's name, else its file name, else "untitled".
-    std::string projectName() const;
-    /// The images of the middle view (the prediction, the compared run, or run B of a pair, per
-    /// view.compareSource).
-    const ImageSet& compared() const {
-        return view.compareSource == CompareSource::Run       ? compare
-               : view.compareSource == CompareSource::RunPair ? runPair.imagesB
-                                                              : prediction;
-    }
-    /// The images of the left view, what the error map measures against: the ground truth, or run A
-    /// of a pair.
-    const ImageSet& reference() const { return view.compareSource == CompareSource::RunPair ? runPair.imagesA : groundTruth; }
+    void notify(LogLevel level, const std::string& panel, const std::string& text) { actions().notify(level, panel, text); }
+    /// Name for titles (projectDisplayName).
+    std::string projectName() const { return projectDisplayName(project, hasProject); }
+    /// The image sets the views choose from.
+    ViewImages images() const { return {groundTruth, compare, prediction, runPair}; }
+    /// The images of the middle view (ViewImages::compared for view.compareSource).
+    const ImageSet& compared() const { return images().compared(view.compareSource); }
+    /// The images of the left view (ViewImages::reference for view.compareSource).
+    const ImageSet& reference() const { return images().reference(view.compareSource); }
 };
 
 }  // namespace rrf::panels

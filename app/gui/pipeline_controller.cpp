@@ -64,7 +64,7 @@ bool PipelineController::run(const std::string& label) {
     }
     // Estimates of the settings in effect: a preset applied changes nothing (quick, paper and best
     // are idempotent), so the current settings stand for every preset here.
-    const std::vector<StageEstimate> estimates = panels::pipelineEstimates(state, nullptr);
+    const std::vector<StageEstimate> estimates = panels::pipelineEstimates(panels::estimateInputs(state), nullptr);
     for (int i = 0; i < kStages; ++i) {
         weights_[i] = std::max(0.1, std::sqrt(estimates[size_t(i)].low * estimates[size_t(i)].high));
         spent_[i] = 0;
@@ -76,7 +76,7 @@ bool PipelineController::run(const std::string& label) {
     state.pipeline.preset = label;
     state.pipeline.running = true;
     state.pipeline.outcome.clear();
-    state.log.info("pipeline started (" + label + ", expect " + panels::pipelineExpectation(state, "", false) + "; estimated render " + rangeText(estimates[0]) + ", generate " +
+    state.log.info("pipeline started (" + label + ", expect " + panels::pipelineExpectation(state.project, "", false) + "; estimated render " + rangeText(estimates[0]) + ", generate " +
                    rangeText(estimates[1]) + ", train " + rangeText(estimates[2]) + ", evaluate " + rangeText(estimates[3]) + ")");
     // A finished ground truth of the current scene is kept: the pipeline starts with the data then.
     const StageHooks& render = stages_[int(Stage::Render)];

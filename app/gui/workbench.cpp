@@ -221,7 +221,7 @@ void Workbench::drawMenuBar() {
     }
     // The one-click pipeline and its one progress display, always in sight.
     ImGui::Separator();
-    panels::drawPipelineBar(state_);
+    panels::drawPipelineBar(panels::pipelineBarView(state_));
     // The keyboard shortcuts, from the one table the menus and the Help window show (shortcuts.h).
     const ImGuiIO& io = ImGui::GetIO();
     if (!io.WantTextInput)
@@ -262,7 +262,7 @@ void Workbench::applySettings(const std::optional<ProjectSettings>& settings, co
 
 void Workbench::drawStatusBar() {
     if (state_.notice) {
-        panels::drawNotice(state_, false);
+        panels::drawNotice(state_.notice, false);
         ImGui::SameLine();
     }
     // The next frame uploads new models, compiling their shaders: seconds without a frame when

@@ -23,15 +23,15 @@ TEST_F(EncodingPanelTest, ChoosingANamedEncodingStoresItsArray) {
     WorkbenchState s;
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-box/project.json", error)) << error;
-    for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(s); });
+    for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(networkPanelView(s)); });
     EXPECT_FALSE(s.dirty) << "drawing the encoding combo must not edit the project";
     EXPECT_EQ(encodingPresetName(s.project.networkOrDefault().options.encoding), "raw");
 
-    EXPECT_FALSE(setEncoding(s, "raw")) << "no change, nothing stored";
-    EXPECT_FALSE(setEncoding(s, "nerf")) << "an unknown name changes nothing";
+    EXPECT_FALSE(setEncoding(networkPanelView(s), "raw")) << "no change, nothing stored";
+    EXPECT_FALSE(setEncoding(networkPanelView(s), "nerf")) << "an unknown name changes nothing";
     EXPECT_FALSE(s.dirty);
     const std::vector<int> hidden = s.project.networkOrDefault().options.hidden;
-    ASSERT_TRUE(setEncoding(s, "hash_grid"));
+    ASSERT_TRUE(setEncoding(networkPanelView(s), "hash_grid"));
     EXPECT_TRUE(s.dirty);
     const NetworkSettings n = s.project.networkOrDefault();
     EXPECT_EQ(n.options.encoding, findEncodingPreset("hash_grid")->settings);
@@ -41,10 +41,10 @@ TEST_F(EncodingPanelTest, ChoosingANamedEncodingStoresItsArray) {
 
     // Every named encoding draws, with Adam and (the warning for trainable ones) with LM.
     for (TrainerType t : {TrainerType::Adam, TrainerType::LevenbergMarquardt}) {
-        setTrainerType(s, t);
+        setTrainerType(networkPanelView(s), t);
         for (const EncodingPreset& p : encodingPresets()) {
-            setEncoding(s, p.name);
-            frame([&] { drawNetworkPanel(s); });
+            setEncoding(networkPanelView(s), p.name);
+            frame([&] { drawNetworkPanel(networkPanelView(s)); });
         }
     }
     EXPECT_TRUE(s.requests.empty());
@@ -63,11 +63,11 @@ TEST_F(EncodingPanelTest, AnEncodingTheRecordsCannotTakeShowsItsErrorInsteadOfTh
     n.options.encoding = overBrdf;
     s.project.network = n;
     for (TrainerType t : {TrainerType::Adam, TrainerType::LevenbergMarquardt}) {
-        setTrainerType(s, t);
+        setTrainerType(networkPanelView(s), t);
         std::string text;
         EXPECT_NO_THROW(frame([&] {
             ImGui::LogToBuffer();
-            drawNetworkPanel(s);
+            drawNetworkPanel(networkPanelView(s));
             text = GImGui->LogBuffer.c_str();
             ImGui::LogFinish();
         }));

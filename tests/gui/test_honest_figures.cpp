@@ -351,7 +351,7 @@ TEST_F(CostPanelTest, CostPanelDrawsTwoSeriesAndTheBreakEven) {
     WorkbenchState s;
     s.hasProject = true;
     s.cost.sweeps = twoSeries();
-    for (int i = 0; i < 2; ++i) frame([&] { drawCostPanel(s); });
+    for (int i = 0; i < 2; ++i) frame([&] { drawCostPanel(costPanelView(s)); });
     EXPECT_TRUE(s.requests.empty());
     const std::vector<std::string>& lines = s.costView.breakEvenLines;
     ASSERT_EQ(lines.size(), 2u);
@@ -363,7 +363,7 @@ TEST_F(CostPanelTest, CostPanelDrawsTwoSeriesAndTheBreakEven) {
 
     // A model series whose path tracer is not shown has no break-even, and says so.
     s.cost.sweeps.erase(s.cost.sweeps.begin());
-    frame([&] { drawCostPanel(s); });
+    frame([&] { drawCostPanel(costPanelView(s)); });
     ASSERT_EQ(s.costView.breakEvenLines.size(), 2u);
     EXPECT_NE(s.costView.breakEvenLines[0].find("no path-tracer series"), std::string::npos);
 }
@@ -379,7 +379,7 @@ TEST_F(CostPanelTest, SeriesColoursFollowTheirNames) {
         WorkbenchState s;
         s.cost.sweeps = two;
         if (reversed) std::swap(s.cost.sweeps[0], s.cost.sweeps[1]);
-        frame([&] { drawCostPanel(s); });
+        frame([&] { drawCostPanel(costPanelView(s)); });
         EXPECT_TRUE(drawListsHoldColour(pt)) << reversed;
         EXPECT_TRUE(drawListsHoldColour(models)) << reversed;
         EXPECT_EQ(seriesColour(two[0].name), pt) << "a function of the name alone";

@@ -32,16 +32,16 @@ void loadCornell(WorkbenchState& s) {
 
 void drawLearningPanels(WorkbenchState& s) {
     ImGui::BeginChild("net", ImVec2(400, 500));
-    drawNetworkPanel(s);
+    drawNetworkPanel(networkPanelView(s));
     ImGui::EndChild();
     ImGui::BeginChild("train", ImVec2(900, 300));
-    drawTrainingPanel(s);
+    drawTrainingPanel(trainingPanelView(s));
     ImGui::EndChild();
     ImGui::BeginChild("objects", ImVec2(900, 200));
-    drawObjectsPanel(s);
+    drawObjectsPanel(objectsPanelView(s));
     ImGui::EndChild();
     ImGui::BeginChild("cost", ImVec2(900, 300));
-    drawCostPanel(s);
+    drawCostPanel(costPanelView(s));
     ImGui::EndChild();
 }
 
@@ -84,41 +84,41 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     WorkbenchState s;
     loadCornell(s);
     ASSERT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{20, 10}));
-    ASSERT_TRUE(addHiddenLayer(s));
+    ASSERT_TRUE(addHiddenLayer(networkPanelView(s)));
     EXPECT_TRUE(s.dirty);
     EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{20, 10, 10}));
-    ASSERT_TRUE(resizeHiddenLayer(s, 0, 32));
-    ASSERT_TRUE(removeHiddenLayer(s, 1));
+    ASSERT_TRUE(resizeHiddenLayer(networkPanelView(s), 0, 32));
+    ASSERT_TRUE(removeHiddenLayer(networkPanelView(s), 1));
     EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{32, 10}));
-    EXPECT_FALSE(resizeHiddenLayer(s, 5, 8)) << "no such layer";
-    EXPECT_TRUE(resizeHiddenLayer(s, 1, 100000)) << "sizes are clamped, not refused";
+    EXPECT_FALSE(resizeHiddenLayer(networkPanelView(s), 5, 8)) << "no such layer";
+    EXPECT_TRUE(resizeHiddenLayer(networkPanelView(s), 1, 100000)) << "sizes are clamped, not refused";
     EXPECT_EQ(s.project.networkOrDefault().options.hidden[1], 4096);
     ASSERT_TRUE(s.notice.has_value()) << "a clamp is said, not silent";
     EXPECT_EQ(s.notice->panel, "Network");
     EXPECT_NE(s.notice->text.find("1 ... 4096; 100000 was set to 4096"), std::string::npos) << s.notice->text;
     s.notice.reset();
-    ASSERT_TRUE(resizeHiddenLayer(s, 1, 0));
+    ASSERT_TRUE(resizeHiddenLayer(networkPanelView(s), 1, 0));
     EXPECT_EQ(s.project.networkOrDefault().options.hidden[1], 1);
     ASSERT_TRUE(s.notice.has_value());
     EXPECT_NE(s.notice->text.find("0 was set to 1"), std::string::npos) << s.notice->text;
-    ASSERT_TRUE(removeHiddenLayer(s, 1));
-    EXPECT_FALSE(removeHiddenLayer(s, 0)) << "a network keeps at least one hidden layer";
+    ASSERT_TRUE(removeHiddenLayer(networkPanelView(s), 1));
+    EXPECT_FALSE(removeHiddenLayer(networkPanelView(s), 0)) << "a network keeps at least one hidden layer";
 
     EXPECT_EQ(s.project.networkOrDefault().options.ensemble, 1) << "one network unless asked";
-    ASSERT_TRUE(setEnsemble(s, 3));
-    EXPECT_FALSE(setEnsemble(s, 3)) << "no change, nothing stored";
+    ASSERT_TRUE(setEnsemble(networkPanelView(s), 3));
+    EXPECT_FALSE(setEnsemble(networkPanelView(s), 3)) << "no change, nothing stored";
     EXPECT_EQ(s.project.networkOrDefault().options.ensemble, 3);
     EXPECT_EQ(toJson(*s.project.network).at("ensemble"), 3);
-    EXPECT_TRUE(setEnsemble(s, 1000)) << "clamped, not refused";
+    EXPECT_TRUE(setEnsemble(networkPanelView(s), 1000)) << "clamped, not refused";
     EXPECT_EQ(s.project.networkOrDefault().options.ensemble, kMaxEnsembleMembers);
-    ASSERT_TRUE(setEnsemble(s, 1));
+    ASSERT_TRUE(setEnsemble(networkPanelView(s), 1));
 
     EXPECT_EQ(s.project.trainerOrDefault().type, TrainerType::Adam) << "the project default";
-    ASSERT_TRUE(setTrainerType(s, TrainerType::LevenbergMarquardt));
-    EXPECT_FALSE(setTrainerType(s, TrainerType::LevenbergMarquardt)) << "no change, nothing stored";
+    ASSERT_TRUE(setTrainerType(networkPanelView(s), TrainerType::LevenbergMarquardt));
+    EXPECT_FALSE(setTrainerType(networkPanelView(s), TrainerType::LevenbergMarquardt)) << "no change, nothing stored";
     ASSERT_TRUE(s.project.trainer.has_value()) << "switching the trainer stores the trainer section";
     EXPECT_EQ(toJson(*s.project.trainer)["type"], "levenberg_marquardt");
-    ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
+    ASSERT_TRUE(setTrainerType(networkPanelView(s), TrainerType::Adam));
     const NetworkSettings n = s.project.networkOrDefault();
     EXPECT_EQ(s.project.trainerOrDefault().type, TrainerType::Adam);
     EXPECT_EQ(toJson(*s.project.trainer)["type"], "adam");
@@ -127,7 +127,7 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     EXPECT_EQ(n.options.targets, TargetMode::Indirect) << "the project default is kept by the edits";
 
     // The panel draws the edited settings (Adam parameters, one layer) without asking for anything.
-    for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(s); });
+    for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(networkPanelView(s)); });
     EXPECT_TRUE(s.requests.empty());
     EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{32}));
 }
@@ -137,7 +137,7 @@ TEST_F(LearningPanelTest, LossPlotPutsKnownLossesOnTheirDecades) {
     loadCornell(s);
     s.training.curves.push_back(decadeCurve());
     s.trainingView.showValidation = false;
-    frame([&] { drawTrainingPanel(s); });
+    frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     const TrainingView& v = s.trainingView;
     ASSERT_LT(v.plotMinY, v.plotMaxY);
     EXPECT_DOUBLE_EQ(v.yLo, -3.0) << "0.001 starts the axis on its decade";
@@ -153,22 +153,22 @@ TEST_F(LearningPanelTest, LossPlotPutsKnownLossesOnTheirDecades) {
     // Hovering the point of epoch 2 (loss 0.01) reports that network and epoch.
     const PlotAxis x = linearAxis(0, 3, v.plotMinX, v.plotMaxX);
     mouse(x.toPixel(2), expected + 1.f, false);
-    for (int i = 0; i < 3; ++i) frame([&] { drawTrainingPanel(s); });
+    for (int i = 0; i < 3; ++i) frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     EXPECT_EQ(s.trainingView.hoverCurve, 0);
     EXPECT_EQ(s.trainingView.hoverEpoch, 2);
     mouse(5, 5, false);
-    frame([&] { drawTrainingPanel(s); });
+    frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     EXPECT_EQ(s.trainingView.hoverCurve, -1);
 
     // A constant target's loss of 1e-30 must not squash the other curves into the top decades.
     s.training.curves.push_back(decadeCurve());
     s.training.curves.back().points.push_back({4, 1e-30, kNaN, 2.0});
-    frame([&] { drawTrainingPanel(s); });
+    frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     EXPECT_DOUBLE_EQ(s.trainingView.yHi, 0.0);
     EXPECT_DOUBLE_EQ(s.trainingView.yLo, -8.0) << "at most eight decades below the largest loss";
 
     s.trainingView.aggregate = true;
-    for (int i = 0; i < 2; ++i) frame([&] { drawTrainingPanel(s); });
+    for (int i = 0; i < 2; ++i) frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     EXPECT_TRUE(s.requests.empty());
 }
 
@@ -238,33 +238,33 @@ TEST_F(LearningPanelTest, LegendClicksHideCurvesAndTheWheelZoomsTheLossPlot) {
     for (LossPoint& p : high.points) p.train *= 100.0;  // 100 ... 0.1
     s.training.curves.push_back(high);
     s.trainingView.showValidation = false;
-    for (int i = 0; i < 2; ++i) frame([&] { drawTrainingPanel(s); });
+    for (int i = 0; i < 2; ++i) frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     TrainingView& v = s.trainingView;
     EXPECT_DOUBLE_EQ(v.yHi, 2.0);
     // Find the ceiling's entry by clicking down the legend column (its rows' place depends on the font).
     for (float y = v.plotMinY; y < v.plotMinY + 300.f && v.hidden.empty(); y += 3.f) {
         mouse(v.plotMaxX + 60.f, y, true);
-        frame([&] { drawTrainingPanel(s); });
+        frame([&] { drawTrainingPanel(trainingPanelView(s)); });
         mouse(v.plotMaxX + 60.f, y, false);
-        frame([&] { drawTrainingPanel(s); });
+        frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     }
     ASSERT_EQ(v.hidden.size(), 1u) << "a legend entry hides its curve";
-    frame([&] { drawTrainingPanel(s); });
+    frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     // The hidden curve no longer sets the range: without the ceiling the top is 1, without the floor
     // the bottom is 0.1.
     if (v.hidden.front() == high.label()) EXPECT_DOUBLE_EQ(v.yHi, 0.0);
     else EXPECT_DOUBLE_EQ(v.yLo, -1.0);
     v.hidden.clear();
-    frame([&] { drawTrainingPanel(s); });
+    frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     EXPECT_DOUBLE_EQ(v.yHi, 2.0);
 
     const float cx = 0.5f * (v.plotMinX + v.plotMaxX), cy = 0.5f * (v.plotMinY + v.plotMaxY);
     mouse(cx, cy, false);
-    frame([&] { drawTrainingPanel(s); });
+    frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     mouse(cx, cy, false, 2.f);
-    frame([&] { drawTrainingPanel(s); });
+    frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     mouse(cx, cy, false, 0.f);
-    frame([&] { drawTrainingPanel(s); });
+    frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     EXPECT_FALSE(v.plot.autoFit);
     EXPECT_NEAR(v.yHi - v.yLo, 5.0 * 0.64, 1e-9) << "two notches: 64 % of the five decades";
 }
@@ -295,7 +295,7 @@ TEST_F(LearningPanelTest, ObjectsTableSortsAndExports) {
     s.evaluation.valid = true;
     s.evaluation.available[int(Term::Global)] = true;
     s.evaluation.rows[int(Term::Global)] = rows;
-    for (int i = 0; i < 3; ++i) frame([&] { drawObjectsPanel(s); });
+    for (int i = 0; i < 3; ++i) frame([&] { drawObjectsPanel(objectsPanelView(s)); });
     EXPECT_TRUE(s.requests.empty());
 
     // Clicking a row highlights its object, clicking it again clears the highlight. The rows' place
@@ -303,9 +303,9 @@ TEST_F(LearningPanelTest, ObjectsTableSortsAndExports) {
     // hit nothing), so the first row found is the last one in the default (name) order: "tall box".
     auto clickAt = [&](float y) {
         mouse(60, y, true);
-        frame([&] { drawObjectsPanel(s); });
+        frame([&] { drawObjectsPanel(objectsPanelView(s)); });
         mouse(60, y, false);
-        frame([&] { drawObjectsPanel(s); });
+        frame([&] { drawObjectsPanel(objectsPanelView(s)); });
     };
     float rowY = -1;
     for (float y = 300; y > 0 && rowY < 0; y -= 2) {
@@ -369,7 +369,7 @@ TEST_F(LearningPanelTest, CostPanelPlotsEvaluatedTrainingRuns) {
     sweep.kind = CostKind::PathTracer;
     sweep.resolution = "64x64";
     s.cost.sweeps.push_back(sweep);
-    for (int i = 0; i < 3; ++i) frame([&] { drawCostPanel(s); });
+    for (int i = 0; i < 3; ++i) frame([&] { drawCostPanel(costPanelView(s)); });
     EXPECT_TRUE(s.requests.empty());
     // Every marker the plot drew is in the key, drawn as the key draws it.
     const std::string& drawn = s.costView.shapesDrawn;
@@ -388,10 +388,10 @@ TEST(LearningProjectIo, NetworkSettingsAndTrainingRunsSurviveSaveAndReopen) {
     WorkbenchState s;
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, (dir / "project.json").string(), error)) << error;
-    ASSERT_TRUE(addHiddenLayer(s));
+    ASSERT_TRUE(addHiddenLayer(networkPanelView(s)));
     // Adam is the project default: switching away and back stores the trainer section.
-    ASSERT_TRUE(setTrainerType(s, TrainerType::LevenbergMarquardt));
-    ASSERT_TRUE(setTrainerType(s, TrainerType::Adam));
+    ASSERT_TRUE(setTrainerType(networkPanelView(s), TrainerType::LevenbergMarquardt));
+    ASSERT_TRUE(setTrainerType(networkPanelView(s), TrainerType::Adam));
     NetworkSettings edited = s.project.networkOrDefault();
     TrainerConfig editedTrainer = s.project.trainerOrDefault();
     editedTrainer.adam.learningRate = 3e-3;

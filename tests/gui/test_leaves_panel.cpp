@@ -73,10 +73,10 @@ TEST_F(LeavesPanelTest, RowsPerLeafFromTheTrees) {
 
     WorkbenchState s;
     s.leaves = info;
-    for (int i = 0; i < 3; ++i) frame([&] { drawLeavesPanel(s); });
+    for (int i = 0; i < 3; ++i) frame([&] { drawLeavesPanel(leavesPanelView(s)); });
     EXPECT_TRUE(s.requests.empty());
     WorkbenchState empty;
-    frame([&] { drawLeavesPanel(empty); });
+    frame([&] { drawLeavesPanel(leavesPanelView(empty)); });
 }
 
 TEST(LeafOverlay, TintsOnlyPixelsWithALeaf) {
@@ -100,15 +100,15 @@ TEST_F(LeavesPanelTest, PartitionEditsAreStoredInTheNetworkSection) {
     WorkbenchState s;
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-box/project.json", error)) << error;
-    for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(s); });
+    for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(networkPanelView(s)); });
     EXPECT_FALSE(s.dirty) << "drawing the partition controls must not edit the project";
 
     PartitionSettings p = s.project.networkOrDefault().options.partition;
-    EXPECT_FALSE(setPartition(s, p)) << "no change, nothing stored";
+    EXPECT_FALSE(setPartition(networkPanelView(s), p)) << "no change, nothing stored";
     p.maxLeaves = 7;
     p.goal = 0.02;
     p.axes.light = false;
-    ASSERT_TRUE(setPartition(s, p));
+    ASSERT_TRUE(setPartition(networkPanelView(s), p));
     EXPECT_TRUE(s.dirty);
     const NetworkSettings n = s.project.networkOrDefault();
     EXPECT_EQ(n.options.partition.maxLeaves, 7);
@@ -119,7 +119,7 @@ TEST_F(LeavesPanelTest, PartitionEditsAreStoredInTheNetworkSection) {
     const nlohmann::json section = toJson(n);
     EXPECT_EQ(section.at("partition").at("max_leaves"), 7);
     EXPECT_EQ(section.at("partition").at("split_axes"), nlohmann::json::array({"position"}));
-    frame([&] { drawNetworkPanel(s); });
+    frame([&] { drawNetworkPanel(networkPanelView(s)); });
     EXPECT_TRUE(s.requests.empty());
 }
 

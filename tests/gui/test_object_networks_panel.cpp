@@ -21,7 +21,7 @@ protected:
         std::string text;
         frame([&] {
             ImGui::LogToBuffer();
-            drawNetworkPanel(s);
+            drawNetworkPanel(networkPanelView(s));
             text = GImGui->LogBuffer.c_str();
             ImGui::LogFinish();
         });
@@ -34,19 +34,19 @@ TEST_F(ObjectNetworksPanelTest, SettersStoreOneSettingEachAndEmptyEntriesDisappe
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-glossy/project.json", error)) << error;
     s.project.network.reset();  // the defaults, without the project's own entries
-    for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(s); });
+    for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(networkPanelView(s)); });
     EXPECT_FALSE(s.dirty) << "drawing must not edit the project";
 
-    EXPECT_FALSE(setReflectedInput(s, false)) << "already off";
-    ASSERT_TRUE(setReflectedInput(s, true));
+    EXPECT_FALSE(setReflectedInput(networkPanelView(s), false)) << "already off";
+    ASSERT_TRUE(setReflectedInput(networkPanelView(s), true));
     EXPECT_TRUE(s.project.networkOrDefault().options.inputs.reflected);
     EXPECT_TRUE(s.project.networkOrDefault().options.perObject.empty());
 
-    ASSERT_TRUE(setObjectReflected(s, "back-wall", false));
-    ASSERT_TRUE(setObjectHidden(s, "short-box", std::vector<int>{32, 0}));
-    ASSERT_TRUE(setObjectEncoding(s, "short-box", "one_blob"));
-    EXPECT_FALSE(setObjectEncoding(s, "short-box", "nerf")) << "an unknown name changes nothing";
-    EXPECT_FALSE(setObjectHidden(s, "short-box", std::vector<int>{})) << "a network needs a hidden layer";
+    ASSERT_TRUE(setObjectReflected(networkPanelView(s), "back-wall", false));
+    ASSERT_TRUE(setObjectHidden(networkPanelView(s), "short-box", std::vector<int>{32, 0}));
+    ASSERT_TRUE(setObjectEncoding(networkPanelView(s), "short-box", "one_blob"));
+    EXPECT_FALSE(setObjectEncoding(networkPanelView(s), "short-box", "nerf")) << "an unknown name changes nothing";
+    EXPECT_FALSE(setObjectHidden(networkPanelView(s), "short-box", std::vector<int>{})) << "a network needs a hidden layer";
     const NetworkOptions o = s.project.networkOrDefault().options;
     EXPECT_FALSE(o.choiceFor("back-wall").inputs.reflected);
     EXPECT_EQ(o.choiceFor("back-wall").hidden, o.hidden) << "only the reflected input is the entry's";
@@ -55,10 +55,10 @@ TEST_F(ObjectNetworksPanelTest, SettersStoreOneSettingEachAndEmptyEntriesDisappe
     EXPECT_EQ(o.choiceFor("short-box").encoding, findEncodingPreset("one_blob")->settings);
     EXPECT_EQ(o.choiceFor("floor").hidden, o.hidden);
 
-    ASSERT_TRUE(setObjectReflected(s, "back-wall", std::nullopt));
+    ASSERT_TRUE(setObjectReflected(networkPanelView(s), "back-wall", std::nullopt));
     EXPECT_EQ(s.project.networkOrDefault().options.perObject.count("back-wall"), 0u) << "an empty entry is removed";
-    ASSERT_TRUE(setObjectHidden(s, "short-box", std::nullopt));
-    ASSERT_TRUE(setObjectEncoding(s, "short-box", ""));
+    ASSERT_TRUE(setObjectHidden(networkPanelView(s), "short-box", std::nullopt));
+    ASSERT_TRUE(setObjectEncoding(networkPanelView(s), "short-box", ""));
     EXPECT_TRUE(s.project.networkOrDefault().options.perObject.empty());
     EXPECT_FALSE(s.project.trainer.has_value()) << "network edits add no trainer section";
     EXPECT_TRUE(s.requests.empty());
@@ -69,8 +69,8 @@ TEST_F(ObjectNetworksPanelTest, RowsSayWhatEachObjectsNetworksReadOrWhyTheyCanno
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, RRF_SOURCE_DIR "/projects/cornell-glossy/project.json", error)) << error;
     s.project.network.reset();
-    setObjectReflected(s, "tall-box", true);
-    setObjectHidden(s, "tall-box", std::vector<int>{24, 12});
+    setObjectReflected(networkPanelView(s), "tall-box", true);
+    setObjectHidden(networkPanelView(s), "tall-box", std::vector<int>{24, 12});
     // An entry whose encoding reads the reflected rows while the object does not derive them.
     NetworkSettings n = s.project.networkOrDefault();
     ObjectNetworkOverride bad;
@@ -104,11 +104,11 @@ TEST_F(ObjectNetworksPanelTest, GlossyGatherNamesItsObjectsAndStoresTheSection) 
     EXPECT_FALSE(s.dirty);
 
     PredictionSettings::Gather g = s.project.prediction.gather;
-    EXPECT_FALSE(setGlossyGather(s, g)) << "nothing changed";
+    EXPECT_FALSE(setGlossyGather(networkPanelView(s), g)) << "nothing changed";
     g.minExponent = 500;
     g.lobeSamples = 1 << 30;
     g.causticSamples = -3;
-    ASSERT_TRUE(setGlossyGather(s, g));
+    ASSERT_TRUE(setGlossyGather(networkPanelView(s), g));
     EXPECT_TRUE(s.dirty);
     ASSERT_FALSE(s.requests.empty());
     EXPECT_EQ(s.requests.back().command, Command::PredictionChanged) << "the view predicts again";
@@ -116,7 +116,7 @@ TEST_F(ObjectNetworksPanelTest, GlossyGatherNamesItsObjectsAndStoresTheSection) 
     EXPECT_EQ(s.project.prediction.gather.causticSamples, 0) << "clamped";
     EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "ceiling, short-box");
     g.minExponent = 0;
-    ASSERT_TRUE(setGlossyGather(s, g));
+    ASSERT_TRUE(setGlossyGather(networkPanelView(s), g));
     EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "ceiling") << "named, whatever the rule";
     s.project.prediction.gather.objects.clear();
     EXPECT_EQ(gatheredObjectNames(s.project.scene, s.project.prediction), "");

@@ -89,20 +89,20 @@ TEST_F(PanelTest, RenderButtonClickRequestsOneRender) {
     ASSERT_TRUE(loadProjectIntoState(s, kCornell, error)) << error;
     // The views panel alone at (0, 0): its first widget is the Render button.
     mouse(10, 8, false);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     mouse(10, 8, true);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     mouse(10, 8, false);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     ASSERT_EQ(s.requests.size(), 1u);
     EXPECT_EQ(s.requests[0].command, Command::StartRender);
 
     s.requests.clear();
     s.render.running = true;  // now the same place holds "Stop render"
     mouse(10, 8, true);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     mouse(10, 8, false);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     ASSERT_EQ(s.requests.size(), 1u);
     EXPECT_EQ(s.requests[0].command, Command::CancelRender);
 }
@@ -135,15 +135,15 @@ TEST_F(PanelTest, WheelZoomsAboutTheCursorInAllViews) {
     fillGroundTruth(s);
     // Hover the first view (below the two toolbar rows), then scroll one notch.
     mouse(150, 250, false);
-    frame([&] { drawViewsPanel(s); });
-    frame([&] { drawViewsPanel(s); });  // hovering needs a frame for ImGui to find the window
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });  // hovering needs a frame for ImGui to find the window
     EXPECT_GE(s.view.hoverX, 0);
     EXPECT_GE(s.view.hoverY, 0);
     const int hx = s.view.hoverX, hy = s.view.hoverY;
     mouse(150, 250, false, 1.f);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     mouse(150, 250, false, 0.f);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     EXPECT_NEAR(s.view.zoom, 1.2f, 1e-5f);
     // The pixel under the cursor stays under the cursor (within a pixel of rounding).
     EXPECT_NEAR(s.view.hoverX, hx, 1);
@@ -156,15 +156,15 @@ TEST_F(PanelTest, DragPansTheViews) {
     fillGroundTruth(s);
     s.hasProject = true;
     mouse(150, 250, false);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     mouse(150, 250, true);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     for (int i = 1; i <= 5; ++i) {
         mouse(150.f + 10.f * float(i), 250, true);
-        frame([&] { drawViewsPanel(s); });
+        frame([&] { drawViewsPanel(viewsPanelView(s)); });
     }
     mouse(200, 250, false);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     EXPECT_LT(s.view.panX, 0.f) << "dragging right moves the image right (the view centre left)";
     EXPECT_FLOAT_EQ(s.view.panY, 0.f);
 }
@@ -178,21 +178,21 @@ TEST_F(PanelTest, DraggingTheLightHandleMovesTheLight) {
     fillGroundTruth(s);
     const Vec3 before = s.project.scene.lightPosition();
     mouse(5, 5, false);
-    frame([&] { drawViewsPanel(s); });
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     const ImVec2 h = s.view.lightHandle[0];
     ASSERT_FALSE(std::isnan(h.x)) << "the ground-truth view draws the handle";
     mouse(h.x, h.y, false);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     mouse(h.x, h.y, true);
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     for (int i = 1; i <= 6; ++i) {
         mouse(h.x + 4.f * float(i), h.y + 3.f * float(i), true);
-        frame([&] { drawViewsPanel(s); });
+        frame([&] { drawViewsPanel(viewsPanelView(s)); });
     }
     mouse(h.x + 24.f, h.y + 18.f, false);
-    frame([&] { drawViewsPanel(s); });
-    frame([&] { drawViewsPanel(s); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
+    frame([&] { drawViewsPanel(viewsPanelView(s)); });
     const Vec3 after = s.project.scene.lightPosition();
     EXPECT_GT(after.x, before.x) << "right in the image is +x for this camera";
     EXPECT_LT(after.y, before.y) << "down in the image is lower";
@@ -216,7 +216,7 @@ TEST_F(PanelTest, RightDragMarksARegionAndARightClickClearsIt) {
     auto right = [&](float x, float y, bool down) {
         mouse(x, y, false);
         ImGui::GetIO().MouseDown[1] = down;
-        frame([&] { drawViewsPanel(s); });
+        frame([&] { drawViewsPanel(viewsPanelView(s)); });
     };
     right(150, 250, false);
     right(150, 250, false);  // hovering needs a frame
@@ -241,7 +241,7 @@ TEST_F(PanelTest, LogCollectsMessagesAndCopiesThem) {
     WorkbenchState s;
     s.log.info("first");
     s.log.error("second");
-    frame([&] { drawLogPanel(s); });
+    frame([&] { drawLogPanel(logPanelView(s)); });
     EXPECT_EQ(s.log.errorCount(), 1u);
     const std::string text = s.log.text();
     EXPECT_NE(text.find("info: first"), std::string::npos);
@@ -271,17 +271,17 @@ TEST_F(PanelTest, LightRegionCellClickMovesTheLightToItsGridPosition) {
     // The slice is the item before the panel's last line: its bottom-left cell is (x lo, z hi).
     ImVec2 lastLine;
     frame([&] {
-        drawLightRegionPanel(s);
+        drawLightRegionPanel(lightRegionPanelView(s));
         lastLine = ImGui::GetItemRectMin();
     });
     EXPECT_TRUE(s.requests.empty());
     const float x = lastLine.x + 6, y = lastLine.y - ImGui::GetStyle().ItemSpacing.y - 6;
     mouse(x, y, false);
-    frame([&] { drawLightRegionPanel(s); });
+    frame([&] { drawLightRegionPanel(lightRegionPanelView(s)); });
     mouse(x, y, true);
-    frame([&] { drawLightRegionPanel(s); });
+    frame([&] { drawLightRegionPanel(lightRegionPanelView(s)); });
     mouse(x, y, false);
-    frame([&] { drawLightRegionPanel(s); });
+    frame([&] { drawLightRegionPanel(lightRegionPanelView(s)); });
     ASSERT_EQ(s.requests.size(), 1u);
     EXPECT_EQ(s.requests[0].command, Command::SceneChanged);
     EXPECT_TRUE(s.dirty);

@@ -19,7 +19,7 @@ protected:
     void clickRunButton(WorkbenchState& s) {
         for (bool down : {false, true, false}) {
             mouse(10, 8, down);
-            frame([&] { drawPipelineBar(s); });
+            frame([&] { drawPipelineBar(pipelineBarView(s)); });
         }
     }
 };
@@ -56,14 +56,14 @@ TEST_F(PipelineControls, DefaultRunsTheProjectSettingsAndSaysWhatToExpect) {
     EXPECT_EQ(s.requests[0].command, Command::RunPipeline);
     EXPECT_EQ(s.requests[0].path, "");
     // The bundled Cornell box's settings are the default preset's, so its figure is what to expect.
-    EXPECT_EQ(pipelineExpectation(s, "", true), findPreset("default")->expectationShort);
-    EXPECT_NE(pipelineExpectation(s, "quick", true).find("smoke test"), std::string::npos);
-    EXPECT_NE(pipelineExpectation(s, "quick", false).find("not a result"), std::string::npos);
+    EXPECT_EQ(pipelineExpectation(s.project, "", true), findPreset("default")->expectationShort);
+    EXPECT_NE(pipelineExpectation(s.project, "quick", true).find("smoke test"), std::string::npos);
+    EXPECT_NE(pipelineExpectation(s.project, "quick", false).find("not a result"), std::string::npos);
     // An edited setting is custom: no preset's figure is claimed for it.
     s.project.sampling = s.project.samplingOrDefault();
     s.project.sampling->directions = 299;
-    EXPECT_EQ(pipelineExpectation(s, "", true), "custom settings");
-    EXPECT_NE(pipelineExpectation(s, "", false).find("no preset's figures apply"), std::string::npos);
+    EXPECT_EQ(pipelineExpectation(s.project, "", true), "custom settings");
+    EXPECT_NE(pipelineExpectation(s.project, "", false).find("no preset's figures apply"), std::string::npos);
 }
 
 TEST_F(PipelineControls, RunIsRefusedAtTheButtonWhenTheDataCannotFit) {
@@ -73,10 +73,10 @@ TEST_F(PipelineControls, RunIsRefusedAtTheButtonWhenTheDataCannotFit) {
     s.availableMemory = uint64_t(64) << 20;  // 64 MiB
     SamplingSettings huge = s.project.samplingOrDefault();
     huge.nx = huge.ny = huge.nz = 1000;
-    const std::string why = generateRefusal(s, huge);
+    const std::string why = generateRefusal(estimateInputs(s), huge);
     EXPECT_NE(why.find("1000000000 cells"), std::string::npos) << why;
     EXPECT_NE(why.find("64 MiB"), std::string::npos) << why;
-    EXPECT_EQ(generateRefusal(s, s.project.samplingOrDefault()), "") << "the default's 8^3 x 300 records fit in 64 MiB";
+    EXPECT_EQ(generateRefusal(estimateInputs(s), s.project.samplingOrDefault()), "") << "the default's 8^3 x 300 records fit in 64 MiB";
     s.project.sampling = huge;
     clickRunButton(s);
     EXPECT_TRUE(s.requests.empty()) << "Run pipeline is disabled while the data cannot fit";
@@ -92,26 +92,26 @@ TEST_F(PipelineControls, EstimatesUseTheLastRenderAndTheLastDataset) {
     WorkbenchState s;
     std::string error;
     ASSERT_TRUE(loadProjectIntoState(s, kCornell, error)) << error;
-    EXPECT_FALSE(pathRateOf(s).measured) << "no render yet: the reference rate";
+    EXPECT_FALSE(pathRateOf(s.render).measured) << "no render yet: the reference rate";
     s.render.samplesPerSecond = 2.5e6;
-    EXPECT_TRUE(pathRateOf(s).measured);
-    EXPECT_DOUBLE_EQ(pathRateOf(s).samplesPerSecond, 2.5e6);
-    EXPECT_DOUBLE_EQ(recordsPerRayOf(s), 1.0) << "no dataset: the upper bound";
+    EXPECT_TRUE(pathRateOf(s.render).measured);
+    EXPECT_DOUBLE_EQ(pathRateOf(s.render).samplesPerSecond, 2.5e6);
+    EXPECT_DOUBLE_EQ(recordsPerRayOf(s.dataset), 1.0) << "no dataset: the upper bound";
     // A 2x2x2 x 10 dataset that made 60 records: 0.75 records per ray.
     SamplingSettings made;
     made.nx = made.ny = made.nz = 2;
     made.directions = 10;
     s.dataset.madeWith = made;
     s.dataset.generator.records = 60;
-    EXPECT_DOUBLE_EQ(recordsPerRayOf(s), 0.75);
+    EXPECT_DOUBLE_EQ(recordsPerRayOf(s.dataset), 0.75);
     SamplingSettings next = made;
     next.nx = 4;
     next.spp = 10;
     next.maxSpp = 10;
     // 4·2·2 cells × 10 directions × 0.75 = 120 records × 10 paths at 2.5 M samples/s.
-    EXPECT_DOUBLE_EQ(dataEstimate(s, next).low, 120.0 * 10 / 2.5e6);
+    EXPECT_DOUBLE_EQ(dataEstimate(estimateInputs(s), next).low, 120.0 * 10 / 2.5e6);
     // The quick preset's stages are all estimated, the pipeline's in order render, generate, train, evaluate.
-    const std::vector<StageEstimate> stages = pipelineEstimates(s, findPreset("quick"));
+    const std::vector<StageEstimate> stages = pipelineEstimates(estimateInputs(s), findPreset("quick"));
     ASSERT_EQ(stages.size(), 4u);
     for (const StageEstimate& e : stages) EXPECT_GT(e.high, 0.0);
     EXPECT_NE(stages[2].basis.find("epochs"), std::string::npos) << stages[2].basis;

@@ -173,7 +173,7 @@ TEST_P(Readability, LogToolbarWrapsInANarrowPane) {
             ImGui::SetNextWindowPos(ImVec2(10, 10));
             ImGui::SetNextWindowSize(ImVec2(width, 300));
             ImGui::Begin("Log pane", nullptr, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoScrollbar);
-            drawLogPanel(s);
+            drawLogPanel(logPanelView(s));
             ImGui::End();
             found = findClippedContent();
         });

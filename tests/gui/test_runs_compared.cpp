@@ -110,19 +110,19 @@ TEST(RunsTable, TwoRunsPerObjectErrorsLineUpByObject) {
 
 TEST(ObjectsTable, SaysWhenItJudgedOtherModelsThanTheOnesShown) {
     WorkbenchState s;
-    EXPECT_EQ(objectsTableMismatch(s), "") << "no evaluation: nothing to disown";
+    EXPECT_EQ(objectsTableMismatch(objectsPanelView(s)), "") << "no evaluation: nothing to disown";
     s.evaluation.valid = true;
     s.evaluation.modelsDir = "/p/runs/train-1/models";
     s.training.modelsDir = "/p/runs/train-1/models/";
-    EXPECT_EQ(objectsTableMismatch(s), "");
+    EXPECT_EQ(objectsTableMismatch(objectsPanelView(s)), "");
     s.training.modelsDir = "/p/runs/train-2/models";
-    const std::string m = objectsTableMismatch(s);
+    const std::string m = objectsTableMismatch(objectsPanelView(s));
     EXPECT_NE(m.find("train-1"), std::string::npos) << m;
     EXPECT_NE(m.find("train-2"), std::string::npos) << m;
     s.training.modelsDir.clear();
-    EXPECT_NE(objectsTableMismatch(s).find("no models are loaded"), std::string::npos);
+    EXPECT_NE(objectsTableMismatch(objectsPanelView(s)).find("no models are loaded"), std::string::npos);
     s.view.compareSource = CompareSource::RunPair;
-    EXPECT_NE(objectsTableMismatch(s).find("two runs"), std::string::npos);
+    EXPECT_NE(objectsTableMismatch(objectsPanelView(s)).find("two runs"), std::string::npos);
 }
 
 }  // namespace rrf::test::test_runs_compared

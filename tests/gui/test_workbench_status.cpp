@@ -149,16 +149,16 @@ TEST_F(StatusPanelTest, ThePartialModelsAreOfferedNotShown) {
     s.training.modelsDir = "/p/runs/complete/models";
     // The panel's rows at (0, 0): toolbar, then the stopped line with its button at its right end.
     // Find the button by clicking along the line until a request appears.
-    frame([&] { drawTrainingPanel(s); });  // sizes (the font) are known from the first frame on
+    frame([&] { drawTrainingPanel(trainingPanelView(s)); });  // sizes (the font) are known from the first frame on
     ASSERT_TRUE(s.requests.empty());
     bool clicked = false;
     for (float x = 0; x < 1600 && !clicked; x += 8) {
         mouse(x, 1.5f * ImGui::GetFontSize() + 12, false);
-        frame([&] { drawTrainingPanel(s); });
+        frame([&] { drawTrainingPanel(trainingPanelView(s)); });
         mouse(x, 1.5f * ImGui::GetFontSize() + 12, true);
-        frame([&] { drawTrainingPanel(s); });
+        frame([&] { drawTrainingPanel(trainingPanelView(s)); });
         mouse(x, 1.5f * ImGui::GetFontSize() + 12, false);
-        frame([&] { drawTrainingPanel(s); });
+        frame([&] { drawTrainingPanel(trainingPanelView(s)); });
         clicked = !s.requests.empty();
     }
     ASSERT_TRUE(clicked) << "the stopped line offers 'Use the partial models'";
@@ -177,16 +177,16 @@ TEST_F(StatusPanelTest, ANoticeShowsInItsPanelAndInTheLogUntilDismissed) {
     ASSERT_TRUE(s.notice.has_value());
     // The notice's Dismiss button is the first widget under the Training toolbar: click along the
     // second row until the notice is gone (nothing else on that row changes the state).
-    frame([&] { drawTrainingPanel(s); });  // sizes (the font) are known from the first frame on
+    frame([&] { drawTrainingPanel(trainingPanelView(s)); });  // sizes (the font) are known from the first frame on
     ASSERT_TRUE(s.notice.has_value()) << "drawing alone does not dismiss";
     for (float x = 0; x < 200 && s.notice; x += 4) {
         const float y = ImGui::GetFrameHeightWithSpacing() + 0.5f * ImGui::GetFrameHeight();
         mouse(x, y, false);
-        frame([&] { drawTrainingPanel(s); });
+        frame([&] { drawTrainingPanel(trainingPanelView(s)); });
         mouse(x, y, true);
-        frame([&] { drawTrainingPanel(s); });
+        frame([&] { drawTrainingPanel(trainingPanelView(s)); });
         mouse(x, y, false);
-        frame([&] { drawTrainingPanel(s); });
+        frame([&] { drawTrainingPanel(trainingPanelView(s)); });
     }
     EXPECT_FALSE(s.notice.has_value()) << "Dismiss removes the notice";
     EXPECT_TRUE(s.requests.empty()) << "dismissing asks for nothing";
