@@ -4,7 +4,7 @@
 //     the plain Renderer's samples/s and rays/s. A generator path sample is one PathTracer::shade()
 //     call (the record's first ray is shot once and shared by its spp paths), a renderer sample is
 //     a camera ray plus shade(), so rays/s is the like-for-like measure of bookkeeping overhead;
-//  2. memory: the default Cornell-box run (15³ grid, 1200 directions, about 4 million records) with
+//  2. memory: the paper preset's Cornell-box data (15³ grid, 1200 directions, about 4 million records) with
 //     1 path per record (memory does not depend on spp): time, peak resident memory (getrusage
 //     max RSS) after generation and after writing, and the dataset file size.
 //
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
     bool noMemory = false;
     std::vector<int> genGrid, memGrid;
 
-    CLI::App app{"Data-generator benchmark: generator versus renderer throughput, and the memory of the default run",
+    CLI::App app{"Data-generator benchmark: generator versus renderer throughput, and the memory of the paper preset's data",
                  "bench_generate"};
     app.add_option("project", input, bench::kProjectHelp);
     addGridOption(app, "--grid", gen, genGrid, "jitter grid of the throughput run");
@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
                 (double(g.stats.paths) / g.seconds) / rs.samplesPerSecond(), genRaysPerS / rs.raysPerSecond());
 
     if (!memory) return 0;
-    // 3. Memory of the default run (spp 1), then the written file.
+    // 3. Memory of the paper preset's data (spp 1), then the written file.
     const bool tempOut = out.empty();
     if (tempOut) out = (std::filesystem::temp_directory_path() / ("bench_generate_" + std::to_string(::getpid()) + ".rrfd")).string();
     const double rssBefore = maxRssMiB();
@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
     const uint64_t bigRecords = datasetHeader(d).at("stats").at("records").get<uint64_t>();
     const double fileMiB = double(std::filesystem::file_size(out)) / (1024.0 * 1024.0);
     const double payloadMiB = double(bigRecords) * big.layout().floatsPerRecord() * 4.0 / (1024.0 * 1024.0);
-    std::printf("\n| default run (grid %dx%dx%d, %d dirs, spp %d) | value |\n|---|---:|\n", mem.nx, mem.ny, mem.nz,
+    std::printf("\n| paper preset's data (grid %dx%dx%d, %d dirs, spp %d) | value |\n|---|---:|\n", mem.nx, mem.ny, mem.nz,
                 mem.directions, mem.spp);
     std::printf("| records | %llu (%s) |\n", (unsigned long long)bigRecords, humanCount(double(bigRecords)).c_str());
     std::printf("| cells kept / dropped inside / dropped outside | %llu / %llu / %llu |\n",
