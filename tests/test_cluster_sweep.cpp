@@ -161,8 +161,8 @@ TEST(ClusterSweep, TasksRunApartJoinIntoTheSingleProcessSweep) {
         expectSameStats(a.overall, b.overall, "row " + a.setting);
         ASSERT_EQ(a.perObject.size(), b.perObject.size());
         for (size_t k = 0; k < a.perObject.size(); ++k) expectSameStats(a.perObject[k], b.perObject[k], "object " + std::to_string(k));
-        EXPECT_EQ(a.extra["parameters"], b.extra["parameters"]);
-        EXPECT_EQ(a.extra["leaf_epochs"], b.extra["leaf_epochs"]);
+        EXPECT_EQ(a.extra.parameters, b.extra.parameters);
+        EXPECT_EQ(a.extra.leafEpochs, b.extra.leafEpochs);
         // The break-even comes from the joined series, which another part rendered.
         EXPECT_EQ(a.breakEven.known, b.breakEven.known) << a.setting;
         EXPECT_TRUE(sameBits(a.breakEven.spp, b.breakEven.spp)) << a.setting;
@@ -171,7 +171,7 @@ TEST(ClusterSweep, TasksRunApartJoinIntoTheSingleProcessSweep) {
     for (size_t i = 0; i < single.pathTracer.size(); ++i)
         expectSameStats(single.pathTracer[i].overall, joined.pathTracer[i].overall, "spp " + single.pathTracer[i].setting);
     EXPECT_TRUE(sameBits(single.relativeNoiseFloor, joined.relativeNoiseFloor));
-    EXPECT_TRUE(joined.extra.contains("generate_seconds"));
+    EXPECT_TRUE(joined.extra.generateSeconds.has_value());
     // runSweep is these very functions in one process, so beside it the joined sweep is checked
     // against what is built apart: the series' spp and the pixels of the footprint mask made
     // independently from the G-buffer at the sweep's light (every error is over those pixels).

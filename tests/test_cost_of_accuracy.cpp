@@ -10,6 +10,7 @@
 
 #include "core/eval/break_even.h"
 #include "core/pipeline/sweep.h"
+#include "core/pipeline/sweep_file.h"
 #include "core/predict/footprint_mask.h"
 #include "core/predict/gbuffer.h"
 #include "core/scene/accel.h"

@@ -55,9 +55,9 @@ TEST(EncodingSweeps, RowsCountEncodingParametersAndModelBytes) {
     o.training.trainer.adam.maxEpochs = 2;
     const SweepResult r = runSweep(scene, o);
     ASSERT_EQ(r.rows.size(), 2u);
-    const int64_t rawParams = r.rows[0].extra.at("parameters").get<int64_t>();
-    const int64_t gridParams = r.rows[1].extra.at("parameters").get<int64_t>();
-    const int64_t rawBytes = r.rows[0].extra.at("model_bytes").get<int64_t>();
+    const int64_t rawParams = r.rows[0].extra.parameters.value();
+    const int64_t gridParams = r.rows[1].extra.parameters.value();
+    const int64_t rawBytes = r.rows[0].extra.modelBytes.value();
     // One 3-output network per object: 15 raw inputs → 3 → 3, or 16 grid features + 12 raw → 3 → 3
     // behind 8 levels × 4096 entries × 2 features (the "hash_grid" preset).
     const int64_t perRaw = (15 + 1) * 3 + (3 + 1) * 3, perGrid = (16 + 12 + 1) * 3 + (3 + 1) * 3 + 8 * 4096 * 2;

@@ -194,7 +194,7 @@ TEST(EndToEnd, SppSweepShowsTheMonteCarloSlope) {
     // RMSE ∝ N^-1/2 for an unbiased estimator; the 1024-spp reference's own noise flattens the curve by
     // less than 1 % at 16 spp. The RMSE is dominated by the pixels on the light's edge (the box filter
     // samples 0 or 18), a few dozen of 2304, so the fitted slope scatters by several hundredths.
-    EXPECT_NEAR(r.extra["loglog_slope_rmse"].get<double>(), -0.5, 0.1);
+    EXPECT_NEAR(r.extra.loglogSlopeRmse.value(), -0.5, 0.1);
     for (size_t i = 1; i < r.rows.size(); ++i) EXPECT_LT(r.rows[i].overall.rmse, r.rows[i - 1].overall.rmse);
     EXPECT_NE(sweepCsv(cornell.scene, r).find("spp,16,"), std::string::npos);
 }

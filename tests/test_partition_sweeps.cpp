@@ -70,12 +70,12 @@ TEST(PartitionSweeps, LeavesGrowWithTheBudgetAndALooseGoalStopsEarly) {
     const Scene scene = test::cornellLike(1.f, 16);
     const SweepResult leaves = runSweep(scene, smallSweep("leaves", {"1", "4"}));
     ASSERT_EQ(leaves.rows.size(), 2u);
-    const int64_t objects = leaves.rows[0].extra.at("leaves").get<int64_t>();
+    const int64_t objects = leaves.rows[0].extra.leaves.value();
     EXPECT_GT(objects, 0);
     // One network per object at "1"; with a goal nothing reaches, "4" lets every tree that has the
     // records grow past its root, and none beyond 4 leaves.
-    EXPECT_GT(leaves.rows[1].extra.at("leaves").get<int64_t>(), objects);
-    EXPECT_LE(leaves.rows[1].extra.at("leaves").get<int64_t>(), 4 * objects);
+    EXPECT_GT(leaves.rows[1].extra.leaves.value(), objects);
+    EXPECT_LE(leaves.rows[1].extra.leaves.value(), 4 * objects);
 
     SweepOptions g = smallSweep("goal", {"10", "0.000001"});
     g.training.partition.maxLeaves = 1;
@@ -83,8 +83,8 @@ TEST(PartitionSweeps, LeavesGrowWithTheBudgetAndALooseGoalStopsEarly) {
     ASSERT_EQ(goal.rows.size(), 2u);
     // A goal of 10 (relative RMSE) is met by the first epoch; 1e-6 by none, so each network runs to
     // max_epochs or another stop rule.
-    EXPECT_LT(goal.rows[0].extra.at("leaf_epochs").get<int64_t>(), goal.rows[1].extra.at("leaf_epochs").get<int64_t>());
-    EXPECT_LE(goal.rows[0].extra.at("leaf_epochs").get<int64_t>(), objects * 1);
+    EXPECT_LT(goal.rows[0].extra.leafEpochs.value(), goal.rows[1].extra.leafEpochs.value());
+    EXPECT_LE(goal.rows[0].extra.leafEpochs.value(), objects * 1);
 }
 
 TEST(PartitionSweeps, RecordSppSetsThePathsPerRecord) {
@@ -95,9 +95,9 @@ TEST(PartitionSweeps, RecordSppSetsThePathsPerRecord) {
     o.training.trainer.lm.maxEpochs = 2;
     const SweepResult r = runSweep(scene, o);
     ASSERT_EQ(r.rows.size(), 2u);
-    EXPECT_EQ(r.rows[0].extra.at("mean_record_spp").get<double>(), 1.0);
-    EXPECT_GE(r.rows[1].extra.at("mean_record_spp").get<double>(), 4.0);
-    EXPECT_LE(r.rows[1].extra.at("mean_record_spp").get<double>(), 8.0);
+    EXPECT_EQ(r.rows[0].extra.meanRecordSpp.value(), 1.0);
+    EXPECT_GE(r.rows[1].extra.meanRecordSpp.value(), 4.0);
+    EXPECT_LE(r.rows[1].extra.meanRecordSpp.value(), 8.0);
 }
 
 }  // namespace test_partition_sweeps

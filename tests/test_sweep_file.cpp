@@ -10,6 +10,7 @@
 #include "core/pipeline/sweep.h"
 #include "core/pipeline/sweep_file.h"
 #include "core/util/error.h"
+#include "core/util/json_reader.h"
 #include "scene_builders.h"
 #include "sweep_builders.h"
 #include "test_dirs.h"
@@ -68,6 +69,58 @@ TEST(SweepFile, ReadsBackWhatTheSweepWrote) {
     for (size_t i = 0; i < r.rows.size(); ++i) expectSameRow(back.rows[i], r.rows[i]);
     for (size_t i = 0; i < r.pathTracer.size(); ++i) expectSameRow(back.pathTracer[i], r.pathTracer[i]);
     EXPECT_DOUBLE_EQ(back.rows[0].glslFrameSeconds, 0.004);
+}
+
+TEST(SweepFile, EveryFigureIsWrittenUnderItsKeyAndReadBackToTheSameBytes) {
+    const Scene scene = test::cornellLike(1.f, 16);
+    SweepResult r;
+    r.what = "trainer";
+    r.width = r.height = 8;
+    r.extra.generateSeconds = 1.5;
+    r.extra.loglogSlopeRmse = -0.5;
+    r.extra.loglogSlopeRmseCorrected = std::nan("");
+    r.extra.other = jsonText({{"future_result_figure", {1, 2}}});
+    SweepRow model;
+    model.setting = "lm";
+    model.stageSeconds = {{"train", 2.0}};
+    model.oneOffSeconds = 3.0;
+    model.extra.parameters = 300;
+    model.extra.modelBytes = 3840;
+    model.extra.leaves = 5;
+    model.extra.leafEpochs = 15;
+    model.extra.pixelsWithoutNetwork = 63;
+    model.extra.nonFinitePredictionValues = 0;
+    model.extra.direct = SweepTermFigures{0.25, 0.125, std::nan("")};
+    model.extra.records = 15;
+    model.extra.meanRecordSpp = 1.0;
+    model.extra.recordsAtSppCap = 0;
+    model.extra.curve = std::vector<SweepCurvePoint>{{0, "global", 1, 0.5, 0.75, std::nan("")}};
+    model.extra.other = jsonText({{"future_row_figure", "x"}, {"leaves_of_a_newer_kind", {{"n", 1}}}});
+    r.rows.push_back(model);
+    SweepRow series;
+    series.setting = "1";
+    series.spp = 1;
+    series.extra.nonFiniteSamplesDropped = 2;
+    r.pathTracer.push_back(series);
+
+    const nlohmann::json j = sweepJson(scene, r);
+    EXPECT_EQ(j["extra"].dump(),
+              R"({"future_result_figure":[1,2],"generate_seconds":1.5,"loglog_slope_rmse":-0.5,"loglog_slope_rmse_corrected":null})");
+    EXPECT_EQ(j["rows"][0]["extra"].dump(),
+              R"({"curve":[{"epoch":1,"object":0,"seconds":0.5,"target":"global","train_loss":0.75,"validation_loss":null}],)"
+              R"("direct_relative_rmse":0.25,"direct_relative_rmse_corrected":null,"direct_relative_rmse_noise_floor":0.125,)"
+              R"("future_row_figure":"x","leaf_epochs":15,"leaves":5,"leaves_of_a_newer_kind":{"n":1},"mean_record_spp":1.0,)"
+              R"("model_bytes":3840,"non_finite_prediction_values":0,"parameters":300,"pixels_without_network":63,)"
+              R"("records":15,"records_at_spp_cap":0})");
+    EXPECT_EQ(j["path_tracer"][0]["extra"].dump(), R"({"non_finite_samples_dropped":2})");
+
+    const std::filesystem::path dir = test::freshTestDir("rrf_sweep_file");
+    const std::string path = (dir / "trainer-1.json").string();
+    std::ofstream(path) << j.dump(2);
+    const SweepResult back = readSweepFile(path);
+    EXPECT_EQ(back.rows[0].extra, r.rows[0].extra);
+    EXPECT_EQ(back.pathTracer[0].extra, r.pathTracer[0].extra);
+    EXPECT_EQ(sweepJson(scene, back).dump(2), j.dump(2)) << "a sweep file read back writes the same bytes";
 }
 
 TEST(SweepFile, DamagedFileNamesTheFileAndTheMember) {

@@ -19,6 +19,7 @@
 #include "app/mpi/ranks.h"
 #include "core/data/record_layout.h"
 #include "core/pipeline/sweep.h"
+#include "core/pipeline/sweep_file.h"
 #include "core/pipeline/sweep_parts.h"
 #include "core/nn/training_split.h"
 #include "core/pipeline/time_estimate.h"

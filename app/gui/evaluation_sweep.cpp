@@ -68,10 +68,10 @@ panels::CostPoint costPoint(const SweepRow& row) {
     p.label = row.setting;
     // What a partition or data-quality setting actually did beside it: the leaves the trees grew, the
     // paths the adaptive sampler spent per record.
-    if (row.extra.contains("leaves")) p.label += " · " + std::to_string(row.extra["leaves"].get<int64_t>()) + " leaves";
-    if (row.extra.contains("mean_record_spp")) {
+    if (row.extra.leaves) p.label += " · " + std::to_string(*row.extra.leaves) + " leaves";
+    if (row.extra.meanRecordSpp) {
         char spp[48];
-        std::snprintf(spp, sizeof spp, " · %.0f paths/record", row.extra["mean_record_spp"].get<double>());
+        std::snprintf(spp, sizeof spp, " · %.0f paths/record", *row.extra.meanRecordSpp);
         p.label += spp;
     }
     p.seconds = row.spp > 0 ? (row.stageSeconds.empty() ? 0.0 : row.stageSeconds.front().second) : row.oneOffSeconds;

@@ -8,7 +8,6 @@
 #include <optional>
 #include <sstream>
 
-#include "core/eval/error_metrics_json.h"
 #include "core/util/error.h"
 #include "core/eval/evaluation.h"
 #include "core/pipeline/experiment.h"
@@ -75,19 +74,18 @@ TrainingRun trainAndEvaluate(const Context& c, const std::vector<ObjectSamples>&
             bytes += modelPayloadBytes(leaf);
         }
     }
-    row.extra["parameters"] = params;
-    row.extra["model_bytes"] = bytes;
+    row.extra.parameters = params;
+    row.extra.modelBytes = bytes;
     // What the goal and leaves sweeps change: how far the trees grew and how long their leaves trained.
-    row.extra["leaves"] = leaves;
-    row.extra["leaf_epochs"] = leafEpochs;
-    row.extra["pixels_without_network"] = e.prediction.pixelsWithoutNetwork;
-    row.extra["non_finite_prediction_values"] = e.prediction.nonFinite;
+    row.extra.leaves = leaves;
+    row.extra.leafEpochs = leafEpochs;
+    row.extra.pixelsWithoutNetwork = e.prediction.pixelsWithoutNetwork;
+    row.extra.nonFinitePredictionValues = e.prediction.nonFinite;
     for (Term term : {Term::Direct, Term::Indirect})
         if (e.term(term).available) {
             const ErrorStats& st = e.term(term).overall;
-            row.extra[std::string(termName(term)) + "_relative_rmse"] = st.relativeRmse;
-            row.extra[std::string(termName(term)) + "_relative_rmse_noise_floor"] = noiseFigureJson(st.relativeRmseNoiseFloor);
-            row.extra[std::string(termName(term)) + "_relative_rmse_corrected"] = noiseFigureJson(st.relativeRmseCorrected);
+            (term == Term::Direct ? row.extra.direct : row.extra.indirect) =
+                SweepTermFigures{st.relativeRmse, st.relativeRmseNoiseFloor, st.relativeRmseCorrected};
         }
     return run;
 }
@@ -121,7 +119,7 @@ std::vector<SweepRow> pathTracerSeries(const Context& c, const std::vector<int>&
         row.stageSeconds.push_back({"render", s.seconds});
         row.overall = errorStatsWithNoise(s.global, reference, variance, c.footprint.kept);
         for (const auto& px : c.footprint.keptByObject) row.perObject.push_back(errorStatsWithNoise(s.global, reference, variance, px));
-        row.extra["non_finite_samples_dropped"] = s.nonFinite;
+        row.extra.nonFiniteSamplesDropped = s.nonFinite;
         rows.push_back(std::move(row));
     }
     return rows;
@@ -191,9 +189,9 @@ SweepRow dataPoint(const Context& c, const SweepPoint& p) {
     row.stageSeconds.push_back({"generate", data.seconds});
     uint64_t records = 0;
     for (const auto& o : data.perObject) records += o.size() / size_t(c.layout.floatsPerRecord());
-    row.extra["records"] = records;
-    row.extra["mean_record_spp"] = records ? double(data.stats.paths) / double(records) : 0.0;
-    row.extra["records_at_spp_cap"] = data.stats.recordsAtSppCap;
+    row.extra.records = records;
+    row.extra.meanRecordSpp = records ? double(data.stats.paths) / double(records) : 0.0;
+    row.extra.recordsAtSppCap = data.stats.recordsAtSppCap;
     trainAndEvaluate(c, samplesFromGenerated(data, c.scene, c.layout), c.o.training, data.seconds, row);
     logModelRow(c, c.o.what, std::to_string(records) + " records, ", row);
     return row;
@@ -206,18 +204,51 @@ SweepRow networkPoint(const Context& c, const SweepPoint& p, const std::vector<O
     const TrainingRun run = trainAndEvaluate(c, samples, p.training, generateSeconds, row);
     if (c.o.what == "trainer") {
         // Each network's loss against time, networks in (object, target) order, epochs in order.
-        nlohmann::json curve = nlohmann::json::array();
+        std::vector<SweepCurvePoint> curve;
         for (const NetworkCurve& n : run.curves)
             for (const EpochRecord& e : n.epochs)
-                curve.push_back({{"object", n.objectId}, {"target", n.target}, {"epoch", e.epoch}, {"seconds", e.seconds},
-                                 {"train_loss", e.trainLoss}, {"validation_loss", e.validationLoss}});
-        row.extra["curve"] = curve;
+                curve.push_back({n.objectId, n.target, e.epoch, e.seconds, e.trainLoss, e.validationLoss});
+        row.extra.curve = std::move(curve);
     }
     logModelRow(c, c.o.what, "", row);
     return row;
 }
 
+/// Equal, or both unknown (NaN).
+bool sameFigure(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+bool sameFigure(const std::optional<double>& a, const std::optional<double>& b) {
+    return a.has_value() == b.has_value() && (!a || sameFigure(*a, *b));
+}
+bool sameFigures(const std::optional<SweepTermFigures>& a, const std::optional<SweepTermFigures>& b) {
+    return a.has_value() == b.has_value() &&
+           (!a || (sameFigure(a->relativeRmse, b->relativeRmse) && sameFigure(a->relativeRmseNoiseFloor, b->relativeRmseNoiseFloor) &&
+                   sameFigure(a->relativeRmseCorrected, b->relativeRmseCorrected)));
+}
+bool sameCurve(const std::optional<std::vector<SweepCurvePoint>>& a, const std::optional<std::vector<SweepCurvePoint>>& b) {
+    if (a.has_value() != b.has_value()) return false;
+    if (!a) return true;
+    if (a->size() != b->size()) return false;
+    for (size_t i = 0; i < a->size(); ++i) {
+        const SweepCurvePoint &p = (*a)[i], &q = (*b)[i];
+        if (p.object != q.object || p.target != q.target || p.epoch != q.epoch || !sameFigure(p.seconds, q.seconds) ||
+            !sameFigure(p.trainLoss, q.trainLoss) || !sameFigure(p.validationLoss, q.validationLoss))
+            return false;
+    }
+    return true;
+}
+
 }  // namespace
+
+bool isModelRow(const SweepRow& row) { return !std::isnan(row.oneOffSeconds); }
+
+bool SweepRowFigures::operator==(const SweepRowFigures& o) const {
+    return parameters == o.parameters && modelBytes == o.modelBytes && leaves == o.leaves && leafEpochs == o.leafEpochs &&
+           pixelsWithoutNetwork == o.pixelsWithoutNetwork && nonFinitePredictionValues == o.nonFinitePredictionValues &&
+           sameFigures(direct, o.direct) && sameFigures(indirect, o.indirect) &&
+           nonFiniteSamplesDropped == o.nonFiniteSamplesDropped && records == o.records &&
+           sameFigure(meanRecordSpp, o.meanRecordSpp) && recordsAtSppCap == o.recordsAtSppCap && sameCurve(curve, o.curve) &&
+           other == o.other;
+}
 
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -367,9 +398,9 @@ SweepResult joinSweepParts(const Scene& scene, const SweepOptions& o, const Swee
             ys.push_back(row.overall.rmse);
             ysCorrected.push_back(row.overall.rmseCorrected);
         }
-        r.extra["loglog_slope_rmse"] = logLogSlope(xs, ys);
+        r.extra.loglogSlopeRmse = logLogSlope(xs, ys);
         // Without the reference's noise the curve flattens towards its floor; the corrected slope does not.
-        r.extra["loglog_slope_rmse_corrected"] = noiseFigureJson(logLogSlope(xs, ysCorrected));
+        r.extra.loglogSlopeRmseCorrected = logLogSlope(xs, ysCorrected);
         return r;
     }
     r.pathTracer = std::move(*byTask[0]);
@@ -380,7 +411,7 @@ SweepResult joinSweepParts(const Scene& scene, const SweepOptions& o, const Swee
             row.breakEven = breakEven(series, comparableError(row.overall));
             r.rows.push_back(std::move(row));
         }
-    if (in.data) r.extra["generate_seconds"] = in.data->seconds;
+    if (in.data) r.extra.generateSeconds = in.data->seconds;
     return r;
 }
 

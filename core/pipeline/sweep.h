@@ -47,10 +47,9 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/eval/break_even.h"
 #include "core/eval/error_metrics.h"
@@ -62,6 +61,7 @@
 #include "core/data/data_generator.h"
 #include "core/data/sampling_settings.h"
 #include "core/predict/footprint_mask.h"
+#include "core/util/json_text.h"
 
 namespace rrf {
 
@@ -97,6 +97,60 @@ struct SweepOptions {
 /// a fresh scene; a stored one is reused at once) and the share of the shared dataset.
 constexpr double kSweepReferenceShare = 0.3, kSweepDataShare = 0.1;
 
+/// One term's error of a model row beside the global term the row is measured on (sweep files:
+/// "<term>_relative_rmse", "…_noise_floor", "…_corrected"; the noise figures NaN when unknown).
+struct SweepTermFigures {
+    double relativeRmse = 0;
+    double relativeRmseNoiseFloor = 0;
+    double relativeRmseCorrected = 0;
+};
+
+/// One epoch of one network in a trainer sweep's loss-vs-time curve.
+struct SweepCurvePoint {
+    int object = -1;
+    std::string target;     ///< "global" | "direct" | "indirect" | "joint"
+    int epoch = 0;
+    double seconds = 0;     ///< wall time since training started
+    double trainLoss = 0;
+    double validationLoss = 0;  ///< NaN when the validation set is empty
+};
+
+/// What a row records beside its errors and times (a sweep file's row "extra"): each figure is set
+/// only where the kind of row measures it, so a file written from them holds the same keys.
+struct SweepRowFigures {
+    // Model rows: the networks' size and training work (all leaves).
+    std::optional<int64_t> parameters;   ///< MLP weights and encoding parameters
+    std::optional<int64_t> modelBytes;   ///< float64 payload of the model files (parameters and scalers)
+    std::optional<int64_t> leaves;       ///< how far the kd-trees grew (goal and leaves sweeps)
+    std::optional<int64_t> leafEpochs;   ///< every member's epochs summed over the leaves
+    std::optional<uint64_t> pixelsWithoutNetwork;
+    std::optional<uint64_t> nonFinitePredictionValues;
+    /// Model rows: the direct and indirect terms' errors where the reference has them.
+    std::optional<SweepTermFigures> direct, indirect;
+    /// Path-tracer rows: samples dropped because they were NaN/Inf.
+    std::optional<uint64_t> nonFiniteSamplesDropped;
+    // Points with their own data (grid, dirs, record_spp).
+    std::optional<uint64_t> records;
+    std::optional<double> meanRecordSpp;  ///< paths traced per record
+    std::optional<uint64_t> recordsAtSppCap;
+    /// Trainer sweeps: each network's loss against time, networks in (object, target) order.
+    std::optional<std::vector<SweepCurvePoint>> curve;
+    /// Keys of a sweep file this build does not know (or cannot read), written back as they were.
+    JsonText other;
+    /// Equal figure by figure; NaN equals NaN (an unknown figure read back is still unknown).
+    bool operator==(const SweepRowFigures& o) const;
+    bool operator!=(const SweepRowFigures& o) const { return !(*this == o); }
+};
+
+/// What a sweep records beside its rows (a sweep file's top-level "extra").
+struct SweepResultFigures {
+    /// spp sweeps: the fitted log-log slope of RMSE vs spp, raw and noise-corrected (NaN when unknown).
+    std::optional<double> loglogSlopeRmse, loglogSlopeRmseCorrected;
+    /// Sweeps on one shared dataset: the seconds generating it took.
+    std::optional<double> generateSeconds;
+    JsonText other;  ///< keys this build does not know, as in SweepRowFigures
+};
+
 struct SweepRow {
     static constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
     std::string setting;
@@ -117,8 +171,11 @@ struct SweepRow {
     BreakEven breakEven;
     /// Model rows with SweepOptions::keepModels: the networks that were evaluated.
     std::shared_ptr<const ModelSet> models;
-    nlohmann::json extra = nlohmann::json::object();           ///< records, parameters, curves, …
+    SweepRowFigures extra;  ///< records, parameters, curves, …
 };
+
+/// Whether `row` is a model row: its one-off cost (data + training) is known; NaN for the path tracer's rows.
+bool isModelRow(const SweepRow& row);
 
 struct SweepResult {
     std::string what;
@@ -133,7 +190,7 @@ struct SweepResult {
     /// Model sweeps: the path tracer's series against the same reference (spp order). For an spp
     /// sweep it is empty: the rows are the series (pathTracerRows()).
     std::vector<SweepRow> pathTracer;
-    nlohmann::json extra = nlohmann::json::object();  ///< e.g. "loglog_slope_rmse" for spp
+    SweepResultFigures extra;  ///< e.g. the log-log slope for spp
     bool cancelled = false;
 };
 
@@ -230,7 +287,7 @@ double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
 std::string sweepCsv(const Scene& scene, const SweepResult& r);
 /// Training curves of a trainer sweep (trainer, object, target, epoch, seconds, losses); empty otherwise.
 std::string sweepCurveCsv(const SweepResult& r);
-nlohmann::json sweepJson(const Scene& scene, const SweepResult& r);
+// The JSON report (sweepJson) is the sweep file's writer: core/pipeline/sweep_file.h.
 /// Readable table of the rows (and the fitted slope for spp); for model sweeps the path tracer's
 /// series and one break-even sentence per row (breakEvenText).
 std::string sweepTable(const SweepResult& r);

@@ -1,6 +1,7 @@
 // The bytes a sweep's processes exchange: the reference and the parts (sweep_parts.h).
 #include "core/pipeline/sweep_parts.h"
 
+#include <optional>
 #include <stdexcept>
 
 #include "core/util/byte_stream.h"
@@ -47,6 +48,85 @@ ErrorStats readErrorStats(ByteReader& in) {
     return s;
 }
 
+// A figure that may be absent: a presence flag, then its bits.
+void writeOptional(ByteWriter& out, const std::optional<int64_t>& v) {
+    out.u64(v.has_value());
+    if (v) out.i64(*v);
+}
+void writeOptional(ByteWriter& out, const std::optional<uint64_t>& v) {
+    out.u64(v.has_value());
+    if (v) out.u64(*v);
+}
+void writeOptional(ByteWriter& out, const std::optional<double>& v) {
+    out.u64(v.has_value());
+    if (v) out.f64(*v);
+}
+void writeOptional(ByteWriter& out, const std::optional<SweepTermFigures>& v) {
+    out.u64(v.has_value());
+    if (v)
+        for (double f : {v->relativeRmse, v->relativeRmseNoiseFloor, v->relativeRmseCorrected}) out.f64(f);
+}
+
+void readOptional(ByteReader& in, std::optional<int64_t>& v) {
+    if (in.u64()) v = in.i64();
+}
+void readOptional(ByteReader& in, std::optional<uint64_t>& v) {
+    if (in.u64()) v = in.u64();
+}
+void readOptional(ByteReader& in, std::optional<double>& v) {
+    if (in.u64()) v = in.f64();
+}
+void readOptional(ByteReader& in, std::optional<SweepTermFigures>& v) {
+    if (!in.u64()) return;
+    SweepTermFigures f;
+    for (double* p : {&f.relativeRmse, &f.relativeRmseNoiseFloor, &f.relativeRmseCorrected}) *p = in.f64();
+    v = f;
+}
+
+void writeRowFigures(ByteWriter& out, const SweepRowFigures& f) {
+    for (const std::optional<int64_t>* v : {&f.parameters, &f.modelBytes, &f.leaves, &f.leafEpochs}) writeOptional(out, *v);
+    for (const std::optional<uint64_t>* v : {&f.pixelsWithoutNetwork, &f.nonFinitePredictionValues, &f.nonFiniteSamplesDropped,
+                                             &f.records, &f.recordsAtSppCap})
+        writeOptional(out, *v);
+    writeOptional(out, f.direct);
+    writeOptional(out, f.indirect);
+    writeOptional(out, f.meanRecordSpp);
+    out.u64(f.curve.has_value());
+    if (f.curve) {
+        out.u64(f.curve->size());
+        for (const SweepCurvePoint& p : *f.curve) {
+            out.i64(p.object);
+            out.string(p.target);
+            out.i64(p.epoch);
+            for (double v : {p.seconds, p.trainLoss, p.validationLoss}) out.f64(v);
+        }
+    }
+    out.string(f.other.text);
+}
+
+SweepRowFigures readRowFigures(ByteReader& in) {
+    SweepRowFigures f;
+    for (std::optional<int64_t>* v : {&f.parameters, &f.modelBytes, &f.leaves, &f.leafEpochs}) readOptional(in, *v);
+    for (std::optional<uint64_t>* v : {&f.pixelsWithoutNetwork, &f.nonFinitePredictionValues, &f.nonFiniteSamplesDropped,
+                                       &f.records, &f.recordsAtSppCap})
+        readOptional(in, *v);
+    readOptional(in, f.direct);
+    readOptional(in, f.indirect);
+    readOptional(in, f.meanRecordSpp);
+    if (in.u64()) {
+        std::vector<SweepCurvePoint>& curve = f.curve.emplace();
+        for (uint64_t n = in.u64(); n > 0; --n) {
+            SweepCurvePoint& p = curve.emplace_back();
+            p.object = int(in.i64());
+            p.target = in.string();
+            p.epoch = int(in.i64());
+            for (double* v : {&p.seconds, &p.trainLoss, &p.validationLoss}) *v = in.f64();
+        }
+    }
+    f.other.text = in.string();
+    return f;
+}
+
 void writeSweepRow(ByteWriter& out, const SweepRow& row) {
     out.string(row.setting);
     out.u64(row.stageSeconds.size());
@@ -62,11 +142,10 @@ void writeSweepRow(ByteWriter& out, const SweepRow& row) {
         out.f64(v);
     out.u64(row.breakEven.known);
     out.u64(row.breakEven.extrapolated);
-    const std::vector<uint8_t> cbor = nlohmann::json::to_cbor(row.extra);
-    out.string(std::string(cbor.begin(), cbor.end()));
+    writeRowFigures(out, row.extra);
 }
 
-SweepRow readSweepRow(ByteReader& in, const std::string& source) {
+SweepRow readSweepRow(ByteReader& in) {
     SweepRow row;
     row.setting = in.string();
     for (uint64_t n = in.u64(); n > 0; --n) {
@@ -80,12 +159,7 @@ SweepRow readSweepRow(ByteReader& in, const std::string& source) {
         *v = in.f64();
     row.breakEven.known = in.u64() != 0;
     row.breakEven.extrapolated = in.u64() != 0;
-    const std::string cbor = in.string();
-    try {
-        row.extra = nlohmann::json::from_cbor(cbor);
-    } catch (const nlohmann::json::exception& e) {
-        throw std::runtime_error(source + ": a sweep row's extra fields do not read back (" + e.what() + ")");
-    }
+    row.extra = readRowFigures(in);
     return row;
 }
 
@@ -135,7 +209,7 @@ SweepPart decodeSweepPart(const std::string& bytes, const std::string& source) {
     for (uint64_t n = in.u64(); n > 0; --n) {
         part.tasks.push_back(int(in.i64()));
         std::vector<SweepRow>& rows = part.rows.emplace_back();
-        for (uint64_t k = in.u64(); k > 0; --k) rows.push_back(readSweepRow(in, source));
+        for (uint64_t k = in.u64(); k > 0; --k) rows.push_back(readSweepRow(in));
     }
     part.cancelled = in.u64() != 0;
     if (!in.atEnd()) throw std::runtime_error(source + ": bytes left over after the sweep part");

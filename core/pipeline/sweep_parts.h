@@ -17,8 +17,8 @@ std::string encodeReference(const Reference& reference);
 /// std::runtime_error on a truncated transfer.
 Reference decodeReference(const std::string& bytes, const std::string& source);
 
-/// The bytes of `part`: its tasks and their rows (every field but SweepRow::models; `extra` as CBOR,
-/// which keeps doubles' bits).
+/// The bytes of `part`: its tasks and their rows (every field but SweepRow::models; doubles keep
+/// their bits).
 std::string encodeSweepPart(const SweepPart& part);
 /// Reads what encodeSweepPart wrote; `source` names the part in errors. Throws std::runtime_error
 /// on a truncated or malformed transfer.

@@ -1,13 +1,14 @@
-// The reports of a sweep (core/pipeline/sweep.h): CSV, training-curve CSV, JSON and the readable table.
+// The reports of a sweep (core/pipeline/sweep.h): CSV, training-curve CSV and the readable table (the
+// JSON report is the sweep file, core/pipeline/sweep_file.h).
 // Every model row carries its cost columns (one-off and per-frame seconds) and its break-even against
 // the path tracer's series of the same sweep (core/eval/break_even.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 
-#include "core/eval/error_metrics_json.h"
 #include "core/pipeline/sweep.h"
 
 namespace rrf {
@@ -33,20 +34,8 @@ std::string num(double v) {
 /// value, never 0.
 std::string optionalField(double v) { return std::isnan(v) ? std::string() : num(v); }
 
-nlohmann::json optionalJson(double v) { return noiseFigureJson(v); }
-
-bool isModelRow(const SweepRow& row) { return !std::isnan(row.oneOffSeconds); }
-
-nlohmann::json breakEvenJson(const SweepRow& row) {
-    if (!isModelRow(row)) return nullptr;
-    const BreakEven& b = row.breakEven;
-    return {{"error", comparableError(row.overall)},
-            {"error_is_corrected", !std::isnan(row.overall.relativeRmseCorrected)},
-            {"known", b.known},
-            {"spp", b.known ? nlohmann::json(b.spp) : nlohmann::json(nullptr)},
-            {"seconds", b.known ? nlohmann::json(b.seconds) : nlohmann::json(nullptr)},
-            {"extrapolated", b.extrapolated}};
-}
+/// A model row's size (parameters incl. encoding tables, float64 payload bytes) in CSV; empty for the path tracer.
+std::string countField(const std::optional<int64_t>& v) { return v ? std::to_string(*v) : std::string(); }
 
 }  // namespace
 
@@ -71,11 +60,6 @@ std::string sweepCsv(const Scene& scene, const SweepResult& r) {
             << "_relative_rmse_corrected";
     out << ",spp,one_off_seconds,frame_seconds,glsl_frame_seconds,breakeven_spp,breakeven_seconds,breakeven_extrapolated,"
            "parameters,model_bytes\n";
-    // A model row's size (parameters incl. encoding tables, float64 payload bytes); empty for the path tracer.
-    auto count = [](const SweepRow& row, const char* key) {
-        return row.extra.contains(key) && row.extra[key].is_number_integer() ? std::to_string(row.extra[key].get<int64_t>())
-                                                                              : std::string();
-    };
     auto line = [&](const std::string& what, const SweepRow& row) {
         out << what << "," << csvField(row.setting);
         for (const std::string& s : stages) {
@@ -98,8 +82,8 @@ std::string sweepCsv(const Scene& scene, const SweepResult& r) {
         out << "," << (row.spp > 0 ? std::to_string(row.spp) : "") << "," << optionalField(row.oneOffSeconds) << ","
             << optionalField(row.frameSeconds) << "," << optionalField(row.glslFrameSeconds) << ","
             << (known ? num(row.breakEven.spp) : "") << "," << (known ? num(row.breakEven.seconds) : "") << ","
-            << (known ? (row.breakEven.extrapolated ? "1" : "0") : "") << "," << count(row, "parameters") << ","
-            << count(row, "model_bytes") << "\n";
+            << (known ? (row.breakEven.extrapolated ? "1" : "0") : "") << "," << countField(row.extra.parameters) << ","
+            << countField(row.extra.modelBytes) << "\n";
     };
     for (const SweepRow& row : r.rows) line(r.what, row);
     for (const SweepRow& row : r.pathTracer) line("path_tracer", row);
@@ -110,62 +94,14 @@ std::string sweepCurveCsv(const SweepResult& r) {
     std::ostringstream out;
     bool any = false;
     for (const SweepRow& row : r.rows) {
-        if (!row.extra.contains("curve")) continue;
+        if (!row.extra.curve) continue;
         if (!any) out << "trainer,object,target,epoch,seconds,train_loss,validation_loss\n";
         any = true;
-        for (const nlohmann::json& p : row.extra["curve"]) {
-            const double val = p["validation_loss"].is_number() ? p["validation_loss"].get<double>() : std::nan("");
-            out << csvField(row.setting) << "," << p["object"].get<int>() << "," << p["target"].get<std::string>() << ","
-                << p["epoch"].get<int>() << "," << num(p["seconds"].get<double>()) << ","
-                << num(p["train_loss"].get<double>()) << "," << num(val) << "\n";
-        }
+        for (const SweepCurvePoint& p : *row.extra.curve)
+            out << csvField(row.setting) << "," << p.object << "," << p.target << "," << p.epoch << "," << num(p.seconds) << ","
+                << num(p.trainLoss) << "," << num(p.validationLoss) << "\n";
     }
     return out.str();
-}
-
-nlohmann::json sweepJson(const Scene& scene, const SweepResult& r) {
-    auto rowsJson = [&](const std::vector<SweepRow>& rows) {
-        nlohmann::json out = nlohmann::json::array();
-        for (const SweepRow& row : rows) {
-            nlohmann::json stages = nlohmann::json::object(), objects = nlohmann::json::array();
-            for (const auto& kv : row.stageSeconds) stages[kv.first] = kv.second;
-            for (size_t id = 0; id < row.perObject.size(); ++id) {
-                nlohmann::json o = toJson(row.perObject[id]);
-                o["id"] = int(id);
-                o["name"] = id < scene.objects.size() ? scene.objects[id].name : "";
-                objects.push_back(o);
-            }
-            nlohmann::json j = {{"setting", row.setting}, {"stage_seconds", stages}, {"error", toJson(row.overall)},
-                                {"objects", objects}, {"extra", row.extra}};
-            if (row.spp > 0) j["spp"] = row.spp;
-            if (isModelRow(row)) {
-                j["one_off_seconds"] = row.oneOffSeconds;
-                j["frame_seconds"] = optionalJson(row.frameSeconds);
-                j["glsl_frame_seconds"] = optionalJson(row.glslFrameSeconds);
-                j["break_even"] = breakEvenJson(row);
-            }
-            out.push_back(j);
-        }
-        return out;
-    };
-    return {{"what", r.what},
-            {"light_position", {r.lightPosition.x, r.lightPosition.y, r.lightPosition.z}},
-            {"resolution", {r.width, r.height}},
-            {"reference",
-             {{"spp", r.referenceSpp}, {"seconds", r.referenceSeconds}, {"relative_rmse_noise_floor", optionalJson(r.relativeNoiseFloor)}}},
-            {"error_term", "global"},
-            {"pixels", "object pixels the footprint mask keeps (the reference's G-buffer)"},
-            {"metric", "per channel averaged over RGB; relative error |d|/(|ref|+0.01); *_noise_floor = the figure the "
-                       "reference's own noise gives, *_corrected = the figure with the reference's per-pixel variance of the "
-                       "mean subtracted from the squared error (clamped at 0); null when unknown"},
-            {"cost", "path tracer rows: render seconds to reach their spp; model rows: one_off_seconds = data generation + "
-                     "training, frame_seconds = one CPU frame (G-buffer + networks), glsl_frame_seconds = one GLSL frame where "
-                     "measured; break_even = the spp and seconds the path tracer needs to reach the model's corrected relative "
-                     "RMSE, log-log interpolated on path_tracer (extrapolated on its fitted line outside it)"},
-            {"cancelled", r.cancelled},
-            {"extra", r.extra},
-            {"rows", rowsJson(r.rows)},
-            {"path_tracer", rowsJson(r.pathTracer)}};
 }
 
 std::string sweepTable(const SweepResult& r) {
@@ -203,12 +139,9 @@ std::string sweepTable(const SweepResult& r) {
     std::snprintf(line, sizeof line, "all points: %dx%d, against one reference (%d spp, relative RMSE noise floor %s), global term\n",
                   r.width, r.height, r.referenceSpp, noiseFigureText(r.relativeNoiseFloor).c_str());
     out << line;
-    if (r.extra.contains("loglog_slope_rmse")) {
-        const auto slope = [&](const char* key) {
-            return r.extra.contains(key) && r.extra[key].is_number() ? r.extra[key].get<double>() : std::nan("");
-        };
+    if (r.extra.loglogSlopeRmse) {
         std::snprintf(line, sizeof line, "log-log slope of RMSE vs spp: %.3f raw, %s corrected (Monte Carlo: -0.5)\n",
-                      slope("loglog_slope_rmse"), noiseFigureText(slope("loglog_slope_rmse_corrected")).c_str());
+                      *r.extra.loglogSlopeRmse, noiseFigureText(r.extra.loglogSlopeRmseCorrected.value_or(std::nan(""))).c_str());
         out << line;
     }
     bool header = false;
@@ -216,11 +149,9 @@ std::string sweepTable(const SweepResult& r) {
         if (!isModelRow(row)) continue;
         if (!header) out << "break-even (what the model's error costs the path tracer):\n";
         header = true;
-        const auto size = [&](const char* key) {
-            return row.extra.contains(key) && row.extra[key].is_number() ? row.extra[key].get<double>() : std::nan("");
-        };
+        const auto size = [](const std::optional<int64_t>& v) { return v ? double(*v) : std::nan(""); };
         std::snprintf(line, sizeof line, "  %s %s: %.0f parameters, %.3g MB; one-off %.3g s (data + training); ", r.what.c_str(),
-                      row.setting.c_str(), size("parameters"), size("model_bytes") / 1e6, row.oneOffSeconds);
+                      row.setting.c_str(), size(row.extra.parameters), size(row.extra.modelBytes) / 1e6, row.oneOffSeconds);
         out << line << sweepBreakEvenText(row) << "\n";
     }
     return out.str();
