@@ -10,7 +10,7 @@
 
 #include "core/scene/radiometric_range.h"
 #include "core/util/error.h"
-#include "core/util/json_reader.h"
+#include "core/util/text_format.h"
 
 namespace rrf {
 

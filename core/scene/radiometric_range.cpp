@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/util/json_reader.h"
+#include "core/util/text_format.h"
 
 namespace rrf {
 

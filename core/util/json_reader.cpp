@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 #include "core/util/atomic_file.h"
@@ -218,12 +216,6 @@ std::string JsonReader::choiceOr(const std::string& key, const std::string& fall
         list += (list.empty() ? "\"" : ", \"") + a + "\"";
     }
     r->fail("expected one of " + list + ", got \"" + s + "\"");
-}
-
-std::string formatNumber(double v) {
-    std::ostringstream out;
-    out << std::setprecision(7) << v;
-    return out.str();
 }
 
 namespace {

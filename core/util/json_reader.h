@@ -13,6 +13,7 @@
 
 #include "core/util/error.h"
 #include "core/util/json_text.h"
+#include "core/util/text_format.h"
 #include "core/util/vec3.h"
 
 namespace rrf {
@@ -95,9 +96,6 @@ private:
     std::string file_;
     std::string pointer_;
 };
-
-/// Shortest readable form of a number for messages ("0.1", "1e+06"), unlike std::to_string's "0.100000".
-std::string formatNumber(double v);
 
 /// Parses JSON text (comments allowed). Malformed input throws InputError naming `file` and the
 /// line, column and byte offset where the parser gave up.

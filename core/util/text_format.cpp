@@ -1,8 +1,16 @@
 #include "core/util/text_format.h"
 
 #include <cstdio>
+#include <iomanip>
+#include <sstream>
 
 namespace rrf {
+
+std::string formatNumber(double v) {
+    std::ostringstream out;
+    out << std::setprecision(7) << v;
+    return out.str();
+}
 
 std::string humanCount(double value) {
     char buf[32];

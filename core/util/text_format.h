@@ -6,6 +6,9 @@
 
 namespace rrf {
 
+/// Shortest readable form of a number for messages ("0.1", "1e+06"), unlike std::to_string's "0.100000".
+std::string formatNumber(double v);
+
 /// "1.23 M", "456.0 k", "12 " — a count or rate with an SI prefix and a trailing space, so that a
 /// unit can follow directly ("1.23 Msamples/s").
 std::string humanCount(double value);

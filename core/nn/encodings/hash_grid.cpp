@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/util/json_reader.h"
+#include "core/util/text_format.h"
 #include "core/util/rng.h"
 
 namespace rrf {
