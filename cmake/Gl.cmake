@@ -14,7 +14,8 @@ if(RRF_BUILD_TESTS)
   file(GLOB RRF_GL_TEST_SOURCES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/gl/*.cpp)
   # The band policy of the workbench's full-quality frames (pure arithmetic, no GUI) is checked
   # against whole frames here.
-  add_executable(rrf_gl_tests ${RRF_GL_TEST_SOURCES} ${CMAKE_SOURCE_DIR}/app/gui/prediction_bands.cpp)
+  add_executable(rrf_gl_tests ${RRF_GL_TEST_SOURCES} ${CMAKE_SOURCE_DIR}/app/gui/prediction_bands.cpp
+                              ${CMAKE_SOURCE_DIR}/app/gui/live_prediction.cpp)
   target_link_libraries(rrf_gl_tests PRIVATE rrf_gl GTest::gtest rrf_warnings)
   target_compile_definitions(rrf_gl_tests PRIVATE RRF_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
   # The GL tests need an X server: CTest always runs them inside a fresh Xvfb (Mesa llvmpipe unless a

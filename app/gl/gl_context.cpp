@@ -34,7 +34,7 @@ std::string glString(GLenum name) {
 
 }  // namespace
 
-GlContext::GlContext() {
+GLFWwindow* createOffscreenWindow(const char* title) {
     ErrorCallbackScope errors;
     if (!glfwInit())
         throw GlContextError("cannot initialise GLFW (is an X server running? DISPLAY=" +
@@ -47,8 +47,14 @@ GlContext::GlContext() {
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     // The window is never shown; its size does not limit the FBOs rendered into.
-    window_ = glfwCreateWindow(16, 16, "rrf offscreen", nullptr, nullptr);
-    if (!window_) throw GlContextError("cannot create an OpenGL 3.3 core context: " + errors.message());
+    GLFWwindow* window = glfwCreateWindow(16, 16, title, nullptr, nullptr);
+    glfwDefaultWindowHints();
+    if (!window) throw GlContextError(std::string("cannot create an OpenGL 3.3 core context (") + title + "): " + errors.message());
+    return window;
+}
+
+GlContext::GlContext() {
+    window_ = createOffscreenWindow("rrf offscreen");
     glfwMakeContextCurrent(window_);
     if (gladLoadGL(glfwGetProcAddress) == 0) {
         glfwDestroyWindow(window_);

@@ -18,6 +18,11 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/// Initialises GLFW and creates a hidden window whose OpenGL 3.3 core, forward-compatible context
+/// is not made current (GLFW restores the calling thread's context). Main thread only, as every
+/// GLFW window. Throws GlContextError with GLFW's own message on any failure.
+GLFWwindow* createOffscreenWindow(const char* title);
+
 class GlContext {
 public:
     /// Initialises GLFW, creates the hidden window with an OpenGL 3.3 core, forward-compatible

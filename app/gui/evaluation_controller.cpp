@@ -38,13 +38,14 @@ EvaluationController::EvaluationController(ControllerContext& ctx, const Predict
       sweepJob_(ctx.jobs, JobKind::Sweep, ctx.state.log),
       restoreJob_(ctx.jobs, JobKind::ReadBack, ctx.state.log) {}
 
-EvaluationController::~EvaluationController() = default;
+// ~EvaluationController is in evaluation_sweep.cpp, where a sweep's GLSL timing is a complete type.
 
 void EvaluationController::drop() {
     for (JobSessionBase* job :
          std::initializer_list<JobSessionBase*>{&evaluateJob_, &pairJob_, &lightGridJob_, &sweepJob_, &restoreJob_})
         job->drop();
     evaluateDone_ = nullptr;
+    dropSweepTiming();
 }
 
 void EvaluationController::pollAfterPrediction() {

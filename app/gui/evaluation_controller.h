@@ -7,6 +7,7 @@
 /// state.evaluation, state.runPair, state.lightRegion and state.cost. UI thread only.
 
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "app/gui/controller_context.h"
@@ -20,6 +21,7 @@ struct EvaluationOutcome;
 struct PairOutcome;
 struct LightGridResult;
 struct SweepOutcome;
+struct SweepTiming;
 struct RestoredSweeps;
 struct SweepResult;
 
@@ -51,7 +53,8 @@ public:
     void cancelLightGrid() { lightGridJob_.cancel(); }
     /// Runs a cost sweep of one of the kinds in kSweepKinds (core/pipeline/sweep.h) with interactive sizes.
     bool startSweep(const std::string& what);
-    bool sweepRunning() const { return sweepJob_.running(); }
+    /// True while a sweep runs, or its GLSL frames are timed on a GL worker of its own.
+    bool sweepRunning() const { return sweepJob_.running() || sweepTiming_ != nullptr; }
     void cancelSweep() { sweepJob_.cancel(); }
     /// The Objects table of the project's last evaluation (<project dir>/evaluation.json,
     /// app/gui/stored_evaluation_file.h) when it judged the models now loaded against the ground truth
@@ -79,6 +82,13 @@ private:
     /// it cannot be made (a notice on the Training panel).
     void pollEvaluateAfterTrain();
     void pollSweep();
+    /// Times the GLSL predictor on each finished row's networks on a GL worker of its own (so that
+    /// neither the UI nor the live prediction's worker waits for the compiles).
+    void startSweepTiming(SweepOutcome out);
+    /// Once every row is timed: the Cost panel's series and the sweep's files.
+    void finishSweep();
+    /// Forgets the timing of a finished sweep (its rows still being timed are skipped).
+    void dropSweepTiming();
     void pollRestoredSweeps();
     void pollLightGrid();
     void pollRunPair();
@@ -98,6 +108,7 @@ private:
     JobSession<PairOutcome> pairJob_;
     JobSession<LightGridResult> lightGridJob_;
     JobSession<SweepOutcome> sweepJob_;
+    std::unique_ptr<SweepTiming> sweepTiming_;  ///< a finished sweep whose GLSL frames are being timed
     JobSession<RestoredSweeps> restoreJob_;  ///< the project's sweeps read back when it was opened
 };
 

@@ -1,16 +1,17 @@
 // EvaluationController: the "Run sweep" job of the Cost panel (core/pipeline/sweep.h) with sizes small enough for an
 // interactive session. Every point of a sweep is measured against one reference at one resolution;
 // model sweeps include the path tracer's series (1…256 spp) against that reference, so each model has
-// its break-even. When the job is done the UI thread — the one with the window's GL context — times
-// the GLSL predictor on each row's networks (core has no GL), then the rows become the Cost panel's
-// series and are written as CSV and JSON under <project dir>/sweeps/, as `rrf sweep` writes them.
+// its break-even. When the job is done a GL worker of its own (app/gl/gl_worker.h) times the GLSL
+// predictor on each row's networks (core has no GL), then the rows become the Cost panel's series and are written as CSV and JSON under <project dir>/sweeps/, as `rrf sweep` writes them.
 #include "app/gui/evaluation_controller.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
+#include "app/gl/gl_worker.h"
 #include "app/gl/glsl_predictor.h"
 #include "core/data/sampling_settings.h"
 #include "core/pipeline/sweep.h"
@@ -224,34 +225,85 @@ bool EvaluationController::startSweep(const std::string& what) {
     return true;
 }
 
+/// A finished sweep whose rows' GLSL frames are timed on a GL worker of its own, a task per row.
+struct SweepTiming {
+    SweepOutcome out;
+    std::unique_ptr<GlWorker> gl;
+    std::vector<std::future<double>> seconds;  ///< per row with networks, in row order
+    std::shared_ptr<std::atomic<bool>> dropped = std::make_shared<std::atomic<bool>>(false);
+};
+
+EvaluationController::~EvaluationController() { dropSweepTiming(); }
+
+void EvaluationController::dropSweepTiming() {
+    if (!sweepTiming_) return;
+    // Rows not started yet are skipped; the worker finishes the one it is timing, then stops.
+    sweepTiming_->dropped->store(true);
+    sweepTiming_.reset();
+}
+
 void EvaluationController::pollSweep() {
     state_.cost.running = sweepRunning();
-    if (state_.cost.running) state_.cost.progress = sweepJob_.progress();
-    sweepJob_.poll([&](SweepOutcome& out) {
-        SweepResult& r = out.result;
-        // GLSL frame times: this thread has the window's GL context (a failure leaves them unknown).
-        for (SweepRow& row : r.rows) {
+    if (sweepJob_.running()) state_.cost.progress = sweepJob_.progress();
+    sweepJob_.poll([&](SweepOutcome& out) { startSweepTiming(std::move(out)); });
+    finishSweep();
+}
+
+void EvaluationController::startSweepTiming(SweepOutcome out) {
+    auto timing = std::make_unique<SweepTiming>();
+    timing->out = std::move(out);
+    try {
+        timing->gl = std::make_unique<GlWorker>();
+    } catch (const std::exception& e) {
+        state_.log.warning(std::string("sweep: GLSL frame times not measured: ") + e.what());
+    }
+    if (timing->gl) {
+        const SweepOutcome& o = timing->out;
+        for (const SweepRow& row : o.result.rows) {
             if (!row.models) continue;
-            try {
-                row.glslFrameSeconds = glslFrameSeconds(*out.scene, *row.models, out.prediction, r.lightPosition, r.width, r.height);
-            } catch (const std::exception& e) {
-                state_.log.warning(std::string("sweep: GLSL frame time not measured: ") + e.what());
-                break;
-            }
-            row.models.reset();
+            timing->seconds.push_back(timing->gl->post(
+                [scene = o.scene, models = row.models, prediction = o.prediction, light = o.result.lightPosition,
+                 width = o.result.width, height = o.result.height, dropped = timing->dropped]() -> double {
+                    if (dropped->load()) return SweepRow::kUnknown;
+                    return glslFrameSeconds(*scene, *models, prediction, light, width, height);
+                }));
         }
-        addSweepSeries(r);
-        state_.focusTab = "Cost";
+    }
+    sweepTiming_ = std::move(timing);
+}
+
+void EvaluationController::finishSweep() {
+    if (!sweepTiming_) return;
+    for (const std::future<double>& f : sweepTiming_->seconds)
+        if (f.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    std::unique_ptr<SweepTiming> timing = std::move(sweepTiming_);
+    state_.cost.running = sweepRunning();
+    timing->gl.reset();  // every task has run
+    SweepOutcome& out = timing->out;
+    SweepResult& r = out.result;
+    size_t next = 0;
+    bool warned = false;
+    for (SweepRow& row : r.rows) {
+        if (!row.models) continue;
         try {
-            fs::create_directories(fs::path(out.outBase).parent_path());
-            writeFileAtomically(out.outBase + ".csv", sweepCsv(*out.scene, r));
-            writeFileAtomically(out.outBase + ".json", sweepJson(*out.scene, r).dump(2));
+            row.glslFrameSeconds = timing->seconds[next++].get();
         } catch (const std::exception& e) {
-            state_.notify(panels::LogLevel::Error, "Cost", std::string("sweep: writing the results failed: ") + e.what());
-            return;
+            if (!warned) state_.log.warning(std::string("sweep: GLSL frame time not measured: ") + e.what());
+            warned = true;
         }
-        state_.notify(panels::LogLevel::Info, "", "sweep written to " + out.outBase + ".csv and .json");
-    });
+        row.models.reset();
+    }
+    addSweepSeries(r);
+    state_.focusTab = "Cost";
+    try {
+        fs::create_directories(fs::path(out.outBase).parent_path());
+        writeFileAtomically(out.outBase + ".csv", sweepCsv(*out.scene, r));
+        writeFileAtomically(out.outBase + ".json", sweepJson(*out.scene, r).dump(2));
+    } catch (const std::exception& e) {
+        state_.notify(panels::LogLevel::Error, "Cost", std::string("sweep: writing the results failed: ") + e.what());
+        return;
+    }
+    state_.notify(panels::LogLevel::Info, "", "sweep written to " + out.outBase + ".csv and .json");
 }
 
 }  // namespace rrf

@@ -19,6 +19,7 @@ FrameTimeSummary summarizeFrameTimes(std::vector<double> seconds) {
 }
 
 void FrameStats::add(double seconds) {
+    if (frames_++ > 0) longestAfterFirst_ = std::max(longestAfterFirst_, seconds);
     recent_.push_back(seconds);
     if (recent_.size() > window_) recent_.erase(recent_.begin(), recent_.begin() + std::ptrdiff_t(recent_.size() - window_));
     if (recording_) recorded_.push_back(seconds);

@@ -28,6 +28,9 @@ public:
     /// The frames kept (oldest first).
     const std::vector<double>& recent() const { return recent_; }
     double last() const { return recent_.empty() ? 0.0 : recent_.back(); }
+    /// The longest frame since the first (seconds; 0 before a second frame). The first frame is
+    /// the window's start: nothing was on screen before it that it could have held up.
+    double longestAfterFirst() const { return longestAfterFirst_; }
     /// Starts collecting every frame (not only the window) until takeRecording().
     void startRecording();
     bool recording() const { return recording_; }
@@ -37,6 +40,8 @@ public:
 private:
     size_t window_;
     std::vector<double> recent_;
+    size_t frames_ = 0;
+    double longestAfterFirst_ = 0.0;
     bool recording_ = false;
     std::vector<double> recorded_;
 };

@@ -1,5 +1,6 @@
 // PredictionController (prediction_controller.h): the trained models' prediction in the middle view.
-// The GLSL path renders on the UI thread in the same frame as a light move; the CPU path
+// The GLSL path renders on the GL worker (drafts within the frame of a light move, full frames in
+// bands the UI does not wait for); the CPU path
 // (core/predict/predictor.h) runs as a Predict job when the GLSL predictor could not be built.
 #include "app/gui/prediction_controller.h"
 
@@ -62,6 +63,7 @@ void PredictionController::drop() {
     upload_.reset();
     predictPending_ = false;
     bands_.active = false;
+    live_.dropRows();
 }
 
 bool PredictionController::loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded,
@@ -114,28 +116,35 @@ void PredictionController::uploadPendingModels() {
     }
     ++uploads_;
     announcedUploads_ += announced;
-    if (uploadModels(u.dir, std::move(u.models), u.readSeconds) && u.then) u.then();
+    uploadModels(u.dir, std::move(u.models), u.readSeconds, std::move(u.then));
 }
 
-bool PredictionController::uploadModels(const std::string& dir, std::shared_ptr<const ModelSet> models, double readSeconds) {
-    std::string glslError;
-    const Stopwatch clock;
-    const ProgramBinaryCache::Counts before = ProgramBinaryCache::shared().counts();
+bool PredictionController::uploadModels(const std::string& dir, std::shared_ptr<const ModelSet> models, double readSeconds,
+                                        std::function<void()> then) {
     try {
-        live_.load(state_.project.scene, dir, true, glslError, std::move(models));
+        live_.load(state_.project.scene, dir, true, state_.project.prediction, std::move(models));
     } catch (const std::exception& e) {
         state_.notify(panels::LogLevel::Error, "Project", std::string("loading the models failed: ") + e.what());
         return false;
     }
-    const double loadSeconds = clock.seconds();
+    // The GL worker builds the predictor and compiles its programs; finishUpload() takes it over.
+    building_ = Building{dir, readSeconds, std::move(then)};
+    bands_ = BandedFrame{};
+    return true;
+}
+
+void PredictionController::finishUpload() {
+    if (!building_) return;
+    std::optional<LivePrediction::Build> built = live_.takeBuild();
+    if (!built) return;  // still compiling on the GL worker
+    Building b = std::move(*building_);
+    building_.reset();
     // The program cache's notes (a driver without binaries, a damaged file, named) and what it did.
-    for (const std::string& line : ProgramBinaryCache::shared().takeNotes()) state_.log.warning(line);
-    const ProgramBinaryCache::Counts after = ProgramBinaryCache::shared().counts();
-    lastLoadPrograms_.hits = after.hits - before.hits;
-    lastLoadPrograms_.misses = after.misses - before.misses;
-    if (!glslError.empty())
-        state_.log.warning("GLSL prediction unavailable, using the CPU predictor (slower): " + glslError);
-    state_.training.modelsDir = dir;
+    for (const std::string& line : built->notes) state_.log.warning(line);
+    lastLoadPrograms_ = built->programs;
+    if (!built->glslError.empty())
+        state_.log.warning("GLSL prediction unavailable, using the CPU predictor (slower): " + built->glslError);
+    state_.training.modelsDir = b.dir;
     lastCpuFrame_.reset();
     state_.lightRegion.map.reset();  // it judged the models these replace
     for (int k = 0; k < 2; ++k) {
@@ -150,13 +159,13 @@ bool PredictionController::uploadModels(const std::string& dir, std::shared_ptr<
     state_.view.compareSource = panels::CompareSource::Prediction;
     char timing[224];
     char read[64] = "";
-    if (readSeconds > 0.0) std::snprintf(read, sizeof read, " after %.2f s of reading on a worker", readSeconds);
-    std::snprintf(timing, sizeof timing, " in %.2f s on the UI thread%s (GLSL programs: %d from the binary cache, %d compiled)",
-                  loadSeconds, read, lastLoadPrograms_.hits, lastLoadPrograms_.misses);
-    state_.log.info("models loaded from " + dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)") +
+    if (b.readSeconds > 0.0) std::snprintf(read, sizeof read, " after %.2f s of reading on a worker", b.readSeconds);
+    std::snprintf(timing, sizeof timing, " in %.2f s on the GL worker%s (GLSL programs: %d from the binary cache, %d compiled)",
+                  built->seconds, read, lastLoadPrograms_.hits, lastLoadPrograms_.misses);
+    state_.log.info("models loaded from " + b.dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)") +
                     (live_.usesGlsl() ? std::string(timing) : ""));
     refresh();
-    return true;
+    if (b.then) b.then();
 }
 
 void PredictionController::refresh() {
@@ -231,6 +240,7 @@ void PredictionController::showGlsl(Image images[kTermCount], const Camera& came
 }
 
 void PredictionController::startBands(const Camera& camera) {
+    live_.dropRows();
     bands_ = BandedFrame{};
     bands_.active = true;
     bands_.camera = camera;
@@ -241,44 +251,54 @@ void PredictionController::startBands(const Camera& camera) {
 }
 
 void PredictionController::renderBand() {
-    if (!bands_.active) return;
+    if (!bands_.active) {
+        live_.dropRows();  // a frame abandoned (the light moved, new models): its band is of no use
+        return;
+    }
     if (!live_.loaded() || !live_.usesGlsl()) {
         bands_.active = false;
         return;
     }
     const int height = bands_.camera.height;
+    if (live_.rowsRunning()) {
+        std::optional<LivePrediction::Rows> done;
+        try {
+            done = live_.takeRows();
+        } catch (const std::exception& e) {
+            bands_.active = false;
+            state_.log.error(std::string("GLSL prediction failed: ") + e.what());
+            return;
+        }
+        if (!done) return;  // still rendering on the GL worker; the UI goes on meanwhile
+        bands_.gpuSeconds += done->seconds;
+        bands_.wallSeconds += done->wallSeconds;  // how long the band held the GL worker
+        bands_.longestBand = std::max(bands_.longestBand, done->wallSeconds);
+        bands_.bandRows = nextBandRows(bands_.rowsInFlight, done->wallSeconds, height);
+        bands_.rowsDone += bands_.rowsInFlight;
+        ++bands_.bands;
+        if (bands_.rowsDone >= height) {
+            finishBands(*done);
+            return;
+        }
+    }
     const int rows = std::min(bands_.bandRows, height - bands_.rowsDone);
     const int end = height - bands_.rowsDone;  // image rows, from the bottom up (the G-buffer comes first)
-    try {
-        const Stopwatch clock;
-        bands_.gpuSeconds += live_.renderGlslRows(bands_.camera, bands_.light, bands_.settings, end - rows, end);
-        const double wall = clock.seconds();  // waited for the band: what this UI frame paid
-        bands_.wallSeconds += wall;
-        bands_.longestBand = std::max(bands_.longestBand, wall);
-        bands_.bandRows = nextBandRows(rows, wall, height);
-    } catch (const std::exception& e) {
-        bands_.active = false;
-        state_.log.error(std::string("GLSL prediction failed: ") + e.what());
-        return;
-    }
-    bands_.rowsDone += rows;
-    ++bands_.bands;
-    if (bands_.rowsDone < height) return;
+    bands_.rowsInFlight = rows;
+    live_.startRows(bands_.camera, bands_.light, bands_.settings, end - rows, end, bands_.rowsDone + rows >= height);
+}
+
+void PredictionController::finishBands(LivePrediction::Rows& last) {
     bands_.active = false;
+    const int height = bands_.camera.height;
     Image images[kTermCount];
-    try {
-        live_.readGlsl(images);
-    } catch (const std::exception& e) {
-        state_.log.error(std::string("GLSL prediction failed: ") + e.what());
-        return;
-    }
+    for (Term t : kTerms) images[int(t)] = std::move(last.images[size_t(t)]);
     secondsPerRow_ = bands_.wallSeconds / height;
     lastFullFrame_ = BandedFrameSummary{bands_.gpuSeconds, bands_.longestBand, bands_.bands};
     if (!fullFrameLogged_) {
         fullFrameLogged_ = true;
         char line[200];
         std::snprintf(line, sizeof line,
-                      "first full GLSL frame of these models: %.3f s on the device, in %d band(s) of at most %.3f s on the UI thread",
+                      "first full GLSL frame of these models: %.3f s on the device, in %d band(s) of at most %.3f s on the GL worker",
                       bands_.gpuSeconds, bands_.bands, bands_.longestBand);
         state_.log.info(line);
     }
@@ -365,6 +385,7 @@ void PredictionController::poll() {
     // A set waiting since the last frame (which announced it) is uploaded first, then a set whose
     // read has just ended waits for the next frame.
     uploadPendingModels();
+    finishUpload();
     modelRead_.poll();
     predictJob_.poll([&](TimedPrediction& timed) {
         // Beside the GLSL view (the glossy gather's frame), a frame for a light that has moved on

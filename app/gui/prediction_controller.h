@@ -1,6 +1,6 @@
 #pragma once
 /// The trained models' prediction as a controller: the live prediction of the middle view (GLSL on
-/// the UI thread in the frame of a light move, or CPU Predict jobs), the light-drag drafts
+/// the GL worker, app/gui/live_prediction.h, or CPU Predict jobs), the light-drag drafts
 /// (prediction_draft.h), the frame times recorded in the models' training run, and the Views'
 /// overlays computed from the prediction on workers: the leaf overlay, the FLIP map
 /// (prediction_flip.cpp) and the spread map (prediction_spread.cpp). It owns the LivePrediction and
@@ -37,19 +37,21 @@ public:
     /// Loads a model directory for the live prediction (GLSL, else CPU). `preloaded`: the set a
     /// worker already read from `dir` (a finished training), so only the GL upload is left.
     /// Without it the set is read on a worker (a ReadBack job: 10-30 ms for small sets, far more
-    /// for big ones, issue 29). Either way the GL upload (which compiles shaders) happens in the
-    /// next frame's poll(), after a frame that says so (uploadPending()); the view keeps the models
-    /// it had meanwhile, and a newer load replaces one in flight. `then` runs once the models drive
+    /// for big ones, issue 29). Either way the GL upload starts in the next frame's poll(), after a
+    /// frame that says so (uploadPending()), and the GL worker compiles the shaders while the UI
+    /// goes on (glslBuilding()); the view keeps the prediction it had meanwhile, and a newer load replaces one in flight. `then` runs once the models drive
     /// the prediction (not when the load failed). Returns false only for an empty `dir`; a load that
     /// fails says so in the log and at the Project panel.
     bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr,
                     std::function<void()> then = nullptr);
-    /// True while a model set is being read on a worker, or waits for its GL upload.
-    bool modelsLoading() const { return modelRead_.pending() || upload_.has_value(); }
-    /// True while a model set waits for its GL upload, which happens in the next frame's poll():
-    /// the upload compiles the GLSL programs (seconds with a cold shader cache, a first start, and
-    /// the window cannot draw meanwhile), so this frame says so first (the status bar's note).
+    /// True while a model set is being read on a worker, waits for its GL upload or is uploaded.
+    bool modelsLoading() const { return modelRead_.pending() || upload_.has_value() || building_.has_value(); }
+    /// True while a model set waits for its GL upload, which starts in the next frame's poll():
+    /// this frame says first that shaders are compiled (the status bar's note, which stays while
+    /// glslBuilding()).
     bool uploadPending() const { return upload_.has_value(); }
+    /// True while the GL worker builds the predictor of new models and compiles its programs.
+    bool glslBuilding() const { return building_.has_value(); }
     /// The status bar has shown the note of the pending upload in this frame.
     void uploadAnnounced() { uploadAnnounced_ = upload_.has_value(); }
     /// Model sets uploaded, and how many of them after a frame that announced the upload.
@@ -59,6 +61,7 @@ public:
     void reset() {
         modelRead_.drop();
         upload_.reset();
+        building_.reset();
         live_.reset();
         bands_ = BandedFrame{};
     }
@@ -83,7 +86,7 @@ public:
     /// compiled (both 0 where the driver offers no binary format, or the load fell back to the CPU).
     const ProgramBinaryCache::Counts& lastLoadPrograms() const { return lastLoadPrograms_; }
     /// The last full-quality GLSL frame shown: its device seconds, its bands and its longest band's
-    /// wall seconds on the UI thread (0 before any): what tests check instead of frame times.
+    /// wall seconds on the GL worker (0 before any): what tests check instead of frame times.
     struct BandedFrameSummary {
         double gpuSeconds = 0.0, longestBand = 0.0;
         int bands = 0;
@@ -102,8 +105,8 @@ public:
     bool predictRunning() const { return predictJob_.running(); }
     /// Whether the prediction on screen is a draft (the light moved less than kDraftRestSeconds ago).
     bool draftShown() const { return draftShown_; }
-    /// The live prediction's recent frame times (seconds): GLSL frames on the UI thread where the
-    /// GLSL path runs, else the CPU jobs'.
+    /// The live prediction's recent frame times (seconds): GLSL frames where the GLSL path runs,
+    /// else the CPU jobs'.
     const std::vector<double>& frameSeconds() const { return frameSeconds_[live_.usesGlsl() ? kGlslFrames : kCpuFrames]; }
     /// The recent draft frames' prediction times while the light was dragged (seconds).
     const std::vector<double>& draftSeconds() const { return draftSeconds_; }
@@ -113,9 +116,15 @@ public:
     std::function<bool()> holdCpuFrames;
 
 private:
-    /// The GL upload of a model set read from `dir` (GLSL programs, the network texture) and what
-    /// new models reset; `readSeconds`: how long reading it took, for the log.
-    bool uploadModels(const std::string& dir, std::shared_ptr<const ModelSet> models, double readSeconds);
+    /// Starts the GL upload of a model set read from `dir` (GLSL programs, the network texture) on
+    /// the GL worker; `readSeconds`: how long reading it took, for the log.
+    bool uploadModels(const std::string& dir, std::shared_ptr<const ModelSet> models, double readSeconds,
+                      std::function<void()> then);
+    /// Once the GL worker has built the predictor: what new models reset, the log line, the first
+    /// frame, and the load's `then`.
+    void finishUpload();
+    /// Shows the full-quality frame whose `last` band has just finished.
+    void finishBands(LivePrediction::Rows& last);
     /// The CPU prediction as a job (the fallback path, and the glossy gather after a GLSL frame).
     void startCpuPrediction(const Camera& camera);
     /// Recomputes the leaf overlay (leaf per pixel) when it is on and the prediction changed.
@@ -158,6 +167,7 @@ private:
         Vec3 light{0.f};
         PredictionSettings settings;
         int rowsDone = 0, bandRows = 1, bands = 0;
+        int rowsInFlight = 0;  ///< rows of the band the GL worker is rendering
         double gpuSeconds = 0.0, wallSeconds = 0.0, longestBand = 0.0;
     };
     BandedFrame bands_;
@@ -194,6 +204,13 @@ private:
         int polls = 0;  ///< polls it has waited without a frame that announced it
     };
     std::optional<PendingUpload> upload_;
+    /// A set whose predictor the GL worker is building (finishUpload()).
+    struct Building {
+        std::string dir;
+        double readSeconds = 0.0;
+        std::function<void()> then;
+    };
+    std::optional<Building> building_;
     bool uploadAnnounced_ = false;
     int uploads_ = 0, announcedUploads_ = 0;
     /// Does the pending upload (poll()).

@@ -59,7 +59,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
                        "region_pixels_min", "light_grid_points", "spread_shown", "spread_evaluated",
                        "ground_truth_stored", "help_open", "status_idle_while_pipeline",
                        "undo_steps", "redo_steps", "light_position", "objects_rows", "programs_cached",
-                       "full_frame_banded", "uploads_announced"}},
+                       "full_frame_banded", "uploads_announced", "longest_frame_ms_max"}},
         };
     }();
     return keys;
@@ -69,7 +69,7 @@ const std::map<std::string, std::vector<std::string>>& stepKeys() {
 constexpr const char* kCheckCounts[] = {"runs",       "ground_truth_spp_min", "errors",      "undo_steps",
                                         "redo_steps", "status_idle_while_pipeline", "sweeps", "objects_rows",
                                         "region_pixels_min", "light_grid_points", "train_runs", "stopped_runs",
-                                        "panes",      "clipped"};
+                                        "panes",      "clipped",              "longest_frame_ms_max"};
 constexpr const char* kCheckFlags[] = {"dataset",         "compare",          "prediction",       "help_open",
                                        "ground_truth_stored", "error_waiting", "evaluated",        "full_frame_banded",
                                        "uploads_announced", "programs_cached", "flip_evaluated",   "spread_shown",

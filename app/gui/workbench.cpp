@@ -265,10 +265,9 @@ void Workbench::drawStatusBar() {
         panels::drawNotice(state_.notice, false);
         ImGui::SameLine();
     }
-    // The next frame uploads new models, compiling their shaders: seconds without a frame when
-    // the driver's shader cache is cold (a first start). This frame, the last one on screen
-    // meanwhile, says why the window is about to pause.
-    if (prediction_.uploadPending()) {
+    // New models: the GL worker compiles their shaders (seconds when the driver's shader cache is
+    // cold, a first start) while the view keeps the last prediction; say why it has not changed.
+    if (prediction_.uploadPending() || prediction_.glslBuilding()) {
         ImGui::TextColored(ImVec4(1.f, 0.8f, 0.3f, 1.f), "compiling GLSL shaders (seconds on a first start)");
         ImGui::SameLine();
         prediction_.uploadAnnounced();
@@ -327,6 +326,7 @@ bool Workbench::busy() const {
     // drained(), not idle(): a job that ended after this frame's polls still has its result to hand
     // over, and the window must not wait for an event to take it.
     return !jobs_.drained() || pipelineRunning() || prediction_.modelsLoading() || prediction_.draftShown() || prediction_.bandsPending() ||
+           evaluation_.sweepRunning() ||
            ImGui::IsAnyMouseDown();
 }
 

@@ -31,4 +31,13 @@ TEST(FrameStats, WindowKeepsTheLastFramesAndRecordingTakesAStretch) {
     EXPECT_TRUE(f.takeRecording().empty());
 }
 
+TEST(FrameStats, LongestAfterTheFirstFrameOutlivesTheWindow) {
+    FrameStats f(2);
+    EXPECT_DOUBLE_EQ(f.longestAfterFirst(), 0);
+    f.add(9);  // the window's start: not a stall of anything on screen
+    EXPECT_DOUBLE_EQ(f.longestAfterFirst(), 0);
+    for (double x : {0.5, 2.0, 0.25, 0.5, 0.75}) f.add(x);
+    EXPECT_DOUBLE_EQ(f.longestAfterFirst(), 2.0) << "kept after the frame left the window";
+}
+
 }  // namespace rrf::test_frame_stats
