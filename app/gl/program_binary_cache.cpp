@@ -81,7 +81,9 @@ ProgramBinaryCache::Counts ProgramBinaryCache::counts() const {
 }
 
 bool ProgramBinaryCache::supported() {
-    if (supported_ < 0) {
+    // Asked by the first GL thread that needs it (the live prediction's worker and a sweep's may
+    // both); the others wait for its answer.
+    std::call_once(supportedAsked_, [this] {
         GLint formats = 0;
         glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &formats);
         glGetError();  // a driver without the query flags an error that is not the caller's
@@ -91,7 +93,7 @@ bool ProgramBinaryCache::supported() {
         else if (!supported_)
             note("program binary cache unused: the driver (" + driverString(GL_RENDERER) +
                  ") offers no program binary format (GL_NUM_PROGRAM_BINARY_FORMATS 0), so shaders compile at every start");
-    }
+    });
     return supported_ > 0 && !dir_.empty();
 }
 

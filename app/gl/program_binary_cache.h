@@ -11,8 +11,9 @@
 /// caller compiles, and the fresh binary replaces the file. Drivers without a binary format
 /// (GL_NUM_PROGRAM_BINARY_FORMATS 0, as some Mesa builds) make the cache a no-op, said once in a note.
 ///
-/// GL calls only: the thread whose context is current (the UI thread in the workbench). Notes and
-/// warnings are collected for the caller's log (takeNotes), since app/gl has no log of its own.
+/// GL calls need a current context on the calling thread (the GL workers' in the workbench,
+/// app/gl/gl_worker.h); several threads may use the shared cache at once. Notes and warnings are
+/// collected for the caller's log (takeNotes), since app/gl has no log of its own.
 
 #include <cstdint>
 #include <mutex>
@@ -61,7 +62,8 @@ private:
     void note(std::string line);
 
     std::string dir_;
-    int supported_ = -1;  ///< -1: not asked yet
+    std::once_flag supportedAsked_;
+    int supported_ = -1;  ///< -1: not asked yet (written once, under supportedAsked_)
     mutable std::mutex mutex_;  ///< guards notes_ and counts_ (read by other threads in tests)
     std::vector<std::string> notes_;
     Counts counts_;

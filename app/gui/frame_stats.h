@@ -29,7 +29,7 @@ public:
     const std::vector<double>& recent() const { return recent_; }
     double last() const { return recent_.empty() ? 0.0 : recent_.back(); }
     /// The longest frame since the first (seconds; 0 before a second frame). The first frame is
-    /// the window's start: nothing was on screen before it that it could have held up.
+    /// drawn before the window is shown (Window::swap): nothing on screen waits for it.
     double longestAfterFirst() const { return longestAfterFirst_; }
     /// Starts collecting every frame (not only the window) until takeRecording().
     void startRecording();

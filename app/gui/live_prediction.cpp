@@ -28,10 +28,8 @@ constexpr int kWarmUpSize = 4;
 LivePrediction::LivePrediction() = default;
 
 LivePrediction::~LivePrediction() {
-    releasePredictor();
-    build_ = {};
-    rows_ = {};
-    worker_.reset();  // runs the release posted above, then stops
+    reset();          // posts the release of the predictor, and of one still being built
+    worker_.reset();  // runs what was posted, then stops
 }
 
 GlWorker* LivePrediction::worker(std::string& error) {

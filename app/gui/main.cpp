@@ -138,7 +138,11 @@ int main(int argc, char** argv) {
             // by itself (a job, a held mouse button) and for a few frames after input (ImGui settles
             // hover and click states over 2-3 frames); otherwise they wait for events, waking twice
             // a second, so an idle workbench leaves the cores to whatever else runs.
-            const double timeout = automated ? 0.005 : (wb.busy() || eventFrames > 0) ? 1.0 / 30.0 : 0.5;
+            // The first frame does not wait: the window is shown once it is drawn (Window::swap).
+            const double timeout = wb.frameStats().recent().empty() ? 0.0
+                                   : automated                      ? 0.005
+                                   : (wb.busy() || eventFrames > 0) ? 1.0 / 30.0
+                                                                    : 0.5;
             if (window.waitEvents(timeout)) eventFrames = 3;
             else if (eventFrames > 0) --eventFrames;
             const auto frameStart = std::chrono::steady_clock::now();

@@ -59,6 +59,10 @@ bool Window::create(int width, int height, const std::string& title, const std::
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
+    // Shown once its first frame is drawn (swap()): that frame builds the font atlas, compiles
+    // ImGui's shaders and has llvmpipe compile their machine code at the first draw (a few hundred
+    // ms), which a visible window would spend black.
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
     window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!window_) {
         error = "cannot create an OpenGL 3.3 core window: " + glfwErrorText;
@@ -134,7 +138,12 @@ void Window::render() {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
-void Window::swap() { glfwSwapBuffers(window_); }
+void Window::swap() {
+    glfwSwapBuffers(window_);
+    if (shown_) return;
+    glfwShowWindow(window_);
+    shown_ = true;
+}
 
 Image Window::readBackBuffer() const {
     int w = 0, h = 0;

@@ -34,6 +34,8 @@ public:
     void beginFrame();
     /// Renders ImGui's draw data into the back buffer (call swap() after any read-back).
     void render();
+    /// Presents the frame; the first call also shows the window, which stays hidden until its
+    /// first frame is drawn.
     void swap();
 
     /// Reads the back buffer after render() into a linear-RGB image (top row first).
@@ -43,6 +45,7 @@ public:
 private:
     GLFWwindow* window_ = nullptr;
     bool imgui_ = false;
+    bool shown_ = false;
     float scale_ = 1.f;
     std::string iniPath_;  ///< must outlive ImGui, which keeps the pointer
     /// GLFW's key events on their way to ImGui's backend, so that taps shorter than a frame count.
