@@ -19,6 +19,32 @@
 
 namespace rrf::test {
 
+/// The project default of the live view: exact direct light, a few samples per pixel.
+inline PredictionSettings liveSettings() {
+    PredictionSettings s;
+    s.direct = PredictionSettings::Direct::Exact;
+    s.directSamples = 8;
+    s.seed = 3;
+    return s;
+}
+
+/// Largest |a - b| relative to max(|a|, |b|, 1e-3) over every pixel and channel of two images of
+/// one size (a size mismatch fails the test).
+inline double maxRelativeDifference(const Image& a, const Image& b) {
+    EXPECT_EQ(a.width, b.width);
+    EXPECT_EQ(a.height, b.height);
+    double worst = 0.0;
+    for (int y = 0; y < std::min(a.height, b.height); ++y)
+        for (int x = 0; x < std::min(a.width, b.width); ++x) {
+            const Vec3 p = a.at(x, y), q = b.at(x, y);
+            for (int c = 0; c < 3; ++c) {
+                const double d = std::fabs(double(p[c]) - double(q[c]));
+                worst = std::max(worst, d / std::max({std::fabs(double(p[c])), std::fabs(double(q[c])), 1e-3}));
+            }
+        }
+    return worst;
+}
+
 struct GBufferComparison {
     size_t pixels = 0, idMismatches = 0, idMismatchesOffSilhouette = 0, compared = 0;
     double maxPositionError = 0, maxNormalError = 0;

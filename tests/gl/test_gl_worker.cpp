@@ -19,34 +19,11 @@
 #include "app/gl/glsl_predictor.h"
 #include "app/gui/live_prediction.h"
 #include "tests/gl/gl_test_env.h"
+#include "tests/gl/glsl_comparison.h"
 #include "tests/gl/test_models.h"
 
 namespace rrf::test_gl_worker {
 namespace {
-
-PredictionSettings liveSettings() {
-    PredictionSettings s;
-    s.direct = PredictionSettings::Direct::Exact;
-    s.directSamples = 8;
-    s.seed = 3;
-    return s;
-}
-
-/// Largest |a - b| relative to max(|a|, |b|, 1e-3) over every pixel and channel.
-double maxRelativeDifference(const Image& a, const Image& b) {
-    EXPECT_EQ(a.width, b.width);
-    EXPECT_EQ(a.height, b.height);
-    double worst = 0.0;
-    for (int y = 0; y < std::min(a.height, b.height); ++y)
-        for (int x = 0; x < std::min(a.width, b.width); ++x) {
-            const Vec3 p = a.at(x, y), q = b.at(x, y);
-            for (int c = 0; c < 3; ++c) {
-                const double d = std::fabs(double(p[c]) - double(q[c]));
-                worst = std::max(worst, d / std::max({std::fabs(double(p[c])), std::fabs(double(q[c])), 1e-3}));
-            }
-        }
-    return worst;
-}
 
 double sum(const Image& im) {
     double s = 0.0;
@@ -112,7 +89,7 @@ TEST(GlWorker, APredictorOnTheWorkerRendersWhatOneOnTheCallingThreadRenders) {
     auto render = [&] {
         GlslPredictor gp(scene, set);
         gp.setCamera(camera);
-        gp.setPrediction(liveSettings());
+        gp.setPrediction(test::liveSettings());
         gp.setLightPosition(light);
         gp.render();
         std::vector<Image> out;
@@ -123,7 +100,7 @@ TEST(GlWorker, APredictorOnTheWorkerRendersWhatOneOnTheCallingThreadRenders) {
     ASSERT_GT(sum(here[int(Term::Global)]), 0.0) << "the frame shows something to compare";
     GlWorker worker;
     const std::vector<Image> there = worker.run(render);
-    for (Term t : kTerms) EXPECT_LE(maxRelativeDifference(there[int(t)], here[int(t)]), 1e-6) << termName(t);
+    for (Term t : kTerms) EXPECT_LE(test::maxRelativeDifference(there[int(t)], here[int(t)]), 1e-6) << termName(t);
 }
 
 TEST(LivePrediction, BuildsOnTheWorkerAndItsBandsMakeTheFrameItRendersWhole) {
@@ -131,7 +108,7 @@ TEST(LivePrediction, BuildsOnTheWorkerAndItsBandsMakeTheFrameItRendersWhole) {
     const Scene scene = test::cornellBox();
     auto set = std::make_shared<const ModelSet>(test::mixedModelSet(scene));
     LivePrediction live;
-    live.load(scene, "test models", true, liveSettings(), set);
+    live.load(scene, "test models", true, test::liveSettings(), set);
     EXPECT_TRUE(live.building());
     EXPECT_FALSE(live.loaded()) << "the models drive the prediction once the build is handed over";
     std::optional<LivePrediction::Build> build;
@@ -146,7 +123,7 @@ TEST(LivePrediction, BuildsOnTheWorkerAndItsBandsMakeTheFrameItRendersWhole) {
     camera.height = 48;
     const Vec3 light = scene.lightRegion.lo * 0.3f + scene.lightRegion.hi * 0.7f;
     Image whole[kTermCount];
-    const double seconds = live.renderGlsl(camera, light, liveSettings(), whole);
+    const double seconds = live.renderGlsl(camera, light, test::liveSettings(), whole);
     EXPECT_GT(seconds, 0.0);
     ASSERT_GT(sum(whole[int(Term::Global)]), 0.0);
 
@@ -155,13 +132,13 @@ TEST(LivePrediction, BuildsOnTheWorkerAndItsBandsMakeTheFrameItRendersWhole) {
     draft.width = 16;
     draft.height = 12;
     Image scratch[kTermCount];
-    live.renderGlsl(draft, scene.lightRegion.lo, liveSettings(), scratch);
+    live.renderGlsl(draft, scene.lightRegion.lo, test::liveSettings(), scratch);
     const int bands[] = {5, 20, 23};
     int done = 0;
     std::optional<LivePrediction::Rows> rows;
     for (int h : bands) {
         const int end = camera.height - done;
-        live.startRows(camera, light, liveSettings(), end - h, end, done + h == camera.height);
+        live.startRows(camera, light, test::liveSettings(), end - h, end, done + h == camera.height);
         EXPECT_TRUE(live.rowsRunning());
         ASSERT_TRUE(waitFor([&] { return (rows = live.takeRows()).has_value(); }));
         EXPECT_FALSE(live.rowsRunning());
@@ -169,10 +146,10 @@ TEST(LivePrediction, BuildsOnTheWorkerAndItsBandsMakeTheFrameItRendersWhole) {
         done += h;
     }
     ASSERT_EQ(rows->images.size(), size_t(kTermCount)) << "the last band reads the frame back";
-    for (Term t : kTerms) EXPECT_LE(maxRelativeDifference(rows->images[int(t)], whole[int(t)]), 1e-5) << termName(t);
+    for (Term t : kTerms) EXPECT_LE(test::maxRelativeDifference(rows->images[int(t)], whole[int(t)]), 1e-5) << termName(t);
 
     // A dropped band is never handed over; reset releases the predictor on the worker.
-    live.startRows(camera, light, liveSettings(), 0, camera.height, true);
+    live.startRows(camera, light, test::liveSettings(), 0, camera.height, true);
     live.dropRows();
     EXPECT_FALSE(live.rowsRunning());
     EXPECT_FALSE(live.takeRows().has_value());
@@ -190,7 +167,7 @@ TEST(LivePrediction, AShaderThatCannotBeBuiltFallsBackToTheCpuPathWithTheReason)
     set.objects.push_back(set.objects.front());
     set.objects.back().objectId = 999;
     LivePrediction live;
-    live.load(scene, "test models", true, liveSettings(), std::make_shared<const ModelSet>(set));
+    live.load(scene, "test models", true, test::liveSettings(), std::make_shared<const ModelSet>(set));
     std::optional<LivePrediction::Build> build;
     ASSERT_TRUE(waitFor([&] { return (build = live.takeBuild()).has_value(); }));
     EXPECT_NE(build->glslError, "");

@@ -12,35 +12,11 @@
 #include "app/gl/glsl_predictor.h"
 #include "app/gui/prediction_bands.h"
 #include "tests/gl/gl_test_env.h"
+#include "tests/gl/glsl_comparison.h"
 #include "tests/gl/test_models.h"
 
 namespace rrf::test_glsl_bands {
 namespace {
-
-/// The project default of the live view: exact direct light, a few samples per pixel.
-PredictionSettings liveSettings() {
-    PredictionSettings s;
-    s.direct = PredictionSettings::Direct::Exact;
-    s.directSamples = 8;
-    s.seed = 3;
-    return s;
-}
-
-/// Largest |a - b| relative to max(|a|, |b|, 1e-3) over every pixel and channel.
-double maxRelativeDifference(const Image& a, const Image& b) {
-    EXPECT_EQ(a.width, b.width);
-    EXPECT_EQ(a.height, b.height);
-    double worst = 0.0;
-    for (int y = 0; y < std::min(a.height, b.height); ++y)
-        for (int x = 0; x < std::min(a.width, b.width); ++x) {
-            const Vec3 p = a.at(x, y), q = b.at(x, y);
-            for (int c = 0; c < 3; ++c) {
-                const double d = std::fabs(double(p[c]) - double(q[c]));
-                worst = std::max(worst, d / std::max({std::fabs(double(p[c])), std::fabs(double(q[c])), 1e-3}));
-            }
-        }
-    return worst;
-}
 
 /// Renders the frame as bands of the given heights, bottom up (GL rows), as the workbench does.
 void renderInBands(GlslPredictor& gp, const std::vector<int>& heights) {
@@ -77,7 +53,7 @@ TEST(GlslBands, AFrameInBandsEqualsTheWholeFrame) {
     camera.width = 96;
     camera.height = 72;
     gp.setCamera(camera);
-    gp.setPrediction(liveSettings());
+    gp.setPrediction(test::liveSettings());
     gp.setLightPosition(scene.lightRegion.lo * 0.3f + scene.lightRegion.hi * 0.7f);
 
     gp.render();
@@ -102,7 +78,7 @@ TEST(GlslBands, AFrameInBandsEqualsTheWholeFrame) {
         gp.setLightPosition(scene.lightRegion.lo * 0.3f + scene.lightRegion.hi * 0.7f);
         renderInBands(gp, bands);
         for (Term t : kTerms) {
-            const double d = maxRelativeDifference(gp.read(t), whole[int(t)]);
+            const double d = test::maxRelativeDifference(gp.read(t), whole[int(t)]);
             std::printf("  %zu bands, %s: max relative difference %.3g\n", bands.size(), termName(t), d);
             EXPECT_LE(d, 1e-5) << bands.size() << " bands, term " << termName(t);
         }
