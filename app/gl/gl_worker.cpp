@@ -45,6 +45,11 @@ void GlWorker::enqueue(std::function<void()> task) {
 
 void GlWorker::loop() {
     glfwMakeContextCurrent(window_);
+    if (glfwGetCurrentContext() != window_) {
+        started_.set_exception(std::make_exception_ptr(
+            GlContextError("the GL worker could not make its OpenGL context current")));
+        return;
+    }
     // The window's thread loaded the entry points already (they are the same for every context
     // under GLX); a program without a window loads them here.
     if (!GLAD_GL_VERSION_3_3 && gladLoadGL(glfwGetProcAddress) == 0) {

@@ -45,6 +45,13 @@ std::string ProgramBinaryCache::defaultDirectory() {
     return "";
 }
 
+namespace {
+/// What the cache did for the calling thread (countsOnThisThread).
+thread_local ProgramBinaryCache::Counts threadCounts;
+}  // namespace
+
+ProgramBinaryCache::Counts ProgramBinaryCache::countsOnThisThread() { return threadCounts; }
+
 ProgramBinaryCache& ProgramBinaryCache::shared() {
     static ProgramBinaryCache cache(defaultDirectory());
     return cache;
@@ -104,13 +111,16 @@ bool ProgramBinaryCache::load(uint64_t key, unsigned program) {
     if (!fs::exists(path, ec)) {
         std::lock_guard<std::mutex> lock(mutex_);
         ++counts_.misses;
+        ++threadCounts.misses;
         return false;
     }
     auto refuse = [&](const std::string& why) {
         note("program cache: " + path + ": " + why + "; compiling the shaders instead");
         std::lock_guard<std::mutex> lock(mutex_);
         ++counts_.refused;
+        ++threadCounts.refused;
         ++counts_.misses;
+        ++threadCounts.misses;
         return false;
     };
     std::string bytes;
@@ -137,6 +147,7 @@ bool ProgramBinaryCache::load(uint64_t key, unsigned program) {
     if (ok != GL_TRUE) return refuse("refused by the driver (another driver build)");
     std::lock_guard<std::mutex> lock(mutex_);
     ++counts_.hits;
+    ++threadCounts.hits;
     return true;
 }
 
@@ -166,6 +177,7 @@ void ProgramBinaryCache::store(uint64_t key, unsigned program) {
     }
     std::lock_guard<std::mutex> lock(mutex_);
     ++counts_.stored;
+    ++threadCounts.stored;
 }
 
 }  // namespace rrf

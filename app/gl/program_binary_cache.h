@@ -57,6 +57,9 @@ public:
         int hits = 0, misses = 0, stored = 0, refused = 0;
     };
     Counts counts() const;
+    /// The same counts, of what this cache did for the calling thread only (a GL worker's build
+    /// while another thread compiles, too).
+    static Counts countsOnThisThread();
 
 private:
     void note(std::string line);

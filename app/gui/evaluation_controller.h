@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "app/gui/controller_context.h"
 #include "app/gui/job_session.h"
@@ -109,6 +110,8 @@ private:
     JobSession<LightGridResult> lightGridJob_;
     JobSession<SweepOutcome> sweepJob_;
     std::unique_ptr<SweepTiming> sweepTiming_;  ///< a finished sweep whose GLSL frames are being timed
+    /// Dropped timings whose worker still finishes a row; destroyed once idle (pollSweep).
+    std::vector<std::unique_ptr<SweepTiming>> retiredTimings_;
     JobSession<RestoredSweeps> restoreJob_;  ///< the project's sweeps read back when it was opened
 };
 

@@ -168,6 +168,10 @@ bool EvaluationController::startSweep(const std::string& what) {
         state_.log.error("sweep: no project is open");
         return false;
     }
+    if (sweepTiming_) {
+        state_.notify(panels::LogLevel::Warning, "Cost", "sweep: the last sweep's GLSL frames are still being timed");
+        return false;
+    }
     auto scene = std::make_shared<const Scene>(state_.project.scene);
     SweepOptions o;
     o.what = what;
@@ -233,16 +237,23 @@ struct SweepTiming {
     std::shared_ptr<std::atomic<bool>> dropped = std::make_shared<std::atomic<bool>>(false);
 };
 
-EvaluationController::~EvaluationController() { dropSweepTiming(); }
+EvaluationController::~EvaluationController() {
+    dropSweepTiming();
+    retiredTimings_.clear();  // at exit: waits for the row being timed
+}
 
 void EvaluationController::dropSweepTiming() {
     if (!sweepTiming_) return;
-    // Rows not started yet are skipped; the worker finishes the one it is timing, then stops.
+    // Rows not started yet are skipped. The worker finishes the row it is timing (a compile takes
+    // seconds), so it is stopped once idle (pollSweep), not here on the UI thread.
     sweepTiming_->dropped->store(true);
-    sweepTiming_.reset();
+    retiredTimings_.push_back(std::move(sweepTiming_));
 }
 
 void EvaluationController::pollSweep() {
+    retiredTimings_.erase(std::remove_if(retiredTimings_.begin(), retiredTimings_.end(),
+                                         [](const std::unique_ptr<SweepTiming>& t) { return !t->gl || t->gl->pending() == 0; }),
+                          retiredTimings_.end());
     state_.cost.running = sweepRunning();
     if (sweepJob_.running()) state_.cost.progress = sweepJob_.progress();
     sweepJob_.poll([&](SweepOutcome& out) { startSweepTiming(std::move(out)); });
@@ -285,6 +296,10 @@ void EvaluationController::finishSweep() {
     bool warned = false;
     for (SweepRow& row : r.rows) {
         if (!row.models) continue;
+        if (next >= timing->seconds.size()) {  // no GL worker: the times stay unknown (said when it failed)
+            row.models.reset();
+            continue;
+        }
         try {
             row.glslFrameSeconds = timing->seconds[next++].get();
         } catch (const std::exception& e) {

@@ -54,7 +54,7 @@ void LivePrediction::releasePredictor() {
 
 void LivePrediction::load(const Scene& scene, const std::string& dir, bool tryGlsl, const PredictionSettings& warmUp,
                           std::shared_ptr<const ModelSet> preloaded) {
-    reset();
+    dropBuild();
     std::shared_ptr<const ModelSet> models =
         preloaded ? std::move(preloaded) : std::make_shared<const ModelSet>(loadModelSet(dir, scene.contentHash()));
     if (models->objects.empty()) throw std::runtime_error(dir + ": the model set holds no networks");
@@ -72,7 +72,7 @@ void LivePrediction::load(const Scene& scene, const std::string& dir, bool tryGl
         Built b;
         const Stopwatch clock;
         ProgramBinaryCache& cache = ProgramBinaryCache::shared();
-        const ProgramBinaryCache::Counts before = cache.counts();
+        const ProgramBinaryCache::Counts before = cache.countsOnThisThread();
         try {
             auto gp = std::make_shared<GlslPredictor>(scene, *models);
             Camera tiny = scene.camera;
@@ -84,7 +84,7 @@ void LivePrediction::load(const Scene& scene, const std::string& dir, bool tryGl
         } catch (const std::exception& e) {
             b.build.glslError = e.what();
         }
-        const ProgramBinaryCache::Counts after = cache.counts();
+        const ProgramBinaryCache::Counts after = cache.countsOnThisThread();
         b.build.programs.hits = after.hits - before.hits;
         b.build.programs.misses = after.misses - before.misses;
         b.build.notes = cache.takeNotes();
@@ -103,6 +103,7 @@ std::optional<LivePrediction::Build> LivePrediction::takeBuild() {
         if (!build_.valid() || build_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return std::nullopt;
         b = build_.get();  // the task catches its own errors
     }
+    releasePredictor();  // the models these replace
     glsl_ = std::move(b.glsl);
     models_ = std::move(pendingModels_);
     dir_ = std::move(pendingDir_);
@@ -110,8 +111,7 @@ std::optional<LivePrediction::Build> LivePrediction::takeBuild() {
     return std::move(b.build);
 }
 
-void LivePrediction::reset() {
-    releasePredictor();  // before the models it was built from
+void LivePrediction::dropBuild() {
     if (build_.valid() && worker_) {
         // A build in flight: its predictor is released on the worker when it is done.
         worker_->post([b = std::make_shared<std::future<Built>>(std::move(build_))] { b->get().glsl.reset(); });
@@ -120,6 +120,11 @@ void LivePrediction::reset() {
     builtAtOnce_.reset();
     pendingModels_.reset();
     pendingDir_.clear();
+}
+
+void LivePrediction::reset() {
+    dropBuild();
+    releasePredictor();  // before the models it was built from
     models_.reset();
     dir_.clear();
     sceneHash_ = 0;

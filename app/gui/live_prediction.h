@@ -42,14 +42,17 @@ public:
     /// Starts loading the model directory `dir` for `scene`: reads the set here unless `preloaded`
     /// (read by a worker already) holds it (models of another scene throw, naming the file), and,
     /// when `tryGlsl`, builds the GLSL predictor on the GL worker and renders one tiny frame with
-    /// `warmUp`'s settings, which compiles its programs' machine code. The models drive the
-    /// prediction once takeBuild() has handed over the outcome.
+    /// `warmUp`'s settings, which compiles its programs' machine code. The new models drive the
+    /// prediction once takeBuild() has handed over the outcome; until then the models loaded
+    /// before stay (for CPU frames, exports, evaluations), but no GLSL frame may be asked for
+    /// while building(): the worker is busy with the build, and the frame would wait for it.
+    /// A load still building is dropped.
     void load(const Scene& scene, const std::string& dir, bool tryGlsl, const PredictionSettings& warmUp,
               std::shared_ptr<const ModelSet> preloaded = nullptr);
     /// Forgets the models and a build in flight (a new project, or a scene edit that makes them stale).
     void reset();
 
-    /// How a load ended: `glslError` is empty when the GLSL path is in use, else why not (the CPU
+    /// How a load ended (the models it replaced are forgotten): `glslError` is empty when the GLSL path is in use, else why not (the CPU
     /// path is used); the build's seconds on the GL worker and what the program binary cache did.
     struct Build {
         std::string glslError;
@@ -59,8 +62,8 @@ public:
     };
     /// True from load() until takeBuild() handed its outcome over.
     bool building() const { return pendingModels_ != nullptr; }
-    /// Once the load has ended: its outcome, and from then on loaded() is true. Empty while the GL
-    /// worker is still building (or no load is pending).
+    /// Once the load has ended: its outcome, and from then on the new models are loaded(). Empty
+    /// while the GL worker is still building (or no load is pending).
     std::optional<Build> takeBuild();
 
     bool loaded() const { return models_ != nullptr; }
@@ -104,6 +107,8 @@ public:
 
 private:
     void releasePredictor();
+    /// Forgets the load in flight (its predictor is released on the worker once built).
+    void dropBuild();
 
     std::unique_ptr<GlWorker> worker_;
     std::string workerError_;

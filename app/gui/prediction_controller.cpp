@@ -165,7 +165,12 @@ void PredictionController::finishUpload() {
     state_.log.info("models loaded from " + b.dir + (live_.usesGlsl() ? " (GLSL live prediction)" : " (CPU prediction)") +
                     (live_.usesGlsl() ? std::string(timing) : ""));
     refresh();
-    if (b.then) b.then();
+    if (b.then && live_.loaded()) b.then();  // not when the scene changed meanwhile (refresh dropped them)
+}
+
+void PredictionController::startGlWorker() {
+    std::string error;
+    if (!live_.worker(error)) state_.log.warning("no GL worker (" + error + "): the live prediction runs on the CPU");
 }
 
 void PredictionController::refresh() {
@@ -183,6 +188,9 @@ void PredictionController::refresh() {
     }
     const Camera camera = viewCamera(state_.project);
     if (live_.usesGlsl()) {
+        // New models are being built on the GL worker: a frame of the old ones would wait for
+        // that; the new ones' first frame follows the build (finishUpload).
+        if (live_.building()) return;
         // A light that moved since the last frame is being dragged: draft until it rests. The
         // first frame of new models is a draft too, shown while the full frame renders in bands.
         const Vec3 light = scene.lightPosition();

@@ -44,6 +44,10 @@ public:
     /// fails says so in the log and at the Project panel.
     bool loadModels(const std::string& dir, std::shared_ptr<const ModelSet> preloaded = nullptr,
                     std::function<void()> then = nullptr);
+    /// Makes the GL worker of the live prediction (app/gl/gl_worker.h) now, on the main thread
+    /// before the window is shown, rather than when the first models load (a new context takes
+    /// tens of ms). Without one (no context could be made) the log says so and models run on the CPU.
+    void startGlWorker();
     /// True while a model set is being read on a worker, waits for its GL upload or is uploaded.
     bool modelsLoading() const { return modelRead_.pending() || upload_.has_value() || building_.has_value(); }
     /// True while a model set waits for its GL upload, which starts in the next frame's poll():

@@ -129,6 +129,9 @@ public:
     /// Whether the live prediction on screen is a draft (the light moved less than kDraftRestSeconds ago).
     bool draftShown() const { return prediction_.draftShown(); }
     /// The live prediction's controller (read-only: tests and the script's checks).
+    /// Makes the live prediction's GL worker (PredictionController::startGlWorker): main thread,
+    /// once, before the first frame.
+    void startGlWorker() { prediction_.startGlWorker(); }
     const PredictionController& prediction() const { return prediction_; }
     /// Writes the Objects table (the views' term, the table's sort order) as CSV, atomically.
     bool exportObjectsCsv(const std::string& path) { return evaluation_.exportObjectsCsv(path); }

@@ -148,6 +148,18 @@ TEST(LivePrediction, BuildsOnTheWorkerAndItsBandsMakeTheFrameItRendersWhole) {
     ASSERT_EQ(rows->images.size(), size_t(kTermCount)) << "the last band reads the frame back";
     for (Term t : kTerms) EXPECT_LE(test::maxRelativeDifference(rows->images[int(t)], whole[int(t)]), 1e-5) << termName(t);
 
+    // Loading a new set keeps the one loaded until the new one is built.
+    const std::shared_ptr<const ModelSet> first = live.models();
+    auto second = std::make_shared<const ModelSet>(test::mixedModelSet(scene, Activation::Relu));
+    live.load(scene, "second models", true, test::liveSettings(), second);
+    EXPECT_TRUE(live.building());
+    EXPECT_EQ(live.models(), first);
+    EXPECT_TRUE(live.usesGlsl());
+    ASSERT_TRUE(waitFor([&] { return (build = live.takeBuild()).has_value(); }));
+    EXPECT_EQ(build->glslError, "");
+    EXPECT_EQ(live.models(), second);
+    EXPECT_EQ(live.dir(), "second models");
+
     // A dropped band is never handed over; reset releases the predictor on the worker.
     live.startRows(camera, light, test::liveSettings(), 0, camera.height, true);
     live.dropRows();
