@@ -13,19 +13,20 @@ namespace rrf {
 
 namespace {
 /// Ray intersection with an area light (corner + s·e1 + t·e2: s,t ∈ [0,1] for a rect, s,t ≥ 0 and
-/// s+t ≤ 1 for a triangle) in (tmin, tmax).
-bool intersectAreaLight(const Ray& ray, const Light& l, float tmax, float& t) {
-    const Vec3 n = cross(l.edge1, l.edge2);
-    const float denom = dot(ray.dir, n);
+/// s+t ≤ 1 for a triangle) in (tmin, tmax). Every ray of the tracer meets this test, so the plane
+/// comes precomputed (AreaLightPlane), and the second barycentric is only computed when the first
+/// one is inside: the same arithmetic in the same order as computing both, so the same answers.
+bool intersectAreaLight(const Ray& ray, const AreaLightPlane& l, float tmax, float& t) {
+    const float denom = dot(ray.dir, l.n);
     if (denom == 0.f) return false;
-    t = dot(l.corner - ray.origin, n) / denom;
+    t = dot(l.corner - ray.origin, l.n) / denom;
     if (!(t > ray.tmin && t < tmax)) return false;
     const Vec3 q = ray.origin + ray.dir * t - l.corner;
-    const float nn = dot(n, n);
-    const float a = dot(cross(q, l.edge2), n) / nn;
-    const float b = dot(cross(l.edge1, q), n) / nn;
-    if (l.type == Light::Type::Triangle) return a >= 0.f && b >= 0.f && a + b <= 1.f;
-    return a >= 0.f && a <= 1.f && b >= 0.f && b <= 1.f;
+    const float a = dot(cross(q, l.edge2), l.n) / l.nn;
+    if (!(a >= 0.f) || (!l.triangle && !(a <= 1.f))) return false;
+    const float b = dot(cross(l.edge1, q), l.n) / l.nn;
+    if (l.triangle) return b >= 0.f && a + b <= 1.f;
+    return b >= 0.f && b <= 1.f;
 }
 
 /// Power-heuristic weight (β = 2) of the strategy with pdf `p` against the one with pdf `other`
@@ -38,10 +39,11 @@ float powerHeuristic(float p, float other) {
 
 
 /// The closest hit of `ray` once the movable light (scene light `movableIndex`, -1 for none) joins
-/// the static scene's answer (`found`, `hit`).
-bool withMovableLight(const Ray& ray, const Light& movable, int movableIndex, bool found, Hit& hit) {
+/// the static scene's answer (`found`, `hit`); `plane` is the movable light's.
+bool withMovableLight(const Ray& ray, const Light& movable, const AreaLightPlane& plane, int movableIndex, bool found,
+                      Hit& hit) {
     float t;
-    if (movableIndex >= 0 && movable.isArea() && intersectAreaLight(ray, movable, found ? hit.t : ray.tmax, t)) {
+    if (movableIndex >= 0 && movable.isArea() && intersectAreaLight(ray, plane, found ? hit.t : ray.tmax, t)) {
         hit = Hit{};
         hit.t = t;
         hit.p = ray.origin + ray.dir * t;

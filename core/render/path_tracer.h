@@ -45,6 +45,20 @@ struct TraceCounters {
     std::vector<Ray>* shadowRayLog = nullptr;
 };
 
+/// An area light's plane and edges as the ray test against the movable light uses them, derived once
+/// per light rather than once per ray (the same values the test computed per ray).
+struct AreaLightPlane {
+    Vec3 corner, edge1, edge2;
+    Vec3 n;          ///< cross(edge1, edge2), not normalised
+    float nn = 0.f;  ///< dot(n, n)
+    bool triangle = false;
+
+    AreaLightPlane() = default;
+    explicit AreaLightPlane(const Light& l)
+        : corner(l.corner), edge1(l.edge1), edge2(l.edge2), n(cross(l.edge1, l.edge2)), nn(dot(n, n)),
+          triangle(l.type == Light::Type::Triangle) {}
+};
+
 class PathTracer {
 public:
     /// `scene` and `accel` must outlive the tracer.
@@ -112,6 +126,14 @@ private:
     double triangleArea_ = 0.0;        ///< total area of the triangle lights
     int movable_ = -1;       ///< index of the movable light, -1 if the scene has none
     Light movableDefault_;   ///< the movable light where the scene puts it
+    AreaLightPlane movablePlane_;  ///< movableDefault_'s plane
+
+    /// The plane of `movable`: movablePlane_ for movableDefault_, else derived into `scratch`.
+    const AreaLightPlane& planeOf(const Light& movable, AreaLightPlane& scratch) const {
+        if (&movable == &movableDefault_) return movablePlane_;
+        scratch = AreaLightPlane(movable);
+        return scratch;
+    }
 };
 
 }  // namespace rrf
