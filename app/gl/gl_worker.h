@@ -17,6 +17,7 @@
 /// there only); GLFW must be initialised. The GL functions are loaded with glad if no one has
 /// loaded them yet (with GLX the entry points do not depend on the context).
 
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -30,6 +31,12 @@
 struct GLFWwindow;
 
 namespace rrf {
+
+/// True when `f` (a future from GlWorker::post) holds its result: the UI polls without waiting.
+template <class T>
+bool resultReady(const std::future<T>& f) {
+    return f.valid() && f.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+}
 
 class GlWorker {
 public:

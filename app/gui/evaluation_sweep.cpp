@@ -286,7 +286,7 @@ void EvaluationController::startSweepTiming(SweepOutcome out) {
 void EvaluationController::finishSweep() {
     if (!sweepTiming_) return;
     for (const std::future<double>& f : sweepTiming_->seconds)
-        if (f.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+        if (!resultReady(f)) return;
     std::unique_ptr<SweepTiming> timing = std::move(sweepTiming_);
     state_.cost.running = sweepRunning();
     timing->gl.reset();  // every task has run

@@ -100,7 +100,7 @@ std::optional<LivePrediction::Build> LivePrediction::takeBuild() {
         b = std::move(*builtAtOnce_);
         builtAtOnce_.reset();
     } else {
-        if (!build_.valid() || build_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return std::nullopt;
+        if (!resultReady(build_)) return std::nullopt;
         b = build_.get();  // the task catches its own errors
     }
     releasePredictor();  // the models these replace
@@ -160,7 +160,7 @@ void LivePrediction::startRows(const Camera& camera, const Vec3& lightPos, const
 }
 
 std::optional<LivePrediction::Rows> LivePrediction::takeRows() {
-    if (!rows_.valid() || rows_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return std::nullopt;
+    if (!resultReady(rows_)) return std::nullopt;
     return rows_.get();
 }
 
