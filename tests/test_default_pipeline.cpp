@@ -1,5 +1,5 @@
 // The bundled project's defaults, end to end at quick sizes (issue 11): the Cornell box with the
-// project's network and trainer defaults (20-10 indirect networks, Adam with relative L2, kd-tree
+// project's network and trainer defaults (32-16 indirect networks, Adam with relative L2, kd-tree
 // partition with the split-gain rule) and exact direct light, trained on a small grid, predicted at a
 // held-out light and compared with a path-traced reference. The bound was measured (see below) and
 // carries a margin; a pipeline that learns nothing from the light position fails it.
@@ -65,11 +65,12 @@ TEST(DefaultPipeline, QuickRunOfTheProjectDefaultsStaysWithinItsMeasuredBound) {
                 "light input decorrelated: indirect %.4f\n",
                 good.global, good.indirect, good.floor, broken.indirect);
     ASSERT_TRUE(std::isfinite(good.global) && std::isfinite(good.indirect));
-    // Measured (deterministic): global 0.137, indirect 0.159; decorrelated indirect 0.201. At these
-    // sizes (15 000 records, 150 epochs) the indirect term is far from the full defaults' 0.044; the
-    // bounds keep ~25 % margin and the decorrelated run must be clearly worse.
-    EXPECT_LT(good.global, 0.17);
-    EXPECT_LT(good.indirect, 0.2);
+    // Measured (deterministic): global 0.149, indirect 0.173; decorrelated indirect 0.218. At these
+    // sizes (15 000 records, 150 epochs) the indirect term is far from the full defaults' 0.036 (the
+    // 32-16 network has too few records per weight here; the report's 20-10 gave 0.159); the bounds
+    // keep ~25 % margin and the decorrelated run must be clearly worse.
+    EXPECT_LT(good.global, 0.19);
+    EXPECT_LT(good.indirect, 0.22);
     EXPECT_GT(broken.indirect, 1.15 * good.indirect);
 }
 

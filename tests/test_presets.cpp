@@ -90,7 +90,7 @@ TEST(Presets, DefaultIsTheProjectDefaults) {
     EXPECT_EQ(s.directions, 300);
     EXPECT_EQ(s.maxSpp, 1024);
     const ObjectTrainingOptions o = presetNetwork(p, preset("default"));
-    EXPECT_EQ(o.hidden, (std::vector<int>{20, 10}));
+    EXPECT_EQ(o.hidden, (std::vector<int>{32, 16}));
     EXPECT_EQ(o.trainer.type, TrainerType::Adam);
     EXPECT_EQ(o.trainer.adam.loss, AdamLoss::RelativeL2);
     EXPECT_EQ(o.trainer.maxEpochs(), 600);

@@ -83,13 +83,13 @@ TEST_F(LearningPanelTest, NoCrashWithoutProjectOrData) {
 TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     WorkbenchState s;
     loadCornell(s);
-    ASSERT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{20, 10}));
+    ASSERT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{32, 16}));
     ASSERT_TRUE(addHiddenLayer(networkPanelView(s)));
     EXPECT_TRUE(s.dirty);
-    EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{20, 10, 10}));
-    ASSERT_TRUE(resizeHiddenLayer(networkPanelView(s), 0, 32));
+    EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{32, 16, 16}));
+    ASSERT_TRUE(resizeHiddenLayer(networkPanelView(s), 0, 24));
     ASSERT_TRUE(removeHiddenLayer(networkPanelView(s), 1));
-    EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{32, 10}));
+    EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{24, 16}));
     EXPECT_FALSE(resizeHiddenLayer(networkPanelView(s), 5, 8)) << "no such layer";
     EXPECT_TRUE(resizeHiddenLayer(networkPanelView(s), 1, 100000)) << "sizes are clamped, not refused";
     EXPECT_EQ(s.project.networkOrDefault().options.hidden[1], 4096);
@@ -129,7 +129,7 @@ TEST_F(LearningPanelTest, NetworkEditsChangeTheProjectSettings) {
     // The panel draws the edited settings (Adam parameters, one layer) without asking for anything.
     for (int i = 0; i < 2; ++i) frame([&] { drawNetworkPanel(networkPanelView(s)); });
     EXPECT_TRUE(s.requests.empty());
-    EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{32}));
+    EXPECT_EQ(s.project.networkOrDefault().options.hidden, (std::vector<int>{24}));
 }
 
 TEST_F(LearningPanelTest, LossPlotPutsKnownLossesOnTheirDecades) {
