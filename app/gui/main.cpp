@@ -198,6 +198,7 @@ int main(int argc, char** argv) {
             }
             if (wb.quitConfirmed()) break;
         }
+        window.hide();  // before ~Workbench waits for the jobs and the GL worker
         if (automated) {
             // CI reads what happened from the log.
             for (const rrf::panels::LogEntry& e : wb.state().log.entries())

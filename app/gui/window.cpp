@@ -145,6 +145,8 @@ void Window::swap() {
     shown_ = true;
 }
 
+void Window::hide() { glfwHideWindow(window_); }
+
 Image Window::readBackBuffer() const {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);

@@ -37,6 +37,10 @@ public:
     /// Presents the frame; the first call also shows the window, which stays hidden until its
     /// first frame is drawn.
     void swap();
+    /// Takes the window off the screen at once (on quit): the jobs and the GL worker then wind down
+    /// behind it, seconds when a shader compile is under way, instead of in a window that no longer
+    /// answers.
+    void hide();
 
     /// Reads the back buffer after render() into a linear-RGB image (top row first).
     Image readBackBuffer() const;
