@@ -37,7 +37,7 @@ Activation parseActivation(const std::string& name);
 /// Shape of a network and the layout of its flat parameter vector.
 struct MlpArch {
     int inputs = 0;                ///< 12 + n for RRF records (position, view, light, normal, BRDF)
-    std::vector<int> hidden{20, 10};
+    std::vector<int> hidden{20, 10};  ///< the report's network; a project's default is NetworkOptions::hidden
     int outputs = 3;               ///< 3 (one RGB target) or 6 (direct and indirect RGB)
     Activation activation = Activation::Tanh;
 
