@@ -53,7 +53,7 @@ bool PathTracer::occluded(const Ray& ray, const Light& movable) const {
     if (movable_ >= 0 && movable.isArea()) {
         AreaLightPlane scratch;
         float t;
-        if (intersectAreaLight(ray, planeOf(movable, scratch), ray.tmax, t)) return true;
+        if (intersectAreaLight(ray, movable.corner, planeOf(movable, scratch), ray.tmax, t)) return true;
     }
     return accel_.occluded(ray);
 }
@@ -65,7 +65,7 @@ void PathTracer::occludedPacket(const Ray* rays, int count, const Light& movable
     const AreaLightPlane& plane = planeOf(movable, scratch);
     float t;
     for (int i = 0; i < count; ++i)
-        if (!blocked[i] && intersectAreaLight(rays[i], plane, rays[i].tmax, t)) blocked[i] = true;
+        if (!blocked[i] && intersectAreaLight(rays[i], movable.corner, plane, rays[i].tmax, t)) blocked[i] = true;
 }
 
 

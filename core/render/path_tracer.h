@@ -45,18 +45,23 @@ struct TraceCounters {
     std::vector<Ray>* shadowRayLog = nullptr;
 };
 
-/// An area light's plane and edges as the ray test against the movable light uses them, derived once
-/// per light rather than once per ray (the same values the test computed per ray).
+/// An area light's edges and normal as the ray test against the movable light uses them, derived once
+/// per light rather than once per ray (the same values the test computed per ray). Moving the light
+/// changes only its corner, so one shape serves the light wherever it is moved (planeOf()).
 struct AreaLightPlane {
-    Vec3 corner, edge1, edge2;
+    Vec3 edge1, edge2;
     Vec3 n;          ///< cross(edge1, edge2), not normalised
     float nn = 0.f;  ///< dot(n, n)
     bool triangle = false;
 
     AreaLightPlane() = default;
     explicit AreaLightPlane(const Light& l)
-        : corner(l.corner), edge1(l.edge1), edge2(l.edge2), n(cross(l.edge1, l.edge2)), nn(dot(n, n)),
+        : edge1(l.edge1), edge2(l.edge2), n(cross(l.edge1, l.edge2)), nn(dot(n, n)),
           triangle(l.type == Light::Type::Triangle) {}
+    /// Whether this is the shape of `l` (its edges and type), wherever `l`'s corner is.
+    bool isShapeOf(const Light& l) const {
+        return triangle == (l.type == Light::Type::Triangle) && edge1 == l.edge1 && edge2 == l.edge2;
+    }
 };
 
 class PathTracer {
@@ -128,9 +133,12 @@ private:
     Light movableDefault_;   ///< the movable light where the scene puts it
     AreaLightPlane movablePlane_;  ///< movableDefault_'s plane
 
-    /// The plane of `movable`: movablePlane_ for movableDefault_, else derived into `scratch`.
+    /// The shape of `movable` for the ray test: movablePlane_ for the movable light wherever it was
+    /// moved (movableLightAt: same edges), derived into `scratch` for any other light. Every ray of
+    /// a training record and of a BDPT render asks, so the common case neither derives the shape
+    /// again nor copies it (a struct built per ray and read back at once stalls on the store).
     const AreaLightPlane& planeOf(const Light& movable, AreaLightPlane& scratch) const {
-        if (&movable == &movableDefault_) return movablePlane_;
+        if (&movable == &movableDefault_ || movablePlane_.isShapeOf(movable)) return movablePlane_;
         scratch = AreaLightPlane(movable);
         return scratch;
     }
