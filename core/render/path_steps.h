@@ -14,9 +14,9 @@ namespace rrf {
 namespace {
 /// Ray intersection with an area light (corner + s·e1 + t·e2: s,t ∈ [0,1] for a rect, s,t ≥ 0 and
 /// s+t ≤ 1 for a triangle) in (tmin, tmax). Every ray of the tracer meets this test, so the shape
-/// comes precomputed (AreaLightPlane), and the second barycentric is only computed when the first
+/// comes precomputed (AreaLightShape), and the second barycentric is only computed when the first
 /// one is inside: the same arithmetic in the same order as computing both, so the same answers.
-bool intersectAreaLight(const Ray& ray, const Vec3& corner, const AreaLightPlane& l, float tmax, float& t) {
+bool intersectAreaLight(const Ray& ray, const Vec3& corner, const AreaLightShape& l, float tmax, float& t) {
     const float denom = dot(ray.dir, l.n);
     if (denom == 0.f) return false;
     t = dot(corner - ray.origin, l.n) / denom;
@@ -39,11 +39,11 @@ float powerHeuristic(float p, float other) {
 
 
 /// The closest hit of `ray` once the movable light (scene light `movableIndex`, -1 for none) joins
-/// the static scene's answer (`found`, `hit`); `plane` is the movable light's shape.
-bool withMovableLight(const Ray& ray, const Light& movable, const AreaLightPlane& plane, int movableIndex, bool found,
+/// the static scene's answer (`found`, `hit`); `shape` is the movable light's.
+bool withMovableLight(const Ray& ray, const Light& movable, const AreaLightShape& shape, int movableIndex, bool found,
                       Hit& hit) {
     float t;
-    if (movableIndex >= 0 && movable.isArea() && intersectAreaLight(ray, movable.corner, plane, found ? hit.t : ray.tmax, t)) {
+    if (movableIndex >= 0 && movable.isArea() && intersectAreaLight(ray, movable.corner, shape, found ? hit.t : ray.tmax, t)) {
         hit = Hit{};
         hit.t = t;
         hit.p = ray.origin + ray.dir * t;

@@ -31,7 +31,7 @@ PathTracer::PathTracer(const Scene& scene, const Accel& accel, Estimator estimat
     if (scene.movableLight >= 0 && scene.movableLight < int(scene.lights.size())) {
         movable_ = scene.movableLight;
         movableDefault_ = scene.lights[size_t(movable_)];
-        movablePlane_ = AreaLightPlane(movableDefault_);
+        movableShape_ = AreaLightShape(movableDefault_);
     }
 }
 
@@ -45,15 +45,15 @@ Light PathTracer::movableLightAt(const Vec3& p) const {
 bool PathTracer::intersect(const Ray& ray, const Light& movable, Hit& hit) const {
     const bool found = accel_.intersect(ray, hit);
     if (movable_ < 0 || !movable.isArea()) return found;
-    AreaLightPlane scratch;
-    return withMovableLight(ray, movable, planeOf(movable, scratch), movable_, found, hit);
+    AreaLightShape scratch;
+    return withMovableLight(ray, movable, shapeOf(movable, scratch), movable_, found, hit);
 }
 
 bool PathTracer::occluded(const Ray& ray, const Light& movable) const {
     if (movable_ >= 0 && movable.isArea()) {
-        AreaLightPlane scratch;
+        AreaLightShape scratch;
         float t;
-        if (intersectAreaLight(ray, movable.corner, planeOf(movable, scratch), ray.tmax, t)) return true;
+        if (intersectAreaLight(ray, movable.corner, shapeOf(movable, scratch), ray.tmax, t)) return true;
     }
     return accel_.occluded(ray);
 }
@@ -61,11 +61,11 @@ bool PathTracer::occluded(const Ray& ray, const Light& movable) const {
 void PathTracer::occludedPacket(const Ray* rays, int count, const Light& movable, bool* blocked) const {
     accel_.occludedPacket(rays, count, blocked);
     if (movable_ < 0 || !movable.isArea()) return;
-    AreaLightPlane scratch;
-    const AreaLightPlane& plane = planeOf(movable, scratch);
+    AreaLightShape scratch;
+    const AreaLightShape& shape = shapeOf(movable, scratch);
     float t;
     for (int i = 0; i < count; ++i)
-        if (!blocked[i] && intersectAreaLight(rays[i], movable.corner, plane, rays[i].tmax, t)) blocked[i] = true;
+        if (!blocked[i] && intersectAreaLight(rays[i], movable.corner, shape, rays[i].tmax, t)) blocked[i] = true;
 }
 
 
@@ -160,7 +160,7 @@ void PathTracer::Impl::traceBatch(const PathTracer& t, const Ray* rays, Rng* rng
                                   Radiance* out) {
     constexpr int K = Accel::kPacket;
     const Light& movable = t.movableDefault_;
-    const AreaLightPlane& plane = t.movablePlane_;
+    const AreaLightShape& shape = t.movableShape_;
     const bool nee = t.estimator_ == Estimator::NEE;
     // The camera rays as one packet against the static scene, then the movable light as intersect()
     // adds it.
@@ -173,7 +173,7 @@ void PathTracer::Impl::traceBatch(const PathTracer& t, const Ray* rays, Rng* rng
     int live[K];  // the paths that go on, in batch order
     int alive = 0;
     for (int i = 0; i < count; ++i) {
-        if (!withMovableLight(rays[i], movable, plane, t.movable_, found[i], hits[i])) continue;
+        if (!withMovableLight(rays[i], movable, shape, t.movable_, found[i], hits[i])) continue;
         v[i].hit = hits[i];
         v[i].wo = -rays[i].dir;
         emissionSeen(t, v[i], movable);
@@ -198,7 +198,7 @@ void PathTracer::Impl::traceBatch(const PathTracer& t, const Ray* rays, Rng* rng
         alive = 0;
         for (int j = 0; j < m; ++j) {
             const int i = lane[j];
-            found[j] = withMovableLight(bounce[j], movable, plane, t.movable_, found[j], hits[j]);
+            found[j] = withMovableLight(bounce[j], movable, shape, t.movable_, found[j], hits[j]);
             if (arrive(t, v[i], movable, bounce[j], wiLocal[j], found[j], hits[j]) && enter<kGlossy>(t, v[i]))
                 live[alive++] = i;
         }

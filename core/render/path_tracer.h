@@ -47,15 +47,15 @@ struct TraceCounters {
 
 /// An area light's edges and normal as the ray test against the movable light uses them, derived once
 /// per light rather than once per ray (the same values the test computed per ray). Moving the light
-/// changes only its corner, so one shape serves the light wherever it is moved (planeOf()).
-struct AreaLightPlane {
+/// changes only its corner, so one shape serves the light wherever it is moved (shapeOf()).
+struct AreaLightShape {
     Vec3 edge1, edge2;
     Vec3 n;          ///< cross(edge1, edge2), not normalised
     float nn = 0.f;  ///< dot(n, n)
     bool triangle = false;
 
-    AreaLightPlane() = default;
-    explicit AreaLightPlane(const Light& l)
+    AreaLightShape() = default;
+    explicit AreaLightShape(const Light& l)
         : edge1(l.edge1), edge2(l.edge2), n(cross(l.edge1, l.edge2)), nn(dot(n, n)),
           triangle(l.type == Light::Type::Triangle) {}
     /// Whether this is the shape of `l` (its edges and type), wherever `l`'s corner is.
@@ -131,15 +131,15 @@ private:
     double triangleArea_ = 0.0;        ///< total area of the triangle lights
     int movable_ = -1;       ///< index of the movable light, -1 if the scene has none
     Light movableDefault_;   ///< the movable light where the scene puts it
-    AreaLightPlane movablePlane_;  ///< movableDefault_'s plane
+    AreaLightShape movableShape_;  ///< movableDefault_'s shape (the same wherever it is moved)
 
-    /// The shape of `movable` for the ray test: movablePlane_ for the movable light wherever it was
+    /// The shape of `movable` for the ray test: movableShape_ for the movable light wherever it was
     /// moved (movableLightAt: same edges), derived into `scratch` for any other light. Every ray of
     /// a training record and of a BDPT render asks, so the common case neither derives the shape
     /// again nor copies it (a struct built per ray and read back at once stalls on the store).
-    const AreaLightPlane& planeOf(const Light& movable, AreaLightPlane& scratch) const {
-        if (&movable == &movableDefault_ || movablePlane_.isShapeOf(movable)) return movablePlane_;
-        scratch = AreaLightPlane(movable);
+    const AreaLightShape& shapeOf(const Light& movable, AreaLightShape& scratch) const {
+        if (&movable == &movableDefault_ || movableShape_.isShapeOf(movable)) return movableShape_;
+        scratch = AreaLightShape(movable);
         return scratch;
     }
 };
