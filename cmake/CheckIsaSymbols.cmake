@@ -1,6 +1,6 @@
-# CTest isa_symbols: the instruction-set builds of the MLP passes (core/nn/mlp_isa.h) may define
-# global or weak symbols only in their own namespaces (rrf::mlp_isa::<isa>, Eigen renamed
-# rrf_eigen_<isa>). Any other such symbol is an inline function or template compiled with AVX2 or
+# CTest isa_symbols: the instruction-set builds of the MLP passes (core/nn/mlp_isa.h) and of the
+# path tracer's lanes (core/render/path_lanes.h) may define global or weak symbols only in their own
+# namespaces (rrf::mlp_isa::<isa> with Eigen renamed rrf_eigen_<isa>; rrf::path_lanes::<isa>). Any other such symbol is an inline function or template compiled with AVX2 or
 # AVX-512 that the linker may pick for the portable code's callers, which would then fail with an
 # illegal instruction on a CPU without them.
 #   cmake -DRRF_NM=<nm> -DRRF_LIBRARY=<librrf_core.a> -P CheckIsaSymbols.cmake
@@ -41,6 +41,30 @@ foreach(isa avx2 avx512)
     list(APPEND bad "mlp_isa_${isa}.cpp.o: expected its 4 passes (forward, backward for float and double), found ${found}")
   endif()
 endforeach()
+set(found 0)
+foreach(line IN LISTS lines)
+  if(NOT line MATCHES ":path_lanes_avx512\\.cpp\\.o: ?[0-9a-f]* (.) (.*)$")
+    continue()
+  endif()
+  set(type "${CMAKE_MATCH_1}")
+  set(name "${CMAKE_MATCH_2}")
+  if(type MATCHES "^[abdgnrstN-]$")
+    continue()
+  endif()
+  if(name MATCHES "^_ZN3rrf10path_lanes6avx512")
+    if(name MATCHES "^_ZN3rrf10path_lanes6avx5124step")
+      math(EXPR found "${found} + 1")
+    endif()
+    continue()
+  endif()
+  if(name MATCHES "^DW\\.ref\\.__g(xx|cc)_personality_v0$" OR name MATCHES "^_ZT[IS]")
+    continue()
+  endif()
+  list(APPEND bad "path_lanes_avx512.cpp.o: ${type} ${name}")
+endforeach()
+if(NOT found EQUAL 1)
+  list(APPEND bad "path_lanes_avx512.cpp.o: expected its step, found ${found}")
+endif()
 if(bad)
   string(REPLACE ";" "\n  " text "${bad}")
   message(FATAL_ERROR "isa_symbols: symbols outside the instruction-set namespaces:\n  ${text}")

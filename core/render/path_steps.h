@@ -331,6 +331,9 @@ struct PathTracer::Impl {
     template <bool kGlossy>
     static void traceBatch(const PathTracer& t, const Ray* rays, Rng* rngs, int count, TraceCounters& counters,
                            Radiance* out);
+    /// traceBatch<false>() with the lockstep vertices as SIMD lanes (render/path_lanes.h).
+    static void traceLanes(const PathTracer& t, const Ray* rays, Rng* rngs, int count, TraceCounters& counters,
+                           Radiance* out);
 };
 
 }  // namespace rrf

@@ -33,7 +33,60 @@ PathTracer::PathTracer(const Scene& scene, const Accel& accel, Estimator estimat
         movableDefault_ = scene.lights[size_t(movable_)];
         movableShape_ = AreaLightShape(movableDefault_);
     }
+    lanes_ = lanesPossible_ = path_lanes::pathLanesSupported() && estimator_ == Estimator::NEE && !effects_.glossy &&
+             triangleLights_.empty();
+    if (lanes_) {
+        auto put = [](float* out, const Vec3& v) {
+            out[0] = v.x;
+            out[1] = v.y;
+            out[2] = v.z;
+        };
+        for (int li : rectLights_) {
+            const Light& l = light(li, movableDefault_);
+            path_lanes::RectLight r{};
+            put(r.corner, l.corner);
+            put(r.edge1, l.edge1);
+            put(r.edge2, l.edge2);
+            put(r.nl, cross(l.edge1, l.edge2));
+            put(r.radiance, l.radiance);
+            r.oneSided = l.oneSided ? 1 : 0;
+            laneRects_.push_back(r);
+        }
+        for (int li : pointLights_) {
+            const Light& l = light(li, movableDefault_);
+            path_lanes::PointLight pl{};
+            put(pl.position, l.position);
+            put(pl.intensity, l.intensity);
+            lanePoints_.push_back(pl);
+        }
+        put(laneMovable_.corner, movableDefault_.corner);
+        put(laneMovable_.edge1, movableShape_.edge1);
+        put(laneMovable_.edge2, movableShape_.edge2);
+        put(laneMovable_.n, movableShape_.n);
+        laneMovable_.nn = movableShape_.nn;
+        laneMovable_.triangle = movableShape_.triangle ? 1 : 0;
+        if (movable_ >= 0) {
+            put(laneMovable_.normal, movableDefault_.normal());
+            laneMovable_.material = movableDefault_.material;
+        }
+        for (const Brdf& b : brdfs_) laneKd_.insert(laneKd_.end(), {b.kd.x, b.kd.y, b.kd.z});
+        const Accel::GeometryTable& g = accel_.geometryTable();
+        for (size_t i = 0; i < g.object.size(); ++i)
+            laneGeomMaterial_.push_back(g.object[i] >= 0 ? scene_.objects[size_t(g.object[i])].material
+                                                         : scene_.lights[size_t(g.light[i])].material);
+    }
 }
+
+namespace path_lanes {
+bool pathLanesSupported() {
+#ifdef RRF_PATH_LANES
+    // __builtin_cpu_supports checks the OS's XSAVE state too.
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+#else
+    return false;
+#endif
+}
+}  // namespace path_lanes
 
 Light PathTracer::movableLightAt(const Vec3& p) const {
     Light l = movableDefault_;
@@ -98,8 +151,123 @@ void PathTracer::traceBatch(const Ray* rays, Rng* rngs, int count, TraceCounters
     if (count <= 0) return;
     if (count > Accel::kPacket) throw std::invalid_argument("PathTracer::traceBatch: more than 16 rays");
     if (effects_.glossy) Impl::traceBatch<true>(*this, rays, rngs, count, counters, out);
+#ifdef RRF_PATH_LANES
+    else if (lanes_ && !counters.rayLog && !counters.shadowRayLog) Impl::traceLanes(*this, rays, rngs, count, counters, out);
+#endif
     else Impl::traceBatch<false>(*this, rays, rngs, count, counters, out);
 }
+
+#ifdef RRF_PATH_LANES
+void PathTracer::Impl::traceLanes(const PathTracer& t, const Ray* rays, Rng* rngs, int count, TraceCounters& counters,
+                                  Radiance* out) {
+    using namespace path_lanes;
+    constexpr int K = Accel::kPacket;
+    const Light& movable = t.movableDefault_;
+    const AreaLightShape& shape = t.movableShape_;
+    Hit hits[K];
+    bool found[K];
+    counters.rays += uint64_t(count);
+    t.accel_.intersectPacket(rays, count, hits, found);
+    Vertex v[K];
+    alignas(64) PathLanes lanes;
+    // A lane's state at the vertex enter() has set up in v[i].
+    auto load = [&](int i) {
+        const Vertex& vi = v[i];
+        lanes.p.x[i] = vi.hit.p.x, lanes.p.y[i] = vi.hit.p.y, lanes.p.z[i] = vi.hit.p.z;
+        lanes.ng.x[i] = vi.hit.ng.x, lanes.ng.y[i] = vi.hit.ng.y, lanes.ng.z[i] = vi.hit.ng.z;
+        lanes.n.x[i] = vi.n.x, lanes.n.y[i] = vi.n.y, lanes.n.z[i] = vi.n.z;
+        lanes.kd.x[i] = vi.brdf->kd.x, lanes.kd.y[i] = vi.brdf->kd.y, lanes.kd.z[i] = vi.brdf->kd.z;
+        lanes.side[i] = vi.side;
+        lanes.smooth = (lanes.smooth & ~(1u << i)) | (vi.hit.ns.isZero() ? 0u : 1u << i);
+        lanes.live |= 1u << i;
+    };
+    for (int i = 0; i < K; ++i) {
+        lanes.beta.x[i] = lanes.beta.y[i] = lanes.beta.z[i] = 1.f;
+        lanes.direct.x[i] = lanes.direct.y[i] = lanes.direct.z[i] = 0.f;
+        lanes.indirect.x[i] = lanes.indirect.y[i] = lanes.indirect.z[i] = 0.f;
+        lanes.rng[i] = i < count ? rngs[i].state() : 0;
+    }
+    for (int i = 0; i < count; ++i) {
+        if (!withMovableLight(rays[i], movable, shape, t.movable_, found[i], hits[i])) continue;
+        v[i].hit = hits[i];
+        v[i].wo = -rays[i].dir;
+        emissionSeen(t, v[i], movable);
+        lanes.direct.x[i] = v[i].L.direct.x, lanes.direct.y[i] = v[i].L.direct.y, lanes.direct.z[i] = v[i].L.direct.z;
+        if (enter<false>(t, v[i])) load(i);
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    const Accel::GeometryTable& geometry = t.accel_.geometryTable();
+    const Setup setup0{t.accel_.handle(),
+                       &context,
+                       t.accel_.sceneScale(),
+                       t.laneRects_.data(),
+                       int(t.laneRects_.size()),
+                       t.lanePoints_.data(),
+                       int(t.lanePoints_.size()),
+                       t.movable_ >= 0 && movable.isArea() ? &t.laneMovable_ : nullptr,
+                       0,
+                       t.laneGeomMaterial_.data(),
+                       geometry.normalBase.data(),
+                       geometry.normals.data(),
+                       t.laneKd_.data()};
+    Setup setup = setup0;
+    // Deeper than the portable lockstep: a lane's step costs little, and Russian roulette thins the
+    // packets only slowly over the first vertices; sparser still, they cost Embree more than they
+    // save (docs/results-history.md, "The tracer's lanes").
+    constexpr int kLockstepVertices = 4;
+    alignas(64) Step step;
+    uint32_t setUp = lanes.live;  // the live lanes whose v[i] holds their vertex, set up by enter()
+    while (lanes.live && lanes.depth < kLockstepVertices) {
+        setup.bounces = lanes.depth + 1 < t.maxDepth_ && t.effects_.indirect;
+        avx512::step(setup, lanes, step);
+        counters.shadowRays += step.shadowRays;
+        counters.rays += uint64_t(__builtin_popcount(step.bounced));
+        setUp = 0;
+        for (uint32_t b = step.resolve; b; b &= b - 1) {
+            const int i = __builtin_ctz(b);
+            Ray r;
+            r.origin = Vec3(step.next.ray.org_x[i], step.next.ray.org_y[i], step.next.ray.org_z[i]);
+            r.dir = Vec3(step.next.ray.dir_x[i], step.next.ray.dir_y[i], step.next.ray.dir_z[i]);
+            Hit next;
+            const bool hit = withMovableLight(r, movable, shape, t.movable_, t.accel_.hitOfPacket(step.next, i, next), next);
+            v[i].depth = lanes.depth;
+            if (arrive(t, v[i], movable, r, Vec3(), hit, next) && enter<false>(t, v[i])) {
+                load(i);
+                setUp |= 1u << i;
+            }
+        }
+        ++lanes.depth;
+    }
+    for (int i = 0; i < count; ++i) {
+        Vertex& vi = v[i];
+        vi.L.direct = Vec3(lanes.direct.x[i], lanes.direct.y[i], lanes.direct.z[i]);
+        vi.L.indirect = Vec3(lanes.indirect.x[i], lanes.indirect.y[i], lanes.indirect.z[i]);
+        Rng& rng = rngs[i] = Rng::ofState(lanes.rng[i]);
+        if ((lanes.live >> i) & 1u) {
+            if (!((setUp >> i) & 1u)) {
+                // The vertex the lanes set up: the same Hit as intersect() gives the bounce ray.
+                Ray r;
+                r.origin = Vec3(step.next.ray.org_x[i], step.next.ray.org_y[i], step.next.ray.org_z[i]);
+                r.dir = Vec3(step.next.ray.dir_x[i], step.next.ray.dir_y[i], step.next.ray.dir_z[i]);
+                Hit next;
+                const bool hit = withMovableLight(r, movable, shape, t.movable_, t.accel_.hitOfPacket(step.next, i, next), next);
+                vi.depth = lanes.depth - 1;
+                if (!arrive(t, vi, movable, r, Vec3(), hit, next) || !enter<false>(t, vi)) {
+                    out[i] = vi.L;
+                    continue;
+                }
+            }
+            // The path goes on one by one as in shade(), from the vertex enter() has set up.
+            vi.beta = Vec3(lanes.beta.x[i], lanes.beta.y[i], lanes.beta.z[i]);
+            directLight<false>(t, vi, movable, rng, counters);
+            if (scatter<false>(t, vi, movable, rng, counters)) finish<false>(t, vi, movable, rng, counters);
+        }
+        out[i] = vi.L;
+    }
+}
+#endif
 
 template <bool kGlossy>
 void PathTracer::Impl::directLightBatch(const PathTracer& t, Vertex* v, const int* live, int count,

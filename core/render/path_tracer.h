@@ -23,6 +23,7 @@
 
 #include "core/scene/accel.h"
 #include "core/render/brdf.h"
+#include "core/render/path_lanes.h"
 #include "core/scene/effects.h"
 #include "core/render/render_settings.h"
 #include "core/util/rng.h"
@@ -114,6 +115,13 @@ public:
     }
     const Accel& accel() const { return accel_; }
     const Scene& scene() const { return scene_; }
+    /// Whether traceBatch() runs its lockstep vertices as SIMD lanes (render/path_lanes.h): NEE in a
+    /// scene without glossy materials or triangle lights, on a CPU the lanes' build supports. Either
+    /// way the results are trace()'s.
+    bool usesLanes() const { return lanes_; }
+    /// Turns the lanes off, or back on where they can run: for comparing them with the portable
+    /// lockstep (tests, bench_render).
+    void setLanes(bool on) { lanes_ = on && lanesPossible_; }
 
 private:
     /// The path-tracing loop in steps (one vertex's setup, its light samples, its bounce), so that
@@ -132,6 +140,13 @@ private:
     int movable_ = -1;       ///< index of the movable light, -1 if the scene has none
     Light movableDefault_;   ///< the movable light where the scene puts it
     AreaLightShape movableShape_;  ///< movableDefault_'s shape (the same wherever it is moved)
+    bool lanes_ = false;           ///< usesLanes()
+    bool lanesPossible_ = false;   ///< whether this scene, estimator, build and CPU allow the lanes
+    std::vector<path_lanes::RectLight> laneRects_;    ///< rectLights_ as the lanes read them
+    std::vector<path_lanes::PointLight> lanePoints_;  ///< pointLights_ as the lanes read them
+    path_lanes::MovableLight laneMovable_{};           ///< movableDefault_ and its shape
+    std::vector<float> laneKd_;                        ///< kd of brdfs_, x, y, z per material
+    std::vector<int> laneGeomMaterial_;                ///< material by Embree geomID (Accel::GeometryTable)
 
     /// The shape of `movable` for the ray test: movableShape_ for the movable light wherever it was
     /// moved (movableLightAt: same edges), derived into `scratch` for any other light. Every ray of

@@ -80,6 +80,14 @@ Accel::Accel(const Scene& scene) {
     }
     rtcCommitScene(scene_);
     check(device_, "BVH build");
+    for (const GeomInfo& g : geoms_) {
+        table_.object.push_back(g.object);
+        table_.light.push_back(g.light);
+        const bool flat = !g.sphere && !g.smooth;
+        table_.normalBase.push_back(flat ? int(table_.normals.size() / 3) : -1);
+        if (flat)
+            for (const Vec3& n : g.normals) table_.normals.insert(table_.normals.end(), {n.x, n.y, n.z});
+    }
 }
 
 Accel::~Accel() {
@@ -200,6 +208,17 @@ void Accel::intersectPacket(const Ray* rays, int count, Hit* hits, bool* found) 
             fillHit(rays[i], rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i],
                     Vec3(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]), hits[i]);
     }
+}
+
+bool Accel::hitOfPacket(const RTCRayHit16& rh, int lane, Hit& hit) const {
+    const size_t i = size_t(lane);
+    if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) return false;
+    Ray ray;
+    ray.origin = Vec3(rh.ray.org_x[i], rh.ray.org_y[i], rh.ray.org_z[i]);
+    ray.dir = Vec3(rh.ray.dir_x[i], rh.ray.dir_y[i], rh.ray.dir_z[i]);
+    fillHit(ray, rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i],
+            Vec3(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]), hit);
+    return true;
 }
 
 Vec3 Accel::shadingNormal(const GeomInfo& g, uint32_t prim, float u, float v, const Vec3& ng) {

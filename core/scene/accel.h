@@ -69,6 +69,9 @@ public:
     /// occludedPacket(): camera rays of neighbouring pixels share most of their traversal. Same hits
     /// as intersect() up to the edge cases of two watertight ray tests.
     void intersectPacket(const Ray* rays, int count, Hit* hits, bool* found) const;
+    /// The Hit of lane `lane` of a packet that rtcIntersect16 traced against handle(), as intersect()
+    /// fills it for the lane's ray; false when the lane missed.
+    bool hitOfPacket(const RTCRayHit16& rh, int lane, Hit& hit) const;
 
     /// Ray offset scale for self-intersection avoidance: a hit point p is moved by
     /// offset(p) along the normal. Relative to both the point's magnitude and the scene's size so
@@ -83,6 +86,17 @@ public:
         return dot(dir, ng) >= 0.f ? p + ng * e : p - ng * e;
     }
 
+    /// The geometries as flat tables indexed by Embree's geomID, for code that resolves the hits of
+    /// many rays at once (render/path_lanes.h): the Scene object or light each one is (-1 for
+    /// neither) and where its primitives' unit geometric normals start in `normals` (x, y, z per
+    /// primitive), -1 for spheres and meshes with vertex normals, whose hits need fillHit()'s own work.
+    struct GeometryTable {
+        std::vector<int> object, light, normalBase;
+        std::vector<float> normals;
+    };
+    const GeometryTable& geometryTable() const { return table_; }
+    /// The scene's size that offset() adds to a point's magnitude.
+    float sceneScale() const { return sceneScale_; }
     RTCScene handle() const { return scene_; }
     RTCDevice device() const { return device_; }
 
@@ -107,6 +121,7 @@ private:
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     std::vector<GeomInfo> geoms_;  ///< indexed by Embree geomID
+    GeometryTable table_;          ///< geometryTable()
     float sceneScale_ = 1.f;
 };
 

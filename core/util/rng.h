@@ -36,6 +36,11 @@ public:
     }
     static constexpr Rng ofStream(uint64_t key, uint64_t sample) { return Rng(keyed(key, sample)); }
 
+    /// The counter itself, and the Rng at a counter: for code that draws a path's numbers in SIMD
+    /// lanes (render/path_lanes.h) and hands the path back. Rng::ofState(r.state()) == r.
+    constexpr uint64_t state() const { return state_; }
+    static constexpr Rng ofState(uint64_t state) { return Rng(state); }
+
     constexpr uint64_t nextU64() {
         state_ += kGamma;
         return mix64(state_);

@@ -1,0 +1,112 @@
+#pragma once
+/// The path tracer's lockstep vertices as SIMD lanes (issue 28 item 4; docs/design.md §10, "The
+/// tracer's lanes"): for a batch of up to 16 diffuse paths at the same depth, one vertex step (the
+/// light samples of every path, their shadow rays as one Embree packet per light, the BRDF bounce and
+/// Russian roulette, the bounce rays as one packet) runs on structure-of-arrays state, one path per
+/// lane, without a branch per path.
+///
+/// Every lane does trace()'s arithmetic in trace()'s order with the same IEEE operations (no fused
+/// multiply-add: the unit is built with -ffp-contract=off; the cosine and sine of the bounce by the C
+/// library, lane by lane), and draws its path's random numbers in the same order, so a path's result
+/// is trace()'s bit for bit (test PathTracer.BatchIsTracePerSample*).
+///
+/// Like the MLP's kernels (nn/mlp_isa.h) the lanes are one translation unit per instruction set,
+/// built with that set's flags and called only on a CPU that has it (pathLanesSupported()); nothing
+/// but this header's plain structs crosses the boundary, and everything the unit defines lives in its
+/// own namespace (CTest `isa_symbols`).
+
+#include <cstdint>
+
+#include <embree3/rtcore.h>
+
+namespace rrf::path_lanes {
+
+constexpr int kLanes = 16;
+
+/// Three coordinates of 16 lanes.
+struct alignas(64) Lanes3 {
+    float x[kLanes], y[kLanes], z[kLanes];
+};
+
+/// The paths of a batch at their current vertex, path i in lane i. Set up by the caller from the
+/// vertex as PathTracer's enter() sees it; step() adds the vertex's light and turns the lanes that
+/// bounce into the next rays.
+struct alignas(64) PathLanes {
+    Lanes3 p;         ///< hit point
+    Lanes3 ng;        ///< geometric normal as stored
+    Lanes3 n;         ///< shading normal turned to the side the path arrived from
+    Lanes3 kd;        ///< the diffuse BRDF's albedo
+    Lanes3 beta;      ///< throughput
+    Lanes3 direct;    ///< Radiance::direct so far
+    Lanes3 indirect;  ///< Radiance::indirect so far
+    float side[kLanes];      ///< dot(wo, ng)
+    uint64_t rng[kLanes];    ///< each path's Rng counter (Rng::state())
+    uint32_t live = 0;       ///< lanes at a vertex (bit i = lane i)
+    uint32_t smooth = 0;     ///< lanes whose hit has a shading normal of its own
+    int depth = 0;           ///< the vertex's depth, the same for every live lane
+};
+
+/// A rect light as the light sample reads it.
+struct RectLight {
+    float corner[3], edge1[3], edge2[3];
+    float nl[3];  ///< cross(edge1, edge2)
+    float radiance[3];
+    int oneSided;
+};
+
+struct PointLight {
+    float position[3], intensity[3];
+};
+
+/// The movable area light's ray test (PathTracer's AreaLightShape at its corner).
+struct MovableLight {
+    float corner[3], edge1[3], edge2[3], n[3], nn;
+    int triangle;
+    float normal[3];  ///< Light::normal(), the hit's geometric normal
+    int material;     ///< the light's material (-1: black)
+};
+
+/// What step() needs besides the lanes.
+struct Setup {
+    RTCScene scene;
+    const RTCIntersectContext* context;  ///< initialised by the caller (Embree's inline function)
+    float sceneScale;                    ///< Accel's, for ray offsets
+    const RectLight* rect;
+    int rectCount;
+    const PointLight* point;
+    int pointCount;
+    const MovableLight* movable;  ///< null when the scene has no movable area light
+    int bounces;                  ///< whether vertices at this depth bounce (PathTracer's enter())
+    // Where the bounce rays arrive, by Embree's geomID (Accel::GeometryTable):
+    const int* geomMaterial;    ///< the material of what the geometry is (-1: a black emitter)
+    const int* geomNormalBase;  ///< Accel::GeometryTable::normalBase
+    const float* normals;       ///< Accel::GeometryTable::normals
+    const float* materialKd;    ///< x, y, z per material: the diffuse BRDF's kd
+};
+
+/// One step's outcome: the bounce rays (tfar and hit filled by Embree for the lanes in `bounced`) and
+/// the shadow rays traced.
+struct alignas(64) Step {
+    RTCRayHit16 next;
+    uint32_t bounced = 0;   ///< the lanes that bounced
+    uint32_t resolve = 0;   ///< those of them that hit a geometry without a table entry
+    uint64_t shadowRays = 0;
+};
+
+/// Adds the light sampled at the live lanes' vertices to their direct (depth 0) or indirect light,
+/// then samples their bounces and traces them (`out`). A bounce that arrives at a geometry with a
+/// table entry or at the movable light leaves its lane live at the new vertex (PathTracer's arrive()
+/// and enter() for a diffuse NEE path: no emission counted, the shading normal the geometric one);
+/// `out.resolve` are the lanes the caller sets up itself (spheres, vertex normals). Lanes that end
+/// leave `live`.
+#define RRF_PATH_LANES_DECLARE(isa) \
+    namespace isa {                 \
+    void step(const Setup& setup, PathLanes& lanes, Step& out); \
+    }
+RRF_PATH_LANES_DECLARE(avx512)
+#undef RRF_PATH_LANES_DECLARE
+
+/// Whether this build has the lanes and this CPU runs them (AVX-512F and DQ, saved by the OS).
+bool pathLanesSupported();
+
+}  // namespace rrf::path_lanes
