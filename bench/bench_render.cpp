@@ -17,6 +17,9 @@
 //   hit records, ray offsets), the analytic test of the movable light against every query (that
 //   light is not in the BVH, so the baseline never pays for it), and the per-pixel sums. Its ray
 //   count is the same two kinds of query as the log's.
+// - The tracer runs as it would for a user: its lockstep vertices as the widest SIMD lanes the build
+//   and the CPU have (render/path_lanes.h); further rows have the narrower lanes and the portable
+//   lockstep on the same machine, for the same thread count in the same run.
 //
 //   bench_render [project-or-scene.json] [--spp N] [--width W --height H]
 //
@@ -163,10 +166,11 @@ int main(int argc, char** argv) {
                 input.c_str(), width, height, rays.size(), shadowRays.size(),
                 double(rays.size() + shadowRays.size()) / (2.0 * width * height));
 
-    std::printf("| threads | rtcIntersect1 Mrays/s | rtcOccluded1 Mrays/s | Embree mix Mrays/s | tracer Msamples/s | tracer Mrays/s "
+    std::printf("| threads | path loop | rtcIntersect1 Mrays/s | rtcOccluded1 Mrays/s | Embree mix Mrays/s | tracer Msamples/s | tracer Mrays/s "
                 "| tracer/Embree | tracer/Embree by CPU time |\n");
-    std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    double ratio[3] = {0, 0, 0}, cpuRatio[3] = {0, 0, 0};
+    std::printf("|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    double ratio[3] = {0, 0, 0}, cpuRatio[3] = {0, 0, 0}, portable[3] = {0, 0, 0}, narrower[3] = {0, 0, 0};
+    path_lanes::Isa used = path_lanes::Isa::None;
     for (int threads : {1, 2}) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
         const Rate ri = plainEmbree(accel, rays, false, 2);
@@ -175,21 +179,42 @@ int main(int argc, char** argv) {
         auto mixOf = [&](double i, double o) { return 1.0 / ((1.0 - shadowFraction) / i + shadowFraction / o); };
         const double mix = mixOf(ri.wall, ro.wall), cpuMix = mixOf(ri.cpu, ro.cpu);
 
-        RenderOptions o;
-        o.width = width;
-        o.height = height;
-        o.spp = spp;
-        o.samplesPerPass = spp;
-        Renderer renderer(scene, accel, o);
-        const double cpuStart = cpuSeconds();
-        renderer.run();
-        const double cpu = cpuSeconds() - cpuStart;
-        const RenderStats st = renderer.stats();
-        ratio[threads] = st.raysPerSecond() / mix;
-        cpuRatio[threads] = double(st.rays + st.shadowRays) / cpu / cpuMix;
-        std::printf("| %d | %.2f | %.2f | %.2f | %.3f | %.2f | %.2f | %.2f |\n", threads, ri.wall / 1e6, ro.wall / 1e6,
-                    mix / 1e6, st.samplesPerSecond() / 1e6, st.raysPerSecond() / 1e6, ratio[threads], cpuRatio[threads]);
-        std::fflush(stdout);
+        // The tracer as it runs (its lanes where the CPU has them), then, where that was the lanes,
+        // the portable lockstep on the same machine in the same run.
+        std::vector<path_lanes::Isa> loops;
+        for (path_lanes::Isa isa : {path_lanes::Isa::Avx512, path_lanes::Isa::Avx2, path_lanes::Isa::None})
+            if (path_lanes::isaSupported(isa)) loops.push_back(isa);
+        for (path_lanes::Isa isa : loops) {
+            const bool lanes = isa == loops.front();
+            RenderOptions o;
+            o.width = width;
+            o.height = height;
+            o.spp = spp;
+            o.samplesPerPass = spp;
+            Renderer renderer(scene, accel, o);
+            if (!lanes) {
+                if (renderer.tracer().lanes() == path_lanes::Isa::None) break;
+                renderer.setLanes(isa);
+            }
+            const double cpuStart = cpuSeconds();
+            renderer.run();
+            const double cpu = cpuSeconds() - cpuStart;
+            const RenderStats st = renderer.stats();
+            const double r = st.raysPerSecond() / mix, cr = double(st.rays + st.shadowRays) / cpu / cpuMix;
+            if (lanes) {
+                ratio[threads] = r;
+                cpuRatio[threads] = cr;
+                used = renderer.tracer().lanes();
+            } else if (isa == path_lanes::Isa::None) {
+                portable[threads] = r;
+            } else {
+                narrower[threads] = r;
+            }
+            std::printf("| %d | %s | %.2f | %.2f | %.2f | %.3f | %.2f | %.2f | %.2f |\n", threads,
+                        path_lanes::isaName(renderer.tracer().lanes()), ri.wall / 1e6, ro.wall / 1e6,
+                        mix / 1e6, st.samplesPerSecond() / 1e6, st.raysPerSecond() / 1e6, r, cr);
+            std::fflush(stdout);
+        }
     }
     {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
@@ -201,6 +226,15 @@ int main(int argc, char** argv) {
     std::printf("\ntracer/Embree on the same rays (target >= 0.8): %.2f at 1 thread, %.2f at 2 threads; by CPU time "
                 "%.2f and %.2f\n",
                 ratio[1], ratio[2], cpuRatio[1], cpuRatio[2]);
+    std::printf("with the %s", path_lanes::isaName(used));
+    if (used == path_lanes::Isa::Avx512)
+        std::printf("; the AVX2 lanes (CPUs without AVX-512): %.2f at 1 thread, %.2f at 2 threads", narrower[1], narrower[2]);
+    if (used != path_lanes::Isa::None)
+        std::printf("; the portable lockstep (builds without the lanes): %.2f at 1 thread, %.2f at 2 threads", portable[1],
+                    portable[2]);
+    else
+        std::printf(" lockstep: this build or CPU has no lanes");
+    std::printf("\n");
     return 0;
 }
 

@@ -191,9 +191,10 @@ TEST(PathTracer, MissAndBlackEmitterBack) {
 /// traceBatch() against trace() sample by sample: the packets (camera rays, first shadow rays) must
 /// not change a path's random numbers, its arithmetic or what its rays hit. Batches are whole rows of
 /// 16 pixels and one pixel's 16 samples, as the renderer forms them.
-void expectBatchIsTrace(const Scene& scene, Estimator estimator, const std::string& what) {
+void expectBatchIsTrace(const Scene& scene, Estimator estimator, const std::string& what, path_lanes::Isa lanes) {
     const Accel accel(scene);
-    const PathTracer tracer(scene, accel, estimator);
+    PathTracer tracer(scene, accel, estimator);
+    tracer.setLanes(lanes);
     const int w = 48, h = 48;
     const CameraRays cam(scene.camera, w, h);
     TraceCounters one, batch;
@@ -232,6 +233,12 @@ void expectBatchIsTrace(const Scene& scene, Estimator estimator, const std::stri
     } else {
         EXPECT_GT(lit, 0) << what;
     }
+}
+
+/// expectBatchIsTrace() with the portable lockstep and each of the lanes this build and CPU run.
+void expectBatchIsTrace(const Scene& scene, Estimator estimator, const std::string& what) {
+    for (path_lanes::Isa isa : {path_lanes::Isa::None, path_lanes::Isa::Avx2, path_lanes::Isa::Avx512})
+        if (path_lanes::isaSupported(isa)) expectBatchIsTrace(scene, estimator, what + ", " + path_lanes::isaName(isa), isa);
 }
 
 TEST(PathTracer, BatchIsTracePerSampleOnTheBundledScenes) {
@@ -291,14 +298,18 @@ TEST(PathTracer, LanesRunWhereTheBuildAndCpuHaveThem) {
     const Scene cornell = loadScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/scene.json");
     const Accel accel(cornell);
     // Diffuse NEE takes the lanes wherever they exist, so the batch tests above compare them with trace().
-    EXPECT_EQ(PathTracer(cornell, accel, Estimator::NEE).usesLanes(), path_lanes::pathLanesSupported());
-    EXPECT_FALSE(PathTracer(cornell, accel, Estimator::Naive).usesLanes());
+    EXPECT_EQ(PathTracer(cornell, accel, Estimator::NEE).lanes(), path_lanes::bestIsa());
+    EXPECT_EQ(PathTracer(cornell, accel, Estimator::Naive).lanes(), path_lanes::Isa::None);
     const Scene glossy = loadScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-glossy/scene.json");
     const Accel glossyAccel(glossy);
-    EXPECT_FALSE(PathTracer(glossy, glossyAccel, Estimator::NEE).usesLanes());
+    EXPECT_EQ(PathTracer(glossy, glossyAccel, Estimator::NEE).lanes(), path_lanes::Isa::None);
     const Scene every = everyArrival(true);
     const Accel everyAccel(every);
-    EXPECT_EQ(PathTracer(every, everyAccel, Estimator::NEE).usesLanes(), path_lanes::pathLanesSupported());
+    EXPECT_EQ(PathTracer(every, everyAccel, Estimator::NEE).lanes(), path_lanes::bestIsa());
+    // A build with the lanes on x86-64 runs at least AVX2's wherever the CPU has AVX2.
+    if (path_lanes::isaSupported(path_lanes::Isa::Avx512)) {
+        EXPECT_TRUE(path_lanes::isaSupported(path_lanes::Isa::Avx2));
+    }
 }
 
 TEST(PathTracer, BatchIsTracePerSampleWhereverABounceArrives) {
@@ -311,9 +322,13 @@ TEST(PathTracer, LanesAreThePortableBatchWithASphere) {
     // last bits may differ (above); everything else agrees, and the random numbers stay in step.
     const Scene scene = everyArrival(true);
     const Accel accel(scene);
+    for (path_lanes::Isa isa : {path_lanes::Isa::Avx2, path_lanes::Isa::Avx512}) {
+    if (!path_lanes::isaSupported(isa)) continue;
+    SCOPED_TRACE(path_lanes::isaName(isa));
     PathTracer lanes(scene, accel, Estimator::NEE), portable(scene, accel, Estimator::NEE);
-    portable.setLanes(false);
-    EXPECT_FALSE(portable.usesLanes());
+    lanes.setLanes(isa);
+    portable.setLanes(path_lanes::Isa::None);
+    ASSERT_EQ(lanes.lanes(), isa);
     const int w = 48, h = 48;
     const CameraRays cam(scene.camera, w, h);
     TraceCounters a, b;
@@ -349,6 +364,7 @@ TEST(PathTracer, LanesAreThePortableBatchWithASphere) {
     EXPECT_EQ(a.rays, b.rays);
     EXPECT_EQ(a.shadowRays, b.shadowRays);
     EXPECT_GT(lit, w * h * 16 / 2);
+    }
 }
 
 }  // namespace test_path_tracer

@@ -1,6 +1,6 @@
 #pragma once
 /// The path tracer's lockstep vertices as SIMD lanes (issue 28 item 4; docs/design.md §10, "The
-/// tracer's lanes"): for a batch of up to 16 diffuse paths at the same depth, one vertex step (the
+/// tracer's lanes"), for AVX2 (two halves of 8) and AVX-512: for a batch of up to 16 diffuse paths at the same depth, one vertex step (the
 /// light samples of every path, their shadow rays as one Embree packet per light, the BRDF bounce and
 /// Russian roulette, the bounce rays as one packet) runs on structure-of-arrays state, one path per
 /// lane, without a branch per path.
@@ -11,7 +11,7 @@
 /// is trace()'s bit for bit (test PathTracer.BatchIsTracePerSample*).
 ///
 /// Like the MLP's kernels (nn/mlp_isa.h) the lanes are one translation unit per instruction set,
-/// built with that set's flags and called only on a CPU that has it (pathLanesSupported()); nothing
+/// built with that set's flags and called only on a CPU that has it (isaSupported()); nothing
 /// but this header's plain structs crosses the boundary, and everything the unit defines lives in its
 /// own namespace (CTest `isa_symbols`).
 
@@ -103,10 +103,20 @@ struct alignas(64) Step {
     namespace isa {                 \
     void step(const Setup& setup, PathLanes& lanes, Step& out); \
     }
+RRF_PATH_LANES_DECLARE(avx2)
 RRF_PATH_LANES_DECLARE(avx512)
 #undef RRF_PATH_LANES_DECLARE
 
-/// Whether this build has the lanes and this CPU runs them (AVX-512F and DQ, saved by the OS).
-bool pathLanesSupported();
+/// The lanes' instruction sets; None is the portable lockstep.
+enum class Isa { None, Avx2, Avx512 };
+/// "AVX-512 lanes", "AVX2 lanes" or "portable".
+const char* isaName(Isa isa);
+/// Whether this build has the lanes for `isa` and this CPU runs them (None always).
+bool isaSupported(Isa isa);
+/// The widest lanes this build and CPU run (None if none).
+Isa bestIsa();
+/// The step() of `isa`; null for None.
+using StepFunction = void (*)(const Setup&, PathLanes&, Step&);
+StepFunction stepOf(Isa isa);
 
 }  // namespace rrf::path_lanes

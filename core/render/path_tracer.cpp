@@ -33,9 +33,8 @@ PathTracer::PathTracer(const Scene& scene, const Accel& accel, Estimator estimat
         movableDefault_ = scene.lights[size_t(movable_)];
         movableShape_ = AreaLightShape(movableDefault_);
     }
-    lanes_ = lanesPossible_ = path_lanes::pathLanesSupported() && estimator_ == Estimator::NEE && !effects_.glossy &&
-             triangleLights_.empty();
-    if (lanes_) {
+    lanesPossible_ = estimator_ == Estimator::NEE && !effects_.glossy && triangleLights_.empty();
+    if (lanesPossible_) {
         auto put = [](float* out, const Vec3& v) {
             out[0] = v.x;
             out[1] = v.y;
@@ -75,16 +74,52 @@ PathTracer::PathTracer(const Scene& scene, const Accel& accel, Estimator estimat
             laneGeomMaterial_.push_back(g.object[i] >= 0 ? scene_.objects[size_t(g.object[i])].material
                                                          : scene_.lights[size_t(g.light[i])].material);
     }
+    setLanes(path_lanes::bestIsa());
+}
+
+void PathTracer::setLanes(path_lanes::Isa isa) {
+    if (!lanesPossible_ || !path_lanes::isaSupported(isa)) isa = path_lanes::Isa::None;
+    lanes_ = isa;
+    laneStep_ = path_lanes::stepOf(isa);
 }
 
 namespace path_lanes {
-bool pathLanesSupported() {
+const char* isaName(Isa isa) {
+    switch (isa) {
+        case Isa::Avx2: return "AVX2 lanes";
+        case Isa::Avx512: return "AVX-512 lanes";
+        case Isa::None: break;
+    }
+    return "portable";
+}
+
+bool isaSupported(Isa isa) {
 #ifdef RRF_PATH_LANES
     // __builtin_cpu_supports checks the OS's XSAVE state too.
-    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
-#else
+    switch (isa) {
+        case Isa::Avx2: return __builtin_cpu_supports("avx2");
+        case Isa::Avx512: return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+        case Isa::None: return true;
+    }
     return false;
+#else
+    return isa == Isa::None;
 #endif
+}
+
+Isa bestIsa() {
+    if (isaSupported(Isa::Avx512)) return Isa::Avx512;
+    if (isaSupported(Isa::Avx2)) return Isa::Avx2;
+    return Isa::None;
+}
+
+StepFunction stepOf(Isa isa) {
+#ifdef RRF_PATH_LANES
+    if (isa == Isa::Avx512) return &avx512::step;
+    if (isa == Isa::Avx2) return &avx2::step;
+#endif
+    (void)isa;
+    return nullptr;
 }
 }  // namespace path_lanes
 
@@ -152,7 +187,7 @@ void PathTracer::traceBatch(const Ray* rays, Rng* rngs, int count, TraceCounters
     if (count > Accel::kPacket) throw std::invalid_argument("PathTracer::traceBatch: more than 16 rays");
     if (effects_.glossy) Impl::traceBatch<true>(*this, rays, rngs, count, counters, out);
 #ifdef RRF_PATH_LANES
-    else if (lanes_ && !counters.rayLog && !counters.shadowRayLog) Impl::traceLanes(*this, rays, rngs, count, counters, out);
+    else if (laneStep_ && !counters.rayLog && !counters.shadowRayLog) Impl::traceLanes(*this, rays, rngs, count, counters, out);
 #endif
     else Impl::traceBatch<false>(*this, rays, rngs, count, counters, out);
 }
@@ -221,7 +256,7 @@ void PathTracer::Impl::traceLanes(const PathTracer& t, const Ray* rays, Rng* rng
     uint32_t setUp = lanes.live;  // the live lanes whose v[i] holds their vertex, set up by enter()
     while (lanes.live && lanes.depth < kLockstepVertices) {
         setup.bounces = lanes.depth + 1 < t.maxDepth_ && t.effects_.indirect;
-        avx512::step(setup, lanes, step);
+        t.laneStep_(setup, lanes, step);
         counters.shadowRays += step.shadowRays;
         counters.rays += uint64_t(__builtin_popcount(step.bounced));
         setUp = 0;

@@ -115,13 +115,13 @@ public:
     }
     const Accel& accel() const { return accel_; }
     const Scene& scene() const { return scene_; }
-    /// Whether traceBatch() runs its lockstep vertices as SIMD lanes (render/path_lanes.h): NEE in a
-    /// scene without glossy materials or triangle lights, on a CPU the lanes' build supports. Either
-    /// way the results are trace()'s.
-    bool usesLanes() const { return lanes_; }
-    /// Turns the lanes off, or back on where they can run: for comparing them with the portable
-    /// lockstep (tests, bench_render).
-    void setLanes(bool on) { lanes_ = on && lanesPossible_; }
+    /// The SIMD lanes traceBatch() runs its lockstep vertices as (render/path_lanes.h): the widest the
+    /// build and CPU have, for NEE in a scene without glossy materials or triangle lights; None (the
+    /// portable lockstep) otherwise. Either way the results are trace()'s.
+    path_lanes::Isa lanes() const { return lanes_; }
+    /// Chooses the lanes (None: the portable lockstep) where this tracer can run them; otherwise
+    /// the portable lockstep stays. For comparing them (tests, bench_render).
+    void setLanes(path_lanes::Isa isa);
 
 private:
     /// The path-tracing loop in steps (one vertex's setup, its light samples, its bounce), so that
@@ -140,8 +140,9 @@ private:
     int movable_ = -1;       ///< index of the movable light, -1 if the scene has none
     Light movableDefault_;   ///< the movable light where the scene puts it
     AreaLightShape movableShape_;  ///< movableDefault_'s shape (the same wherever it is moved)
-    bool lanes_ = false;           ///< usesLanes()
-    bool lanesPossible_ = false;   ///< whether this scene, estimator, build and CPU allow the lanes
+    path_lanes::Isa lanes_ = path_lanes::Isa::None;  ///< lanes()
+    path_lanes::StepFunction laneStep_ = nullptr;     ///< lanes_'s step, null for the portable lockstep
+    bool lanesPossible_ = false;  ///< whether the scene and estimator allow the lanes
     std::vector<path_lanes::RectLight> laneRects_;    ///< rectLights_ as the lanes read them
     std::vector<path_lanes::PointLight> lanePoints_;  ///< pointLights_ as the lanes read them
     path_lanes::MovableLight laneMovable_{};           ///< movableDefault_ and its shape

@@ -137,6 +137,8 @@ public:
     static RenderSnapshot snapshotOf(const RenderState& state);
 
     const PathTracer& tracer() const { return tracer_; }
+    /// PathTracer::setLanes() for this renderer's tracer (bench_render's portable row). Before run().
+    void setLanes(path_lanes::Isa isa) { tracer_.setLanes(isa); }
     const RenderOptions& options() const { return options_; }
     /// The estimator that runs (options.estimator with Auto resolved) and why.
     const EstimatorChoice& estimatorChoice() const { return choice_; }
