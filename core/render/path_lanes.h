@@ -64,6 +64,8 @@ struct MovableLight {
     int triangle;
     float normal[3];  ///< Light::normal(), the hit's geometric normal
     int material;     ///< the light's material (-1: black)
+    float radiance[3];
+    int oneSided;
 };
 
 /// What step() needs besides the lanes.
@@ -82,6 +84,12 @@ struct Setup {
     const int* geomNormalBase;  ///< Accel::GeometryTable::normalBase
     const float* normals;       ///< Accel::GeometryTable::normals
     const float* materialKd;    ///< x, y, z per material: the diffuse BRDF's kd
+    // The emission a camera ray sees (start()), by Embree's geomID and by Scene light:
+    const int* geomLight;          ///< Accel::GeometryTable::light
+    const float* lightRadiance;    ///< x, y, z per light
+    const float* lightNormal;      ///< cross(edge1, edge2), x, y, z per light
+    const int* lightOneSided;      ///< per light
+    const RTCIntersectContext* cameraContext;  ///< start()'s packet (coherent when one origin)
 };
 
 /// One step's outcome: the bounce rays (tfar and hit filled by Embree for the lanes in `bounced`) and
@@ -102,10 +110,15 @@ struct alignas(64) Step {
 #define RRF_PATH_LANES_DECLARE(isa) \
     namespace isa {                 \
     void step(const Setup& setup, PathLanes& lanes, Step& out); \
+    void start(const Setup& setup, PathLanes& lanes, Step& out); \
     }
 RRF_PATH_LANES_DECLARE(avx2)
 RRF_PATH_LANES_DECLARE(avx512)
 #undef RRF_PATH_LANES_DECLARE
+
+/// start(): the camera rays the caller put in out.next.ray (the lanes of lanes.live, all others
+/// unset: beta 1, no light yet; any tnear and tfar), traced as one packet, and their first vertices set up as step()
+/// sets up a bounce's, the emission seen there added to `direct` (PathTracer's emissionSeen()).
 
 /// The lanes' instruction sets; None is the portable lockstep.
 enum class Isa { None, Avx2, Avx512 };
@@ -118,5 +131,7 @@ Isa bestIsa();
 /// The step() of `isa`; null for None.
 using StepFunction = void (*)(const Setup&, PathLanes&, Step&);
 StepFunction stepOf(Isa isa);
+/// The start() of `isa`; null for None.
+StepFunction startOf(Isa isa);
 
 }  // namespace rrf::path_lanes

@@ -256,14 +256,15 @@ inline void packRays(RTCRay16& r, int* valid, M m, const V3& o, const V3& d, F t
     storeValid(valid, m);
 }
 
-/// intersectAreaLight() in the lanes of `m` (origin o, direction d, tmin 0); `t` where it hits.
-inline M hitsMovable(const MovableLight& l, M m, const V3& o, const V3& d, F tmax, F& t) {
+/// intersectAreaLight() in the lanes of `m` (origin o, direction d, from tmin to tmax); `t` where it
+/// hits.
+inline M hitsMovable(const MovableLight& l, M m, const V3& o, const V3& d, F tmin, F tmax, F& t) {
     const V3 n = bc3(l.n), corner = bc3(l.corner);
     const F zero = zeroF();
     const F denom = dot(d, n);
     m &= notm(eq(denom, zero));
     t = div(dot(sub(corner, o), n), denom);
-    m &= gt(t, zero) & lt(t, tmax);
+    m &= gt(t, tmin) & lt(t, tmax);
     const V3 q = sub(add(o, mul(d, t)), corner);
     const F nn = bc(l.nn);
     const F a = div(dot(cross(q, bc3(l.edge2)), n), nn);
@@ -296,7 +297,7 @@ inline void addVisible(const Setup& s, M ok, const V3& p, const V3& ng, F ngSide
         rtcOccluded16(valid, s.scene, &ctx, &ray);
         blocked = needsRay & lt(loadF(ray.tfar), zero);  // Embree sets tfar = -inf on a hit
         F t;
-        if (s.movable) blocked |= hitsMovable(*s.movable, needsRay & notm(blocked), origin, dir, tmax, t);
+        if (s.movable) blocked |= hitsMovable(*s.movable, needsRay & notm(blocked), origin, dir, zero, tmax, t);
         shadowRays += uint64_t(__builtin_popcount(needsRay));
     }
     const M adds = ok & notm(blocked);
@@ -304,15 +305,16 @@ inline void addVisible(const Setup& s, M ok, const V3& p, const V3& ng, F ngSide
 }
 
 /// withMovableLight(), Accel::fillHit(), arrive() and enter() for the bounce rays of `bounced`
-/// (origin o, direction d) that Embree traced into out.next; returns the lanes live at the new
-/// vertex, whose state it stores in L.
-inline M arrive(const Setup& s, M bounced, const V3& o, const V3& d, Step& out, PathLanes& L) {
+/// (origin o, direction d, from tmin to tmax) that Embree traced into out.next; returns the lanes
+/// live at the new vertex, whose state it stores in L. With kEmission, emissionSeen() too.
+template <bool kEmission>
+inline M arrive(const Setup& s, M bounced, const V3& o, const V3& d, F tmin, F tmax, Step& out, PathLanes& L) {
     const F zero = zeroF();
     const I geom = loadI(out.next.hit.geomID);
     const M found = bounced & neI(geom, bci(int(RTC_INVALID_GEOMETRY_ID)));
     const F tfar = loadF(out.next.ray.tfar);
     F tMovable = zero;
-    const M movable = s.movable ? hitsMovable(*s.movable, bounced, o, d, blend(found, bc(INFINITY), tfar), tMovable) : M(0);
+    const M movable = s.movable ? hitsMovable(*s.movable, bounced, o, d, tmin, blend(found, tmax, tfar), tMovable) : M(0);
     const I base = gatherI(bci(0), found, geom, s.geomNormalBase);
     out.resolve = found & notm(movable) & ltI(base, bci(0));
     const M flat = found & notm(movable) & notm(out.resolve);
@@ -330,6 +332,27 @@ inline M arrive(const Setup& s, M bounced, const V3& o, const V3& d, Step& out, 
     live &= notm(eq(side, zero));
     const M front = gt(side, zero);
     const V3 n = select(front, V3{neg(ng.x), neg(ng.y), neg(ng.z)}, ng);
+    if constexpr (kEmission) {
+        // Light::emittedTowards(wo), wo = -d, for the lanes that see an emitter.
+        const I light = gatherI(bci(-1), flat, geom, s.geomLight);
+        const M fromTable = flat & notm(ltI(light, bci(0)));
+        if (fromTable | movable) {
+            const I l3 = mulI(light, bci(3));
+            const V3 wo{neg(d.x), neg(d.y), neg(d.z)};
+            const float* mr = s.movable ? s.movable->radiance : kNone;
+            const float* mn = s.movable ? s.movable->n : kNone;
+            const V3 radiance{gatherF(bc(mr[0]), fromTable, l3, s.lightRadiance),
+                              gatherF(bc(mr[1]), fromTable, addI(l3, bci(1)), s.lightRadiance),
+                              gatherF(bc(mr[2]), fromTable, addI(l3, bci(2)), s.lightRadiance)};
+            const V3 nl{gatherF(bc(mn[0]), fromTable, l3, s.lightNormal),
+                        gatherF(bc(mn[1]), fromTable, addI(l3, bci(1)), s.lightNormal),
+                        gatherF(bc(mn[2]), fromTable, addI(l3, bci(2)), s.lightNormal)};
+            const I oneSided = gatherI(bci(s.movable ? s.movable->oneSided : 0), fromTable, light, s.lightOneSided);
+            const M dark = ltI(bci(0), oneSided) & le(dot(wo, nl), zero);
+            const M seen = (fromTable | movable) & notm(dark);
+            store(L.direct, seen, add(load(L.direct), radiance));
+        }
+    }
     const I m3 = mulI(material, bci(3));
     const V3 kd{gatherF(zero, live, m3, s.materialKd), gatherF(zero, live, addI(m3, bci(1)), s.materialKd),
                 gatherF(zero, live, addI(m3, bci(2)), s.materialKd)};
@@ -441,11 +464,28 @@ void step(const Setup& s, PathLanes& L, Step& out) {
             RTCIntersectContext ctx = *s.context;
             rtcIntersect16(valid, s.scene, &ctx, &out.next);
             out.bounced = ok;
-            next = arrive(s, ok, origin, wi, out, L);
+            next = arrive<false>(s, ok, origin, wi, zero, bc(INFINITY), out, L);
         }
     }
     L.live = next;
     rng.store(L.rng);
+}
+
+void start(const Setup& s, PathLanes& L, Step& out) {
+    const M live = M(L.live) & kAllLanes;
+    alignas(64) int valid[kLanes];
+    storeValid(valid, live);
+    const V3 o{loadF(out.next.ray.org_x), loadF(out.next.ray.org_y), loadF(out.next.ray.org_z)};
+    const V3 d{loadF(out.next.ray.dir_x), loadF(out.next.ray.dir_y), loadF(out.next.ray.dir_z)};
+    const F tmin = loadF(out.next.ray.tnear), tmax = loadF(out.next.ray.tfar);  // Embree changes tfar
+    storeI(out.next.hit.geomID, bci(int(RTC_INVALID_GEOMETRY_ID)));
+    storeI(out.next.hit.instID[0], bci(int(RTC_INVALID_GEOMETRY_ID)));
+    RTCIntersectContext ctx = *s.cameraContext;
+    rtcIntersect16(valid, s.scene, &ctx, &out.next);
+    out.bounced = live;
+    out.resolve = 0;
+    out.shadowRays = 0;
+    L.live = arrive<true>(s, live, o, d, tmin, tmax, out, L);
 }
 
 }  // namespace rrf::path_lanes::RRF_ISA

@@ -142,12 +142,15 @@ private:
     AreaLightShape movableShape_;  ///< movableDefault_'s shape (the same wherever it is moved)
     path_lanes::Isa lanes_ = path_lanes::Isa::None;  ///< lanes()
     path_lanes::StepFunction laneStep_ = nullptr;     ///< lanes_'s step, null for the portable lockstep
+    path_lanes::StepFunction laneStart_ = nullptr;    ///< lanes_'s start
     bool lanesPossible_ = false;  ///< whether the scene and estimator allow the lanes
     std::vector<path_lanes::RectLight> laneRects_;    ///< rectLights_ as the lanes read them
     std::vector<path_lanes::PointLight> lanePoints_;  ///< pointLights_ as the lanes read them
     path_lanes::MovableLight laneMovable_{};           ///< movableDefault_ and its shape
     std::vector<float> laneKd_;                        ///< kd of brdfs_, x, y, z per material
     std::vector<int> laneGeomMaterial_;                ///< material by Embree geomID (Accel::GeometryTable)
+    std::vector<float> laneLightRadiance_, laneLightNormal_;  ///< x, y, z per Scene light (normal: e1 × e2)
+    std::vector<int> laneLightOneSided_;               ///< per Scene light
 
     /// The shape of `movable` for the ray test: movableShape_ for the movable light wherever it was
     /// moved (movableLightAt: same edges), derived into `scratch` for any other light. Every ray of
