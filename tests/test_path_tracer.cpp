@@ -367,4 +367,51 @@ TEST(PathTracer, LanesAreThePortableBatchWithASphere) {
     }
 }
 
+/// shadeBatch() against shade() path by path, from the hits of camera rays and with the movable light
+/// moved as the data generator moves it: the lanes start every path at one vertex and carry the moved
+/// light; the portable route is shade() itself.
+void expectShadeBatchIsShade(const Scene& scene, const std::string& what) {
+    const Accel accel(scene);
+    PathTracer tracer(scene, accel, Estimator::NEE);
+    const CameraRays cam(scene.camera, 12, 12);
+    const Vec3 moves[] = {scene.lights[size_t(scene.movableLight)].center(), Vec3(0.3f, 0.9f, -0.2f), Vec3(-0.4f, 0.8f, 0.5f)};
+    for (path_lanes::Isa isa : {path_lanes::Isa::None, path_lanes::Isa::Avx2, path_lanes::Isa::Avx512}) {
+        if (!path_lanes::isaSupported(isa)) continue;
+        tracer.setLanes(isa);
+        SCOPED_TRACE(what + ", " + path_lanes::isaName(isa));
+        TraceCounters one, batch;
+        int lit = 0;
+        for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 12; ++x) {
+                const Light movable = tracer.movableLightAt(moves[(x + y) % 3]);
+                const Ray ray = cam.generate(x, y, 0.5f, 0.5f);
+                Hit hit;
+                if (!tracer.intersect(ray, movable, hit)) continue;
+                const int n = 1 + (x * 7 + y) % 16;  // partial batches too
+                Rng rngs[16] = {Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0),
+                                Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0)};
+                Radiance expected[16], got[16];
+                for (int i = 0; i < n; ++i) {
+                    rngs[i] = Rng(3, uint64_t(y * 12 + x), uint64_t(i));
+                    Rng rng = rngs[i];
+                    expected[i] = tracer.shade(hit, -ray.dir, movable, rng, one);
+                }
+                tracer.shadeBatch(hit, -ray.dir, movable, rngs, n, batch, got);
+                for (int i = 0; i < n; ++i) {
+                    ASSERT_EQ(got[i].direct, expected[i].direct) << "pixel " << x << ", " << y << ", path " << i;
+                    ASSERT_EQ(got[i].indirect, expected[i].indirect) << "pixel " << x << ", " << y << ", path " << i;
+                    lit += !expected[i].indirect.isZero();
+                }
+            }
+        EXPECT_EQ(batch.rays, one.rays);
+        EXPECT_EQ(batch.shadowRays, one.shadowRays);
+        EXPECT_GT(lit, 100);
+    }
+}
+
+TEST(PathTracer, ShadeBatchIsShadePerPathWithTheLightMoved) {
+    expectShadeBatchIsShade(loadScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/scene.json"), "cornell-box");
+    expectShadeBatchIsShade(everyArrival(false), "every arrival");
+}
+
 }  // namespace test_path_tracer

@@ -51,6 +51,10 @@ int runRender(RenderArgs a) {
     Renderer renderer(scene, accel, o);
     std::printf("rrf render: %s, %dx%d, %d spp, %s estimator, seed %llu\n", a.input.c_str(), o.width, o.height, o.spp,
                 estimatorName(renderer.estimatorChoice().estimator), (unsigned long long)o.seed);
+    // Which path loop runs: the SIMD lanes (diffuse NEE on a CPU that has them) or the portable one.
+    // The image is the same either way.
+    if (renderer.estimatorChoice().estimator != Estimator::BDPT)
+        std::printf("path loop: %s\n", path_lanes::isaName(renderer.tracer().lanes()));
     std::printf("effects:\n");
     for (const std::string& line : renderer.tracer().effects().describe()) std::printf("  - %s\n", line.c_str());
     for (const std::string& w : scene.warnings) std::printf("warning: %s\n", w.c_str());

@@ -94,16 +94,28 @@ bool DataGenerator::estimateRecord(const Vec3& viewpoint, const Vec3& dir, const
     };
     bool capped = false;
     for (;;) {
-        for (; traced < round; ++traced) {
-            Rng rng(ps, recordIndex, uint64_t(traced));
-            const Radiance L =
-                bdpt_ ? bdpt_->shade(hit, wo, movable, rng, counters) : tracer_.shade(hit, wo, movable, rng, counters);
-            if (!L.direct.isFinite() || !L.indirect.isFinite()) {
-                ++nonFinite;
-                continue;
+        // The paths in batches of up to 16 (the tracer's lanes run them together), added in path order.
+        while (traced < round) {
+            constexpr int K = Accel::kPacket;
+            const int n = std::min(round - traced, K);
+            Rng rngs[K] = {Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0),
+                           Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0), Rng(0, 0)};
+            Radiance Ls[K];
+            for (int j = 0; j < n; ++j) rngs[j] = Rng(ps, recordIndex, uint64_t(traced + j));
+            if (bdpt_)
+                for (int j = 0; j < n; ++j) Ls[j] = bdpt_->shade(hit, wo, movable, rngs[j], counters);
+            else
+                tracer_.shadeBatch(hit, wo, movable, rngs, n, counters, Ls);
+            traced += n;
+            for (int j = 0; j < n; ++j) {
+                const Radiance& L = Ls[j];
+                if (!L.direct.isFinite() || !L.indirect.isFinite()) {
+                    ++nonFinite;
+                    continue;
+                }
+                const double sample[6] = {L.direct[0], L.direct[1], L.direct[2], L.indirect[0], L.indirect[1], L.indirect[2]};
+                acc.add(sample);
             }
-            const double sample[6] = {L.direct[0], L.direct[1], L.direct[2], L.indirect[0], L.indirect[1], L.indirect[2]};
-            acc.add(sample);
         }
         if (!settings_.adaptive() || acc.n == 0) break;
         summarise();

@@ -331,9 +331,18 @@ struct PathTracer::Impl {
     template <bool kGlossy>
     static void traceBatch(const PathTracer& t, const Ray* rays, Rng* rngs, int count, TraceCounters& counters,
                            Radiance* out);
-    /// traceBatch<false>() with the lockstep vertices as SIMD lanes (render/path_lanes.h).
+    // The SIMD lanes (render/path_lanes.h; path_tracer_lanes.cpp).
+    /// The tables the lanes read (PathTracer's lane* members).
+    static void buildLaneTables(PathTracer& t);
+    /// Whether the lanes run paths with the movable light at `movable` (a move of the scene's).
+    static bool lanesTake(const PathTracer& t, const Light& movable);
+    struct LaneBatch;
+    /// traceBatch<false>() with the lockstep vertices as SIMD lanes.
     static void traceLanes(const PathTracer& t, const Ray* rays, Rng* rngs, int count, TraceCounters& counters,
                            Radiance* out);
+    /// shade() of `count` paths from one vertex, their lockstep vertices as SIMD lanes.
+    static void shadeLanes(const PathTracer& t, const Hit& hit, const Vec3& wo, const Light& movable, Rng* rngs,
+                           int count, TraceCounters& counters, Radiance* out);
 };
 
 }  // namespace rrf

@@ -34,54 +34,7 @@ PathTracer::PathTracer(const Scene& scene, const Accel& accel, Estimator estimat
         movableShape_ = AreaLightShape(movableDefault_);
     }
     lanesPossible_ = estimator_ == Estimator::NEE && !effects_.glossy && triangleLights_.empty();
-    if (lanesPossible_) {
-        auto put = [](float* out, const Vec3& v) {
-            out[0] = v.x;
-            out[1] = v.y;
-            out[2] = v.z;
-        };
-        for (int li : rectLights_) {
-            const Light& l = light(li, movableDefault_);
-            path_lanes::RectLight r{};
-            put(r.corner, l.corner);
-            put(r.edge1, l.edge1);
-            put(r.edge2, l.edge2);
-            put(r.nl, cross(l.edge1, l.edge2));
-            put(r.radiance, l.radiance);
-            r.oneSided = l.oneSided ? 1 : 0;
-            laneRects_.push_back(r);
-        }
-        for (int li : pointLights_) {
-            const Light& l = light(li, movableDefault_);
-            path_lanes::PointLight pl{};
-            put(pl.position, l.position);
-            put(pl.intensity, l.intensity);
-            lanePoints_.push_back(pl);
-        }
-        put(laneMovable_.corner, movableDefault_.corner);
-        put(laneMovable_.edge1, movableShape_.edge1);
-        put(laneMovable_.edge2, movableShape_.edge2);
-        put(laneMovable_.n, movableShape_.n);
-        laneMovable_.nn = movableShape_.nn;
-        laneMovable_.triangle = movableShape_.triangle ? 1 : 0;
-        if (movable_ >= 0) {
-            put(laneMovable_.normal, movableDefault_.normal());
-            laneMovable_.material = movableDefault_.material;
-        }
-        put(laneMovable_.radiance, movableDefault_.radiance);
-        laneMovable_.oneSided = movableDefault_.oneSided ? 1 : 0;
-        for (const Brdf& b : brdfs_) laneKd_.insert(laneKd_.end(), {b.kd.x, b.kd.y, b.kd.z});
-        for (const Light& l : scene_.lights) {
-            const Vec3 nl = cross(l.edge1, l.edge2);
-            laneLightRadiance_.insert(laneLightRadiance_.end(), {l.radiance.x, l.radiance.y, l.radiance.z});
-            laneLightNormal_.insert(laneLightNormal_.end(), {nl.x, nl.y, nl.z});
-            laneLightOneSided_.push_back(l.oneSided ? 1 : 0);
-        }
-        const Accel::GeometryTable& g = accel_.geometryTable();
-        for (size_t i = 0; i < g.object.size(); ++i)
-            laneGeomMaterial_.push_back(g.object[i] >= 0 ? scene_.objects[size_t(g.object[i])].material
-                                                         : scene_.lights[size_t(g.light[i])].material);
-    }
+    if (lanesPossible_) Impl::buildLaneTables(*this);
     setLanes(path_lanes::bestIsa());
 }
 
@@ -92,54 +45,7 @@ void PathTracer::setLanes(path_lanes::Isa isa) {
     laneStart_ = path_lanes::startOf(isa);
 }
 
-namespace path_lanes {
-const char* isaName(Isa isa) {
-    switch (isa) {
-        case Isa::Avx2: return "AVX2 lanes";
-        case Isa::Avx512: return "AVX-512 lanes";
-        case Isa::None: break;
-    }
-    return "portable";
-}
 
-bool isaSupported(Isa isa) {
-#ifdef RRF_PATH_LANES
-    // __builtin_cpu_supports checks the OS's XSAVE state too.
-    switch (isa) {
-        case Isa::Avx2: return __builtin_cpu_supports("avx2");
-        case Isa::Avx512: return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
-        case Isa::None: return true;
-    }
-    return false;
-#else
-    return isa == Isa::None;
-#endif
-}
-
-Isa bestIsa() {
-    if (isaSupported(Isa::Avx512)) return Isa::Avx512;
-    if (isaSupported(Isa::Avx2)) return Isa::Avx2;
-    return Isa::None;
-}
-
-StepFunction stepOf(Isa isa) {
-#ifdef RRF_PATH_LANES
-    if (isa == Isa::Avx512) return &avx512::step;
-    if (isa == Isa::Avx2) return &avx2::step;
-#endif
-    (void)isa;
-    return nullptr;
-}
-
-StepFunction startOf(Isa isa) {
-#ifdef RRF_PATH_LANES
-    if (isa == Isa::Avx512) return &avx512::start;
-    if (isa == Isa::Avx2) return &avx2::start;
-#endif
-    (void)isa;
-    return nullptr;
-}
-}  // namespace path_lanes
 
 Light PathTracer::movableLightAt(const Vec3& p) const {
     Light l = movableDefault_;
@@ -204,153 +110,22 @@ void PathTracer::traceBatch(const Ray* rays, Rng* rngs, int count, TraceCounters
     if (count <= 0) return;
     if (count > Accel::kPacket) throw std::invalid_argument("PathTracer::traceBatch: more than 16 rays");
     if (effects_.glossy) Impl::traceBatch<true>(*this, rays, rngs, count, counters, out);
-#ifdef RRF_PATH_LANES
     else if (laneStep_ && !counters.rayLog && !counters.shadowRayLog) Impl::traceLanes(*this, rays, rngs, count, counters, out);
-#endif
     else Impl::traceBatch<false>(*this, rays, rngs, count, counters, out);
 }
 
-#ifdef RRF_PATH_LANES
-void PathTracer::Impl::traceLanes(const PathTracer& t, const Ray* rays, Rng* rngs, int count, TraceCounters& counters,
-                                  Radiance* out) {
-    using namespace path_lanes;
-    constexpr int K = Accel::kPacket;
-    const Light& movable = t.movableDefault_;
-    const AreaLightShape& shape = t.movableShape_;
-    Vertex v[K];
-    alignas(64) PathLanes lanes;
-    alignas(64) Step step;
-    // A lane's state at the vertex enter() has set up in v[i].
-    auto load = [&](int i) {
-        const Vertex& vi = v[i];
-        lanes.p.x[i] = vi.hit.p.x, lanes.p.y[i] = vi.hit.p.y, lanes.p.z[i] = vi.hit.p.z;
-        lanes.ng.x[i] = vi.hit.ng.x, lanes.ng.y[i] = vi.hit.ng.y, lanes.ng.z[i] = vi.hit.ng.z;
-        lanes.n.x[i] = vi.n.x, lanes.n.y[i] = vi.n.y, lanes.n.z[i] = vi.n.z;
-        lanes.kd.x[i] = vi.brdf->kd.x, lanes.kd.y[i] = vi.brdf->kd.y, lanes.kd.z[i] = vi.brdf->kd.z;
-        lanes.side[i] = vi.side;
-        lanes.smooth = (lanes.smooth & ~(1u << i)) | (vi.hit.ns.isZero() ? 0u : 1u << i);
-        lanes.live |= 1u << i;
-    };
-    // The vertex lane i arrived at along ray r, traced in step.next, as intersect() and arrive() give
-    // it (depth: the vertex's); true when enter() lets the path go on there.
-    auto arriveAlone = [&](int i, int depth, const Ray& r) {
-        Hit next;
-        const bool hit = withMovableLight(r, movable, shape, t.movable_, t.accel_.hitOfPacket(step.next, i, next), next);
-        if (depth == 0) {
-            if (!hit) return false;
-            v[i].hit = next;
-            v[i].wo = -r.dir;
-            emissionSeen(t, v[i], movable);
-        } else {
-            v[i].depth = depth - 1;
-            if (!arrive(t, v[i], movable, r, Vec3(), hit, next)) return false;
-        }
-        return enter<false>(t, v[i]);
-    };
-    // Lane i's bounce ray in step.next (from 0 to infinity).
-    auto bounceRay = [&](int i) {
-        Ray r;
-        r.origin = Vec3(step.next.ray.org_x[i], step.next.ray.org_y[i], step.next.ray.org_z[i]);
-        r.dir = Vec3(step.next.ray.dir_x[i], step.next.ray.dir_y[i], step.next.ray.dir_z[i]);
-        return r;
-    };
-    for (int i = 0; i < K; ++i) {
-        lanes.beta.x[i] = lanes.beta.y[i] = lanes.beta.z[i] = 1.f;
-        lanes.direct.x[i] = lanes.direct.y[i] = lanes.direct.z[i] = 0.f;
-        lanes.indirect.x[i] = lanes.indirect.y[i] = lanes.indirect.z[i] = 0.f;
-        lanes.rng[i] = i < count ? rngs[i].state() : 0;
+void PathTracer::shadeBatch(const Hit& hit, const Vec3& wo, const Light& movable, Rng* rngs, int count,
+                            TraceCounters& counters, Radiance* out) const {
+    if (count <= 0) return;
+    if (count > Accel::kPacket) throw std::invalid_argument("PathTracer::shadeBatch: more than 16 paths");
+    if (!effects_.glossy && !counters.rayLog && !counters.shadowRayLog && Impl::lanesTake(*this, movable)) {
+        Impl::shadeLanes(*this, hit, wo, movable, rngs, count, counters, out);
+        return;
     }
-    RTCIntersectContext bounceContext, cameraContext;
-    rtcInitIntersectContext(&bounceContext);
-    bounceContext.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-    rtcInitIntersectContext(&cameraContext);
-    cameraContext.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    const Accel::GeometryTable& geometry = t.accel_.geometryTable();
-    Setup setup{t.accel_.handle(),
-                &bounceContext,
-                t.accel_.sceneScale(),
-                t.laneRects_.data(),
-                int(t.laneRects_.size()),
-                t.lanePoints_.data(),
-                int(t.lanePoints_.size()),
-                t.movable_ >= 0 && movable.isArea() ? &t.laneMovable_ : nullptr,
-                0,
-                t.laneGeomMaterial_.data(),
-                geometry.normalBase.data(),
-                geometry.normals.data(),
-                t.laneKd_.data(),
-                geometry.light.data(),
-                t.laneLightRadiance_.data(),
-                t.laneLightNormal_.data(),
-                t.laneLightOneSided_.data(),
-                &cameraContext};
-
-    // The camera rays as one packet, coherent when they share their origin (Accel::intersectPacket).
-    counters.rays += uint64_t(count);
-    for (int i = 0; i < K; ++i) {
-        const Ray& r = rays[i < count ? i : 0];  // lanes past count repeat ray 0, masked off
-        step.next.ray.org_x[i] = r.origin.x, step.next.ray.org_y[i] = r.origin.y, step.next.ray.org_z[i] = r.origin.z;
-        step.next.ray.dir_x[i] = r.dir.x, step.next.ray.dir_y[i] = r.dir.y, step.next.ray.dir_z[i] = r.dir.z;
-        step.next.ray.tnear[i] = r.tmin;
-        step.next.ray.tfar[i] = r.tmax;
-        step.next.ray.time[i] = 0.f;
-        step.next.ray.mask[i] = 0xFFFFFFFFu;
-        step.next.ray.id[i] = unsigned(i);
-        step.next.ray.flags[i] = 0;
-        if (i < count && !(r.origin == rays[0].origin)) cameraContext.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-    }
-    lanes.live = (1u << count) - 1u;
-    t.laneStart_(setup, lanes, step);
-    uint32_t setUp = 0;  // the live lanes whose v[i] holds their vertex, set up by enter()
-    for (uint32_t b = step.resolve; b; b &= b - 1) {
-        const int i = __builtin_ctz(b);
-        const bool goesOn = arriveAlone(i, 0, rays[i]);
-        lanes.direct.x[i] = v[i].L.direct.x, lanes.direct.y[i] = v[i].L.direct.y, lanes.direct.z[i] = v[i].L.direct.z;
-        if (goesOn) {
-            load(i);
-            setUp |= 1u << i;
-        }
-    }
-
-    // Deeper than the portable lockstep: a lane's step costs little, and Russian roulette thins the
-    // packets only slowly over the first vertices; sparser still, they cost Embree more than they
-    // save (docs/results-history.md, "The tracer's lanes").
-    constexpr int kLockstepVertices = 4;
-    while (lanes.live && lanes.depth < kLockstepVertices) {
-        setup.bounces = lanes.depth + 1 < t.maxDepth_ && t.effects_.indirect;
-        t.laneStep_(setup, lanes, step);
-        counters.shadowRays += step.shadowRays;
-        counters.rays += uint64_t(__builtin_popcount(step.bounced));
-        ++lanes.depth;
-        setUp = 0;
-        for (uint32_t b = step.resolve; b; b &= b - 1) {
-            const int i = __builtin_ctz(b);
-            if (arriveAlone(i, lanes.depth, bounceRay(i))) {
-                load(i);
-                setUp |= 1u << i;
-            }
-        }
-    }
-    for (int i = 0; i < count; ++i) {
-        Vertex& vi = v[i];
-        vi.L.direct = Vec3(lanes.direct.x[i], lanes.direct.y[i], lanes.direct.z[i]);
-        vi.L.indirect = Vec3(lanes.indirect.x[i], lanes.indirect.y[i], lanes.indirect.z[i]);
-        Rng& rng = rngs[i] = Rng::ofState(lanes.rng[i]);
-        if ((lanes.live >> i) & 1u) {
-            // The lanes set up this vertex themselves: intersect()'s Hit for the ray that got there.
-            if (!((setUp >> i) & 1u) && !arriveAlone(i, lanes.depth, bounceRay(i))) {
-                out[i] = vi.L;
-                continue;
-            }
-            // The path goes on one by one as in shade(), from the vertex enter() has set up.
-            vi.beta = Vec3(lanes.beta.x[i], lanes.beta.y[i], lanes.beta.z[i]);
-            directLight<false>(t, vi, movable, rng, counters);
-            if (scatter<false>(t, vi, movable, rng, counters)) finish<false>(t, vi, movable, rng, counters);
-        }
-        out[i] = vi.L;
-    }
+    for (int i = 0; i < count; ++i) out[i] = shade(hit, wo, movable, rngs[i], counters);
 }
-#endif
+
+
 
 template <bool kGlossy>
 void PathTracer::Impl::directLightBatch(const PathTracer& t, Vertex* v, const int* live, int count,

@@ -90,6 +90,12 @@ public:
         return shade(hit, wo, movableDefault_, rng, counters);
     }
     Radiance shade(const Hit& hit, const Vec3& wo, const Light& movable, Rng& rng, TraceCounters& counters) const;
+    /// shade() for `count` ≤ Accel::kPacket paths from the same vertex: out[i] = shade(hit, wo,
+    /// movable, rngs[i], counters), the data generator's paths of one record. Their first vertices
+    /// run in the SIMD lanes where traceBatch()'s do (lanes()), with `movable` a move of the scene's
+    /// movable light; the results are shade()'s either way.
+    void shadeBatch(const Hit& hit, const Vec3& wo, const Light& movable, Rng* rngs, int count, TraceCounters& counters,
+                    Radiance* out) const;
 
     /// Closest hit against the static BVH and the movable light (if it is an area light).
     bool intersect(const Ray& ray, const Light& movable, Hit& hit) const;
@@ -147,6 +153,7 @@ private:
     std::vector<path_lanes::RectLight> laneRects_;    ///< rectLights_ as the lanes read them
     std::vector<path_lanes::PointLight> lanePoints_;  ///< pointLights_ as the lanes read them
     path_lanes::MovableLight laneMovable_{};           ///< movableDefault_ and its shape
+    int laneMovableRect_ = -1;                         ///< the movable light's entry in laneRects_
     std::vector<float> laneKd_;                        ///< kd of brdfs_, x, y, z per material
     std::vector<int> laneGeomMaterial_;                ///< material by Embree geomID (Accel::GeometryTable)
     std::vector<float> laneLightRadiance_, laneLightNormal_;  ///< x, y, z per Scene light (normal: e1 × e2)

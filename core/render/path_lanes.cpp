@@ -1,0 +1,54 @@
+#include "core/render/path_lanes.h"
+
+namespace rrf {
+
+namespace path_lanes {
+const char* isaName(Isa isa) {
+    switch (isa) {
+        case Isa::Avx2: return "AVX2 lanes";
+        case Isa::Avx512: return "AVX-512 lanes";
+        case Isa::None: break;
+    }
+    return "portable";
+}
+
+bool isaSupported(Isa isa) {
+#ifdef RRF_PATH_LANES
+    // __builtin_cpu_supports checks the OS's XSAVE state too.
+    switch (isa) {
+        case Isa::Avx2: return __builtin_cpu_supports("avx2");
+        case Isa::Avx512: return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+        case Isa::None: return true;
+    }
+    return false;
+#else
+    return isa == Isa::None;
+#endif
+}
+
+Isa bestIsa() {
+    if (isaSupported(Isa::Avx512)) return Isa::Avx512;
+    if (isaSupported(Isa::Avx2)) return Isa::Avx2;
+    return Isa::None;
+}
+
+StepFunction stepOf(Isa isa) {
+#ifdef RRF_PATH_LANES
+    if (isa == Isa::Avx512) return &avx512::step;
+    if (isa == Isa::Avx2) return &avx2::step;
+#endif
+    (void)isa;
+    return nullptr;
+}
+
+StepFunction startOf(Isa isa) {
+#ifdef RRF_PATH_LANES
+    if (isa == Isa::Avx512) return &avx512::start;
+    if (isa == Isa::Avx2) return &avx2::start;
+#endif
+    (void)isa;
+    return nullptr;
+}
+}  // namespace path_lanes
+
+}  // namespace rrf
