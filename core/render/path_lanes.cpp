@@ -1,5 +1,11 @@
 #include "core/render/path_lanes.h"
 
+// The lanes give trace()'s bits only where the portable code fuses no multiply-adds either: a build
+// whose base flags allow FMA (say -march=x86-64-v3) keeps the portable lockstep.
+#if defined(RRF_PATH_LANES) && !defined(__FMA__)
+#define RRF_PATH_LANES_RUN 1
+#endif
+
 namespace rrf {
 
 namespace path_lanes {
@@ -13,7 +19,7 @@ const char* isaName(Isa isa) {
 }
 
 bool isaSupported(Isa isa) {
-#ifdef RRF_PATH_LANES
+#ifdef RRF_PATH_LANES_RUN
     // __builtin_cpu_supports checks the OS's XSAVE state too.
     switch (isa) {
         case Isa::Avx2: return __builtin_cpu_supports("avx2");

@@ -1,14 +1,16 @@
 #pragma once
-/// The path tracer's lockstep vertices as SIMD lanes (issue 28 item 4; docs/design.md §10, "The
-/// tracer's lanes"), for AVX2 (two halves of 8) and AVX-512: for a batch of up to 16 diffuse paths at the same depth, one vertex step (the
-/// light samples of every path, their shadow rays as one Embree packet per light, the BRDF bounce and
-/// Russian roulette, the bounce rays as one packet) runs on structure-of-arrays state, one path per
-/// lane, without a branch per path.
+/// The path tracer's lockstep vertices as SIMD lanes (issue 28 item 4; docs/design.md §5, "The
+/// tracer's lanes"), for AVX2 (two halves of 8) and AVX-512: for a batch of up to 16 diffuse paths
+/// at the same depth, one vertex step (the light samples of every path, their shadow rays as one
+/// Embree packet per light, the BRDF bounce and Russian roulette, the bounce rays as one packet,
+/// the arrival at the next hit) runs on structure-of-arrays state, one path per lane, without a
+/// branch per path.
 ///
 /// Every lane does trace()'s arithmetic in trace()'s order with the same IEEE operations (no fused
 /// multiply-add: the unit is built with -ffp-contract=off; the cosine and sine of the bounce by the C
 /// library, lane by lane), and draws its path's random numbers in the same order, so a path's result
-/// is trace()'s bit for bit (test PathTracer.BatchIsTracePerSample*).
+/// is trace()'s bit for bit (test PathTracer.BatchIsTracePerSample*), up to the edge cases in which
+/// Embree answers a packet and a single ray differently (its sphere test, in a last bit).
 ///
 /// Like the MLP's kernels (nn/mlp_isa.h) the lanes are one translation unit per instruction set,
 /// built with that set's flags and called only on a CPU that has it (isaSupported()); nothing
@@ -21,6 +23,7 @@
 
 namespace rrf::path_lanes {
 
+/// Paths per batch, one per lane: Embree's widest packet.
 constexpr int kLanes = 16;
 
 /// Three coordinates of 16 lanes.
@@ -54,14 +57,14 @@ struct RectLight {
     int oneSided;
 };
 
+/// A point light as the light sample reads it.
 struct PointLight {
     float position[3], intensity[3];
 };
 
 /// The movable area light's ray test (PathTracer's AreaLightShape at its corner).
 struct MovableLight {
-    float corner[3], edge1[3], edge2[3], n[3], nn;
-    int triangle;
+    float corner[3], edge1[3], edge2[3], n[3], nn;  ///< a rect (AreaLightShape)
     float normal[3];  ///< Light::normal(), the hit's geometric normal
     int material;     ///< the light's material (-1: black)
     float radiance[3];
@@ -92,8 +95,8 @@ struct Setup {
     const RTCIntersectContext* cameraContext;  ///< start()'s packet (coherent when one origin)
 };
 
-/// One step's outcome: the bounce rays (tfar and hit filled by Embree for the lanes in `bounced`) and
-/// the shadow rays traced.
+/// One step's packet and outcome: the rays traced (the bounce rays, or start()'s camera rays), with
+/// tfar and hit filled by Embree for the lanes in `bounced`, and the shadow rays traced.
 struct alignas(64) Step {
     RTCRayHit16 next;
     uint32_t bounced = 0;   ///< the lanes that bounced
@@ -101,12 +104,16 @@ struct alignas(64) Step {
     uint64_t shadowRays = 0;
 };
 
-/// Adds the light sampled at the live lanes' vertices to their direct (depth 0) or indirect light,
+/// step(): adds the light sampled at the live lanes' vertices to their direct (depth 0) or indirect light,
 /// then samples their bounces and traces them (`out`). A bounce that arrives at a geometry with a
 /// table entry or at the movable light leaves its lane live at the new vertex (PathTracer's arrive()
 /// and enter() for a diffuse NEE path: no emission counted, the shading normal the geometric one);
 /// `out.resolve` are the lanes the caller sets up itself (spheres, vertex normals). Lanes that end
 /// leave `live`.
+/// start(): the camera rays the caller put in out.next.ray (the lanes of lanes.live, all others
+/// unset: beta 1, no light yet; any tnear and tfar), traced as one packet, and their first vertices
+/// set up as step() sets up a bounce's, the emission seen there added to `direct` (PathTracer's
+/// emissionSeen()).
 #define RRF_PATH_LANES_DECLARE(isa) \
     namespace isa {                 \
     void step(const Setup& setup, PathLanes& lanes, Step& out); \
@@ -115,10 +122,6 @@ struct alignas(64) Step {
 RRF_PATH_LANES_DECLARE(avx2)
 RRF_PATH_LANES_DECLARE(avx512)
 #undef RRF_PATH_LANES_DECLARE
-
-/// start(): the camera rays the caller put in out.next.ray (the lanes of lanes.live, all others
-/// unset: beta 1, no light yet; any tnear and tfar), traced as one packet, and their first vertices set up as step()
-/// sets up a bounce's, the emission seen there added to `direct` (PathTracer's emissionSeen()).
 
 /// The lanes' instruction sets; None is the portable lockstep.
 enum class Isa { None, Avx2, Avx512 };

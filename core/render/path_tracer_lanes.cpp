@@ -42,7 +42,6 @@ void PathTracer::Impl::buildLaneTables(PathTracer& t) {
     put(t.laneMovable_.edge2, t.movableShape_.edge2);
     put(t.laneMovable_.n, t.movableShape_.n);
     t.laneMovable_.nn = t.movableShape_.nn;
-    t.laneMovable_.triangle = t.movableShape_.triangle ? 1 : 0;
     if (t.movable_ >= 0) {
         put(t.laneMovable_.normal, t.movableDefault_.normal());
         t.laneMovable_.material = t.movableDefault_.material;

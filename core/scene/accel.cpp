@@ -11,7 +11,7 @@ namespace {
 /// (bounce rays, shadow rays of many points), where Embree's incoherent packet traversal is the
 /// faster one (bench/bench_render.cpp).
 /// Embree's 16-wide ray layout of `rays` (count ≤ 16) and its lane mask. Lanes past `count` repeat
-/// ray 0 but are masked off (valid = 0), so Embree never reads garbage.
+/// ray 0 but are masked off (valid = 0) and empty (tnear > tfar), so Embree never reads garbage.
 void packRays(const Ray* rays, int count, RTCRay16& r, int* valid) {
     for (int i = 0; i < 16; ++i) {
         const Ray& ray = rays[i < count ? i : 0];
@@ -22,8 +22,10 @@ void packRays(const Ray* rays, int count, RTCRay16& r, int* valid) {
         r.dir_x[i] = ray.dir.x;
         r.dir_y[i] = ray.dir.y;
         r.dir_z[i] = ray.dir.z;
-        r.tnear[i] = ray.tmin;
-        r.tfar[i] = ray.tmax;
+        // Lanes off get an empty interval too: without 16-wide kernels Embree splits the packet and
+        // tells active rays by their interval, not by `valid`.
+        r.tnear[i] = i < count ? ray.tmin : INFINITY;
+        r.tfar[i] = i < count ? ray.tmax : -INFINITY;
         r.time[i] = 0.f;
         r.mask[i] = 0xFFFFFFFFu;
         r.id[i] = unsigned(i);
@@ -50,9 +52,9 @@ void check(RTCDevice device, const char* what) {
 }
 }  // namespace
 
-Accel::Accel(const Scene& scene) {
+Accel::Accel(const Scene& scene, const std::string& embreeConfig) {
     sceneScale_ = scene.scale();
-    device_ = rtcNewDevice("threads=0");
+    device_ = rtcNewDevice(("threads=0" + (embreeConfig.empty() ? std::string() : "," + embreeConfig)).c_str());
     if (!device_) throw std::runtime_error("Embree: cannot create device (code " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
     rtcSetDeviceErrorFunction(device_, embreeError, nullptr);
     scene_ = rtcNewScene(device_);

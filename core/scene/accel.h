@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -46,7 +47,9 @@ public:
     /// Builds the BVH. Throws std::runtime_error with Embree's message on failure. Smooth meshes'
     /// vertex normals are read from `scene` at every hit, so the scene's objects must outlive the
     /// Accel and stay where they are (rebuild the Accel after changing Scene::objects).
-    explicit Accel(const Scene& scene);
+    /// `embreeConfig`: more of Embree's device configuration, e.g. "max_isa=avx2" (the tests run the
+    /// tracer's lanes on Embree's narrower kernels that way).
+    explicit Accel(const Scene& scene, const std::string& embreeConfig = "");
     ~Accel();
     Accel(const Accel&) = delete;
     Accel& operator=(const Accel&) = delete;
