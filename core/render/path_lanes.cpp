@@ -38,22 +38,13 @@ Isa bestIsa() {
     return Isa::None;
 }
 
-StepFunction stepOf(Isa isa) {
+Kernels kernelsOf(Isa isa) {
 #ifdef RRF_PATH_LANES
-    if (isa == Isa::Avx512) return &avx512::step;
-    if (isa == Isa::Avx2) return &avx2::step;
+    if (isa == Isa::Avx512) return {&avx512::step, &avx512::start};
+    if (isa == Isa::Avx2) return {&avx2::step, &avx2::start};
 #endif
     (void)isa;
-    return nullptr;
-}
-
-StepFunction startOf(Isa isa) {
-#ifdef RRF_PATH_LANES
-    if (isa == Isa::Avx512) return &avx512::start;
-    if (isa == Isa::Avx2) return &avx2::start;
-#endif
-    (void)isa;
-    return nullptr;
+    return {};
 }
 }  // namespace path_lanes
 

@@ -131,10 +131,12 @@ const char* isaName(Isa isa);
 bool isaSupported(Isa isa);
 /// The widest lanes this build and CPU run (None if none).
 Isa bestIsa();
-/// The step() of `isa`; null for None.
+/// One instruction set's step() and start().
 using StepFunction = void (*)(const Setup&, PathLanes&, Step&);
-StepFunction stepOf(Isa isa);
-/// The start() of `isa`; null for None.
-StepFunction startOf(Isa isa);
+struct Kernels {
+    StepFunction step = nullptr, start = nullptr;
+};
+/// The kernels of `isa`; null for None.
+Kernels kernelsOf(Isa isa);
 
 }  // namespace rrf::path_lanes

@@ -332,6 +332,9 @@ struct PathTracer::Impl {
     static void traceBatch(const PathTracer& t, const Ray* rays, Rng* rngs, int count, TraceCounters& counters,
                            Radiance* out);
     // The SIMD lanes (render/path_lanes.h; path_tracer_lanes.cpp).
+    /// Fewer paths than this run faster one by one (or in the portable lockstep) than in 16 lanes
+    /// (docs/results-history.md, "The tracer's lanes").
+    static constexpr int kMinLanePaths = 6;
     /// The tables the lanes read (PathTracer's lane* members).
     static void buildLaneTables(PathTracer& t);
     /// Whether the lanes run paths with the movable light at `movable` (a move of the scene's).

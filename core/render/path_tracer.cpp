@@ -41,8 +41,7 @@ PathTracer::PathTracer(const Scene& scene, const Accel& accel, Estimator estimat
 void PathTracer::setLanes(path_lanes::Isa isa) {
     if (!lanesPossible_ || !path_lanes::isaSupported(isa)) isa = path_lanes::Isa::None;
     lanes_ = isa;
-    laneStep_ = path_lanes::stepOf(isa);
-    laneStart_ = path_lanes::startOf(isa);
+    lanesKernels_ = path_lanes::kernelsOf(isa);
 }
 
 
@@ -110,7 +109,7 @@ void PathTracer::traceBatch(const Ray* rays, Rng* rngs, int count, TraceCounters
     if (count <= 0) return;
     if (count > Accel::kPacket) throw std::invalid_argument("PathTracer::traceBatch: more than 16 rays");
     if (effects_.glossy) Impl::traceBatch<true>(*this, rays, rngs, count, counters, out);
-    else if (laneStep_ && !counters.rayLog && !counters.shadowRayLog) Impl::traceLanes(*this, rays, rngs, count, counters, out);
+    else if (lanesKernels_.step && count >= Impl::kMinLanePaths && !counters.rayLog && !counters.shadowRayLog) Impl::traceLanes(*this, rays, rngs, count, counters, out);
     else Impl::traceBatch<false>(*this, rays, rngs, count, counters, out);
 }
 
@@ -118,7 +117,8 @@ void PathTracer::shadeBatch(const Hit& hit, const Vec3& wo, const Light& movable
                             TraceCounters& counters, Radiance* out) const {
     if (count <= 0) return;
     if (count > Accel::kPacket) throw std::invalid_argument("PathTracer::shadeBatch: more than 16 paths");
-    if (!effects_.glossy && !counters.rayLog && !counters.shadowRayLog && Impl::lanesTake(*this, movable)) {
+    if (!effects_.glossy && count >= Impl::kMinLanePaths && !counters.rayLog && !counters.shadowRayLog &&
+        Impl::lanesTake(*this, movable)) {
         Impl::shadeLanes(*this, hit, wo, movable, rngs, count, counters, out);
         return;
     }

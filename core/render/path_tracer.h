@@ -93,7 +93,7 @@ public:
     /// shade() for `count` ≤ Accel::kPacket paths from the same vertex: out[i] = shade(hit, wo,
     /// movable, rngs[i], counters), the data generator's paths of one record. Their first vertices
     /// run in the SIMD lanes where traceBatch()'s do (lanes()), with `movable` a move of the scene's
-    /// movable light; the results are shade()'s either way.
+    /// movable light, for batches large enough to fill them; the results are shade()'s either way.
     void shadeBatch(const Hit& hit, const Vec3& wo, const Light& movable, Rng* rngs, int count, TraceCounters& counters,
                     Radiance* out) const;
 
@@ -147,8 +147,7 @@ private:
     Light movableDefault_;   ///< the movable light where the scene puts it
     AreaLightShape movableShape_;  ///< movableDefault_'s shape (the same wherever it is moved)
     path_lanes::Isa lanes_ = path_lanes::Isa::None;  ///< lanes()
-    path_lanes::StepFunction laneStep_ = nullptr;     ///< lanes_'s step, null for the portable lockstep
-    path_lanes::StepFunction laneStart_ = nullptr;    ///< lanes_'s start
+    path_lanes::Kernels lanesKernels_;               ///< lanes_'s, null for the portable lockstep
     bool lanesPossible_ = false;  ///< whether the scene and estimator allow the lanes
     std::vector<path_lanes::RectLight> laneRects_;    ///< rectLights_ as the lanes read them
     std::vector<path_lanes::PointLight> lanePoints_;  ///< pointLights_ as the lanes read them

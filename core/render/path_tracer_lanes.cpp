@@ -63,7 +63,7 @@ void PathTracer::Impl::buildLaneTables(PathTracer& t) {
 
 bool PathTracer::Impl::lanesTake(const PathTracer& t, const Light& movable) {
     // The lanes hold the movable light's shape, emission and material; moving it changes its corner only.
-    if (!t.laneStep_ || t.movable_ < 0) return t.laneStep_ != nullptr;
+    if (!t.lanesKernels_.step || t.movable_ < 0) return t.lanesKernels_.step != nullptr;
     const Light& d = t.movableDefault_;
     return &movable == &d || (movable.type == d.type && t.movableShape_.isShapeOf(movable) && movable.radiance == d.radiance &&
                               movable.oneSided == d.oneSided && movable.material == d.material);
@@ -192,7 +192,7 @@ struct PathTracer::Impl::LaneBatch {
             if (i < count && !(r.origin == rays[0].origin)) cameraContext.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
         }
         lanes.live = (1u << count) - 1u;
-        t.laneStart_(setup, lanes, step);
+        t.lanesKernels_.start(setup, lanes, step);
         for (uint32_t b = step.resolve; b; b &= b - 1) {
             const int i = __builtin_ctz(b);
             const bool goesOn = arriveAlone(i, 0, rays[i]);
@@ -219,7 +219,7 @@ struct PathTracer::Impl::LaneBatch {
         constexpr int kLockstepVertices = 4;
         while (lanes.live && lanes.depth < kLockstepVertices) {
             setup.bounces = lanes.depth + 1 < t.maxDepth_ && t.effects_.indirect;
-            t.laneStep_(setup, lanes, step);
+            t.lanesKernels_.step(setup, lanes, step);
             counters.shadowRays += step.shadowRays;
             counters.rays += uint64_t(__builtin_popcount(step.bounced));
             ++lanes.depth;
