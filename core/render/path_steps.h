@@ -335,10 +335,11 @@ struct PathTracer::Impl {
     /// Fewer paths than this run faster one by one (or in the portable lockstep) than in 16 lanes
     /// (docs/results-history.md, "The tracer's lanes").
     static constexpr int kMinLanePaths = 6;
-    /// The tables the lanes read (PathTracer's lane* members).
+    /// The tables the lanes read (PathTracer::laneTables_).
     static void buildLaneTables(PathTracer& t);
-    /// Whether the lanes run paths with the movable light at `movable` (a move of the scene's).
-    static bool lanesTake(const PathTracer& t, const Light& movable);
+    /// Whether the lanes run `count` paths with the movable light at `movable` (a move of the
+    /// scene's): the tracer has lanes, the batch fills them, no ray is logged.
+    static bool lanesTake(const PathTracer& t, const Light& movable, int count, const TraceCounters& counters);
     struct LaneBatch;
     /// traceBatch<false>() with the lockstep vertices as SIMD lanes.
     static void traceLanes(const PathTracer& t, const Ray* rays, Rng* rngs, int count, TraceCounters& counters,

@@ -44,8 +44,6 @@ void PathTracer::setLanes(path_lanes::Isa isa) {
     lanesKernels_ = path_lanes::kernelsOf(isa);
 }
 
-
-
 Light PathTracer::movableLightAt(const Vec3& p) const {
     Light l = movableDefault_;
     l.moveTo(p);
@@ -109,7 +107,8 @@ void PathTracer::traceBatch(const Ray* rays, Rng* rngs, int count, TraceCounters
     if (count <= 0) return;
     if (count > Accel::kPacket) throw std::invalid_argument("PathTracer::traceBatch: more than 16 rays");
     if (effects_.glossy) Impl::traceBatch<true>(*this, rays, rngs, count, counters, out);
-    else if (lanesKernels_.step && count >= Impl::kMinLanePaths && !counters.rayLog && !counters.shadowRayLog) Impl::traceLanes(*this, rays, rngs, count, counters, out);
+    else if (Impl::lanesTake(*this, movableDefault_, count, counters))
+        Impl::traceLanes(*this, rays, rngs, count, counters, out);
     else Impl::traceBatch<false>(*this, rays, rngs, count, counters, out);
 }
 
@@ -117,15 +116,12 @@ void PathTracer::shadeBatch(const Hit& hit, const Vec3& wo, const Light& movable
                             TraceCounters& counters, Radiance* out) const {
     if (count <= 0) return;
     if (count > Accel::kPacket) throw std::invalid_argument("PathTracer::shadeBatch: more than 16 paths");
-    if (!effects_.glossy && count >= Impl::kMinLanePaths && !counters.rayLog && !counters.shadowRayLog &&
-        Impl::lanesTake(*this, movable)) {
+    if (Impl::lanesTake(*this, movable, count, counters)) {
         Impl::shadeLanes(*this, hit, wo, movable, rngs, count, counters, out);
         return;
     }
     for (int i = 0; i < count; ++i) out[i] = shade(hit, wo, movable, rngs[i], counters);
 }
-
-
 
 template <bool kGlossy>
 void PathTracer::Impl::directLightBatch(const PathTracer& t, Vertex* v, const int* live, int count,

@@ -149,14 +149,19 @@ private:
     path_lanes::Isa lanes_ = path_lanes::Isa::None;  ///< lanes()
     path_lanes::Kernels lanesKernels_;               ///< lanes_'s, null for the portable lockstep
     bool lanesPossible_ = false;  ///< whether the scene and estimator allow the lanes
-    std::vector<path_lanes::RectLight> laneRects_;    ///< rectLights_ as the lanes read them
-    std::vector<path_lanes::PointLight> lanePoints_;  ///< pointLights_ as the lanes read them
-    path_lanes::MovableLight laneMovable_{};           ///< movableDefault_ and its shape
-    int laneMovableRect_ = -1;                         ///< the movable light's entry in laneRects_
-    std::vector<float> laneKd_;                        ///< kd of brdfs_, x, y, z per material
-    std::vector<int> laneGeomMaterial_;                ///< material by Embree geomID (Accel::GeometryTable)
-    std::vector<float> laneLightRadiance_, laneLightNormal_;  ///< x, y, z per Scene light (normal: e1 × e2)
-    std::vector<int> laneLightOneSided_;               ///< per Scene light
+    /// What the lanes read (path_tracer_lanes.cpp): lights, materials and geometry as plain arrays,
+    /// the movable light where the scene puts it.
+    struct LaneTables {
+        std::vector<path_lanes::RectLight> rects;       ///< rectLights_, in order
+        std::vector<path_lanes::PointLight> points;     ///< pointLights_, in order
+        path_lanes::MovableLight movable{};             ///< movableDefault_ and its shape
+        int movableRect = -1;                           ///< the movable light's entry in rects
+        std::vector<float> kd;                          ///< kd of brdfs_, x, y, z per material
+        std::vector<int> geomMaterial;                  ///< material by Embree geomID (Accel::GeometryTable)
+        std::vector<float> lightRadiance, lightNormal;  ///< x, y, z per Scene light (normal: e1 × e2)
+        std::vector<int> lightOneSided;                 ///< per Scene light
+    };
+    LaneTables laneTables_;
 
     /// The shape of `movable` for the ray test: movableShape_ for the movable light wherever it was
     /// moved (movableLightAt: same edges), derived into `scratch` for any other light. Every ray of

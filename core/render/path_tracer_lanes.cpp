@@ -27,46 +27,47 @@ void PathTracer::Impl::buildLaneTables(PathTracer& t) {
         put(r.nl, cross(l.edge1, l.edge2));
         put(r.radiance, l.radiance);
         r.oneSided = l.oneSided ? 1 : 0;
-        if (li == t.movable_) t.laneMovableRect_ = int(t.laneRects_.size());
-        t.laneRects_.push_back(r);
+        if (li == t.movable_) t.laneTables_.movableRect = int(t.laneTables_.rects.size());
+        t.laneTables_.rects.push_back(r);
     }
     for (int li : t.pointLights_) {
         const Light& l = t.light(li, t.movableDefault_);
         path_lanes::PointLight pl{};
         put(pl.position, l.position);
         put(pl.intensity, l.intensity);
-        t.lanePoints_.push_back(pl);
+        t.laneTables_.points.push_back(pl);
     }
-    put(t.laneMovable_.corner, t.movableDefault_.corner);
-    put(t.laneMovable_.edge1, t.movableShape_.edge1);
-    put(t.laneMovable_.edge2, t.movableShape_.edge2);
-    put(t.laneMovable_.n, t.movableShape_.n);
-    t.laneMovable_.nn = t.movableShape_.nn;
+    put(t.laneTables_.movable.corner, t.movableDefault_.corner);
+    put(t.laneTables_.movable.edge1, t.movableShape_.edge1);
+    put(t.laneTables_.movable.edge2, t.movableShape_.edge2);
+    put(t.laneTables_.movable.n, t.movableShape_.n);
+    t.laneTables_.movable.nn = t.movableShape_.nn;
     if (t.movable_ >= 0) {
-        put(t.laneMovable_.normal, t.movableDefault_.normal());
-        t.laneMovable_.material = t.movableDefault_.material;
+        put(t.laneTables_.movable.normal, t.movableDefault_.normal());
+        t.laneTables_.movable.material = t.movableDefault_.material;
     }
-    put(t.laneMovable_.radiance, t.movableDefault_.radiance);
-    t.laneMovable_.oneSided = t.movableDefault_.oneSided ? 1 : 0;
-    for (const Brdf& b : t.brdfs_) t.laneKd_.insert(t.laneKd_.end(), {b.kd.x, b.kd.y, b.kd.z});
+    put(t.laneTables_.movable.radiance, t.movableDefault_.radiance);
+    t.laneTables_.movable.oneSided = t.movableDefault_.oneSided ? 1 : 0;
+    for (const Brdf& b : t.brdfs_) t.laneTables_.kd.insert(t.laneTables_.kd.end(), {b.kd.x, b.kd.y, b.kd.z});
     for (const Light& l : t.scene_.lights) {
         const Vec3 nl = cross(l.edge1, l.edge2);
-        t.laneLightRadiance_.insert(t.laneLightRadiance_.end(), {l.radiance.x, l.radiance.y, l.radiance.z});
-        t.laneLightNormal_.insert(t.laneLightNormal_.end(), {nl.x, nl.y, nl.z});
-        t.laneLightOneSided_.push_back(l.oneSided ? 1 : 0);
+        t.laneTables_.lightRadiance.insert(t.laneTables_.lightRadiance.end(), {l.radiance.x, l.radiance.y, l.radiance.z});
+        t.laneTables_.lightNormal.insert(t.laneTables_.lightNormal.end(), {nl.x, nl.y, nl.z});
+        t.laneTables_.lightOneSided.push_back(l.oneSided ? 1 : 0);
     }
     const Accel::GeometryTable& g = t.accel_.geometryTable();
     for (size_t i = 0; i < g.object.size(); ++i)
-        t.laneGeomMaterial_.push_back(g.object[i] >= 0 ? t.scene_.objects[size_t(g.object[i])].material
+        t.laneTables_.geomMaterial.push_back(g.object[i] >= 0 ? t.scene_.objects[size_t(g.object[i])].material
                                                        : t.scene_.lights[size_t(g.light[i])].material);
 }
 
-bool PathTracer::Impl::lanesTake(const PathTracer& t, const Light& movable) {
+bool PathTracer::Impl::lanesTake(const PathTracer& t, const Light& movable, int count, const TraceCounters& counters) {
+    if (!t.lanesKernels_.step || count < kMinLanePaths || counters.rayLog || counters.shadowRayLog) return false;
     // The lanes hold the movable light's shape, emission and material; moving it changes its corner only.
-    if (!t.lanesKernels_.step || t.movable_ < 0) return t.lanesKernels_.step != nullptr;
     const Light& d = t.movableDefault_;
-    return &movable == &d || (movable.type == d.type && t.movableShape_.isShapeOf(movable) && movable.radiance == d.radiance &&
-                              movable.oneSided == d.oneSided && movable.material == d.material);
+    return t.movable_ < 0 || &movable == &d ||
+           (movable.type == d.type && t.movableShape_.isShapeOf(movable) && movable.radiance == d.radiance &&
+            movable.oneSided == d.oneSided && movable.material == d.material);
 }
 
 /// Up to 16 paths in the lanes: their vertices for the code that runs one path at a time, the
@@ -86,13 +87,12 @@ struct PathTracer::Impl::LaneBatch {
     alignas(64) path_lanes::Step step;
     RTCIntersectContext bounceContext, cameraContext;
     path_lanes::MovableLight movableLanes;
-    std::vector<path_lanes::RectLight> movedRects;  ///< the rect lights with the movable one moved
     path_lanes::Setup setup;
     uint32_t setUp = 0;  ///< the live lanes whose v[i] holds their vertex, set up by enter()
 
     LaneBatch(const PathTracer& t_, const Light& movable_, Rng* rngs_, int count_, TraceCounters& counters_)
         : t(t_), movable(movable_), shape(t_.shapeOf(movable_, scratch)), rngs(rngs_), count(count_), counters(counters_),
-          movableLanes(t_.laneMovable_) {
+          movableLanes(t_.laneTables_.movable) {
         using namespace path_lanes;
         for (int i = 0; i < K; ++i) {
             lanes.beta.x[i] = lanes.beta.y[i] = lanes.beta.z[i] = 1.f;
@@ -104,13 +104,16 @@ struct PathTracer::Impl::LaneBatch {
         bounceContext.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
         rtcInitIntersectContext(&cameraContext);
         cameraContext.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        const RectLight* rects = t.laneRects_.data();
+        const RectLight* rects = t.laneTables_.rects.data();
         if (t.movable_ >= 0 && !(movable.corner == t.movableDefault_.corner)) {
             put(movableLanes.corner, movable.corner);
-            if (t.laneMovableRect_ >= 0) {
-                movedRects = t.laneRects_;
-                put(movedRects[size_t(t.laneMovableRect_)].corner, movable.corner);
-                rects = movedRects.data();
+            if (t.laneTables_.movableRect >= 0) {
+                // The rect lights with the movable one moved, for this batch only (a batch never
+                // outlives its call, nor does another start on the thread meanwhile).
+                thread_local std::vector<path_lanes::RectLight> moved;
+                moved.assign(t.laneTables_.rects.begin(), t.laneTables_.rects.end());
+                put(moved[size_t(t.laneTables_.movableRect)].corner, movable.corner);
+                rects = moved.data();
             }
         }
         const Accel::GeometryTable& geometry = t.accel_.geometryTable();
@@ -118,19 +121,19 @@ struct PathTracer::Impl::LaneBatch {
                       &bounceContext,
                       t.accel_.sceneScale(),
                       rects,
-                      int(t.laneRects_.size()),
-                      t.lanePoints_.data(),
-                      int(t.lanePoints_.size()),
+                      int(t.laneTables_.rects.size()),
+                      t.laneTables_.points.data(),
+                      int(t.laneTables_.points.size()),
                       t.movable_ >= 0 && movable.isArea() ? &movableLanes : nullptr,
                       0,
-                      t.laneGeomMaterial_.data(),
+                      t.laneTables_.geomMaterial.data(),
                       geometry.normalBase.data(),
                       geometry.normals.data(),
-                      t.laneKd_.data(),
+                      t.laneTables_.kd.data(),
                       geometry.light.data(),
-                      t.laneLightRadiance_.data(),
-                      t.laneLightNormal_.data(),
-                      t.laneLightOneSided_.data(),
+                      t.laneTables_.lightRadiance.data(),
+                      t.laneTables_.lightNormal.data(),
+                      t.laneTables_.lightOneSided.data(),
                       &cameraContext};
     }
 
@@ -201,14 +204,16 @@ struct PathTracer::Impl::LaneBatch {
         }
     }
 
-    /// The first vertices: every path at `hit`, seen from `wo` (shade()).
+    /// The first vertices: every path at `hit`, seen from `wo` (shade()), set up once.
     void fromVertex(const Hit& hit, const Vec3& wo) {
+        v[0].hit = hit;
+        v[0].wo = wo;
+        emissionSeen(t, v[0], movable);
+        const bool goesOn = enter<false>(t, v[0]);
         for (int i = 0; i < count; ++i) {
-            v[i].hit = hit;
-            v[i].wo = wo;
-            emissionSeen(t, v[i], movable);
+            v[i] = v[0];
             loadDirect(i);
-            if (enter<false>(t, v[i])) load(i);
+            if (goesOn) load(i);
         }
     }
 
