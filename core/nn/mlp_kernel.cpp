@@ -1,5 +1,7 @@
 #include "core/nn/mlp_kernel.h"
 
+#include "core/util/cpu_features.h"
+
 #include <atomic>
 #include <cstdlib>
 #include <stdexcept>
@@ -103,13 +105,10 @@ std::string mlpKernelDescription(MlpKernel k) {
 
 bool mlpKernelSupported(MlpKernel k) {
 #ifdef RRF_MLP_ISA
-    // __builtin_cpu_supports checks the OS's XSAVE state too, so a kernel is never chosen whose
-    // registers the OS does not save.
+    const CpuFeatures& cpu = cpuFeatures();
     switch (k) {
-        case MlpKernel::Avx2: return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-        case MlpKernel::Avx512:
-            return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-                   __builtin_cpu_supports("fma");
+        case MlpKernel::Avx2: return cpu.avx2 && cpu.fma;
+        case MlpKernel::Avx512: return cpu.avx512f && cpu.avx512dq && cpu.fma;
         case MlpKernel::Portable: return true;
     }
     return false;

@@ -1,5 +1,7 @@
 #include "core/render/path_lanes.h"
 
+#include "core/util/cpu_features.h"
+
 // The lanes give trace()'s bits only where the portable code fuses no multiply-adds either: a build
 // whose base flags allow FMA (say -march=x86-64-v3) keeps the portable lockstep.
 #if defined(RRF_PATH_LANES) && !defined(__FMA__)
@@ -20,10 +22,10 @@ const char* isaName(Isa isa) {
 
 bool isaSupported(Isa isa) {
 #ifdef RRF_PATH_LANES_RUN
-    // __builtin_cpu_supports checks the OS's XSAVE state too.
+    const CpuFeatures& cpu = cpuFeatures();
     switch (isa) {
-        case Isa::Avx2: return __builtin_cpu_supports("avx2");
-        case Isa::Avx512: return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+        case Isa::Avx2: return cpu.avx2;
+        case Isa::Avx512: return cpu.avx512f && cpu.avx512dq;
         case Isa::None: return true;
     }
     return false;
