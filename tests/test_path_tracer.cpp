@@ -438,6 +438,11 @@ void expectShadeBatchIsShade(const Scene& scene, const std::string& what) {
 TEST(PathTracer, ShadeBatchIsShadePerPathWithTheLightMoved) {
     expectShadeBatchIsShade(loadScene(std::string(RRF_SOURCE_DIR) + "/projects/cornell-box/scene.json"), "cornell-box");
     expectShadeBatchIsShade(everyArrival(false), "every arrival");
+    // The movable light a point light: moved, its paths go one by one; where the scene puts it, in lanes.
+    Scene point = everyArrival(false);
+    point.movableLight = int(point.lights.size()) - 1;
+    ASSERT_EQ(point.lights[size_t(point.movableLight)].type, Light::Type::Point);
+    expectShadeBatchIsShade(point, "every arrival, a point light moved");
 }
 
 }  // namespace test_path_tracer

@@ -63,11 +63,13 @@ void PathTracer::Impl::buildLaneTables(PathTracer& t) {
 
 bool PathTracer::Impl::lanesTake(const PathTracer& t, const Light& movable, int count, const TraceCounters& counters) {
     if (!t.lanesKernels_.step || count < kMinLanePaths || counters.rayLog || counters.shadowRayLog) return false;
-    // The lanes hold the movable light's shape, emission and material; moving it changes its corner only.
+    // The lanes hold the movable light's shape, emission and material, and take a rect's new corner
+    // (LaneBatch); a point light moved elsewhere goes one path at a time.
     const Light& d = t.movableDefault_;
-    return t.movable_ < 0 || &movable == &d ||
-           (movable.type == d.type && t.movableShape_.isShapeOf(movable) && movable.radiance == d.radiance &&
-            movable.oneSided == d.oneSided && movable.material == d.material);
+    if (t.movable_ < 0 || &movable == &d) return true;
+    if (movable.type != d.type || (movable.type == Light::Type::Point && !(movable.position == d.position))) return false;
+    return t.movableShape_.isShapeOf(movable) && movable.radiance == d.radiance && movable.intensity == d.intensity &&
+           movable.oneSided == d.oneSided && movable.material == d.material;
 }
 
 /// Up to 16 paths in the lanes: their vertices for the code that runs one path at a time, the
