@@ -105,7 +105,6 @@ struct PathTracer::Impl::LaneBatch {
         rtcInitIntersectContext(&bounceContext);
         bounceContext.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
         rtcInitIntersectContext(&cameraContext);
-        cameraContext.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         const RectLight* rects = t.laneTables_.rects.data();
         if (t.movable_ >= 0 && !(movable.corner == t.movableDefault_.corner)) {
             put(movableLanes.corner, movable.corner);
@@ -180,22 +179,13 @@ struct PathTracer::Impl::LaneBatch {
         return enter<false>(t, v[i]);
     }
 
-    /// The first vertices: where the camera rays hit (one packet, coherent when they share the eye,
-    /// as Accel::intersectPacket), with the emission seen there.
+    /// The first vertices: where the camera rays hit (one packet, as Accel::intersectPacket packs
+    /// it), with the emission seen there.
     void fromCamera(const Ray* rays) {
         counters.rays += uint64_t(count);
-        for (int i = 0; i < K; ++i) {
-            const Ray& r = rays[i < count ? i : 0];  // lanes past count repeat ray 0, masked off
-            step.next.ray.org_x[i] = r.origin.x, step.next.ray.org_y[i] = r.origin.y, step.next.ray.org_z[i] = r.origin.z;
-            step.next.ray.dir_x[i] = r.dir.x, step.next.ray.dir_y[i] = r.dir.y, step.next.ray.dir_z[i] = r.dir.z;
-            step.next.ray.tnear[i] = r.tmin;
-            step.next.ray.tfar[i] = r.tmax;
-            step.next.ray.time[i] = 0.f;
-            step.next.ray.mask[i] = 0xFFFFFFFFu;
-            step.next.ray.id[i] = unsigned(i);
-            step.next.ray.flags[i] = 0;
-            if (i < count && !(r.origin == rays[0].origin)) cameraContext.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-        }
+        alignas(64) int valid[K];  // start() takes the lanes from lanes.live
+        Accel::packRays(rays, count, step.next.ray, valid);
+        cameraContext.flags = Accel::packetFlags(rays, count);
         lanes.live = (1u << count) - 1u;
         t.lanesKernels_.start(setup, lanes, step);
         for (uint32_t b = step.resolve; b; b &= b - 1) {

@@ -5,14 +5,7 @@
 
 namespace rrf {
 
-namespace {
-/// Embree's traversal flag for a packet: coherent when all rays leave from one point (camera rays,
-/// the shadow rays of one receiver), where the packet shares its traversal; incoherent otherwise
-/// (bounce rays, shadow rays of many points), where Embree's incoherent packet traversal is the
-/// faster one (bench/bench_render.cpp).
-/// Embree's 16-wide ray layout of `rays` (count ≤ 16) and its lane mask. Lanes past `count` repeat
-/// ray 0 but are masked off (valid = 0) and empty (tnear > tfar), so Embree never reads garbage.
-void packRays(const Ray* rays, int count, RTCRay16& r, int* valid) {
+void Accel::packRays(const Ray* rays, int count, RTCRay16& r, int* valid) {
     for (int i = 0; i < 16; ++i) {
         const Ray& ray = rays[i < count ? i : 0];
         valid[i] = i < count ? -1 : 0;
@@ -33,11 +26,13 @@ void packRays(const Ray* rays, int count, RTCRay16& r, int* valid) {
     }
 }
 
-RTCIntersectContextFlags packetFlags(const Ray* rays, int count) {
+RTCIntersectContextFlags Accel::packetFlags(const Ray* rays, int count) {
     for (int i = 1; i < count; ++i)
         if (!(rays[i].origin == rays[0].origin)) return RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     return RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
 }
+
+namespace {
 
 void embreeError(void*, RTCError code, const char* str) {
     // Errors are turned into exceptions where they are detected (rtcGetDeviceError after builds);

@@ -72,6 +72,15 @@ public:
     /// occludedPacket(): camera rays of neighbouring pixels share most of their traversal. Same hits
     /// as intersect() up to the edge cases of two watertight ray tests.
     void intersectPacket(const Ray* rays, int count, Hit* hits, bool* found) const;
+    /// Embree's 16-wide ray layout of `rays` (count ≤ kPacket) and its lane mask. Lanes past `count`
+    /// repeat ray 0 but are masked off (valid = 0) and empty (tnear > tfar), so Embree never reads
+    /// garbage, also where it splits the packet for narrower kernels and reads only the interval.
+    static void packRays(const Ray* rays, int count, RTCRay16& r, int* valid);
+    /// Embree's traversal flag for a packet: coherent when all rays leave from one point (camera
+    /// rays, the shadow rays of one receiver), where the packet shares its traversal; incoherent
+    /// otherwise (bounce rays, shadow rays of many points), where Embree's incoherent packet
+    /// traversal is the faster one (bench/bench_render.cpp).
+    static RTCIntersectContextFlags packetFlags(const Ray* rays, int count);
     /// The Hit of lane `lane` of a packet that rtcIntersect16 traced against handle(), as intersect()
     /// fills it for the lane's ray; false when the lane missed.
     bool hitOfPacket(const RTCRayHit16& rh, int lane, Hit& hit) const;
